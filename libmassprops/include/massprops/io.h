@@ -1,0 +1,33 @@
+#pragma once
+/// @file
+/// Reading mesh files (target massprops::io). Coordinates are kept in double precision as
+/// written in the file; nothing goes through 32-bit floats except binary STL, which stores them.
+
+#include <stdexcept>
+#include <string>
+
+#include "massprops/mesh.h"
+
+namespace massprops {
+
+/// A file could not be read as a mesh. what() names the file and the fault.
+class MeshFileError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// What was read, and how.
+struct LoadedMesh {
+  PolygonMesh mesh;         ///< faces as in the file (OBJ n-gons are kept whole)
+  std::string format;       ///< "obj", "stl-binary" or "stl-ascii"
+  std::int64_t welded = 0;  ///< corners merged because they had bit-identical positions (STL)
+};
+
+/// Reads an OBJ (v/f records, n-gons, negative indices, several objects, `\` continuations) or an
+/// STL (binary or ASCII, detected from the content, not the `solid` keyword). STL corners with
+/// bit-identical positions are welded into shared vertices (-0.0 equals 0.0).
+/// @throws MeshFileError for a missing, empty, truncated or malformed file, an unknown extension,
+///         non-finite coordinates, or a face index out of range.
+LoadedMesh ReadMeshFile(const std::string& path);
+
+}  // namespace massprops

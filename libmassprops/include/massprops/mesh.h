@@ -1,0 +1,46 @@
+#pragma once
+/// @file
+/// Mesh containers: an indexed triangle mesh and an indexed polygon mesh (faces of any size).
+
+#include <cstdint>
+#include <vector>
+
+#include "massprops/types.h"
+
+namespace massprops {
+
+/// Indexed triangle mesh. Faces are counter-clockwise seen from outside the solid.
+struct TriangleMesh {
+  VertexMatrix V;  ///< #V×3 vertex positions
+  FaceMatrix F;    ///< #F×3 vertex indices
+};
+
+/// Indexed mesh of planar polygons with any number of corners (n >= 3), counter-clockwise seen
+/// from outside. Face f has the corners indices[offsets[f]] ... indices[offsets[f+1]-1];
+/// offsets has #faces+1 entries and starts with 0.
+struct PolygonMesh {
+  VertexMatrix V;                     ///< #V×3 vertex positions
+  std::vector<std::int32_t> indices;  ///< corners of all faces, face after face
+  std::vector<std::int64_t> offsets{0};
+
+  std::int64_t num_faces() const { return static_cast<std::int64_t>(offsets.size()) - 1; }
+  int face_size(std::int64_t f) const { return static_cast<int>(offsets[f + 1] - offsets[f]); }
+  /// Appends one face given by its corner indices.
+  template <typename Range>
+  void AddFace(const Range& corners) {
+    for (auto c : corners) indices.push_back(static_cast<std::int32_t>(c));
+    offsets.push_back(static_cast<std::int64_t>(indices.size()));
+  }
+};
+
+/// Splits every polygon into a fan of triangles from its first corner (exact for planar convex
+/// polygons, and for any planar polygon as far as the signed integrals are concerned).
+TriangleMesh Triangulate(const PolygonMesh& mesh);
+
+/// Views a triangle mesh as a polygon mesh of triangles (to run it through Mirtich's path).
+PolygonMesh ToPolygonMesh(const TriangleMesh& mesh);
+
+/// True when every face of the polygon mesh is a triangle.
+bool IsAllTriangles(const PolygonMesh& mesh);
+
+}  // namespace massprops

@@ -1,0 +1,265 @@
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "massprops/io.h"
+
+namespace massprops {
+namespace {
+
+[[noreturn]] void Fail(const std::string& path, const std::string& what) {
+  throw MeshFileError(path + ": " + what);
+}
+
+std::string ReadWholeFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) Fail(path, "cannot open the file (missing or unreadable)");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  std::string data = buffer.str();
+  if (data.empty()) Fail(path, "the file is empty");
+  return data;
+}
+
+std::string Lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+bool IsSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
+
+std::string_view NextToken(std::string_view& s) {
+  std::size_t i = 0;
+  while (i < s.size() && IsSpace(s[i])) ++i;
+  std::size_t j = i;
+  while (j < s.size() && !IsSpace(s[j])) ++j;
+  std::string_view tok = s.substr(i, j - i);
+  s.remove_prefix(j);
+  return tok;
+}
+
+bool ParseDouble(std::string_view tok, double& out) {
+  if (!tok.empty() && tok.front() == '+') tok.remove_prefix(1);
+  const auto res = std::from_chars(tok.data(), tok.data() + tok.size(), out);
+  return res.ec == std::errc() && res.ptr == tok.data() + tok.size();
+}
+
+// Welds corners by bit-identical position (with -0.0 == 0.0).
+struct PositionKey {
+  double x, y, z;
+  bool operator==(const PositionKey& o) const { return x == o.x && y == o.y && z == o.z; }
+};
+struct PositionHash {
+  std::size_t operator()(const PositionKey& k) const {
+    auto bits = [](double d) {
+      std::uint64_t u;
+      d = d == 0.0 ? 0.0 : d;
+      std::memcpy(&u, &d, sizeof u);
+      return u;
+    };
+    std::uint64_t h = bits(k.x) * 0x9E3779B97F4A7C15ull;
+    h ^= bits(k.y) + 0x7F4A7C159E3779B9ull + (h << 6) + (h >> 2);
+    h ^= bits(k.z) + 0x94D049BB133111EBull + (h << 6) + (h >> 2);
+    return static_cast<std::size_t>(h);
+  }
+};
+
+LoadedMesh FromTriangleSoup(const std::string& path, const std::vector<double>& xyz,
+                            const char* format) {
+  const std::size_t corners = xyz.size() / 3;
+  LoadedMesh out;
+  out.format = format;
+  std::unordered_map<PositionKey, std::int32_t, PositionHash> index;
+  index.reserve(corners / 2 + 1);
+  std::vector<double> verts;
+  verts.reserve(xyz.size() / 2);
+  out.mesh.indices.reserve(corners);
+  for (std::size_t c = 0; c < corners; ++c) {
+    const PositionKey k{xyz[3 * c], xyz[3 * c + 1], xyz[3 * c + 2]};
+    if (!std::isfinite(k.x) || !std::isfinite(k.y) || !std::isfinite(k.z)) {
+      std::ostringstream msg;
+      msg << "triangle " << c / 3 << " has a non-finite coordinate (" << k.x << ", " << k.y
+          << ", " << k.z << ")";
+      Fail(path, msg.str());
+    }
+    auto [it, inserted] = index.emplace(k, static_cast<std::int32_t>(verts.size() / 3));
+    if (inserted) {
+      verts.insert(verts.end(), {k.x, k.y, k.z});
+    } else {
+      ++out.welded;
+    }
+    out.mesh.indices.push_back(it->second);
+    if (c % 3 == 2) out.mesh.offsets.push_back(static_cast<std::int64_t>(c + 1));
+  }
+  out.mesh.V = Eigen::Map<const VertexMatrix>(verts.data(), static_cast<Eigen::Index>(verts.size() / 3), 3);
+  return out;
+}
+
+LoadedMesh ReadBinaryStl(const std::string& path, const std::string& data, std::uint32_t n) {
+  std::vector<double> xyz(static_cast<std::size_t>(n) * 9);
+  for (std::uint32_t t = 0; t < n; ++t) {
+    const char* rec = data.data() + 84 + 50 * static_cast<std::size_t>(t) + 12;  // skip normal
+    float f[9];
+    std::memcpy(f, rec, sizeof f);
+    for (int k = 0; k < 9; ++k) xyz[9 * static_cast<std::size_t>(t) + k] = f[k];
+  }
+  return FromTriangleSoup(path, xyz, "stl-binary");
+}
+
+LoadedMesh ReadAsciiStl(const std::string& path, const std::string& data) {
+  std::vector<double> xyz;
+  std::string_view rest(data);
+  std::size_t line = 1;
+  int in_facet_vertices = 0;
+  bool saw_solid = false;
+  while (!rest.empty()) {
+    const std::size_t eol = rest.find('\n');
+    std::string_view ln = rest.substr(0, eol);
+    rest.remove_prefix(eol == std::string_view::npos ? rest.size() : eol + 1);
+    std::string_view s = ln;
+    const std::string key = Lower(std::string(NextToken(s)));  // keywords are case-insensitive
+    if (key == "vertex") {
+      double v[3];
+      for (double& c : v) {
+        const std::string_view tok = NextToken(s);
+        if (!ParseDouble(tok, c)) {
+          Fail(path, "line " + std::to_string(line) + ": expected a number after 'vertex', got '" +
+                         std::string(tok) + "'");
+        }
+      }
+      xyz.insert(xyz.end(), v, v + 3);
+      ++in_facet_vertices;
+    } else if (key == "endloop") {
+      if (in_facet_vertices != 3) {
+        Fail(path, "line " + std::to_string(line) + ": a facet has " +
+                       std::to_string(in_facet_vertices) + " vertices; STL facets have 3");
+      }
+      in_facet_vertices = 0;
+    } else if (key == "solid") {
+      saw_solid = true;
+    } else if (!(key.empty() || key == "facet" || key == "outer" || key == "endfacet" ||
+                 key == "endsolid")) {
+      Fail(path, "line " + std::to_string(line) + ": unexpected '" + key +
+                     "' in an ASCII STL");
+    }
+    ++line;
+  }
+  if (!saw_solid || xyz.empty()) Fail(path, "no facets found in the ASCII STL");
+  if (in_facet_vertices != 0) Fail(path, "the ASCII STL ends inside a facet (truncated?)");
+  return FromTriangleSoup(path, xyz, "stl-ascii");
+}
+
+LoadedMesh ReadStl(const std::string& path) {
+  const std::string data = ReadWholeFile(path);
+  const std::size_t size = data.size();
+  std::uint32_t n = 0;
+  if (size >= 84) std::memcpy(&n, data.data() + 80, 4);
+  const std::uint64_t expected = 84 + 50 * static_cast<std::uint64_t>(n);
+  const bool starts_solid = data.compare(0, 5, "solid") == 0;
+  if (size >= 84 && expected == size && n > 0) return ReadBinaryStl(path, data, n);
+  if (starts_solid) {
+    // Binary files from some exporters also begin with "solid"; text has no NUL bytes and
+    // mentions "facet" early.
+    const std::string_view head(data.data(), std::min<std::size_t>(size, 4096));
+    const bool looks_text = head.find('\0') == std::string_view::npos &&
+                            (head.find("facet") != std::string_view::npos ||
+                             head.find("endsolid") != std::string_view::npos);
+    if (looks_text) return ReadAsciiStl(path, data);
+  }
+  if (size >= 84 && n > 0 && expected < size && size - expected < 50) {
+    return ReadBinaryStl(path, data, n);  // a few trailing bytes after the last record
+  }
+  if (size < 84) Fail(path, "too short for a binary STL (" + std::to_string(size) + " bytes) and not ASCII STL");
+  std::ostringstream msg;
+  msg << "binary STL header says " << n << " triangles, which need " << expected
+      << " bytes, but the file has " << size << " bytes (truncated or not an STL)";
+  Fail(path, msg.str());
+}
+
+LoadedMesh ReadObj(const std::string& path) {
+  const std::string data = ReadWholeFile(path);
+  LoadedMesh out;
+  out.format = "obj";
+  std::vector<double> verts;
+  std::vector<std::int32_t> face;
+  std::string joined;
+  std::string_view rest(data);
+  std::size_t line = 0;
+  while (!rest.empty()) {
+    // One logical line: physical lines joined where they end with a backslash.
+    joined.clear();
+    const std::size_t first_line = line + 1;
+    for (;;) {
+      const std::size_t eol = rest.find('\n');
+      std::string_view ln = rest.substr(0, eol);
+      rest.remove_prefix(eol == std::string_view::npos ? rest.size() : eol + 1);
+      ++line;
+      while (!ln.empty() && (ln.back() == '\r' || ln.back() == ' ' || ln.back() == '\t')) ln.remove_suffix(1);
+      if (!ln.empty() && ln.back() == '\\' && !rest.empty()) {
+        ln.remove_suffix(1);
+        joined.append(ln);
+        joined.push_back(' ');
+        continue;
+      }
+      joined.append(ln);
+      break;
+    }
+    std::string_view s(joined);
+    const std::size_t hash = s.find('#');
+    if (hash != std::string_view::npos) s = s.substr(0, hash);
+    const std::string_view key = NextToken(s);
+    auto where = [&]() { return "line " + std::to_string(first_line) + ": "; };
+    if (key == "v") {
+      for (int k = 0; k < 3; ++k) {
+        const std::string_view tok = NextToken(s);
+        double c;
+        if (!ParseDouble(tok, c)) Fail(path, where() + "expected a coordinate, got '" + std::string(tok) + "'");
+        if (!std::isfinite(c)) Fail(path, where() + "non-finite coordinate '" + std::string(tok) + "'");
+        verts.push_back(c);
+      }
+    } else if (key == "f") {
+      face.clear();
+      const auto nv = static_cast<std::int64_t>(verts.size() / 3);
+      for (std::string_view tok = NextToken(s); !tok.empty(); tok = NextToken(s)) {
+        const std::string_view idx = tok.substr(0, tok.find('/'));
+        std::int64_t i = 0;
+        const auto res = std::from_chars(idx.data(), idx.data() + idx.size(), i);
+        if (res.ec != std::errc() || res.ptr != idx.data() + idx.size() || i == 0) {
+          Fail(path, where() + "bad face index '" + std::string(tok) + "'");
+        }
+        const std::int64_t zero_based = i > 0 ? i - 1 : nv + i;  // negative: relative to the end
+        if (zero_based < 0 || zero_based >= nv) {
+          Fail(path, where() + "face index " + std::to_string(i) + " is out of range (" +
+                         std::to_string(nv) + " vertices so far)");
+        }
+        face.push_back(static_cast<std::int32_t>(zero_based));
+      }
+      if (face.size() < 3) Fail(path, where() + "a face needs at least 3 corners");
+      out.mesh.AddFace(face);
+    }
+    // vt, vn, o, g, s, usemtl, mtllib, l, ...: not geometry of the solid.
+  }
+  if (verts.empty() || out.mesh.num_faces() == 0) Fail(path, "no faces found in the OBJ file");
+  out.mesh.V = Eigen::Map<const VertexMatrix>(verts.data(), static_cast<Eigen::Index>(verts.size() / 3), 3);
+  return out;
+}
+
+}  // namespace
+
+LoadedMesh ReadMeshFile(const std::string& path) {
+  const std::size_t dot = path.find_last_of('.');
+  const std::string ext = dot == std::string::npos ? "" : Lower(path.substr(dot + 1));
+  if (ext == "obj") return ReadObj(path);
+  if (ext == "stl") return ReadStl(path);
+  Fail(path, "unknown mesh format '" + ext + "' (this build reads .obj and .stl)");
+}
+
+}  // namespace massprops

@@ -1,0 +1,50 @@
+#pragma once
+// Deterministic block-parallel reduction: the work is cut into blocks whose boundaries depend on
+// the problem size only, each block is reduced by one thread in order, and the block results are
+// added pairwise in a fixed tree. The bits of the result therefore do not depend on how many
+// threads ran or which thread took which block.
+
+#include <algorithm>
+#include <atomic>
+#include <cstdint>
+#include <thread>
+#include <vector>
+
+namespace massprops::internal {
+
+inline int ResolveThreadCount(int requested, std::int64_t num_blocks) {
+  int n = requested > 0 ? requested : static_cast<int>(std::thread::hardware_concurrency());
+  n = std::max(n, 1);
+  return static_cast<int>(std::min<std::int64_t>(n, std::max<std::int64_t>(num_blocks, 1)));
+}
+
+/// Calls block_fn(b) for b in [0, num_blocks) on up to num_threads threads.
+template <typename BlockFn>
+void ParallelForBlocks(std::int64_t num_blocks, int num_threads, const BlockFn& block_fn) {
+  const int threads = ResolveThreadCount(num_threads, num_blocks);
+  if (threads <= 1) {
+    for (std::int64_t b = 0; b < num_blocks; ++b) block_fn(b);
+    return;
+  }
+  std::atomic<std::int64_t> next{0};
+  auto worker = [&]() {
+    for (std::int64_t b = next.fetch_add(1); b < num_blocks; b = next.fetch_add(1)) block_fn(b);
+  };
+  std::vector<std::thread> pool;
+  pool.reserve(threads - 1);
+  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+}
+
+/// Adds partial results pairwise in a fixed tree (error grows as log2 of the count).
+template <typename T>
+T PairwiseSum(std::vector<T>& parts) {
+  if (parts.empty()) return T{};
+  for (std::size_t width = 1; width < parts.size(); width *= 2) {
+    for (std::size_t i = 0; i + width < parts.size(); i += 2 * width) parts[i] += parts[i + width];
+  }
+  return parts[0];
+}
+
+}  // namespace massprops::internal
