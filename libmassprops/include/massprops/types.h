@@ -5,6 +5,8 @@
 #include <cstdint>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products
+#include <Eigen/LU>        // determinants
 
 namespace massprops {
 
