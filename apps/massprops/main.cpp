@@ -163,8 +163,7 @@ int main(int argc, char** argv) {
   CLI::App app{"massprops: exact mass properties of the solids that mesh files bound"};
   Options opt;
   app.add_option("files", opt.files, "Mesh files (.obj, .stl), coordinates in metres")
-      ->required()
-      ->check(CLI::ExistingFile);
+      ->required();
   app.add_option("--density", opt.density, "Uniform density in kg/m^3")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Configures and builds the project into a build folder (default: build; build-asan with
+# MASSPROPS_SANITIZE=ON). Installs missing dependencies first. Used by run.sh, test.sh and CI.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+bash "$root/scripts/install_deps.sh"
+
+sanitize=${MASSPROPS_SANITIZE:-OFF}
+build_dir=${MASSPROPS_BUILD_DIR:-$root/build}
+if [ "$sanitize" = "ON" ] && [ -z "${MASSPROPS_BUILD_DIR:-}" ]; then build_dir=$root/build-asan; fi
+build_type=${MASSPROPS_BUILD_TYPE:-Release}
+if [ "$sanitize" = "ON" ]; then build_type=RelWithDebInfo; fi
+
+cmake -S "$root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE="$build_type" \
+  -DMASSPROPS_SANITIZE="$sanitize" >/dev/null
+cmake --build "$build_dir" -j "$(nproc)"
+echo "$build_dir"
