@@ -104,6 +104,9 @@ void PrintTable(std::ostream& out, const Report& r) {
       << t.vertices << " vertices, " << t.components << " component"
       << (t.components == 1 ? "" : "s") << ", "
       << (t.BoundsVolume() ? "closed and consistently oriented" : t.Problems()) << ")\n";
+  if (r.loaded.float32_coordinates) {
+    out << "precision       the file's coordinates are 32-bit floats (~7 significant digits)\n";
+  }
   out << "units           coordinates taken as metres; density " << r.mp.density << " kg/m^3\n";
   out << "integration     " << r.path_used << ", " << r.seconds << " s\n";
   out << "volume          " << Num(r.mp.volume) << " m^3\n";
@@ -154,7 +157,8 @@ nlohmann::ordered_json ToJson(const Report& r) {
             {"closed", t.boundary_edges == 0},
             {"oriented", t.inconsistent_edges == 0},
             {"boundary_edges", t.boundary_edges},
-            {"non_manifold_edges", t.non_manifold_edges}}}};
+            {"non_manifold_edges", t.non_manifold_edges},
+            {"float32_coordinates", r.loaded.float32_coordinates}}}};
 }
 
 }  // namespace

@@ -127,9 +127,13 @@ TEST_F(BadFiles, MissingEmptyAndUnknownFormat) {
   const std::string empty = Write("empty.obj", "");
   EXPECT_THAT([&] { ReadMeshFile(empty); },
               ::testing::ThrowsMessage<MeshFileError>(HasSubstr("empty.obj: the file is empty")));
+  const std::string unknown = Write("part.qqq", "solid?");
+  EXPECT_THAT([&] { ReadMeshFile(unknown); },
+              ::testing::ThrowsMessage<MeshFileError>(HasSubstr("unknown mesh format 'qqq'")));
+  // A format assimp knows but a file it cannot parse: assimp's reason, with the file named.
   const std::string step = Write("part.step", "ISO-10303-21;");
   EXPECT_THAT([&] { ReadMeshFile(step); },
-              ::testing::ThrowsMessage<MeshFileError>(HasSubstr("unknown mesh format 'step'")));
+              ::testing::ThrowsMessage<MeshFileError>(HasSubstr("part.step: assimp could not read it")));
 }
 
 TEST_F(BadFiles, TruncatedBinaryStl) {
@@ -189,6 +193,105 @@ TEST_F(BadFiles, ObjSyntaxThatIsValid) {
   EXPECT_EQ(m.mesh.num_faces(), 4);
   EXPECT_TRUE(AnalyzeTopology(m.mesh).BoundsVolume());
   EXPECT_TRUE(NearRel(ComputeMassProperties(m.mesh, 1.0).volume, 1.0 / 6, 1e-15));
+}
+
+// PLY and OFF have readers of our own: an OFF box of quads and an ASCII PLY tetrahedron, and
+// binary PLY in both byte orders, with double coordinates that a float would round.
+TEST_F(BadFiles, PlyAndOffReaders) {
+  const std::string off = Write(
+      "box.off",
+      "OFF\n8 6 0\n0 0 0\n2 0 0\n0 3 0\n2 3 0\n0 0 4\n2 0 4\n0 3 4\n2 3 4\n"
+      "4 1 3 7 5\n4 0 4 6 2\n4 2 6 7 3\n4 0 1 5 4\n4 4 5 7 6\n4 0 2 3 1\n");
+  const LoadedMesh box = ReadMeshFile(off);
+  EXPECT_EQ(box.format, "off");
+  EXPECT_FALSE(box.float32_coordinates);
+  EXPECT_TRUE(AnalyzeTopology(box.mesh).BoundsVolume());
+  ExpectMassPropertiesNear(ComputeMassProperties(box.mesh, 1.0),
+                           Transformed(solids::BoxProperties(Vector3(2, 3, 4), 1.0),
+                                       Matrix3::Identity(), Vector3(1, 1.5, 2)),
+                           1e-15, 4.0);
+  const std::string ply = Write(
+      "tet.ply",
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n5 0 0\n0 4 0\n0 0 3\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+  const MassProperties tet = ComputeMassProperties(ReadMeshFile(ply).mesh, 1.0);
+  EXPECT_TRUE(NearRel(tet.volume, 10.0, 1e-15));
+  EXPECT_TRUE(MatrixNearRel(tet.center_of_mass, Vector3(1.25, 1.0, 0.75), 1e-15, 1.0));
+  // A header cut short (assimp 5.2 hangs on this one).
+  const std::string bad = Write("bad.ply", "ply\nformat ascii 1.0\nelement vertex 4\n");
+  EXPECT_THAT([&] { ReadMeshFile(bad); },
+              ::testing::ThrowsMessage<MeshFileError>(HasSubstr("bad.ply: the PLY header has no 'end_header'")));
+
+  // Binary PLY: the Mirtich tetra moved to 1e5 + 1/3, stored as doubles (little endian) and as
+  // floats (big endian), with an extra uchar property to skip.
+  auto binary_ply = [](bool big_endian, bool doubles) {
+    std::string s = std::string("ply\nformat ") + (big_endian ? "binary_big_endian" : "binary_little_endian") +
+                    " 1.0\nelement vertex 4\n";
+    const char* t = doubles ? "double" : "float";
+    s += std::string("property ") + t + " x\nproperty uchar flag\nproperty " + t + " y\nproperty " + t +
+         " z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
+    auto put = [&](const void* p, int n) {
+      std::string b(static_cast<const char*>(p), static_cast<std::size_t>(n));
+      if (big_endian) std::reverse(b.begin(), b.end());
+      s += b;
+    };
+    const double shift = 1e5 + 1.0 / 3.0;
+    const double v[4][3] = {{0, 0, 0}, {5, 0, 0}, {0, 4, 0}, {0, 0, 3}};
+    for (const auto& p : v) {
+      for (int k = 0; k < 3; ++k) {
+        if (doubles) {
+          const double c = p[k] + shift;
+          put(&c, 8);
+        } else {
+          const float c = static_cast<float>(p[k]);
+          put(&c, 4);
+        }
+        if (k == 0) s += '\x07';
+      }
+    }
+    const int faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    for (const auto& f : faces) {
+      s += '\x03';
+      for (int i : f) put(&i, 4);
+    }
+    return s;
+  };
+  const LoadedMesh le = ReadMeshFile(Write("le.ply", binary_ply(false, true)));
+  EXPECT_EQ(le.format, "ply-binary");
+  EXPECT_FALSE(le.float32_coordinates);
+  const MassProperties mle = ComputeMassProperties(le.mesh, 1.0);
+  EXPECT_TRUE(NearRel(mle.volume, 10.0, 1e-10));
+  const double shift = 1e5 + 1.0 / 3.0;
+  EXPECT_TRUE(MatrixNearRel(mle.center_of_mass, Vector3(1.25 + shift, 1.0 + shift, 0.75 + shift),
+                            1e-15, shift));
+  const LoadedMesh be = ReadMeshFile(Write("be.ply", binary_ply(true, false)));
+  EXPECT_TRUE(be.float32_coordinates);
+  EXPECT_TRUE(NearRel(ComputeMassProperties(be.mesh, 1.0).volume, 10.0, 1e-15));
+  std::string cut = binary_ply(false, true);
+  cut.resize(cut.size() - 7);
+  EXPECT_THAT([&] { ReadMeshFile(Write("cut.ply", cut)); },
+              ::testing::ThrowsMessage<MeshFileError>(HasSubstr("truncated")));
+  const std::string short_off = Write("short.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n");
+  EXPECT_THAT([&] { ReadMeshFile(short_off); },
+              ::testing::ThrowsMessage<MeshFileError>(HasSubstr("ends after 2 of 4 vertices")));
+}
+
+// Formats without a reader of our own go through assimp (kept to one translation unit).
+TEST_F(BadFiles, OtherFormatsThroughAssimp) {
+  // assimp's RAW format: one triangle per line as 9 numbers. Mirtich's tetra again.
+  const std::string raw = Write("tet.raw",
+                                "0 0 0 0 4 0 5 0 0\n0 0 0 5 0 0 0 0 3\n0 0 0 0 0 3 0 4 0\n"
+                                "5 0 0 0 4 0 0 0 3\n");
+  const LoadedMesh m = ReadMeshFile(raw);
+  EXPECT_EQ(m.format, "assimp:raw");
+  EXPECT_TRUE(m.float32_coordinates);
+  EXPECT_EQ(m.mesh.V.rows(), 4);  // corners welded by position
+  const MeshTopology t = AnalyzeTopology(m.mesh);
+  EXPECT_TRUE(t.BoundsVolume()) << t.Problems();
+  const MassProperties mp = ComputeMassProperties(m.mesh, 1.0);
+  EXPECT_TRUE(NearRel(mp.volume, 10.0, 1e-15));
+  EXPECT_TRUE(MatrixNearRel(mp.center_of_mass, Vector3(1.25, 1.0, 0.75), 1e-15, 1.0));
 }
 
 TEST(Topology, FindsHolesNonManifoldAndFlippedFaces) {

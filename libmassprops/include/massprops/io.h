@@ -20,12 +20,17 @@ class MeshFileError : public std::runtime_error {
 struct LoadedMesh {
   PolygonMesh mesh;         ///< faces as in the file (OBJ n-gons are kept whole)
   std::string format;       ///< "obj", "stl-binary" or "stl-ascii"
-  std::int64_t welded = 0;  ///< corners merged because they had bit-identical positions (STL)
+  std::int64_t welded = 0;  ///< corners merged because they had bit-identical positions
+  /// True when the coordinates went through 32-bit floats (binary STL stores them so; Debian's
+  /// assimp reads every format so): expect ~7 significant digits of the input, not 16.
+  bool float32_coordinates = false;
 };
 
 /// Reads an OBJ (v/f records, n-gons, negative indices, several objects, `\` continuations) or an
-/// STL (binary or ASCII, detected from the content, not the `solid` keyword). STL corners with
-/// bit-identical positions are welded into shared vertices (-0.0 equals 0.0).
+/// STL (binary or ASCII, detected from the content, not the `solid` keyword) with our own parsers,
+/// and every other format assimp knows (PLY, OFF, glTF/GLB, 3MF, COLLADA, ...) through assimp.
+/// Corners of STL and assimp meshes with bit-identical positions are welded into shared vertices
+/// (-0.0 equals 0.0).
 /// @throws MeshFileError for a missing, empty, truncated or malformed file, an unknown extension,
 ///         non-finite coordinates, or a face index out of range.
 LoadedMesh ReadMeshFile(const std::string& path);

@@ -10,14 +10,16 @@
 #include <unordered_map>
 #include <vector>
 
+#include "io_internal.h"
 #include "massprops/io.h"
 
 namespace massprops {
-namespace {
 
 [[noreturn]] void Fail(const std::string& path, const std::string& what) {
   throw MeshFileError(path + ": " + what);
 }
+
+namespace {
 
 std::string ReadWholeFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -72,8 +74,12 @@ struct PositionHash {
   }
 };
 
-LoadedMesh FromTriangleSoup(const std::string& path, const std::vector<double>& xyz,
-                            const char* format) {
+}  // namespace
+
+// Welds corners given one by one (xyz per corner) into shared vertices by bit-identical position,
+// with faces given by their corner counts. Used by the STL readers and the assimp path.
+LoadedMesh WeldCorners(const std::string& path, const std::vector<double>& xyz,
+                       const std::vector<int>& face_sizes, const char* format) {
   const std::size_t corners = xyz.size() / 3;
   LoadedMesh out;
   out.format = format;
@@ -97,10 +103,17 @@ LoadedMesh FromTriangleSoup(const std::string& path, const std::vector<double>& 
       ++out.welded;
     }
     out.mesh.indices.push_back(it->second);
-    if (c % 3 == 2) out.mesh.offsets.push_back(static_cast<std::int64_t>(c + 1));
   }
+  for (int n : face_sizes) out.mesh.offsets.push_back(out.mesh.offsets.back() + n);
   out.mesh.V = Eigen::Map<const VertexMatrix>(verts.data(), static_cast<Eigen::Index>(verts.size() / 3), 3);
   return out;
+}
+
+namespace {
+
+LoadedMesh FromTriangleSoup(const std::string& path, const std::vector<double>& xyz,
+                            const char* format) {
+  return WeldCorners(path, xyz, std::vector<int>(xyz.size() / 9, 3), format);
 }
 
 LoadedMesh ReadBinaryStl(const std::string& path, const std::string& data, std::uint32_t n) {
@@ -111,7 +124,9 @@ LoadedMesh ReadBinaryStl(const std::string& path, const std::string& data, std::
     std::memcpy(f, rec, sizeof f);
     for (int k = 0; k < 9; ++k) xyz[9 * static_cast<std::size_t>(t) + k] = f[k];
   }
-  return FromTriangleSoup(path, xyz, "stl-binary");
+  LoadedMesh out = FromTriangleSoup(path, xyz, "stl-binary");
+  out.float32_coordinates = true;
+  return out;
 }
 
 LoadedMesh ReadAsciiStl(const std::string& path, const std::string& data) {
@@ -259,7 +274,10 @@ LoadedMesh ReadMeshFile(const std::string& path) {
   const std::string ext = dot == std::string::npos ? "" : Lower(path.substr(dot + 1));
   if (ext == "obj") return ReadObj(path);
   if (ext == "stl") return ReadStl(path);
-  Fail(path, "unknown mesh format '" + ext + "' (this build reads .obj and .stl)");
+  if (ext == "ply") return ReadPly(path);
+  if (ext == "off") return ReadOff(path);
+  if (AssimpCanRead(ext)) return ReadWithAssimp(path);
+  Fail(path, "unknown mesh format '" + ext + "'");
 }
 
 }  // namespace massprops
