@@ -76,5 +76,81 @@ a=$("$bin" "$data/meshes/spot.obj" --format json --threads 1 | grep -v '"file"')
 b=$("$bin" "$data/meshes/spot.obj" --format json --threads 2 | grep -v '"file"')
 [ "$a" = "$b" ]; check "thread count does not change the output" $?
 
+# 8. Units and --mass: millimetres scale volume by 1e-9 and inertia by 1e-15 at equal density;
+#    --mass fixes the total.
+"$bin" "$data/meshes/Moon.stl" --format json >"$tmp/m.json" && \
+"$bin" "$data/meshes/Moon.stl" --format json --unit mm >"$tmp/mm.json" && \
+"$bin" "$data/meshes/Moon.stl" --format json --unit in --mass 2.5 >"$tmp/mass.json"
+check "unit runs" $?
+python3 - "$tmp/m.json" "$tmp/mm.json" "$tmp/mass.json" <<'PY'
+import json, sys
+m, mm, ms = (json.load(open(p)) for p in sys.argv[1:])
+rel = lambda a, b: abs(a - b) <= 1e-12 * abs(b)
+assert rel(mm["volume"], m["volume"] * 1e-9), (mm["volume"], m["volume"])
+assert rel(mm["inertia_com"][0][1], m["inertia_com"][0][1] * 1e-15)
+assert all(rel(a, b * 1e-3) for a, b in zip(mm["center_of_mass"], m["center_of_mass"]))
+assert mm["unit"] == "mm"
+assert rel(ms["mass"], 2.5) and rel(ms["volume"], m["volume"] * 0.0254 ** 3)
+PY
+check "unit and mass scaling" $?
+"$bin" "$data/meshes/Moon.stl" --mass 1 --density 2 >"$tmp/out" 2>"$tmp/err"
+[ $? -ne 0 ]; check "--mass excludes --density" $?
+
+# 9. A part 300 units across, read as metres: the warning names the likely unit.
+printf 'v 0 0 0\nv 300 0 0\nv 0 300 0\nv 0 0 300\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' >"$tmp/big.obj"
+"$bin" "$tmp/big.obj" >"$tmp/out" 2>"$tmp/err"
+check "big part exits 0" $?
+grep -q "warning: .*big.obj: the part is 519.6 m across.*--unit mm" "$tmp/err"; check "unit warning" $?
+
+# 10. Robot descriptions parse as XML and carry the JSON's numbers; CSV has its header.
+"$bin" "$data/meshes/spot.obj" --format json >"$tmp/spot.json"
+for f in urdf sdf mjcf; do "$bin" "$data/meshes/spot.obj" --format $f >"$tmp/spot.$f"; done
+python3 - "$tmp/spot.json" "$tmp/spot.urdf" "$tmp/spot.sdf" "$tmp/spot.mjcf" <<'PY'
+import json, sys, math
+import xml.etree.ElementTree as ET
+j = json.load(open(sys.argv[1]))
+I, c, m = j["inertia_com"], j["center_of_mass"], j["mass"]
+same = lambda a, b: a == b or abs(a - b) <= 1e-15 * max(abs(a), abs(b))
+u = ET.fromstring(open(sys.argv[2]).read().split("-->", 1)[1])
+assert same(float(u.find("mass").get("value")), m)
+ii = u.find("inertia")
+for k, (r, s) in {"ixx": (0, 0), "ixy": (0, 1), "ixz": (0, 2), "iyy": (1, 1), "iyz": (1, 2), "izz": (2, 2)}.items():
+    assert same(float(ii.get(k)), I[r][s]), k
+assert all(same(float(a), b) for a, b in zip(u.find("origin").get("xyz").split(), c))
+s = ET.fromstring(open(sys.argv[3]).read().split("-->", 1)[1])
+assert same(float(s.find("mass").text), m)
+assert same(float(s.find("inertia/ixy").text), I[0][1])
+assert all(same(float(a), b) for a, b in zip(s.find("pose").text.split()[:3], c))
+x = ET.fromstring(open(sys.argv[4]).read().split("-->", 1)[1])
+w, qx, qy, qz = map(float, x.get("quat").split())
+d = list(map(float, x.get("diaginertia").split()))
+R = [[1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy - qz * w), 2 * (qx * qz + qy * w)],
+     [2 * (qx * qy + qz * w), 1 - 2 * (qx * qx + qz * qz), 2 * (qy * qz - qx * w)],
+     [2 * (qx * qz - qy * w), 2 * (qy * qz + qx * w), 1 - 2 * (qx * qx + qy * qy)]]
+scale = max(abs(v) for row in I for v in row)
+for r in range(3):
+    for t in range(3):
+        v = sum(R[r][k] * d[k] * R[t][k] for k in range(3))
+        assert abs(v - I[r][t]) < 1e-12 * scale, (r, t, v, I[r][t])
+assert same(float(x.get("mass")), m)
+PY
+check "urdf/sdf/mjcf round trip" $?
+"$bin" "$data/meshes/spot.obj" "$data/meshes/Moon.stl" --format csv >"$tmp/out.csv"
+python3 - "$tmp/out.csv" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert len(rows) == 2 and rows[1]["file"].endswith("Moon.stl")
+assert {"mass_kg", "com_x_m", "ixy", "i3", "closed"} <= set(rows[0])
+PY
+check "csv" $?
+
+# 11. -o writes the file whole; a failed run leaves no file behind.
+"$bin" "$data/meshes/spot.obj" --format json -o "$tmp/result.json" >"$tmp/out"
+check "-o exits 0" $?
+python3 -c "import json,sys; json.load(open(sys.argv[1]))" "$tmp/result.json"; check "-o file is whole JSON" $?
+[ ! -s "$tmp/out" ]; check "-o leaves stdout empty" $?
+"$bin" "$tmp/open.obj" --format json -o "$tmp/none.json" 2>/dev/null
+[ ! -e "$tmp/none.json" ] && [ ! -e "$tmp/none.json.tmp-massprops" ]; check "no file on failure" $?
+
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]

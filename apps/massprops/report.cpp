@@ -1,0 +1,244 @@
+#include "report.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "massprops/composition.h"
+#include "massprops/export.h"
+
+namespace massprops::app {
+
+double MetresPerUnit(const std::string& unit) {
+  static const std::map<std::string, double> kUnits = {
+      {"m", 1.0}, {"cm", 0.01}, {"mm", 0.001}, {"in", 0.0254}, {"ft", 0.3048}};
+  const auto it = kUnits.find(unit);
+  if (it == kUnits.end()) throw std::invalid_argument("unknown unit '" + unit + "'");
+  return it->second;
+}
+
+namespace {
+
+std::string Fixed(double v, const char* fmt = "%.4g") {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, v);
+  return buf;
+}
+
+// Warns when the size in metres suggests the coordinates are in another unit.
+void CheckPlausibleSize(Report& r) {
+  const double s = r.size_m;
+  if (r.unit == "m" && s > 20.0) {
+    r.warnings.push_back("the part is " + Fixed(s) + " m across (with --unit m); if the file is in " +
+                         "millimetres pass --unit mm (" + Fixed(s / 1000) + " m), centimetres --unit cm, inches --unit in");
+  } else if (s > 1000.0) {
+    r.warnings.push_back("the part is " + Fixed(s) + " m across: check --unit");
+  } else if (s < 1e-4) {
+    r.warnings.push_back("the part is only " + Fixed(s * 1000) + " mm across: check --unit (the file's coordinates are taken as " + r.unit + ")");
+  }
+}
+
+}  // namespace
+
+Report Compute(const std::string& file, const Options& opt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Report r;
+  r.file = file;
+  r.unit = opt.unit;
+  const double scale = MetresPerUnit(opt.unit);
+  r.loaded = ReadMeshFile(file);
+  const PolygonMesh& mesh = r.loaded.mesh;
+  r.topology = AnalyzeTopology(mesh);
+  if (!r.topology.BoundsVolume()) {
+    if (!opt.allow_open) {
+      throw MeshFileError(file + ": " + r.topology.Problems() +
+                          ". The mesh does not bound a solid, so its mass properties are not "
+                          "defined; repair it (close the holes, orient the faces consistently) or "
+                          "pass --allow-open to compute anyway");
+    }
+    r.warnings.push_back(r.topology.Problems() +
+                         "; computed anyway (--allow-open): the result depends on the reference "
+                         "point and is not trustworthy");
+  }
+  IntegrationOptions io;
+  io.num_threads = opt.threads;
+  const bool triangles = IsAllTriangles(mesh);
+  VolumeIntegrals integrals;
+  if (opt.path == "polygons" || (opt.path == "auto" && !triangles)) {
+    r.path_used = "polygons (Mirtich), faces integrated whole";
+    integrals = IntegratePolygons(mesh, io);
+  } else {
+    r.path_used = triangles ? "triangles (signed tetrahedra)"
+                            : "triangles (signed tetrahedra), polygons split into fans";
+    const TriangleMesh tri = Triangulate(mesh);
+    integrals = IntegrateTriangles(tri.V, tri.F, io);
+  }
+  if (integrals.volume < 0) {
+    throw MeshFileError(file + ": the signed volume is negative (" + Fixed(integrals.volume, "%.6g") +
+                        " " + opt.unit + "^3): the faces point inward. Reverse the orientation of "
+                        "every face");
+  }
+  // Integrate in file units, then scale exactly (no rounding of the coordinates themselves).
+  MassProperties in_file_units = FromIntegrals(integrals, 1.0);
+  r.mp = Scaled(in_file_units, scale);
+  const double density = opt.mass > 0 ? opt.mass / r.mp.volume : opt.density;
+  r.mp.mass = r.mp.volume * density;
+  r.mp.inertia_com *= density;
+  r.mp.density = density;
+  r.size_m = scale * (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
+  CheckPlausibleSize(r);
+  r.principal = ComputePrincipalInertia(r.mp.inertia_com);
+  r.validity = CheckPhysicallyValid(r.principal.moments);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+namespace {
+
+std::string Num(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "% .10e", v);
+  return buf;
+}
+
+void PrintMatrix(std::ostream& out, const std::string& indent, const Matrix3& m) {
+  for (int i = 0; i < 3; ++i) {
+    out << indent << "[" << Num(m(i, 0)) << "  " << Num(m(i, 1)) << "  " << Num(m(i, 2)) << " ]\n";
+  }
+}
+
+}  // namespace
+
+std::string FormatTable(const Report& r, const Options& opt) {
+  std::ostringstream out;
+  const auto& t = r.topology;
+  out << "file            " << r.file << "  (" << r.loaded.format << ", " << t.faces << " faces, "
+      << t.vertices << " vertices, " << t.components << " component"
+      << (t.components == 1 ? "" : "s") << ", "
+      << (t.BoundsVolume() ? "closed and consistently oriented" : t.Problems()) << ")\n";
+  if (r.loaded.float32_coordinates) {
+    out << "precision       the file's coordinates are 32-bit floats (~7 significant digits)\n";
+  }
+  out << "units           file coordinates in " << r.unit << " (" << MetresPerUnit(r.unit)
+      << " m each), results in SI; density " << r.mp.density << " kg/m^3"
+      << (opt.mass > 0 ? " (from --mass)" : "") << "\n";
+  out << "integration     " << r.path_used << ", " << Fixed(r.seconds, "%.3g") << " s\n";
+  out << "size            " << Num(r.size_m) << " m (bounding-box diagonal)\n";
+  out << "volume          " << Num(r.mp.volume) << " m^3\n";
+  out << "surface area    " << Num(r.mp.surface_area) << " m^2\n";
+  out << "mass            " << Num(r.mp.mass) << " kg\n";
+  const Vector3& c = r.mp.center_of_mass;
+  out << "center of mass  [" << Num(c[0]) << "  " << Num(c[1]) << "  " << Num(c[2])
+      << " ] m, in the file's axes\n";
+  out << "inertia about the center of mass, file's axes (kg m^2):\n";
+  PrintMatrix(out, "                ", r.mp.inertia_com);
+  if (opt.frame == "origin") {
+    out << "inertia about the file's origin, file's axes (kg m^2):\n";
+    PrintMatrix(out, "                ", r.mp.InertiaAbout(Vector3::Zero()));
+  }
+  out << "                convention: I = integral of rho (|r|^2 E - r r^T) dV; off-diagonal\n"
+         "                entries are the NEGATED products of inertia (Ixy = -integral rho x y dV),\n"
+         "                as URDF ixy/ixz/iyz and MJCF fullinertia expect them\n";
+  const Vector3& m = r.principal.moments;
+  out << "principal moments (ascending)  " << Num(m[0]) << "  " << Num(m[1]) << "  " << Num(m[2])
+      << " kg m^2\n";
+  out << "principal axes (columns, right-handed, in the file's axes):\n";
+  PrintMatrix(out, "                ", r.principal.axes);
+  out << "physically valid  "
+      << (r.validity.valid ? "yes (moments positive, I1 + I2 >= I3)" : "NO: " + r.validity.reason)
+      << "\n";
+  return out.str();
+}
+
+namespace {
+
+nlohmann::ordered_json Mat(const Matrix3& m) {
+  return nlohmann::ordered_json::array({{m(0, 0), m(0, 1), m(0, 2)},
+                                        {m(1, 0), m(1, 1), m(1, 2)},
+                                        {m(2, 0), m(2, 1), m(2, 2)}});
+}
+
+nlohmann::ordered_json ToJson(const Report& r, const Options& opt) {
+  const auto& c = r.mp.center_of_mass;
+  const auto& m = r.principal.moments;
+  const auto& t = r.topology;
+  nlohmann::ordered_json j = {{"file", r.file},
+                              {"unit", r.unit},
+                              {"volume", r.mp.volume},
+                              {"mass", r.mp.mass},
+                              {"density", r.mp.density},
+                              {"center_of_mass", {c[0], c[1], c[2]}},
+                              {"inertia_com", Mat(r.mp.inertia_com)}};
+  if (opt.frame == "origin") j["inertia_origin"] = Mat(r.mp.InertiaAbout(Vector3::Zero()));
+  j["principal_moments"] = {m[0], m[1], m[2]};
+  j["principal_axes"] = Mat(r.principal.axes);
+  j["surface_area"] = r.mp.surface_area;
+  j["physically_valid"] = r.validity.valid;
+  j["mesh"] = {{"format", r.loaded.format},
+               {"triangles", t.faces},  // faces as stored (n-gons count once)
+               {"vertices", t.vertices},
+               {"components", t.components},
+               {"closed", t.boundary_edges == 0},
+               {"oriented", t.inconsistent_edges == 0},
+               {"boundary_edges", t.boundary_edges},
+               {"non_manifold_edges", t.non_manifold_edges},
+               {"float32_coordinates", r.loaded.float32_coordinates}};
+  j["warnings"] = r.warnings;
+  return j;
+}
+
+}  // namespace
+
+std::string FormatJson(const std::vector<Report>& reports, const Options& opt) {
+  if (reports.size() == 1) return ToJson(reports[0], opt).dump(2) + "\n";
+  nlohmann::ordered_json all = nlohmann::ordered_json::array();
+  for (const Report& r : reports) all.push_back(ToJson(r, opt));
+  return all.dump(2) + "\n";
+}
+
+std::string FormatCsv(const std::vector<Report>& reports, const Options& opt) {
+  std::ostringstream out;
+  const bool origin = opt.frame == "origin";
+  out << "file,unit,volume_m3,mass_kg,density_kg_m3,com_x_m,com_y_m,com_z_m,"
+         "ixx,iyy,izz,ixy,ixz,iyz,i1,i2,i3,surface_area_m2,closed,physically_valid"
+      << (origin ? ",origin_ixx,origin_iyy,origin_izz,origin_ixy,origin_ixz,origin_iyz" : "") << "\n";
+  auto q = [](const std::string& s) {  // RFC 4180 quoting
+    std::string o = "\"";
+    for (char ch : s) o += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+    return o + "\"";
+  };
+  for (const Report& r : reports) {
+    const Matrix3& I = r.mp.inertia_com;
+    const Vector3& c = r.mp.center_of_mass;
+    const Vector3& m = r.principal.moments;
+    out << q(r.file) << "," << r.unit;
+    for (double v : {r.mp.volume, r.mp.mass, r.mp.density, c[0], c[1], c[2], I(0, 0), I(1, 1), I(2, 2),
+                     I(0, 1), I(0, 2), I(1, 2), m[0], m[1], m[2], r.mp.surface_area}) {
+      out << "," << ExactDecimal(v);
+    }
+    out << "," << (r.topology.BoundsVolume() ? "true" : "false") << ","
+        << (r.validity.valid ? "true" : "false");
+    if (origin) {
+      const Matrix3 O = r.mp.InertiaAbout(Vector3::Zero());
+      for (double v : {O(0, 0), O(1, 1), O(2, 2), O(0, 1), O(0, 2), O(1, 2)}) out << "," << ExactDecimal(v);
+    }
+    out << "\n";
+  }
+  return out.str();
+}
+
+std::string FormatRobot(const Report& r, const std::string& format) {
+  const std::string note = "<!-- " + r.file + ": " + ExactDecimal(r.mp.volume) + " m^3 at " +
+                           ExactDecimal(r.mp.density) + " kg/m^3; inertia about the center of "
+                           "mass, link axes = the mesh file's axes (unit " + r.unit + ") -->\n";
+  if (format == "urdf") return note + UrdfInertial(r.mp);
+  if (format == "sdf") return note + SdfInertial(r.mp);
+  return note + MjcfInertial(r.mp, r.principal);
+}
+
+}  // namespace massprops::app

@@ -1,0 +1,52 @@
+#pragma once
+// The massprops command's computation for one file, and its output formats.
+
+#include <string>
+#include <vector>
+
+#include "massprops/io.h"
+#include "massprops/mass_properties.h"
+#include "massprops/mesh_topology.h"
+#include "massprops/principal_axes.h"
+
+namespace massprops::app {
+
+struct Options {
+  std::vector<std::string> files;
+  double density = 1000.0;    // kg/m^3
+  double mass = 0.0;          // kg; > 0 fixes the total mass instead of the density
+  std::string unit = "m";     // unit of the file's coordinates
+  std::string path = "auto";  // auto | triangles | polygons
+  std::string format = "table";
+  std::string frame = "com";  // com | origin
+  std::string output;         // file to write; empty: stdout
+  int threads = 0;
+  bool allow_open = false;
+};
+
+/// Metres per unit for the --unit names; throws for an unknown name.
+double MetresPerUnit(const std::string& unit);
+
+struct Report {
+  std::string file;
+  std::string unit;
+  LoadedMesh loaded;
+  MeshTopology topology;
+  MassProperties mp;  // SI, in the file's axes
+  PrincipalInertia principal;
+  ValidityReport validity;
+  std::string path_used;
+  std::vector<std::string> warnings;
+  double size_m = 0;  // bounding-box diagonal, m
+  double seconds = 0;
+};
+
+/// Reads, checks and integrates one file. Throws MeshFileError (or std::exception) naming the file.
+Report Compute(const std::string& file, const Options& options);
+
+std::string FormatTable(const Report& r, const Options& options);
+std::string FormatJson(const std::vector<Report>& reports, const Options& options);
+std::string FormatCsv(const std::vector<Report>& reports, const Options& options);
+std::string FormatRobot(const Report& r, const std::string& format);  // urdf | sdf | mjcf
+
+}  // namespace massprops::app
