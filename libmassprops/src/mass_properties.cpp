@@ -9,6 +9,7 @@
 
 #include "moments.h"
 #include "parallel.h"
+#include "triangle_kernel.h"
 
 namespace massprops {
 namespace internal {
@@ -70,42 +71,9 @@ using internal::Moments;
 
 constexpr std::int64_t kFaceBlock = 4096;
 
-// Triangles are integrated in batches: corners are gathered (relative to the reference point)
-// into structure-of-arrays buffers, then a lane loop accumulates kLanes triangles side by side into
-// kLanes separate sums, which the compiler turns into SIMD code. The lanes are added in a fixed
-// order at the end, so the bits do not depend on the vector width the compiler picked.
-constexpr int kLanes = 4;
-constexpr int kBatch = 256;  // multiple of kLanes
+}  // namespace
 
-struct Batch {
-  alignas(64) double ax[kBatch], ay[kBatch], az[kBatch];
-  alignas(64) double bx[kBatch], by[kBatch], bz[kBatch];
-  alignas(64) double cx[kBatch], cy[kBatch], cz[kBatch];
-};
-
-struct LaneSums {
-  double q[11][kLanes] = {};  // d, d·s (3), d·(Σvvᵀ + ssᵀ) (6), |n|
-
-  void Into(Moments& m) const {
-    double r[11];
-    for (int k = 0; k < 11; ++k) r[k] = (q[k][0] + q[k][1]) + (q[k][2] + q[k][3]);
-    m.v += r[0];
-    m.x += r[1];
-    m.y += r[2];
-    m.z += r[3];
-    m.xx += r[4];
-    m.yy += r[5];
-    m.zz += r[6];
-    m.xy += r[7];
-    m.yz += r[8];
-    m.zx += r[9];
-    m.area += r[10];
-  }
-};
-
-// Signed tetrahedron of each triangle (a, b, c) with the reference point: with d = a·(b×c) and
-// s = a+b+c, adds d, d·s, d·(Σ v vᵀ + s sᵀ) and |(b−a)×(c−a)| (scaled once at the end).
-// `count` is a multiple of kLanes (the batch is padded with zero triangles, which add exact zeros).
+namespace internal {
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
 __attribute__((target_clones("avx2", "default")))
 #endif
@@ -154,6 +122,11 @@ Moments ScaleTriangleSums(const Moments& raw) {
   return m;
 }
 
+}  // namespace internal
+
+namespace {
+using internal::Batch;
+using internal::LaneSums;
 }  // namespace
 
 VolumeIntegrals VolumeIntegrals::About(const Vector3& new_reference) const {
@@ -201,8 +174,8 @@ VolumeIntegrals IntegrateTriangles(const Eigen::Ref<const VertexMatrix>& V,
     bool bad = false;
     const std::int64_t begin = b * kFaceBlock;
     const std::int64_t end = std::min(nf, begin + kFaceBlock);
-    for (std::int64_t f0 = begin; f0 < end; f0 += kBatch) {
-      const int count = static_cast<int>(std::min<std::int64_t>(kBatch, end - f0));
+    for (std::int64_t f0 = begin; f0 < end; f0 += internal::kBatch) {
+      const int count = static_cast<int>(std::min<std::int64_t>(internal::kBatch, end - f0));
       for (int j = 0; j < count; ++j) {
         const std::int32_t* idx = I + (f0 + j) * fs;
         std::int64_t i0 = idx[0], i1 = idx[1], i2 = idx[2];
@@ -225,12 +198,7 @@ VolumeIntegrals IntegrateTriangles(const Eigen::Ref<const VertexMatrix>& V,
         batch.cy[j] = pc[1] - r1;
         batch.cz[j] = pc[2] - r2;
       }
-      const int padded = (count + kLanes - 1) / kLanes * kLanes;
-      for (int j = count; j < padded; ++j) {
-        batch.ax[j] = batch.ay[j] = batch.az[j] = batch.bx[j] = batch.by[j] = batch.bz[j] =
-            batch.cx[j] = batch.cy[j] = batch.cz[j] = 0.0;
-      }
-      AccumulateBatch(batch, padded, sums);
+      internal::AccumulateBatch(batch, internal::PadBatch(batch, count), sums);
     }
     Moments m;
     sums.Into(m);
@@ -251,7 +219,7 @@ VolumeIntegrals IntegrateTriangles(const Eigen::Ref<const VertexMatrix>& V,
       }
     }
   }
-  return ScaleTriangleSums(internal::PairwiseSum(parts)).ToIntegrals(ref);
+  return internal::ScaleTriangleSums(internal::PairwiseSum(parts)).ToIntegrals(ref);
 }
 
 MassProperties FromIntegrals(const VolumeIntegrals& in, Scalar density) {

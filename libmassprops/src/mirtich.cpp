@@ -13,11 +13,9 @@
 #include "massprops/mass_properties.h"
 #include "moments.h"
 #include "parallel.h"
+#include "triangle_kernel.h"
 
 namespace massprops {
-namespace internal {
-Vector3 ReferencePoint(const Eigen::Ref<const VertexMatrix>& V, int num_threads, const char* what);
-}  // namespace internal
 
 namespace {
 

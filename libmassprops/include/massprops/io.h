@@ -3,10 +3,12 @@
 /// Reading mesh files (target massprops::io). Coordinates are kept in double precision as
 /// written in the file; nothing goes through 32-bit floats except binary STL, which stores them.
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "massprops/mesh.h"
+#include "massprops/triangle_soup.h"
 
 namespace massprops {
 
@@ -34,5 +36,12 @@ struct LoadedMesh {
 /// @throws MeshFileError for a missing, empty, truncated or malformed file, an unknown extension,
 ///         non-finite coordinates, or a face index out of range.
 LoadedMesh ReadMeshFile(const std::string& path);
+
+/// The fast path for binary STL: memory-maps the file and integrates its records as they lie
+/// (no indexed mesh, memory independent of the triangle count), with the streaming closed-surface
+/// check of SoupIntegrals. Returns nothing for an ASCII STL.
+/// @throws MeshFileError for a missing, empty or truncated file, or a non-finite coordinate.
+std::optional<SoupIntegrals> IntegrateBinaryStlFile(const std::string& path,
+                                                    const IntegrationOptions& options = {});
 
 }  // namespace massprops

@@ -8,6 +8,30 @@
 
 namespace massprops {
 
+/// A read-only memory map of a whole file (POSIX). Throws MeshFileError for a missing or empty file.
+class MappedFile {
+ public:
+  explicit MappedFile(const std::string& path);
+  ~MappedFile();
+  MappedFile(const MappedFile&) = delete;
+  MappedFile& operator=(const MappedFile&) = delete;
+  const unsigned char* data() const { return data_; }
+  std::size_t size() const { return size_; }
+
+ private:
+  const unsigned char* data_ = nullptr;
+  std::size_t size_ = 0;
+};
+
+struct StlLayout {
+  bool ascii = false;
+  std::uint32_t triangles = 0;  // binary: records
+  std::size_t trailing_bytes = 0;
+};
+
+/// Binary or ASCII, from the content (not the "solid" keyword). Throws for a truncated binary.
+StlLayout DetectStl(const std::string& path, const unsigned char* data, std::size_t size);
+
 [[noreturn]] void Fail(const std::string& path, const std::string& what);
 
 LoadedMesh WeldCorners(const std::string& path, const std::vector<double>& xyz,

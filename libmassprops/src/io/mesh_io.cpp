@@ -11,6 +11,11 @@
 #include <vector>
 
 #include "io_internal.h"
+#include "massprops/triangle_soup.h"
+
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
+#error "the binary STL readers assume a little-endian host (STL stores little-endian floats)"
+#endif
 #include "massprops/io.h"
 
 namespace massprops {
@@ -173,30 +178,11 @@ LoadedMesh ReadAsciiStl(const std::string& path, const std::string& data) {
 }
 
 LoadedMesh ReadStl(const std::string& path) {
-  const std::string data = ReadWholeFile(path);
-  const std::size_t size = data.size();
-  std::uint32_t n = 0;
-  if (size >= 84) std::memcpy(&n, data.data() + 80, 4);
-  const std::uint64_t expected = 84 + 50 * static_cast<std::uint64_t>(n);
-  const bool starts_solid = data.compare(0, 5, "solid") == 0;
-  if (size >= 84 && expected == size && n > 0) return ReadBinaryStl(path, data, n);
-  if (starts_solid) {
-    // Binary files from some exporters also begin with "solid"; text has no NUL bytes and
-    // mentions "facet" early.
-    const std::string_view head(data.data(), std::min<std::size_t>(size, 4096));
-    const bool looks_text = head.find('\0') == std::string_view::npos &&
-                            (head.find("facet") != std::string_view::npos ||
-                             head.find("endsolid") != std::string_view::npos);
-    if (looks_text) return ReadAsciiStl(path, data);
-  }
-  if (size >= 84 && n > 0 && expected < size && size - expected < 50) {
-    return ReadBinaryStl(path, data, n);  // a few trailing bytes after the last record
-  }
-  if (size < 84) Fail(path, "too short for a binary STL (" + std::to_string(size) + " bytes) and not ASCII STL");
-  std::ostringstream msg;
-  msg << "binary STL header says " << n << " triangles, which need " << expected
-      << " bytes, but the file has " << size << " bytes (truncated or not an STL)";
-  Fail(path, msg.str());
+  const MappedFile file(path);
+  const StlLayout layout = DetectStl(path, file.data(), file.size());
+  const std::string_view view(reinterpret_cast<const char*>(file.data()), file.size());
+  if (layout.ascii) return ReadAsciiStl(path, std::string(view));
+  return ReadBinaryStl(path, std::string(view), layout.triangles);
 }
 
 LoadedMesh ReadObj(const std::string& path) {
@@ -268,6 +254,44 @@ LoadedMesh ReadObj(const std::string& path) {
 }
 
 }  // namespace
+
+StlLayout DetectStl(const std::string& path, const unsigned char* bytes, std::size_t size) {
+  const char* data = reinterpret_cast<const char*>(bytes);
+  std::uint32_t n = 0;
+  if (size >= 84) std::memcpy(&n, data + 80, 4);
+  const std::uint64_t expected = 84 + 50 * static_cast<std::uint64_t>(n);
+  const bool starts_solid = size >= 5 && std::memcmp(data, "solid", 5) == 0;
+  if (size >= 84 && expected == size && n > 0) return {false, n, 0};
+  if (starts_solid) {
+    // Binary files from some exporters also begin with "solid"; text has no NUL bytes and
+    // mentions "facet" early.
+    const std::string_view head(data, std::min<std::size_t>(size, 4096));
+    const bool looks_text = head.find('\0') == std::string_view::npos &&
+                            (head.find("facet") != std::string_view::npos ||
+                             head.find("endsolid") != std::string_view::npos);
+    if (looks_text) return {true, 0, 0};
+  }
+  if (size >= 84 && n > 0 && expected < size && size - expected < 50) {
+    return {false, n, size - expected};  // a few trailing bytes after the last record
+  }
+  if (size < 84) Fail(path, "too short for a binary STL (" + std::to_string(size) + " bytes) and not ASCII STL");
+  std::ostringstream msg;
+  msg << "binary STL header says " << n << " triangles, which need " << expected
+      << " bytes, but the file has " << size << " bytes (truncated or not an STL)";
+  Fail(path, msg.str());
+}
+
+std::optional<SoupIntegrals> IntegrateBinaryStlFile(const std::string& path,
+                                                    const IntegrationOptions& options) {
+  const MappedFile file(path);
+  const StlLayout layout = DetectStl(path, file.data(), file.size());
+  if (layout.ascii) return std::nullopt;
+  try {
+    return IntegrateFloatTriangleRecords(file.data() + 84, layout.triangles, 50, 12, options);
+  } catch (const std::invalid_argument& e) {
+    Fail(path, e.what());
+  }
+}
 
 LoadedMesh ReadMeshFile(const std::string& path) {
   const std::size_t dot = path.find_last_of('.');

@@ -1,0 +1,144 @@
+#include "massprops/triangle_soup.h"
+
+#include <cstring>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include "parallel.h"
+#include "triangle_kernel.h"
+
+namespace massprops {
+namespace {
+
+using internal::Batch;
+using internal::LaneSums;
+using internal::Moments;
+
+constexpr std::int64_t kBlock = 4096;
+
+inline std::uint64_t Mix(std::uint64_t z) {  // SplitMix64 finalizer
+  z += 0x9E3779B97F4A7C15ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+struct CornerHash {
+  std::uint64_t h, g;
+};
+
+// Two independent hashes of a corner's exact position (-0.0 counts as 0.0).
+inline CornerHash HashCorner(const float* p) {
+  std::uint32_t b[3];
+  std::memcpy(b, p, sizeof b);
+  for (auto& v : b) v = (v == 0x80000000u) ? 0u : v;
+  const std::uint64_t u = (b[0] | static_cast<std::uint64_t>(b[1]) << 32) * 0xD6E8FEB86659FD93ull ^
+                          static_cast<std::uint64_t>(b[2]) * 0xA0761D6478BD642Full;
+  const std::uint64_t h = Mix(u);
+  return {h, Mix(h ^ 0xE7037ED1A0B428DBull)};
+}
+
+inline bool Finite(float v) {
+  std::uint32_t b;
+  std::memcpy(&b, &v, sizeof b);
+  return (b & 0x7F800000u) != 0x7F800000u;
+}
+
+struct BlockResult {
+  Moments moments;
+  std::uint64_t edge_hash = 0;
+  float lo[3] = {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity(),
+                 std::numeric_limits<float>::infinity()};
+  float hi[3] = {-std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
+                 -std::numeric_limits<float>::infinity()};
+  std::int64_t first_bad = -1;
+};
+
+}  // namespace
+
+SoupIntegrals IntegrateFloatTriangleRecords(const unsigned char* data, std::int64_t count,
+                                            std::size_t stride, std::size_t offset,
+                                            const IntegrationOptions& options) {
+  SoupIntegrals out;
+  out.triangles = count;
+  Vector3 ref = Vector3::Zero();
+  if (options.reference) {
+    ref = *options.reference;
+  } else if (count > 0) {
+    float p[3];
+    std::memcpy(p, data + offset, sizeof p);
+    ref = Vector3(p[0], p[1], p[2]);
+  }
+  if (!ref.allFinite()) {
+    throw std::invalid_argument("triangle 0 has a non-finite coordinate");
+  }
+  const double r0 = ref[0], r1 = ref[1], r2 = ref[2];
+  const std::int64_t blocks = (count + kBlock - 1) / kBlock;
+  std::vector<BlockResult> parts(static_cast<std::size_t>(blocks));
+
+  internal::ParallelForBlocks(blocks, options.num_threads, [&](std::int64_t b) {
+    BlockResult res;
+    Batch batch;
+    LaneSums sums;
+    const std::int64_t begin = b * kBlock, end = std::min(count, begin + kBlock);
+    for (std::int64_t t0 = begin; t0 < end; t0 += internal::kBatch) {
+      const int n = static_cast<int>(std::min<std::int64_t>(internal::kBatch, end - t0));
+      for (int j = 0; j < n; ++j) {
+        float c[9];
+        std::memcpy(c, data + static_cast<std::size_t>(t0 + j) * stride + offset, sizeof c);
+        bool finite = true;
+        for (int k = 0; k < 9; ++k) {
+          finite = finite && Finite(c[k]);
+          res.lo[k % 3] = std::min(res.lo[k % 3], c[k]);
+          res.hi[k % 3] = std::max(res.hi[k % 3], c[k]);
+        }
+        if (!finite && res.first_bad < 0) res.first_bad = t0 + j;
+        // Directed edges a→b, b→c, c→a.
+        const CornerHash ha = HashCorner(c), hb = HashCorner(c + 3), hc = HashCorner(c + 6);
+        res.edge_hash += ha.h * hb.g - hb.h * ha.g;
+        res.edge_hash += hb.h * hc.g - hc.h * hb.g;
+        res.edge_hash += hc.h * ha.g - ha.h * hc.g;
+        batch.ax[j] = c[0] - r0;
+        batch.ay[j] = c[1] - r1;
+        batch.az[j] = c[2] - r2;
+        batch.bx[j] = c[3] - r0;
+        batch.by[j] = c[4] - r1;
+        batch.bz[j] = c[5] - r2;
+        batch.cx[j] = c[6] - r0;
+        batch.cy[j] = c[7] - r1;
+        batch.cz[j] = c[8] - r2;
+      }
+      internal::AccumulateBatch(batch, internal::PadBatch(batch, n), sums);
+    }
+    sums.Into(res.moments);
+    parts[static_cast<std::size_t>(b)] = res;
+  });
+
+  std::vector<Moments> moments(parts.size());
+  Vector3 lo = Vector3::Constant(std::numeric_limits<double>::infinity());
+  Vector3 hi = -lo;
+  for (std::size_t b = 0; b < parts.size(); ++b) {
+    const BlockResult& p = parts[b];
+    if (p.first_bad >= 0) {
+      std::ostringstream msg;
+      msg << "triangle " << p.first_bad << " has a non-finite coordinate";
+      throw std::invalid_argument(msg.str());
+    }
+    moments[b] = p.moments;
+    out.unmatched_edge_hash += p.edge_hash;
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], static_cast<double>(p.lo[k]));
+      hi[k] = std::max(hi[k], static_cast<double>(p.hi[k]));
+    }
+  }
+  if (count > 0) {
+    out.lower = lo;
+    out.upper = hi;
+  }
+  out.integrals = internal::ScaleTriangleSums(internal::PairwiseSum(moments)).ToIntegrals(ref);
+  return out;
+}
+
+}  // namespace massprops

@@ -1,0 +1,126 @@
+// The triangle-soup (binary STL) path: equal to the indexed path, order-independent, the same
+// bits for any thread count, and its streaming closed-surface check.
+
+#include "massprops/triangle_soup.h"
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <random>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "massprops/io.h"
+#include "massprops/mesh_topology.h"
+#include "massprops/solids.h"
+#include "test_utils.h"
+
+namespace massprops {
+namespace {
+
+using testing::ExpectMassPropertiesNear;
+using ::testing::HasSubstr;
+
+// Binary STL bytes (little-endian) of a triangle mesh, coordinates rounded to float32.
+std::string StlBytes(const TriangleMesh& m) {
+  std::string s(80, ' ');
+  const auto n = static_cast<std::uint32_t>(m.F.rows());
+  s.append(reinterpret_cast<const char*>(&n), 4);
+  for (Eigen::Index f = 0; f < m.F.rows(); ++f) {
+    float rec[12] = {};
+    for (int k = 0; k < 3; ++k) {
+      for (int j = 0; j < 3; ++j) rec[3 + 3 * k + j] = static_cast<float>(m.V(m.F(f, k), j));
+    }
+    s.append(reinterpret_cast<const char*>(rec), sizeof rec);
+    s.append(2, '\0');
+  }
+  return s;
+}
+
+SoupIntegrals Soup(const std::string& bytes, int threads = 0) {
+  IntegrationOptions opt;
+  opt.num_threads = threads;
+  return IntegrateFloatTriangleRecords(reinterpret_cast<const unsigned char*>(bytes.data()) + 84,
+                                       (static_cast<std::int64_t>(bytes.size()) - 84) / 50, 50, 12, opt);
+}
+
+TriangleMesh OffsetTorus() {
+  TriangleMesh m = solids::Torus(2.0, 0.5, 60);
+  std::mt19937_64 rng(4);
+  m.V = testing::Transform(m.V, testing::RandomRotation(rng), Vector3(120.0, -35.5, 8.25));
+  return m;
+}
+
+TEST(TriangleSoup, EqualsTheIndexedPathOnTheSameFile) {
+  const std::string path = ::testing::TempDir() + "torus.stl";
+  std::ofstream(path, std::ios::binary) << StlBytes(OffsetTorus());
+  const LoadedMesh indexed = ReadMeshFile(path);  // welded, float32 → double exactly
+  const MassProperties a = ComputeMassProperties(Triangulate(indexed.mesh), 1.0);
+  const auto soup = IntegrateBinaryStlFile(path);
+  ASSERT_TRUE(soup.has_value());
+  EXPECT_TRUE(soup->IsClosedCycle());
+  EXPECT_EQ(soup->triangles, indexed.mesh.num_faces());
+  const MassProperties b = FromIntegrals(soup->integrals, 1.0);
+  ExpectMassPropertiesNear(b, a, 1e-14, 3.0);
+  EXPECT_TRUE(testing::NearRel(b.surface_area, a.surface_area, 1e-14));
+  EXPECT_TRUE(testing::MatrixNearRel(soup->lower, Vector3(indexed.mesh.V.colwise().minCoeff()), 0, 1));
+}
+
+TEST(TriangleSoup, IndependentOfTriangleOrderAndThreadCount) {
+  const TriangleMesh m = OffsetTorus();
+  const std::string bytes = StlBytes(m);
+  const SoupIntegrals one = Soup(bytes, 1);
+  for (int threads : {2, 3, 0}) {
+    const SoupIntegrals many = Soup(bytes, threads);
+    EXPECT_TRUE(testing::SameBits(FromIntegrals(many.integrals, 2.0), FromIntegrals(one.integrals, 2.0)));
+    EXPECT_EQ(many.unmatched_edge_hash, one.unmatched_edge_hash);
+  }
+  // Shuffled records (the first one kept, so the reference point is the same): same hash, same
+  // numbers to rounding.
+  TriangleMesh shuffled = m;
+  std::mt19937_64 rng(8);
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(m.F.rows()));
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin() + 1, order.end(), rng);
+  for (std::size_t i = 0; i < order.size(); ++i) shuffled.F.row(static_cast<Eigen::Index>(i)) = m.F.row(order[i]);
+  const SoupIntegrals s = Soup(StlBytes(shuffled));
+  EXPECT_TRUE(s.IsClosedCycle());
+  ExpectMassPropertiesNear(FromIntegrals(s.integrals, 1.0), FromIntegrals(one.integrals, 1.0), 1e-14, 3.0);
+}
+
+TEST(TriangleSoup, StreamingCheckFindsHolesAndFlippedFaces) {
+  const TriangleMesh m = OffsetTorus();
+  EXPECT_TRUE(Soup(StlBytes(m)).IsClosedCycle());
+  TriangleMesh open = m;
+  open.F.conservativeResize(m.F.rows() - 1, 3);
+  EXPECT_FALSE(Soup(StlBytes(open)).IsClosedCycle());
+  for (Eigen::Index f : {Eigen::Index(0), Eigen::Index(777), m.F.rows() - 1}) {
+    TriangleMesh flipped = m;
+    std::swap(flipped.F(f, 1), flipped.F(f, 2));
+    EXPECT_FALSE(Soup(StlBytes(flipped)).IsClosedCycle()) << f;
+  }
+  // Two closed boxes that share an edge: non-manifold, but a closed cycle whose integrals are
+  // well defined (the sum of two solids), and the check says so.
+  TriangleMesh a = Triangulate(solids::Box(Vector3(1, 1, 1)));
+  TriangleMesh two;
+  two.V.resize(16, 3);
+  two.V << a.V, (a.V.rowwise() + Eigen::RowVector3d(1, 1, 0));
+  two.F.resize(24, 3);
+  two.F << a.F, (a.F.array() + 8);
+  EXPECT_TRUE(Soup(StlBytes(two)).IsClosedCycle());
+  const std::string path = ::testing::TempDir() + "two_boxes.stl";
+  std::ofstream(path, std::ios::binary) << StlBytes(two);
+  EXPECT_EQ(AnalyzeTopology(ReadMeshFile(path).mesh).non_manifold_edges, 1);  // welded view
+}
+
+TEST(TriangleSoup, RejectsNonFiniteNamingTheTriangle) {
+  std::string bytes = StlBytes(OffsetTorus());
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(&bytes[84 + 50 * 5000 + 12 + 4 * 7], &nan, 4);
+  EXPECT_THAT([&] { Soup(bytes); },
+              ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("triangle 5000")));
+}
+
+}  // namespace
+}  // namespace massprops
