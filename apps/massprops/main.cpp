@@ -74,6 +74,14 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--allow-open", opt.allow_open,
                "Compute even when the mesh is open or inconsistently oriented (with a warning)");
+  app.add_flag("--full-check", opt.full_check,
+               "Binary STL: weld the corners and count vertices, components and bad edges even "
+               "when the streaming check finds the surface closed (slower)");
+  app.add_option("--reader", opt.reader,
+                 "auto: our own readers for OBJ/STL/PLY/OFF, assimp for the rest; assimp: assimp "
+                 "for every format (32-bit coordinates; for comparison)")
+      ->check(CLI::IsMember({"auto", "assimp"}))
+      ->capture_default_str();
   app.add_option("-o,--output", opt.output, "Write the output to this file (whole or not at all)");
   CLI11_PARSE(app, argc, argv);
   if (!std::isfinite(opt.density) || !std::isfinite(opt.mass)) {

@@ -1,5 +1,6 @@
 #include "report.h"
 
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -45,13 +46,61 @@ void CheckPlausibleSize(Report& r) {
 
 }  // namespace
 
+namespace {
+
+// Integral in file units → SI mass properties at the requested density or total mass.
+void Finish(Report& r, const VolumeIntegrals& integrals, const Options& opt, double size_file_units) {
+  if (integrals.volume < 0) {
+    throw MeshFileError(r.file + ": the signed volume is negative (" +
+                        Fixed(integrals.volume, "%.6g") + " " + opt.unit +
+                        "^3): the faces point inward. Reverse the orientation of every face");
+  }
+  const double scale = MetresPerUnit(opt.unit);
+  // Integrate in file units, then scale exactly (no rounding of the coordinates themselves).
+  r.mp = Scaled(FromIntegrals(integrals, 1.0), scale);
+  const double density = opt.mass > 0 ? opt.mass / r.mp.volume : opt.density;
+  r.mp.mass = r.mp.volume * density;
+  r.mp.inertia_com *= density;
+  r.mp.density = density;
+  r.size_m = scale * size_file_units;
+  CheckPlausibleSize(r);
+  r.principal = ComputePrincipalInertia(r.mp.inertia_com);
+  r.validity = CheckPhysicallyValid(r.principal.moments);
+}
+
+std::string Lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+}  // namespace
+
 Report Compute(const std::string& file, const Options& opt) {
   const auto t0 = std::chrono::steady_clock::now();
   Report r;
   r.file = file;
   r.unit = opt.unit;
-  const double scale = MetresPerUnit(opt.unit);
-  r.loaded = ReadMeshFile(file);
+  MetresPerUnit(opt.unit);  // validates
+  IntegrationOptions io;
+  io.num_threads = opt.threads;
+
+  // Binary STL: integrate the mapped records directly; weld and count edges only when the
+  // streaming check finds the surface open (to say what is wrong) or when asked to.
+  const bool stl = Lower(file.substr(file.find_last_of('.') + 1)) == "stl";
+  if (stl && opt.path != "polygons" && !opt.full_check && opt.reader == "auto") {
+    if (auto soup = IntegrateBinaryStlFile(file, io); soup && soup->IsClosedCycle()) {
+      r.loaded.format = "stl-binary";
+      r.loaded.float32_coordinates = true;
+      r.full_topology = false;
+      r.topology.faces = soup->triangles;
+      r.path_used = "triangles (signed tetrahedra), streamed from the mapped file";
+      Finish(r, soup->integrals, opt, (soup->upper - soup->lower).norm());
+      r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      return r;
+    }
+  }
+
+  r.loaded = opt.reader == "assimp" ? ReadMeshFileWithAssimp(file) : ReadMeshFile(file);
   const PolygonMesh& mesh = r.loaded.mesh;
   r.topology = AnalyzeTopology(mesh);
   if (!r.topology.BoundsVolume()) {
@@ -65,8 +114,6 @@ Report Compute(const std::string& file, const Options& opt) {
                          "; computed anyway (--allow-open): the result depends on the reference "
                          "point and is not trustworthy");
   }
-  IntegrationOptions io;
-  io.num_threads = opt.threads;
   const bool triangles = IsAllTriangles(mesh);
   VolumeIntegrals integrals;
   if (opt.path == "polygons" || (opt.path == "auto" && !triangles)) {
@@ -78,22 +125,7 @@ Report Compute(const std::string& file, const Options& opt) {
     const TriangleMesh tri = Triangulate(mesh);
     integrals = IntegrateTriangles(tri.V, tri.F, io);
   }
-  if (integrals.volume < 0) {
-    throw MeshFileError(file + ": the signed volume is negative (" + Fixed(integrals.volume, "%.6g") +
-                        " " + opt.unit + "^3): the faces point inward. Reverse the orientation of "
-                        "every face");
-  }
-  // Integrate in file units, then scale exactly (no rounding of the coordinates themselves).
-  MassProperties in_file_units = FromIntegrals(integrals, 1.0);
-  r.mp = Scaled(in_file_units, scale);
-  const double density = opt.mass > 0 ? opt.mass / r.mp.volume : opt.density;
-  r.mp.mass = r.mp.volume * density;
-  r.mp.inertia_com *= density;
-  r.mp.density = density;
-  r.size_m = scale * (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
-  CheckPlausibleSize(r);
-  r.principal = ComputePrincipalInertia(r.mp.inertia_com);
-  r.validity = CheckPhysicallyValid(r.principal.moments);
+  Finish(r, integrals, opt, (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm());
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
@@ -117,10 +149,15 @@ void PrintMatrix(std::ostream& out, const std::string& indent, const Matrix3& m)
 std::string FormatTable(const Report& r, const Options& opt) {
   std::ostringstream out;
   const auto& t = r.topology;
-  out << "file            " << r.file << "  (" << r.loaded.format << ", " << t.faces << " faces, "
-      << t.vertices << " vertices, " << t.components << " component"
-      << (t.components == 1 ? "" : "s") << ", "
-      << (t.BoundsVolume() ? "closed and consistently oriented" : t.Problems()) << ")\n";
+  if (r.full_topology) {
+    out << "file            " << r.file << "  (" << r.loaded.format << ", " << t.faces << " faces, "
+        << t.vertices << " vertices, " << t.components << " component"
+        << (t.components == 1 ? "" : "s") << ", "
+        << (t.BoundsVolume() ? "closed and consistently oriented" : t.Problems()) << ")\n";
+  } else {
+    out << "file            " << r.file << "  (" << r.loaded.format << ", " << t.faces
+        << " triangles, closed and consistently oriented: every edge matched by its reverse)\n";
+  }
   if (r.loaded.float32_coordinates) {
     out << "precision       the file's coordinates are 32-bit floats (~7 significant digits)\n";
   }
@@ -179,14 +216,17 @@ nlohmann::ordered_json ToJson(const Report& r, const Options& opt) {
   j["principal_axes"] = Mat(r.principal.axes);
   j["surface_area"] = r.mp.surface_area;
   j["physically_valid"] = r.validity.valid;
+  auto known = [&](std::int64_t v) {
+    return r.full_topology ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
+  };
   j["mesh"] = {{"format", r.loaded.format},
                {"triangles", t.faces},  // faces as stored (n-gons count once)
-               {"vertices", t.vertices},
-               {"components", t.components},
+               {"vertices", known(t.vertices)},
+               {"components", known(t.components)},
                {"closed", t.boundary_edges == 0},
                {"oriented", t.inconsistent_edges == 0},
                {"boundary_edges", t.boundary_edges},
-               {"non_manifold_edges", t.non_manifold_edges},
+               {"non_manifold_edges", known(t.non_manifold_edges)},
                {"float32_coordinates", r.loaded.float32_coordinates}};
   j["warnings"] = r.warnings;
   return j;

@@ -22,6 +22,8 @@ struct Options {
   std::string output;         // file to write; empty: stdout
   int threads = 0;
   bool allow_open = false;
+  bool full_check = false;
+  std::string reader = "auto";  // auto | assimp (force assimp, for comparison)  // binary STL: weld and count edges even when the streaming check passes
 };
 
 /// Metres per unit for the --unit names; throws for an unknown name.
@@ -32,6 +34,7 @@ struct Report {
   std::string unit;
   LoadedMesh loaded;
   MeshTopology topology;
+  bool full_topology = true;  // false: binary STL fast path, only the streaming closed check ran
   MassProperties mp;  // SI, in the file's axes
   PrincipalInertia principal;
   ValidityReport validity;

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <exception>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -18,7 +20,9 @@ inline int ResolveThreadCount(int requested, std::int64_t num_blocks) {
   return static_cast<int>(std::min<std::int64_t>(n, std::max<std::int64_t>(num_blocks, 1)));
 }
 
-/// Calls block_fn(b) for b in [0, num_blocks) on up to num_threads threads.
+/// Calls block_fn(b) for b in [0, num_blocks) on up to num_threads threads. If a call throws,
+/// the remaining blocks are skipped and the exception of the lowest-numbered failing block seen is
+/// rethrown on the calling thread.
 template <typename BlockFn>
 void ParallelForBlocks(std::int64_t num_blocks, int num_threads, const BlockFn& block_fn) {
   const int threads = ResolveThreadCount(num_threads, num_blocks);
@@ -27,14 +31,29 @@ void ParallelForBlocks(std::int64_t num_blocks, int num_threads, const BlockFn& 
     return;
   }
   std::atomic<std::int64_t> next{0};
+  std::mutex error_mutex;
+  std::exception_ptr error;
+  std::int64_t error_block = num_blocks;
   auto worker = [&]() {
-    for (std::int64_t b = next.fetch_add(1); b < num_blocks; b = next.fetch_add(1)) block_fn(b);
+    for (std::int64_t b = next.fetch_add(1); b < num_blocks; b = next.fetch_add(1)) {
+      try {
+        block_fn(b);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(error_mutex);
+        if (b < error_block) {
+          error_block = b;
+          error = std::current_exception();
+        }
+        next.store(num_blocks);
+      }
+    }
   };
   std::vector<std::thread> pool;
   pool.reserve(threads - 1);
   for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
   worker();
   for (auto& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
 }
 
 /// Adds partial results pairwise in a fixed tree (error grows as log2 of the count).

@@ -37,6 +37,10 @@ struct LoadedMesh {
 ///         non-finite coordinates, or a face index out of range.
 LoadedMesh ReadMeshFile(const std::string& path);
 
+/// Reads any format through assimp, even those with a reader of our own (for comparison).
+/// @throws MeshFileError as ReadMeshFile.
+LoadedMesh ReadMeshFileWithAssimp(const std::string& path);
+
 /// The fast path for binary STL: memory-maps the file and integrates its records as they lie
 /// (no indexed mesh, memory independent of the triangle count), with the streaming closed-surface
 /// check of SoupIntegrals. Returns nothing for an ASCII STL.

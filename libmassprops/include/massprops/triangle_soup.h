@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 
 #include "massprops/mass_properties.h"
 
@@ -33,6 +34,17 @@ struct SoupIntegrals {
 /// exactly. The reference point is options.reference, or else the first corner.
 /// @throws std::invalid_argument naming the first triangle with a non-finite coordinate.
 SoupIntegrals IntegrateFloatTriangleRecords(const unsigned char* data, std::int64_t count,
+                                            std::size_t stride, std::size_t offset,
+                                            const IntegrationOptions& options = {});
+
+/// Fills `dest` with `count` records starting at record `first` (count · stride bytes), e.g. by
+/// pread from a file. Called from worker threads, once per block; may throw.
+using RecordReader =
+    std::function<void(std::int64_t first, std::int64_t count, unsigned char* dest)>;
+
+/// As above, with the records fetched block by block through `read` into a small per-thread
+/// buffer that stays in cache while it is integrated: a file is streamed once, with little memory.
+SoupIntegrals IntegrateFloatTriangleRecords(const RecordReader& read, std::int64_t count,
                                             std::size_t stride, std::size_t offset,
                                             const IntegrationOptions& options = {});
 

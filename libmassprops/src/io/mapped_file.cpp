@@ -24,7 +24,7 @@ MappedFile::MappedFile(const std::string& path) {
     ::close(fd);
     Fail(path, "the file is empty");
   }
-  void* p = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
+  void* p = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
   ::close(fd);
   if (p == MAP_FAILED) Fail(path, std::string("cannot map the file (") + std::strerror(errno) + ")");
   ::madvise(p, size_, MADV_SEQUENTIAL);

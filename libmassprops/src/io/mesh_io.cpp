@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cerrno>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -9,6 +10,10 @@
 #include <string_view>
 #include <unordered_map>
 #include <vector>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "io_internal.h"
 #include "massprops/triangle_soup.h"
@@ -283,11 +288,39 @@ StlLayout DetectStl(const std::string& path, const unsigned char* bytes, std::si
 
 std::optional<SoupIntegrals> IntegrateBinaryStlFile(const std::string& path,
                                                     const IntegrationOptions& options) {
-  const MappedFile file(path);
-  const StlLayout layout = DetectStl(path, file.data(), file.size());
+  // pread block by block into small per-thread buffers: the file is read once, in parallel, and
+  // each block is integrated while it is in cache (faster than a memory map, whose page-cache
+  // pages the hardware prefetcher does not stream across, and than one big read).
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) Fail(path, std::string("cannot open the file (") + std::strerror(errno) + ")");
+  struct FdCloser {
+    int fd;
+    ~FdCloser() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) Fail(path, "not a regular file");
+  const auto size = static_cast<std::size_t>(st.st_size);
+  if (size == 0) Fail(path, "the file is empty");
+  ::posix_fadvise(fd, 0, 0, POSIX_FADV_SEQUENTIAL);
+  std::vector<unsigned char> head(std::min<std::size_t>(size, 4096));
+  if (::pread(fd, head.data(), head.size(), 0) != static_cast<ssize_t>(head.size())) {
+    Fail(path, "cannot read the file");
+  }
+  const StlLayout layout = DetectStl(path, head.data(), size);
   if (layout.ascii) return std::nullopt;
+  const RecordReader read = [&](std::int64_t first, std::int64_t count, unsigned char* dest) {
+    std::size_t want = static_cast<std::size_t>(count) * 50;
+    auto at = static_cast<off_t>(84 + static_cast<std::size_t>(first) * 50);
+    while (want > 0) {
+      const ssize_t got = ::pread(fd, dest, want, at);
+      if (got <= 0) Fail(path, "read error (the file changed or shrank while it was read?)");
+      dest += got;
+      at += got;
+      want -= static_cast<std::size_t>(got);
+    }
+  };
   try {
-    return IntegrateFloatTriangleRecords(file.data() + 84, layout.triangles, 50, 12, options);
+    return IntegrateFloatTriangleRecords(read, layout.triangles, 50, 12, options);
   } catch (const std::invalid_argument& e) {
     Fail(path, e.what());
   }
