@@ -87,8 +87,11 @@ Report Compute(const std::string& file, const Options& opt) {
   // Binary STL: integrate the mapped records directly; weld and count edges only when the
   // streaming check finds the surface open (to say what is wrong) or when asked to.
   const bool stl = Lower(file.substr(file.find_last_of('.') + 1)) == "stl";
+  // Below kStreamingThreshold triangles the full check costs little and runs always.
+  constexpr std::int64_t kStreamingThreshold = 200000;
   if (stl && opt.path != "polygons" && !opt.full_check && opt.reader == "auto") {
-    if (auto soup = IntegrateBinaryStlFile(file, io); soup && soup->IsClosedCycle()) {
+    if (auto soup = IntegrateBinaryStlFile(file, io);
+        soup && soup->IsClosedCycle() && soup->triangles >= kStreamingThreshold) {
       r.loaded.format = "stl-binary";
       r.loaded.float32_coordinates = true;
       r.full_topology = false;
@@ -113,6 +116,18 @@ Report Compute(const std::string& file, const Options& opt) {
     r.warnings.push_back(r.topology.Problems() +
                          "; computed anyway (--allow-open): the result depends on the reference "
                          "point and is not trustworthy");
+  }
+  if (r.topology.non_manifold_edges > 0 && r.topology.BoundsVolume()) {
+    r.warnings.push_back(std::to_string(r.topology.non_manifold_edges) +
+                         " edges are shared by more than two faces (solids touching along edges); "
+                         "each is matched in both directions, so the volume is well defined");
+  }
+  if (r.topology.components > 1) {
+    r.shells = AnalyzeShells(mesh);
+    if (!r.shells.problem.empty()) {
+      if (!opt.allow_open) throw MeshFileError(file + ": " + r.shells.problem);
+      r.warnings.push_back(r.shells.problem + "; computed anyway (--allow-open)");
+    }
   }
   const bool triangles = IsAllTriangles(mesh);
   VolumeIntegrals integrals;
@@ -157,6 +172,21 @@ std::string FormatTable(const Report& r, const Options& opt) {
   } else {
     out << "file            " << r.file << "  (" << r.loaded.format << ", " << t.faces
         << " triangles, closed and consistently oriented: every edge matched by its reverse)\n";
+  }
+  if (!r.full_topology) {
+    out << "checks          streamed: every edge has its reverse, so the volume is well defined; "
+           "shells were not separated (--full-check does, and checks their nesting)\n";
+  }
+  if (r.shells.shells.size() > 1) {
+    const double s3 = std::pow(MetresPerUnit(r.unit), 3);
+    out << "shells          ";
+    for (std::size_t i = 0; i < r.shells.shells.size(); ++i) {
+      const Shell& sh = r.shells.shells[i];
+      out << (i ? "; " : "") << "#" << i + 1 << " " << sh.faces.size() << " faces, "
+          << Fixed(sh.signed_volume * s3, "%.6g") << " m^3"
+          << (sh.inside_of >= 0 ? " (cavity in #" + std::to_string(sh.inside_of + 1) + ")" : "");
+    }
+    out << "\n";
   }
   if (r.loaded.float32_coordinates) {
     out << "precision       the file's coordinates are 32-bit floats (~7 significant digits)\n";
@@ -228,6 +258,17 @@ nlohmann::ordered_json ToJson(const Report& r, const Options& opt) {
                {"boundary_edges", t.boundary_edges},
                {"non_manifold_edges", known(t.non_manifold_edges)},
                {"float32_coordinates", r.loaded.float32_coordinates}};
+  if (r.shells.shells.size() > 1) {
+    const double s3 = std::pow(MetresPerUnit(r.unit), 3);
+    nlohmann::ordered_json shells = nlohmann::ordered_json::array();
+    for (const Shell& sh : r.shells.shells) {
+      shells.push_back({{"faces", sh.faces.size()},
+                        {"volume", sh.signed_volume * s3},
+                        {"inside_of", sh.inside_of >= 0 ? nlohmann::ordered_json(sh.inside_of)
+                                                        : nlohmann::ordered_json(nullptr)}});
+    }
+    j["mesh"]["shells"] = shells;
+  }
   j["warnings"] = r.warnings;
   return j;
 }

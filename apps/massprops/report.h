@@ -34,6 +34,7 @@ struct Report {
   std::string unit;
   LoadedMesh loaded;
   MeshTopology topology;
+  ShellReport shells;         // filled when the mesh has more than one component
   bool full_topology = true;  // false: binary STL fast path, only the streaming closed check ran
   MassProperties mp;  // SI, in the file's axes
   PrincipalInertia principal;

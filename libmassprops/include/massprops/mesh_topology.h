@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "massprops/mesh.h"
 
@@ -17,18 +18,49 @@ struct MeshTopology {
   std::int64_t edges = 0;               ///< undirected edges
   std::int64_t boundary_edges = 0;      ///< used by one face: the surface has a hole
   std::int64_t non_manifold_edges = 0;  ///< used by more than two faces
+  /// Non-manifold edges not traversed equally often in both directions. Balanced ones (e.g. two
+  /// closed solids touching along an edge) keep the volume well defined; unbalanced ones do not.
+  std::int64_t unbalanced_edges = 0;
   std::int64_t inconsistent_edges = 0;  ///< two faces traverse it in the same direction
   std::int64_t degenerate_faces = 0;    ///< a repeated corner index
   std::int64_t components = 0;          ///< connected pieces (through shared vertices)
 
-  /// Closed, manifold and consistently oriented: the signed volume is then well defined.
+  /// Closed and consistently oriented (every edge traversed as often forward as backward): the
+  /// signed volume integrals are then well defined. Balanced non-manifold edges are allowed.
   bool BoundsVolume() const {
-    return boundary_edges == 0 && non_manifold_edges == 0 && inconsistent_edges == 0;
+    return boundary_edges == 0 && unbalanced_edges == 0 && inconsistent_edges == 0;
   }
   /// One line describing what is wrong, empty when BoundsVolume().
   std::string Problems() const;
 };
 
 MeshTopology AnalyzeTopology(const PolygonMesh& mesh);
+
+}  // namespace massprops
+
+namespace massprops {
+
+/// One connected piece of a mesh (faces joined through shared vertices).
+struct Shell {
+  std::vector<std::int64_t> faces;  ///< indices into the mesh's faces
+  double signed_volume = 0;         ///< in the mesh's units³; < 0: the shell faces inward
+  bool closed = false;              ///< no boundary or inconsistent edge within the shell
+  /// Index of the innermost other shell that contains this one, or -1. Decided by the winding
+  /// number of that shell at a point of this one (±1 inside, 0 outside).
+  int inside_of = -1;
+};
+
+/// How the shells of a mesh combine into one solid.
+struct ShellReport {
+  std::vector<Shell> shells;
+  /// Empty when the shells form a valid solid: disjoint outward shells, and cavities (inward
+  /// shells) each inside an outward one. Otherwise what is wrong, in words, e.g. an outward shell
+  /// inside another outward shell (the volumes overlap; a cavity facing the wrong way?).
+  std::string problem;
+};
+
+/// Splits the mesh into shells and classifies their nesting. Meant for meshes that BoundsVolume();
+/// O(shells × faces) for the nesting test.
+ShellReport AnalyzeShells(const PolygonMesh& mesh);
 
 }  // namespace massprops
