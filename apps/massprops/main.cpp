@@ -74,6 +74,12 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--allow-open", opt.allow_open,
                "Compute even when the mesh is open or inconsistently oriented (with a warning)");
+  app.add_flag("--repair", opt.repair,
+               "Repair with CGAL first: merge near-coincident vertices (1e-9 of the size), drop "
+               "degenerate and duplicate faces, orient faces consistently, stitch borders, orient "
+               "shells outward and cavities inward; what changed is reported");
+  app.add_flag("--check-self-intersections", opt.check_self_intersections,
+               "Count pairs of faces that intersect (CGAL); a warning when there are any");
   app.add_flag("--full-check", opt.full_check,
                "Binary STL: weld the corners and count vertices, components and bad edges even "
                "when the streaming check finds the surface closed (slower)");

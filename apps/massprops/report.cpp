@@ -12,6 +12,7 @@
 
 #include "massprops/composition.h"
 #include "massprops/export.h"
+#include "massprops/repair.h"
 
 namespace massprops::app {
 
@@ -89,7 +90,8 @@ Report Compute(const std::string& file, const Options& opt) {
   const bool stl = Lower(file.substr(file.find_last_of('.') + 1)) == "stl";
   // Below kStreamingThreshold triangles the full check costs little and runs always.
   constexpr std::int64_t kStreamingThreshold = 200000;
-  if (stl && opt.path != "polygons" && !opt.full_check && opt.reader == "auto") {
+  if (stl && opt.path != "polygons" && !opt.full_check && opt.reader == "auto" && !opt.repair &&
+      !opt.check_self_intersections) {
     if (auto soup = IntegrateBinaryStlFile(file, io);
         soup && soup->IsClosedCycle() && soup->triangles >= kStreamingThreshold) {
       r.loaded.format = "stl-binary";
@@ -104,14 +106,29 @@ Report Compute(const std::string& file, const Options& opt) {
   }
 
   r.loaded = opt.reader == "assimp" ? ReadMeshFileWithAssimp(file) : ReadMeshFile(file);
+  if (opt.repair) {
+    RepairedMesh repaired = RepairMesh(r.loaded.mesh);
+    r.loaded.mesh = std::move(repaired.mesh);
+    r.repair_summary = repaired.report.Summary();
+  }
   const PolygonMesh& mesh = r.loaded.mesh;
   r.topology = AnalyzeTopology(mesh);
+  if (opt.check_self_intersections) r.self_intersections = CountSelfIntersections(mesh);
+  if (r.self_intersections > 0) {
+    r.warnings.push_back(std::to_string(r.self_intersections) +
+                         " pairs of faces intersect: where the surface passes through itself, "
+                         "volume is counted twice or cancelled, and the numbers are not those of "
+                         "a solid");
+  }
   if (!r.topology.BoundsVolume()) {
     if (!opt.allow_open) {
-      throw MeshFileError(file + ": " + r.topology.Problems() +
+      throw MeshFileError(file + ": " + (opt.repair ? "after --repair: " : "") +
+                          r.topology.Problems() +
                           ". The mesh does not bound a solid, so its mass properties are not "
-                          "defined; repair it (close the holes, orient the faces consistently) or "
-                          "pass --allow-open to compute anyway");
+                          "defined; " +
+                          (opt.repair ? std::string("close the holes in a modelling tool, ")
+                                      : std::string("try --repair, ")) +
+                          "or pass --allow-open to compute anyway");
     }
     r.warnings.push_back(r.topology.Problems() +
                          "; computed anyway (--allow-open): the result depends on the reference "
@@ -172,6 +189,12 @@ std::string FormatTable(const Report& r, const Options& opt) {
   } else {
     out << "file            " << r.file << "  (" << r.loaded.format << ", " << t.faces
         << " triangles, closed and consistently oriented: every edge matched by its reverse)\n";
+  }
+  if (!r.repair_summary.empty()) out << "repair          " << r.repair_summary << "\n";
+  if (r.self_intersections >= 0) {
+    out << "self-intersect  " << (r.self_intersections == 0 ? std::string("none")
+                                                              : std::to_string(r.self_intersections) + " intersecting face pairs")
+        << "\n";
   }
   if (!r.full_topology) {
     out << "checks          streamed: every edge has its reverse, so the volume is well defined; "
@@ -269,6 +292,8 @@ nlohmann::ordered_json ToJson(const Report& r, const Options& opt) {
     }
     j["mesh"]["shells"] = shells;
   }
+  if (r.self_intersections >= 0) j["mesh"]["self_intersections"] = r.self_intersections;
+  if (!r.repair_summary.empty()) j["repair"] = r.repair_summary;
   j["warnings"] = r.warnings;
   return j;
 }

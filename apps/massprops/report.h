@@ -23,6 +23,8 @@ struct Options {
   int threads = 0;
   bool allow_open = false;
   bool full_check = false;
+  bool repair = false;                    // weld, orient, stitch with CGAL before integrating
+  bool check_self_intersections = false;  // count intersecting face pairs with CGAL
   std::string reader = "auto";  // auto | assimp (force assimp, for comparison)  // binary STL: weld and count edges even when the streaming check passes
 };
 
@@ -34,7 +36,9 @@ struct Report {
   std::string unit;
   LoadedMesh loaded;
   MeshTopology topology;
-  ShellReport shells;         // filled when the mesh has more than one component
+  ShellReport shells;
+  std::string repair_summary;             // what --repair changed
+  std::int64_t self_intersections = -1;   // -1: not checked         // filled when the mesh has more than one component
   bool full_topology = true;  // false: binary STL fast path, only the streaming closed check ran
   MassProperties mp;  // SI, in the file's axes
   PrincipalInertia principal;

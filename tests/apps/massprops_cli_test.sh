@@ -45,7 +45,7 @@ check "json content" $?
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n' >"$tmp/open.obj"
 "$bin" "$tmp/open.obj" >"$tmp/out" 2>"$tmp/err"
 [ $? -eq 1 ]; check "open mesh exits 1" $?
-grep -q "open.obj: open mesh: 3 boundary edges" "$tmp/err"; check "open mesh message" $?
+grep -q "open.obj: open mesh: 3 boundary edges in 1 hole" "$tmp/err"; check "open mesh message" $?
 [ ! -s "$tmp/out" ]; check "open mesh prints no number" $?
 "$bin" "$tmp/open.obj" --allow-open >"$tmp/out" 2>"$tmp/err"
 check "allow-open exits 0" $?
@@ -151,6 +151,22 @@ python3 -c "import json,sys; json.load(open(sys.argv[1]))" "$tmp/result.json"; c
 [ ! -s "$tmp/out" ]; check "-o leaves stdout empty" $?
 "$bin" "$tmp/open.obj" --format json -o "$tmp/none.json" 2>/dev/null
 [ ! -e "$tmp/none.json" ] && [ ! -e "$tmp/none.json.tmp-massprops" ]; check "no file on failure" $?
+
+# 12. Nested shells facing the same way are refused; --repair makes the inner one a cavity.
+"$bin" "$data/meshes/hollow_sphere.off" >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 1 ]; check "overlapping shells refused" $?
+grep -q "lies inside shell 1 and both face outward" "$tmp/err"; check "overlap named" $?
+"$bin" "$data/meshes/hollow_sphere.off" --repair --format json >"$tmp/hs.json" 2>"$tmp/err"
+check "repair exits 0" $?
+python3 -c "
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert abs(d['volume'] - (0.505952 - 0.259048)) < 2e-6, d['volume']
+assert d['mesh']['shells'][1]['inside_of'] == 0
+assert 'cavities inward' in d['repair']
+" "$tmp/hs.json"; check "repaired hollow sphere" $?
+"$bin" "$data/meshes/blobby-shuffled.off" >"$tmp/out" 2>"$tmp/err"
+grep -q "inconsistent orientation: 3069 edges.*try --repair" "$tmp/err"; check "suggests --repair" $?
 
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -340,7 +340,7 @@ TEST(Topology, FindsHolesNonManifoldAndFlippedFaces) {
   open.offsets.resize(6);  // drop the last quad
   const MeshTopology t = AnalyzeTopology(open);
   EXPECT_EQ(t.boundary_edges, 4);
-  EXPECT_THAT(t.Problems(), HasSubstr("open mesh: 4 boundary edges"));
+  EXPECT_THAT(t.Problems(), HasSubstr("open mesh: 4 boundary edges in 1 hole"));
 
   PolygonMesh flipped = box;
   std::reverse(flipped.indices.begin(), flipped.indices.begin() + 4);

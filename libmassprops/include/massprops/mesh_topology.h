@@ -17,6 +17,7 @@ struct MeshTopology {
   std::int64_t unreferenced_vertices = 0;
   std::int64_t edges = 0;               ///< undirected edges
   std::int64_t boundary_edges = 0;      ///< used by one face: the surface has a hole
+  std::int64_t holes = 0;               ///< connected loops of boundary edges
   std::int64_t non_manifold_edges = 0;  ///< used by more than two faces
   /// Non-manifold edges not traversed equally often in both directions. Balanced ones (e.g. two
   /// closed solids touching along an edge) keep the volume well defined; unbalanced ones do not.

@@ -24,7 +24,8 @@ std::string MeshTopology::Problems() const {
   std::ostringstream msg;
   const char* sep = "";
   if (boundary_edges > 0) {
-    msg << sep << "open mesh: " << boundary_edges << " boundary edges";
+    msg << sep << "open mesh: " << boundary_edges << " boundary edges in " << holes
+        << (holes == 1 ? " hole" : " holes");
     sep = "; ";
   }
   if (unbalanced_edges > 0) {
@@ -68,6 +69,9 @@ MeshTopology AnalyzeTopology(const PolygonMesh& mesh) {
     t.degenerate_faces += degenerate;
   }
   std::sort(edges.begin(), edges.end());
+  std::vector<std::int32_t> hole_parent(static_cast<std::size_t>(nv));
+  std::iota(hole_parent.begin(), hole_parent.end(), 0);
+  std::vector<char> on_boundary(static_cast<std::size_t>(nv), 0);
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i;
     int forward = 0, backward = 0;
@@ -77,7 +81,13 @@ MeshTopology AnalyzeTopology(const PolygonMesh& mesh) {
     }
     ++t.edges;
     const int uses = forward + backward;
-    if (uses == 1) ++t.boundary_edges;
+    if (uses == 1) {
+      ++t.boundary_edges;
+      const auto a = static_cast<std::int32_t>(edges[i] >> 33);
+      const auto b = static_cast<std::int32_t>((edges[i] >> 1) & 0xFFFFFFFFu);
+      on_boundary[a] = on_boundary[b] = 1;
+      hole_parent[Find(hole_parent, a)] = Find(hole_parent, b);
+    }
     if (uses > 2) ++t.non_manifold_edges;
     if (uses > 2 && forward != backward) ++t.unbalanced_edges;
     if (uses == 2 && forward != 1) ++t.inconsistent_edges;
@@ -89,6 +99,9 @@ MeshTopology AnalyzeTopology(const PolygonMesh& mesh) {
     if (Find(parent, v) == v) ++t.components;
   }
   t.unreferenced_vertices = nv - t.vertices;
+  for (std::int32_t v = 0; v < nv; ++v) {
+    if (on_boundary[v] && Find(hole_parent, v) == v) ++t.holes;
+  }
   return t;
 }
 

@@ -1,0 +1,48 @@
+#pragma once
+/// @file
+/// Mesh repair and self-intersection checks with CGAL's Polygon Mesh Processing (target
+/// massprops::repair; the only part of the project that includes CGAL).
+
+#include <cstdint>
+#include <string>
+
+#include "massprops/mesh.h"
+
+namespace massprops {
+
+struct RepairOptions {
+  /// Corners closer than this fraction of the bounding-box diagonal are merged (CAD exporters
+  /// write the same point as 0.0 and −2.7e-16). 0 merges only bit-identical positions.
+  double weld_tolerance = 1e-9;
+};
+
+/// What RepairMesh changed.
+struct RepairReport {
+  std::int64_t welded_vertices = 0;    ///< vertices merged into another within the tolerance
+  std::int64_t removed_faces = 0;      ///< degenerate or duplicate faces dropped
+  bool reoriented = false;             ///< face orientations were made consistent
+  std::int64_t split_vertices = 0;     ///< vertices duplicated to orient non-manifold fans
+  std::int64_t stitched_edges = 0;     ///< border edge pairs stitched together
+  bool oriented_to_bound_volume = false;  ///< shells oriented outward, cavities inward
+  double volume_before = 0;            ///< signed volume before and after (mesh units³)
+  double volume_after = 0;
+  /// One line per change, for people.
+  std::string Summary() const;
+};
+
+struct RepairedMesh {
+  PolygonMesh mesh;  ///< triangles (polygons are split into fans first)
+  RepairReport report;
+};
+
+/// Tolerance weld, then CGAL: repair_polygon_soup (duplicate points and faces, degenerate faces),
+/// orient_polygon_soup (consistent orientation), polygon_soup_to_polygon_mesh, stitch_borders,
+/// and — when the result is closed — orient_to_bound_a_volume (every shell outward, nested
+/// cavities inward).
+RepairedMesh RepairMesh(const PolygonMesh& mesh, const RepairOptions& options = {});
+
+/// Number of pairs of faces that intersect other than along shared edges or vertices (CGAL
+/// self_intersections on the fan-triangulated mesh), counting up to `limit`.
+std::int64_t CountSelfIntersections(const PolygonMesh& mesh, std::int64_t limit = 1000000);
+
+}  // namespace massprops

@@ -1,0 +1,203 @@
+// The only translation unit that includes CGAL (heavy headers: keep them here).
+
+#include "massprops/repair.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <iterator>
+#include <sstream>
+#include <unordered_map>
+#include <vector>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Polygon_mesh_processing/stitch_borders.h>
+#include <CGAL/Surface_mesh.h>
+
+namespace massprops {
+namespace {
+
+namespace PMP = CGAL::Polygon_mesh_processing;
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Mesh = CGAL::Surface_mesh<Point>;
+using Polygon = std::vector<std::size_t>;
+
+double SignedVolume(const VertexMatrix& V, const std::vector<std::array<std::int32_t, 3>>& tris) {
+  if (V.rows() == 0) return 0;
+  const Vector3 ref = 0.5 * (V.colwise().minCoeff() + V.colwise().maxCoeff()).transpose();
+  double v = 0;
+  for (const auto& t : tris) {
+    const Vector3 a = V.row(t[0]).transpose() - ref, b = V.row(t[1]).transpose() - ref,
+                  c = V.row(t[2]).transpose() - ref;
+    v += a.dot(b.cross(c));
+  }
+  return v / 6.0;
+}
+
+std::vector<std::array<std::int32_t, 3>> Fans(const PolygonMesh& m) {
+  std::vector<std::array<std::int32_t, 3>> t;
+  for (std::int64_t f = 0; f < m.num_faces(); ++f) {
+    const std::int32_t* idx = m.indices.data() + m.offsets[f];
+    for (int k = 1; k + 1 < m.face_size(f); ++k) t.push_back({idx[0], idx[k], idx[k + 1]});
+  }
+  return t;
+}
+
+// Merges vertices within `tol` (absolute) of an earlier one, through a hash grid of cell `tol`.
+std::vector<std::int32_t> WeldWithin(const VertexMatrix& V, double tol, std::int64_t& merged) {
+  std::vector<std::int32_t> rep(static_cast<std::size_t>(V.rows()));
+  merged = 0;
+  if (tol <= 0) {
+    for (std::size_t i = 0; i < rep.size(); ++i) rep[i] = static_cast<std::int32_t>(i);
+    return rep;
+  }
+  struct KeyHash {
+    std::size_t operator()(const std::array<std::int64_t, 3>& k) const {
+      return static_cast<std::size_t>(k[0] * 73856093LL ^ k[1] * 19349663LL ^ k[2] * 83492791LL);
+    }
+  };
+  std::unordered_map<std::array<std::int64_t, 3>, std::vector<std::int32_t>, KeyHash> grid;
+  for (Eigen::Index i = 0; i < V.rows(); ++i) {
+    const std::array<std::int64_t, 3> cell = {static_cast<std::int64_t>(std::floor(V(i, 0) / tol)),
+                                              static_cast<std::int64_t>(std::floor(V(i, 1) / tol)),
+                                              static_cast<std::int64_t>(std::floor(V(i, 2) / tol))};
+    std::int32_t found = -1;
+    for (int dx = -1; dx <= 1 && found < 0; ++dx) {
+      for (int dy = -1; dy <= 1 && found < 0; ++dy) {
+        for (int dz = -1; dz <= 1 && found < 0; ++dz) {
+          auto it = grid.find({cell[0] + dx, cell[1] + dy, cell[2] + dz});
+          if (it == grid.end()) continue;
+          for (std::int32_t j : it->second) {
+            if ((V.row(i) - V.row(j)).norm() <= tol) {
+              found = j;
+              break;
+            }
+          }
+        }
+      }
+    }
+    if (found >= 0) {
+      rep[static_cast<std::size_t>(i)] = found;
+      ++merged;
+    } else {
+      rep[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(i);
+      grid[cell].push_back(static_cast<std::int32_t>(i));
+    }
+  }
+  return rep;
+}
+
+Mesh ToCgal(const PolygonMesh& mesh) {
+  std::vector<Point> points;
+  for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) points.emplace_back(mesh.V(i, 0), mesh.V(i, 1), mesh.V(i, 2));
+  std::vector<Polygon> polys;
+  for (const auto& t : Fans(mesh)) polys.push_back({std::size_t(t[0]), std::size_t(t[1]), std::size_t(t[2])});
+  Mesh out;
+  PMP::polygon_soup_to_polygon_mesh(points, polys, out);
+  return out;
+}
+
+}  // namespace
+
+std::string RepairReport::Summary() const {
+  std::ostringstream s;
+  s.precision(7);
+  if (welded_vertices) s << "merged " << welded_vertices << " near-coincident vertices; ";
+  if (removed_faces) s << "removed " << removed_faces << " degenerate or duplicate faces; ";
+  if (reoriented) s << "made face orientations consistent; ";
+  if (split_vertices) s << "split " << split_vertices << " non-manifold vertices; ";
+  if (stitched_edges) s << "stitched " << stitched_edges << " border edges; ";
+  if (oriented_to_bound_volume) s << "oriented shells outward and cavities inward; ";
+  s << "signed volume " << volume_before << " -> " << volume_after;
+  return s.str();
+}
+
+RepairedMesh RepairMesh(const PolygonMesh& input, const RepairOptions& options) {
+  RepairedMesh out;
+  RepairReport& rep = out.report;
+  const auto input_tris = Fans(input);
+  rep.volume_before = SignedVolume(input.V, input_tris);
+
+  // 1. Tolerance weld.
+  const double diag = input.V.rows() > 0
+                          ? (input.V.colwise().maxCoeff() - input.V.colwise().minCoeff()).norm()
+                          : 0.0;
+  const std::vector<std::int32_t> map = WeldWithin(input.V, options.weld_tolerance * diag, rep.welded_vertices);
+
+  // 2. Soup repair and orientation (CGAL).
+  std::vector<Point> points;
+  for (Eigen::Index i = 0; i < input.V.rows(); ++i) {
+    points.emplace_back(input.V(i, 0), input.V(i, 1), input.V(i, 2));
+  }
+  std::vector<Polygon> polys;
+  for (const auto& t : input_tris) {
+    polys.push_back({std::size_t(map[t[0]]), std::size_t(map[t[1]]), std::size_t(map[t[2]])});
+  }
+  const std::size_t faces_before = polys.size();
+  PMP::repair_polygon_soup(points, polys);
+  rep.removed_faces = static_cast<std::int64_t>(faces_before - polys.size());
+  const std::size_t points_before = points.size();
+  // orient_polygon_soup returns false when it had to duplicate points (non-manifold vertices).
+  std::vector<Polygon> before_orient = polys;
+  PMP::orient_polygon_soup(points, polys);
+  rep.split_vertices = static_cast<std::int64_t>(points.size() - points_before);
+  rep.reoriented = before_orient != polys;
+
+  // 3. Mesh, stitching, and orientation of closed shells.
+  Mesh mesh;
+  PMP::polygon_soup_to_polygon_mesh(points, polys, mesh);
+  rep.stitched_edges = static_cast<std::int64_t>(PMP::stitch_borders(mesh));
+  if (CGAL::is_closed(mesh) && !mesh.is_empty()) {
+    PMP::orient_to_bound_a_volume(mesh);
+    rep.oriented_to_bound_volume = true;
+  }
+
+  // 4. Back to our mesh.
+  mesh.collect_garbage();
+  out.mesh.V.resize(static_cast<Eigen::Index>(mesh.number_of_vertices()), 3);
+  std::vector<std::int32_t> index(mesh.num_vertices(), -1);
+  std::int32_t next = 0;
+  for (auto v : mesh.vertices()) {
+    const Point& p = mesh.point(v);
+    index[v.idx()] = next;
+    out.mesh.V.row(next++) << p.x(), p.y(), p.z();
+  }
+  for (auto f : mesh.faces()) {
+    std::vector<std::int32_t> face;
+    for (auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) face.push_back(index[v.idx()]);
+    out.mesh.AddFace(face);
+  }
+  rep.volume_after = SignedVolume(out.mesh.V, Fans(out.mesh));
+  return out;
+}
+
+namespace {
+// Output iterator that counts the pairs and stops recording past a limit (memory stays bounded on
+// badly broken meshes).
+struct PairCounter {
+  std::int64_t* count;
+  PairCounter& operator*() { return *this; }
+  PairCounter& operator++() { return *this; }
+  PairCounter operator++(int) { return *this; }
+  template <typename T>
+  PairCounter& operator=(const T&) {
+    ++*count;
+    return *this;
+  }
+};
+}  // namespace
+
+std::int64_t CountSelfIntersections(const PolygonMesh& polygons, std::int64_t limit) {
+  const Mesh mesh = ToCgal(polygons);
+  std::int64_t count = 0;
+  PMP::self_intersections(faces(mesh), mesh, PairCounter{&count});
+  return std::min(count, limit);
+}
+
+}  // namespace massprops
