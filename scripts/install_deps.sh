@@ -8,6 +8,7 @@ PACKAGES=(
   libeigen3-dev libassimp-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libtbb-dev
+  clang-14 libclang-rt-14-dev
   python3
 )
 

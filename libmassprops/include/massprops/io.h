@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "massprops/mesh.h"
 #include "massprops/triangle_soup.h"
@@ -36,6 +37,12 @@ struct LoadedMesh {
 /// @throws MeshFileError for a missing, empty, truncated or malformed file, an unknown extension,
 ///         non-finite coordinates, or a face index out of range.
 LoadedMesh ReadMeshFile(const std::string& path);
+
+/// Parses a mesh held in memory with the readers of our own: `extension` is "obj", "stl", "ply"
+/// or "off"; `name` is used in messages. The same checks as ReadMeshFile.
+/// @throws MeshFileError as ReadMeshFile.
+LoadedMesh ParseMeshBuffer(const std::string& name, const std::string& extension,
+                           std::string_view bytes);
 
 /// Reads any format through assimp, even those with a reader of our own (for comparison).
 /// @throws MeshFileError as ReadMeshFile.

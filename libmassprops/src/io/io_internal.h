@@ -2,6 +2,7 @@
 // Shared pieces of the mesh readers.
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "massprops/io.h"
@@ -37,8 +38,8 @@ StlLayout DetectStl(const std::string& path, const unsigned char* data, std::siz
 LoadedMesh WeldCorners(const std::string& path, const std::vector<double>& xyz,
                        const std::vector<int>& face_sizes, const char* format);
 
-LoadedMesh ReadPly(const std::string& path);
-LoadedMesh ReadOff(const std::string& path);
+LoadedMesh ParsePly(const std::string& path, std::string_view data);
+LoadedMesh ParseOff(const std::string& path, std::string_view data);
 
 /// True when assimp has an importer for this (lower-case) extension.
 bool AssimpCanRead(const std::string& extension);

@@ -31,16 +31,6 @@ namespace massprops {
 
 namespace {
 
-std::string ReadWholeFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) Fail(path, "cannot open the file (missing or unreadable)");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  std::string data = buffer.str();
-  if (data.empty()) Fail(path, "the file is empty");
-  return data;
-}
-
 std::string Lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
   return s;
@@ -126,7 +116,7 @@ LoadedMesh FromTriangleSoup(const std::string& path, const std::vector<double>& 
   return WeldCorners(path, xyz, std::vector<int>(xyz.size() / 9, 3), format);
 }
 
-LoadedMesh ReadBinaryStl(const std::string& path, const std::string& data, std::uint32_t n) {
+LoadedMesh ReadBinaryStl(const std::string& path, std::string_view data, std::uint32_t n) {
   std::vector<double> xyz(static_cast<std::size_t>(n) * 9);
   for (std::uint32_t t = 0; t < n; ++t) {
     const char* rec = data.data() + 84 + 50 * static_cast<std::size_t>(t) + 12;  // skip normal
@@ -139,7 +129,7 @@ LoadedMesh ReadBinaryStl(const std::string& path, const std::string& data, std::
   return out;
 }
 
-LoadedMesh ReadAsciiStl(const std::string& path, const std::string& data) {
+LoadedMesh ReadAsciiStl(const std::string& path, std::string_view data) {
   std::vector<double> xyz;
   std::string_view rest(data);
   std::size_t line = 1;
@@ -182,16 +172,16 @@ LoadedMesh ReadAsciiStl(const std::string& path, const std::string& data) {
   return FromTriangleSoup(path, xyz, "stl-ascii");
 }
 
-LoadedMesh ReadStl(const std::string& path) {
-  const MappedFile file(path);
-  const StlLayout layout = DetectStl(path, file.data(), file.size());
-  const std::string_view view(reinterpret_cast<const char*>(file.data()), file.size());
-  if (layout.ascii) return ReadAsciiStl(path, std::string(view));
-  return ReadBinaryStl(path, std::string(view), layout.triangles);
+LoadedMesh ParseStl(const std::string& path, std::string_view data) {
+  if (data.empty()) Fail(path, "the file is empty");
+  const StlLayout layout =
+      DetectStl(path, reinterpret_cast<const unsigned char*>(data.data()), data.size());
+  if (layout.ascii) return ReadAsciiStl(path, data);
+  return ReadBinaryStl(path, data, layout.triangles);
 }
 
-LoadedMesh ReadObj(const std::string& path) {
-  const std::string data = ReadWholeFile(path);
+LoadedMesh ParseObj(const std::string& path, std::string_view data) {
+  if (data.empty()) Fail(path, "the file is empty");
   LoadedMesh out;
   out.format = "obj";
   std::vector<double> verts;
@@ -326,13 +316,23 @@ std::optional<SoupIntegrals> IntegrateBinaryStlFile(const std::string& path,
   }
 }
 
+LoadedMesh ParseMeshBuffer(const std::string& name, const std::string& extension,
+                           std::string_view bytes) {
+  const std::string ext = Lower(extension);
+  if (ext == "obj") return ParseObj(name, bytes);
+  if (ext == "stl") return ParseStl(name, bytes);
+  if (ext == "ply") return ParsePly(name, bytes);
+  if (ext == "off") return ParseOff(name, bytes);
+  Fail(name, "no parser of our own for '" + ext + "' (formats read through assimp need a file)");
+}
+
 LoadedMesh ReadMeshFile(const std::string& path) {
   const std::size_t dot = path.find_last_of('.');
   const std::string ext = dot == std::string::npos ? "" : Lower(path.substr(dot + 1));
-  if (ext == "obj") return ReadObj(path);
-  if (ext == "stl") return ReadStl(path);
-  if (ext == "ply") return ReadPly(path);
-  if (ext == "off") return ReadOff(path);
+  if (ext == "obj" || ext == "stl" || ext == "ply" || ext == "off") {
+    const MappedFile file(path);
+    return ParseMeshBuffer(path, ext, std::string_view(reinterpret_cast<const char*>(file.data()), file.size()));
+  }
   if (AssimpCanRead(ext)) return ReadWithAssimp(path);
   Fail(path, "unknown mesh format '" + ext + "'");
 }

@@ -19,16 +19,6 @@
 namespace massprops {
 namespace {
 
-std::string Slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) Fail(path, "cannot open the file (missing or unreadable)");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  std::string data = buffer.str();
-  if (data.empty()) Fail(path, "the file is empty");
-  return data;
-}
-
 bool Space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
 
 // Whitespace tokenizer over a buffer, counting lines for messages.
@@ -141,20 +131,20 @@ bool IsLittleEndianHost() {
 
 }  // namespace
 
-LoadedMesh ReadPly(const std::string& path) {
-  const std::string data = Slurp(path);
-  if (data.compare(0, 3, "ply") != 0) Fail(path, "not a PLY file (it does not start with 'ply')");
+LoadedMesh ParsePly(const std::string& path, std::string_view data) {
+  if (data.empty()) Fail(path, "the file is empty");
+  if (data.substr(0, 3) != "ply") Fail(path, "not a PLY file (it does not start with 'ply')");
   const std::size_t header_end_tag = data.find("end_header");
-  if (header_end_tag == std::string::npos) Fail(path, "the PLY header has no 'end_header' line (truncated?)");
+  if (header_end_tag == std::string_view::npos) Fail(path, "the PLY header has no 'end_header' line (truncated?)");
   std::size_t body = data.find('\n', header_end_tag);
-  if (body == std::string::npos) Fail(path, "nothing after the PLY header");
+  if (body == std::string_view::npos) Fail(path, "nothing after the PLY header");
   ++body;
 
   // Header.
   std::string format;
   std::vector<PlyElement> elements;
   {
-    std::istringstream header(data.substr(0, header_end_tag));
+    std::istringstream header(std::string(data.substr(0, header_end_tag)));
     std::string line;
     std::size_t n = 0;
     while (std::getline(header, line)) {
@@ -302,8 +292,8 @@ LoadedMesh ReadPly(const std::string& path) {
   return out;
 }
 
-LoadedMesh ReadOff(const std::string& path) {
-  const std::string data = Slurp(path);
+LoadedMesh ParseOff(const std::string& path, std::string_view data) {
+  if (data.empty()) Fail(path, "the file is empty");
   // Line based: '#' comments, a header keyword ([ST][C][N][4]OFF) possibly followed by the counts.
   std::vector<std::string_view> lines;
   std::vector<std::size_t> line_numbers;
