@@ -88,6 +88,7 @@ int main(int argc, char** argv) {
                  "for every format (32-bit coordinates; for comparison)")
       ->check(CLI::IsMember({"auto", "assimp"}))
       ->capture_default_str();
+  app.add_flag("-q,--quiet", opt.quiet, "No progress line on stderr");
   app.add_option("-o,--output", opt.output, "Write the output to this file (whole or not at all)");
   CLI11_PARSE(app, argc, argv);
   if (!std::isfinite(opt.density) || !std::isfinite(opt.mass)) {

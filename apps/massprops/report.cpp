@@ -13,6 +13,7 @@
 #include "massprops/composition.h"
 #include "massprops/export.h"
 #include "massprops/repair.h"
+#include "progress.h"
 
 namespace massprops::app {
 
@@ -78,6 +79,7 @@ std::string Lower(std::string s) {
 
 Report Compute(const std::string& file, const Options& opt) {
   const auto t0 = std::chrono::steady_clock::now();
+  Progress progress(file, !opt.quiet);
   Report r;
   r.file = file;
   r.unit = opt.unit;
@@ -105,15 +107,21 @@ Report Compute(const std::string& file, const Options& opt) {
     }
   }
 
+  progress.Stage("reading");
   r.loaded = opt.reader == "assimp" ? ReadMeshFileWithAssimp(file) : ReadMeshFile(file);
   if (opt.repair) {
+    progress.Stage("repairing (CGAL)");
     RepairedMesh repaired = RepairMesh(r.loaded.mesh);
     r.loaded.mesh = std::move(repaired.mesh);
     r.repair_summary = repaired.report.Summary();
   }
   const PolygonMesh& mesh = r.loaded.mesh;
+  progress.Stage("checking edges");
   r.topology = AnalyzeTopology(mesh);
-  if (opt.check_self_intersections) r.self_intersections = CountSelfIntersections(mesh);
+  if (opt.check_self_intersections) {
+    progress.Stage("checking self-intersections (CGAL)");
+    r.self_intersections = CountSelfIntersections(mesh);
+  }
   if (r.self_intersections > 0) {
     r.warnings.push_back(std::to_string(r.self_intersections) +
                          " pairs of faces intersect: where the surface passes through itself, "
@@ -140,12 +148,14 @@ Report Compute(const std::string& file, const Options& opt) {
                          "each is matched in both directions, so the volume is well defined");
   }
   if (r.topology.components > 1) {
+    progress.Stage("checking how the shells nest");
     r.shells = AnalyzeShells(mesh);
     if (!r.shells.problem.empty()) {
       if (!opt.allow_open) throw MeshFileError(file + ": " + r.shells.problem);
       r.warnings.push_back(r.shells.problem + "; computed anyway (--allow-open)");
     }
   }
+  progress.Stage("integrating");
   const bool triangles = IsAllTriangles(mesh);
   VolumeIntegrals integrals;
   if (opt.path == "polygons" || (opt.path == "auto" && !triangles)) {

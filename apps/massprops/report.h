@@ -21,6 +21,7 @@ struct Options {
   std::string frame = "com";  // com | origin
   std::string output;         // file to write; empty: stdout
   int threads = 0;
+  bool quiet = false;  // no progress line
   bool allow_open = false;
   bool full_check = false;
   bool repair = false;                    // weld, orient, stitch with CGAL before integrating
