@@ -107,9 +107,12 @@ int main(int argc, char** argv) {
       if (opt.format == "table") text += (text.empty() ? "" : "\n") + FormatTable(r, opt);
       if (robot) text += FormatRobot(r, opt.format);
       reports.push_back(std::move(r));
-    } catch (const std::exception& e) {
+    } catch (const massprops::MeshFileError& e) {  // already names the file
       ++failures;
       std::cerr << "error: " << e.what() << "\n";
+    } catch (const std::exception& e) {
+      ++failures;
+      std::cerr << "error: " << file << ": " << e.what() << "\n";
     }
   }
   if (!reports.empty()) {

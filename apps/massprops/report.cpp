@@ -195,7 +195,9 @@ std::string FormatTable(const Report& r, const Options& opt) {
     out << "file            " << r.file << "  (" << r.loaded.format << ", " << t.faces << " faces, "
         << t.vertices << " vertices, " << t.components << " component"
         << (t.components == 1 ? "" : "s") << ", "
-        << (t.BoundsVolume() ? "closed and consistently oriented" : t.Problems()) << ")\n";
+        << (t.BoundsVolume() ? "closed and consistently oriented" : t.Problems())
+        << (t.degenerate_faces ? ", " + std::to_string(t.degenerate_faces) + " degenerate faces" : "")
+        << ")\n";
   } else {
     out << "file            " << r.file << "  (" << r.loaded.format << ", " << t.faces
         << " triangles, closed and consistently oriented: every edge matched by its reverse)\n";
@@ -282,14 +284,21 @@ nlohmann::ordered_json ToJson(const Report& r, const Options& opt) {
   auto known = [&](std::int64_t v) {
     return r.full_topology ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
   };
+  std::int64_t triangles = t.faces;
+  if (r.full_topology) {
+    triangles = 0;
+    for (std::int64_t f = 0; f < r.loaded.mesh.num_faces(); ++f) triangles += r.loaded.mesh.face_size(f) - 2;
+  }
   j["mesh"] = {{"format", r.loaded.format},
-               {"triangles", t.faces},  // faces as stored (n-gons count once)
+               {"faces", t.faces},
+               {"triangles", triangles},  // after splitting n-gons into fans
                {"vertices", known(t.vertices)},
                {"components", known(t.components)},
                {"closed", t.boundary_edges == 0},
                {"oriented", t.inconsistent_edges == 0},
                {"boundary_edges", t.boundary_edges},
                {"non_manifold_edges", known(t.non_manifold_edges)},
+               {"degenerate_faces", known(t.degenerate_faces)},
                {"float32_coordinates", r.loaded.float32_coordinates}};
   if (r.shells.shells.size() > 1) {
     const double s3 = std::pow(MetresPerUnit(r.unit), 3);
