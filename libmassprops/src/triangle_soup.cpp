@@ -19,13 +19,6 @@ using internal::Moments;
 constexpr std::int64_t kBlock = 4096;
 constexpr std::size_t kPrefetchBytes = 2048;
 
-inline std::uint64_t Mix(std::uint64_t z) {  // SplitMix64 finalizer
-  z += 0x9E3779B97F4A7C15ull;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-
 struct CornerHash {
   std::uint64_t h, g;
 };

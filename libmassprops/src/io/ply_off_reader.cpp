@@ -316,30 +316,33 @@ LoadedMesh ParseOff(const std::string& path, std::string_view data) {
   }
   std::size_t li = 0;
   if (lines.empty()) Fail(path, "no content in the OFF file");
-  Tokens head(lines[0]);
-  std::string_view kw;
-  head.Next(kw);
-  if (kw.size() >= 3 && kw.substr(kw.size() - 3) == "OFF") {
-    if (kw.find('4') != std::string_view::npos || kw.find("n") == 0) {
-      Fail(path, "'" + std::string(kw) + "' (higher-dimensional OFF) is not a 3-D surface mesh");
+  bool counts_after_keyword = false;  // "OFF nv nf ne" on one line
+  {
+    Tokens head(lines[0]);
+    std::string_view kw, next;
+    head.Next(kw);
+    if (kw.size() >= 3 && kw.substr(kw.size() - 3) == "OFF") {
+      if (kw.find('4') != std::string_view::npos || kw.find('n') == 0) {
+        Fail(path, "'" + std::string(kw) + "' (higher-dimensional OFF) is not a 3-D surface mesh");
+      }
+      if (head.Next(next)) {
+        counts_after_keyword = true;
+      } else {
+        ++li;
+      }
+    } else if (kw.find("OFF") != std::string_view::npos) {
+      Fail(path, "unsupported OFF variant '" + std::string(kw) + "'");
     }
-    if (!head.Next(kw)) {
-      ++li;
-    }
-  } else if (kw.size() >= 3 && kw.find("OFF") != std::string_view::npos) {
-    Fail(path, "unsupported OFF variant '" + std::string(kw) + "'");
   }
-  auto where = [&](std::size_t i) { return "line " + std::to_string(line_numbers[std::min(i, lines.size() - 1)]) + ": "; };
+  auto where = [&](std::size_t i) {
+    return "line " + std::to_string(line_numbers[std::min(i, lines.size() - 1)]) + ": ";
+  };
   if (li >= lines.size()) Fail(path, "the OFF file ends before its counts");
-  // Counts: on this line, or after the keyword on the header line.
   std::uint64_t nv = 0, nf = 0;
   {
-    std::string_view countsline = lines[li];
-    if (li == 0) {  // "OFF nv nf ne" on one line
-      countsline.remove_prefix(countsline.find("OFF") + 3);
-    }
-    Tokens t(countsline);
+    Tokens t(lines[li]);
     std::string_view a, b;
+    if (counts_after_keyword) t.Next(a);  // the keyword itself
     if (!t.Next(a) || !t.Next(b) || !ParseNumber(a, nv) || !ParseNumber(b, nf)) {
       Fail(path, where(li) + "expected the vertex and face counts");
     }

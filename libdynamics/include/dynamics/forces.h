@@ -1,0 +1,56 @@
+#pragma once
+/// @file
+/// Forces and torques acting on the bodies of a World. Each force adds to per-body world force f
+/// and world torque τ about the center of mass, and, where it has one, reports its potential
+/// energy (for the energy diagnostics).
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "dynamics/rigid_body.h"
+
+namespace dynamics {
+
+struct Wrench {
+  Vector3 force = Vector3::Zero();   ///< N, world
+  Vector3 torque = Vector3::Zero();  ///< N·m, world, about the center of mass
+};
+
+class Force {
+ public:
+  virtual ~Force() = default;
+  /// Adds this force's wrenches at time t to `out` (one per body).
+  virtual void Apply(double t, const std::vector<RigidBody>& bodies, std::vector<Wrench>& out) const = 0;
+  /// Potential energy, J (0 for non-conservative forces).
+  virtual double PotentialEnergy(const std::vector<RigidBody>&) const { return 0.0; }
+  /// The largest body index this force refers to (-1: none in particular).
+  virtual int MaxBody() const { return -1; }
+};
+
+/// Uniform gravity g (m/s²) on every body: f = M g, potential −M g·x.
+std::unique_ptr<Force> Gravity(const Vector3& g);
+/// Linear damping f = −c v (N·s/m) on one body (or every body with body = -1).
+std::unique_ptr<Force> LinearDamping(double c, int body = -1);
+/// Angular damping τ = −c ω (N·m·s) on one body (or every body with body = -1).
+std::unique_ptr<Force> AngularDamping(double c, int body = -1);
+/// Constant world force through the center of mass, and constant world torque.
+std::unique_ptr<Force> ConstantForce(int body, const Vector3& force);
+std::unique_ptr<Force> ConstantTorque(int body, const Vector3& torque);
+/// Constant force at a body point (body coordinates); `body_frame` says whether the force vector
+/// turns with the body. Torque (p − x) × f.
+std::unique_ptr<Force> PointForce(int body, const Vector3& point_body, const Vector3& force,
+                                  bool body_frame);
+/// Damped spring from a body point (body coordinates) to a world anchor: stiffness k (N/m), rest
+/// length l0 (m), damping c (N·s/m) along the spring.
+std::unique_ptr<Force> SpringToWorld(int body, const Vector3& point_body, const Vector3& anchor,
+                                     double k, double rest_length, double damping);
+/// Damped spring between points of two bodies (body coordinates).
+std::unique_ptr<Force> SpringBetween(int body_a, const Vector3& point_a, int body_b,
+                                     const Vector3& point_b, double k, double rest_length,
+                                     double damping);
+/// Any user force: called with the time, the bodies and the wrenches to add to.
+std::unique_ptr<Force> ForceCallback(
+    std::function<void(double, const std::vector<RigidBody>&, std::vector<Wrench>&)> fn);
+
+}  // namespace dynamics

@@ -1,0 +1,50 @@
+#include "dynamics/rigid_body.h"
+
+#include <sstream>
+#include <stdexcept>
+
+namespace dynamics {
+
+Matrix3 RigidBody::WorldInertia() const {
+  const Matrix3 R = Rotation();
+  return R * inertia.asDiagonal() * R.transpose();
+}
+
+Vector3 RigidBody::BodyAngularVelocity() const {
+  return BodyAngularMomentum().cwiseQuotient(inertia);
+}
+
+Vector3 RigidBody::AngularVelocity() const { return orientation * BodyAngularVelocity(); }
+
+void RigidBody::SetAngularVelocity(const Vector3& omega_world) {
+  const Vector3 omega_body = orientation.conjugate() * omega_world;
+  angular_momentum = orientation * inertia.cwiseProduct(omega_body);
+}
+
+double RigidBody::RotationalEnergy() const {
+  const Vector3 pi = BodyAngularMomentum();
+  return 0.5 * pi.cwiseProduct(pi).cwiseQuotient(inertia).sum();
+}
+
+double RigidBody::KineticEnergy() const {
+  return 0.5 * mass * velocity.squaredNorm() + RotationalEnergy();
+}
+
+RigidBody BodyFromMassProperties(const massprops::MassProperties& mp) {
+  if (!(mp.mass > 0) || !std::isfinite(mp.mass)) {
+    std::ostringstream msg;
+    msg << "BodyFromMassProperties: mass must be positive, got " << mp.mass;
+    throw std::invalid_argument(msg.str());
+  }
+  const massprops::PrincipalInertia p = massprops::ComputePrincipalInertia(mp.inertia_com);
+  const massprops::ValidityReport ok = massprops::CheckPhysicallyValid(p.moments, 1e-9);
+  if (!ok.valid) throw std::invalid_argument("BodyFromMassProperties: " + ok.reason);
+  RigidBody b;
+  b.mass = mp.mass;
+  b.inertia = p.moments;
+  b.position = mp.center_of_mass;
+  b.orientation = Quaternion(p.axes).normalized();  // R_WB = R_MB at the start
+  return b;
+}
+
+}  // namespace dynamics
