@@ -266,10 +266,13 @@ bool World::TryStep(double h) {
         const Vector3 f = h * omega.cross(I0 * omega);
         const Matrix3 jac = I0 + h * (Skew(omega) * I0 - Skew(I0 * omega));
         omega -= jac.partialPivLu().solve(f);
-        b.angular_momentum = b.orientation * (I0 * omega);
-        const Quaternion dq = QuaternionRate(b.orientation, b.orientation * omega);
+        // As engines do, the world angular velocity is the state carried over the attitude
+        // update; L follows from it with the new attitude.
+        const Vector3 omega_world = b.orientation * omega;
+        const Quaternion dq = QuaternionRate(b.orientation, omega_world);
         b.orientation.coeffs() += h * dq.coeffs();
         b.orientation.normalize();
+        b.angular_momentum = b.orientation * (I0 * (b.orientation.conjugate() * omega_world));
       });
       return true;
     }
