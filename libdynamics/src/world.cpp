@@ -111,6 +111,15 @@ void CheckBody(const RigidBody& b) {
 
 }  // namespace
 
+Matrix3 ExplicitEulerRotation(const Matrix3& R, const Vector3& omega_world, double h, bool reproject) {
+  Matrix3 out = R + h * Skew(omega_world) * R;
+  if (!reproject) return out;
+  Eigen::JacobiSVD<Matrix3> svd(out, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Matrix3 U = svd.matrixU();
+  if ((U * svd.matrixV().transpose()).determinant() < 0) U.col(2) *= -1.0;
+  return U * svd.matrixV().transpose();
+}
+
 const char* IntegratorName(Integrator integrator) {
   switch (integrator) {
     case Integrator::kImplicitMidpoint: return "implicit-midpoint";
@@ -125,9 +134,7 @@ const char* IntegratorName(Integrator integrator) {
 }
 
 Integrator ParseIntegrator(const std::string& name) {
-  for (Integrator i : {Integrator::kImplicitMidpoint, Integrator::kSplitting, Integrator::kRK4,
-                       Integrator::kExplicitEuler, Integrator::kQuaternionEuler,
-                       Integrator::kSymplecticEuler, Integrator::kImplicitGyroscopic}) {
+  for (Integrator i : kAllIntegrators) {
     if (name == IntegratorName(i)) return i;
   }
   throw std::invalid_argument("unknown integrator '" + name +
@@ -162,8 +169,13 @@ void World::ComputeWrenches(double t, std::vector<Wrench>& out) const {
 template <typename Fn>
 void World::ForEachBody(const Fn& fn) {
   const std::size_t n = bodies_.size();
-  int threads = num_threads_ > 0 ? num_threads_ : static_cast<int>(std::thread::hardware_concurrency());
-  if (n < 4096 || threads <= 1) {
+  if (n < 4096) {  // not worth a thread
+    for (std::size_t i = 0; i < n; ++i) fn(i);
+    return;
+  }
+  static const int kHardwareThreads = static_cast<int>(std::thread::hardware_concurrency());
+  const int threads = num_threads_ > 0 ? num_threads_ : kHardwareThreads;
+  if (threads <= 1) {
     for (std::size_t i = 0; i < n; ++i) fn(i);
     return;
   }
@@ -215,13 +227,7 @@ bool World::TryStep(double h) {
         const Vector3 omega = b.AngularVelocity();
         b.position += h * b.velocity;
         b.velocity += h / b.mass * w[i].force;
-        Matrix3 R = b.Rotation();
-        R += h * Skew(omega) * R;
-        // Re-project onto the rotations (seed notes): R = U Vᵀ, det +1.
-        Eigen::JacobiSVD<Matrix3> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
-        Matrix3 U = svd.matrixU();
-        if ((U * svd.matrixV().transpose()).determinant() < 0) U.col(2) *= -1.0;
-        b.orientation = Quaternion(U * svd.matrixV().transpose()).normalized();
+        b.orientation = Quaternion(ExplicitEulerRotation(b.Rotation(), omega, h, true)).normalized();
         b.angular_momentum += h * w[i].torque;
       });
       return true;
@@ -335,8 +341,13 @@ StepStatus World::Step(double h) {
     throw std::invalid_argument(msg.str());
   }
   StepStatus status;
-  const std::vector<RigidBody> saved = bodies_;
   const double t0 = time_;
+  if (integrator_ != Integrator::kImplicitMidpoint) {  // explicit: nothing to retry
+    TryStep(h);
+    time_ = t0 + h;
+    return status;
+  }
+  const std::vector<RigidBody> saved = bodies_;
   for (int substeps = 1; substeps <= 1024; substeps *= 2) {
     bool ok = true;
     const double dt = h / substeps;

@@ -38,6 +38,16 @@ enum class Integrator {
 };
 
 const char* IntegratorName(Integrator integrator);
+
+/// Every integrator, in the order above.
+inline constexpr Integrator kAllIntegrators[] = {
+    Integrator::kImplicitMidpoint, Integrator::kSplitting,       Integrator::kRK4,
+    Integrator::kExplicitEuler,    Integrator::kQuaternionEuler, Integrator::kSymplecticEuler,
+    Integrator::kImplicitGyroscopic};
+
+/// The seed notes' attitude step R ← R + h[ω]×R, followed (if `reproject`) by the projection
+/// onto the rotations through the SVD, R = U Vᵀ with det +1. Without it R drifts off SO(3).
+Matrix3 ExplicitEulerRotation(const Matrix3& R, const Vector3& omega_world, double h, bool reproject);
 /// Parses the names above ("implicit-midpoint", "splitting", "rk4", "explicit-euler",
 /// "quaternion-euler", "symplectic-euler", "implicit-gyroscopic").
 /// @throws std::invalid_argument for an unknown name.
