@@ -41,19 +41,23 @@ bool MidpointRotation(RigidBody& b, double h) {
   const Vector3 pi0 = b.BodyAngularMomentum();
   const double scale = pi0.norm();
   if (scale == 0.0) return true;
+  // Fixed-point iteration first: it contracts by about h|ω| per sweep and costs a cross product;
+  // Newton (a 3×3 solve per iteration) takes over when h|ω| is not small.
   Vector3 y = pi0;
   bool converged = false;
-  for (int it = 0; it < 50; ++it) {
+  for (int it = 0; it < 12 && !converged; ++it) {
+    const Vector3 next = pi0 + 0.5 * h * y.cross(J.cwiseProduct(y));
+    converged = (next - y).norm() <= 1e-15 * scale;
+    y = next;
+  }
+  for (int it = 0; it < 50 && !converged; ++it) {
     const Vector3 w = J.cwiseProduct(y);
     const Vector3 g = y - pi0 - 0.5 * h * y.cross(w);
     const Matrix3 dg = Matrix3::Identity() - 0.5 * h * (-Skew(w) + Skew(y) * J.asDiagonal());
     const Vector3 dy = dg.partialPivLu().solve(g);
     if (!dy.allFinite()) return false;
     y -= dy;
-    if (dy.norm() <= 1e-15 * scale) {
-      converged = true;
-      break;
-    }
+    converged = dy.norm() <= 1e-15 * scale;
   }
   if (!converged) {
     const Vector3 w = J.cwiseProduct(y);
@@ -162,7 +166,8 @@ void World::AddForce(std::unique_ptr<Force> force) {
 }
 
 void World::ComputeWrenches(double t, std::vector<Wrench>& out) const {
-  out.assign(bodies_.size(), Wrench{});
+  out.resize(bodies_.size());
+  std::fill(out.begin(), out.end(), Wrench{});
   for (const auto& f : forces_) f->Apply(t, bodies_, out);
 }
 
@@ -193,7 +198,7 @@ void World::ForEachBody(const Fn& fn) {
 }
 
 bool World::TryStep(double h) {
-  std::vector<Wrench> w;
+  std::vector<Wrench>& w = wrenches_;
   const std::size_t n = bodies_.size();
   switch (integrator_) {
     case Integrator::kImplicitMidpoint:
@@ -284,33 +289,33 @@ bool World::TryStep(double h) {
     }
     case Integrator::kRK4: {
       // Stages on copies of the whole state, so that coupled forces see consistent states.
-      const std::vector<RigidBody> start = bodies_;
-      struct Rate {
-        Vector3 dx, dv, dL;
-        Eigen::Vector4d dq;
-      };
+      rk4_start_ = bodies_;
+      const std::vector<RigidBody>& start = rk4_start_;
       auto rates = [&](double t, std::vector<Rate>& k) {
         ComputeWrenches(t, w);
         k.resize(n);
-        for (std::size_t i = 0; i < n; ++i) {
+        ForEachBody([&](std::size_t i) {
           const RigidBody& b = bodies_[i];
           k[i].dx = b.velocity;
           k[i].dv = w[i].force / b.mass;
           k[i].dL = w[i].torque;
           k[i].dq = QuaternionRate(b.orientation, b.AngularVelocity()).coeffs();
-        }
+        });
       };
       auto set_stage = [&](const std::vector<Rate>& k, double a) {
-        for (std::size_t i = 0; i < n; ++i) {
+        ForEachBody([&](std::size_t i) {
           RigidBody& b = bodies_[i];
           b.position = start[i].position + a * k[i].dx;
           b.velocity = start[i].velocity + a * k[i].dv;
           b.angular_momentum = start[i].angular_momentum + a * k[i].dL;
           b.orientation.coeffs() = start[i].orientation.coeffs() + a * k[i].dq;
           b.orientation.normalize();  // stages stay on the unit sphere (ω is then well defined)
-        }
+        });
       };
-      std::vector<Rate> k1, k2, k3, k4;
+      std::vector<Rate>& k1 = rk4_k_[0];
+      std::vector<Rate>& k2 = rk4_k_[1];
+      std::vector<Rate>& k3 = rk4_k_[2];
+      std::vector<Rate>& k4 = rk4_k_[3];
       rates(time_, k1);
       set_stage(k1, 0.5 * h);
       rates(time_ + 0.5 * h, k2);
@@ -318,7 +323,7 @@ bool World::TryStep(double h) {
       rates(time_ + 0.5 * h, k3);
       set_stage(k3, h);
       rates(time_ + h, k4);
-      for (std::size_t i = 0; i < n; ++i) {
+      ForEachBody([&](std::size_t i) {
         RigidBody& b = bodies_[i];
         b.position = start[i].position + h / 6 * (k1[i].dx + 2 * k2[i].dx + 2 * k3[i].dx + k4[i].dx);
         b.velocity = start[i].velocity + h / 6 * (k1[i].dv + 2 * k2[i].dv + 2 * k3[i].dv + k4[i].dv);
@@ -327,7 +332,7 @@ bool World::TryStep(double h) {
         b.orientation.coeffs() = start[i].orientation.coeffs() +
                                  h / 6 * (k1[i].dq + 2 * k2[i].dq + 2 * k3[i].dq + k4[i].dq);
         b.orientation.normalize();
-      }
+      });
       return true;
     }
   }

@@ -101,8 +101,17 @@ class World {
   template <typename Fn>
   void ForEachBody(const Fn& fn);
 
+  struct Rate {  // RK4 stage derivative of one body
+    Vector3 dx, dv, dL;
+    Eigen::Vector4d dq;
+  };
+
   Integrator integrator_;
   std::vector<RigidBody> bodies_;
+  // Scratch kept between steps so that large worlds do not reallocate (and page-fault) per step.
+  std::vector<Wrench> wrenches_;
+  std::vector<RigidBody> rk4_start_;
+  std::vector<Rate> rk4_k_[4];
   std::vector<std::unique_ptr<Force>> forces_;
   double time_ = 0;
   int num_threads_ = 0;
