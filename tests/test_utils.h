@@ -71,6 +71,20 @@ inline MassProperties Moved(MassProperties mp, const Matrix3& R, const Vector3& 
   return mp;
 }
 
+/// The mesh plus a copy of itself moved by `offset`, as one mesh (two shells).
+inline PolygonMesh WithMovedCopy(const PolygonMesh& m, const Vector3& offset) {
+  PolygonMesh out = m;
+  const auto n = static_cast<std::int32_t>(m.V.rows());
+  out.V.conservativeResize(2 * n, 3);
+  out.V.bottomRows(n) = m.V.rowwise() + offset.transpose();
+  for (std::int64_t f = 0; f < m.num_faces(); ++f) {
+    std::vector<std::int32_t> face;
+    for (int k = 0; k < m.face_size(f); ++k) face.push_back(m.indices[m.offsets[f] + k] + n);
+    out.AddFace(face);
+  }
+  return out;
+}
+
 inline bool SameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 inline bool SameBits(const MassProperties& a, const MassProperties& b) {

@@ -166,7 +166,6 @@ VolumeIntegrals IntegrateTriangles(const Eigen::Ref<const VertexMatrix>& V,
   const Eigen::Index vs = V.outerStride();
   const std::int32_t* I = F.data();
   const Eigen::Index fs = F.outerStride();
-  const double r0 = ref[0], r1 = ref[1], r2 = ref[2];
 
   internal::ParallelForBlocks(blocks, options.num_threads, [&](std::int64_t b) {
     Batch batch;
@@ -185,18 +184,7 @@ VolumeIntegrals IntegrateTriangles(const Eigen::Ref<const VertexMatrix>& V,
           bad = true;
           i0 = i1 = i2 = 0;  // reported after the loop; keep the read in bounds
         }
-        const double* pa = P + i0 * vs;
-        const double* pb = P + i1 * vs;
-        const double* pc = P + i2 * vs;
-        batch.ax[j] = pa[0] - r0;
-        batch.ay[j] = pa[1] - r1;
-        batch.az[j] = pa[2] - r2;
-        batch.bx[j] = pb[0] - r0;
-        batch.by[j] = pb[1] - r1;
-        batch.bz[j] = pb[2] - r2;
-        batch.cx[j] = pc[0] - r0;
-        batch.cy[j] = pc[1] - r1;
-        batch.cz[j] = pc[2] - r2;
+        internal::SetTriangle(batch, j, P + i0 * vs, P + i1 * vs, P + i2 * vs, ref.data());
       }
       internal::AccumulateBatch(batch, internal::PadBatch(batch, count), sums);
     }

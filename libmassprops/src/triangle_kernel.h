@@ -45,6 +45,21 @@ struct LaneSums {
 // `count` is a multiple of kLanes (the batch is padded with zero triangles, which add exact zeros).
 void AccumulateBatch(const Batch& t, int count, LaneSums& sums);
 
+/// Stores triangle j of a batch: corners a, b, c (3 coordinates each, float or double) relative
+/// to the reference point r.
+template <typename T>
+inline void SetTriangle(Batch& t, int j, const T* a, const T* b, const T* c, const double* r) {
+  t.ax[j] = a[0] - r[0];
+  t.ay[j] = a[1] - r[1];
+  t.az[j] = a[2] - r[2];
+  t.bx[j] = b[0] - r[0];
+  t.by[j] = b[1] - r[1];
+  t.bz[j] = b[2] - r[2];
+  t.cx[j] = c[0] - r[0];
+  t.cy[j] = c[1] - r[1];
+  t.cz[j] = c[2] - r[2];
+}
+
 /// Pads a batch of `count` triangles with zero triangles up to a multiple of kLanes; returns it.
 inline int PadBatch(Batch& b, int count) {
   const int padded = (count + kLanes - 1) / kLanes * kLanes;

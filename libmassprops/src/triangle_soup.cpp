@@ -67,7 +67,6 @@ SoupIntegrals Integrate(const Fetch& fetch, std::int64_t count, std::size_t stri
   if (!ref.allFinite()) {
     throw std::invalid_argument("triangle 0 has a non-finite coordinate");
   }
-  const double r0 = ref[0], r1 = ref[1], r2 = ref[2];
   const std::int64_t blocks = (count + kBlock - 1) / kBlock;
   std::vector<BlockResult> parts(static_cast<std::size_t>(blocks));
 
@@ -98,15 +97,7 @@ SoupIntegrals Integrate(const Fetch& fetch, std::int64_t count, std::size_t stri
         res.edge_hash += ha.h * hb.g - hb.h * ha.g;
         res.edge_hash += hb.h * hc.g - hc.h * hb.g;
         res.edge_hash += hc.h * ha.g - ha.h * hc.g;
-        batch.ax[j] = c[0] - r0;
-        batch.ay[j] = c[1] - r1;
-        batch.az[j] = c[2] - r2;
-        batch.bx[j] = c[3] - r0;
-        batch.by[j] = c[4] - r1;
-        batch.bz[j] = c[5] - r2;
-        batch.cx[j] = c[6] - r0;
-        batch.cy[j] = c[7] - r1;
-        batch.cz[j] = c[8] - r2;
+        internal::SetTriangle(batch, j, c, c + 3, c + 6, ref.data());
       }
       internal::AccumulateBatch(batch, internal::PadBatch(batch, n), sums);
     }

@@ -310,16 +310,7 @@ TEST(Shells, NestingDecidesCavityOrOverlap) {
   EXPECT_NEAR(bad.shells[1].signed_volume, 0.259048, 1e-6);
   EXPECT_THAT(bad.problem, HasSubstr("shell 2 of 2 lies inside shell 1 and both face outward"));
   // Two disjoint boxes: an assembly, no nesting.
-  PolygonMesh two = solids::Box(Vector3(1, 1, 1));
-  PolygonMesh other = solids::Box(Vector3(1, 1, 1));
-  const auto n = static_cast<std::int32_t>(two.V.rows());
-  two.V.conservativeResize(2 * n, 3);
-  two.V.bottomRows(n) = other.V.rowwise() + Eigen::RowVector3d(3, 0, 0);
-  for (std::int64_t f = 0; f < other.num_faces(); ++f) {
-    std::vector<std::int32_t> face;
-    for (int k = 0; k < other.face_size(f); ++k) face.push_back(other.indices[other.offsets[f] + k] + n);
-    two.AddFace(face);
-  }
+  const PolygonMesh two = testing::WithMovedCopy(solids::Box(Vector3(1, 1, 1)), Vector3(3, 0, 0));
   const ShellReport assembly = AnalyzeShells(two);
   EXPECT_EQ(assembly.shells.size(), 2u);
   EXPECT_EQ(assembly.shells[1].inside_of, -1);

@@ -80,16 +80,7 @@ TEST(Repair, DropsDegenerateAndDuplicateFaces) {
 TEST(SelfIntersections, CountsOverlapsOnly) {
   EXPECT_EQ(CountSelfIntersections(ToPolygonMesh(solids::Sphere(1.0, 12))), 0);
   // Two boxes passing through each other, as one mesh.
-  PolygonMesh a = solids::Box(Vector3(1, 1, 1));
-  const auto n = static_cast<std::int32_t>(a.V.rows());
-  PolygonMesh both = a;
-  both.V.conservativeResize(2 * n, 3);
-  both.V.bottomRows(n) = a.V.rowwise() + Eigen::RowVector3d(0.5, 0.3, 0.2);
-  for (std::int64_t f = 0; f < a.num_faces(); ++f) {
-    std::vector<std::int32_t> face;
-    for (int k = 0; k < a.face_size(f); ++k) face.push_back(a.indices[a.offsets[f] + k] + n);
-    both.AddFace(face);
-  }
+  const PolygonMesh both = testing::WithMovedCopy(solids::Box(Vector3(1, 1, 1)), Vector3(0.5, 0.3, 0.2));
   EXPECT_GT(CountSelfIntersections(both), 0);
 }
 
