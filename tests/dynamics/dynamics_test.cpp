@@ -53,6 +53,30 @@ TEST(ExactFreeRotation, MatchesPublishedReferenceNumbers) {
   }
 }
 
+TEST(ExactFreeRotation, AttitudeAgreesWithAFineRK4AndKeepsWorldL) {
+  const Vector3 I(1, 2, 3);
+  const Quaternion q0 = Quaternion(Eigen::AngleAxisd(0.7, Vector3(1, 2, -1).normalized())).normalized();
+  for (const Vector3& w0 : {Vector3(0.3, 0.2, 1.0), Vector3(1.0, 0.6, 0.3), Vector3(0.01, 1, 0)}) {
+    const ExactFreeRotation exact(I, w0, q0);
+    EXPECT_LT(exact.Orientation(0).angularDistance(q0), 1e-10) << w0.transpose();
+    World w(Integrator::kRK4);
+    RigidBody b = Body(I, w0);
+    b.orientation = q0;
+    b.angular_momentum = q0 * I.cwiseProduct(w0);
+    w.AddBody(b);
+    const double h = 1e-3;
+    for (int i = 1; i <= 30000; ++i) {
+      w.Step(h);
+      if (i % 5000 == 0) {
+        const Quaternion q = exact.Orientation(i * h);
+        EXPECT_LT(q.angularDistance(w.bodies()[0].orientation), 1e-8) << w0.transpose() << " t=" << i * h;
+        // World L = R Π is the same constant.
+        EXPECT_LT((q * I.cwiseProduct(exact.Omega(i * h)) - b.angular_momentum).norm(), 1e-11);
+      }
+    }
+  }
+}
+
 TEST(Translation, ProjectileIsExactWithVelocityVerlet) {
   for (Integrator integ : {Integrator::kImplicitMidpoint, Integrator::kSplitting, Integrator::kRK4}) {
     World w(integ);
