@@ -9,6 +9,8 @@
 
 #include <Eigen/SVD>
 
+#include "dynamics/free_rigid_body.h"
+
 namespace dynamics {
 namespace {
 
@@ -89,6 +91,19 @@ void SplittingRotation(RigidBody& b, double h) {
   b.orientation = q.normalized();
 }
 
+// The exact free flow over h; false when the body is outside its domain (the caller falls back).
+bool ExactRotation(RigidBody& b, double h) {
+  const Vector3& I = b.inertia;
+  if (!(I[0] < I[1] && I[1] < I[2])) return false;
+  try {
+    const ExactFreeRotation flow(I, b.BodyAngularVelocity(), b.orientation);
+    b.orientation = flow.Orientation(h).normalized();
+    return true;
+  } catch (const std::invalid_argument&) {
+    return false;  // separatrix or L along the third axis
+  }
+}
+
 void CheckBody(const RigidBody& b) {
   std::ostringstream msg;
   if (!(b.mass > 0) || !std::isfinite(b.mass)) {
@@ -133,6 +148,7 @@ const char* IntegratorName(Integrator integrator) {
     case Integrator::kQuaternionEuler: return "quaternion-euler";
     case Integrator::kSymplecticEuler: return "symplectic-euler";
     case Integrator::kImplicitGyroscopic: return "implicit-gyroscopic";
+    case Integrator::kExactSplitting: return "exact-splitting";
   }
   return "?";
 }
@@ -202,7 +218,8 @@ bool World::TryStep(double h) {
   const std::size_t n = bodies_.size();
   switch (integrator_) {
     case Integrator::kImplicitMidpoint:
-    case Integrator::kSplitting: {
+    case Integrator::kSplitting:
+    case Integrator::kExactSplitting: {
       ComputeWrenches(time_, w);
       ForEachBody([&](std::size_t i) {  // half kick
         bodies_[i].velocity += 0.5 * h / bodies_[i].mass * w[i].force;
@@ -213,6 +230,8 @@ bool World::TryStep(double h) {
         bodies_[i].position += h * bodies_[i].velocity;
         if (integrator_ == Integrator::kSplitting) {
           SplittingRotation(bodies_[i], h);
+        } else if (integrator_ == Integrator::kExactSplitting && ExactRotation(bodies_[i], h)) {
+          // done
         } else if (!MidpointRotation(bodies_[i], h)) {
           ok = false;
         }
@@ -347,7 +366,7 @@ StepStatus World::Step(double h) {
   }
   StepStatus status;
   const double t0 = time_;
-  if (integrator_ != Integrator::kImplicitMidpoint) {  // explicit: nothing to retry
+  if (integrator_ != Integrator::kImplicitMidpoint && integrator_ != Integrator::kExactSplitting) {
     TryStep(h);
     time_ = t0 + h;
     return status;
@@ -371,6 +390,16 @@ StepStatus World::Step(double h) {
   throw std::runtime_error(
       "World::Step: the implicit midpoint solve did not converge even with 1024 sub-steps; the "
       "angular velocity is too large for this step (reduce the time step)");
+}
+
+Drift DriftSince(const Diagnostics& start, const Diagnostics& now) {
+  auto rel = [](double change, double scale) { return scale != 0.0 ? change / scale : change; };
+  Drift d;
+  const double e_scale = start.total_energy != 0.0 ? std::fabs(start.total_energy) : start.kinetic_energy;
+  d.energy = rel(now.total_energy - start.total_energy, e_scale);
+  d.linear_momentum = rel((now.linear_momentum - start.linear_momentum).norm(), start.linear_momentum.norm());
+  d.angular_momentum = rel((now.angular_momentum - start.angular_momentum).norm(), start.angular_momentum.norm());
+  return d;
 }
 
 Diagnostics World::Diagnose() const {

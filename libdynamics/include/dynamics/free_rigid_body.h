@@ -15,6 +15,7 @@ namespace dynamics {
 /// angle has φ̇ = M (I1ω1² + I2ω2²)/(I1²ω1² + I2²ω2²) (Landau & Lifshitz 37.10). φ is integrated by
 /// adaptive Gauss–Kronrod quadrature over one period once and over the remainder per query
 /// (≈1e-13), which replaces the closed form in the elliptic integral of the third kind.
+/// Not safe to share between threads (the per-period integral is cached on first use).
 class ExactFreeRotation {
  public:
   /// @throws std::invalid_argument if the moments are not strictly increasing and positive, or the
@@ -38,7 +39,8 @@ class ExactFreeRotation {
   Vector3 inertia_ = Vector3::Ones();
   double M_ = 0;
   Matrix3 C_ = Matrix3::Identity();
-  double phi_period_ = 0;  // φ gained over one period of ω
+  mutable double phi_period_ = 0;  // φ gained over one period of ω (computed on first need)
+  mutable bool phi_period_known_ = false;
   double period_ = 0;
   Vector3 omega0_ = Vector3::Zero();
   Quaternion q0_ = Quaternion::Identity();

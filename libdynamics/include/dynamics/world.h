@@ -35,6 +35,11 @@ enum class Integrator {
   /// The game-engine scheme (Catto, GDC 2015; Bullet's default): implicit Euler on the body
   /// angular velocity with one Newton step on the gyroscopic term. Stable, but it dissipates.
   kImplicitGyroscopic,
+  /// Kick–drift–kick with the exact flow of the free rigid body (ExactFreeRotation: Jacobi
+  /// elliptic functions and quadrature) as the drift: exact without torques, second order with
+  /// them. Bodies whose moments are not strictly increasing, or on the separatrix, fall back to
+  /// the implicit midpoint drift. Costly (elliptic functions every step): a reference.
+  kExactSplitting,
 };
 
 const char* IntegratorName(Integrator integrator);
@@ -43,7 +48,7 @@ const char* IntegratorName(Integrator integrator);
 inline constexpr Integrator kAllIntegrators[] = {
     Integrator::kImplicitMidpoint, Integrator::kSplitting,       Integrator::kRK4,
     Integrator::kExplicitEuler,    Integrator::kQuaternionEuler, Integrator::kSymplecticEuler,
-    Integrator::kImplicitGyroscopic};
+    Integrator::kImplicitGyroscopic, Integrator::kExactSplitting};
 
 /// The seed notes' attitude step R ← R + h[ω]×R, followed (if `reproject`) by the projection
 /// onto the rotations through the SVD, R = U Vᵀ with det +1. Without it R drifts off SO(3).
@@ -62,6 +67,15 @@ struct Diagnostics {
   Vector3 linear_momentum = Vector3::Zero();   ///< kg·m/s
   Vector3 angular_momentum = Vector3::Zero();  ///< kg·m²/s, about the world origin
 };
+
+/// Relative change of the diagnostics since a start: energy by the start's |E| (or its kinetic
+/// energy when E is 0), momenta by their start magnitude (absolute when that is 0).
+struct Drift {
+  double energy = 0;
+  double linear_momentum = 0;
+  double angular_momentum = 0;
+};
+Drift DriftSince(const Diagnostics& start, const Diagnostics& now);
 
 /// What a step did that the caller should know.
 struct StepStatus {
