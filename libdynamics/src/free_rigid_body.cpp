@@ -6,6 +6,7 @@
 
 #include <boost/math/special_functions/ellint_1.hpp>
 #include <boost/math/special_functions/jacobi_elliptic.hpp>
+#include <boost/math/quadrature/gauss.hpp>
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 
 namespace dynamics {
@@ -70,6 +71,11 @@ double ExactFreeRotation::PrecessionOver(double t) const {
   // φ̇ is smooth and positive; 31-point Gauss–Kronrod on pieces of at most a quarter period
   // meets 1e-12 without deep subdivision (near the separatrix φ̇ has sharp features at the flips).
   if (t <= 0) return 0.0;
+  if (t <= period_ / 64) {
+    // A step of a splitting: φ̇ is analytic and nearly constant over so short a span; a fixed
+    // 20-point Gauss rule is exact to rounding, and adaptivity would only chase rounding noise.
+    return boost::math::quadrature::gauss<double, 20>::integrate(rate, 0.0, t);
+  }
   const double piece = 0.25 * period_;
   double phi = 0;
   for (double a = 0; a < t; a += piece) {
