@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <chrono>
+#include <filesystem>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -92,15 +93,20 @@ Report Compute(const std::string& file, const Options& opt) {
   const bool stl = Lower(file.substr(file.find_last_of('.') + 1)) == "stl";
   // Below kStreamingThreshold triangles the full check costs little and runs always.
   constexpr std::int64_t kStreamingThreshold = 200000;
-  if (stl && opt.path != "polygons" && !opt.full_check && opt.reader == "auto" && !opt.repair &&
-      !opt.check_self_intersections) {
+  // A binary STL of kStreamingThreshold triangles is at least this big; smaller files skip the
+  // streamed pass instead of integrating twice.
+  std::error_code size_error;
+  const auto bytes = std::filesystem::file_size(file, size_error);
+  const bool big = !size_error && bytes >= 84 + 50 * static_cast<std::uintmax_t>(kStreamingThreshold);
+  if (stl && big && opt.path != "polygons" && !opt.full_check && opt.reader == "auto" &&
+      !opt.repair && !opt.check_self_intersections) {
     if (auto soup = IntegrateBinaryStlFile(file, io);
         soup && soup->IsClosedCycle() && soup->triangles >= kStreamingThreshold) {
       r.loaded.format = "stl-binary";
       r.loaded.float32_coordinates = true;
       r.full_topology = false;
       r.topology.faces = soup->triangles;
-      r.path_used = "triangles (signed tetrahedra), streamed from the mapped file";
+      r.path_used = "triangles (signed tetrahedra), streamed from the file";
       Finish(r, soup->integrals, opt, (soup->upper - soup->lower).norm());
       r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       return r;

@@ -220,11 +220,14 @@ bool World::TryStep(double h) {
     case Integrator::kImplicitMidpoint:
     case Integrator::kSplitting:
     case Integrator::kExactSplitting: {
+      auto half_kick = [&] {
+        ForEachBody([&](std::size_t i) {
+          bodies_[i].velocity += 0.5 * h / bodies_[i].mass * w[i].force;
+          bodies_[i].angular_momentum += 0.5 * h * w[i].torque;
+        });
+      };
       ComputeWrenches(time_, w);
-      ForEachBody([&](std::size_t i) {  // half kick
-        bodies_[i].velocity += 0.5 * h / bodies_[i].mass * w[i].force;
-        bodies_[i].angular_momentum += 0.5 * h * w[i].torque;
-      });
+      half_kick();
       std::atomic<bool> ok{true};
       ForEachBody([&](std::size_t i) {  // drift
         bodies_[i].position += h * bodies_[i].velocity;
@@ -238,10 +241,7 @@ bool World::TryStep(double h) {
       });
       if (!ok) return false;
       ComputeWrenches(time_ + h, w);
-      ForEachBody([&](std::size_t i) {  // half kick
-        bodies_[i].velocity += 0.5 * h / bodies_[i].mass * w[i].force;
-        bodies_[i].angular_momentum += 0.5 * h * w[i].torque;
-      });
+      half_kick();
       return true;
     }
     case Integrator::kExplicitEuler: {
