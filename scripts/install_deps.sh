@@ -9,7 +9,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libtbb-dev
   clang-14 libclang-rt-14-dev
-  python3
+  python3 gnuplot-nox libgnuplot-iostream-dev libboost-iostreams-dev libboost-filesystem-dev
 )
 
 missing=()

@@ -16,30 +16,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include "atomic_file.h"
 #include "report.h"
 
-namespace {
-
-// Writes to a temporary name beside the target, then renames: never a half-written file.
-bool WriteWhole(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp-massprops";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) {
-      std::remove(tmp.c_str());
-      return false;
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    return false;
-  }
-  return true;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   using massprops::app::Options;
@@ -120,8 +99,10 @@ int main(int argc, char** argv) {
     if (opt.format == "csv") text = FormatCsv(reports, opt);
   }
   if (!opt.output.empty()) {
-    if (!text.empty() && !WriteWhole(opt.output, text)) {
-      std::cerr << "error: " << opt.output << ": cannot write the output file\n";
+    try {
+      if (!text.empty()) massprops::app::WriteFileAtomically(opt.output, text);
+    } catch (const std::exception& e) {
+      std::cerr << "error: " << e.what() << "\n";
       return 1;
     }
   } else {

@@ -1,0 +1,52 @@
+#include "atomic_file.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+
+#include <unistd.h>
+
+namespace massprops::app {
+
+AtomicFile::AtomicFile(std::string path)
+    : path_(std::move(path)), tmp_(path_ + ".tmp-" + std::to_string(::getpid())) {
+  out_.open(tmp_, std::ios::binary | std::ios::trunc);
+  if (!out_) {
+    throw std::runtime_error(path_ + ": cannot open for writing (" + std::strerror(errno) + ")");
+  }
+}
+
+AtomicFile::~AtomicFile() { Abandon(); }
+
+void AtomicFile::Abandon() {
+  if (done_) return;
+  done_ = true;
+  if (out_.is_open()) out_.close();
+  std::remove(tmp_.c_str());
+}
+
+void AtomicFile::Commit() {
+  if (done_) throw std::runtime_error(path_ + ": already committed or abandoned");
+  out_.flush();
+  const bool ok = static_cast<bool>(out_);
+  out_.close();
+  if (!ok || out_.fail()) {
+    Abandon();
+    throw std::runtime_error(path_ + ": write failed (disk full?)");
+  }
+  if (std::rename(tmp_.c_str(), path_.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    Abandon();
+    throw std::runtime_error(path_ + ": cannot rename the finished file into place (" + reason + ")");
+  }
+  done_ = true;
+}
+
+void WriteFileAtomically(const std::string& path, const std::string& text) {
+  AtomicFile file(path);
+  file.stream() << text;
+  file.Commit();
+}
+
+}  // namespace massprops::app

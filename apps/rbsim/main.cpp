@@ -1,0 +1,274 @@
+// rbsim: simulate rigid bodies made from mesh files (or closed-form solids).
+//
+//   rbsim SCENE.json [--dt S] [--duration S] [--integrator NAME] [--rate HZ] [--out DIR]
+//   rbsim --mesh part.stl --omega 0,10,0.01 [--omega-frame world|body|principal] [--duration S] ...
+//
+// Nothing runs until the scene is valid; errors are one line naming the scene file and the field.
+// Exit status: 0 done, 1 invalid scene or failed output, 2 bad arguments, 130 interrupted.
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "outputs.h"
+#include "scene.h"
+#include "simulation.h"
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+extern "C" void OnSignal(int) { g_stop.store(true); }
+
+// A progress bar on stderr, shown only once a run has taken a second.
+class ProgressBar {
+ public:
+  explicit ProgressBar(bool enabled) : enabled_(enabled), tty_(::isatty(STDERR_FILENO) != 0) {}
+  ~ProgressBar() {
+    if (shown_ && tty_) std::fprintf(stderr, "\r\033[K");
+  }
+  void Update(double fraction) {
+    if (!enabled_) return;
+    const auto now = std::chrono::steady_clock::now();
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    if (elapsed < 1.0) return;
+    if (tty_) {
+      if (shown_ && std::chrono::duration<double>(now - last_).count() < 0.1) return;
+    } else if (static_cast<int>(fraction * 10) == last_decile_) {
+      return;
+    }
+    last_ = now;
+    last_decile_ = static_cast<int>(fraction * 10);
+    shown_ = true;
+    constexpr int kWidth = 30;
+    const int filled = static_cast<int>(fraction * kWidth);
+    const double eta = fraction > 0 ? elapsed * (1 - fraction) / fraction : 0;
+    std::fprintf(stderr, "%srbsim [%.*s%*s] %3.0f%%  %.0f s elapsed, ~%.0f s left%s", tty_ ? "\r" : "", filled,
+                 "##############################", kWidth - filled, "", 100 * fraction, elapsed, eta,
+                 tty_ ? "\033[K" : "\n");
+    std::fflush(stderr);
+  }
+
+ private:
+  bool enabled_, tty_;
+  bool shown_ = false;
+  int last_decile_ = 0;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_ = start_;
+};
+
+bool ParseVec3(const std::string& text, massprops::Vector3& out) {
+  double v[3];
+  char extra;
+  if (std::sscanf(text.c_str(), "%lf,%lf,%lf%c", &v[0], &v[1], &v[2], &extra) != 3) return false;
+  out = massprops::Vector3(v[0], v[1], v[2]);
+  return out.allFinite();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"rbsim: simulate rigid bodies made from mesh files, with trajectory, diagnostics, plot and an "
+               "animated .glb.\nScene schema: see the README (section 'rbsim scenes')."};
+  std::string scene_file, mesh, unit = "m", omega_text, omega_frame = "world", velocity_text, out_dir,
+                          integrator, outputs_text;
+  double density = 1000, mass = 0;
+  std::optional<double> dt, duration, rate;
+  bool repair = false, allow_open = false, quiet = false;
+  int threads = 1;
+  auto* scene_opt = app.add_option("scene", scene_file, "Scene file (JSON)");
+  auto* mesh_opt = app.add_option("--mesh", mesh, "Quick path: spin this one mesh torque-free (no scene file)")
+                       ->excludes(scene_opt);
+  app.add_option("--unit", unit, "--mesh: unit of the file's coordinates")
+      ->check(CLI::IsMember({"m", "cm", "mm", "in", "ft"}))->needs(mesh_opt);
+  auto* density_opt = app.add_option("--density", density, "--mesh: density, kg/m^3")->check(CLI::PositiveNumber)->needs(mesh_opt);
+  app.add_option("--mass", mass, "--mesh: total mass, kg")->check(CLI::PositiveNumber)->excludes(density_opt)->needs(mesh_opt);
+  app.add_flag("--repair", repair, "--mesh: repair the mesh first (as massprops --repair)")->needs(mesh_opt);
+  app.add_flag("--allow-open", allow_open, "--mesh: simulate even an open mesh (its inertia is then not trustworthy)")->needs(mesh_opt);
+  app.add_option("--omega", omega_text, "--mesh: initial angular velocity wx,wy,wz in rad/s")->needs(mesh_opt);
+  app.add_option("--omega-frame", omega_frame,
+                 "--mesh: axes of --omega: world (= the file's axes at t = 0), principal (I1 <= I2 <= I3)")
+      ->check(CLI::IsMember({"world", "body", "principal"}))->needs(mesh_opt);
+  app.add_option("--velocity", velocity_text, "--mesh: initial velocity vx,vy,vz in m/s")->needs(mesh_opt);
+  app.add_option("--dt", dt, "Time step, s (overrides the scene)")->check(CLI::PositiveNumber);
+  app.add_option("--duration", duration, "Simulated time, s (overrides the scene)")->check(CLI::PositiveNumber);
+  app.add_option("--integrator", integrator, "Integrator (overrides the scene): implicit-midpoint, splitting, rk4, "
+                                             "explicit-euler, quaternion-euler, symplectic-euler, implicit-gyroscopic, "
+                                             "exact-splitting");
+  app.add_option("--rate", rate, "Output rate, samples per simulated second (overrides the scene)")->check(CLI::PositiveNumber);
+  app.add_option("--out", out_dir, "Write every output of the run into this directory (created if missing)");
+  app.add_option("--outputs", outputs_text, "Which outputs, comma-separated: csv, jsonl, diagnostics, svg, png, glb "
+                                            "(overrides the scene; default csv,diagnostics,svg,png,glb)");
+  app.add_option("--threads", threads, "Worker threads for mesh loading and large worlds (0 = all cores)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_flag("-q,--quiet", quiet, "No progress bar");
+  CLI11_PARSE(app, argc, argv);
+  if (scene_file.empty() && mesh.empty()) {
+    std::cerr << "error: give a scene file, or --mesh FILE for the quick path (see --help)\n";
+    return 2;
+  }
+
+  std::vector<std::string> warnings;
+  auto flush_warnings = [&warnings] {
+    for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
+    warnings.clear();
+  };
+  rbsim::Scene scene;
+  try {
+    if (!scene_file.empty()) {
+      scene = rbsim::LoadScene(scene_file, warnings);
+    } else {
+      nlohmann::json body = {{"name", std::filesystem::path(mesh).stem().string()},
+                             {"mesh", std::filesystem::absolute(mesh).string()}, {"unit", unit},
+                             {"repair", repair}, {"allow_open", allow_open},
+                             {"angular_velocity_frame", omega_frame}};
+      if (mass > 0) body["mass"] = mass; else body["density"] = density;
+      massprops::Vector3 omega = massprops::Vector3::Zero(), velocity = massprops::Vector3::Zero();
+      if (!omega_text.empty() && !ParseVec3(omega_text, omega)) {
+        std::cerr << "error: --omega: expected three finite numbers wx,wy,wz, got '" << omega_text << "'\n";
+        return 2;
+      }
+      if (!velocity_text.empty() && !ParseVec3(velocity_text, velocity)) {
+        std::cerr << "error: --velocity: expected three finite numbers vx,vy,vz, got '" << velocity_text << "'\n";
+        return 2;
+      }
+      body["angular_velocity"] = {omega.x(), omega.y(), omega.z()};
+      body["velocity"] = {velocity.x(), velocity.y(), velocity.z()};
+      // Default step: at most 1 ms and at most 0.01 rad of turn per step.
+      const double spin = omega.norm();
+      const double auto_dt = spin > 0 ? std::min(1e-3, 0.01 / spin) : 1e-3;
+      nlohmann::json j = {{"dt", auto_dt}, {"duration", 10.0}, {"bodies", {body}}};
+      scene = rbsim::ParseScene(j, "<command line>", ".", warnings);
+    }
+    // Overrides, validated like the scene's own fields.
+    if (dt) scene.dt = *dt;
+    if (duration) scene.duration = *duration;
+    if (rate) scene.output_rate = *rate;
+    if (!integrator.empty()) {
+      try {
+        scene.integrator = dynamics::ParseIntegrator(integrator);
+      } catch (const std::invalid_argument& e) {
+        std::cerr << "error: --integrator: " << e.what() << "\n";
+        return 2;
+      }
+    }
+    if (!outputs_text.empty()) {
+      scene.outputs.clear();
+      std::stringstream list(outputs_text);
+      std::string name;
+      while (std::getline(list, name, ',')) {
+        try {
+          scene.outputs.push_back(rbsim::ParseOutputName(name));
+        } catch (const std::invalid_argument& e) {
+          std::cerr << "error: --outputs: " << e.what() << "\n";
+          return 2;
+        }
+      }
+    }
+    if (scene.dt > scene.duration) {
+      std::cerr << "error: " << scene.file << ": the step dt = " << scene.dt << " s is longer than the duration "
+                << scene.duration << " s\n";
+      return 1;
+    }
+    if (scene.duration / scene.dt > 1e9) {
+      std::cerr << "error: " << scene.file << ": duration / dt is more than 10^9 steps\n";
+      return 1;
+    }
+  } catch (const std::exception& e) {
+    flush_warnings();
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
+  flush_warnings();
+
+  auto wants = [&scene](rbsim::OutputKind k) {
+    return std::find(scene.outputs.begin(), scene.outputs.end(), k) != scene.outputs.end();
+  };
+  const bool plot = !out_dir.empty() && (wants(rbsim::OutputKind::kPlotSvg) || wants(rbsim::OutputKind::kPlotPng));
+  if (plot && !rbsim::HaveGnuplot()) {
+    std::cerr << "error: the plot needs gnuplot, which is not on the PATH (apt-get install gnuplot-nox), or leave "
+                 "svg and png out of the outputs\n";
+    return 1;
+  }
+
+  std::optional<rbsim::Simulation> sim;
+  try {
+    sim.emplace(rbsim::BuildSimulation(scene, warnings, threads));
+  } catch (const std::exception& e) {
+    flush_warnings();
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
+  flush_warnings();
+
+  std::unique_ptr<rbsim::TrajectoryWriter> writer;
+  rbsim::Recording recording;
+  const bool record = !out_dir.empty() && (plot || wants(rbsim::OutputKind::kGlb));
+  try {
+    if (!out_dir.empty()) {
+      std::filesystem::create_directories(out_dir);
+      writer = std::make_unique<rbsim::TrajectoryWriter>(out_dir, scene.outputs);
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "error: --out " << out_dir << ": " << e.what() << "\n";
+    return 1;
+  }
+
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+  rbsim::RunStats stats;
+  try {
+    ProgressBar bar(!quiet);
+    stats = rbsim::Run(
+        *sim,
+        [&](const dynamics::World& world, const dynamics::Diagnostics& d) {
+          if (writer) writer->Add(*sim, world, d);
+          if (record) recording.Add(*sim, world, d);
+        },
+        [&bar](double f) { bar.Update(f); }, &g_stop);
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << scene.file << ": the run failed at t = " << sim->world.time() << " s: " << e.what()
+              << "\n";
+    return 1;
+  }
+  if (stats.interrupted) {
+    std::cerr << "rbsim: interrupted at t = " << sim->world.time() << " s; no output files were written\n";
+    return 130;
+  }
+
+  std::vector<std::string> written;
+  try {
+    if (writer) written = writer->Commit();
+    if (!out_dir.empty() && wants(rbsim::OutputKind::kGlb)) {
+      rbsim::WriteGlb(out_dir + "/animation.glb", *sim, recording);
+      written.push_back(out_dir + "/animation.glb");
+    }
+    for (auto [kind, name] : {std::pair{rbsim::OutputKind::kPlotSvg, "plot.svg"}, std::pair{rbsim::OutputKind::kPlotPng, "plot.png"}}) {
+      if (!out_dir.empty() && wants(kind)) {
+        rbsim::WritePlot(out_dir + "/" + name, *sim, recording);
+        written.push_back(out_dir + "/" + name);
+      }
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
+  std::cout << rbsim::Summary(*sim, stats);
+  if (out_dir.empty()) {
+    std::cout << "  (no --out DIR: no trajectory, plot or .glb written)\n";
+  } else {
+    for (const auto& p : written) std::cout << "  wrote " << p << "\n";
+  }
+  return 0;
+}

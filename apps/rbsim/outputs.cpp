@@ -1,0 +1,141 @@
+#include "outputs.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cstdio>
+#include <cmath>
+
+namespace rbsim {
+
+const char* const kTrajectoryCsvHeader =
+    "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,w1,w2,w3";
+const char* const kDiagnosticsCsvHeader =
+    "time,kinetic_energy,potential_energy,energy,px,py,pz,Lx,Ly,Lz,energy_drift,p_drift,L_drift";
+
+namespace {
+
+// Shortest text that reads back to the same double.
+void Put(std::string& s, double v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  s.append(buf, r.ptr);
+}
+void PutList(std::string& s, std::initializer_list<double> values, char sep = ',') {
+  bool first = true;
+  for (double v : values) {
+    if (!first) s += sep;
+    first = false;
+    Put(s, v);
+  }
+}
+std::string JsonString(const std::string& in) {
+  std::string out = "\"";
+  for (char c : in) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      out += buf;
+      continue;
+    }
+    out += c;
+  }
+  return out + "\"";
+}
+
+}  // namespace
+
+void Recording::Add(const Simulation& sim, const dynamics::World& world, const dynamics::Diagnostics& d) {
+  const auto& bodies = world.bodies();
+  if (translations.empty()) {
+    translations.resize(bodies.size());
+    rotations.resize(bodies.size());
+  }
+  times.push_back(d.time);
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const BodyState s = StateOf(sim.bodies[b], bodies[b]);
+    translations[b].push_back(s.position.cast<float>());
+    Eigen::Vector4d q(s.orientation.x(), s.orientation.y(), s.orientation.z(), s.orientation.w());
+    if (!rotations[b].empty() && q.cast<float>().dot(rotations[b].back()) < 0) q = -q;
+    rotations[b].push_back(q.cast<float>().normalized());
+    if (static_cast<int>(b) == sim.scene.plot_body) omega_principal.push_back(s.omega_principal);
+  }
+  if (times.size() == 1) start = d;
+  const dynamics::Diagnostics& d0 = start;
+  const double e0 = std::abs(d0.total_energy) > 0 ? std::abs(d0.total_energy) : 1.0;
+  energy_drift.push_back((d.total_energy - d0.total_energy) / e0);
+  const double l0 = d0.angular_momentum.norm();
+  momentum_drift.push_back(l0 > 0 ? (d.angular_momentum.norm() - l0) / l0 : d.angular_momentum.norm());
+}
+
+TrajectoryWriter::TrajectoryWriter(const std::string& dir, const std::vector<OutputKind>& outputs) {
+  auto want = [&](OutputKind k) { return std::find(outputs.begin(), outputs.end(), k) != outputs.end(); };
+  using massprops::app::AtomicFile;
+  if (want(OutputKind::kCsv)) {
+    csv_ = std::make_unique<AtomicFile>(dir + "/trajectory.csv");
+    csv_->stream() << kTrajectoryCsvHeader << "\n";
+  }
+  if (want(OutputKind::kJsonl)) jsonl_ = std::make_unique<AtomicFile>(dir + "/trajectory.jsonl");
+  if (want(OutputKind::kDiagnostics)) {
+    diagnostics_ = std::make_unique<AtomicFile>(dir + "/diagnostics.csv");
+    diagnostics_->stream() << kDiagnosticsCsvHeader << "\n";
+  }
+}
+
+void TrajectoryWriter::Add(const Simulation& sim, const dynamics::World& world, const dynamics::Diagnostics& d) {
+  if (!started_) start_ = d, started_ = true;
+  const auto& bodies = world.bodies();
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const BodyState s = StateOf(sim.bodies[b], bodies[b]);
+    if (csv_) {
+      line_.clear();
+      Put(line_, d.time);
+      line_ += ',';
+      line_ += sim.bodies[b].name;
+      line_ += ',';
+      PutList(line_, {s.position.x(), s.position.y(), s.position.z(), s.orientation.w(), s.orientation.x(),
+                      s.orientation.y(), s.orientation.z(), s.velocity.x(), s.velocity.y(), s.velocity.z(),
+                      s.omega_world.x(), s.omega_world.y(), s.omega_world.z(), s.omega_principal.x(),
+                      s.omega_principal.y(), s.omega_principal.z()});
+      line_ += '\n';
+      csv_->stream() << line_;
+    }
+    if (jsonl_) {
+      line_ = "{\"time\":";
+      Put(line_, d.time);
+      line_ += ",\"body\":" + JsonString(sim.bodies[b].name) + ",\"position\":[";
+      PutList(line_, {s.position.x(), s.position.y(), s.position.z()});
+      line_ += "],\"quaternion\":[";
+      PutList(line_, {s.orientation.w(), s.orientation.x(), s.orientation.y(), s.orientation.z()});
+      line_ += "],\"velocity\":[";
+      PutList(line_, {s.velocity.x(), s.velocity.y(), s.velocity.z()});
+      line_ += "],\"omega\":[";
+      PutList(line_, {s.omega_world.x(), s.omega_world.y(), s.omega_world.z()});
+      line_ += "],\"omega_principal\":[";
+      PutList(line_, {s.omega_principal.x(), s.omega_principal.y(), s.omega_principal.z()});
+      line_ += "]}\n";
+      jsonl_->stream() << line_;
+    }
+  }
+  if (diagnostics_) {
+    const dynamics::Drift drift = dynamics::DriftSince(start_, d);
+    line_.clear();
+    PutList(line_, {d.time, d.kinetic_energy, d.potential_energy, d.total_energy, d.linear_momentum.x(),
+                    d.linear_momentum.y(), d.linear_momentum.z(), d.angular_momentum.x(), d.angular_momentum.y(),
+                    d.angular_momentum.z(), drift.energy, drift.linear_momentum, drift.angular_momentum});
+    line_ += '\n';
+    diagnostics_->stream() << line_;
+  }
+}
+
+std::vector<std::string> TrajectoryWriter::Commit() {
+  std::vector<std::string> paths;
+  for (auto* f : {csv_.get(), jsonl_.get(), diagnostics_.get()}) {
+    if (!f) continue;
+    f->Commit();
+    paths.push_back(f->path());
+  }
+  return paths;
+}
+
+}  // namespace rbsim

@@ -1,0 +1,59 @@
+#pragma once
+// rbsim's outputs: the trajectory (CSV, JSON lines), the diagnostics over time (CSV), the plot
+// (gnuplot, SVG/PNG) and the animated glTF binary (.glb). Every file is written under a
+// temporary name and renamed when complete.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "atomic_file.h"
+#include "simulation.h"
+
+namespace rbsim {
+
+/// What the plot and the .glb need, kept in memory at the output rate.
+struct Recording {
+  std::vector<double> times;
+  /// Per body, per sample: center of mass and mesh orientation (x, y, z, w; consecutive keys on
+  /// the same side of the quaternion double cover, so that interpolation takes the short way).
+  std::vector<std::vector<Eigen::Vector3f>> translations;
+  std::vector<std::vector<Eigen::Vector4f>> rotations;
+  std::vector<Vector3> omega_principal;  ///< of the plotted body
+  std::vector<double> energy_drift;      ///< (E − E0) / |E0|
+  std::vector<double> momentum_drift;    ///< (|L| − |L0|) / |L0|, L about the world origin
+  dynamics::Diagnostics start;           ///< at the first sample
+
+  void Add(const Simulation& sim, const dynamics::World& world, const dynamics::Diagnostics& d);
+};
+
+/// Streams the per-sample files (trajectory.csv, trajectory.jsonl, diagnostics.csv) into `dir`.
+class TrajectoryWriter {
+ public:
+  TrajectoryWriter(const std::string& dir, const std::vector<OutputKind>& outputs);
+  void Add(const Simulation& sim, const dynamics::World& world, const dynamics::Diagnostics& d);
+  /// Renames the finished files into place and returns their paths.
+  std::vector<std::string> Commit();
+
+ private:
+  std::unique_ptr<massprops::app::AtomicFile> csv_, jsonl_, diagnostics_;
+  dynamics::Diagnostics start_;
+  bool started_ = false;
+  std::string line_;
+};
+
+/// The CSV header of trajectory.csv (documented in the README).
+extern const char* const kTrajectoryCsvHeader;
+extern const char* const kDiagnosticsCsvHeader;
+
+/// Writes the bodies' meshes and their animation (one key per sample) as a glTF 2.0 binary.
+/// @throws std::runtime_error naming the path.
+void WriteGlb(const std::string& path, const Simulation& sim, const Recording& rec);
+
+/// True when a `gnuplot` executable is on the PATH.
+bool HaveGnuplot();
+/// Plots ω (principal axes) of the plotted body, the energy drift and the |L| drift against time,
+/// with gnuplot, into an SVG or PNG file (by the extension). @throws std::runtime_error.
+void WritePlot(const std::string& path, const Simulation& sim, const Recording& rec);
+
+}  // namespace rbsim

@@ -1,0 +1,455 @@
+#include "scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+namespace rbsim {
+namespace {
+
+using nlohmann::json;
+
+std::string Num(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+// Levenshtein distance, for "did you mean" on unknown keys and names.
+std::size_t EditDistance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string Suggest(const std::string& word, const std::vector<std::string>& candidates) {
+  std::string best;
+  std::size_t best_d = 3;  // at most two edits away
+  for (const auto& c : candidates) {
+    const std::size_t d = EditDistance(word, c);
+    if (d < best_d) best_d = d, best = c;
+  }
+  return best.empty() ? "" : " (did you mean '" + best + "'?)";
+}
+
+std::string Join(const std::vector<std::string>& words) {
+  std::string s;
+  for (const auto& w : words) s += (s.empty() ? "" : ", ") + w;
+  return s;
+}
+
+std::string TypeName(const json& j) {
+  if (j.is_number()) return "a number";
+  if (j.is_string()) return "a string";
+  if (j.is_array()) return "an array";
+  if (j.is_object()) return "an object";
+  if (j.is_boolean()) return "true/false";
+  return "null";
+}
+
+// A JSON object being read: remembers which keys were asked for, so that Done() can reject the
+// rest as unknown (with the nearest known key as a suggestion).
+class Fields {
+ public:
+  Fields(const json& j, std::string path, const std::string& file) : j_(j), path_(std::move(path)), file_(file) {
+    if (!j.is_object()) Fail("must be an object, not " + TypeName(j));
+  }
+
+  [[noreturn]] void Fail(const std::string& what) const {
+    throw SceneError(file_ + ": " + (path_.empty() ? "" : path_ + ": ") + what);
+  }
+  [[noreturn]] void Fail(const std::string& key, const std::string& what) const {
+    throw SceneError(file_ + ": " + Path(key) + ": " + what);
+  }
+  std::string Path(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  const std::string& file() const { return file_; }
+
+  const json* Get(const std::string& key) {
+    known_.push_back(key);
+    const auto it = j_.find(key);
+    return it == j_.end() ? nullptr : &*it;
+  }
+  bool Has(const std::string& key) const { return j_.contains(key); }
+
+  double Number(const std::string& key, double fallback, const char* rule = nullptr) {
+    const json* v = Get(key);
+    if (!v) return fallback;
+    return CheckNumber(key, *v, rule);
+  }
+  double RequiredNumber(const std::string& key, const char* rule) {
+    if (!Has(key)) {
+      Get(key);
+      Fail(key, "is required");
+    }
+    return Number(key, 0, rule);
+  }
+  double CheckNumber(const std::string& key, const json& v, const char* rule) const {
+    if (!v.is_number()) Fail(key, "must be a number, not " + TypeName(v));
+    const double x = v.get<double>();
+    if (!std::isfinite(x)) Fail(key, "must be finite");
+    if (rule) {
+      const std::string r = rule;
+      if (r == "positive" && !(x > 0)) Fail(key, "must be positive (got " + Num(x) + ")");
+      if (r == "non-negative" && !(x >= 0)) Fail(key, "must not be negative (got " + Num(x) + ")");
+    }
+    return x;
+  }
+
+  Vector3 Vec3(const std::string& key, const Vector3& fallback, const char* rule = nullptr) {
+    const json* v = Get(key);
+    if (!v) return fallback;
+    return CheckVec3(key, *v, rule);
+  }
+  Vector3 CheckVec3(const std::string& key, const json& v, const char* rule) const {
+    if (!v.is_array() || v.size() != 3) {
+      Fail(key, "must be an array of 3 numbers, not " +
+                    (v.is_array() ? "an array of " + std::to_string(v.size()) : TypeName(v)));
+    }
+    Vector3 out;
+    for (int i = 0; i < 3; ++i) out[i] = CheckNumber(key + "[" + std::to_string(i) + "]", v[static_cast<std::size_t>(i)], rule);
+    return out;
+  }
+
+  std::string String(const std::string& key, const std::string& fallback,
+                     const std::vector<std::string>& allowed = {}) {
+    const json* v = Get(key);
+    if (!v) return fallback;
+    if (!v->is_string()) Fail(key, "must be a string, not " + TypeName(*v));
+    const std::string s = v->get<std::string>();
+    if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), s) == allowed.end()) {
+      Fail(key, "'" + s + "' is not one of " + Join(allowed) + Suggest(s, allowed));
+    }
+    return s;
+  }
+
+  bool Bool(const std::string& key, bool fallback) {
+    const json* v = Get(key);
+    if (!v) return fallback;
+    if (!v->is_boolean()) Fail(key, "must be true or false, not " + TypeName(*v));
+    return v->get<bool>();
+  }
+
+  // Rejects every key that was not asked for.
+  void Done() const {
+    for (auto it = j_.begin(); it != j_.end(); ++it) {
+      if (std::find(known_.begin(), known_.end(), it.key()) == known_.end()) {
+        Fail("unknown key '" + it.key() + "'" + Suggest(it.key(), known_) + "; known keys: " + Join(known_));
+      }
+    }
+  }
+
+ private:
+  const json& j_;
+  std::string path_;
+  const std::string& file_;
+  std::vector<std::string> known_;
+};
+
+Quaternion ReadOrientation(Fields& f, const std::string& key, std::vector<std::string>& warnings) {
+  const json* v = f.Get(key);
+  if (!v) return Quaternion::Identity();
+  if (v->is_array()) {
+    if (v->size() != 4) f.Fail(key, "a quaternion is 4 numbers [w, x, y, z], not " + std::to_string(v->size()));
+    double c[4];
+    for (std::size_t i = 0; i < 4; ++i) c[i] = f.CheckNumber(key + "[" + std::to_string(i) + "]", (*v)[i], nullptr);
+    Quaternion q(c[0], c[1], c[2], c[3]);
+    const double n = q.norm();
+    if (!(n > 1e-12)) f.Fail(key, "the quaternion is zero: it names no rotation");
+    if (std::abs(n - 1.0) > 1e-12) {
+      warnings.push_back(f.file() + ": " + f.Path(key) + ": the quaternion has norm " + Num(n) +
+                         "; normalized to unit length");
+    }
+    return q.normalized();
+  }
+  if (v->is_object()) {
+    Fields o(*v, f.Path(key), f.file());
+    const Vector3 axis = o.Vec3("axis", Vector3::Zero());
+    if (!o.Has("axis")) o.Fail("axis", "is required (with angle_deg or angle)");
+    if (!(axis.norm() > 0)) o.Fail("axis", "must not be the zero vector");
+    if (o.Has("angle_deg") == o.Has("angle")) o.Fail("give exactly one of angle_deg and angle (radians)");
+    const double angle = o.Has("angle") ? o.Number("angle", 0) : o.Number("angle_deg", 0) * M_PI / 180.0;
+    o.Get(o.Has("angle") ? "angle_deg" : "angle");  // both are known keys
+    o.Done();
+    return Quaternion(Eigen::AngleAxisd(angle, axis.normalized()));
+  }
+  f.Fail(key, "must be a quaternion [w, x, y, z] or {\"axis\": [x, y, z], \"angle_deg\": a}, not " + TypeName(*v));
+}
+
+ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {
+  ShapeSpec s;
+  const bool has_mesh = f.Has("mesh"), has_solid = f.Has("solid");
+  if (has_mesh == has_solid) {
+    f.Get("mesh");
+    f.Get("solid");
+    f.Fail(has_mesh ? "has both 'mesh' and 'solid': give one" : "needs a 'mesh' (file) or a 'solid'");
+  }
+  if (f.Has("density") && f.Has("mass")) f.Fail("give 'density' or 'mass', not both");
+  s.density = f.Number("density", 1000.0, "positive");
+  s.mass = f.Number("mass", 0.0, "positive");
+  if (has_mesh) {
+    const std::string file = f.String("mesh", "");
+    if (file.empty()) f.Fail("mesh", "is empty");
+    namespace fs = std::filesystem;
+    fs::path p(file);
+    if (p.is_relative()) p = fs::path(base_dir) / p;
+    std::error_code ec;
+    if (!fs::is_regular_file(p, ec)) {
+      f.Fail("mesh", "'" + file + "' not found" + (file == p.string() ? "" : " (looked for " + p.string() + ")"));
+    }
+    s.mesh_file = p.lexically_normal().string();
+    s.unit = f.String("unit", "m", {"m", "cm", "mm", "in", "ft"});
+    s.repair = f.Bool("repair", false);
+    s.allow_open = f.Bool("allow_open", false);
+  } else {
+    const json* v = f.Get("solid");
+    Fields o(*v, f.Path("solid"), f.file());
+    s.solid_type = o.String("type", "", {"box", "sphere", "ellipsoid", "cylinder", "cone", "torus", "capsule"});
+    if (s.solid_type.empty()) o.Fail("type", "is required");
+    const std::string& t = s.solid_type;
+    if (t == "box") {
+      if (!o.Has("size")) o.Fail("size", "is required: edge lengths [x, y, z]");
+      s.size = o.Vec3("size", Vector3::Zero(), "positive");
+    } else if (t == "ellipsoid") {
+      if (!o.Has("semi_axes")) o.Fail("semi_axes", "is required: [a, b, c]");
+      s.size = o.Vec3("semi_axes", Vector3::Zero(), "positive");
+    } else if (t == "torus") {
+      s.major_radius = o.RequiredNumber("major_radius", "positive");
+      s.minor_radius = o.RequiredNumber("minor_radius", "positive");
+      if (!(s.minor_radius < s.major_radius)) {
+        o.Fail("minor_radius", "must be smaller than major_radius (a self-intersecting torus is not a solid)");
+      }
+    } else {
+      s.radius = o.RequiredNumber("radius", "positive");
+      if (t == "cylinder" || t == "cone") s.height = o.RequiredNumber("height", "positive");
+      if (t == "capsule") s.height = o.RequiredNumber("length", "positive");
+    }
+    o.Done();
+  }
+  return s;
+}
+
+int BodyIndex(Fields& f, const std::string& key, const json& v, const std::vector<BodySpec>& bodies) {
+  if (v.is_number_integer()) {
+    const auto i = v.get<long long>();
+    if (i < 0 || i >= static_cast<long long>(bodies.size())) {
+      f.Fail(key, "body index " + std::to_string(i) + " is out of range (the scene has " +
+                      std::to_string(bodies.size()) + " bodies)");
+    }
+    return static_cast<int>(i);
+  }
+  if (v.is_string()) {
+    const std::string name = v.get<std::string>();
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      if (bodies[i].name == name) return static_cast<int>(i);
+      names.push_back(bodies[i].name);
+    }
+    f.Fail(key, "no body is named '" + name + "'" + Suggest(name, names) + "; bodies: " + Join(names));
+  }
+  f.Fail(key, "must name a body (its name or index), not " + TypeName(v));
+}
+
+ForceSpec ReadForce(const json& j, const std::string& path, const std::string& file,
+                    const std::vector<BodySpec>& bodies) {
+  Fields f(j, path, file);
+  ForceSpec s;
+  s.field = path;
+  s.type = f.String("type", "", {"gravity", "linear_damping", "angular_damping", "force", "torque", "spring"});
+  if (s.type.empty()) f.Fail("type", "is required (gravity, linear_damping, angular_damping, force, torque, spring)");
+  auto one_body = [&](bool required) {
+    const json* b = f.Get("body");
+    if (!b) {
+      if (required) f.Fail("body", "is required");
+      return;
+    }
+    s.bodies.push_back(BodyIndex(f, "body", *b, bodies));
+  };
+  if (s.type == "gravity") {
+    s.vector = f.Vec3("g", Vector3(0, 0, -9.80665));
+  } else if (s.type == "linear_damping" || s.type == "angular_damping") {
+    one_body(false);
+    s.coefficient = f.RequiredNumber("c", "non-negative");
+  } else if (s.type == "force" || s.type == "torque") {
+    one_body(true);
+    const std::string key = s.type;
+    if (!f.Has(key)) f.Fail(key, "is required: a vector [x, y, z]");
+    s.vector = f.Vec3(key, Vector3::Zero());
+    s.body_frame = f.String("frame", "world", {"world", "body"}) == "body";
+    if (s.type == "force" && f.Has("point")) s.point = f.Vec3("point", Vector3::Zero());
+    if (s.type == "force") f.Get("point");
+  } else {  // spring
+    s.coefficient = f.RequiredNumber("k", "non-negative");
+    s.rest_length = f.Number("rest_length", 0.0, "non-negative");
+    s.damping = f.Number("damping", 0.0, "non-negative");
+    if (f.Has("bodies")) {
+      const json* b = f.Get("bodies");
+      if (!b->is_array() || b->size() != 2) f.Fail("bodies", "must name two bodies");
+      s.bodies = {BodyIndex(f, "bodies[0]", (*b)[0], bodies), BodyIndex(f, "bodies[1]", (*b)[1], bodies)};
+      if (s.bodies[0] == s.bodies[1]) f.Fail("bodies", "a spring between a body and itself does nothing");
+      const json* p = f.Get("points");
+      if (!p) {
+        s.points = {Vector3::Zero(), Vector3::Zero()};  // centers of mass
+      } else {
+        if (!p->is_array() || p->size() != 2) f.Fail("points", "must be two points [[x, y, z], [x, y, z]]");
+        s.points = {f.CheckVec3("points[0]", (*p)[0], nullptr), f.CheckVec3("points[1]", (*p)[1], nullptr)};
+      }
+      if (f.Has("body") || f.Has("anchor")) f.Fail("a spring between bodies takes 'bodies' and 'points', not 'body'/'anchor'");
+    } else {
+      one_body(true);
+      if (!f.Has("anchor")) f.Fail("anchor", "is required: the world point the spring is tied to");
+      s.anchor = f.Vec3("anchor", Vector3::Zero());
+      s.point = f.Vec3("point", Vector3::Zero());
+      f.Get("bodies");
+      f.Get("points");
+    }
+  }
+  f.Done();
+  return s;
+}
+
+}  // namespace
+
+const char* OutputName(OutputKind kind) {
+  switch (kind) {
+    case OutputKind::kCsv: return "csv";
+    case OutputKind::kJsonl: return "jsonl";
+    case OutputKind::kDiagnostics: return "diagnostics";
+    case OutputKind::kPlotSvg: return "svg";
+    case OutputKind::kPlotPng: return "png";
+    case OutputKind::kGlb: return "glb";
+  }
+  return "?";
+}
+
+OutputKind ParseOutputName(const std::string& name) {
+  for (OutputKind k : {OutputKind::kCsv, OutputKind::kJsonl, OutputKind::kDiagnostics,
+                       OutputKind::kPlotSvg, OutputKind::kPlotPng, OutputKind::kGlb}) {
+    if (name == OutputName(k)) return k;
+  }
+  throw std::invalid_argument("unknown output '" + name + "' (csv, jsonl, diagnostics, svg, png, glb)");
+}
+
+std::vector<OutputKind> DefaultOutputs() {
+  return {OutputKind::kCsv, OutputKind::kDiagnostics, OutputKind::kPlotSvg, OutputKind::kPlotPng,
+          OutputKind::kGlb};
+}
+
+Scene ParseScene(const json& j, const std::string& file, const std::string& base_dir,
+                 std::vector<std::string>& warnings) {
+  Scene scene;
+  scene.file = file;
+  Fields f(j, "", file);
+  f.Get("description");  // free text
+  scene.dt = f.Number("dt", 1e-3, "positive");
+  scene.duration = f.Number("duration", 1.0, "positive");
+  const std::string integrator = f.String("integrator", "implicit-midpoint");
+  try {
+    scene.integrator = dynamics::ParseIntegrator(integrator);
+  } catch (const std::invalid_argument&) {
+    std::vector<std::string> names;
+    for (auto i : dynamics::kAllIntegrators) names.emplace_back(dynamics::IntegratorName(i));
+    f.Fail("integrator", "'" + integrator + "' is not one of " + Join(names) + Suggest(integrator, names));
+  }
+  scene.output_rate = f.Number("output_rate", 60.0, "positive");
+  scene.up = f.String("up", "z", {"x", "y", "z"})[0];
+  if (const json* o = f.Get("outputs")) {
+    if (!o->is_array()) f.Fail("outputs", "must be an array of names (csv, jsonl, diagnostics, svg, png, glb)");
+    for (std::size_t i = 0; i < o->size(); ++i) {
+      const std::string key = "outputs[" + std::to_string(i) + "]";
+      if (!(*o)[i].is_string()) f.Fail(key, "must be a string");
+      try {
+        scene.outputs.push_back(ParseOutputName((*o)[i].get<std::string>()));
+      } catch (const std::invalid_argument& e) {
+        f.Fail(key, e.what());
+      }
+    }
+  } else {
+    scene.outputs = DefaultOutputs();
+  }
+
+  const json* bodies = f.Get("bodies");
+  if (!bodies || !bodies->is_array() || bodies->empty()) f.Fail("bodies", "must be a non-empty array of bodies");
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < bodies->size(); ++i) {
+    const std::string path = "bodies[" + std::to_string(i) + "]";
+    Fields b((*bodies)[i], path, file);
+    BodySpec body;
+    body.field = path;
+    body.name = b.String("name", "body" + std::to_string(i));
+    if (body.name.empty()) b.Fail("name", "must not be empty");
+    if (!names.insert(body.name).second) b.Fail("name", "'" + body.name + "' is used by another body");
+    body.shape = ReadShape(b, base_dir);
+    if (b.Has("position")) body.position = b.Vec3("position", Vector3::Zero());
+    b.Get("position");
+    body.orientation = ReadOrientation(b, "orientation", warnings);
+    body.velocity = b.Vec3("velocity", Vector3::Zero());
+    body.angular_velocity = b.Vec3("angular_velocity", Vector3::Zero());
+    const std::string frame = b.String("angular_velocity_frame", "world", {"world", "body", "principal"});
+    body.angular_velocity_frame = frame == "world" ? VectorFrame::kWorld
+                                  : frame == "body" ? VectorFrame::kBody
+                                                    : VectorFrame::kPrincipal;
+    if (b.Has("color")) {
+      body.color = b.Vec3("color", Vector3::Zero(), "non-negative");
+      if (body.color->maxCoeff() > 1) b.Fail("color", "components are between 0 and 1");
+    }
+    b.Get("color");
+    b.Done();
+    scene.bodies.push_back(std::move(body));
+  }
+  if (const json* forces = f.Get("forces")) {
+    if (!forces->is_array()) f.Fail("forces", "must be an array");
+    for (std::size_t i = 0; i < forces->size(); ++i) {
+      scene.forces.push_back(ReadForce((*forces)[i], "forces[" + std::to_string(i) + "]", file, scene.bodies));
+    }
+  }
+  if (const json* pb = f.Get("plot_body")) {
+    scene.plot_body = BodyIndex(f, "plot_body", *pb, scene.bodies);
+  }
+  f.Done();
+
+  if (scene.dt > scene.duration) f.Fail("dt", "the step (" + Num(scene.dt) + " s) is longer than the duration (" + Num(scene.duration) + " s)");
+  if (scene.duration / scene.dt > 1e9) {
+    f.Fail("dt", "duration / dt = " + Num(scene.duration / scene.dt) + " steps; more than 10^9 is refused");
+  }
+  if (scene.output_rate * scene.dt > 1.0 + 1e-9) {
+    warnings.push_back(file + ": output_rate " + Num(scene.output_rate) + " Hz is above 1/dt; every step is written");
+  }
+  return scene;
+}
+
+Scene LoadScene(const std::string& path, std::vector<std::string>& warnings) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(path + ": cannot open the scene file");
+  std::stringstream text;
+  text << in.rdbuf();
+  json j;
+  try {
+    j = json::parse(text.str());
+  } catch (const json::parse_error& e) {
+    // e.byte is the 1-based offset of the fault; turn it into a line number.
+    const std::string s = text.str();
+    const std::size_t upto = std::min<std::size_t>(e.byte, s.size());
+    const long line = 1 + std::count(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(upto), '\n');
+    throw SceneError(path + ": line " + std::to_string(line) + ": not valid JSON (" + e.what() + ")");
+  }
+  const std::string base = std::filesystem::path(path).parent_path().string();
+  return ParseScene(j, path, base.empty() ? "." : base, warnings);
+}
+
+}  // namespace rbsim

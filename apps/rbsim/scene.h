@@ -1,0 +1,100 @@
+#pragma once
+// rbsim scenes: what a scene file (JSON) or the command line describes, validated before anything
+// runs. The schema is documented in the README ("rbsim scenes"); every error names the scene
+// file, the field (JSON path) and what is wrong.
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "dynamics/world.h"
+#include "massprops/mass_properties.h"
+#include "massprops/mesh.h"
+
+namespace rbsim {
+
+using massprops::Matrix3;
+using massprops::Vector3;
+using Quaternion = Eigen::Quaterniond;
+
+/// A scene that cannot run. what() names the file and the field.
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Where the mass properties of a body come from.
+struct ShapeSpec {
+  // Exactly one of mesh_file / solid_type is set.
+  std::string mesh_file;  ///< resolved path (relative paths are taken from the scene's folder)
+  std::string unit = "m";
+  bool repair = false;
+  bool allow_open = false;
+  std::string solid_type;  ///< box, sphere, ellipsoid, cylinder, cone, torus, capsule
+  Vector3 size = Vector3::Zero();  ///< box edges / ellipsoid semi-axes
+  double radius = 0, height = 0, major_radius = 0, minor_radius = 0;
+  double density = 1000.0;  ///< kg/m^3
+  double mass = 0.0;        ///< > 0: total mass, replaces the density
+};
+
+enum class VectorFrame { kWorld, kBody, kPrincipal };
+
+struct BodySpec {
+  std::string name;
+  std::string field;  ///< "bodies[2]", for messages
+  ShapeSpec shape;
+  std::optional<Vector3> position;  ///< center of mass in world; empty: where the file puts it
+  Quaternion orientation = Quaternion::Identity();  ///< turns the mesh about its center of mass
+  Vector3 velocity = Vector3::Zero();               ///< m/s, world
+  Vector3 angular_velocity = Vector3::Zero();       ///< rad/s, in angular_velocity_frame
+  VectorFrame angular_velocity_frame = VectorFrame::kWorld;
+  std::optional<Vector3> color;  ///< linear RGB in [0, 1] for the .glb
+};
+
+struct ForceSpec {
+  std::string type;   ///< gravity, linear_damping, angular_damping, force, torque, spring
+  std::string field;  ///< "forces[1]"
+  std::vector<int> bodies;           ///< body indices it acts on (empty: every body)
+  Vector3 vector = Vector3::Zero();  ///< g, force or torque
+  std::vector<Vector3> points;       ///< body points in the body's mesh (or solid) coordinates
+  std::optional<Vector3> point;      ///< force: application point (mesh coordinates)
+  bool body_frame = false;           ///< force/torque given in body (mesh) axes and turning with it
+  Vector3 anchor = Vector3::Zero();  ///< spring to the world: world anchor
+  double coefficient = 0;            ///< damping c; spring stiffness k
+  double rest_length = 0;
+  double damping = 0;  ///< spring damping along its line
+};
+
+enum class OutputKind { kCsv, kJsonl, kDiagnostics, kPlotSvg, kPlotPng, kGlb };
+
+struct Scene {
+  std::string file;  ///< scene file ("<command line>" for the quick path)
+  double dt = 1e-3;
+  double duration = 1.0;
+  dynamics::Integrator integrator = dynamics::Integrator::kImplicitMidpoint;
+  double output_rate = 60.0;  ///< Hz: trajectory rows and animation keys per simulated second
+  char up = 'z';              ///< world up axis (the .glb is turned so that it is glTF's +y)
+  std::vector<OutputKind> outputs;
+  int plot_body = 0;
+  std::vector<BodySpec> bodies;
+  std::vector<ForceSpec> forces;
+};
+
+/// Parses and validates a scene. `base_dir` resolves relative mesh paths. Non-fatal findings
+/// (a non-unit quaternion, an output rate above 1/dt, ...) are appended to `warnings`.
+/// @throws SceneError naming `file`, the field and the fault.
+Scene ParseScene(const nlohmann::json& json, const std::string& file, const std::string& base_dir,
+                 std::vector<std::string>& warnings);
+/// Reads, parses and validates a scene file. @throws SceneError.
+Scene LoadScene(const std::string& path, std::vector<std::string>& warnings);
+
+/// Output kind names as in the scene ("csv", "jsonl", "diagnostics", "svg", "png", "glb").
+const char* OutputName(OutputKind kind);
+OutputKind ParseOutputName(const std::string& name);  // throws std::invalid_argument
+/// The default outputs: csv, diagnostics, svg plot, png plot, glb.
+std::vector<OutputKind> DefaultOutputs();
+
+}  // namespace rbsim

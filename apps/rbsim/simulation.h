@@ -1,0 +1,75 @@
+#pragma once
+// An rbsim run: the scene's bodies loaded into a dynamics::World, stepped to the end with samples
+// at the output rate, and the diagnostics summary.
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "dynamics/world.h"
+#include "massprops/principal_axes.h"
+#include "scene.h"
+
+namespace rbsim {
+
+/// A body of the scene with what the outputs need besides its dynamic state.
+struct SimBody {
+  std::string name;
+  massprops::MassProperties mp;         ///< SI, in the mesh (or solid) frame M
+  massprops::PrincipalInertia principal;  ///< axes = R_MB
+  massprops::TriangleMesh display;      ///< metres, mesh axes, relative to the center of mass
+  Vector3 color = Vector3(0.8, 0.8, 0.8);
+  std::string source;                   ///< "spot.obj (unit m)" or "cone r=0.1 h=0.3"
+};
+
+/// How one body is reported: the pose of its mesh (not of its principal frame).
+struct BodyState {
+  Vector3 position;          ///< center of mass, world, m
+  Quaternion orientation;    ///< mesh axes → world (identity for an unturned body at t = 0)
+  Vector3 velocity;          ///< m/s, world
+  Vector3 omega_world;       ///< rad/s, world axes
+  Vector3 omega_principal;   ///< rad/s, principal axes (moments ascending)
+};
+
+struct Simulation {
+  Scene scene;
+  std::vector<SimBody> bodies;
+  dynamics::World world;
+  bool energy_conserved = true;    ///< no damping or applied forces and torques
+  bool momentum_conserved = true;  ///< no external forces (only springs between bodies)
+  std::string nonconservative;     ///< what breaks energy conservation, for the summary
+  std::string external;            ///< what breaks momentum conservation
+};
+
+/// Loads every body (mesh files through the massprops checks, solids from closed forms) and
+/// builds the world and forces. Nothing runs. @throws SceneError naming the field.
+Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warnings, int threads = 1);
+
+BodyState StateOf(const SimBody& body, const dynamics::RigidBody& rb);
+
+struct RunStats {
+  std::int64_t steps = 0;
+  std::int64_t samples = 0;
+  int max_substeps = 1;
+  double wall_seconds = 0;
+  bool interrupted = false;
+  dynamics::Diagnostics start, end;
+  dynamics::Drift max_drift;  ///< largest |relative drift| over the samples
+};
+
+/// Steps = ceil(duration / dt) (the last step lands on or just past the duration); a sample is
+/// taken at t = 0, every round(1 / (output_rate · dt)) steps, and after the last step.
+std::int64_t StepCount(const Scene& scene);
+std::int64_t SampleEvery(const Scene& scene);
+
+/// Runs to the end (or until *stop becomes true), calling on_sample(world, diagnostics) at each
+/// sample and on_progress(fraction) now and then. @throws std::runtime_error from World::Step.
+RunStats Run(Simulation& sim, const std::function<void(const dynamics::World&, const dynamics::Diagnostics&)>& on_sample,
+             const std::function<void(double)>& on_progress = {}, const std::atomic<bool>* stop = nullptr);
+
+/// The end-of-run summary: energy and momenta at the start and end, their largest drift, and
+/// whether the physics of the scene conserves them.
+std::string Summary(const Simulation& sim, const RunStats& stats);
+
+}  // namespace rbsim
