@@ -1,0 +1,270 @@
+// rbsim's library: scene validation (every error names the field), the simulation against the
+// exact torque-free flow, body-point conversions against statics, conservation in a two-body
+// scene, and the outputs' structure.
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "dynamics/free_rigid_body.h"
+#include "outputs.h"
+#include "scene.h"
+#include "simulation.h"
+#include "test_utils.h"
+
+namespace {
+
+using massprops::Vector3;
+using massprops::testing::DataPath;
+using massprops::testing::NearRel;
+using nlohmann::json;
+using ::testing::HasSubstr;
+
+// Parses a scene given as JSON text (meshes relative to data/scenes), returning the warnings.
+rbsim::Scene Parse(const std::string& text, std::vector<std::string>* warnings = nullptr) {
+  std::vector<std::string> w;
+  rbsim::Scene s = rbsim::ParseScene(json::parse(text), "test.json", DataPath("scenes"), w);
+  if (warnings) *warnings = w;
+  return s;
+}
+
+// The error message of a scene that must be refused (at parse or at load time).
+std::string ErrorOf(const std::string& text) {
+  try {
+    std::vector<std::string> w;
+    rbsim::Scene s = Parse(text);
+    rbsim::BuildSimulation(s, w);
+  } catch (const rbsim::SceneError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+const char* kBox = R"("solid": {"type": "box", "size": [1, 2, 3]})";
+
+std::string OneBody(const std::string& body_fields, const std::string& top = "") {
+  return "{" + top + R"("bodies": [{)" + body_fields + "}]}";
+}
+
+TEST(Scene, ErrorsNameTheFieldAndTheReason) {
+  struct Case {
+    std::string scene, expect;
+  } cases[] = {
+      {OneBody(std::string(kBox) + R"(, "densty": 3)"), "test.json: bodies[0]: unknown key 'densty' (did you mean 'density'?)"},
+      {OneBody(kBox, R"("dtt": 0.1, )"), "unknown key 'dtt' (did you mean 'dt'?)"},
+      {OneBody(std::string(kBox) + R"(, "mass": -2)"), "bodies[0].mass: must be positive (got -2)"},
+      {OneBody(std::string(kBox) + R"(, "density": 0)"), "bodies[0].density: must be positive (got 0)"},
+      {OneBody(std::string(kBox) + R"(, "density": 1, "mass": 2)"), "give 'density' or 'mass', not both"},
+      {OneBody(R"("mesh": "no_such_part.stl")"), "bodies[0].mesh: 'no_such_part.stl' not found"},
+      {OneBody(R"("name": "a")"), "bodies[0]: needs a 'mesh' (file) or a 'solid'"},
+      {OneBody(std::string(kBox) + R"(, "mesh": "../meshes/spot.obj")"), "has both 'mesh' and 'solid'"},
+      {OneBody(R"("solid": {"type": "bx", "size": [1, 1, 1]})"), "bodies[0].solid.type: 'bx' is not one of"},
+      {OneBody(R"("solid": {"type": "box"})"), "bodies[0].solid.size: is required"},
+      {OneBody(R"("solid": {"type": "box", "size": [1, -1, 1]})"), "bodies[0].solid.size[1]: must be positive"},
+      {OneBody(R"("solid": {"type": "torus", "major_radius": 1, "minor_radius": 2})"), "minor_radius: must be smaller than major_radius"},
+      {OneBody(kBox, R"("dt": "0.1", )"), "test.json: dt: must be a number, not a string"},
+      {OneBody(kBox, R"("dt": -0.1, )"), "dt: must be positive (got -0.1)"},
+      {OneBody(kBox, R"("dt": 2, "duration": 1, )"), "dt: the step (2 s) is longer than the duration (1 s)"},
+      {OneBody(kBox, R"("integrator": "rk5", )"), "integrator: 'rk5' is not one of"},
+      {OneBody(kBox, R"("outputs": ["csv", "gif"], )"), "outputs[1]: unknown output 'gif'"},
+      {OneBody(std::string(kBox) + R"(, "orientation": [0, 0, 0, 0])"), "bodies[0].orientation: the quaternion is zero"},
+      {OneBody(std::string(kBox) + R"(, "orientation": [1, 0, 0])"), "a quaternion is 4 numbers"},
+      {OneBody(std::string(kBox) + R"(, "velocity": [1, 2])"), "bodies[0].velocity: must be an array of 3 numbers"},
+      {OneBody(std::string(kBox) + R"(, "angular_velocity_frame": "local")"), "'local' is not one of world, body, principal"},
+      {OneBody(std::string(kBox) + R"(, "color": [2, 0, 0])"), "bodies[0].color: components are between 0 and 1"},
+      {R"({"bodies": []})", "bodies: must be a non-empty array"},
+      {R"({"bodies": [{"name": "a", "solid": {"type": "sphere", "radius": 1}},
+                      {"name": "a", "solid": {"type": "sphere", "radius": 1}}]})", "bodies[1].name: 'a' is used by another body"},
+      {OneBody(std::string(kBox) + R"(, "name": "crate")", R"("forces": [{"type": "spring", "body": "crat", "anchor": [0, 0, 0], "k": 1}], )"),
+       "forces[0].body: no body is named 'crat' (did you mean 'crate'?)"},
+      {OneBody(kBox, R"("forces": [{"type": "spring", "body": 3, "anchor": [0, 0, 0], "k": 1}], )"), "body index 3 is out of range"},
+      {OneBody(kBox, R"("forces": [{"type": "spring", "body": 0, "k": 1}], )"), "forces[0].anchor: is required"},
+      {OneBody(kBox, R"("forces": [{"type": "spring", "body": 0, "anchor": [0, 0, 0], "k": -1}], )"), "forces[0].k: must not be negative"},
+      {OneBody(kBox, R"("forces": [{"type": "spring", "bodies": [0, 0], "k": 1}], )"), "a spring between a body and itself"},
+      {OneBody(kBox, R"("forces": [{"type": "magnet"}], )"), "forces[0].type: 'magnet' is not one of"},
+      {OneBody(kBox, R"("forces": [{"type": "gravity", "g": [0, 0, -9.8], "strength": 2}], )"), "forces[0]: unknown key 'strength'"},
+      {OneBody(kBox, R"("forces": [{"type": "torque", "body": 0}], )"), "forces[0].torque: is required"},
+  };
+  for (const auto& c : cases) EXPECT_THAT(ErrorOf(c.scene), HasSubstr(c.expect)) << c.scene;
+}
+
+TEST(Scene, OpenMeshIsRefusedUnlessRepairedOrAllowed) {
+  // A cube with its top face missing.
+  const std::string path = ::testing::TempDir() + "/open_cube.obj";
+  {
+    std::ofstream out(path);
+    out << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+           "f 1 4 3 2\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+  }
+  const std::string msg = ErrorOf(OneBody(R"("mesh": ")" + path + R"(")"));
+  EXPECT_THAT(msg, HasSubstr("test.json: bodies[0].mesh: " + std::filesystem::path(path).lexically_normal().string()));
+  EXPECT_THAT(msg, HasSubstr("boundary edges"));
+  EXPECT_THAT(msg, HasSubstr("\"repair\": true"));  // the advice names scene keys, not flags
+  EXPECT_THAT(msg, HasSubstr("\"allow_open\": true"));
+  std::vector<std::string> w;
+  EXPECT_NO_THROW(rbsim::BuildSimulation(Parse(OneBody(R"("mesh": ")" + path + R"(", "allow_open": true)")), w));
+  EXPECT_THAT(w.at(0), HasSubstr("computed anyway"));
+}
+
+TEST(Scene, InvalidJsonNamesTheLine) {
+  const std::string path = ::testing::TempDir() + "/broken.json";
+  {
+    std::ofstream out(path);
+    out << "{\n  \"dt\": 0.01,\n  \"bodies\": [\n    {\"solid\": }\n  ]\n}\n";
+  }
+  std::vector<std::string> w;
+  try {
+    rbsim::LoadScene(path, w);
+    FAIL() << "accepted";
+  } catch (const rbsim::SceneError& e) {
+    EXPECT_THAT(e.what(), HasSubstr(path + ": line 4: not valid JSON"));
+  }
+}
+
+TEST(Scene, NonUnitQuaternionIsNormalizedWithAWarning) {
+  std::vector<std::string> w;
+  const rbsim::Scene s = Parse(OneBody(std::string(kBox) + R"(, "orientation": [2, 0, 0, 2])"), &w);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_THAT(w[0], HasSubstr("bodies[0].orientation: the quaternion has norm 2.82843; normalized"));
+  EXPECT_NEAR(s.bodies[0].orientation.w(), std::sqrt(0.5), 1e-15);
+  EXPECT_NEAR(s.bodies[0].orientation.z(), std::sqrt(0.5), 1e-15);
+}
+
+TEST(Scene, ExampleScenesAreValid) {
+  for (const char* name : {"t_handle", "heavy_top", "tumbling_spot", "hanging_spring", "two_bodies"}) {
+    std::vector<std::string> w;
+    EXPECT_NO_THROW(rbsim::BuildSimulation(rbsim::LoadScene(DataPath(std::string("scenes/") + name + ".json"), w), w))
+        << name;
+    EXPECT_TRUE(w.empty()) << name << ": " << (w.empty() ? "" : w[0]);
+  }
+}
+
+// The T-handle example, run for two flips, against libdynamics' exact torque-free flow (Jacobi
+// elliptic functions): ω in the principal axes and the attitude at every sample. With the
+// exact-splitting integrator the run *is* the exact flow, so any frame or conversion error in the
+// scene → body path shows at O(1); with the default integrator the error is O((ω dt)²).
+TEST(Simulation, THandleFollowsTheExactTorqueFreeFlow) {
+  // Measured: exact-splitting 4e-7 in both (the elliptic functions' rounding, step after step);
+  // implicit midpoint at ω dt = 0.01: 2.5e-5 in ω, 7e-4 rad of attitude phase after 8 s.
+  struct Case {
+    dynamics::Integrator integrator;
+    double omega_tol, angle_tol;
+  };
+  for (auto [integrator, omega_tol, angle_tol] : {Case{dynamics::Integrator::kExactSplitting, 2e-6, 2e-6},
+                                                  Case{dynamics::Integrator::kImplicitMidpoint, 1e-4, 3e-3}}) {
+    std::vector<std::string> w;
+    rbsim::Scene scene = rbsim::LoadScene(DataPath("scenes/t_handle.json"), w);
+    scene.duration = 8;
+    scene.integrator = integrator;
+    rbsim::Simulation sim = rbsim::BuildSimulation(scene, w);
+    const dynamics::RigidBody& b0 = sim.world.bodies()[0];
+    // The scene's ω = (10, 0.01, 0.01) in the mesh axes; the crossbar (mesh x) is the intermediate axis.
+    ASSERT_TRUE(massprops::testing::MatrixNearRel(b0.BodyAngularVelocity(), Vector3(0.01, 10, -0.01), 1e-12, 10));
+    const dynamics::ExactFreeRotation exact(b0.inertia, b0.BodyAngularVelocity(), b0.orientation);
+    ASSERT_LT(exact.FlipInterval(), 4.0);  // two flips or more within the run
+    double worst_omega = 0, worst_angle = 0;
+    rbsim::Run(sim, [&](const dynamics::World& world, const dynamics::Diagnostics& d) {
+      const rbsim::BodyState s = rbsim::StateOf(sim.bodies[0], world.bodies()[0]);
+      worst_omega = std::max(worst_omega, (s.omega_principal - exact.Omega(d.time)).norm() / 10.0);
+      worst_angle = std::max(worst_angle, world.bodies()[0].orientation.angularDistance(exact.Orientation(d.time)));
+    });
+    EXPECT_LT(worst_omega, omega_tol) << dynamics::IntegratorName(integrator);
+    std::printf("%s: worst |w - w_exact|/|w| %.3g, worst attitude error %.3g rad\n", dynamics::IntegratorName(integrator), worst_omega, worst_angle);
+    EXPECT_LT(worst_angle, angle_tol) << dynamics::IntegratorName(integrator);
+  }
+}
+
+// A box hung by a corner from a damped spring settles where statics says: the corner straight
+// above the center of mass, the spring stretched by m g / k. This checks the mesh-coordinate →
+// body-frame conversion of force points and the scene's orientation handling.
+TEST(Simulation, HangingBoxSettlesToStaticEquilibrium) {
+  rbsim::Scene s = Parse(R"({
+    "dt": 0.002, "duration": 60,
+    "bodies": [{"name": "b", "solid": {"type": "box", "size": [0.2, 0.1, 0.05]}, "density": 500,
+                "orientation": {"axis": [1, 2, 3], "angle_deg": 40}, "position": [0.1, 0, -0.3]}],
+    "forces": [{"type": "gravity", "g": [0, 0, -9.81]},
+               {"type": "spring", "body": "b", "point": [0.1, 0.05, 0.025], "anchor": [0, 0, 0],
+                "k": 200, "rest_length": 0.1, "damping": 5},
+               {"type": "angular_damping", "body": "b", "c": 0.01},
+               {"type": "linear_damping", "c": 0.5}]})");
+  std::vector<std::string> w;
+  rbsim::Simulation sim = rbsim::BuildSimulation(s, w);
+  rbsim::Run(sim, [](const dynamics::World&, const dynamics::Diagnostics&) {});
+  const dynamics::RigidBody& b = sim.world.bodies()[0];
+  const rbsim::BodyState st = rbsim::StateOf(sim.bodies[0], b);
+  const Vector3 corner = st.position + st.orientation * Vector3(0.1, 0.05, 0.025);
+  const double m = 500 * 0.2 * 0.1 * 0.05;
+  EXPECT_LT(b.velocity.norm(), 1e-6);
+  EXPECT_LT((corner - Vector3(0, 0, -(0.1 + m * 9.81 / 200))).norm(), 1e-6) << corner.transpose();
+  EXPECT_LT((st.position.head<2>() - corner.head<2>()).norm(), 1e-6);  // COM straight below the corner
+}
+
+TEST(Simulation, TwoBodyExampleConservesMomentaAndEnergy) {
+  std::vector<std::string> w;
+  rbsim::Simulation sim = rbsim::BuildSimulation(rbsim::LoadScene(DataPath("scenes/two_bodies.json"), w), w);
+  EXPECT_TRUE(sim.energy_conserved);
+  EXPECT_TRUE(sim.momentum_conserved);
+  const rbsim::RunStats stats = rbsim::Run(sim, [](const dynamics::World&, const dynamics::Diagnostics&) {});
+  EXPECT_LT(stats.max_drift.linear_momentum, 1e-12);
+  EXPECT_LT(stats.max_drift.angular_momentum, 1e-12);
+  EXPECT_LT(stats.max_drift.energy, 1e-3);  // second order, bounded (symplectic splitting)
+  EXPECT_EQ(stats.steps, 10000);
+  EXPECT_EQ(stats.samples, 10000 / 17 + 2);  // t = 0, every 17 steps (≈ 60 Hz), and the last step
+}
+
+TEST(Simulation, SceneFramesOfTheInitialAngularVelocity) {
+  // A box turned 90° about z: ω given in its body (mesh) axes along x is world y.
+  for (auto [frame, want] : {std::pair{"world", Vector3(1, 0, 0)}, std::pair{"body", Vector3(0, 1, 0)}}) {
+    std::vector<std::string> w;
+    rbsim::Simulation sim = rbsim::BuildSimulation(
+        Parse(OneBody(std::string(kBox) + R"(, "orientation": {"axis": [0, 0, 1], "angle_deg": 90},
+                      "angular_velocity": [1, 0, 0], "angular_velocity_frame": ")" + frame + "\"")),
+        w);
+    EXPECT_TRUE(massprops::testing::MatrixNearRel(sim.world.bodies()[0].AngularVelocity(), want, 1e-15, 1)) << frame;
+  }
+}
+
+TEST(Outputs, GlbHeaderChunksAndOneKeyPerSample) {
+  std::vector<std::string> w;
+  rbsim::Scene scene = rbsim::LoadScene(DataPath("scenes/two_bodies.json"), w);
+  scene.duration = 1;
+  rbsim::Simulation sim = rbsim::BuildSimulation(scene, w);
+  rbsim::Recording rec;
+  const auto stats = rbsim::Run(sim, [&](const dynamics::World& world, const dynamics::Diagnostics& d) { rec.Add(sim, world, d); });
+  const std::string path = ::testing::TempDir() + "/two.glb";
+  rbsim::WriteGlb(path, sim, rec);
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  auto u32 = [&](std::size_t at) {
+    std::uint32_t v;
+    std::memcpy(&v, bytes.data() + at, 4);
+    return v;
+  };
+  ASSERT_GE(bytes.size(), 28u);
+  EXPECT_EQ(bytes.substr(0, 4), "glTF");
+  EXPECT_EQ(u32(4), 2u);
+  EXPECT_EQ(u32(8), bytes.size());
+  EXPECT_EQ(u32(16), 0x4E4F534Au);
+  const std::uint32_t json_len = u32(12);
+  EXPECT_EQ(json_len % 4, 0u);
+  const json doc = json::parse(bytes.substr(20, json_len));
+  EXPECT_EQ(u32(20 + json_len + 4), 0x004E4942u);
+  EXPECT_EQ(doc["asset"]["version"], "2.0");
+  EXPECT_EQ(doc["nodes"].size(), 3u);  // root + 2 bodies
+  const auto& anim = doc["animations"][0];
+  EXPECT_EQ(anim["channels"].size(), 4u);
+  for (const auto& sampler : anim["samplers"]) {
+    EXPECT_EQ(doc["accessors"][sampler["input"].get<int>()]["count"], stats.samples);
+    EXPECT_EQ(doc["accessors"][sampler["output"].get<int>()]["count"], stats.samples);
+  }
+  // Keys are unit quaternions on one side of the double cover.
+  for (const auto& q : rec.rotations[1]) EXPECT_NEAR(q.norm(), 1.0f, 1e-6f);
+  for (std::size_t i = 1; i < rec.rotations[1].size(); ++i) EXPECT_GE(rec.rotations[1][i].dot(rec.rotations[1][i - 1]), 0.0f);
+}
+
+}  // namespace
