@@ -19,13 +19,22 @@ for p in "${PACKAGES[@]}"; do
   fi
 done
 
-if [ ${#missing[@]} -eq 0 ]; then
-  exit 0
-fi
+# Node.js and npm run the Khronos glTF validator in rbsim's tests; the machine image usually has
+# them (not from Debian), so Debian's are installed only when there are none.
+if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then missing+=(nodejs npm); fi
 
-echo "install_deps: installing ${missing[*]}" >&2
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "install_deps: installing ${missing[*]}" >&2
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# The validator itself, from the npm registry at the version pinned in package-lock.json.
+root=$(cd "$(dirname "$0")/.." && pwd)
+if [ ! -f "$root/tests/rbsim/node_modules/gltf-validator/package.json" ]; then
+  echo "install_deps: npm ci (gltf-validator) in tests/rbsim" >&2
+  (cd "$root/tests/rbsim" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+fi

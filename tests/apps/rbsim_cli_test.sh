@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# End-to-end checks of the rbsim command: outputs of an example scene (CSV columns, JSON lines,
+# plot files, the .glb through the Khronos glTF validator), the quick path, scene errors and an
+# interrupted run.
+# Usage: rbsim_cli_test.sh RBSIM_BINARY DATA_DIR VALIDATOR_DIR
+set -u
+bin=$1
+data=$2
+validator=$3
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+failures=0
+passes=0
+
+check() {  # check NAME EXIT-CODE-OF-THE-CONDITION
+  if [ "$2" -eq 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi
+}
+
+# 1. The T-handle example, 3 s: every output, whole, with the documented columns.
+"$bin" "$data/scenes/t_handle.json" --duration 3 --out "$tmp/t" --outputs csv,jsonl,diagnostics,svg,png,glb \
+  >"$tmp/out" 2>"$tmp/err"
+check "t_handle exits 0" $?
+grep -q "energy, J" "$tmp/out"; check "summary printed" $?
+grep -q "conserved by this scene's physics" "$tmp/out"; check "summary says what is conserved" $?
+for f in trajectory.csv trajectory.jsonl diagnostics.csv plot.svg plot.png animation.glb; do
+  test -s "$tmp/t/$f"; check "$f written and non-empty" $?
+done
+[ -z "$(ls "$tmp/t" | grep tmp-)" ]; check "no temporary files left" $?
+head -c 8 "$tmp/t/plot.png" | od -An -tx1 | grep -q "89 50 4e 47 0d 0a 1a 0a"; check "plot.png is a PNG" $?
+grep -q "<svg" "$tmp/t/plot.svg" && grep -q "<path" "$tmp/t/plot.svg"; check "plot.svg is an SVG with curves" $?
+python3 - "$tmp/t" <<'PY'
+import csv, json, math, sys
+d = sys.argv[1]
+rows = list(csv.DictReader(open(d + "/trajectory.csv")))
+cols = "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,w1,w2,w3".split(",")
+assert list(rows[0].keys()) == cols, rows[0].keys()
+# dt = 1 ms, 60 Hz -> every 17 steps; 3000 steps -> 177 + 1 + the last one
+assert len(rows) == 3000 // 17 + 2, len(rows)
+assert rows[0]["time"] == "0" and abs(float(rows[-1]["time"]) - 3) < 1e-12
+for r in rows:
+    q = [float(r[k]) for k in ("qw", "qx", "qy", "qz")]
+    assert abs(math.sqrt(sum(c * c for c in q)) - 1) < 1e-12
+# the initial spin is the scene's: (10, 0.01, 0.01) rad/s in the mesh axes = world axes at t = 0
+w = [float(rows[0][k]) for k in ("wx", "wy", "wz")]
+assert max(abs(a - b) for a, b in zip(w, (10, 0.01, 0.01))) < 1e-12, w
+lines = [json.loads(l) for l in open(d + "/trajectory.jsonl")]
+assert len(lines) == len(rows)
+assert set(lines[0]) == {"time", "body", "position", "quaternion", "velocity", "omega", "omega_principal"}
+assert all(abs(float(rows[i]["w2"]) - lines[i]["omega_principal"][1]) == 0 for i in range(len(rows)))
+diag = list(csv.DictReader(open(d + "/diagnostics.csv")))
+assert len(diag) == len(rows) and "energy_drift" in diag[0]
+assert max(abs(float(r["energy_drift"])) for r in diag) < 1e-12
+PY
+check "CSV columns, row count, JSON lines, diagnostics" $?
+rows=$(($(wc -l <"$tmp/t/trajectory.csv") - 1))
+node "$validator/validate_glb.mjs" "$tmp/t/animation.glb" "$rows" 1 >"$tmp/val" 2>&1
+check "glTF validator: no errors, one key per output step" $?
+grep -q " 0 errors" "$tmp/val" || cat "$tmp/val"
+
+# 2. Two bodies: one node per body in the .glb, both animated.
+"$bin" "$data/scenes/two_bodies.json" --duration 2 --out "$tmp/two" --outputs csv,glb -q >/dev/null 2>&1
+check "two_bodies exits 0" $?
+rows=$(( ($(wc -l <"$tmp/two/trajectory.csv") - 1) / 2 ))
+node "$validator/validate_glb.mjs" "$tmp/two/animation.glb" "$rows" 2 >"$tmp/val2" 2>&1
+check "two bodies: glb valid with 2 animated nodes" $?
+
+# 3. The quick path: one mesh, torque-free, from the command line.
+"$bin" --mesh "$data/meshes/spot.obj" --omega 0,10,0.01 --duration 1 --out "$tmp/q" --outputs csv >"$tmp/out" 2>&1
+check "quick path exits 0" $?
+grep -q "1 body" "$tmp/out"; check "quick path summary" $?
+test -s "$tmp/q/trajectory.csv"; check "quick path trajectory" $?
+
+# 4. Errors: a clear line naming the field, exit 1, nothing written.
+printf '{"bodies": [{"mesh": "missing.stl"}]}' >"$tmp/bad1.json"
+"$bin" "$tmp/bad1.json" --out "$tmp/bad" >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 1 ]; check "missing mesh exits 1" $?
+grep -q "bad1.json: bodies\[0\].mesh: 'missing.stl' not found" "$tmp/err"; check "missing mesh message" $?
+[ ! -e "$tmp/bad" ]; check "nothing written for a bad scene" $?
+printf '{"bodies": [{"solid": {"type": "sphere", "radius": 1}, "mass": -1}]}' >"$tmp/bad2.json"
+"$bin" "$tmp/bad2.json" >/dev/null 2>"$tmp/err"
+[ $? -eq 1 ] && grep -q "bodies\[0\].mass: must be positive (got -1)" "$tmp/err"; check "negative mass" $?
+printf '{"bodies": [{"solid": {"type": "sphere", "radius": 1}, "orientation": [2, 0, 0, 0]}], "duration": 0.01}' >"$tmp/q.json"
+"$bin" "$tmp/q.json" >/dev/null 2>"$tmp/err"
+[ $? -eq 0 ] && grep -q "warning: .*orientation: the quaternion has norm 2; normalized" "$tmp/err"; check "non-unit quaternion warning" $?
+"$bin" --mesh "$data/meshes/spot.obj" --omega 1,2 >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ] && grep -q "\-\-omega: expected three finite numbers" "$tmp/err"; check "bad --omega" $?
+"$bin" "$data/scenes/t_handle.json" --integrator rk5 >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ] && grep -q "\-\-integrator" "$tmp/err"; check "bad --integrator" $?
+
+# 5. Interrupted: SIGINT mid-run leaves no file under a final name, and no temporary file.
+"$bin" "$data/scenes/t_handle.json" --dt 1e-6 --duration 1000 --out "$tmp/int" -q >/dev/null 2>"$tmp/err" &
+pid=$!
+for _ in $(seq 50); do [ -n "$(ls "$tmp/int" 2>/dev/null)" ] && break; sleep 0.1; done
+sleep 0.5
+kill -INT "$pid"
+wait "$pid"
+[ $? -eq 130 ]; check "interrupted run exits 130" $?
+grep -q "interrupted at t =" "$tmp/err"; check "interrupted message" $?
+[ -z "$(ls -A "$tmp/int")" ]; check "interrupted run leaves no files ($(ls "$tmp/int" | tr '\n' ' '))" $?
+
+echo "$passes passed, $failures failed"
+[ "$failures" -eq 0 ]
