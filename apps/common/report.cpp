@@ -14,6 +14,7 @@
 #include "massprops/composition.h"
 #include "massprops/export.h"
 #include "massprops/repair.h"
+#include "massprops/shell.h"
 #include "progress.h"
 
 namespace massprops::app {
@@ -99,7 +100,7 @@ Report Compute(const std::string& file, const Options& opt) {
   const auto bytes = std::filesystem::file_size(file, size_error);
   const bool big = !size_error && bytes >= 84 + 50 * static_cast<std::uintmax_t>(kStreamingThreshold);
   if (stl && big && opt.path != "polygons" && !opt.full_check && opt.reader == "auto" &&
-      !opt.repair && !opt.check_self_intersections) {
+      !opt.repair && !opt.check_self_intersections && !opt.shell && opt.wall == 0) {
     if (auto soup = IntegrateBinaryStlFile(file, io);
         soup && soup->IsClosedCycle() && soup->triangles >= kStreamingThreshold) {
       r.loaded.format = "stl-binary";
@@ -134,8 +135,30 @@ Report Compute(const std::string& file, const Options& opt) {
                          "volume is counted twice or cancelled, and the numbers are not those of "
                          "a solid");
   }
+  if (opt.shell) {
+    // A thin shell is a surface property: holes, orientation and nesting do not matter.
+    progress.Stage("integrating the surface");
+    r.model = "shell";
+    r.path_used = "surface (thin shell), triangles and planar polygons integrated exactly";
+    const double scale = MetresPerUnit(opt.unit);
+    const SurfaceIntegrals s = IntegrateSurface(mesh, io);
+    if (!(s.area > 0)) throw MeshFileError(file + ": the surface has no area");
+    const double sigma = opt.mass > 0 ? opt.mass / (s.area * scale * scale) : opt.area_density;
+    r.mp = ShellMassProperties(s, sigma, scale);
+    r.size_m = scale * (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
+    CheckPlausibleSize(r);
+    r.principal = ComputePrincipalInertia(r.mp.inertia_com);
+    r.validity = CheckPhysicallyValid(r.principal.moments);
+    if (!r.topology.BoundsVolume()) r.warnings.push_back(r.topology.Problems() + "; fine for a thin shell");
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return r;
+  }
   if (!r.topology.BoundsVolume()) {
-    if (!opt.allow_open) {
+    if (!opt.allow_open || opt.wall > 0) {
+      if (opt.wall > 0) {
+        throw MeshFileError(file + ": " + r.topology.Problems() +
+                            ". A wall needs a closed surface to offset inward (try --repair)");
+      }
       throw MeshFileError(file + ": " + (opt.repair ? "after --repair: " : "") +
                           r.topology.Problems() +
                           ". The mesh does not bound a solid, so its mass properties are not "
@@ -160,6 +183,32 @@ Report Compute(const std::string& file, const Options& opt) {
       if (!opt.allow_open) throw MeshFileError(file + ": " + r.shells.problem);
       r.warnings.push_back(r.shells.problem + "; computed anyway (--allow-open)");
     }
+  }
+  if (opt.wall > 0) {
+    progress.Stage("offsetting the wall inward");
+    r.model = "wall";
+    OffsetResult inner;
+    try {
+      inner = OffsetInward(mesh, opt.wall);
+      if (inner.flipped_faces == 0 && inner.inner_volume > 0) {
+        progress.Stage("checking the inner surface for self-intersections (CGAL)");
+        const std::int64_t crossings = CountSelfIntersections(inner.inner, 1);
+        if (crossings > 0) {
+          throw std::invalid_argument("a wall of " + Fixed(opt.wall, "%g") + " " + opt.unit +
+                                      " is thicker than the part allows: the inner surface passes "
+                                      "through itself (the part is thinner than twice the wall "
+                                      "somewhere); use a thinner wall");
+        }
+      }
+      r.loaded.mesh = WallSolid(mesh, inner);
+    } catch (const std::invalid_argument& e) {
+      throw MeshFileError(file + ": --wall: " + e.what());
+    }
+    r.path_used = "polygons (Mirtich), the surface and its inward offset by " + Fixed(opt.wall, "%g") + " " + opt.unit;
+    const VolumeIntegrals integrals = IntegratePolygons(r.loaded.mesh, io);
+    Finish(r, integrals, opt, (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm());
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return r;
   }
   progress.Stage("integrating");
   const bool triangles = IsAllTriangles(mesh);
@@ -233,11 +282,16 @@ std::string FormatTable(const Report& r, const Options& opt) {
     out << "precision       the file's coordinates are 32-bit floats (~7 significant digits)\n";
   }
   out << "units           file coordinates in " << r.unit << " (" << MetresPerUnit(r.unit)
-      << " m each), results in SI; density " << r.mp.density << " kg/m^3"
-      << (opt.mass > 0 ? " (from --mass)" : "") << "\n";
+      << " m each), results in SI; " << (r.model == "shell" ? "area density " : "density ") << r.mp.density
+      << (r.model == "shell" ? " kg/m^2" : " kg/m^3") << (opt.mass > 0 ? " (from --mass)" : "") << "\n";
+  if (r.model == "shell") out << "model           thin shell: the surface itself carries the mass (no volume)\n";
+  if (r.model == "wall") {
+    out << "model           hollow part: the solid between the surface and its inward offset by " << opt.wall
+        << " " << r.unit << "\n";
+  }
   out << "integration     " << r.path_used << ", " << Fixed(r.seconds, "%.3g") << " s\n";
   out << "size            " << Num(r.size_m) << " m (bounding-box diagonal)\n";
-  out << "volume          " << Num(r.mp.volume) << " m^3\n";
+  if (r.model != "shell") out << "volume          " << Num(r.mp.volume) << " m^3\n";
   out << "surface area    " << Num(r.mp.surface_area) << " m^2\n";
   out << "mass            " << Num(r.mp.mass) << " kg\n";
   const Vector3& c = r.mp.center_of_mass;
@@ -277,11 +331,17 @@ nlohmann::ordered_json ToJson(const Report& r, const Options& opt) {
   const auto& t = r.topology;
   nlohmann::ordered_json j = {{"file", r.file},
                               {"unit", r.unit},
+                              {"model", r.model},
                               {"volume", r.mp.volume},
                               {"mass", r.mp.mass},
                               {"density", r.mp.density},
                               {"center_of_mass", {c[0], c[1], c[2]}},
                               {"inertia_com", Mat(r.mp.inertia_com)}};
+  if (r.model == "shell") {
+    j["density"] = nullptr;
+    j["area_density"] = r.mp.density;
+  }
+  if (r.model == "wall") j["wall_thickness_m"] = opt.wall * MetresPerUnit(r.unit);
   if (opt.frame == "origin") j["inertia_origin"] = Mat(r.mp.InertiaAbout(Vector3::Zero()));
   j["principal_moments"] = {m[0], m[1], m[2]};
   j["principal_axes"] = Mat(r.principal.axes);

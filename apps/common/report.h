@@ -26,6 +26,9 @@ struct Options {
   bool full_check = false;
   bool repair = false;                    // weld, orient, stitch with CGAL before integrating
   bool check_self_intersections = false;  // count intersecting face pairs with CGAL
+  bool shell = false;          // thin shell of area density (open meshes allowed)
+  double area_density = 0.0;   // kg/m^2 for --shell
+  double wall = 0.0;           // > 0: hollow part with this wall thickness (file units)
   std::string reader = "auto";  // auto | assimp (force assimp, for comparison)  // binary STL: weld and count edges even when the streaming check passes
 };
 
@@ -41,7 +44,8 @@ struct Report {
   std::string repair_summary;             // what --repair changed
   std::int64_t self_intersections = -1;   // -1: not checked         // filled when the mesh has more than one component
   bool full_topology = true;  // false: binary STL fast path, only the streaming closed check ran
-  MassProperties mp;  // SI, in the file's axes
+  std::string model = "solid";  // solid | shell | wall
+  MassProperties mp;  // SI, in the file's axes (for a shell: volume 0, density = area density)
   PrincipalInertia principal;
   ValidityReport validity;
   std::string path_used;

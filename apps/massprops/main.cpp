@@ -33,6 +33,17 @@ int main(int argc, char** argv) {
   app.add_option("--mass", opt.mass, "Total mass in kg (sets the density; excludes --density)")
       ->check(CLI::PositiveNumber)
       ->excludes(density);
+  auto* shell = app.add_flag("--shell", opt.shell,
+                             "Thin shell: the surface itself carries the mass, at --area-density "
+                             "(or --mass); open meshes are fine");
+  app.add_option("--area-density", opt.area_density, "Area density of a --shell, kg/m^2")
+      ->check(CLI::PositiveNumber)
+      ->needs(shell);
+  app.add_option("--wall", opt.wall,
+                 "Hollow part: the solid between the closed surface and its inward offset by this "
+                 "wall thickness (in the file's unit, --unit)")
+      ->check(CLI::PositiveNumber)
+      ->excludes(shell);
   app.add_option("--unit", opt.unit, "Unit of the file's coordinates")
       ->check(CLI::IsMember({"m", "cm", "mm", "in", "ft"}))
       ->capture_default_str();
@@ -70,8 +81,17 @@ int main(int argc, char** argv) {
   app.add_flag("-q,--quiet", opt.quiet, "No progress line on stderr");
   app.add_option("-o,--output", opt.output, "Write the output to this file (whole or not at all)");
   CLI11_PARSE(app, argc, argv);
-  if (!std::isfinite(opt.density) || !std::isfinite(opt.mass)) {
-    std::cerr << "error: --density and --mass must be finite\n";
+  if (!std::isfinite(opt.density) || !std::isfinite(opt.mass) || !std::isfinite(opt.area_density) ||
+      !std::isfinite(opt.wall)) {
+    std::cerr << "error: --density, --mass, --area-density and --wall must be finite\n";
+    return 2;
+  }
+  if (opt.shell && !(opt.area_density > 0) && !(opt.mass > 0)) {
+    std::cerr << "error: --shell needs --area-density (kg/m^2) or --mass (kg)\n";
+    return 2;
+  }
+  if (opt.shell && app.count("--density") > 0) {
+    std::cerr << "error: --shell takes --area-density (kg/m^2), not --density\n";
     return 2;
   }
   const bool robot = opt.format == "urdf" || opt.format == "sdf" || opt.format == "mjcf";

@@ -174,5 +174,37 @@ assert 'cavities inward' in d['repair']
 "$bin" "$data/meshes/blobby-shuffled.off" >"$tmp/out" 2>"$tmp/err"
 grep -q "inconsistent orientation: 3069 edges.*try --repair" "$tmp/err"; check "suggests --repair" $?
 
+# Thin shells: an open box (no top) in mm at 2.7 kg/m^2; area 5·(100 mm)^2 = 0.05 m^2.
+printf 'v 0 0 0\nv 100 0 0\nv 100 100 0\nv 0 100 0\nv 0 0 100\nv 100 0 100\nv 100 100 100\nv 0 100 100\nf 1 4 3 2\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n' >"$tmp/tray.obj"
+"$bin" "$tmp/tray.obj" --unit mm >/dev/null 2>"$tmp/err"
+[ $? -eq 1 ]; check "open tray refused as a solid" $?
+"$bin" "$tmp/tray.obj" --unit mm --shell --area-density 2.7 --format json >"$tmp/shell.json" 2>"$tmp/err"
+check "open tray accepted as a shell" $?
+python3 -c "
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d['model'] == 'shell' and d['density'] is None and d['area_density'] == 2.7, d
+assert abs(d['surface_area'] - 0.05) < 1e-15 and abs(d['mass'] - 0.135) < 1e-15, d
+# COM: bottom at z = 0 (1/5 of the area), four sides at z = 0.05 -> z = 0.04
+assert max(abs(a - b) for a, b in zip(d['center_of_mass'], (0.05, 0.05, 0.04))) < 1e-15, d['center_of_mass']
+" "$tmp/shell.json"; check "shell JSON: area, mass, COM" $?
+"$bin" "$tmp/tray.obj" --shell >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ] && grep -q "needs --area-density" "$tmp/err"; check "--shell without a density" $?
+
+# Walls: the cube of cube_cup_quad is not needed; Spot with a 5 mm wall, and a wall too thick.
+"$bin" "$data/meshes/spot.obj" --wall 0.005 --format json >"$tmp/wall.json" 2>"$tmp/err"
+check "spot with a 5 mm wall" $?
+python3 -c "
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d['model'] == 'wall' and d['wall_thickness_m'] == 0.005
+# thin-wall estimate: area x t = 0.0285, less the curvature of the inner surface
+assert 0.027 < d['volume'] < 0.0286, d['volume']
+" "$tmp/wall.json"; check "wall volume near area x thickness" $?
+"$bin" "$data/meshes/spot.obj" --wall 0.2 >/dev/null 2>"$tmp/err"
+[ $? -eq 1 ] && grep -q "wall of 0.2 is thicker than the part allows" "$tmp/err"; check "wall too thick refused" $?
+"$bin" "$tmp/tray.obj" --wall 1 >/dev/null 2>"$tmp/err"
+[ $? -eq 1 ] && grep -q "A wall needs a closed surface" "$tmp/err"; check "wall of an open mesh refused" $?
+
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]
