@@ -14,6 +14,7 @@
 #include "massprops/composition.h"
 #include "massprops/export.h"
 #include "massprops/repair.h"
+#include "massprops/implicit.h"
 #include "massprops/shell.h"
 #include "progress.h"
 
@@ -79,6 +80,61 @@ std::string Lower(std::string s) {
 
 }  // namespace
 
+namespace {
+
+// Runs the estimator on a solid already in metres and fills the report.
+void Estimate(Report& r, const ImplicitSolid& solid, const Options& opt, Progress& progress) {
+  MonteCarloOptions mc;
+  mc.method = opt.method == "mc" ? SamplingMethod::kMonteCarlo : SamplingMethod::kQuasiMonteCarlo;
+  if (!(opt.samples >= 2 && opt.samples <= 1e13)) throw std::invalid_argument("--samples must be between 2 and 1e13");
+  mc.samples = static_cast<std::int64_t>(opt.samples);
+  mc.randomizations = opt.randomizations;
+  mc.seed = opt.seed;
+  mc.tolerance = opt.tolerance;
+  mc.num_threads = opt.threads;
+  mc.fixed_mass = opt.mass;
+  progress.Stage(opt.tolerance > 0 ? "sampling until the tolerance is met" : "sampling");
+  const MassPropertiesEstimate e = EstimateMassProperties(solid, opt.density, mc);
+  r.estimate = e;
+  r.mp = e.value;
+  r.principal = ComputePrincipalInertia(r.mp.inertia_com);
+  r.validity = CheckPhysicallyValid(r.principal.moments, 1e-6);
+  r.size_m = solid.Bounds().sizes().norm();
+  CheckPlausibleSize(r);
+  r.path_used = std::string(opt.method == "mc" ? "Monte Carlo" : "quasi-Monte Carlo (Owen-scrambled Sobol)") + ", " +
+                std::to_string(e.samples) + " points" +
+                (opt.method == "mc" ? "" : " in " + std::to_string(e.randomizations) + " randomizations");
+  for (int i = 0; i < 2; ++i) {
+    const double gap = e.principal_moments[i + 1] - e.principal_moments[i];
+    if (gap < 3 * (e.principal_moments_se[i] + e.principal_moments_se[i + 1])) {
+      r.warnings.push_back("principal moments " + std::to_string(i + 1) + " and " + std::to_string(i + 2) +
+                           " are equal within their error bars: the principal axes in their plane are not "
+                           "determined by this estimate (the printed ones are one choice)");
+    }
+  }
+  if (opt.tolerance > 0 && !e.tolerance_met) {
+    r.warnings.push_back("the tolerance " + Fixed(opt.tolerance, "%g") + " was not reached (relative error " +
+                         Fixed(e.MaxRelativeError(), "%.2g") + " after " + std::to_string(e.samples) + " points)");
+  }
+}
+
+}  // namespace
+
+Report ComputeImplicit(const std::string& shape, const Options& opt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Progress progress(shape, !opt.quiet);
+  Report r;
+  r.unit = opt.unit;
+  r.model = "implicit";
+  const ImplicitPtr solid = implicit::ParseShape(shape);
+  r.file = solid->Describe();
+  r.full_topology = false;
+  r.loaded.format = "implicit";
+  Estimate(r, *implicit::Scaled(solid, MetresPerUnit(opt.unit)), opt, progress);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
 Report Compute(const std::string& file, const Options& opt) {
   const auto t0 = std::chrono::steady_clock::now();
   Progress progress(file, !opt.quiet);
@@ -100,7 +156,8 @@ Report Compute(const std::string& file, const Options& opt) {
   const auto bytes = std::filesystem::file_size(file, size_error);
   const bool big = !size_error && bytes >= 84 + 50 * static_cast<std::uintmax_t>(kStreamingThreshold);
   if (stl && big && opt.path != "polygons" && !opt.full_check && opt.reader == "auto" &&
-      !opt.repair && !opt.check_self_intersections && !opt.shell && opt.wall == 0) {
+      !opt.repair && !opt.check_self_intersections && !opt.shell && opt.wall == 0 &&
+      !opt.winding_number) {
     if (auto soup = IntegrateBinaryStlFile(file, io);
         soup && soup->IsClosedCycle() && soup->triangles >= kStreamingThreshold) {
       r.loaded.format = "stl-binary";
@@ -134,6 +191,21 @@ Report Compute(const std::string& file, const Options& opt) {
                          " pairs of faces intersect: where the surface passes through itself, "
                          "volume is counted twice or cancelled, and the numbers are not those of "
                          "a solid");
+  }
+  if (opt.winding_number) {
+    // Inside is where the generalized winding number is at least 1/2: holes are bridged, so an
+    // open scan gets a sensible solid; the estimate carries error bars.
+    r.model = "winding-number";
+    r.full_topology = true;
+    TriangleMesh tri = Triangulate(mesh);
+    tri.V *= MetresPerUnit(opt.unit);
+    if (!r.topology.BoundsVolume()) {
+      r.warnings.push_back(r.topology.Problems() + "; the winding number bridges the holes");
+    }
+    progress.Stage("building the winding-number hierarchy");
+    Estimate(r, *implicit::WindingNumberSolid(tri), opt, progress);
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return r;
   }
   if (opt.shell) {
     // A thin shell is a surface property: holes, orientation and nesting do not matter.
@@ -246,7 +318,9 @@ void PrintMatrix(std::ostream& out, const std::string& indent, const Matrix3& m)
 std::string FormatTable(const Report& r, const Options& opt) {
   std::ostringstream out;
   const auto& t = r.topology;
-  if (r.full_topology) {
+  if (r.model == "implicit") {
+    out << "shape           " << r.file << "\n";
+  } else if (r.full_topology) {
     out << "file            " << r.file << "  (" << r.loaded.format << ", " << t.faces << " faces, "
         << t.vertices << " vertices, " << t.components << " component"
         << (t.components == 1 ? "" : "s") << ", "
@@ -263,7 +337,7 @@ std::string FormatTable(const Report& r, const Options& opt) {
                                                               : std::to_string(r.self_intersections) + " intersecting face pairs")
         << "\n";
   }
-  if (!r.full_topology) {
+  if (!r.full_topology && r.model != "implicit") {
     out << "checks          streamed: every edge has its reverse, so the volume is well defined; "
            "shells were not separated (--full-check does, and checks their nesting)\n";
   }
@@ -291,14 +365,29 @@ std::string FormatTable(const Report& r, const Options& opt) {
   }
   out << "integration     " << r.path_used << ", " << Fixed(r.seconds, "%.3g") << " s\n";
   out << "size            " << Num(r.size_m) << " m (bounding-box diagonal)\n";
-  if (r.model != "shell") out << "volume          " << Num(r.mp.volume) << " m^3\n";
-  out << "surface area    " << Num(r.mp.surface_area) << " m^2\n";
-  out << "mass            " << Num(r.mp.mass) << " kg\n";
+  const MassProperties* se = r.estimate ? &r.estimate->standard_error : nullptr;
+  auto pm = [&](double v) { return "  +- " + Fixed(v, "%.2e"); };
+  if (r.estimate) {
+    out << "error bars      +- one standard error; 95 % interval = +- " << Fixed(r.estimate->interval95_factor, "%.3g")
+        << " standard errors" << (r.estimate->method == SamplingMethod::kQuasiMonteCarlo ? " (Student t over the randomizations)" : "")
+        << "\n";
+  }
+  if (r.model != "shell") out << "volume          " << Num(r.mp.volume) << " m^3" << (se ? pm(se->volume) : "") << "\n";
+  if (!r.estimate) out << "surface area    " << Num(r.mp.surface_area) << " m^2\n";
+  out << "mass            " << Num(r.mp.mass) << " kg" << (se ? pm(se->mass) : "") << "\n";
   const Vector3& c = r.mp.center_of_mass;
   out << "center of mass  [" << Num(c[0]) << "  " << Num(c[1]) << "  " << Num(c[2])
       << " ] m, in the file's axes\n";
+  if (se) {
+    out << "  +-            [" << Num(se->center_of_mass[0]) << "  " << Num(se->center_of_mass[1]) << "  "
+        << Num(se->center_of_mass[2]) << " ]\n";
+  }
   out << "inertia about the center of mass, file's axes (kg m^2):\n";
   PrintMatrix(out, "                ", r.mp.inertia_com);
+  if (se) {
+    out << "  +-\n";
+    PrintMatrix(out, "                ", se->inertia_com);
+  }
   if (opt.frame == "origin") {
     out << "inertia about the file's origin, file's axes (kg m^2):\n";
     PrintMatrix(out, "                ", r.mp.InertiaAbout(Vector3::Zero()));
@@ -309,6 +398,10 @@ std::string FormatTable(const Report& r, const Options& opt) {
   const Vector3& m = r.principal.moments;
   out << "principal moments (ascending)  " << Num(m[0]) << "  " << Num(m[1]) << "  " << Num(m[2])
       << " kg m^2\n";
+  if (r.estimate) {
+    const Vector3& ms = r.estimate->principal_moments_se;
+    out << "  +-                             " << Num(ms[0]) << "  " << Num(ms[1]) << "  " << Num(ms[2]) << "\n";
+  }
   out << "principal axes (columns, right-handed, in the file's axes):\n";
   PrintMatrix(out, "                ", r.principal.axes);
   out << "physically valid  "
@@ -378,6 +471,26 @@ nlohmann::ordered_json ToJson(const Report& r, const Options& opt) {
     j["mesh"]["shells"] = shells;
   }
   if (r.self_intersections >= 0) j["mesh"]["self_intersections"] = r.self_intersections;
+  if (r.model == "implicit") j.erase("mesh");
+  if (r.estimate) {
+    const MassPropertiesEstimate& e = *r.estimate;
+    const MassProperties& se = e.standard_error;
+    const auto& sc = se.center_of_mass;
+    const auto& pm = e.principal_moments_se;
+    j["estimate"] = {{"method", e.method == SamplingMethod::kMonteCarlo ? "monte-carlo" : "quasi-monte-carlo"},
+                     {"samples", e.samples},
+                     {"randomizations", e.randomizations},
+                     {"seed", opt.seed},
+                     {"interval95_factor", e.interval95_factor},
+                     {"tolerance_met", e.tolerance_met},
+                     {"standard_errors",
+                      {{"volume", se.volume},
+                       {"mass", se.mass},
+                       {"center_of_mass", {sc[0], sc[1], sc[2]}},
+                       {"inertia_com", Mat(se.inertia_com)},
+                       {"principal_moments", {pm[0], pm[1], pm[2]}}}}};
+    j["surface_area"] = nullptr;
+  }
   if (!r.repair_summary.empty()) j["repair"] = r.repair_summary;
   j["warnings"] = r.warnings;
   return j;

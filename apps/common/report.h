@@ -1,12 +1,14 @@
 #pragma once
 // The massprops command's computation for one file, and its output formats.
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "massprops/io.h"
 #include "massprops/mass_properties.h"
 #include "massprops/mesh_topology.h"
+#include "massprops/monte_carlo.h"
 #include "massprops/principal_axes.h"
 
 namespace massprops::app {
@@ -29,6 +31,14 @@ struct Options {
   bool shell = false;          // thin shell of area density (open meshes allowed)
   double area_density = 0.0;   // kg/m^2 for --shell
   double wall = 0.0;           // > 0: hollow part with this wall thickness (file units)
+  // Monte-Carlo path: --implicit SHAPE, or --winding-number for files.
+  std::string implicit;
+  bool winding_number = false;
+  std::string method = "qmc";  // mc | qmc
+  double samples = 1 << 20;
+  int randomizations = 16;
+  std::uint64_t seed = 1;
+  double tolerance = 0;
   std::string reader = "auto";  // auto | assimp (force assimp, for comparison)  // binary STL: weld and count edges even when the streaming check passes
 };
 
@@ -44,7 +54,8 @@ struct Report {
   std::string repair_summary;             // what --repair changed
   std::int64_t self_intersections = -1;   // -1: not checked         // filled when the mesh has more than one component
   bool full_topology = true;  // false: binary STL fast path, only the streaming closed check ran
-  std::string model = "solid";  // solid | shell | wall
+  std::string model = "solid";  // solid | shell | wall | implicit | winding-number
+  std::optional<MassPropertiesEstimate> estimate;  // the Monte-Carlo paths: error bars
   MassProperties mp;  // SI, in the file's axes (for a shell: volume 0, density = area density)
   PrincipalInertia principal;
   ValidityReport validity;
@@ -53,6 +64,9 @@ struct Report {
   double size_m = 0;  // bounding-box diagonal, m
   double seconds = 0;
 };
+
+/// Estimates the mass properties of a shape in the shape syntax (Monte Carlo / QMC).
+Report ComputeImplicit(const std::string& shape, const Options& options);
 
 /// Reads, checks and integrates one file. Throws MeshFileError (or std::exception) naming the file.
 Report Compute(const std::string& file, const Options& options);

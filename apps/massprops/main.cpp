@@ -26,7 +26,23 @@ int main(int argc, char** argv) {
   CLI::App app{"massprops: exact mass properties of the solids that mesh files bound.\n"
                "Reads OBJ, STL, PLY, OFF (own parsers) and other formats through assimp."};
   Options opt;
-  app.add_option("files", opt.files, "Mesh files")->required();
+  app.add_option("files", opt.files, "Mesh files");
+  app.add_option("--implicit", opt.implicit,
+                 "Estimate a solid given in the shape syntax, e.g. 'torus(R=1, r=0.25)' "
+                 "(Monte Carlo / QMC, with error bars; see the README)");
+  app.add_flag("--winding-number", opt.winding_number,
+               "Files: the solid where the generalized winding number is >= 1/2, estimated by "
+               "Monte Carlo / QMC with error bars (meshes with holes get a sensible answer)");
+  auto* mc = app.add_flag("--mc", "Plain Monte Carlo (with --implicit or --winding-number)");
+  app.add_flag("--qmc", "Randomized quasi-Monte Carlo, scrambled Sobol (the default)")->excludes(mc);
+  app.add_option("--samples", opt.samples, "Monte-Carlo points in all (e.g. 1e7)")->check(CLI::Range(2.0, 1e13));
+  app.add_option("--randomizations", opt.randomizations, "QMC: independent scramblings (error bars from their spread)")
+      ->check(CLI::Range(2, 1000));
+  app.add_option("--seed", opt.seed, "Random seed (same seed, same bits, any thread count)");
+  app.add_option("--tolerance", opt.tolerance,
+                 "Sample until the relative standard error of the mass and of each principal moment "
+                 "is below this")
+      ->check(CLI::Range(1e-12, 1.0));
   auto* density = app.add_option("--density", opt.density, "Uniform density in kg/m^3")
                       ->check(CLI::PositiveNumber)
                       ->capture_default_str();
@@ -94,14 +110,34 @@ int main(int argc, char** argv) {
     std::cerr << "error: --shell takes --area-density (kg/m^2), not --density\n";
     return 2;
   }
+  if (app.count("--mc") > 0) opt.method = "mc";
+  if (opt.files.empty() && opt.implicit.empty()) {
+    std::cerr << "error: give mesh files, or --implicit SHAPE (see --help)\n";
+    return 2;
+  }
+  const bool sampling_flags = app.count("--mc") + app.count("--qmc") + app.count("--samples") +
+                                  app.count("--randomizations") + app.count("--seed") + app.count("--tolerance") > 0;
+  if (sampling_flags && opt.implicit.empty() && !opt.winding_number) {
+    std::cerr << "error: --mc/--qmc/--samples/--randomizations/--seed/--tolerance belong to --implicit or "
+                 "--winding-number (exact integration needs none)\n";
+    return 2;
+  }
+  if (opt.winding_number && (opt.shell || opt.wall > 0)) {
+    std::cerr << "error: --winding-number does not combine with --shell or --wall\n";
+    return 2;
+  }
   const bool robot = opt.format == "urdf" || opt.format == "sdf" || opt.format == "mjcf";
 
   int failures = 0;
   std::vector<Report> reports;
   std::string text;
-  for (const auto& file : opt.files) {
+  std::vector<std::string> jobs = opt.files;
+  if (!opt.implicit.empty()) jobs.push_back("\x01" + opt.implicit);  // marks the shape
+  for (const auto& job : jobs) {
+    const bool shape = job[0] == '\x01';
+    const std::string file = shape ? "--implicit" : job;
     try {
-      Report r = massprops::app::Compute(file, opt);
+      Report r = shape ? massprops::app::ComputeImplicit(job.substr(1), opt) : massprops::app::Compute(file, opt);
       for (const auto& w : r.warnings) std::cerr << "warning: " << file << ": " << w << "\n";
       if (opt.format == "table") text += (text.empty() ? "" : "\n") + FormatTable(r, opt);
       if (robot) text += FormatRobot(r, opt.format);

@@ -110,6 +110,7 @@ struct Frame {
   Vector3 c, h;
   double box_volume;
   double density;
+  double fixed_mass;  // > 0: the density is mass / volume (so the mass carries no error)
 };
 
 std::array<double, kOutputs> Outputs(const std::array<double, kF>& mu, const Frame& fr, MassProperties* mp_out = nullptr,
@@ -122,7 +123,7 @@ std::array<double, kOutputs> Outputs(const std::array<double, kF>& mu, const Fra
   yy << mu[4], mu[7], mu[8], mu[7], mu[5], mu[9], mu[8], mu[9], mu[6];
   vi.second = fr.box_volume * (fr.h.asDiagonal() * yy * fr.h.asDiagonal());
   vi.surface_area = std::nan("");
-  const MassProperties mp = FromIntegrals(vi, fr.density);
+  const MassProperties mp = FromIntegrals(vi, fr.fixed_mass > 0 ? fr.fixed_mass / vi.volume : fr.density);
   const Matrix3 sym = 0.5 * (mp.inertia_com + mp.inertia_com.transpose());
   Eigen::SelfAdjointEigenSolver<Matrix3> eig(sym, Eigen::EigenvaluesOnly);
   const Vector3 p = eig.eigenvalues();
@@ -177,7 +178,8 @@ MassPropertiesEstimate EstimateMassProperties(const ImplicitSolid& solid, Scalar
   if (box.isEmpty() || !(size.array() > 0).all() || !size.allFinite() || !box.min().allFinite()) {
     throw std::invalid_argument("Monte Carlo: the solid's bounding box is empty, flat or not finite");
   }
-  Frame fr{box.center(), 0.5 * size, size.prod(), density};
+  if (!(opt.fixed_mass >= 0) || !std::isfinite(opt.fixed_mass)) throw std::invalid_argument("Monte Carlo: the mass must be finite and positive");
+  Frame fr{box.center(), 0.5 * size, size.prod(), density, opt.fixed_mass};
   const int R = qmc ? opt.randomizations : 1;
   // Points per randomization: QMC in powers of two (where the nets are balanced).
   std::int64_t n = std::max<std::int64_t>(1, (opt.samples + R - 1) / R);

@@ -206,5 +206,40 @@ assert 0.027 < d['volume'] < 0.0286, d['volume']
 "$bin" "$tmp/tray.obj" --wall 1 >/dev/null 2>"$tmp/err"
 [ $? -eq 1 ] && grep -q "A wall needs a closed surface" "$tmp/err"; check "wall of an open mesh refused" $?
 
+# Monte Carlo: --implicit with error bars that cover the closed form; --winding-number on an open mesh.
+"$bin" --implicit 'torus(R=1, r=0.25)' --qmc --samples 1e6 --density 2 --format json -q >"$tmp/torus.json" 2>"$tmp/err"
+check "--implicit torus exits 0" $?
+python3 -c "
+import json, math, sys
+d = json.load(open(sys.argv[1]))
+e = d['estimate']
+assert d['model'] == 'implicit' and e['method'] == 'quasi-monte-carlo' and e['randomizations'] == 16, e
+v = 2 * math.pi ** 2 * 0.0625
+se = e['standard_errors']
+assert abs(d['volume'] - v) < 4.5 * se['volume'], (d['volume'], v, se['volume'])
+assert abs(d['mass'] - 2 * v) < 4.5 * se['mass']
+assert 0 < se['volume'] < 1e-3 * v
+izz = 2 * v * (1 + 0.75 * 0.0625)
+assert abs(d['principal_moments'][2] - izz) < 4.5 * se['principal_moments'][2], (d['principal_moments'], izz)
+" "$tmp/torus.json"; check "--implicit torus within its error bars" $?
+"$bin" --implicit 'torus(R=1, r=2)' >/dev/null 2>"$tmp/err"
+[ $? -eq 1 ] && grep -q "r must be smaller than R" "$tmp/err"; check "--implicit bad shape message" $?
+"$bin" --implicit 'box(x=1, y=2, z=3)' --mc --samples 200000 --seed 7 -q >"$tmp/a" 2>/dev/null
+"$bin" --implicit 'box(x=1, y=2, z=3)' --mc --samples 200000 --seed 7 -q --threads 1 >"$tmp/b" 2>/dev/null
+diff <(grep -v integration "$tmp/a") <(grep -v integration "$tmp/b") >/dev/null; check "same seed, same output, any thread count" $?
+"$bin" "$tmp/tray.obj" --unit mm --winding-number --tolerance 3e-3 --format json -q >"$tmp/wn.json" 2>"$tmp/err"
+check "--winding-number accepts an open mesh" $?
+grep -q "the winding number bridges the holes" "$tmp/err"; check "--winding-number says it bridged the holes" $?
+python3 -c "
+import json, sys
+d = json.load(open(sys.argv[1]))
+se = d['estimate']['standard_errors']
+# the open tray is read as the closed 0.1 m cube: 1e-3 m^3
+assert abs(d['volume'] - 1e-3) < 4.5 * se['volume'], (d['volume'], se['volume'])
+assert d['estimate']['tolerance_met']
+" "$tmp/wn.json"; check "--winding-number closes the open tray into the cube" $?
+"$bin" "$data/meshes/spot.obj" --samples 1000 >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ] && grep -q "belong to --implicit or --winding-number" "$tmp/err"; check "sampling flags without a sampling path" $?
+
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -35,6 +35,9 @@ struct MonteCarloOptions {
   /// moment is below this (or max_samples is reached; the result says which).
   double tolerance = 0;
   std::int64_t max_samples = std::int64_t{1} << 34;
+  /// > 0: the total mass is given (kg) and the density is mass / estimated volume; the error bars
+  /// then carry the volume's uncertainty into the inertia (and the mass has none).
+  double fixed_mass = 0;
   int num_threads = 0;
 };
 
