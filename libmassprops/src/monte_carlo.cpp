@@ -205,11 +205,36 @@ MassPropertiesEstimate EstimateMassProperties(const ImplicitSolid& solid, Scalar
       Sums sums;
       const std::int64_t end = std::min(n, (b + 1) * kBlock);
       const std::uint64_t rseed = SplitMix(opt.seed * 0x2545F4914F6CDD1Dull + r);
-      for (std::int64_t i = b * kBlock; i < end; ++i) {
-        const Vector3 u = qmc ? ScrambledSobol(static_cast<std::uint32_t>(i), rseed)
-                              : Vector3(Uniform(opt.seed, static_cast<std::uint64_t>(i), 0), Uniform(opt.seed, static_cast<std::uint64_t>(i), 1),
-                                        Uniform(opt.seed, static_cast<std::uint64_t>(i), 2));
-        Accumulate(solid, fr.c, fr.h, u, !qmc, sums);
+      if (qmc) {
+        // Sobol points in Gray-code order: within an aligned block of 2^k indices (and so for any
+        // power-of-two count) the same set as natural order, one XOR per point.
+        const auto& v = Sobol().v;
+        std::uint32_t seeds[3], x[3];
+        const auto i0 = static_cast<std::uint32_t>(b * kBlock);
+        const std::uint32_t g0 = i0 ^ (i0 >> 1);
+        for (int d = 0; d < 3; ++d) {
+          seeds[d] = static_cast<std::uint32_t>(SplitMix(rseed * 3 + static_cast<std::uint64_t>(d)));
+          x[d] = 0;
+          for (int k = 0; k < 32; ++k) {
+            if ((g0 >> k) & 1u) x[d] ^= v[static_cast<std::size_t>(d)][static_cast<std::size_t>(k)];
+          }
+        }
+        for (std::int64_t i = b * kBlock; i < end; ++i) {
+          if (i > b * kBlock) {
+            const int k = __builtin_ctz(static_cast<std::uint32_t>(i));
+            for (int d = 0; d < 3; ++d) x[d] ^= v[static_cast<std::size_t>(d)][static_cast<std::size_t>(k)];
+          }
+          const Vector3 u((static_cast<double>(OwenScramble(x[0], seeds[0])) + 0.5) * 0x1.0p-32,
+                          (static_cast<double>(OwenScramble(x[1], seeds[1])) + 0.5) * 0x1.0p-32,
+                          (static_cast<double>(OwenScramble(x[2], seeds[2])) + 0.5) * 0x1.0p-32);
+          Accumulate(solid, fr.c, fr.h, u, false, sums);
+        }
+      } else {
+        for (std::int64_t i = b * kBlock; i < end; ++i) {
+          const auto idx = static_cast<std::uint64_t>(i);
+          Accumulate(solid, fr.c, fr.h, Vector3(Uniform(opt.seed, idx, 0), Uniform(opt.seed, idx, 1), Uniform(opt.seed, idx, 2)),
+                     true, sums);
+        }
       }
       blocks[r][static_cast<std::size_t>(b)] = sums;
     });
