@@ -11,6 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "massprops/implicit.h"
+
 namespace rbsim {
 namespace {
 
@@ -193,16 +195,27 @@ Quaternion ReadOrientation(Fields& f, const std::string& key, std::vector<std::s
 
 ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {
   ShapeSpec s;
-  const bool has_mesh = f.Has("mesh"), has_solid = f.Has("solid");
-  if (has_mesh == has_solid) {
+  const bool has_mesh = f.Has("mesh"), has_solid = f.Has("solid"), has_implicit = f.Has("implicit");
+  const int kinds = int{has_mesh} + int{has_solid} + int{has_implicit};
+  if (kinds != 1) {
     f.Get("mesh");
     f.Get("solid");
-    f.Fail(has_mesh ? "has both 'mesh' and 'solid': give one" : "needs a 'mesh' (file) or a 'solid'");
+    f.Get("implicit");
+    f.Fail(kinds > 1 ? "give one of 'mesh', 'solid' and 'implicit', not several"
+                     : "needs a 'mesh' (file), a 'solid' or an 'implicit' shape");
   }
   if (f.Has("density") && f.Has("mass")) f.Fail("give 'density' or 'mass', not both");
   s.density = f.Number("density", 1000.0, "positive");
   s.mass = f.Number("mass", 0.0, "positive");
-  if (has_mesh) {
+  if (has_implicit) {
+    s.implicit = f.String("implicit", "");
+    try {
+      massprops::implicit::ParseShape(s.implicit);
+    } catch (const std::exception& e) {
+      f.Fail("implicit", e.what());
+    }
+    s.unit = f.String("unit", "m", {"m", "cm", "mm", "in", "ft"});
+  } else if (has_mesh) {
     const std::string file = f.String("mesh", "");
     if (file.empty()) f.Fail("mesh", "is empty");
     namespace fs = std::filesystem;

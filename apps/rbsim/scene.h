@@ -28,11 +28,12 @@ class SceneError : public std::runtime_error {
 
 /// Where the mass properties of a body come from.
 struct ShapeSpec {
-  // Exactly one of mesh_file / solid_type is set.
+  // Exactly one of mesh_file / solid_type / implicit is set.
   std::string mesh_file;  ///< resolved path (relative paths are taken from the scene's folder)
   std::string unit = "m";
   bool repair = false;
   bool allow_open = false;
+  std::string implicit;    ///< a shape in massprops' shape syntax (Monte-Carlo mass properties)
   std::string solid_type;  ///< box, sphere, ellipsoid, cylinder, cone, torus, capsule
   Vector3 size = Vector3::Zero();  ///< box edges / ellipsoid semi-axes
   double radius = 0, height = 0, major_radius = 0, minor_radius = 0;

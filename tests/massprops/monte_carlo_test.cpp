@@ -257,6 +257,18 @@ TEST(Estimators, ToleranceIsMetByAddingSamples) {
   EXPECT_FALSE(EstimateMassProperties(*s, 1.0, o).tolerance_met);
 }
 
+TEST(Implicit, PolygonizedSurfaceIsClosedAndNearTheSolid) {
+  const ImplicitPtr s = implicit::ParseShape("difference(box(x=2, y=2, z=2), sphere(r=0.7))");
+  const TriangleMesh m = implicit::Polygonize(*s, 40);
+  const double truth = 8 - 4 * M_PI / 3 * 0.343;
+  IntegrationOptions a, b;
+  a.reference = Vector3(0, 0, 0);
+  b.reference = Vector3(3, -5, 7);
+  const double va = IntegrateTriangles(m.V, m.F, a).volume, vb = IntegrateTriangles(m.V, m.F, b).volume;
+  EXPECT_NEAR(va, vb, 1e-9 * va);  // closed: the signed volume does not depend on the reference
+  EXPECT_NEAR(va, truth, 0.02 * truth);
+}
+
 TEST(ShapeSyntax, ParsesAndRefusesWithThePlace) {
   EXPECT_EQ(implicit::ParseShape(" torus( R = 1, r=0.25 ) ")->Describe(), "torus(R=1, r=0.25)");
   auto error = [](const std::string& s) {

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dynamics/free_rigid_body.h"
+#include "massprops/solids.h"
 #include "outputs.h"
 #include "scene.h"
 #include "simulation.h"
@@ -61,8 +62,9 @@ TEST(Scene, ErrorsNameTheFieldAndTheReason) {
       {OneBody(std::string(kBox) + R"(, "density": 0)"), "bodies[0].density: must be positive (got 0)"},
       {OneBody(std::string(kBox) + R"(, "density": 1, "mass": 2)"), "give 'density' or 'mass', not both"},
       {OneBody(R"("mesh": "no_such_part.stl")"), "bodies[0].mesh: 'no_such_part.stl' not found"},
-      {OneBody(R"("name": "a")"), "bodies[0]: needs a 'mesh' (file) or a 'solid'"},
-      {OneBody(std::string(kBox) + R"(, "mesh": "../meshes/spot.obj")"), "has both 'mesh' and 'solid'"},
+      {OneBody(R"("name": "a")"), "bodies[0]: needs a 'mesh' (file), a 'solid' or an 'implicit' shape"},
+      {OneBody(std::string(kBox) + R"(, "mesh": "../meshes/spot.obj")"), "give one of 'mesh', 'solid' and 'implicit'"},
+      {OneBody(R"x("implicit": "torus(R=1)")x"), "bodies[0].implicit: shape, at character 1: torus: missing r="},
       {OneBody(R"("solid": {"type": "bx", "size": [1, 1, 1]})"), "bodies[0].solid.type: 'bx' is not one of"},
       {OneBody(R"("solid": {"type": "box"})"), "bodies[0].solid.size: is required"},
       {OneBody(R"("solid": {"type": "box", "size": [1, -1, 1]})"), "bodies[0].solid.size[1]: must be positive"},
@@ -136,7 +138,7 @@ TEST(Scene, NonUnitQuaternionIsNormalizedWithAWarning) {
 }
 
 TEST(Scene, ExampleScenesAreValid) {
-  for (const char* name : {"t_handle", "heavy_top", "tumbling_spot", "hanging_spring", "two_bodies"}) {
+  for (const char* name : {"t_handle", "heavy_top", "tumbling_spot", "hanging_spring", "two_bodies", "csg_part"}) {
     std::vector<std::string> w;
     EXPECT_NO_THROW(rbsim::BuildSimulation(rbsim::LoadScene(DataPath(std::string("scenes/") + name + ".json"), w), w))
         << name;
@@ -227,6 +229,19 @@ TEST(Simulation, SceneFramesOfTheInitialAngularVelocity) {
         w);
     EXPECT_TRUE(massprops::testing::MatrixNearRel(sim.world.bodies()[0].AngularVelocity(), want, 1e-15, 1)) << frame;
   }
+}
+
+TEST(Simulation, ImplicitBodyHasItsClosedFormInertiaWithinTheEstimate) {
+  std::vector<std::string> w;
+  const rbsim::Simulation sim = rbsim::BuildSimulation(
+      Parse(OneBody(R"x("implicit": "torus(R=0.2, r=0.05)", "density": 1000)x")), w);
+  const massprops::MassProperties truth = massprops::solids::TorusProperties(0.2, 0.05, 1000);
+  const auto& rb = sim.world.bodies()[0];
+  EXPECT_NEAR(rb.mass, truth.mass, 5e-4 * truth.mass);  // tolerance 1e-4 relative standard error
+  EXPECT_NEAR(rb.inertia[2], truth.inertia_com(2, 2), 5e-4 * truth.inertia_com(2, 2));
+  // The display surface encloses about the same volume (marching tetrahedra, O(cell) error).
+  const double v = massprops::IntegrateTriangles(sim.bodies[0].display.V, sim.bodies[0].display.F).volume;
+  EXPECT_NEAR(v, truth.volume, 0.03 * truth.volume);
 }
 
 TEST(Outputs, GlbHeaderChunksAndOneKeyPerSample) {

@@ -79,6 +79,11 @@ ImplicitPtr WindingNumberSolid(const TriangleMesh& mesh, Scalar beta = 2.0);
 /// The winding number itself (for tests and diagnostics).
 Scalar WindingNumber(const ImplicitSolid& winding_solid, const Vector3& x);
 
+/// A triangle mesh of the surface φ = 0, for display: marching tetrahedra (six per cube of a
+/// regular grid with `resolution` cells along the longest side of the bounds), faces oriented
+/// outward, corners not welded. Not for integration: its error is O(cell size).
+TriangleMesh Polygonize(const ImplicitSolid& solid, int resolution = 48);
+
 /// Parses the shape syntax (README "Shape syntax"):
 ///   sphere(r=1)  ellipsoid(a=1, b=2, c=3)  box(x=1, y=2, z=3)  cylinder(r=1, h=2)  cone(r=1, h=3)
 ///   torus(R=1, r=0.25)  capsule(r=0.5, h=2)  grid(file="part.sdf")
