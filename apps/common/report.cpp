@@ -510,7 +510,13 @@ std::string FormatCsv(const std::vector<Report>& reports, const Options& opt) {
   const bool origin = opt.frame == "origin";
   out << "file,unit,volume_m3,mass_kg,density_kg_m3,com_x_m,com_y_m,com_z_m,"
          "ixx,iyy,izz,ixy,ixz,iyz,i1,i2,i3,surface_area_m2,closed,physically_valid"
-      << (origin ? ",origin_ixx,origin_iyy,origin_izz,origin_ixy,origin_ixz,origin_iyz" : "") << "\n";
+      << (origin ? ",origin_ixx,origin_iyy,origin_izz,origin_ixy,origin_ixz,origin_iyz" : "");
+  bool estimates = false;
+  for (const Report& r : reports) estimates = estimates || r.estimate.has_value();
+  if (estimates) {  // standard errors of the Monte-Carlo paths (empty for exact rows)
+    out << ",se_volume,se_mass,se_com_x,se_com_y,se_com_z,se_ixx,se_iyy,se_izz,se_ixy,se_ixz,se_iyz,se_i1,se_i2,se_i3";
+  }
+  out << "\n";
   auto q = [](const std::string& s) {  // RFC 4180 quoting
     std::string o = "\"";
     for (char ch : s) o += ch == '"' ? std::string("\"\"") : std::string(1, ch);
@@ -530,6 +536,17 @@ std::string FormatCsv(const std::vector<Report>& reports, const Options& opt) {
     if (origin) {
       const Matrix3 O = r.mp.InertiaAbout(Vector3::Zero());
       for (double v : {O(0, 0), O(1, 1), O(2, 2), O(0, 1), O(0, 2), O(1, 2)}) out << "," << ExactDecimal(v);
+    }
+    if (estimates && r.estimate) {
+      const MassProperties& e = r.estimate->standard_error;
+      const Vector3& p = r.estimate->principal_moments_se;
+      for (double v : {e.volume, e.mass, e.center_of_mass[0], e.center_of_mass[1], e.center_of_mass[2], e.inertia_com(0, 0),
+                       e.inertia_com(1, 1), e.inertia_com(2, 2), e.inertia_com(0, 1), e.inertia_com(0, 2), e.inertia_com(1, 2),
+                       p[0], p[1], p[2]}) {
+        out << "," << ExactDecimal(v);
+      }
+    } else if (estimates) {
+      out << ",,,,,,,,,,,,,,";
     }
     out << "\n";
   }

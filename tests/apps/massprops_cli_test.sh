@@ -238,6 +238,12 @@ se = d['estimate']['standard_errors']
 assert abs(d['volume'] - 1e-3) < 4.5 * se['volume'], (d['volume'], se['volume'])
 assert d['estimate']['tolerance_met']
 " "$tmp/wn.json"; check "--winding-number closes the open tray into the cube" $?
+"$bin" "$data/meshes/spot.obj" --implicit 'sphere(r=1)' --samples 4096 --format csv -q >"$tmp/mc.csv" 2>/dev/null
+python3 -c "
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert len(rows) == 2 and rows[0]['se_mass'] == '' and float(rows[1]['se_mass']) > 0, rows
+" "$tmp/mc.csv"; check "CSV: standard-error columns for the estimate, empty for the exact row" $?
 "$bin" "$data/meshes/spot.obj" --samples 1000 >/dev/null 2>"$tmp/err"
 [ $? -eq 2 ] && grep -q "belong to --implicit or --winding-number" "$tmp/err"; check "sampling flags without a sampling path" $?
 
