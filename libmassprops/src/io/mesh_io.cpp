@@ -8,7 +8,6 @@
 #include <sstream>
 #include <string>
 #include <string_view>
-#include <unordered_map>
 #include <vector>
 
 #include <fcntl.h>
@@ -83,8 +82,14 @@ LoadedMesh WeldCorners(const std::string& path, const std::vector<double>& xyz,
   const std::size_t corners = xyz.size() / 3;
   LoadedMesh out;
   out.format = format;
-  std::unordered_map<PositionKey, std::int32_t, PositionHash> index;
-  index.reserve(corners / 2 + 1);
+  // Open addressing with linear probing over a power-of-two table of vertex ids (−1: empty),
+  // at most half full: no allocation per vertex, unlike a node-based map. Vertices are numbered
+  // in order of first appearance.
+  std::size_t slots = 16;
+  int shift = 60;  // slot = top log2(slots) bits of the mixed hash
+  while (slots < 2 * corners) slots *= 2, --shift;
+  std::vector<std::int32_t> table(slots, -1);
+  const PositionHash hash;
   std::vector<double> verts;
   verts.reserve(xyz.size() / 2);
   out.mesh.indices.reserve(corners);
@@ -96,13 +101,28 @@ LoadedMesh WeldCorners(const std::string& path, const std::vector<double>& xyz,
           << ", " << k.z << ")";
       Fail(path, msg.str());
     }
-    auto [it, inserted] = index.emplace(k, static_cast<std::int32_t>(verts.size() / 3));
-    if (inserted) {
-      verts.insert(verts.end(), {k.x, k.y, k.z});
-    } else {
-      ++out.welded;
+    // Float-derived doubles have many zero low bits: mix (Stafford's variant 13) and take the top bits.
+    std::uint64_t h = hash(k);
+    h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ull;
+    h = (h ^ (h >> 27)) * 0x94D049BB133111EBull;
+    h ^= h >> 31;
+    std::size_t slot = static_cast<std::size_t>(h >> shift);
+    while (true) {
+      const std::int32_t id = table[slot];
+      if (id < 0) {
+        table[slot] = static_cast<std::int32_t>(verts.size() / 3);
+        out.mesh.indices.push_back(table[slot]);
+        verts.insert(verts.end(), {k.x, k.y, k.z});
+        break;
+      }
+      const double* v = verts.data() + 3 * static_cast<std::size_t>(id);
+      if (v[0] == k.x && v[1] == k.y && v[2] == k.z) {
+        out.mesh.indices.push_back(id);
+        ++out.welded;
+        break;
+      }
+      slot = (slot + 1) & (slots - 1);
     }
-    out.mesh.indices.push_back(it->second);
   }
   for (int n : face_sizes) out.mesh.offsets.push_back(out.mesh.offsets.back() + n);
   out.mesh.V = Eigen::Map<const VertexMatrix>(verts.data(), static_cast<Eigen::Index>(verts.size() / 3), 3);
