@@ -75,26 +75,35 @@ struct PositionHash {
 
 }  // namespace
 
-// Welds corners given one by one (xyz per corner) into shared vertices by bit-identical position,
-// with faces given by their corner counts. Used by the STL readers and the assimp path.
-LoadedMesh WeldCorners(const std::string& path, const std::vector<double>& xyz,
-                       const std::vector<int>& face_sizes, const char* format) {
-  const std::size_t corners = xyz.size() / 3;
+namespace {
+
+// The weld, over corners given by an accessor (so binary STL records are read in place, without
+// an intermediate copy of every coordinate).
+template <typename CornerAt>
+LoadedMesh Weld(const std::string& path, std::size_t corners, const CornerAt& corner_at,
+                const std::vector<int>& face_sizes, const char* format) {
   LoadedMesh out;
   out.format = format;
   // Open addressing with linear probing over a power-of-two table of vertex ids (−1: empty),
   // at most half full: no allocation per vertex, unlike a node-based map. Vertices are numbered
   // in order of first appearance.
+  // A closed triangle mesh has about corners/6 distinct vertices: start there and double the
+  // table whenever it gets half full.
   std::size_t slots = 16;
   int shift = 60;  // slot = top log2(slots) bits of the mixed hash
-  while (slots < 2 * corners) slots *= 2, --shift;
+  while (slots < corners / 3) slots *= 2, --shift;
   std::vector<std::int32_t> table(slots, -1);
+  auto mix = [](std::uint64_t h) {
+    h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ull;
+    h = (h ^ (h >> 27)) * 0x94D049BB133111EBull;
+    return h ^ (h >> 31);
+  };
   const PositionHash hash;
   std::vector<double> verts;
-  verts.reserve(xyz.size() / 2);
+  verts.reserve(corners / 2 + 3);
   out.mesh.indices.reserve(corners);
   for (std::size_t c = 0; c < corners; ++c) {
-    const PositionKey k{xyz[3 * c], xyz[3 * c + 1], xyz[3 * c + 2]};
+    const PositionKey k = corner_at(c);
     if (!std::isfinite(k.x) || !std::isfinite(k.y) || !std::isfinite(k.z)) {
       std::ostringstream msg;
       msg << "triangle " << c / 3 << " has a non-finite coordinate (" << k.x << ", " << k.y
@@ -102,17 +111,24 @@ LoadedMesh WeldCorners(const std::string& path, const std::vector<double>& xyz,
       Fail(path, msg.str());
     }
     // Float-derived doubles have many zero low bits: mix (Stafford's variant 13) and take the top bits.
-    std::uint64_t h = hash(k);
-    h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ull;
-    h = (h ^ (h >> 27)) * 0x94D049BB133111EBull;
-    h ^= h >> 31;
-    std::size_t slot = static_cast<std::size_t>(h >> shift);
+    std::size_t slot = static_cast<std::size_t>(mix(hash(k)) >> shift);
     while (true) {
       const std::int32_t id = table[slot];
       if (id < 0) {
         table[slot] = static_cast<std::int32_t>(verts.size() / 3);
         out.mesh.indices.push_back(table[slot]);
         verts.insert(verts.end(), {k.x, k.y, k.z});
+        if (2 * (verts.size() / 3) > slots) {  // grow: reinsert every vertex id
+          slots *= 2;
+          --shift;
+          table.assign(slots, -1);
+          for (std::size_t v = 0; v < verts.size() / 3; ++v) {
+            const PositionKey kv{verts[3 * v], verts[3 * v + 1], verts[3 * v + 2]};
+            std::size_t sl = static_cast<std::size_t>(mix(hash(kv)) >> shift);
+            while (table[sl] >= 0) sl = (sl + 1) & (slots - 1);
+            table[sl] = static_cast<std::int32_t>(v);
+          }
+        }
         break;
       }
       const double* v = verts.data() + 3 * static_cast<std::size_t>(id);
@@ -124,9 +140,20 @@ LoadedMesh WeldCorners(const std::string& path, const std::vector<double>& xyz,
       slot = (slot + 1) & (slots - 1);
     }
   }
+  out.mesh.offsets.reserve(face_sizes.size() + 1);
   for (int n : face_sizes) out.mesh.offsets.push_back(out.mesh.offsets.back() + n);
   out.mesh.V = Eigen::Map<const VertexMatrix>(verts.data(), static_cast<Eigen::Index>(verts.size() / 3), 3);
   return out;
+}
+
+}  // namespace
+
+// Welds corners given one by one (xyz per corner) into shared vertices by bit-identical position,
+// with faces given by their corner counts. Used by the STL readers and the assimp path.
+LoadedMesh WeldCorners(const std::string& path, const std::vector<double>& xyz,
+                       const std::vector<int>& face_sizes, const char* format) {
+  return Weld(path, xyz.size() / 3, [&xyz](std::size_t c) { return PositionKey{xyz[3 * c], xyz[3 * c + 1], xyz[3 * c + 2]}; },
+              face_sizes, format);
 }
 
 namespace {
@@ -137,14 +164,13 @@ LoadedMesh FromTriangleSoup(const std::string& path, const std::vector<double>& 
 }
 
 LoadedMesh ReadBinaryStl(const std::string& path, std::string_view data, std::uint32_t n) {
-  std::vector<double> xyz(static_cast<std::size_t>(n) * 9);
-  for (std::uint32_t t = 0; t < n; ++t) {
-    const char* rec = data.data() + 84 + 50 * static_cast<std::size_t>(t) + 12;  // skip normal
-    float f[9];
-    std::memcpy(f, rec, sizeof f);
-    for (int k = 0; k < 9; ++k) xyz[9 * static_cast<std::size_t>(t) + k] = f[k];
-  }
-  LoadedMesh out = FromTriangleSoup(path, xyz, "stl-binary");
+  const char* records = data.data() + 84;
+  auto corner_at = [records](std::size_t c) {
+    float f[3];  // record t = c / 3: 12 bytes of normal, then three corners of 12 bytes
+    std::memcpy(f, records + 50 * (c / 3) + 12 + 12 * (c % 3), sizeof f);
+    return PositionKey{f[0], f[1], f[2]};
+  };
+  LoadedMesh out = Weld(path, 3 * static_cast<std::size_t>(n), corner_at, std::vector<int>(n, 3), "stl-binary");
   out.float32_coordinates = true;
   return out;
 }
