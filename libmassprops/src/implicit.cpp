@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -340,6 +341,12 @@ class Parser {
 
   ImplicitPtr Shape() {
     const std::size_t at = pos_;
+    struct Depth {  // nesting guard: the parser recurses once per level
+      int& d;
+      explicit Depth(int& depth) : d(depth) { ++d; }
+      ~Depth() { --d; }
+    } depth(depth_);
+    if (depth_ > 200) Fail("shapes nested more than 200 deep");
     const std::string name = Name();
     Expect('(');
     std::vector<ImplicitPtr> shapes;
@@ -456,6 +463,7 @@ class Parser {
 
   const std::string& s_;
   std::size_t pos_ = 0;
+  int depth_ = 0;
 };
 
 }  // namespace
@@ -486,8 +494,13 @@ ImplicitPtr SdfGrid(const Eigen::Vector3i& size, const Vector3& origin, const Ve
 }
 
 ImplicitPtr SdfGridFromFile(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw std::runtime_error(path + (std::filesystem::exists(path, ec) ? ": not a regular file" : ": cannot open the grid file"));
+  }
+  const auto bytes = std::filesystem::file_size(path, ec);
   std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot open the grid file");
+  if (!in || ec) throw std::runtime_error(path + ": cannot open the grid file");
   std::string magic;
   int version = 0;
   in >> magic >> version;
@@ -499,6 +512,12 @@ ImplicitPtr SdfGridFromFile(const std::string& path) {
   if (!(in >> origin.x() >> origin.y() >> origin.z())) throw std::runtime_error(path + ": expected the origin X0 Y0 Z0");
   if (!(in >> h.x() >> h.y() >> h.z())) throw std::runtime_error(path + ": expected the spacing HX HY HZ");
   const auto count = static_cast<std::size_t>(n.x()) * static_cast<std::size_t>(n.y()) * static_cast<std::size_t>(n.z());
+  // Every value takes at least two bytes of text: a header that promises more than the file can
+  // hold is refused before anything is allocated for it.
+  if (count > bytes / 2) {
+    throw std::runtime_error(path + ": the header promises " + std::to_string(count) + " values, more than the file (" +
+                             std::to_string(bytes) + " bytes) can hold");
+  }
   std::vector<Scalar> v(count);
   for (std::size_t i = 0; i < count; ++i) {
     if (!(in >> v[i])) throw std::runtime_error(path + ": expected " + std::to_string(count) + " values, found " + std::to_string(i));

@@ -1,13 +1,15 @@
 // libFuzzer target for every hand-written parser: the same bytes go through the STL (binary and
-// ASCII), OBJ, PLY and OFF readers, the binary-STL record path, and — when they parse — the
-// topology checks and the integrators. Any crash, sanitizer report or hang is a bug; a
+// ASCII), OBJ, PLY and OFF readers, the binary-STL record path, the shape syntax, and — when they
+// parse — the topology checks and the integrators (or a small Monte-Carlo run). Any crash, sanitizer report or hang is a bug; a
 // MeshFileError or std::invalid_argument is the expected answer to bad input.
 
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
 
+#include "massprops/implicit.h"
 #include "massprops/io.h"
+#include "massprops/monte_carlo.h"
 #include "massprops/mass_properties.h"
 #include "massprops/mesh_topology.h"
 #include "massprops/triangle_soup.h"
@@ -30,6 +32,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       }
     } catch (const massprops::MeshFileError&) {
     }
+  }
+  // The shape syntax of --implicit: parse, and when it parses, sample a little.
+  try {
+    const massprops::ImplicitPtr shape = massprops::implicit::ParseShape(std::string(bytes));
+    massprops::MonteCarloOptions mc;
+    mc.samples = 256;
+    mc.randomizations = 2;
+    mc.num_threads = 1;
+    massprops::EstimateMassProperties(*shape, 1.0, mc);
+  } catch (const std::invalid_argument&) {
+  } catch (const std::runtime_error&) {
   }
   if (size >= 62) {
     try {

@@ -126,13 +126,23 @@ TEST(Implicit, SignedDistanceGridOfASphere) {
   EXPECT_LT(e.value.center_of_mass.norm(), 1e-3);
   {
     std::ofstream out(path);
-    out << "sdfgrid 1\n3 3 3\n0 0 0\n1 1 1\n1 2 3\n";
+    out << "sdfgrid 1\n3 3 3\n0 0 0\n1 1 1\n1 2 3" << std::string(60, ' ') << "\n";
   }
   EXPECT_THROW(implicit::SdfGridFromFile(path), std::runtime_error);
   try {
     implicit::SdfGridFromFile(path);
   } catch (const std::runtime_error& e2) {
     EXPECT_THAT(e2.what(), HasSubstr(path + ": expected 27 values, found 3"));
+  }
+  {
+    std::ofstream out(path);
+    out << "sdfgrid 1\n1000 1000 1000\n0 0 0\n1 1 1\n1 2 3\n";
+  }
+  try {
+    implicit::SdfGridFromFile(path);
+    FAIL() << "accepted";
+  } catch (const std::runtime_error& e3) {
+    EXPECT_THAT(e3.what(), HasSubstr("the header promises 1000000000 values, more than the file"));
   }
 }
 
@@ -288,6 +298,10 @@ TEST(ShapeSyntax, ParsesAndRefusesWithThePlace) {
   EXPECT_THAT(error("sphere(r=1"), HasSubstr("expected ')'"));
   EXPECT_THAT(error("sphere(r=1) x"), HasSubstr("after the shape"));
   EXPECT_THAT(error("grid(file=\"/no/such.sdf\")"), HasSubstr("/no/such.sdf: cannot open"));
+  EXPECT_THAT(error("grid(file=\"/dev/zero\")"), HasSubstr("/dev/zero: not a regular file"));
+  std::string deep;
+  for (int i = 0; i < 1000; ++i) deep += "scale(";
+  EXPECT_THAT(error(deep), HasSubstr("nested more than 200 deep"));
 }
 
 }  // namespace
