@@ -212,6 +212,15 @@ int main(int argc, char** argv) {
   }
   flush_warnings();
 
+  if (!out_dir.empty() && wants(rbsim::OutputKind::kGlb)) {
+    std::int64_t triangles = 0;
+    for (const auto& b : sim->bodies) triangles += b.display.F.rows();
+    if (triangles > 2000000) {
+      std::cerr << "warning: the .glb will carry " << triangles << " triangles (about " << triangles * 72 / 1000000
+                << " MB of vertices); viewers may be slow: decimate the mesh for viewing, or leave glb out of --outputs\n";
+    }
+  }
+
   std::unique_ptr<rbsim::TrajectoryWriter> writer;
   rbsim::Recording recording;
   const bool record = !out_dir.empty() && (plot || wants(rbsim::OutputKind::kGlb));
