@@ -53,6 +53,19 @@ void CheckPlausibleSize(Report& r) {
 
 namespace {
 
+// What every path reports once r.mp is known: size and its plausibility, principal axes,
+// validity (with a tolerance that an estimate's noise needs).
+void Conclude(Report& r, double size_m, double validity_tolerance = 1e-12) {
+  r.size_m = size_m;
+  CheckPlausibleSize(r);
+  r.principal = ComputePrincipalInertia(r.mp.inertia_com);
+  r.validity = CheckPhysicallyValid(r.principal.moments, validity_tolerance);
+}
+
+double Diagonal(const PolygonMesh& mesh) {
+  return (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
+}
+
 // Integral in file units → SI mass properties at the requested density or total mass.
 void Finish(Report& r, const VolumeIntegrals& integrals, const Options& opt, double size_file_units) {
   if (integrals.volume < 0) {
@@ -67,10 +80,7 @@ void Finish(Report& r, const VolumeIntegrals& integrals, const Options& opt, dou
   r.mp.mass = r.mp.volume * density;
   r.mp.inertia_com *= density;
   r.mp.density = density;
-  r.size_m = scale * size_file_units;
-  CheckPlausibleSize(r);
-  r.principal = ComputePrincipalInertia(r.mp.inertia_com);
-  r.validity = CheckPhysicallyValid(r.principal.moments);
+  Conclude(r, scale * size_file_units);
 }
 
 std::string Lower(std::string s) {
@@ -97,10 +107,7 @@ void Estimate(Report& r, const ImplicitSolid& solid, const Options& opt, Progres
   const MassPropertiesEstimate e = EstimateMassProperties(solid, opt.density, mc);
   r.estimate = e;
   r.mp = e.value;
-  r.principal = ComputePrincipalInertia(r.mp.inertia_com);
-  r.validity = CheckPhysicallyValid(r.principal.moments, 1e-6);
-  r.size_m = solid.Bounds().sizes().norm();
-  CheckPlausibleSize(r);
+  Conclude(r, solid.Bounds().sizes().norm(), 1e-6);
   r.path_used = std::string(opt.method == "mc" ? "Monte Carlo" : "quasi-Monte Carlo (Owen-scrambled Sobol)") + ", " +
                 std::to_string(e.samples) + " points" +
                 (opt.method == "mc" ? "" : " in " + std::to_string(e.randomizations) + " randomizations");
@@ -217,10 +224,7 @@ Report Compute(const std::string& file, const Options& opt) {
     if (!(s.area > 0)) throw MeshFileError(file + ": the surface has no area");
     const double sigma = opt.mass > 0 ? opt.mass / (s.area * scale * scale) : opt.area_density;
     r.mp = ShellMassProperties(s, sigma, scale);
-    r.size_m = scale * (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
-    CheckPlausibleSize(r);
-    r.principal = ComputePrincipalInertia(r.mp.inertia_com);
-    r.validity = CheckPhysicallyValid(r.principal.moments);
+    Conclude(r, scale * Diagonal(mesh));
     if (!r.topology.BoundsVolume()) r.warnings.push_back(r.topology.Problems() + "; fine for a thin shell");
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return r;
@@ -278,7 +282,7 @@ Report Compute(const std::string& file, const Options& opt) {
     }
     r.path_used = "polygons (Mirtich), the surface and its inward offset by " + Fixed(opt.wall, "%g") + " " + opt.unit;
     const VolumeIntegrals integrals = IntegratePolygons(r.loaded.mesh, io);
-    Finish(r, integrals, opt, (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm());
+    Finish(r, integrals, opt, Diagonal(mesh));
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return r;
   }
@@ -294,7 +298,7 @@ Report Compute(const std::string& file, const Options& opt) {
     const TriangleMesh tri = Triangulate(mesh);
     integrals = IntegrateTriangles(tri.V, tri.F, io);
   }
-  Finish(r, integrals, opt, (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm());
+  Finish(r, integrals, opt, Diagonal(mesh));
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

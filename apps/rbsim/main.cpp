@@ -176,15 +176,7 @@ int main(int argc, char** argv) {
         }
       }
     }
-    if (scene.dt > scene.duration) {
-      std::cerr << "error: " << scene.file << ": the step dt = " << scene.dt << " s is longer than the duration "
-                << scene.duration << " s\n";
-      return 1;
-    }
-    if (scene.duration / scene.dt > 1e9) {
-      std::cerr << "error: " << scene.file << ": duration / dt is more than 10^9 steps\n";
-      return 1;
-    }
+    if (dt || duration || rate) rbsim::CheckTiming(scene, warnings);
   } catch (const std::exception& e) {
     flush_warnings();
     std::cerr << "error: " << e.what() << "\n";

@@ -193,6 +193,8 @@ Quaternion ReadOrientation(Fields& f, const std::string& key, std::vector<std::s
   f.Fail(key, "must be a quaternion [w, x, y, z] or {\"axis\": [x, y, z], \"angle_deg\": a}, not " + TypeName(*v));
 }
 
+const std::vector<std::string> kUnits = {"m", "cm", "mm", "in", "ft"};  // as massprops --unit
+
 ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {
   ShapeSpec s;
   const bool has_mesh = f.Has("mesh"), has_solid = f.Has("solid"), has_implicit = f.Has("implicit");
@@ -214,7 +216,7 @@ ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {
     } catch (const std::exception& e) {
       f.Fail("implicit", e.what());
     }
-    s.unit = f.String("unit", "m", {"m", "cm", "mm", "in", "ft"});
+    s.unit = f.String("unit", "m", kUnits);
   } else if (has_mesh) {
     const std::string file = f.String("mesh", "");
     if (file.empty()) f.Fail("mesh", "is empty");
@@ -226,7 +228,7 @@ ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {
       f.Fail("mesh", "'" + file + "' not found" + (file == p.string() ? "" : " (looked for " + p.string() + ")"));
     }
     s.mesh_file = p.lexically_normal().string();
-    s.unit = f.String("unit", "m", {"m", "cm", "mm", "in", "ft"});
+    s.unit = f.String("unit", "m", kUnits);
     s.repair = f.Bool("repair", false);
     s.allow_open = f.Bool("allow_open", false);
   } else {
@@ -435,15 +437,22 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
     scene.plot_body = BodyIndex(f, "plot_body", *pb, scene.bodies);
   }
   f.Done();
+  CheckTiming(scene, warnings);
+  return scene;
+}
 
-  if (scene.dt > scene.duration) f.Fail("dt", "the step (" + Num(scene.dt) + " s) is longer than the duration (" + Num(scene.duration) + " s)");
+void CheckTiming(const Scene& scene, std::vector<std::string>& warnings) {
+  if (scene.dt > scene.duration) {
+    throw SceneError(scene.file + ": dt: the step (" + Num(scene.dt) + " s) is longer than the duration (" +
+                     Num(scene.duration) + " s)");
+  }
   if (scene.duration / scene.dt > 1e9) {
-    f.Fail("dt", "duration / dt = " + Num(scene.duration / scene.dt) + " steps; more than 10^9 is refused");
+    throw SceneError(scene.file + ": dt: duration / dt = " + Num(scene.duration / scene.dt) +
+                     " steps; more than 10^9 is refused");
   }
   if (scene.output_rate * scene.dt > 1.0 + 1e-9) {
-    warnings.push_back(file + ": output_rate " + Num(scene.output_rate) + " Hz is above 1/dt; every step is written");
+    warnings.push_back(scene.file + ": output_rate " + Num(scene.output_rate) + " Hz is above 1/dt; every step is written");
   }
-  return scene;
 }
 
 Scene LoadScene(const std::string& path, std::vector<std::string>& warnings) {

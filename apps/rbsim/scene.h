@@ -89,6 +89,9 @@ struct Scene {
 /// @throws SceneError naming `file`, the field and the fault.
 Scene ParseScene(const nlohmann::json& json, const std::string& file, const std::string& base_dir,
                  std::vector<std::string>& warnings);
+/// The checks of dt, duration and output_rate (ParseScene runs them; run them again after
+/// changing those fields). @throws SceneError naming the file and the field.
+void CheckTiming(const Scene& scene, std::vector<std::string>& warnings);
 /// Reads, parses and validates a scene file. @throws SceneError.
 Scene LoadScene(const std::string& path, std::vector<std::string>& warnings);
 

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <string>
 #include <stdexcept>
 #include <vector>
 
@@ -147,34 +148,40 @@ void AccumulatePolygon(int n, const CornerFn& p, Moments& m) {
 
 }  // namespace
 
+namespace internal {
+
+void CheckPolygonMesh(const PolygonMesh& mesh, const char* what) {
+  if (mesh.offsets.empty() || mesh.offsets.front() != 0 ||
+      mesh.offsets.back() != static_cast<std::int64_t>(mesh.indices.size())) {
+    throw std::invalid_argument(std::string(what) + ": face offsets do not match the index list");
+  }
+  for (std::int64_t f = 0; f < mesh.num_faces(); ++f) {
+    if (mesh.face_size(f) < 3) {
+      std::ostringstream msg;
+      msg << what << ": face " << f << " has " << mesh.face_size(f) << " corners; a face needs at least 3";
+      throw std::invalid_argument(msg.str());
+    }
+  }
+  const std::int64_t nv = mesh.V.rows();
+  for (const std::int32_t i : mesh.indices) {
+    if (i < 0 || i >= nv) {
+      std::ostringstream msg;
+      msg << what << ": a face refers to vertex " << i << ", but the mesh has " << nv << " vertices";
+      throw std::invalid_argument(msg.str());
+    }
+  }
+}
+
+}  // namespace internal
+
 VolumeIntegrals IntegratePolygons(const PolygonMesh& mesh, const IntegrationOptions& options) {
   const Vector3 center = internal::ReferencePoint(mesh.V, options.num_threads, "IntegratePolygons");
   const Vector3 ref = options.reference.value_or(center);
   if (!ref.allFinite()) {
     throw std::invalid_argument("IntegratePolygons: the reference point is not finite");
   }
-  if (mesh.offsets.empty() || mesh.offsets.front() != 0 ||
-      mesh.offsets.back() != static_cast<std::int64_t>(mesh.indices.size())) {
-    throw std::invalid_argument("IntegratePolygons: face offsets do not match the index list");
-  }
+  internal::CheckPolygonMesh(mesh, "IntegratePolygons");
   const std::int64_t nf = mesh.num_faces();
-  const std::int64_t nv = mesh.V.rows();
-  for (std::int64_t f = 0; f < nf; ++f) {
-    if (mesh.face_size(f) < 3) {
-      std::ostringstream msg;
-      msg << "IntegratePolygons: face " << f << " has " << mesh.face_size(f)
-          << " corners; a face needs at least 3";
-      throw std::invalid_argument(msg.str());
-    }
-  }
-  for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
-    if (mesh.indices[i] < 0 || mesh.indices[i] >= nv) {
-      std::ostringstream msg;
-      msg << "IntegratePolygons: a face refers to vertex " << mesh.indices[i]
-          << ", but the mesh has " << nv << " vertices";
-      throw std::invalid_argument(msg.str());
-    }
-  }
 
   const std::int64_t blocks = (nf + kFaceBlock - 1) / kFaceBlock;
   std::vector<Moments> parts(static_cast<std::size_t>(blocks));

@@ -26,24 +26,6 @@ struct SurfaceSums {
   }
 };
 
-void CheckIndices(const PolygonMesh& mesh, const char* what) {
-  if (mesh.offsets.empty() || mesh.offsets.front() != 0 ||
-      mesh.offsets.back() != static_cast<std::int64_t>(mesh.indices.size())) {
-    throw std::invalid_argument(std::string(what) + ": face offsets do not match the index list");
-  }
-  for (std::int64_t f = 0; f < mesh.num_faces(); ++f) {
-    if (mesh.face_size(f) < 3) {
-      throw std::invalid_argument(std::string(what) + ": face " + std::to_string(f) + " has fewer than 3 corners");
-    }
-  }
-  for (auto i : mesh.indices) {
-    if (i < 0 || i >= mesh.V.rows()) {
-      throw std::invalid_argument(std::string(what) + ": a face refers to vertex " + std::to_string(i) +
-                                  ", but the mesh has " + std::to_string(mesh.V.rows()) + " vertices");
-    }
-  }
-}
-
 // Newell's normal of a polygon (twice the vector area).
 Vector3 NewellNormal(const PolygonMesh& mesh, std::int64_t f) {
   Vector3 n = Vector3::Zero();
@@ -60,7 +42,7 @@ Vector3 NewellNormal(const PolygonMesh& mesh, std::int64_t f) {
 }  // namespace
 
 SurfaceIntegrals IntegrateSurface(const PolygonMesh& mesh, const IntegrationOptions& options) {
-  CheckIndices(mesh, "IntegrateSurface");
+  internal::CheckPolygonMesh(mesh, "IntegrateSurface");
   const Vector3 ref = options.reference.value_or(internal::ReferencePoint(mesh.V, options.num_threads, "IntegrateSurface"));
   if (!ref.allFinite()) throw std::invalid_argument("IntegrateSurface: the reference point is not finite");
   const std::int64_t nf = mesh.num_faces();
@@ -126,7 +108,7 @@ MassProperties ShellMassProperties(const SurfaceIntegrals& s, Scalar area_densit
 }
 
 OffsetResult OffsetInward(const PolygonMesh& mesh, Scalar t) {
-  CheckIndices(mesh, "OffsetInward");
+  internal::CheckPolygonMesh(mesh, "OffsetInward");
   if (!(std::isfinite(t) && t > 0)) throw std::invalid_argument("the wall thickness must be finite and positive");
   const Eigen::Index nv = mesh.V.rows();
   const std::int64_t nf = mesh.num_faces();

@@ -75,4 +75,8 @@ Moments ScaleTriangleSums(const Moments& raw);
 /// Bounding box of the vertices (validating finiteness; throws naming the first bad vertex).
 Vector3 ReferencePoint(const Eigen::Ref<const VertexMatrix>& V, int num_threads, const char* what);
 
+/// Checks a polygon mesh's structure: offsets that match the index list, at least 3 corners per
+/// face, indices in range. Throws std::invalid_argument starting with `what`.
+void CheckPolygonMesh(const PolygonMesh& mesh, const char* what);
+
 }  // namespace massprops::internal
