@@ -4,6 +4,10 @@ function(massprops_set_warnings target)
                                            -Wno-sign-conversion)
 endfunction()
 
-# Results must be the same bits on every run and every thread count; keep the compiler from
-# contracting a*b+c into FMAs differently in different inlining contexts.
-add_compile_options(-ffp-contract=off)
+# massprops_set_floating_point(target): the floating-point rules that results depend on, set on
+# every target that computes. Results must be the same bits on every run and every thread count;
+# -ffp-contract=off keeps the compiler from contracting a*b+c into FMAs differently in different
+# inlining contexts.
+function(massprops_set_floating_point target)
+  target_compile_options(${target} PRIVATE -ffp-contract=off)
+endfunction()

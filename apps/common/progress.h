@@ -1,67 +1,42 @@
 #pragma once
-// A progress line on stderr for work that takes more than a second: silent for quick files, then
-// "massprops: FILE: STAGE (N s)" refreshed in place on a terminal, or one line per stage when
-// stderr is a file or pipe.
+// Progress on stderr for work that takes more than a second, shared by both commands: silent for
+// quick work, then "PROGRAM: WHAT: STAGE (N s)" — or a bar with the fraction done and the time
+// left, once a fraction is known — refreshed in place on a terminal, or one line per stage (per
+// tenth) when stderr is a file or pipe.
 
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
-#include <cstdio>
 #include <mutex>
 #include <string>
 #include <thread>
-
-#include <unistd.h>
 
 namespace massprops::app {
 
 class Progress {
  public:
-  Progress(std::string file, bool enabled) : file_(std::move(file)) {
-    if (enabled) thread_ = std::thread([this] { Run(); });
-  }
-  ~Progress() {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      done_ = true;
-    }
-    cv_.notify_all();
-    if (thread_.joinable()) thread_.join();
-  }
+  /// `program` and `what` prefix every line ("massprops", the file); nothing is shown unless
+  /// `enabled`.
+  Progress(std::string program, std::string what, bool enabled);
+  ~Progress();
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
 
-  void Stage(const char* stage) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    stage_ = stage;
-  }
+  /// The stage now running (shown instead of a bar).
+  void Stage(const char* stage);
+  /// The fraction done, 0..1 (shown as a bar with the time left). Cheap: call it as often as you like.
+  void Fraction(double fraction) { fraction_.store(fraction, std::memory_order_relaxed); }
 
  private:
-  void Run() {
-    using namespace std::chrono_literals;
-    const auto start = std::chrono::steady_clock::now();
-    const bool tty = ::isatty(STDERR_FILENO) != 0;
-    std::string shown;
-    bool printed = false;
-    std::unique_lock<std::mutex> lock(mutex_);
-    if (cv_.wait_for(lock, 1s, [this] { return done_; })) return;  // quick: say nothing
-    while (!done_) {
-      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      if (tty) {
-        std::fprintf(stderr, "\rmassprops: %s: %s (%.0f s)\033[K", file_.c_str(), stage_.c_str(), s);
-        printed = true;
-      } else if (stage_ != shown) {
-        std::fprintf(stderr, "massprops: %s: %s (%.0f s)\n", file_.c_str(), stage_.c_str(), s);
-        shown = stage_;
-      }
-      std::fflush(stderr);
-      cv_.wait_for(lock, 500ms, [this] { return done_; });
-    }
-    if (printed) std::fprintf(stderr, "\r\033[K");
-  }
+  void Run();
+  void Show(double seconds, bool tty);
 
-  std::string file_;
-  std::string stage_ = "reading";
+  std::string program_, what_;
+  std::string stage_;
+  std::string shown_;
+  int shown_decile_ = -1;
+  bool printed_ = false;
+  std::atomic<double> fraction_{-1.0};
   bool done_ = false;
   std::mutex mutex_;
   std::condition_variable cv_;

@@ -4,159 +4,258 @@
 //                     [--format table|json|csv|urdf|sdf|mjcf] [--frame com|origin]
 //                     [--path auto|triangles|polygons] [--threads N] [--allow-open] [-o FILE]
 //
-// Errors are one line on stderr naming the file and the fault; the exit status is 1 when any
-// file failed, 2 for bad arguments. An output file is written whole or not at all.
+// This file only maps the command line onto the library's LoadOptions (massprops/load.h) and
+// prints what the formatters make of the results. Errors are one line on stderr naming the file
+// and the fault; the exit status is 1 when any file failed, 2 for bad arguments. An output file
+// is written whole or not at all.
 
 #include <cmath>
-#include <cstdio>
-#include <fstream>
 #include <iostream>
+#include <map>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "atomic_file.h"
-#include "report.h"
+#include "cli.h"
+#include "format.h"
+#include "massprops/implicit.h"
+#include "massprops/load.h"
+#include "massprops/version.h"
+#include "progress.h"
 
+namespace {
+
+using namespace massprops;
+
+// What the command line says, before it becomes typed options.
+struct Arguments {
+  std::vector<std::string> files;
+  double density = 1000.0;
+  double mass = 0.0;
+  std::string unit = "m";
+  std::string path = "auto";
+  std::string format = "table";
+  std::string frame = "com";
+  std::string output;
+  int threads = 0;
+  bool quiet = false;
+  bool allow_open = false;
+  bool full_check = false;
+  bool repair = false;
+  bool check_self_intersections = false;
+  bool shell = false;
+  double area_density = 0.0;
+  double wall = 0.0;
+  std::string implicit;
+  bool winding_number = false;
+  bool mc = false;
+  double samples = 1 << 20;
+  int randomizations = 16;
+  std::uint64_t seed = 1;
+  double tolerance = 0;
+  std::string reader = "auto";
+};
+
+template <typename T>
+T FromName(const std::map<std::string, T>& names, const std::string& name) {
+  return names.at(name);  // CLI11's IsMember admitted only these
+}
+
+MonteCarloOptions Sampling(const Arguments& a) {
+  MonteCarloOptions mc;
+  mc.method = a.mc ? SamplingMethod::kMonteCarlo : SamplingMethod::kQuasiMonteCarlo;
+  mc.samples = static_cast<std::int64_t>(a.samples);
+  mc.randomizations = a.randomizations;
+  mc.seed = a.seed;
+  mc.tolerance = a.tolerance;
+  return mc;
+}
+
+LoadOptions ToLoadOptions(const Arguments& a) {
+  LoadOptions o;
+  o.unit = ParseLengthUnit(a.unit);
+  o.mass = a.mass > 0 ? MassSpec(TotalMass{a.mass}) : MassSpec(Density{a.density});
+  if (a.shell) {
+    o.model = ShellModel{a.area_density};
+  } else if (a.wall > 0) {
+    o.model = WallModel{a.wall};
+  } else if (a.winding_number) {
+    o.model = WindingNumberModel{Sampling(a)};
+  }
+  o.path = FromName<IntegrationPath>(
+      {{"auto", IntegrationPath::kAuto}, {"triangles", IntegrationPath::kTriangles}, {"polygons", IntegrationPath::kPolygons}},
+      a.path);
+  o.reader = a.reader == "assimp" ? Reader::kAssimp : Reader::kAuto;
+  o.repair = a.repair;
+  o.allow_open = a.allow_open;
+  o.full_check = a.full_check;
+  o.check_self_intersections = a.check_self_intersections;
+  o.num_threads = a.threads;
+  return o;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
-  using massprops::app::Options;
-  using massprops::app::Report;
   CLI::App app{"massprops: exact mass properties of the solids that mesh files bound.\n"
                "Reads OBJ, STL, PLY, OFF (own parsers) and other formats through assimp."};
-  Options opt;
-  app.add_option("files", opt.files, "Mesh files");
-  app.add_option("--implicit", opt.implicit,
+  app.set_version_flag("--version", std::string("massprops ") + kVersion);
+  Arguments a;
+  app.add_option("files", a.files, "Mesh files");
+  app.add_option("--implicit", a.implicit,
                  "Estimate a solid given in the shape syntax, e.g. 'torus(R=1, r=0.25)' "
                  "(Monte Carlo / QMC, with error bars; see the README)");
-  app.add_flag("--winding-number", opt.winding_number,
+  app.add_flag("--winding-number", a.winding_number,
                "Files: the solid where the generalized winding number is >= 1/2, estimated by "
                "Monte Carlo / QMC with error bars (meshes with holes get a sensible answer)");
-  auto* mc = app.add_flag("--mc", "Plain Monte Carlo (with --implicit or --winding-number)");
+  auto* mc = app.add_flag("--mc", a.mc, "Plain Monte Carlo (with --implicit or --winding-number)");
   app.add_flag("--qmc", "Randomized quasi-Monte Carlo, scrambled Sobol (the default)")->excludes(mc);
-  app.add_option("--samples", opt.samples, "Monte-Carlo points in all (e.g. 1e7)")->check(CLI::Range(2.0, 1e13));
-  app.add_option("--randomizations", opt.randomizations, "QMC: independent scramblings (error bars from their spread)")
+  app.add_option("--samples", a.samples, "Monte-Carlo points in all (e.g. 1e7)")->check(CLI::Range(2.0, 1e13));
+  app.add_option("--randomizations", a.randomizations, "QMC: independent scramblings (error bars from their spread)")
       ->check(CLI::Range(2, 1000));
-  app.add_option("--seed", opt.seed, "Random seed (same seed, same bits, any thread count)");
-  app.add_option("--tolerance", opt.tolerance,
+  app.add_option("--seed", a.seed, "Random seed (same seed, same bits, any thread count)");
+  app.add_option("--tolerance", a.tolerance,
                  "Sample until the relative standard error of the mass and of each principal moment "
                  "is below this")
       ->check(CLI::Range(1e-12, 1.0));
-  auto* density = app.add_option("--density", opt.density, "Uniform density in kg/m^3")
+  auto* density = app.add_option("--density", a.density, "Uniform density in kg/m^3")
                       ->check(CLI::PositiveNumber)
                       ->capture_default_str();
-  app.add_option("--mass", opt.mass, "Total mass in kg (sets the density; excludes --density)")
+  app.add_option("--mass", a.mass, "Total mass in kg (sets the density; excludes --density)")
       ->check(CLI::PositiveNumber)
       ->excludes(density);
-  auto* shell = app.add_flag("--shell", opt.shell,
+  auto* shell = app.add_flag("--shell", a.shell,
                              "Thin shell: the surface itself carries the mass, at --area-density "
                              "(or --mass); open meshes are fine");
-  app.add_option("--area-density", opt.area_density, "Area density of a --shell, kg/m^2")
+  app.add_option("--area-density", a.area_density, "Area density of a --shell, kg/m^2")
       ->check(CLI::PositiveNumber)
       ->needs(shell);
-  app.add_option("--wall", opt.wall,
+  app.add_option("--wall", a.wall,
                  "Hollow part: the solid between the closed surface and its inward offset by this "
                  "wall thickness (in the file's unit, --unit)")
       ->check(CLI::PositiveNumber)
       ->excludes(shell);
-  app.add_option("--unit", opt.unit, "Unit of the file's coordinates")
-      ->check(CLI::IsMember({"m", "cm", "mm", "in", "ft"}))
-      ->capture_default_str();
-  app.add_option("--format", opt.format, "Output format")
+  std::vector<std::string> units;
+  for (LengthUnit u : kAllLengthUnits) units.emplace_back(UnitName(u));
+  app.add_option("--unit", a.unit, "Unit of the file's coordinates")->check(CLI::IsMember(units))->capture_default_str();
+  app.add_option("--format", a.format, "Output format")
       ->check(CLI::IsMember({"table", "json", "csv", "urdf", "sdf", "mjcf"}))
       ->capture_default_str();
-  app.add_option("--frame", opt.frame,
+  app.add_option("--frame", a.frame,
                  "Also report the inertia about the file's origin (origin), or only about the "
                  "center of mass (com)")
       ->check(CLI::IsMember({"com", "origin"}))
       ->capture_default_str();
-  app.add_option("--path", opt.path,
+  app.add_option("--path", a.path,
                  "Integration path: auto (triangles; Mirtich for quads and n-gons), triangles, "
                  "polygons")
       ->check(CLI::IsMember({"auto", "triangles", "polygons"}))
       ->capture_default_str();
-  app.add_option("--threads", opt.threads, "Worker threads (0 = all cores); same bits for any count")
+  app.add_option("--threads", a.threads, "Worker threads (0 = all cores); same bits for any count")
       ->check(CLI::NonNegativeNumber);
-  app.add_flag("--allow-open", opt.allow_open,
+  app.add_flag("--allow-open", a.allow_open,
                "Compute even when the mesh is open or inconsistently oriented (with a warning)");
-  app.add_flag("--repair", opt.repair,
+  app.add_flag("--repair", a.repair,
                "Repair with CGAL first: merge near-coincident vertices (1e-9 of the size), drop "
                "degenerate and duplicate faces, orient faces consistently, stitch borders, orient "
                "shells outward and cavities inward; what changed is reported");
-  app.add_flag("--check-self-intersections", opt.check_self_intersections,
+  app.add_flag("--check-self-intersections", a.check_self_intersections,
                "Count pairs of faces that intersect (CGAL); a warning when there are any");
-  app.add_flag("--full-check", opt.full_check,
+  app.add_flag("--full-check", a.full_check,
                "Binary STL: weld the corners and count vertices, components and bad edges even "
                "when the streaming check finds the surface closed (slower)");
-  app.add_option("--reader", opt.reader,
+  app.add_option("--reader", a.reader,
                  "auto: our own readers for OBJ/STL/PLY/OFF, assimp for the rest; assimp: assimp "
                  "for every format (32-bit coordinates; for comparison)")
       ->check(CLI::IsMember({"auto", "assimp"}))
       ->capture_default_str();
-  app.add_flag("-q,--quiet", opt.quiet, "No progress line on stderr");
-  app.add_option("-o,--output", opt.output, "Write the output to this file (whole or not at all)");
-  CLI11_PARSE(app, argc, argv);
-  if (!std::isfinite(opt.density) || !std::isfinite(opt.mass) || !std::isfinite(opt.area_density) ||
-      !std::isfinite(opt.wall)) {
-    std::cerr << "error: --density, --mass, --area-density and --wall must be finite\n";
-    return 2;
+  app.add_flag("-q,--quiet", a.quiet, "No progress line on stderr");
+  app.add_option("-o,--output", a.output, "Write the output to this file (whole or not at all)");
+  if (const int status = app::ParseArguments(app, argc, argv); status >= 0) return status;
+
+  auto bad = [](const std::string& what) {
+    std::cerr << "error: " << what << "\n";
+    return app::kBadArguments;
+  };
+  if (!a.files.empty() && app::RefuseReservedWord("massprops", a.files[0], {"batch", "merge", "fill", "validate"})) {
+    return app::kBadArguments;
   }
-  if (opt.shell && !(opt.area_density > 0) && !(opt.mass > 0)) {
-    std::cerr << "error: --shell needs --area-density (kg/m^2) or --mass (kg)\n";
-    return 2;
+  if (!std::isfinite(a.density) || !std::isfinite(a.mass) || !std::isfinite(a.area_density) || !std::isfinite(a.wall)) {
+    return bad("--density, --mass, --area-density and --wall must be finite");
   }
-  if (opt.shell && app.count("--density") > 0) {
-    std::cerr << "error: --shell takes --area-density (kg/m^2), not --density\n";
-    return 2;
-  }
-  if (app.count("--mc") > 0) opt.method = "mc";
-  if (opt.files.empty() && opt.implicit.empty()) {
-    std::cerr << "error: give mesh files, or --implicit SHAPE (see --help)\n";
-    return 2;
-  }
+  if (a.shell && !(a.area_density > 0) && !(a.mass > 0)) return bad("--shell needs --area-density (kg/m^2) or --mass (kg)");
+  if (a.shell && app.count("--density") > 0) return bad("--shell takes --area-density (kg/m^2), not --density");
+  if (a.files.empty() && a.implicit.empty()) return bad("give mesh files, or --implicit SHAPE (see --help)");
   const bool sampling_flags = app.count("--mc") + app.count("--qmc") + app.count("--samples") +
-                                  app.count("--randomizations") + app.count("--seed") + app.count("--tolerance") > 0;
-  if (sampling_flags && opt.implicit.empty() && !opt.winding_number) {
-    std::cerr << "error: --mc/--qmc/--samples/--randomizations/--seed/--tolerance belong to --implicit or "
-                 "--winding-number (exact integration needs none)\n";
-    return 2;
+                                  app.count("--randomizations") + app.count("--seed") + app.count("--tolerance") >
+                              0;
+  if (sampling_flags && a.implicit.empty() && !a.winding_number) {
+    return bad("--mc/--qmc/--samples/--randomizations/--seed/--tolerance belong to --implicit or "
+               "--winding-number (exact integration needs none)");
   }
-  if (opt.winding_number && (opt.shell || opt.wall > 0)) {
-    std::cerr << "error: --winding-number does not combine with --shell or --wall\n";
-    return 2;
-  }
-  const bool robot = opt.format == "urdf" || opt.format == "sdf" || opt.format == "mjcf";
+  if (a.winding_number && (a.shell || a.wall > 0)) return bad("--winding-number does not combine with --shell or --wall");
+
+  cli::FormatOptions format;
+  format.format = FromName<cli::Format>({{"table", cli::Format::kTable},
+                                         {"json", cli::Format::kJson},
+                                         {"csv", cli::Format::kCsv},
+                                         {"urdf", cli::Format::kUrdf},
+                                         {"sdf", cli::Format::kSdf},
+                                         {"mjcf", cli::Format::kMjcf}},
+                                        a.format);
+  format.frame = a.frame == "origin" ? cli::Frame::kOrigin : cli::Frame::kCenterOfMass;
+  const bool robot = format.format == cli::Format::kUrdf || format.format == cli::Format::kSdf ||
+                     format.format == cli::Format::kMjcf;
+  LoadOptions options = ToLoadOptions(a);
 
   int failures = 0;
-  std::vector<Report> reports;
+  std::vector<SolidResult> results;
   std::string text;
-  std::vector<std::string> jobs = opt.files;
-  if (!opt.implicit.empty()) jobs.push_back("\x01" + opt.implicit);  // marks the shape
-  for (const auto& job : jobs) {
-    const bool shape = job[0] == '\x01';
-    const std::string file = shape ? "--implicit" : job;
+  auto run = [&](const std::string& name, const auto& compute) {
     try {
-      Report r = shape ? massprops::app::ComputeImplicit(job.substr(1), opt) : massprops::app::Compute(file, opt);
-      for (const auto& w : r.warnings) std::cerr << "warning: " << file << ": " << w << "\n";
-      if (opt.format == "table") text += (text.empty() ? "" : "\n") + FormatTable(r, opt);
-      if (robot) text += FormatRobot(r, opt.format);
-      reports.push_back(std::move(r));
-    } catch (const massprops::MeshFileError& e) {  // already names the file
+      app::Progress progress("massprops", name, !a.quiet);
+      SolidResult r = compute([&progress](const char* stage) { progress.Stage(stage); });
+      for (const Finding& f : r.findings) {
+        std::cerr << "warning: " << name << ": " << Worded(f.message, cli::CliVocabulary()) << "\n";
+      }
+      if (format.format == cli::Format::kTable) text += (text.empty() ? "" : "\n") + FormatTable(r, format);
+      if (robot) text += FormatRobot(r, format.format);
+      results.push_back(std::move(r));
+    } catch (const MeshFileError& e) {  // already names the file
       ++failures;
-      std::cerr << "error: " << e.what() << "\n";
+      std::cerr << "error: " << WordedError(e, cli::CliVocabulary()) << "\n";
     } catch (const std::exception& e) {
       ++failures;
-      std::cerr << "error: " << file << ": " << e.what() << "\n";
+      std::cerr << "error: " << name << ": " << e.what() << "\n";
     }
+  };
+  for (const std::string& file : a.files) {
+    run(file, [&](const ProgressCallback& progress) {
+      LoadOptions o = options;
+      o.progress = progress;
+      return LoadSolid(file, o);
+    });
   }
-  if (!reports.empty()) {
-    if (opt.format == "json") text = FormatJson(reports, opt);
-    if (opt.format == "csv") text = FormatCsv(reports, opt);
+  if (!a.implicit.empty()) {
+    run("--implicit", [&](const ProgressCallback& progress) {
+      ImplicitOptions o;
+      o.unit = options.unit;
+      o.mass = options.mass;
+      o.sampling = Sampling(a);
+      o.num_threads = a.threads;
+      o.progress = progress;
+      return EstimateImplicit(*implicit::ParseShape(a.implicit), o);
+    });
   }
-  if (!opt.output.empty()) {
+  if (!results.empty()) {
+    if (format.format == cli::Format::kJson) text = FormatJson(results, format);
+    if (format.format == cli::Format::kCsv) text = FormatCsv(results, format);
+  }
+  if (!a.output.empty()) {
     try {
-      if (!text.empty()) massprops::app::WriteFileAtomically(opt.output, text);
+      if (!text.empty()) app::WriteFileAtomically(a.output, text);
     } catch (const std::exception& e) {
       std::cerr << "error: " << e.what() << "\n";
       return 1;

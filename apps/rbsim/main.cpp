@@ -18,12 +18,13 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "cli.h"
+#include "massprops/version.h"
 #include "outputs.h"
+#include "progress.h"
 #include "scene.h"
 #include "simulation.h"
 
@@ -31,42 +32,6 @@ namespace {
 
 std::atomic<bool> g_stop{false};
 extern "C" void OnSignal(int) { g_stop.store(true); }
-
-// A progress bar on stderr, shown only once a run has taken a second.
-class ProgressBar {
- public:
-  explicit ProgressBar(bool enabled) : enabled_(enabled), tty_(::isatty(STDERR_FILENO) != 0) {}
-  ~ProgressBar() {
-    if (shown_ && tty_) std::fprintf(stderr, "\r\033[K");
-  }
-  void Update(double fraction) {
-    if (!enabled_) return;
-    const auto now = std::chrono::steady_clock::now();
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    if (elapsed < 1.0) return;
-    if (tty_) {
-      if (shown_ && std::chrono::duration<double>(now - last_).count() < 0.1) return;
-    } else if (static_cast<int>(fraction * 10) == last_decile_) {
-      return;
-    }
-    last_ = now;
-    last_decile_ = static_cast<int>(fraction * 10);
-    shown_ = true;
-    constexpr int kWidth = 30;
-    const int filled = static_cast<int>(fraction * kWidth);
-    const double eta = fraction > 0 ? elapsed * (1 - fraction) / fraction : 0;
-    std::fprintf(stderr, "%srbsim [%.*s%*s] %3.0f%%  %.0f s elapsed, ~%.0f s left%s", tty_ ? "\r" : "", filled,
-                 "##############################", kWidth - filled, "", 100 * fraction, elapsed, eta,
-                 tty_ ? "\033[K" : "\n");
-    std::fflush(stderr);
-  }
-
- private:
-  bool enabled_, tty_;
-  bool shown_ = false;
-  int last_decile_ = 0;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_ = start_;
-};
 
 bool ParseVec3(const std::string& text, massprops::Vector3& out) {
   double v[3];
@@ -81,6 +46,7 @@ bool ParseVec3(const std::string& text, massprops::Vector3& out) {
 int main(int argc, char** argv) {
   CLI::App app{"rbsim: simulate rigid bodies made from mesh files, with trajectory, diagnostics, plot and an "
                "animated .glb.\nScene schema: see the README (section 'rbsim scenes')."};
+  app.set_version_flag("--version", std::string("rbsim ") + massprops::kVersion);
   std::string scene_file, mesh, unit = "m", omega_text, omega_frame = "world", velocity_text, out_dir,
                           integrator, outputs_text;
   double density = 1000, mass = 0;
@@ -90,8 +56,9 @@ int main(int argc, char** argv) {
   auto* scene_opt = app.add_option("scene", scene_file, "Scene file (JSON)");
   auto* mesh_opt = app.add_option("--mesh", mesh, "Quick path: spin this one mesh torque-free (no scene file)")
                        ->excludes(scene_opt);
-  app.add_option("--unit", unit, "--mesh: unit of the file's coordinates")
-      ->check(CLI::IsMember({"m", "cm", "mm", "in", "ft"}))->needs(mesh_opt);
+  std::vector<std::string> units;
+  for (massprops::LengthUnit u : massprops::kAllLengthUnits) units.emplace_back(massprops::UnitName(u));
+  app.add_option("--unit", unit, "--mesh: unit of the file's coordinates")->check(CLI::IsMember(units))->needs(mesh_opt);
   auto* density_opt = app.add_option("--density", density, "--mesh: density, kg/m^3")->check(CLI::PositiveNumber)->needs(mesh_opt);
   app.add_option("--mass", mass, "--mesh: total mass, kg")->check(CLI::PositiveNumber)->excludes(density_opt)->needs(mesh_opt);
   app.add_flag("--repair", repair, "--mesh: repair the mesh first (as massprops --repair)")->needs(mesh_opt);
@@ -113,10 +80,11 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads, "Worker threads for mesh loading and large worlds (0 = all cores)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("-q,--quiet", quiet, "No progress bar");
-  CLI11_PARSE(app, argc, argv);
+  if (const int status = massprops::app::ParseArguments(app, argc, argv); status >= 0) return status;
+  if (massprops::app::RefuseReservedWord("rbsim", scene_file, {"poses"})) return massprops::app::kBadArguments;
   if (scene_file.empty() && mesh.empty()) {
     std::cerr << "error: give a scene file, or --mesh FILE for the quick path (see --help)\n";
-    return 2;
+    return massprops::app::kBadArguments;
   }
 
   std::vector<std::string> warnings;
@@ -137,11 +105,11 @@ int main(int argc, char** argv) {
       massprops::Vector3 omega = massprops::Vector3::Zero(), velocity = massprops::Vector3::Zero();
       if (!omega_text.empty() && !ParseVec3(omega_text, omega)) {
         std::cerr << "error: --omega: expected three finite numbers wx,wy,wz, got '" << omega_text << "'\n";
-        return 2;
+        return massprops::app::kBadArguments;
       }
       if (!velocity_text.empty() && !ParseVec3(velocity_text, velocity)) {
         std::cerr << "error: --velocity: expected three finite numbers vx,vy,vz, got '" << velocity_text << "'\n";
-        return 2;
+        return massprops::app::kBadArguments;
       }
       body["angular_velocity"] = {omega.x(), omega.y(), omega.z()};
       body["velocity"] = {velocity.x(), velocity.y(), velocity.z()};
@@ -160,7 +128,7 @@ int main(int argc, char** argv) {
         scene.integrator = dynamics::ParseIntegrator(integrator);
       } catch (const std::invalid_argument& e) {
         std::cerr << "error: --integrator: " << e.what() << "\n";
-        return 2;
+        return massprops::app::kBadArguments;
       }
     }
     if (!outputs_text.empty()) {
@@ -172,7 +140,7 @@ int main(int argc, char** argv) {
           scene.outputs.push_back(rbsim::ParseOutputName(name));
         } catch (const std::invalid_argument& e) {
           std::cerr << "error: --outputs: " << e.what() << "\n";
-          return 2;
+          return massprops::app::kBadArguments;
         }
       }
     }
@@ -230,14 +198,14 @@ int main(int argc, char** argv) {
   std::signal(SIGTERM, OnSignal);
   rbsim::RunStats stats;
   try {
-    ProgressBar bar(!quiet);
+    massprops::app::Progress progress("rbsim", "", !quiet);
     stats = rbsim::Run(
         *sim,
         [&](const dynamics::World& world, const dynamics::Diagnostics& d) {
           if (writer) writer->Add(*sim, world, d);
           if (record) recording.Add(*sim, world, d);
         },
-        [&bar](double f) { bar.Update(f); }, &g_stop);
+        [&progress](double f) { progress.Fraction(f); }, &g_stop);
   } catch (const std::exception& e) {
     std::cerr << "error: " << scene.file << ": the run failed at t = " << sim->world.time() << " s: " << e.what()
               << "\n";

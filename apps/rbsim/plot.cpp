@@ -74,14 +74,14 @@ void WritePlot(const std::string& path, const Simulation& sim, const Recording& 
     gp.send1d(omega);
     gp.send1d(omega);
     gp << "set format y '%.1e'\nset ylabel 'relative'\n";
-    gp << "set title " << Quoted(sim.energy_conserved ? "energy drift (E - E0)/|E0|  (conserved by the physics)"
-                                                      : "energy change (E - E0)/|E0|  (not conserved: " + sim.nonconservative + ")")
+    gp << "set title " << Quoted(sim.conservation.energy ? "energy drift (E - E0)/|E0|  (conserved by the physics)"
+                                                      : "energy change (E - E0)/|E0|  (not conserved: " + sim.conservation.energy_broken_by + ")")
        << "\n";
     gp << "plot '-' with lines lw 1.5 lc rgb '#d55e00' title 'energy'\n";
     gp.send1d(energy);
     gp << "set xlabel 'time, s'\n";
-    gp << "set title " << Quoted(sim.momentum_conserved ? "angular momentum drift (|L| - |L0|)/|L0|, about the world origin"
-                                                        : "angular momentum change (|L| - |L0|)/|L0|  (not conserved: " + sim.external + ")")
+    gp << "set title " << Quoted(sim.conservation.momentum ? "angular momentum drift (|L| - |L0|)/|L0|, about the world origin"
+                                                        : "angular momentum change (|L| - |L0|)/|L0|  (not conserved: " + sim.conservation.momentum_broken_by + ")")
        << "\n";
     gp << "plot '-' with lines lw 1.5 lc rgb '#0072b2' title '|L|'\n";
     gp.send1d(momentum);

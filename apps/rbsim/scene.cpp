@@ -193,7 +193,51 @@ Quaternion ReadOrientation(Fields& f, const std::string& key, std::vector<std::s
   f.Fail(key, "must be a quaternion [w, x, y, z] or {\"axis\": [x, y, z], \"angle_deg\": a}, not " + TypeName(*v));
 }
 
-const std::vector<std::string> kUnits = {"m", "cm", "mm", "in", "ft"};  // as massprops --unit
+std::vector<std::string> UnitNames() {
+  std::vector<std::string> names;
+  for (massprops::LengthUnit u : massprops::kAllLengthUnits) names.emplace_back(massprops::UnitName(u));
+  return names;
+}
+
+massprops::LengthUnit ReadUnit(Fields& f) {
+  return massprops::ParseLengthUnit(f.String("unit", "m", UnitNames()));
+}
+
+// A closed-form solid: {"type": NAME, sizes...}, the names and sizes of massprops::Primitive.
+massprops::Primitive ReadPrimitive(Fields& o) {
+  namespace pr = massprops::primitive;
+  const std::vector<std::string> names(std::begin(massprops::kPrimitiveNames), std::end(massprops::kPrimitiveNames));
+  const std::string t = o.String("type", "", names);
+  if (t.empty()) o.Fail("type", "is required");
+  massprops::Primitive p;
+  if (t == "box") {
+    if (!o.Has("size")) o.Fail("size", "is required: edge lengths [x, y, z]");
+    p = pr::Box{o.Vec3("size", Vector3::Zero(), "positive")};
+  } else if (t == "ellipsoid") {
+    if (!o.Has("semi_axes")) o.Fail("semi_axes", "is required: [a, b, c]");
+    p = pr::Ellipsoid{o.Vec3("semi_axes", Vector3::Zero(), "positive")};
+  } else if (t == "torus") {
+    const double major = o.RequiredNumber("major_radius", "positive");
+    const double minor = o.RequiredNumber("minor_radius", "positive");
+    if (!(minor < major)) {
+      o.Fail("minor_radius", "must be smaller than major_radius (a self-intersecting torus is not a solid)");
+    }
+    p = pr::Torus{major, minor};
+  } else if (t == "sphere") {
+    p = pr::Sphere{o.RequiredNumber("radius", "positive")};
+  } else if (t == "cylinder") {
+    const double r = o.RequiredNumber("radius", "positive");
+    p = pr::Cylinder{r, o.RequiredNumber("height", "positive")};
+  } else if (t == "cone") {
+    const double r = o.RequiredNumber("radius", "positive");
+    p = pr::Cone{r, o.RequiredNumber("height", "positive")};
+  } else {  // capsule
+    const double r = o.RequiredNumber("radius", "positive");
+    p = pr::Capsule{r, o.RequiredNumber("length", "positive")};
+  }
+  o.Done();
+  return p;
+}
 
 ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {
   ShapeSpec s;
@@ -207,8 +251,9 @@ ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {
                      : "needs a 'mesh' (file), a 'solid' or an 'implicit' shape");
   }
   if (f.Has("density") && f.Has("mass")) f.Fail("give 'density' or 'mass', not both");
-  s.density = f.Number("density", 1000.0, "positive");
-  s.mass = f.Number("mass", 0.0, "positive");
+  const double density = f.Number("density", 1000.0, "positive");
+  const double mass = f.Number("mass", 0.0, "positive");
+  s.mass = mass > 0 ? massprops::MassSpec(massprops::TotalMass{mass}) : massprops::MassSpec(massprops::Density{density});
   if (has_implicit) {
     s.implicit = f.String("implicit", "");
     try {
@@ -216,7 +261,7 @@ ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {
     } catch (const std::exception& e) {
       f.Fail("implicit", e.what());
     }
-    s.unit = f.String("unit", "m", kUnits);
+    s.unit = ReadUnit(f);
   } else if (has_mesh) {
     const std::string file = f.String("mesh", "");
     if (file.empty()) f.Fail("mesh", "is empty");
@@ -228,33 +273,12 @@ ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {
       f.Fail("mesh", "'" + file + "' not found" + (file == p.string() ? "" : " (looked for " + p.string() + ")"));
     }
     s.mesh_file = p.lexically_normal().string();
-    s.unit = f.String("unit", "m", kUnits);
+    s.unit = ReadUnit(f);
     s.repair = f.Bool("repair", false);
     s.allow_open = f.Bool("allow_open", false);
   } else {
-    const json* v = f.Get("solid");
-    Fields o(*v, f.Path("solid"), f.file());
-    s.solid_type = o.String("type", "", {"box", "sphere", "ellipsoid", "cylinder", "cone", "torus", "capsule"});
-    if (s.solid_type.empty()) o.Fail("type", "is required");
-    const std::string& t = s.solid_type;
-    if (t == "box") {
-      if (!o.Has("size")) o.Fail("size", "is required: edge lengths [x, y, z]");
-      s.size = o.Vec3("size", Vector3::Zero(), "positive");
-    } else if (t == "ellipsoid") {
-      if (!o.Has("semi_axes")) o.Fail("semi_axes", "is required: [a, b, c]");
-      s.size = o.Vec3("semi_axes", Vector3::Zero(), "positive");
-    } else if (t == "torus") {
-      s.major_radius = o.RequiredNumber("major_radius", "positive");
-      s.minor_radius = o.RequiredNumber("minor_radius", "positive");
-      if (!(s.minor_radius < s.major_radius)) {
-        o.Fail("minor_radius", "must be smaller than major_radius (a self-intersecting torus is not a solid)");
-      }
-    } else {
-      s.radius = o.RequiredNumber("radius", "positive");
-      if (t == "cylinder" || t == "cone") s.height = o.RequiredNumber("height", "positive");
-      if (t == "capsule") s.height = o.RequiredNumber("length", "positive");
-    }
-    o.Done();
+    Fields o(*f.Get("solid"), f.Path("solid"), f.file());
+    s.solid = ReadPrimitive(o);
   }
   return s;
 }

@@ -12,7 +12,10 @@
 
 #include "dynamics/world.h"
 #include "massprops/mass_properties.h"
+#include "massprops/mass_spec.h"
 #include "massprops/mesh.h"
+#include "massprops/primitive.h"
+#include "massprops/units.h"
 
 namespace rbsim {
 
@@ -28,17 +31,14 @@ class SceneError : public std::runtime_error {
 
 /// Where the mass properties of a body come from.
 struct ShapeSpec {
-  // Exactly one of mesh_file / solid_type / implicit is set.
+  // Exactly one of mesh_file / implicit / solid is set.
   std::string mesh_file;  ///< resolved path (relative paths are taken from the scene's folder)
-  std::string unit = "m";
   bool repair = false;
   bool allow_open = false;
-  std::string implicit;    ///< a shape in massprops' shape syntax (Monte-Carlo mass properties)
-  std::string solid_type;  ///< box, sphere, ellipsoid, cylinder, cone, torus, capsule
-  Vector3 size = Vector3::Zero();  ///< box edges / ellipsoid semi-axes
-  double radius = 0, height = 0, major_radius = 0, minor_radius = 0;
-  double density = 1000.0;  ///< kg/m^3
-  double mass = 0.0;        ///< > 0: total mass, replaces the density
+  std::string implicit;  ///< a shape in massprops' shape syntax (Monte-Carlo mass properties)
+  std::optional<massprops::Primitive> solid;  ///< a closed-form solid
+  massprops::LengthUnit unit = massprops::LengthUnit::kMetre;  ///< of the mesh or the shape
+  massprops::MassSpec mass = massprops::Density{1000.0};
 };
 
 enum class VectorFrame { kWorld, kBody, kPrincipal };

@@ -6,12 +6,9 @@
 #include <sstream>
 
 #include "dynamics/forces.h"
-#include "massprops/composition.h"
 #include "massprops/implicit.h"
-#include "massprops/io.h"
-#include "massprops/monte_carlo.h"
-#include "massprops/solids.h"
-#include "report.h"
+#include "massprops/load.h"
+#include "massprops/primitive.h"
 
 namespace rbsim {
 namespace {
@@ -34,86 +31,60 @@ Vector3 DefaultColor(std::size_t i) {
 }
 
 // A solid from its closed form (exact mass properties) and a tessellation to look at.
-void LoadSolid(const ShapeSpec& s, SimBody& body) {
-  namespace so = massprops::solids;
-  constexpr int kN = 24;
-  MassProperties unit;  // at density 1
-  const std::string& t = s.solid_type;
-  if (t == "box") {
-    body.display = massprops::Triangulate(so::Box(s.size));
-    unit = so::BoxProperties(s.size, 1.0);
-    body.source = "box " + Num(s.size.x()) + " x " + Num(s.size.y()) + " x " + Num(s.size.z()) + " m";
-  } else if (t == "sphere") {
-    body.display = so::Sphere(s.radius, kN);
-    unit = so::SphereProperties(s.radius, 1.0);
-    body.source = "sphere r=" + Num(s.radius) + " m";
-  } else if (t == "ellipsoid") {
-    body.display = so::Ellipsoid(s.size, kN);
-    unit = so::EllipsoidProperties(s.size, 1.0);
-    body.source = "ellipsoid " + Num(s.size.x()) + ", " + Num(s.size.y()) + ", " + Num(s.size.z()) + " m";
-  } else if (t == "cylinder") {
-    body.display = so::Cylinder(s.radius, s.height, kN);
-    unit = so::CylinderProperties(s.radius, s.height, 1.0);
-    body.source = "cylinder r=" + Num(s.radius) + " h=" + Num(s.height) + " m";
-  } else if (t == "cone") {
-    body.display = so::Cone(s.radius, s.height, kN);
-    unit = so::ConeProperties(s.radius, s.height, 1.0);
-    body.source = "cone r=" + Num(s.radius) + " h=" + Num(s.height) + " m (apex at z=+3h/4)";
-  } else if (t == "torus") {
-    body.display = so::Torus(s.major_radius, s.minor_radius, kN);
-    unit = so::TorusProperties(s.major_radius, s.minor_radius, 1.0);
-    body.source = "torus R=" + Num(s.major_radius) + " r=" + Num(s.minor_radius) + " m";
-  } else if (t == "capsule") {
-    body.display = so::Capsule(s.radius, s.height, kN);
-    unit = so::CapsuleProperties(s.radius, s.height, 1.0);
-    body.source = "capsule r=" + Num(s.radius) + " length=" + Num(s.height) + " m";
-  } else {
-    throw std::logic_error("unknown solid type " + t);  // the parser admits no other
-  }
-  const double density = s.mass > 0 ? s.mass / unit.volume : s.density;
-  body.mp = unit;
-  body.mp.mass = unit.volume * density;
-  body.mp.inertia_com = unit.inertia_com * density;
-  body.mp.density = density;
+void LoadPrimitive(const massprops::Primitive& p, const massprops::MassSpec& mass, SimBody& body) {
+  const MassProperties unit = massprops::ClosedForm(p, 1.0);  // at density 1
+  body.display = massprops::Tessellate(p, 24);
+  body.mp = massprops::AtDensity(unit, massprops::ResolveDensity(mass, unit.volume));
+  body.principal = massprops::ComputePrincipalInertia(body.mp.inertia_com);
+  body.source = massprops::Describe(p);
 }
 
-void LoadMesh(const ShapeSpec& s, SimBody& body, const std::string& where,
-              std::vector<std::string>& warnings, int threads) {
-  massprops::app::Options opt;
+// A scene names the options the library's messages advise by its keys.
+const massprops::Vocabulary& SceneVocabulary() {
+  static const massprops::Vocabulary v = [](massprops::Option option, std::string_view value) -> std::string {
+    switch (option) {
+      case massprops::Option::kRepair: return "\"repair\": true";
+      case massprops::Option::kAllowOpen: return "\"allow_open\": true";
+      case massprops::Option::kUnit: return value.empty() ? "\"unit\"" : "\"unit\": \"" + std::string(value) + "\"";
+      case massprops::Option::kFullCheck: return "(always done in scenes)";
+      case massprops::Option::kWall: return "wall";
+    }
+    return "?";
+  };
+  return v;
+}
+
+void LoadMesh(const ShapeSpec& s, SimBody& body, const std::string& where, std::vector<std::string>& warnings,
+              int threads) {
+  massprops::LoadOptions opt;
   opt.unit = s.unit;
-  opt.density = s.density;
   opt.mass = s.mass;
   opt.repair = s.repair;
   opt.allow_open = s.allow_open;
   opt.full_check = true;  // load the mesh whole: the .glb needs it
-  opt.quiet = true;
-  opt.threads = threads;
-  massprops::app::Report r;
+  opt.num_threads = threads;
+  massprops::SolidResult r;
   try {
-    r = massprops::app::Compute(s.mesh_file, opt);
+    r = massprops::LoadSolid(s.mesh_file, opt);
   } catch (const std::exception& e) {
-    std::string what = e.what();
-    // massprops' advice names its flags; in a scene they are keys.
-    for (const auto& [flag, key] : {std::pair<std::string, std::string>{"--repair", "\"repair\": true"},
-                                    {"--allow-open", "\"allow_open\": true"}}) {
-      for (auto pos = what.find(flag); pos != std::string::npos; pos = what.find(flag, pos + key.size())) {
-        what.replace(pos, flag.size(), key);
-      }
-    }
-    throw SceneError(where + ".mesh: " + what);
+    throw SceneError(where + ".mesh: " + massprops::WordedError(e, SceneVocabulary()));
   }
-  for (const auto& w : r.warnings) warnings.push_back(where + ".mesh: " + s.mesh_file + ": " + w);
+  for (const auto& f : r.findings) {
+    warnings.push_back(where + ".mesh: " + s.mesh_file + ": " + massprops::Worded(f.message, SceneVocabulary()));
+  }
   if (!r.validity.valid) {
     throw SceneError(where + ".mesh: " + s.mesh_file + ": the inertia is not that of a real body (" +
                      r.validity.reason + ")");
   }
   body.mp = r.mp;
-  const double scale = massprops::app::MetresPerUnit(s.unit);
+  body.principal = r.principal;
+  const double scale = massprops::MetresPerUnit(s.unit);
   body.display = massprops::Triangulate(r.loaded.mesh);
   for (Eigen::Index i = 0; i < body.display.V.rows(); ++i) {
     body.display.V.row(i) = (scale * body.display.V.row(i).transpose() - r.mp.center_of_mass).transpose();
   }
-  body.source = s.mesh_file + " (unit " + s.unit + ", " + std::to_string(body.display.F.rows()) + " triangles)";
+  body.source = s.mesh_file + " (unit " + massprops::UnitName(s.unit) + ", " +
+                std::to_string(body.display.F.rows()) + " triangles)";
 }
 
 // An implicit solid: mass properties by quasi-Monte Carlo to a relative standard error of 1e-4,
@@ -121,26 +92,30 @@ void LoadMesh(const ShapeSpec& s, SimBody& body, const std::string& where,
 void LoadImplicit(const ShapeSpec& s, SimBody& body, const std::string& where, std::vector<std::string>& warnings,
                   int threads) {
   using namespace massprops;
-  const ImplicitPtr shape = implicit::Scaled(implicit::ParseShape(s.implicit), app::MetresPerUnit(s.unit));
-  MonteCarloOptions mc;
-  mc.tolerance = 1e-4;
-  mc.max_samples = std::int64_t{1} << 27;
-  mc.fixed_mass = s.mass;
-  mc.num_threads = threads;
-  MassPropertiesEstimate e;
+  const ImplicitPtr shape = implicit::ParseShape(s.implicit);
+  ImplicitOptions opt;
+  opt.unit = s.unit;
+  opt.mass = s.mass;
+  opt.sampling.tolerance = 1e-4;
+  opt.sampling.max_samples = std::int64_t{1} << 27;
+  opt.num_threads = threads;
+  SolidResult r;
   try {
-    e = EstimateMassProperties(*shape, s.density, mc);
+    r = EstimateImplicit(*shape, opt);
   } catch (const std::exception& ex) {
     throw SceneError(where + ".implicit: " + ex.what());
   }
+  const MassPropertiesEstimate& e = *r.estimate;
   if (!e.tolerance_met) {
     warnings.push_back(where + ".implicit: mass properties known to a relative standard error of " +
                        Num(e.MaxRelativeError(), "%.2g") + " only (" + std::to_string(e.samples) + " points)");
   }
-  body.mp = e.value;
-  body.display = implicit::Polygonize(*shape, 64);
+  body.mp = r.mp;
+  body.principal = r.principal;
+  body.display = implicit::Polygonize(*implicit::Scaled(shape, MetresPerUnit(s.unit)), 64);
   body.display.V.rowwise() -= body.mp.center_of_mass.transpose();
-  body.source = s.implicit + " (unit " + s.unit + "; QMC, relative standard error " + Num(e.MaxRelativeError(), "%.1g") + ")";
+  body.source = s.implicit + " (unit " + UnitName(s.unit) + "; QMC, relative standard error " +
+                Num(e.MaxRelativeError(), "%.1g") + ")";
 }
 
 }  // namespace
@@ -161,12 +136,11 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     } else if (!spec.shape.implicit.empty()) {
       LoadImplicit(spec.shape, body, where, warnings, threads);
     } else {
-      LoadSolid(spec.shape, body);
+      LoadPrimitive(*spec.shape.solid, spec.shape.mass, body);
     }
-    body.principal = massprops::ComputePrincipalInertia(body.mp.inertia_com);
     dynamics::RigidBody rb;
     try {
-      rb = dynamics::BodyFromMassProperties(body.mp);
+      rb = dynamics::BodyFromMassProperties(body.mp, body.principal).body;
     } catch (const std::exception& e) {
       throw SceneError(where + ": " + e.what());
     }
@@ -190,45 +164,25 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     const SimBody& sb = sim.bodies[static_cast<std::size_t>(b)];
     return Vector3(sb.principal.axes.transpose() * (p_mesh - sb.mp.center_of_mass));
   };
-  auto note = [](std::string& list, const std::string& what) {
-    if (list.find(what) == std::string::npos) list += (list.empty() ? "" : ", ") + what;
-  };
   for (const ForceSpec& f : scene.forces) {
     const int body = f.bodies.empty() ? -1 : f.bodies[0];
+    const auto principal_axes = [&](int b) { return sim.bodies[static_cast<std::size_t>(b)].principal.axes; };
     if (f.type == "gravity") {
       sim.world.AddForce(dynamics::Gravity(f.vector));
-      sim.momentum_conserved = false;
-      note(sim.external, "gravity");
-    } else if (f.type == "linear_damping" || f.type == "angular_damping") {
-      sim.world.AddForce(f.type == "linear_damping" ? dynamics::LinearDamping(f.coefficient, body)
-                                                    : dynamics::AngularDamping(f.coefficient, body));
-      if (f.coefficient > 0) {
-        sim.energy_conserved = sim.momentum_conserved = false;
-        note(sim.nonconservative, "damping");
-        note(sim.external, "damping");
-      }
+    } else if (f.type == "linear_damping") {
+      sim.world.AddForce(dynamics::LinearDamping(f.coefficient, body));
+    } else if (f.type == "angular_damping") {
+      sim.world.AddForce(dynamics::AngularDamping(f.coefficient, body));
     } else if (f.type == "force") {
-      const SimBody& sb = sim.bodies[static_cast<std::size_t>(body)];
       const Vector3 point = f.point ? to_body(body, *f.point) : Vector3::Zero();
-      const Vector3 vec = f.body_frame ? Vector3(sb.principal.axes.transpose() * f.vector) : f.vector;
+      const Vector3 vec = f.body_frame ? Vector3(principal_axes(body).transpose() * f.vector) : f.vector;
       sim.world.AddForce(dynamics::PointForce(body, point, vec, f.body_frame));
-      sim.energy_conserved = sim.momentum_conserved = false;
-      note(sim.nonconservative, "applied forces");
-      note(sim.external, "applied forces");
     } else if (f.type == "torque") {
       if (f.body_frame) {
-        const Vector3 tau_b = sim.bodies[static_cast<std::size_t>(body)].principal.axes.transpose() * f.vector;
-        sim.world.AddForce(dynamics::ForceCallback(
-            [body, tau_b](double, const std::vector<dynamics::RigidBody>& bodies, std::vector<dynamics::Wrench>& out) {
-              const auto b = static_cast<std::size_t>(body);
-              out[b].torque += bodies[b].orientation * tau_b;
-            }));
+        sim.world.AddForce(dynamics::BodyFrameTorque(body, principal_axes(body).transpose() * f.vector));
       } else {
         sim.world.AddForce(dynamics::ConstantTorque(body, f.vector));
       }
-      sim.energy_conserved = sim.momentum_conserved = false;
-      note(sim.nonconservative, "applied torques");
-      note(sim.external, "applied torques");
     } else if (f.type == "spring") {
       if (f.bodies.size() == 2) {
         sim.world.AddForce(dynamics::SpringBetween(f.bodies[0], to_body(f.bodies[0], f.points[0]), f.bodies[1],
@@ -237,15 +191,10 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
       } else {
         sim.world.AddForce(dynamics::SpringToWorld(body, to_body(body, f.point.value_or(Vector3::Zero())),
                                                    f.anchor, f.coefficient, f.rest_length, f.damping));
-        sim.momentum_conserved = false;
-        note(sim.external, "springs to the world");
-      }
-      if (f.damping > 0) {
-        sim.energy_conserved = false;
-        note(sim.nonconservative, "spring damping");
       }
     }
   }
+  sim.conservation = sim.world.Conserves();
   return sim;
 }
 
@@ -321,10 +270,11 @@ std::string Summary(const Simulation& sim, const RunStats& stats) {
         << " sub-steps in some steps: dt is large for these spin rates\n";
   }
   auto vec = [](const Vector3& v) { return "[" + Num(v.x(), "%.9g") + ", " + Num(v.y(), "%.9g") + ", " + Num(v.z(), "%.9g") + "]"; };
-  const std::string energy_note = sim.energy_conserved ? "conserved by this scene's physics"
-                                                       : "not conserved here: " + sim.nonconservative;
-  const std::string momentum_note = sim.momentum_conserved ? "conserved by this scene's physics"
-                                                           : "not conserved here: " + sim.external;
+  const dynamics::Conservation& c = sim.conservation;
+  const std::string energy_note =
+      c.energy ? "conserved by this scene's physics" : "not conserved here: " + c.energy_broken_by;
+  const std::string momentum_note =
+      c.momentum ? "conserved by this scene's physics" : "not conserved here: " + c.momentum_broken_by;
   out << "                       start              end                drift (end)   drift (max)\n";
   char line[256];
   std::snprintf(line, sizeof line, "  energy, J            % .9e  % .9e  % .2e     %.2e   %s\n", s.total_energy,

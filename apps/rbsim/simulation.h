@@ -17,7 +17,7 @@ namespace rbsim {
 struct SimBody {
   std::string name;
   massprops::MassProperties mp;         ///< SI, in the mesh (or solid) frame M
-  massprops::PrincipalInertia principal;  ///< axes = R_MB
+  massprops::PrincipalInertia principal;  ///< axes = R_MB (computed once, by the pipeline)
   massprops::TriangleMesh display;      ///< metres, mesh axes, relative to the center of mass
   Vector3 color = Vector3(0.8, 0.8, 0.8);
   std::string source;                   ///< "spot.obj (unit m)" or "cone r=0.1 h=0.3"
@@ -36,10 +36,7 @@ struct Simulation {
   Scene scene;
   std::vector<SimBody> bodies;
   dynamics::World world;
-  bool energy_conserved = true;    ///< no damping or applied forces and torques
-  bool momentum_conserved = true;  ///< no external forces (only springs between bodies)
-  std::string nonconservative;     ///< what breaks energy conservation, for the summary
-  std::string external;            ///< what breaks momentum conservation
+  dynamics::Conservation conservation;  ///< what the scene's physics conserves (from the forces)
 };
 
 /// Loads every body (mesh files through the massprops checks, solids from closed forms) and

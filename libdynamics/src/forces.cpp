@@ -10,6 +10,7 @@ namespace {
 class GravityForce : public Force {
  public:
   explicit GravityForce(const Vector3& g) : g_(g) {}
+  ForceTraits Traits() const override { return {nullptr, "gravity"}; }
   void Apply(double, const std::vector<RigidBody>& b, std::vector<Wrench>& out) const override {
     for (std::size_t i = 0; i < b.size(); ++i) out[i].force += b[i].mass * g_;
   }
@@ -26,6 +27,10 @@ class GravityForce : public Force {
 class DampingForce : public Force {
  public:
   DampingForce(double c, int body, bool angular) : c_(c), body_(body), angular_(angular) {}
+  ForceTraits Traits() const override {
+    if (c_ == 0) return {};
+    return {"damping", "damping"};
+  }
   void Apply(double, const std::vector<RigidBody>& b, std::vector<Wrench>& out) const override {
     for (std::size_t i = 0; i < b.size(); ++i) {
       if (body_ >= 0 && static_cast<std::size_t>(body_) != i) continue;
@@ -49,6 +54,10 @@ class PointForceImpl : public Force {
  public:
   PointForceImpl(int body, const Vector3& p, const Vector3& f, bool body_frame, bool pure_torque)
       : body_(body), p_(p), f_(f), body_frame_(body_frame), pure_torque_(pure_torque) {}
+  ForceTraits Traits() const override {
+    const char* what = pure_torque_ ? "applied torques" : "applied forces";
+    return {what, what};
+  }
   void Apply(double, const std::vector<RigidBody>& b, std::vector<Wrench>& out) const override {
     const RigidBody& body = b[static_cast<std::size_t>(body_)];
     Wrench& w = out[static_cast<std::size_t>(body_)];
@@ -83,6 +92,9 @@ class SpringImpl : public Force {
   SpringImpl(int a, const Vector3& pa, int b, const Vector3& pb_or_anchor, double k, double l0,
              double c)
       : a_(a), b_(b), pa_(pa), pb_(pb_or_anchor), k_(k), l0_(l0), c_(c) {}
+  ForceTraits Traits() const override {
+    return {c_ > 0 ? "spring damping" : nullptr, b_ >= 0 ? nullptr : "springs to the world"};
+  }
   void Apply(double, const std::vector<RigidBody>& bodies, std::vector<Wrench>& out) const override {
     const RigidBody& A = bodies[static_cast<std::size_t>(a_)];
     const Vector3 xa = A.PointPosition(pa_);
@@ -118,14 +130,17 @@ class SpringImpl : public Force {
 
 class CallbackForce : public Force {
  public:
-  explicit CallbackForce(std::function<void(double, const std::vector<RigidBody>&, std::vector<Wrench>&)> fn)
-      : fn_(std::move(fn)) {}
+  CallbackForce(std::function<void(double, const std::vector<RigidBody>&, std::vector<Wrench>&)> fn,
+                ForceTraits traits)
+      : fn_(std::move(fn)), traits_(traits) {}
+  ForceTraits Traits() const override { return traits_; }
   void Apply(double t, const std::vector<RigidBody>& b, std::vector<Wrench>& out) const override {
     fn_(t, b, out);
   }
 
  private:
   std::function<void(double, const std::vector<RigidBody>&, std::vector<Wrench>&)> fn_;
+  ForceTraits traits_;
 };
 
 void RequireFinite(const Vector3& v, const char* what) {
@@ -157,6 +172,10 @@ std::unique_ptr<Force> ConstantTorque(int body, const Vector3& torque) {
   RequireFinite(torque, "torque");
   return std::make_unique<PointForceImpl>(body, Vector3::Zero(), torque, false, true);
 }
+std::unique_ptr<Force> BodyFrameTorque(int body, const Vector3& torque_body) {
+  RequireFinite(torque_body, "torque");
+  return std::make_unique<PointForceImpl>(body, Vector3::Zero(), torque_body, true, true);
+}
 std::unique_ptr<Force> PointForce(int body, const Vector3& point_body, const Vector3& force,
                                   bool body_frame) {
   RequireFinite(point_body, "point");
@@ -184,9 +203,9 @@ std::unique_ptr<Force> SpringBetween(int body_a, const Vector3& point_a, int bod
   return std::make_unique<SpringImpl>(body_a, point_a, body_b, point_b, k, rest_length, damping);
 }
 std::unique_ptr<Force> ForceCallback(
-    std::function<void(double, const std::vector<RigidBody>&, std::vector<Wrench>&)> fn) {
+    std::function<void(double, const std::vector<RigidBody>&, std::vector<Wrench>&)> fn, ForceTraits traits) {
   if (!fn) throw std::invalid_argument("ForceCallback: empty function");
-  return std::make_unique<CallbackForce>(std::move(fn));
+  return std::make_unique<CallbackForce>(std::move(fn), traits);
 }
 
 }  // namespace dynamics

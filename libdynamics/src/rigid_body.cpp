@@ -30,21 +30,26 @@ double RigidBody::KineticEnergy() const {
   return 0.5 * mass * velocity.squaredNorm() + RotationalEnergy();
 }
 
-RigidBody BodyFromMassProperties(const massprops::MassProperties& mp) {
+PlacedBody BodyFromMassProperties(const massprops::MassProperties& mp, const massprops::PrincipalInertia& p) {
   if (!(mp.mass > 0) || !std::isfinite(mp.mass)) {
     std::ostringstream msg;
     msg << "BodyFromMassProperties: mass must be positive, got " << mp.mass;
     throw std::invalid_argument(msg.str());
   }
-  const massprops::PrincipalInertia p = massprops::ComputePrincipalInertia(mp.inertia_com);
   const massprops::ValidityReport ok = massprops::CheckPhysicallyValid(p.moments, 1e-9);
   if (!ok.valid) throw std::invalid_argument("BodyFromMassProperties: " + ok.reason);
-  RigidBody b;
+  PlacedBody out;
+  RigidBody& b = out.body;
   b.mass = mp.mass;
   b.inertia = p.moments;
   b.position = mp.center_of_mass;
   b.orientation = Quaternion(p.axes).normalized();  // R_WB = R_MB at the start
-  return b;
+  out.mesh_to_body = massprops::BodyFrameTransform(mp, p);
+  return out;
+}
+
+PlacedBody BodyFromMassProperties(const massprops::MassProperties& mp) {
+  return BodyFromMassProperties(mp, massprops::ComputePrincipalInertia(mp.inertia_com));
 }
 
 }  // namespace dynamics

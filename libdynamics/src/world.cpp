@@ -402,6 +402,25 @@ Drift DriftSince(const Diagnostics& start, const Diagnostics& now) {
   return d;
 }
 
+Conservation World::Conserves() const {
+  Conservation c;
+  auto note = [](std::string& list, const char* what) {
+    if (list.find(what) == std::string::npos) list += (list.empty() ? "" : ", ") + std::string(what);
+  };
+  for (const auto& f : forces_) {
+    const ForceTraits t = f->Traits();
+    if (t.breaks_energy) {
+      c.energy = false;
+      note(c.energy_broken_by, t.breaks_energy);
+    }
+    if (t.breaks_momentum) {
+      c.momentum = false;
+      note(c.momentum_broken_by, t.breaks_momentum);
+    }
+  }
+  return c;
+}
+
 Diagnostics World::Diagnose() const {
   Diagnostics d;
   d.time = time_;

@@ -7,12 +7,6 @@
 
 namespace massprops {
 
-std::string ExactDecimal(double v) {
-  char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof buf, v);  // shortest round-trip form
-  return std::string(buf, res.ptr);
-}
-
 namespace {
 std::string Triple(const Vector3& v) {
   return ExactDecimal(v[0]) + " " + ExactDecimal(v[1]) + " " + ExactDecimal(v[2]);

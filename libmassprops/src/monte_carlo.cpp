@@ -193,6 +193,7 @@ MassPropertiesEstimate EstimateMassProperties(const ImplicitSolid& solid, Scalar
   std::int64_t done = 0;  // points per randomization already summed
   MassPropertiesEstimate e;
   e.method = opt.method;
+  e.seed = opt.seed;
   e.randomizations = R;
   while (true) {
     // Sum blocks [done, n) of every randomization.

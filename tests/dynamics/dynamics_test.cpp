@@ -438,7 +438,7 @@ TEST(Bodies, FromMassPropertiesOfAMesh) {
   massprops::PolygonMesh box = massprops::solids::Box(Vector3(1, 2, 3));
   const Matrix3 R = Eigen::AngleAxisd(M_PI / 6, Vector3::UnitZ()).toRotationMatrix();
   box.V = (box.V * R.transpose()).rowwise() + Eigen::RowVector3d(4, 5, 6);
-  const RigidBody b = BodyFromMassProperties(massprops::ComputeMassProperties(box, 500.0));
+  const RigidBody b = BodyFromMassProperties(massprops::ComputeMassProperties(box, 500.0)).body;
   EXPECT_NEAR(b.mass, 3000.0, 1e-9);
   EXPECT_LT((b.position - Vector3(4, 5, 6)).norm(), 1e-12);
   const Vector3 want = 3000.0 / 12 * Vector3(1 + 4, 1 + 9, 4 + 9);  // Izz < Ixx < Iyy

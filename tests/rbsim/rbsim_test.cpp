@@ -209,8 +209,8 @@ TEST(Simulation, HangingBoxSettlesToStaticEquilibrium) {
 TEST(Simulation, TwoBodyExampleConservesMomentaAndEnergy) {
   std::vector<std::string> w;
   rbsim::Simulation sim = rbsim::BuildSimulation(rbsim::LoadScene(DataPath("scenes/two_bodies.json"), w), w);
-  EXPECT_TRUE(sim.energy_conserved);
-  EXPECT_TRUE(sim.momentum_conserved);
+  EXPECT_TRUE(sim.conservation.energy);
+  EXPECT_TRUE(sim.conservation.momentum);
   const rbsim::RunStats stats = rbsim::Run(sim, [](const dynamics::World&, const dynamics::Diagnostics&) {});
   EXPECT_LT(stats.max_drift.linear_momentum, 1e-12);
   EXPECT_LT(stats.max_drift.angular_momentum, 1e-12);

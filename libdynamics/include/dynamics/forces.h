@@ -17,9 +17,20 @@ struct Wrench {
   Vector3 torque = Vector3::Zero();  ///< N·m, world, about the center of mass
 };
 
+/// What a force does to the conserved quantities, so that diagnostics can say which of energy and
+/// momentum a world's physics conserves. nullptr means the force keeps it; otherwise a short name
+/// for summaries ("gravity", "damping", ...).
+struct ForceTraits {
+  /// Non-null when the force does work not accounted for by PotentialEnergy (damping, applied loads).
+  const char* breaks_energy = nullptr;
+  /// Non-null when the force is external (not equal-and-opposite pairs between bodies).
+  const char* breaks_momentum = nullptr;
+};
+
 class Force {
  public:
   virtual ~Force() = default;
+  virtual ForceTraits Traits() const = 0;
   /// Adds this force's wrenches at time t to `out` (one per body).
   virtual void Apply(double t, const std::vector<RigidBody>& bodies, std::vector<Wrench>& out) const = 0;
   /// Potential energy, J (0 for non-conservative forces).
@@ -37,6 +48,8 @@ std::unique_ptr<Force> AngularDamping(double c, int body = -1);
 /// Constant world force through the center of mass, and constant world torque.
 std::unique_ptr<Force> ConstantForce(int body, const Vector3& force);
 std::unique_ptr<Force> ConstantTorque(int body, const Vector3& torque);
+/// Constant torque given in body (principal) axes, turning with the body: τ_world = R τ_B.
+std::unique_ptr<Force> BodyFrameTorque(int body, const Vector3& torque_body);
 /// Constant force at a body point (body coordinates); `body_frame` says whether the force vector
 /// turns with the body. Torque (p − x) × f.
 std::unique_ptr<Force> PointForce(int body, const Vector3& point_body, const Vector3& force,
@@ -49,8 +62,10 @@ std::unique_ptr<Force> SpringToWorld(int body, const Vector3& point_body, const 
 std::unique_ptr<Force> SpringBetween(int body_a, const Vector3& point_a, int body_b,
                                      const Vector3& point_b, double k, double rest_length,
                                      double damping);
-/// Any user force: called with the time, the bodies and the wrenches to add to.
+/// Any user force: called with the time, the bodies and the wrenches to add to. Its traits say
+/// what it breaks (default: energy and momentum, as "user forces").
 std::unique_ptr<Force> ForceCallback(
-    std::function<void(double, const std::vector<RigidBody>&, std::vector<Wrench>&)> fn);
+    std::function<void(double, const std::vector<RigidBody>&, std::vector<Wrench>&)> fn,
+    ForceTraits traits = {"user forces", "user forces"});
 
 }  // namespace dynamics

@@ -52,11 +52,21 @@ struct RigidBody {
   }
 };
 
+/// A body and where its frame B sits in the frame M of the mesh (or solid) it was made from.
+struct PlacedBody {
+  RigidBody body;
+  /// x_B = R_MBᵀ (x_M − com): mesh coordinates → body coordinates (massprops::BodyFrameTransform).
+  massprops::RigidTransform mesh_to_body;
+};
+
 /// A body from mass properties, placed where the mesh is: its center of mass at the mesh's and its
-/// orientation the principal axes (so body points are x_B = R_MBᵀ (x_M − com)). Mass properties
-/// are in the mesh frame M, which is taken as the world frame at the start.
+/// orientation the principal axes (R_WB = R_MB: the mesh frame M is the world frame at the start).
+/// Takes the principal axes already computed (massprops::SolidResult has them), so that they are
+/// computed once.
 /// @throws std::invalid_argument if the mass or a principal moment is not positive, or the moments
 ///         violate the triangle inequality.
-RigidBody BodyFromMassProperties(const massprops::MassProperties& mp);
+PlacedBody BodyFromMassProperties(const massprops::MassProperties& mp, const massprops::PrincipalInertia& principal);
+/// The same, computing the principal axes.
+PlacedBody BodyFromMassProperties(const massprops::MassProperties& mp);
 
 }  // namespace dynamics

@@ -77,6 +77,15 @@ struct Drift {
 };
 Drift DriftSince(const Diagnostics& start, const Diagnostics& now);
 
+/// Which quantities the world's physics conserves (from its forces' traits), and what breaks the
+/// others ("gravity, damping"), for summaries.
+struct Conservation {
+  bool energy = true;
+  bool momentum = true;  ///< linear and angular
+  std::string energy_broken_by;
+  std::string momentum_broken_by;
+};
+
 /// What a step did that the caller should know.
 struct StepStatus {
   int substeps = 1;  ///< > 1 when the implicit solve needed a smaller step to converge
@@ -108,6 +117,8 @@ class World {
   void set_num_threads(int n) { num_threads_ = n; }
 
   Diagnostics Diagnose() const;
+  Conservation Conserves() const;
+  const std::vector<std::unique_ptr<Force>>& forces() const { return forces_; }
 
  private:
   void ComputeWrenches(double t, std::vector<Wrench>& out) const;

@@ -12,6 +12,7 @@
 
 #include "massprops/mass_properties.h"
 #include "massprops/principal_axes.h"
+#include "massprops/text.h"  // ExactDecimal
 
 namespace massprops {
 
@@ -22,8 +23,5 @@ std::string SdfInertial(const MassProperties& mp, const std::string& indent = ""
 /// `<inertial>` of an MJCF body (SI units): pos, quat, mass, diaginertia.
 std::string MjcfInertial(const MassProperties& mp, const PrincipalInertia& principal,
                          const std::string& indent = "");
-
-/// Shortest decimal text that reads back as the same double ("%.17g" trimmed).
-std::string ExactDecimal(double v);
 
 }  // namespace massprops

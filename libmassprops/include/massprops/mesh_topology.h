@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Combinatorial checks that decide whether a mesh bounds a solid (target massprops::io).
+/// Combinatorial checks that decide whether a mesh bounds a solid (pure combinatorics, in the core).
 
 #include <cstdint>
 #include <string>
@@ -56,7 +56,8 @@ struct ShellReport {
   std::vector<Shell> shells;
   /// Empty when the shells form a valid solid: disjoint outward shells, and cavities (inward
   /// shells) each inside an outward one. Otherwise what is wrong, in words, e.g. an outward shell
-  /// inside another outward shell (the volumes overlap; a cavity facing the wrong way?).
+  /// inside another outward shell (the volumes overlap; a cavity facing the wrong way?). Option
+  /// names stand as markers ({repair}) that each app words in its own vocabulary (wording.h).
   std::string problem;
 };
 

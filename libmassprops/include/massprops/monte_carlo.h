@@ -52,6 +52,7 @@ struct MassPropertiesEstimate {
   std::int64_t samples = 0;         ///< points evaluated
   int randomizations = 1;
   SamplingMethod method = SamplingMethod::kMonteCarlo;
+  std::uint64_t seed = 1;           ///< the seed it was drawn with (same seed, same bits)
   bool tolerance_met = true;        ///< false when max_samples stopped an adaptive run first
   /// Largest relative standard error among the mass and the principal moments.
   double MaxRelativeError() const;

@@ -105,19 +105,6 @@ Mesh ToCgal(const PolygonMesh& mesh) {
 
 }  // namespace
 
-std::string RepairReport::Summary() const {
-  std::ostringstream s;
-  s.precision(7);
-  if (welded_vertices) s << "merged " << welded_vertices << " near-coincident vertices; ";
-  if (removed_faces) s << "removed " << removed_faces << " degenerate or duplicate faces; ";
-  if (reoriented) s << "made face orientations consistent; ";
-  if (split_vertices) s << "split " << split_vertices << " non-manifold vertices; ";
-  if (stitched_edges) s << "stitched " << stitched_edges << " border edges; ";
-  if (oriented_to_bound_volume) s << "oriented shells outward and cavities inward; ";
-  s << "signed volume " << volume_before << " -> " << volume_after;
-  return s.str();
-}
-
 RepairedMesh RepairMesh(const PolygonMesh& input, const RepairOptions& options) {
   RepairedMesh out;
   RepairReport& rep = out.report;

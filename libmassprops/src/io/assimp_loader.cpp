@@ -26,12 +26,19 @@ struct Plugin {
   std::string error;  // why it could not be loaded
 };
 
-std::string ExecutableDir() {
+// The folder of the file this code was loaded from: the shared library, or the program a
+// static library is linked into (its realpath, so a symlink in /usr/local/bin still leads home).
+std::string HomeDir() {
+  Dl_info info{};
+  std::string file;
+  if (::dladdr(reinterpret_cast<void*>(&HomeDir), &info) != 0 && info.dli_fname != nullptr) {
+    file = info.dli_fname;
+  }
+  if (file.empty() || file.find('/') == std::string::npos) file = "/proc/self/exe";
   std::vector<char> buf(4096);
-  const ssize_t n = ::readlink("/proc/self/exe", buf.data(), buf.size() - 1);
-  if (n <= 0) return ".";
-  std::string exe(buf.data(), static_cast<std::size_t>(n));
-  return exe.substr(0, exe.find_last_of('/'));
+  if (char* real = ::realpath(file.c_str(), buf.data())) file = real;
+  const auto slash = file.find_last_of('/');
+  return slash == std::string::npos ? "." : file.substr(0, slash);
 }
 
 const Plugin& LoadPlugin() {
@@ -40,13 +47,23 @@ const Plugin& LoadPlugin() {
   std::call_once(once, [] {
     const char* name = "libmassprops_assimp.so";
     std::vector<std::string> candidates;
+#ifndef MASSPROPS_WITH_ASSIMP
+    plugin.error = "this build of massprops was configured without assimp (MASSPROPS_WITH_ASSIMP=OFF): only "
+                   "OBJ, STL, PLY and OFF can be read";
+    return;
+#else
+    // The environment overrides; then beside the library (a shared libmassprops_io in lib/ has
+    // the plugin in lib/massprops/), the install layout seen from bin/, and this build tree.
     if (const char* env = std::getenv("MASSPROPS_ASSIMP_PLUGIN")) candidates.emplace_back(env);
-    const std::string dir = ExecutableDir();
+    const std::string dir = HomeDir();
+    candidates.push_back(dir + "/massprops/" + name);
+    candidates.push_back(dir + "/" + MASSPROPS_PLUGIN_FROM_BINDIR + "/" + name);
     candidates.push_back(dir + "/" + name);
-    candidates.push_back(dir + "/../lib/" + name);
-    candidates.push_back(dir + "/../lib/massprops/" + name);
-#ifdef MASSPROPS_PLUGIN_BUILD_DIR
-    candidates.push_back(std::string(MASSPROPS_PLUGIN_BUILD_DIR) + "/" + name);
+    // The build tree's plugin, only for programs of this build tree (an installed or copied
+    // binary must find its own, or say that it cannot).
+    if (dir.rfind(MASSPROPS_BUILD_DIR, 0) == 0) {
+      candidates.push_back(std::string(MASSPROPS_PLUGIN_BUILD_DIR) + "/" + name);
+    }
 #endif
     candidates.emplace_back(name);  // the library search path
     std::string tried;

@@ -206,7 +206,7 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
       problem << "shell " << s + 1 << " of " << ns << " lies inside shell "
               << report.shells[s].inside_of + 1
               << " and both face outward: their volumes overlap (if it is meant as a cavity, its "
-                 "faces must point into the cavity; --repair orients it so)";
+                 "faces must point into the cavity; {repair} orients it so)";
     }
   }
   report.problem = problem.str();

@@ -1,0 +1,102 @@
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "format.h"
+
+namespace massprops::cli {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json Mat(const Matrix3& m) {
+  return Json::array({{m(0, 0), m(0, 1), m(0, 2)}, {m(1, 0), m(1, 1), m(1, 2)}, {m(2, 0), m(2, 1), m(2, 2)}});
+}
+
+Json ToJson(const SolidResult& r, const FormatOptions& opt) {
+  const auto& c = r.mp.center_of_mass;
+  const auto& m = r.principal.moments;
+  const auto& t = r.topology;
+  Json j = {{"file", r.source},
+            {"unit", UnitName(r.unit)},
+            {"model", ModelName(r.model)},
+            {"volume", r.mp.volume},
+            {"mass", r.mp.mass},
+            {"density", r.mp.density},
+            {"center_of_mass", {c[0], c[1], c[2]}},
+            {"inertia_com", Mat(r.mp.inertia_com)}};
+  if (r.model == ModelKind::kShell) {
+    j["density"] = nullptr;
+    j["area_density"] = r.mp.density;
+  }
+  if (r.model == ModelKind::kWall) j["wall_thickness_m"] = r.wall_thickness * MetresPerUnit(r.unit);
+  if (opt.frame == Frame::kOrigin) j["inertia_origin"] = Mat(r.mp.InertiaAbout(Vector3::Zero()));
+  j["principal_moments"] = {m[0], m[1], m[2]};
+  j["principal_axes"] = Mat(r.principal.axes);
+  j["surface_area"] = r.mp.surface_area;
+  j["physically_valid"] = r.validity.valid;
+  auto known = [&](std::int64_t v) { return r.full_topology ? Json(v) : Json(nullptr); };
+  std::int64_t triangles = t.faces;
+  if (r.full_topology) {
+    triangles = 0;
+    for (std::int64_t f = 0; f < r.loaded.mesh.num_faces(); ++f) triangles += r.loaded.mesh.face_size(f) - 2;
+  }
+  j["mesh"] = {{"format", r.loaded.format},
+               {"faces", t.faces},
+               {"triangles", triangles},  // after splitting n-gons into fans
+               {"vertices", known(t.vertices)},
+               {"components", known(t.components)},
+               {"closed", t.boundary_edges == 0},
+               {"oriented", t.inconsistent_edges == 0},
+               {"boundary_edges", t.boundary_edges},
+               {"non_manifold_edges", known(t.non_manifold_edges)},
+               {"degenerate_faces", known(t.degenerate_faces)},
+               {"float32_coordinates", r.loaded.float32_coordinates}};
+  if (r.shells.shells.size() > 1) {
+    const double s3 = std::pow(MetresPerUnit(r.unit), 3);
+    Json shells = Json::array();
+    for (const Shell& sh : r.shells.shells) {
+      shells.push_back({{"faces", sh.faces.size()},
+                        {"volume", sh.signed_volume * s3},
+                        {"inside_of", sh.inside_of >= 0 ? Json(sh.inside_of) : Json(nullptr)}});
+    }
+    j["mesh"]["shells"] = shells;
+  }
+  if (r.self_intersections >= 0) j["mesh"]["self_intersections"] = r.self_intersections;
+  if (r.model == ModelKind::kImplicit) j.erase("mesh");
+  if (r.estimate) {
+    const MassPropertiesEstimate& e = *r.estimate;
+    const MassProperties& se = e.standard_error;
+    const auto& sc = se.center_of_mass;
+    const auto& pm = e.principal_moments_se;
+    j["estimate"] = {{"method", e.method == SamplingMethod::kMonteCarlo ? "monte-carlo" : "quasi-monte-carlo"},
+                     {"samples", e.samples},
+                     {"randomizations", e.randomizations},
+                     {"seed", e.seed},
+                     {"interval95_factor", e.interval95_factor},
+                     {"tolerance_met", e.tolerance_met},
+                     {"standard_errors",
+                      {{"volume", se.volume},
+                       {"mass", se.mass},
+                       {"center_of_mass", {sc[0], sc[1], sc[2]}},
+                       {"inertia_com", Mat(se.inertia_com)},
+                       {"principal_moments", {pm[0], pm[1], pm[2]}}}}};
+    j["surface_area"] = nullptr;
+  }
+  if (r.repair) j["repair"] = r.repair->Summary();
+  Json warnings = Json::array();
+  for (const Finding& f : r.findings) warnings.push_back(Worded(f.message, CliVocabulary()));
+  j["warnings"] = warnings;
+  return j;
+}
+
+}  // namespace
+
+std::string FormatJson(const std::vector<SolidResult>& results, const FormatOptions& opt) {
+  if (results.size() == 1) return ToJson(results[0], opt).dump(2) + "\n";
+  Json all = Json::array();
+  for (const SolidResult& r : results) all.push_back(ToJson(r, opt));
+  return all.dump(2) + "\n";
+}
+
+}  // namespace massprops::cli

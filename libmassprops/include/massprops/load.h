@@ -1,0 +1,169 @@
+#pragma once
+/// @file
+/// The pipeline from a mesh file to mass properties you can trust (target massprops::io):
+///
+///     read → weld → check → [repair] → integrate (solid | shell | wall | winding number)
+///          → principal axes → validity → findings
+///
+/// This is what the `massprops` command prints, what `rbsim` builds its bodies from and what the
+/// bindings call. Options are typed; the result carries typed findings whose messages name the
+/// options that would help as markers ({repair}, see wording.h), so each front end words them in
+/// its own vocabulary.
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "massprops/io.h"
+#include "massprops/mass_properties.h"
+#include "massprops/mass_spec.h"
+#include "massprops/mesh_topology.h"
+#include "massprops/monte_carlo.h"
+#include "massprops/principal_axes.h"
+#include "massprops/repair.h"
+#include "massprops/units.h"
+#include "massprops/wording.h"
+
+namespace massprops {
+
+/// Which integrator computes a solid's integrals.
+enum class IntegrationPath {
+  kAuto,       ///< signed tetrahedra for triangle meshes, Mirtich's polygons for quads and n-gons
+  kTriangles,  ///< signed tetrahedra (polygons split into fans from their first corner)
+  kPolygons,   ///< Mirtich: every face integrated whole
+};
+
+/// Which reader opens the file.
+enum class Reader {
+  kAuto,    ///< our own parsers for OBJ/STL/PLY/OFF, assimp for the rest
+  kAssimp,  ///< assimp for every format (32-bit coordinates; for comparison)
+};
+
+/// The solid the closed surface bounds (the default).
+struct SolidModel {};
+/// A thin shell: the surface itself carries the mass at `area_density` kg/m^2 (a TotalMass in
+/// LoadOptions::mass overrides it). Open, unoriented surfaces are fine.
+struct ShellModel {
+  double area_density = 0;
+};
+/// A hollow part: the solid between the closed surface and its inward offset by `thickness`, in
+/// the file's unit.
+struct WallModel {
+  double thickness = 0;
+};
+/// The solid where the generalized winding number of the surface is at least 1/2 (holes are
+/// bridged), estimated by Monte Carlo or quasi-Monte Carlo with error bars. The sampling options'
+/// fixed_mass and num_threads are taken from LoadOptions.
+struct WindingNumberModel {
+  MonteCarloOptions sampling;
+};
+using Model = std::variant<SolidModel, ShellModel, WallModel, WindingNumberModel>;
+
+/// Called with the name of each stage as it begins ("reading", "checking edges", ...), from the
+/// calling thread.
+using ProgressCallback = std::function<void(const char* stage)>;
+
+struct LoadOptions {
+  LengthUnit unit = LengthUnit::kMetre;  ///< unit of the file's coordinates
+  MassSpec mass = Density{1000.0};       ///< kg/m^3, or the total mass
+  Model model = SolidModel{};
+  IntegrationPath path = IntegrationPath::kAuto;
+  Reader reader = Reader::kAuto;
+  /// Weld near-coincident corners, drop degenerate and duplicate faces, orient and stitch with
+  /// CGAL before integrating (needs a build with CGAL).
+  bool repair = false;
+  /// Compute even when the surface is open or inconsistently oriented, or its shells overlap,
+  /// with a finding that says so.
+  bool allow_open = false;
+  /// Binary STL: weld and run every check even when the streamed pass finds the surface closed.
+  bool full_check = false;
+  /// Count intersecting face pairs with CGAL (needs a build with CGAL).
+  bool check_self_intersections = false;
+  int num_threads = 0;  ///< 0: every core; the bits do not depend on it
+  ProgressCallback progress;
+};
+
+/// What kind of model produced a result.
+enum class ModelKind { kSolid, kShell, kWall, kImplicit, kWindingNumber };
+/// "solid", "shell", "wall", "implicit", "winding-number".
+const char* ModelName(ModelKind kind);
+
+/// What the checks found that a user must know about, though the numbers stand.
+enum class FindingKind {
+  kOpenSurface,        ///< holes or inconsistent orientation; computed anyway (or bridged, or a shell)
+  kOverlappingShells,  ///< shells whose volumes overlap; computed anyway
+  kNonManifoldEdges,   ///< edges shared by more than two faces, matched in both directions
+  kSelfIntersections,  ///< faces that pass through each other
+  kUnitSuspicion,      ///< the size suggests the coordinates are in another unit
+  kUndeterminedAxes,   ///< an estimate's principal moments are equal within their error bars
+  kToleranceNotMet,    ///< an adaptive estimate stopped at its sample limit
+};
+
+struct Finding {
+  FindingKind kind;
+  std::string message;  ///< with option markers (wording.h)
+};
+
+/// Everything the pipeline learned about one input.
+struct SolidResult {
+  std::string source;  ///< the file path, or the implicit shape's text
+  LengthUnit unit = LengthUnit::kMetre;
+  ModelKind model = ModelKind::kSolid;
+  LoadedMesh loaded;  ///< the mesh integrated (after repair; for a wall, the wall solid)
+  MeshTopology topology;
+  ShellReport shells;                  ///< filled when the mesh has more than one component
+  std::optional<RepairReport> repair;  ///< what the repair changed
+  std::int64_t self_intersections = -1;  ///< -1: not checked
+  /// False on the streamed binary-STL path (only the closed-cycle check ran) and for implicit
+  /// solids (no mesh).
+  bool full_topology = true;
+  std::optional<MassPropertiesEstimate> estimate;  ///< the Monte-Carlo models: error bars
+  /// SI, in the file's axes. A shell has volume 0 and its area density in `density`.
+  MassProperties mp;
+  PrincipalInertia principal;
+  ValidityReport validity;
+  bool mass_fixed = false;       ///< the density came from a TotalMass
+  double wall_thickness = 0;     ///< WallModel: in the file's unit
+  std::string path_used;         ///< how it was integrated, in words
+  double size_m = 0;             ///< bounding-box diagonal, m
+  double seconds = 0;            ///< wall-clock time of the whole pipeline
+  std::vector<Finding> findings;
+};
+
+/// An input the pipeline refuses: what() names the file, the fault and (with the C++ option
+/// names) what to do. `text()` keeps the option markers for other vocabularies.
+class LoadError : public MeshFileError {
+ public:
+  explicit LoadError(std::string text);
+  const std::string& text() const { return text_; }
+
+ private:
+  std::string text_;
+};
+
+/// The message of any exception the pipeline throws, worded in `vocabulary`.
+std::string WordedError(const std::exception& error, const Vocabulary& vocabulary);
+
+/// Reads, checks and integrates one mesh file.
+/// @throws LoadError when the input does not describe a solid the options can compute (open,
+///         inward, overlapping, a wall too thick, ...), MeshFileError when it cannot be read,
+///         std::invalid_argument for an invalid option value.
+SolidResult LoadSolid(const std::string& path, const LoadOptions& options = {});
+
+/// Options of an implicit solid's estimate.
+struct ImplicitOptions {
+  LengthUnit unit = LengthUnit::kMetre;  ///< unit of the shape's coordinates
+  MassSpec mass = Density{1000.0};
+  MonteCarloOptions sampling;  ///< fixed_mass is taken from `mass`, num_threads from here
+  int num_threads = 0;
+  ProgressCallback progress;
+};
+
+/// Estimates the mass properties of an implicit solid (primitives, CSG, SDF grids: implicit.h)
+/// with error bars. @throws std::invalid_argument for a bad option or an empty solid.
+SolidResult EstimateImplicit(const ImplicitSolid& solid, const ImplicitOptions& options = {});
+
+}  // namespace massprops

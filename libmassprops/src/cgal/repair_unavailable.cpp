@@ -1,0 +1,23 @@
+// Stand-ins for a build without CGAL (MASSPROPS_WITH_CGAL=OFF): the repair and the
+// self-intersection checks say precisely why they cannot run.
+
+#include <stdexcept>
+
+#include "massprops/repair.h"
+
+namespace massprops {
+namespace {
+[[noreturn]] void Unavailable(const char* what) {
+  throw std::runtime_error(std::string(what) +
+                           " needs CGAL, and this build of massprops was configured without it "
+                           "(MASSPROPS_WITH_CGAL=OFF)");
+}
+}  // namespace
+
+RepairedMesh RepairMesh(const PolygonMesh&, const RepairOptions&) { Unavailable("the repair"); }
+
+std::int64_t CountSelfIntersections(const PolygonMesh&, std::int64_t) {
+  Unavailable("the self-intersection check");
+}
+
+}  // namespace massprops

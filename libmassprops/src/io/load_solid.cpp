@@ -1,0 +1,347 @@
+// The pipeline of load.h: from a file (or an implicit solid) to checked mass properties.
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+
+#include "massprops/composition.h"
+#include "massprops/implicit.h"
+#include "massprops/load.h"
+#include "massprops/shell.h"
+#include "massprops/text.h"
+
+namespace massprops {
+namespace {
+
+template <class... Ts>
+struct Overloaded : Ts... {
+  using Ts::operator()...;
+};
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
+
+// Below this many triangles a binary STL is always welded and fully checked (cheap); at or above
+// it the records are integrated as they lie, with the streaming closed-cycle check.
+constexpr std::int64_t kStreamingThreshold = 200000;
+
+std::string Fixed(double v, const char* fmt = "%.4g") { return FormatDouble(v, fmt); }
+
+std::string Lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+double Diagonal(const PolygonMesh& mesh) {
+  return (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
+}
+
+void Stage(const LoadOptions& o, const char* stage) {
+  if (o.progress) o.progress(stage);
+}
+
+void Warn(SolidResult& r, FindingKind kind, std::string message) {
+  r.findings.push_back({kind, std::move(message)});
+}
+
+// Warns when the size in metres suggests the coordinates are in another unit.
+void CheckPlausibleSize(SolidResult& r) {
+  const double s = r.size_m;
+  if (r.unit == LengthUnit::kMetre && s > 20.0) {
+    Warn(r, FindingKind::kUnitSuspicion,
+         "the part is " + Fixed(s) + " m across (with {unit=m}); if the file is in millimetres pass {unit=mm} (" +
+             Fixed(s / 1000) + " m), centimetres {unit=cm}, inches {unit=in}");
+  } else if (s > 1000.0) {
+    Warn(r, FindingKind::kUnitSuspicion, "the part is " + Fixed(s) + " m across: check {unit}");
+  } else if (s < 1e-4) {
+    Warn(r, FindingKind::kUnitSuspicion,
+         "the part is only " + Fixed(s * 1000) + " mm across: check {unit} (the file's coordinates are taken as " +
+             UnitName(r.unit) + ")");
+  }
+}
+
+// What every path reports once r.mp is known: size and its plausibility, principal axes, and
+// validity (with the tolerance an estimate's noise needs).
+void Conclude(SolidResult& r, double size_m, double validity_tolerance = 1e-12) {
+  r.size_m = size_m;
+  CheckPlausibleSize(r);
+  r.principal = ComputePrincipalInertia(r.mp.inertia_com);
+  r.validity = CheckPhysicallyValid(r.principal.moments, validity_tolerance);
+}
+
+// Integrals in file units → SI mass properties at the requested density or total mass.
+void Finish(SolidResult& r, const VolumeIntegrals& integrals, const LoadOptions& opt, double size_file_units) {
+  if (integrals.volume < 0) {
+    throw LoadError(r.source + ": the signed volume is negative (" + Fixed(integrals.volume, "%.6g") + " " +
+                    UnitName(opt.unit) + "^3): the faces point inward. Reverse the orientation of every face");
+  }
+  const double scale = MetresPerUnit(opt.unit);
+  // Integrate in file units, then scale exactly (no rounding of the coordinates themselves).
+  const MassProperties unit_density = Scaled(FromIntegrals(integrals, 1.0), scale);
+  r.mp = AtDensity(unit_density, ResolveDensity(opt.mass, unit_density.volume));
+  Conclude(r, scale * size_file_units);
+}
+
+// Runs the estimator on a solid already in metres and fills the result.
+void Estimate(SolidResult& r, const ImplicitSolid& solid, MonteCarloOptions mc, const MassSpec& mass,
+              int num_threads, const ProgressCallback& progress) {
+  mc.num_threads = num_threads;
+  mc.fixed_mass = FixesMass(mass) ? std::get<TotalMass>(mass).value : 0.0;
+  const double density = FixesMass(mass) ? 1.0 : ResolveDensity(mass, 1.0);
+  if (progress) progress(mc.tolerance > 0 ? "sampling until the tolerance is met" : "sampling");
+  const MassPropertiesEstimate e = EstimateMassProperties(solid, density, mc);
+  const bool qmc = mc.method == SamplingMethod::kQuasiMonteCarlo;
+  r.estimate = e;
+  r.mp = e.value;
+  r.mass_fixed = FixesMass(mass);
+  Conclude(r, solid.Bounds().sizes().norm(), 1e-6);
+  r.path_used = std::string(qmc ? "quasi-Monte Carlo (Owen-scrambled Sobol)" : "Monte Carlo") + ", " +
+                std::to_string(e.samples) + " points" +
+                (qmc ? " in " + std::to_string(e.randomizations) + " randomizations" : "");
+  for (int i = 0; i < 2; ++i) {
+    const double gap = e.principal_moments[i + 1] - e.principal_moments[i];
+    if (gap < 3 * (e.principal_moments_se[i] + e.principal_moments_se[i + 1])) {
+      Warn(r, FindingKind::kUndeterminedAxes,
+           "principal moments " + std::to_string(i + 1) + " and " + std::to_string(i + 2) +
+               " are equal within their error bars: the principal axes in their plane are not determined by this "
+               "estimate (the printed ones are one choice)");
+    }
+  }
+  if (mc.tolerance > 0 && !e.tolerance_met) {
+    Warn(r, FindingKind::kToleranceNotMet,
+         "the tolerance " + Fixed(mc.tolerance, "%g") + " was not reached (relative error " +
+             Fixed(e.MaxRelativeError(), "%.2g") + " after " + std::to_string(e.samples) + " points)");
+  }
+}
+
+double SecondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Binary STL of kStreamingThreshold triangles or more, closed: integrate the records as they lie.
+bool TryStreamedStl(SolidResult& r, const std::string& file, const LoadOptions& opt) {
+  const bool stl = Lower(file.substr(file.find_last_of('.') + 1)) == "stl";
+  // A binary STL of kStreamingThreshold triangles is at least this big; smaller files skip the
+  // streamed pass instead of integrating twice.
+  std::error_code size_error;
+  const auto bytes = std::filesystem::file_size(file, size_error);
+  const bool big = !size_error && bytes >= 84 + 50 * static_cast<std::uintmax_t>(kStreamingThreshold);
+  const bool solid = std::holds_alternative<SolidModel>(opt.model);
+  if (!(stl && big && solid && opt.path != IntegrationPath::kPolygons && !opt.full_check &&
+        opt.reader == Reader::kAuto && !opt.repair && !opt.check_self_intersections)) {
+    return false;
+  }
+  IntegrationOptions io;
+  io.num_threads = opt.num_threads;
+  const auto soup = IntegrateBinaryStlFile(file, io);
+  if (!soup || !soup->IsClosedCycle() || soup->triangles < kStreamingThreshold) return false;
+  r.loaded.format = "stl-binary";
+  r.loaded.float32_coordinates = true;
+  r.full_topology = false;
+  r.topology.faces = soup->triangles;
+  r.path_used = "triangles (signed tetrahedra), streamed from the file";
+  Finish(r, soup->integrals, opt, (soup->upper - soup->lower).norm());
+  return true;
+}
+
+void RefuseOpen(const SolidResult& r, const LoadOptions& opt, bool wall) {
+  if (wall) {
+    throw LoadError(r.source + ": " + r.topology.Problems() +
+                    ". A wall needs a closed surface to offset inward (try {repair})");
+  }
+  throw LoadError(r.source + ": " + (opt.repair ? "after {repair}: " : "") + r.topology.Problems() +
+                  ". The mesh does not bound a solid, so its mass properties are not defined; " +
+                  (opt.repair ? "close the holes in a modelling tool, " : "try {repair}, ") +
+                  "or pass {allow_open} to compute anyway");
+}
+
+void IntegrateShell(SolidResult& r, const ShellModel& shell, const LoadOptions& opt) {
+  // A thin shell is a surface property: holes, orientation and nesting do not matter.
+  Stage(opt, "integrating the surface");
+  r.model = ModelKind::kShell;
+  r.path_used = "surface (thin shell), triangles and planar polygons integrated exactly";
+  const PolygonMesh& mesh = r.loaded.mesh;
+  const double scale = MetresPerUnit(opt.unit);
+  IntegrationOptions io;
+  io.num_threads = opt.num_threads;
+  const SurfaceIntegrals s = IntegrateSurface(mesh, io);
+  if (!(s.area > 0)) throw LoadError(r.source + ": the surface has no area");
+  const MassSpec spec = FixesMass(opt.mass) ? opt.mass : MassSpec(Density{shell.area_density});
+  r.mp = ShellMassProperties(s, ResolveDensity(spec, s.area * scale * scale), scale);
+  r.mass_fixed = FixesMass(opt.mass);
+  Conclude(r, scale * Diagonal(mesh));
+  if (!r.topology.BoundsVolume()) Warn(r, FindingKind::kOpenSurface, r.topology.Problems() + "; fine for a thin shell");
+}
+
+void IntegrateWall(SolidResult& r, const WallModel& wall, const LoadOptions& opt) {
+  Stage(opt, "offsetting the wall inward");
+  r.model = ModelKind::kWall;
+  r.wall_thickness = wall.thickness;
+  const PolygonMesh mesh = r.loaded.mesh;
+  try {
+    const OffsetResult inner = OffsetInward(mesh, wall.thickness);
+    if (inner.flipped_faces == 0 && inner.inner_volume > 0) {
+      Stage(opt, "checking the inner surface for self-intersections (CGAL)");
+      if (CountSelfIntersections(inner.inner, 1) > 0) {
+        throw std::invalid_argument("a wall of " + Fixed(wall.thickness, "%g") + " " + UnitName(opt.unit) +
+                                    " is thicker than the part allows: the inner surface passes through itself "
+                                    "(the part is thinner than twice the wall somewhere); use a thinner wall");
+      }
+    }
+    r.loaded.mesh = WallSolid(mesh, inner);
+  } catch (const std::invalid_argument& e) {
+    throw LoadError(r.source + ": {wall}: " + e.what());
+  }
+  r.path_used = "polygons (Mirtich), the surface and its inward offset by " + Fixed(wall.thickness, "%g") + " " +
+                UnitName(opt.unit);
+  IntegrationOptions io;
+  io.num_threads = opt.num_threads;
+  r.mass_fixed = FixesMass(opt.mass);
+  Finish(r, IntegratePolygons(r.loaded.mesh, io), opt, Diagonal(mesh));
+}
+
+void IntegrateSolid(SolidResult& r, const LoadOptions& opt) {
+  Stage(opt, "integrating");
+  const PolygonMesh& mesh = r.loaded.mesh;
+  IntegrationOptions io;
+  io.num_threads = opt.num_threads;
+  const bool triangles = IsAllTriangles(mesh);
+  VolumeIntegrals integrals;
+  if (opt.path == IntegrationPath::kPolygons || (opt.path == IntegrationPath::kAuto && !triangles)) {
+    r.path_used = "polygons (Mirtich), faces integrated whole";
+    integrals = IntegratePolygons(mesh, io);
+  } else {
+    r.path_used = triangles ? "triangles (signed tetrahedra)" : "triangles (signed tetrahedra), polygons split into fans";
+    const TriangleMesh tri = Triangulate(mesh);
+    integrals = IntegrateTriangles(tri.V, tri.F, io);
+  }
+  r.mass_fixed = FixesMass(opt.mass);
+  Finish(r, integrals, opt, Diagonal(mesh));
+}
+
+}  // namespace
+
+const char* ModelName(ModelKind kind) {
+  switch (kind) {
+    case ModelKind::kSolid: return "solid";
+    case ModelKind::kShell: return "shell";
+    case ModelKind::kWall: return "wall";
+    case ModelKind::kImplicit: return "implicit";
+    case ModelKind::kWindingNumber: return "winding-number";
+  }
+  return "?";
+}
+
+LoadError::LoadError(std::string text) : MeshFileError(Worded(text, ApiVocabulary())), text_(std::move(text)) {}
+
+std::string WordedError(const std::exception& error, const Vocabulary& vocabulary) {
+  if (const auto* e = dynamic_cast<const LoadError*>(&error)) return Worded(e->text(), vocabulary);
+  return error.what();
+}
+
+SolidResult LoadSolid(const std::string& file, const LoadOptions& opt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  SolidResult r;
+  r.source = file;
+  r.unit = opt.unit;
+  if (const auto* shell = std::get_if<ShellModel>(&opt.model);
+      shell && !FixesMass(opt.mass) && !(std::isfinite(shell->area_density) && shell->area_density > 0)) {
+    throw std::invalid_argument("a shell needs a finite, positive area density (kg/m^2) or a total mass");
+  }
+  if (const auto* wall = std::get_if<WallModel>(&opt.model);
+      wall && !(std::isfinite(wall->thickness) && wall->thickness > 0)) {
+    throw std::invalid_argument("a wall needs a finite, positive thickness");
+  }
+
+  if (TryStreamedStl(r, file, opt)) {
+    r.seconds = SecondsSince(t0);
+    return r;
+  }
+
+  Stage(opt, "reading");
+  r.loaded = opt.reader == Reader::kAssimp ? ReadMeshFileWithAssimp(file) : ReadMeshFile(file);
+  if (opt.repair) {
+    Stage(opt, "repairing (CGAL)");
+    RepairedMesh repaired = RepairMesh(r.loaded.mesh);
+    r.loaded.mesh = std::move(repaired.mesh);
+    r.repair = repaired.report;
+  }
+  const PolygonMesh& mesh = r.loaded.mesh;
+  Stage(opt, "checking edges");
+  r.topology = AnalyzeTopology(mesh);
+  if (opt.check_self_intersections) {
+    Stage(opt, "checking self-intersections (CGAL)");
+    r.self_intersections = CountSelfIntersections(mesh);
+  }
+  if (r.self_intersections > 0) {
+    Warn(r, FindingKind::kSelfIntersections,
+         std::to_string(r.self_intersections) +
+             " pairs of faces intersect: where the surface passes through itself, volume is counted twice or "
+             "cancelled, and the numbers are not those of a solid");
+  }
+  if (const auto* wn = std::get_if<WindingNumberModel>(&opt.model)) {
+    // Inside is where the generalized winding number is at least 1/2: holes are bridged, so an
+    // open scan gets a sensible solid; the estimate carries error bars.
+    r.model = ModelKind::kWindingNumber;
+    TriangleMesh tri = Triangulate(mesh);
+    tri.V *= MetresPerUnit(opt.unit);
+    if (!r.topology.BoundsVolume()) {
+      Warn(r, FindingKind::kOpenSurface, r.topology.Problems() + "; the winding number bridges the holes");
+    }
+    Stage(opt, "building the winding-number hierarchy");
+    Estimate(r, *implicit::WindingNumberSolid(tri), wn->sampling, opt.mass, opt.num_threads, opt.progress);
+    r.seconds = SecondsSince(t0);
+    return r;
+  }
+  if (const auto* shell = std::get_if<ShellModel>(&opt.model)) {
+    IntegrateShell(r, *shell, opt);
+    r.seconds = SecondsSince(t0);
+    return r;
+  }
+  const auto* wall = std::get_if<WallModel>(&opt.model);
+  if (!r.topology.BoundsVolume()) {
+    if (!opt.allow_open || wall) RefuseOpen(r, opt, wall != nullptr);
+    Warn(r, FindingKind::kOpenSurface,
+         r.topology.Problems() +
+             "; computed anyway ({allow_open}): the result depends on the reference point and is not trustworthy");
+  }
+  if (r.topology.non_manifold_edges > 0 && r.topology.BoundsVolume()) {
+    Warn(r, FindingKind::kNonManifoldEdges,
+         std::to_string(r.topology.non_manifold_edges) +
+             " edges are shared by more than two faces (solids touching along edges); each is matched in both "
+             "directions, so the volume is well defined");
+  }
+  if (r.topology.components > 1) {
+    Stage(opt, "checking how the shells nest");
+    r.shells = AnalyzeShells(mesh);
+    if (!r.shells.problem.empty()) {
+      if (!opt.allow_open) throw LoadError(file + ": " + r.shells.problem);
+      Warn(r, FindingKind::kOverlappingShells, r.shells.problem + "; computed anyway ({allow_open})");
+    }
+  }
+  if (wall) {
+    IntegrateWall(r, *wall, opt);
+  } else {
+    IntegrateSolid(r, opt);
+  }
+  r.seconds = SecondsSince(t0);
+  return r;
+}
+
+SolidResult EstimateImplicit(const ImplicitSolid& solid, const ImplicitOptions& opt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  SolidResult r;
+  r.unit = opt.unit;
+  r.model = ModelKind::kImplicit;
+  r.source = solid.Describe();
+  r.full_topology = false;
+  r.loaded.format = "implicit";
+  // Implicit solids are shared and immutable; scaling wraps without copying.
+  const ImplicitPtr view(std::shared_ptr<const ImplicitSolid>(), &solid);
+  Estimate(r, *implicit::Scaled(view, MetresPerUnit(opt.unit)), opt.sampling, opt.mass, opt.num_threads,
+           opt.progress);
+  r.seconds = SecondsSince(t0);
+  return r;
+}
+
+}  // namespace massprops

@@ -1,0 +1,31 @@
+#include "massprops/mass_spec.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace massprops {
+
+double ResolveDensity(const MassSpec& spec, double measure) {
+  if (const auto* d = std::get_if<Density>(&spec)) {
+    if (!(std::isfinite(d->value) && d->value > 0)) {
+      throw std::invalid_argument("the density must be finite and positive, got " + std::to_string(d->value));
+    }
+    return d->value;
+  }
+  const double mass = std::get<TotalMass>(spec).value;
+  if (!(std::isfinite(mass) && mass > 0)) {
+    throw std::invalid_argument("the mass must be finite and positive, got " + std::to_string(mass));
+  }
+  return mass / measure;
+}
+
+MassProperties AtDensity(const MassProperties& unit_density, double density) {
+  MassProperties mp = unit_density;
+  mp.mass = unit_density.volume * density;
+  mp.inertia_com = unit_density.inertia_com * density;
+  mp.density = density;
+  return mp;
+}
+
+}  // namespace massprops

@@ -1,0 +1,115 @@
+#include "massprops/primitive.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "massprops/solids.h"
+#include "massprops/text.h"
+
+namespace massprops {
+namespace {
+
+template <class... Ts>
+struct Overloaded : Ts... {
+  using Ts::operator()...;
+};
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
+
+void RequirePositive(Scalar v, const char* what) {
+  if (!(std::isfinite(v) && v > 0)) {
+    throw std::invalid_argument(std::string(what) + " must be finite and positive (got " + FormatDouble(v, "%.6g") + ")");
+  }
+}
+
+std::string G(double v) { return FormatDouble(v, "%.6g"); }
+
+}  // namespace
+
+const char* PrimitiveName(const Primitive& p) { return kPrimitiveNames[p.index()]; }
+
+void Validate(const Primitive& p) {
+  namespace pr = primitive;
+  std::visit(Overloaded{
+                 [](const pr::Box& s) { for (int i = 0; i < 3; ++i) RequirePositive(s.size[i], "box: edge"); },
+                 [](const pr::Sphere& s) { RequirePositive(s.radius, "sphere: radius"); },
+                 [](const pr::Ellipsoid& s) { for (int i = 0; i < 3; ++i) RequirePositive(s.semi_axes[i], "ellipsoid: semi-axis"); },
+                 [](const pr::Cylinder& s) { RequirePositive(s.radius, "cylinder: radius"); RequirePositive(s.height, "cylinder: height"); },
+                 [](const pr::Cone& s) { RequirePositive(s.radius, "cone: radius"); RequirePositive(s.height, "cone: height"); },
+                 [](const pr::Torus& s) {
+                   RequirePositive(s.major_radius, "torus: major radius");
+                   RequirePositive(s.minor_radius, "torus: minor radius");
+                   if (!(s.minor_radius < s.major_radius)) {
+                     throw std::invalid_argument("torus: the minor radius must be smaller than the major radius "
+                                                 "(a self-intersecting torus is not a solid)");
+                   }
+                 },
+                 [](const pr::Capsule& s) { RequirePositive(s.radius, "capsule: radius"); RequirePositive(s.length, "capsule: length"); },
+             },
+             p);
+}
+
+MassProperties ClosedForm(const Primitive& p, Scalar density) {
+  Validate(p);
+  namespace pr = primitive;
+  namespace so = solids;
+  return std::visit(Overloaded{
+                        [&](const pr::Box& s) { return so::BoxProperties(s.size, density); },
+                        [&](const pr::Sphere& s) { return so::SphereProperties(s.radius, density); },
+                        [&](const pr::Ellipsoid& s) { return so::EllipsoidProperties(s.semi_axes, density); },
+                        [&](const pr::Cylinder& s) { return so::CylinderProperties(s.radius, s.height, density); },
+                        [&](const pr::Cone& s) { return so::ConeProperties(s.radius, s.height, density); },
+                        [&](const pr::Torus& s) { return so::TorusProperties(s.major_radius, s.minor_radius, density); },
+                        [&](const pr::Capsule& s) { return so::CapsuleProperties(s.radius, s.length, density); },
+                    },
+                    p);
+}
+
+TriangleMesh Tessellate(const Primitive& p, int n) {
+  namespace pr = primitive;
+  namespace so = solids;
+  return std::visit(Overloaded{
+                        [&](const pr::Box& s) { return Triangulate(so::Box(s.size)); },
+                        [&](const pr::Sphere& s) { return so::Sphere(s.radius, n); },
+                        [&](const pr::Ellipsoid& s) { return so::Ellipsoid(s.semi_axes, n); },
+                        [&](const pr::Cylinder& s) { return so::Cylinder(s.radius, s.height, n); },
+                        [&](const pr::Cone& s) { return so::Cone(s.radius, s.height, n); },
+                        [&](const pr::Torus& s) { return so::Torus(s.major_radius, s.minor_radius, n); },
+                        [&](const pr::Capsule& s) { return so::Capsule(s.radius, s.length, n); },
+                    },
+                    p);
+}
+
+ImplicitPtr ToImplicit(const Primitive& p) {
+  namespace pr = primitive;
+  namespace im = implicit;
+  return std::visit(Overloaded{
+                        [](const pr::Box& s) { return im::Box(s.size); },
+                        [](const pr::Sphere& s) { return im::Sphere(s.radius); },
+                        [](const pr::Ellipsoid& s) { return im::Ellipsoid(s.semi_axes); },
+                        [](const pr::Cylinder& s) { return im::Cylinder(s.radius, s.height); },
+                        [](const pr::Cone& s) { return im::Cone(s.radius, s.height); },
+                        [](const pr::Torus& s) { return im::Torus(s.major_radius, s.minor_radius); },
+                        [](const pr::Capsule& s) { return im::Capsule(s.radius, s.length); },
+                    },
+                    p);
+}
+
+std::string Describe(const Primitive& p) {
+  namespace pr = primitive;
+  return std::visit(
+      Overloaded{
+          [](const pr::Box& s) { return "box " + G(s.size.x()) + " x " + G(s.size.y()) + " x " + G(s.size.z()) + " m"; },
+          [](const pr::Sphere& s) { return "sphere r=" + G(s.radius) + " m"; },
+          [](const pr::Ellipsoid& s) {
+            return "ellipsoid " + G(s.semi_axes.x()) + ", " + G(s.semi_axes.y()) + ", " + G(s.semi_axes.z()) + " m";
+          },
+          [](const pr::Cylinder& s) { return "cylinder r=" + G(s.radius) + " h=" + G(s.height) + " m"; },
+          [](const pr::Cone& s) { return "cone r=" + G(s.radius) + " h=" + G(s.height) + " m (apex at z=+3h/4)"; },
+          [](const pr::Torus& s) { return "torus R=" + G(s.major_radius) + " r=" + G(s.minor_radius) + " m"; },
+          [](const pr::Capsule& s) { return "capsule r=" + G(s.radius) + " length=" + G(s.length) + " m"; },
+      },
+      p);
+}
+
+}  // namespace massprops
