@@ -10,4 +10,6 @@ endfunction()
 # inlining contexts.
 function(massprops_set_floating_point target)
   target_compile_options(${target} PRIVATE -ffp-contract=off)
+  # Shared libraries: calls within a library may still be inlined (nobody interposes them).
+  target_compile_options(${target} PRIVATE -fno-semantic-interposition)
 endfunction()

@@ -41,6 +41,8 @@ LoadedMesh WeldCorners(const std::string& path, const std::vector<double>& xyz,
 LoadedMesh ParsePly(const std::string& path, std::string_view data);
 LoadedMesh ParseOff(const std::string& path, std::string_view data);
 
+/// Empty when the assimp plugin is loaded; otherwise why it is not (where it was looked for).
+std::string AssimpPluginStatus();
 /// True when assimp has an importer for this (lower-case) extension.
 bool AssimpCanRead(const std::string& extension);
 /// Reads any format assimp knows; node transforms are applied, all meshes are merged, corners

@@ -380,7 +380,11 @@ LoadedMesh ReadMeshFile(const std::string& path) {
     return ParseMeshBuffer(path, ext, std::string_view(reinterpret_cast<const char*>(file.data()), file.size()));
   }
   if (AssimpCanRead(ext)) return ReadWithAssimp(path);
-  Fail(path, "unknown mesh format '" + ext + "'");
+  const std::string plugin = AssimpPluginStatus();
+  if (!plugin.empty()) {
+    Fail(path, "cannot read '" + ext + "' files: our own readers take OBJ, STL, PLY and OFF, and for the rest " + plugin);
+  }
+  Fail(path, "unknown mesh format '" + ext + "' (neither our readers nor assimp know it)");
 }
 
 }  // namespace massprops

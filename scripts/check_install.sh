@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs the build into a fresh temporary prefix, builds tests/consumer against it with
+# find_package(massprops) and runs it, and runs the installed massprops on a glTF file (read
+# through the assimp plugin installed beside the library). Exit 0 when all of it works.
+#   check_install.sh [BUILD_DIR]
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${1:-$root/build}
+prefix=$(mktemp -d)
+work=$(mktemp -d)
+trap 'rm -rf "$prefix" "$work"' EXIT
+cmake --install "$build" --prefix "$prefix" >/dev/null
+cmake -S "$root/tests/consumer" -B "$work" -G Ninja -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$work" >/dev/null
+"$work/consumer" "$root/data"
+# The installed command, away from the build tree, reads glTF as the build tree does.
+env -u MASSPROPS_ASSIMP_PLUGIN "$prefix/bin/massprops" "$root/data/meshes/box_0.1x0.2x0.3.gltf" --format csv -q \
+  | tail -n 1 | grep -q '^"[^"]*box_0.1x0.2x0.3.gltf",m,0.0060000017' \
+  || { echo "check_install: the installed massprops did not read the glTF box"; exit 1; }
+"$prefix/bin/massprops" --version
+"$prefix/bin/rbsim" --version
+echo "check_install: installed package, find_package consumer and glTF reading work"
