@@ -70,9 +70,7 @@ int main(int argc, char** argv) {
   app.add_option("--velocity", velocity_text, "--mesh: initial velocity vx,vy,vz in m/s")->needs(mesh_opt);
   app.add_option("--dt", dt, "Time step, s (overrides the scene)")->check(CLI::PositiveNumber);
   app.add_option("--duration", duration, "Simulated time, s (overrides the scene)")->check(CLI::PositiveNumber);
-  app.add_option("--integrator", integrator, "Integrator (overrides the scene): implicit-midpoint, splitting, rk4, "
-                                             "explicit-euler, quaternion-euler, symplectic-euler, implicit-gyroscopic, "
-                                             "exact-splitting");
+  app.add_option("--integrator", integrator, "Integrator (overrides the scene): " + dynamics::IntegratorNames());
   app.add_option("--rate", rate, "Output rate, samples per simulated second (overrides the scene)")->check(CLI::PositiveNumber);
   app.add_option("--out", out_dir, "Write every output of the run into this directory (created if missing)");
   app.add_option("--outputs", outputs_text, "Which outputs, comma-separated: csv, jsonl, diagnostics, svg, png, glb "

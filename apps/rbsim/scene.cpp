@@ -402,7 +402,7 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
     scene.integrator = dynamics::ParseIntegrator(integrator);
   } catch (const std::invalid_argument&) {
     std::vector<std::string> names;
-    for (auto i : dynamics::kAllIntegrators) names.emplace_back(dynamics::IntegratorName(i));
+    for (auto i : dynamics::kAllIntegrators) names.emplace_back(dynamics::IntegratorName(i));  // for the suggestion
     f.Fail("integrator", "'" + integrator + "' is not one of " + Join(names) + Suggest(integrator, names));
   }
   scene.output_rate = f.Number("output_rate", 60.0, "positive");

@@ -239,6 +239,7 @@ RunStats Run(Simulation& sim,
   const std::int64_t progress_every = std::max<std::int64_t>(1, n / 1000);
   for (std::int64_t i = 1; i <= n; ++i) {
     const dynamics::StepStatus status = sim.world.Step(sim.scene.dt);
+    if (!status.ok) throw std::runtime_error(status.message);
     stats.max_substeps = std::max(stats.max_substeps, status.substeps);
     stats.steps = i;
     if (i % every == 0 || i == n) sample();

@@ -389,6 +389,55 @@ TEST(FreeRotation, LargeStepsNeverClampTheSpin) {
   }
 }
 
+TEST(FreeRotation, AStepThatCannotConvergeIsReportedAndLeavesTheStateAsItWas) {
+  // A spin so large that the midpoint solve fails even at h/1024: no exception from the step
+  // loop, a status that says so, and the state and time exactly as before the call.
+  World w;
+  const RigidBody b = Body(Vector3(1, 2, 3), Vector3(3e9, -2e9, 1e9));
+  w.AddBody(b);
+  const StepStatus s = w.Step(1.0);
+  EXPECT_FALSE(s.ok);
+  EXPECT_THAT(s.message, ::testing::HasSubstr("did not converge"));
+  EXPECT_EQ(w.time(), 0.0);
+  EXPECT_EQ(w.bodies()[0].orientation.coeffs(), b.orientation.coeffs());
+  EXPECT_EQ(w.bodies()[0].angular_momentum, b.angular_momentum);
+  EXPECT_EQ(w.bodies()[0].position, b.position);
+  // The same world then steps normally with a step that suits the spin.
+  EXPECT_TRUE(w.Step(1e-12).ok);
+}
+
+TEST(Worlds, ForcesSayWhatTheyConserve) {
+  World w;
+  w.AddBody(Body(Vector3(1, 2, 2.5), Vector3::Zero()));
+  w.AddBody(Body(Vector3(1, 2, 2.5), Vector3::Zero()));
+  w.AddForce(SpringBetween(0, Vector3::Zero(), 1, Vector3::Zero(), 10, 0, 0));
+  w.AddForce(LinearDamping(0.0));
+  Conservation c = w.Conserves();
+  EXPECT_TRUE(c.energy && c.momentum) << c.energy_broken_by << " / " << c.momentum_broken_by;
+  w.AddForce(Gravity(Vector3(0, 0, -9.81)));
+  w.AddForce(SpringToWorld(0, Vector3::Zero(), Vector3::Zero(), 5, 0, 0.5));
+  w.AddForce(BodyFrameTorque(1, Vector3(0, 0, 1)));
+  c = w.Conserves();
+  EXPECT_FALSE(c.energy);
+  EXPECT_FALSE(c.momentum);
+  EXPECT_EQ(c.energy_broken_by, "spring damping, applied torques");
+  EXPECT_EQ(c.momentum_broken_by, "gravity, springs to the world, applied torques");
+}
+
+TEST(Worlds, BodyFrameTorqueTurnsWithTheBody) {
+  // A torque fixed in the body's axes: after the body has turned a quarter about z, the world
+  // torque has turned with it.
+  World w;
+  RigidBody b = Body(Vector3(1, 2, 3), Vector3::Zero());
+  b.orientation = Quaternion(Eigen::AngleAxisd(M_PI / 2, Vector3::UnitZ()));
+  w.AddBody(b);
+  w.AddForce(BodyFrameTorque(0, Vector3(1, 0, 0)));
+  w.Step(1e-3);
+  const Vector3 L = w.bodies()[0].angular_momentum;  // = h τ_world to first order
+  EXPECT_NEAR(L.x(), 0.0, 1e-12);
+  EXPECT_NEAR(L.y(), 1e-3, 1e-9);
+}
+
 TEST(Worlds, TwoBodiesOnASpringConserveMomenta) {
   World w;
   RigidBody a = Body(Vector3(1, 2, 2.5), Vector3(0.3, 0.1, -0.2), 2.0);

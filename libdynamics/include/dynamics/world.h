@@ -42,7 +42,10 @@ enum class Integrator {
   kExactSplitting,
 };
 
+/// The name of an integrator as parsed and printed ("implicit-midpoint", ...).
 const char* IntegratorName(Integrator integrator);
+/// Every name, comma-separated, for messages and help texts.
+std::string IntegratorNames();
 
 /// Every integrator, in the order above.
 inline constexpr Integrator kAllIntegrators[] = {
@@ -53,9 +56,8 @@ inline constexpr Integrator kAllIntegrators[] = {
 /// The seed notes' attitude step R ← R + h[ω]×R, followed (if `reproject`) by the projection
 /// onto the rotations through the SVD, R = U Vᵀ with det +1. Without it R drifts off SO(3).
 Matrix3 ExplicitEulerRotation(const Matrix3& R, const Vector3& omega_world, double h, bool reproject);
-/// Parses the names above ("implicit-midpoint", "splitting", "rk4", "explicit-euler",
-/// "quaternion-euler", "symplectic-euler", "implicit-gyroscopic").
-/// @throws std::invalid_argument for an unknown name.
+/// Parses an integrator's name (IntegratorNames()).
+/// @throws std::invalid_argument for an unknown name, listing the known ones.
 Integrator ParseIntegrator(const std::string& name);
 
 /// Energy and momenta of the whole world.
@@ -88,12 +90,23 @@ struct Conservation {
 
 /// What a step did that the caller should know.
 struct StepStatus {
+  /// False when the implicit solve did not converge even with the smallest sub-step; the state
+  /// is then left as it was before the call, and `message` says why.
+  bool ok = true;
   int substeps = 1;  ///< > 1 when the implicit solve needed a smaller step to converge
+  std::string message;
 };
+
+namespace internal {
+struct StepScratch;
+}  // namespace internal
 
 class World {
  public:
-  explicit World(Integrator integrator = Integrator::kImplicitMidpoint) : integrator_(integrator) {}
+  explicit World(Integrator integrator = Integrator::kImplicitMidpoint);
+  ~World();
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
 
   /// Adds a body; returns its index. @throws std::invalid_argument for a non-positive mass or
   /// moment, a moment triple that violates I1 + I2 ≥ I3, or a non-finite state.
@@ -101,10 +114,11 @@ class World {
   /// Adds a force. @throws std::invalid_argument if it names a body that does not exist.
   void AddForce(std::unique_ptr<Force> force);
 
-  /// Advances by h seconds. Never clamps angular velocity: when the implicit midpoint solve does
-  /// not converge it halves the step (up to 2^10 sub-steps) and says so in the status.
-  /// @throws std::invalid_argument if h is not finite and positive; std::runtime_error if even
-  ///         the smallest sub-step fails (the state is then left as before the call).
+  /// Advances by h seconds. Never clamps angular velocity: when an implicit solve does not
+  /// converge it halves the step (up to 2^10 sub-steps) and says so in the status; if even that
+  /// fails, the status says so and the state is left as before the call. Allocates nothing once
+  /// the world has stepped (scratch is kept between steps).
+  /// @throws std::invalid_argument if h is not finite and positive.
   StepStatus Step(double h);
 
   double time() const { return time_; }
@@ -121,23 +135,10 @@ class World {
   const std::vector<std::unique_ptr<Force>>& forces() const { return forces_; }
 
  private:
-  void ComputeWrenches(double t, std::vector<Wrench>& out) const;
-  bool TryStep(double h);
-  template <typename Fn>
-  void ForEachBody(const Fn& fn);
-
-  struct Rate {  // RK4 stage derivative of one body
-    Vector3 dx, dv, dL;
-    Eigen::Vector4d dq;
-  };
-
   Integrator integrator_;
   std::vector<RigidBody> bodies_;
-  // Scratch kept between steps so that large worlds do not reallocate (and page-fault) per step.
-  std::vector<Wrench> wrenches_;
-  std::vector<RigidBody> rk4_start_;
-  std::vector<Rate> rk4_k_[4];
   std::vector<std::unique_ptr<Force>> forces_;
+  std::unique_ptr<internal::StepScratch> scratch_;  ///< kept between steps
   double time_ = 0;
   int num_threads_ = 0;
 };

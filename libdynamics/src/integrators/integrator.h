@@ -1,0 +1,129 @@
+#pragma once
+// The integrators' common ground (internal): what a step may touch, the per-body loop, and the
+// table of integrators. Adding one means one file in this folder and one row in table.cpp.
+
+#include <algorithm>
+#include <atomic>
+#include <thread>
+#include <vector>
+
+#include "dynamics/world.h"
+
+namespace dynamics::internal {
+
+/// Scratch kept between steps, so that stepping allocates nothing once a world has run.
+struct StepScratch {
+  std::vector<Wrench> wrenches;
+  std::vector<RigidBody> saved;       ///< state at the start of a step that may be retried
+  std::vector<RigidBody> rk4_start;   ///< RK4: state at the start of the step
+  struct Rate {                       ///< RK4: stage derivative of one body
+    Vector3 dx, dv, dL;
+    Eigen::Vector4d dq;
+  };
+  std::vector<Rate> rk4_k[4];
+};
+
+/// What a step function works on.
+class StepContext {
+ public:
+  StepContext(std::vector<RigidBody>& all_bodies, const std::vector<std::unique_ptr<Force>>& forces,
+              StepScratch& step_scratch, int num_threads)
+      : bodies(all_bodies), scratch(step_scratch), forces_(forces), num_threads_(num_threads) {}
+
+  std::vector<RigidBody>& bodies;
+  StepScratch& scratch;
+
+  /// scratch.wrenches = the forces at time t on the current states.
+  void ComputeWrenches(double t) {
+    std::vector<Wrench>& out = scratch.wrenches;
+    out.assign(bodies.size(), Wrench{});
+    for (const auto& f : forces_) f->Apply(t, bodies, out);
+  }
+  std::vector<Wrench>& wrenches() { return scratch.wrenches; }
+
+  /// fn(i) for every body, on worker threads for large worlds. Bodies are independent within a
+  /// phase, so the results do not depend on the thread count.
+  template <typename Fn>
+  void ForEachBody(const Fn& fn) const {
+    const std::size_t n = bodies.size();
+    static const int kHardwareThreads = static_cast<int>(std::thread::hardware_concurrency());
+    const int threads = num_threads_ > 0 ? num_threads_ : kHardwareThreads;
+    if (n < 4096 || threads <= 1) {  // not worth a thread
+      for (std::size_t i = 0; i < n; ++i) fn(i);
+      return;
+    }
+    constexpr std::size_t kChunk = 1024;
+    std::atomic<std::size_t> next{0};
+    auto worker = [&] {
+      for (std::size_t c = next.fetch_add(1); c * kChunk < n; c = next.fetch_add(1)) {
+        for (std::size_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) fn(i);
+      }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+    worker();
+    for (auto& t : pool) t.join();
+  }
+
+ private:
+  const std::vector<std::unique_ptr<Force>>& forces_;
+  int num_threads_;
+};
+
+/// Advances the bodies from time t by h. Returns false when an implicit solve did not converge
+/// (the caller restores the state and sub-steps); explicit schemes always return true.
+using StepFunction = bool (*)(StepContext& context, double t, double h);
+
+struct IntegratorInfo {
+  Integrator id;
+  const char* name;  ///< as parsed and printed: "implicit-midpoint", ...
+  StepFunction step;
+  bool may_fail;     ///< an implicit solve that can fail: Step saves the state and sub-steps
+};
+
+/// The table, in the order of kAllIntegrators.
+const IntegratorInfo& Info(Integrator integrator);
+
+// The step functions (one file each).
+bool StepImplicitMidpoint(StepContext& c, double t, double h);
+bool StepSplitting(StepContext& c, double t, double h);
+bool StepExactSplitting(StepContext& c, double t, double h);
+bool StepRK4(StepContext& c, double t, double h);
+bool StepExplicitEuler(StepContext& c, double t, double h);
+bool StepQuaternionEuler(StepContext& c, double t, double h);
+bool StepSymplecticEuler(StepContext& c, double t, double h);
+bool StepImplicitGyroscopic(StepContext& c, double t, double h);
+
+// Shared pieces.
+Matrix3 Skew(const Vector3& w);
+/// q̇ = ½ (0, ω_world) ⊗ q.
+Quaternion QuaternionRate(const Quaternion& q, const Vector3& omega_world);
+/// Free rotation over h by the implicit midpoint rule with the Cayley update; false when the
+/// solve does not converge.
+bool MidpointRotation(RigidBody& b, double h);
+/// Kick–drift–kick (Strang) splitting: half kicks of the forces on v and L around a drift of x
+/// and the free rotation `rotate` (false: not converged).
+template <typename Rotate>
+bool KickDriftKick(StepContext& c, double t, double h, const Rotate& rotate) {
+  std::vector<RigidBody>& bodies = c.bodies;
+  auto half_kick = [&] {
+    const std::vector<Wrench>& w = c.wrenches();
+    c.ForEachBody([&](std::size_t i) {
+      bodies[i].velocity += 0.5 * h / bodies[i].mass * w[i].force;
+      bodies[i].angular_momentum += 0.5 * h * w[i].torque;
+    });
+  };
+  c.ComputeWrenches(t);
+  half_kick();
+  std::atomic<bool> ok{true};
+  c.ForEachBody([&](std::size_t i) {  // drift
+    bodies[i].position += h * bodies[i].velocity;
+    if (!rotate(bodies[i], h)) ok = false;
+  });
+  if (!ok) return false;
+  c.ComputeWrenches(t + h);
+  half_kick();
+  return true;
+}
+
+}  // namespace dynamics::internal
