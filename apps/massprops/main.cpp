@@ -246,7 +246,7 @@ int main(int argc, char** argv) {
       o.sampling = Sampling(a);
       o.num_threads = a.threads;
       o.progress = progress;
-      return EstimateImplicit(*implicit::ParseShape(a.implicit), o);
+      return EstimateImplicit(*implicit::ParseShape(a.implicit, ReadSdfGridFile), o);
     });
   }
   if (!results.empty()) {

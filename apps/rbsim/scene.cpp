@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "massprops/implicit.h"
+#include "massprops/io.h"
 
 namespace rbsim {
 namespace {
@@ -257,7 +257,7 @@ ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {
   if (has_implicit) {
     s.implicit = f.String("implicit", "");
     try {
-      massprops::implicit::ParseShape(s.implicit);
+      massprops::implicit::ParseShape(s.implicit, massprops::ReadSdfGridFile);
     } catch (const std::exception& e) {
       f.Fail("implicit", e.what());
     }

@@ -92,7 +92,7 @@ void LoadMesh(const ShapeSpec& s, SimBody& body, const std::string& where, std::
 void LoadImplicit(const ShapeSpec& s, SimBody& body, const std::string& where, std::vector<std::string>& warnings,
                   int threads) {
   using namespace massprops;
-  const ImplicitPtr shape = implicit::ParseShape(s.implicit);
+  const ImplicitPtr shape = implicit::ParseShape(s.implicit, ReadSdfGridFile);
   ImplicitOptions opt;
   opt.unit = s.unit;
   opt.mass = s.mass;

@@ -12,6 +12,7 @@
 
 #include "massprops/composition.h"
 #include "massprops/implicit.h"
+#include "massprops/io.h"  // ReadSdfGridFile
 #include "massprops/monte_carlo.h"
 #include "massprops/principal_axes.h"
 #include "massprops/solids.h"
@@ -120,7 +121,7 @@ TEST(Implicit, SignedDistanceGridOfASphere) {
     out << "sdfgrid 1\n" << n << " " << n << " " << n << "\n-1.2 -1.2 -1.2\n" << h << " " << h << " " << h << "\n";
     for (double x : v) out << x << "\n";
   }
-  const ImplicitPtr g = implicit::ParseShape("grid(file=\"" + path + "\")");
+  const ImplicitPtr g = implicit::ParseShape("grid(file=\"" + path + "\")", ReadSdfGridFile);
   const MassPropertiesEstimate e = EstimateMassProperties(*g, 1.0, Qmc(1 << 18));
   EXPECT_NEAR(e.value.volume / (4 * M_PI / 3), 1.0, 2e-3);
   EXPECT_LT(e.value.center_of_mass.norm(), 1e-3);
@@ -128,9 +129,9 @@ TEST(Implicit, SignedDistanceGridOfASphere) {
     std::ofstream out(path);
     out << "sdfgrid 1\n3 3 3\n0 0 0\n1 1 1\n1 2 3" << std::string(60, ' ') << "\n";
   }
-  EXPECT_THROW(implicit::SdfGridFromFile(path), std::runtime_error);
+  EXPECT_THROW(ReadSdfGridFile(path), std::runtime_error);
   try {
-    implicit::SdfGridFromFile(path);
+    ReadSdfGridFile(path);
   } catch (const std::runtime_error& e2) {
     EXPECT_THAT(e2.what(), HasSubstr(path + ": expected 27 values, found 3"));
   }
@@ -139,7 +140,7 @@ TEST(Implicit, SignedDistanceGridOfASphere) {
     out << "sdfgrid 1\n1000 1000 1000\n0 0 0\n1 1 1\n1 2 3\n";
   }
   try {
-    implicit::SdfGridFromFile(path);
+    ReadSdfGridFile(path);
     FAIL() << "accepted";
   } catch (const std::runtime_error& e3) {
     EXPECT_THAT(e3.what(), HasSubstr("the header promises 1000000000 values, more than the file"));
@@ -283,7 +284,7 @@ TEST(ShapeSyntax, ParsesAndRefusesWithThePlace) {
   EXPECT_EQ(implicit::ParseShape(" torus( R = 1, r=0.25 ) ")->Describe(), "torus(R=1, r=0.25)");
   auto error = [](const std::string& s) {
     try {
-      implicit::ParseShape(s);
+      implicit::ParseShape(s, ReadSdfGridFile);
     } catch (const std::invalid_argument& e) {
       return std::string(e.what());
     }
@@ -299,6 +300,13 @@ TEST(ShapeSyntax, ParsesAndRefusesWithThePlace) {
   EXPECT_THAT(error("sphere(r=1) x"), HasSubstr("after the shape"));
   EXPECT_THAT(error("grid(file=\"/no/such.sdf\")"), HasSubstr("/no/such.sdf: cannot open"));
   EXPECT_THAT(error("grid(file=\"/dev/zero\")"), HasSubstr("/dev/zero: not a regular file"));
+  // The core alone opens no file.
+  EXPECT_THROW(
+      try { implicit::ParseShape("grid(file=\"/no/such.sdf\")"); } catch (const std::invalid_argument& e) {
+        EXPECT_THAT(e.what(), HasSubstr("needs massprops::io"));
+        throw;
+      },
+      std::invalid_argument);
   std::string deep;
   for (int i = 0; i < 1000; ++i) deep += "scale(";
   EXPECT_THAT(error(deep), HasSubstr("nested more than 200 deep"));

@@ -6,6 +6,7 @@
 /// generalized winding number, and a small text syntax for all of it. The Monte-Carlo estimators
 /// (monte_carlo.h) integrate these.
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -53,20 +54,14 @@ ImplicitPtr Transformed(ImplicitPtr a, const Matrix3& R, const Vector3& t);
 /// Uniform scaling about the origin by s > 0.
 ImplicitPtr Scaled(ImplicitPtr a, Scalar s);
 
-/// A signed-distance grid read from a file (format in the README, "Signed-distance grids"):
-///
-///     sdfgrid 1
-///     NX NY NZ
-///     X0 Y0 Z0        position of sample (0, 0, 0)
-///     HX HY HZ        spacing
-///     NX·NY·NZ values, x fastest, then y, then z (φ ≤ 0 inside)
-///
-/// trilinearly interpolated; outside the grid the solid is absent.
-/// @throws std::runtime_error naming the file and what is wrong.
-ImplicitPtr SdfGridFromFile(const std::string& path);
-/// The same from values in memory.
+/// A signed-distance grid: NX·NY·NZ values, x fastest, then y, then z (φ ≤ 0 inside), sample
+/// (0, 0, 0) at `origin`, trilinearly interpolated; outside the grid the solid is absent. Files in
+/// the sdfgrid format (README, "Signed-distance grids") are read by massprops::io
+/// (ReadSdfGridFile in io.h). `description` is what Describe() returns.
+/// @throws std::invalid_argument for fewer than 2 samples along an axis, a bad spacing or origin,
+///         a value count that does not match, or a non-finite value.
 ImplicitPtr SdfGrid(const Eigen::Vector3i& size, const Vector3& origin, const Vector3& spacing,
-                    std::vector<Scalar> values);
+                    std::vector<Scalar> values, std::string description = "grid(in memory)");
 
 /// The solid a triangle mesh bounds, through its generalized winding number w(x) (Jacobson,
 /// Kavan & Sorkine-Hornung 2013): inside where w ≥ 1/2. Exact solid angles for nearby
@@ -89,8 +84,11 @@ TriangleMesh Polygonize(const ImplicitSolid& solid, int resolution = 48);
 ///   torus(R=1, r=0.25)  capsule(r=0.5, h=2)  grid(file="part.sdf")
 ///   union(A, B, ...)  intersection(A, B, ...)  difference(A, B)
 ///   move(A, x=0, y=0, z=1)  rotate(A, axis=[0,0,1], deg=30)  scale(A, s=2)
+/// `grid(file=...)` is read by `read_grid` (massprops::io's ReadSdfGridFile); without one it is
+/// refused, so the core never opens a file.
 /// @throws std::invalid_argument with the position and the fault.
-ImplicitPtr ParseShape(const std::string& text);
+using GridFileReader = std::function<ImplicitPtr(const std::string& path)>;
+ImplicitPtr ParseShape(const std::string& text, const GridFileReader& read_grid = nullptr);
 
 }  // namespace implicit
 }  // namespace massprops

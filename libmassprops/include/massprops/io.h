@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 
+#include "massprops/implicit.h"
 #include "massprops/mesh.h"
 #include "massprops/triangle_soup.h"
 
@@ -54,5 +55,18 @@ LoadedMesh ReadMeshFileWithAssimp(const std::string& path);
 /// @throws MeshFileError for a missing, empty or truncated file, or a non-finite coordinate.
 std::optional<SoupIntegrals> IntegrateBinaryStlFile(const std::string& path,
                                                     const IntegrationOptions& options = {});
+
+/// Reads a signed-distance grid file (README, "Signed-distance grids"):
+///
+///     sdfgrid 1
+///     NX NY NZ
+///     X0 Y0 Z0        position of sample (0, 0, 0)
+///     HX HY HZ        spacing
+///     NX·NY·NZ values, x fastest, then y, then z (φ ≤ 0 inside)
+///
+/// Only regular files; a header that promises more values than the file can hold is refused
+/// before anything is allocated. Pass it to implicit::ParseShape for grid(file=...).
+/// @throws std::runtime_error naming the file and what is wrong.
+ImplicitPtr ReadSdfGridFile(const std::string& path);
 
 }  // namespace massprops
