@@ -38,6 +38,9 @@ StlLayout DetectStl(const std::string& path, const unsigned char* data, std::siz
 LoadedMesh WeldCorners(const std::string& path, const std::vector<double>& xyz,
                        const std::vector<int>& face_sizes, const char* format);
 
+// One parser per format, each in its own file (mesh_io.cpp holds the table).
+LoadedMesh ParseObj(const std::string& path, std::string_view data);
+LoadedMesh ParseStl(const std::string& path, std::string_view data);
 LoadedMesh ParsePly(const std::string& path, std::string_view data);
 LoadedMesh ParseOff(const std::string& path, std::string_view data);
 

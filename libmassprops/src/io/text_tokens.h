@@ -1,0 +1,72 @@
+#pragma once
+// Tokens of the text formats (internal): whitespace, words, numbers as doubles.
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <string>
+#include <string_view>
+#include <system_error>
+
+namespace massprops::io_text {
+
+inline std::string Lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+inline bool IsSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
+
+inline std::string_view NextToken(std::string_view& s) {
+  std::size_t i = 0;
+  while (i < s.size() && IsSpace(s[i])) ++i;
+  std::size_t j = i;
+  while (j < s.size() && !IsSpace(s[j])) ++j;
+  std::string_view tok = s.substr(i, j - i);
+  s.remove_prefix(j);
+  return tok;
+}
+
+inline bool ParseDouble(std::string_view tok, double& out) {
+  if (!tok.empty() && tok.front() == '+') tok.remove_prefix(1);
+  const auto res = std::from_chars(tok.data(), tok.data() + tok.size(), out);
+  return res.ec == std::errc() && res.ptr == tok.data() + tok.size();
+}
+
+// Whitespace tokenizer over a buffer, counting lines for messages.
+inline bool Space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
+
+class Tokens {
+ public:
+  explicit Tokens(std::string_view s, std::size_t pos = 0) : s_(s), pos_(pos) {}
+  bool Next(std::string_view& tok) {
+    while (pos_ < s_.size() && Space(s_[pos_])) {
+      if (s_[pos_] == '\n') ++line_;
+      ++pos_;
+    }
+    if (pos_ >= s_.size()) return false;
+    const std::size_t start = pos_;
+    while (pos_ < s_.size() && !Space(s_[pos_])) ++pos_;
+    tok = s_.substr(start, pos_ - start);
+    return true;
+  }
+  // Skips the rest of the current line.
+  void SkipLine() {
+    while (pos_ < s_.size() && s_[pos_] != '\n') ++pos_;
+  }
+  std::size_t line() const { return line_; }
+
+ private:
+  std::string_view s_;
+  std::size_t pos_;
+  std::size_t line_ = 1;
+};
+
+template <typename T>
+bool ParseNumber(std::string_view tok, T& out) {
+  if (!tok.empty() && tok.front() == '+') tok.remove_prefix(1);
+  const auto res = std::from_chars(tok.data(), tok.data() + tok.size(), out);
+  return res.ec == std::errc() && res.ptr == tok.data() + tok.size();
+}
+
+}  // namespace massprops::io_text
