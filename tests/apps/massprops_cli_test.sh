@@ -247,5 +247,21 @@ assert len(rows) == 2 and rows[0]['se_mass'] == '' and float(rows[1]['se_mass'])
 "$bin" "$data/meshes/spot.obj" --samples 1000 >/dev/null 2>"$tmp/err"
 [ $? -eq 2 ] && grep -q "belong to --implicit or --winding-number" "$tmp/err"; check "sampling flags without a sampling path" $?
 
+# Argument conventions shared by both commands: exit 2 for every argument error, --version,
+# reserved subcommand words.
+"$bin" "$data/meshes/spot.obj" --unit furlong >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ] && grep -q "unit" "$tmp/err"; check "unknown unit exits 2" $?
+"$bin" "$data/meshes/spot.obj" --no-such-option >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ]; check "unknown option exits 2" $?
+"$bin" "$data/meshes/spot.obj" --density -3 >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ]; check "negative density exits 2" $?
+"$bin" --version >"$tmp/out" 2>&1
+[ $? -eq 0 ] && grep -Eq "^massprops [0-9]+\.[0-9]+\.[0-9]+$" "$tmp/out"; check "--version" $?
+"$bin" batch "$data/meshes/spot.obj" >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ] && grep -q "a file of that name is given as ./batch" "$tmp/err"; check "reserved word batch" $?
+# Advice in messages is worded in the command line's vocabulary.
+"$bin" "$tmp/open.obj" >/dev/null 2>"$tmp/err"
+grep -q "try --repair, or pass --allow-open" "$tmp/err"; check "CLI vocabulary in errors" $?
+
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]

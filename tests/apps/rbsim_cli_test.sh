@@ -87,6 +87,14 @@ printf '{"bodies": [{"solid": {"type": "sphere", "radius": 1}, "orientation": [2
 "$bin" "$data/scenes/t_handle.json" --integrator rk5 >/dev/null 2>"$tmp/err"
 [ $? -eq 2 ] && grep -q "\-\-integrator" "$tmp/err"; check "bad --integrator" $?
 
+# Argument conventions: exit 2, --version, the reserved word.
+"$bin" --version >"$tmp/out" 2>&1
+[ $? -eq 0 ] && grep -Eq "^rbsim [0-9]+\.[0-9]+\.[0-9]+$" "$tmp/out"; check "rbsim --version" $?
+"$bin" poses >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ] && grep -q "given as ./poses" "$tmp/err"; check "reserved word poses" $?
+"$bin" "$data/scenes/t_handle.json" --dt -1 >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ]; check "negative --dt exits 2" $?
+
 # 5. Interrupted: SIGINT mid-run leaves no file under a final name, and no temporary file.
 "$bin" "$data/scenes/t_handle.json" --dt 1e-6 --duration 1000 --out "$tmp/int" -q >/dev/null 2>"$tmp/err" &
 pid=$!

@@ -1,0 +1,196 @@
+// The library pipeline (load.h) and the single homes it builds on: units, the density-or-mass
+// rule, primitives, wording. Truth: closed forms of the T-handle (two boxes) and of the
+// primitives, and hand-counted topology.
+
+#include <cmath>
+#include <fstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "massprops/load.h"
+#include "massprops/primitive.h"
+#include "massprops/solids.h"
+#include "test_utils.h"
+
+namespace massprops {
+namespace {
+
+using ::testing::HasSubstr;
+using testing::DataPath;
+using testing::NearRel;
+
+// The T-handle of data/meshes: a crossbar 0.08 × 0.02 × 0.02 m (centre y = 0.01) on a shaft
+// 0.02 × 0.06 × 0.02 m (centre y = −0.03).
+constexpr double kBarVolume = 0.08 * 0.02 * 0.02, kShaftVolume = 0.02 * 0.06 * 0.02;
+constexpr double kVolume = kBarVolume + kShaftVolume;
+constexpr double kArea = 2 * (0.08 * 0.02 * 2 + 0.02 * 0.02) + 2 * (0.02 * 0.06 * 2 + 0.02 * 0.02) - 2 * 0.02 * 0.02;
+
+std::string WriteOpenTetrahedron() {
+  const std::string path = ::testing::TempDir() + "/open_tetrahedron.obj";
+  std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n";
+  return path;
+}
+
+TEST(Units, OneTable) {
+  EXPECT_EQ(MetresPerUnit(ParseLengthUnit("mm")), 0.001);
+  EXPECT_EQ(MetresPerUnit(LengthUnit::kInch), 0.0254);
+  EXPECT_EQ(MetresPerUnit(LengthUnit::kFoot), 0.3048);
+  for (LengthUnit u : kAllLengthUnits) EXPECT_EQ(ParseLengthUnit(UnitName(u)), u);
+  EXPECT_FALSE(FindLengthUnit("furlong"));
+  EXPECT_THAT([] { ParseLengthUnit("furlong"); }, ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("m, cm, mm, in, ft")));
+}
+
+TEST(MassSpec, DensityOrMass) {
+  EXPECT_EQ(ResolveDensity(Density{2700}, 0.5), 2700);
+  EXPECT_EQ(ResolveDensity(TotalMass{3}, 0.5), 6);
+  EXPECT_THROW(ResolveDensity(Density{-1}, 1), std::invalid_argument);
+  EXPECT_THROW(ResolveDensity(TotalMass{std::nan("")}, 1), std::invalid_argument);
+  const MassProperties unit = solids::BoxProperties(Vector3(1, 2, 3), 1.0);
+  const MassProperties steel = AtDensity(unit, 7850);
+  EXPECT_EQ(steel.mass, 6 * 7850.0);
+  EXPECT_TRUE(NearRel(steel.inertia_com(0, 0), 7850 * 6 * (4 + 9) / 12.0, 1e-15));
+}
+
+TEST(Primitives, ClosedFormTessellationAndImplicitFormAgree) {
+  namespace pr = primitive;
+  const std::vector<Primitive> all = {pr::Box{Vector3(1, 2, 3)}, pr::Sphere{0.5},  pr::Ellipsoid{Vector3(1, 0.5, 0.25)},
+                                      pr::Cylinder{0.3, 1.0},    pr::Cone{0.4, 1.2}, pr::Torus{1.0, 0.25},
+                                      pr::Capsule{0.2, 0.6}};
+  ASSERT_EQ(all.size(), std::size(kPrimitiveNames));
+  for (const Primitive& p : all) {
+    SCOPED_TRACE(PrimitiveName(p));
+    const MassProperties exact = ClosedForm(p, 1000.0);
+    // The tessellation converges to the closed form as 1/n² (the box is exact): the error falls
+    // about four times when n doubles.
+    const MassProperties coarse = ComputeMassProperties(Tessellate(p, 32), 1000.0);
+    const MassProperties fine = ComputeMassProperties(Tessellate(p, 64), 1000.0);
+    const double e_coarse = std::abs(coarse.volume - exact.volume), e_fine = std::abs(fine.volume - exact.volume);
+    EXPECT_TRUE(NearRel(fine.volume, exact.volume, 3e-3));
+    EXPECT_TRUE(NearRel(fine.inertia_com.trace(), exact.inertia_com.trace(), 6e-3));
+    if (!std::holds_alternative<pr::Box>(p)) EXPECT_NEAR(e_coarse / e_fine, 4.0, 0.5);
+    // The implicit form: inside at the center of mass (for the torus, on its ring), outside
+    // beyond the bounds.
+    const ImplicitPtr solid = ToImplicit(p);
+    const Vector3 inside = std::holds_alternative<pr::Torus>(p) ? Vector3(1, 0, 0) : Vector3::Zero();
+    EXPECT_TRUE(solid->Inside(inside));
+    EXPECT_FALSE(solid->Inside(solid->Bounds().max() + Vector3::Constant(0.01)));
+  }
+  EXPECT_EQ(Describe(pr::Box{Vector3(1, 2, 3)}), "box 1 x 2 x 3 m");
+  EXPECT_THAT([] { Validate(pr::Torus{1, 2}); }, ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("minor radius")));
+  EXPECT_THROW(ClosedForm(pr::Sphere{-1}, 1.0), std::invalid_argument);
+}
+
+TEST(Wording, MarkersBecomeEachFrontEndsWords) {
+  const Vocabulary scene = [](Option o, std::string_view v) -> std::string {
+    if (o == Option::kUnit) return "\"unit\": \"" + std::string(v) + "\"";
+    return o == Option::kRepair ? "\"repair\": true" : "?";
+  };
+  EXPECT_EQ(Worded("try {repair}; or {unit=mm} {unknown} {", scene),
+            "try \"repair\": true; or \"unit\": \"mm\" {unknown} {");
+  EXPECT_EQ(Worded("pass {allow_open}", ApiVocabulary()), "pass LoadOptions::allow_open = true");
+}
+
+TEST(LoadSolid, TheTHandleAgainstItsClosedForm) {
+  LoadOptions o;
+  o.mass = TotalMass{1.0};
+  const SolidResult r = LoadSolid(DataPath("meshes/t_handle.obj"), o);
+  EXPECT_EQ(r.model, ModelKind::kSolid);
+  EXPECT_TRUE(r.mass_fixed);
+  EXPECT_TRUE(NearRel(r.mp.volume, kVolume, 1e-14));
+  EXPECT_TRUE(NearRel(r.mp.mass, 1.0, 1e-14));
+  EXPECT_TRUE(NearRel(r.mp.center_of_mass.y(), (kBarVolume * 0.01 - kShaftVolume * 0.03) / kVolume, 1e-13));
+  EXPECT_TRUE(NearRel(r.mp.surface_area, kArea, 1e-14));
+  EXPECT_TRUE(r.validity.valid);
+  EXPECT_TRUE(r.findings.empty());
+  EXPECT_EQ(r.topology.components, 1);
+  EXPECT_EQ(r.path_used, "polygons (Mirtich), faces integrated whole");
+  // Principal axes are those of the tensor, computed once by the pipeline.
+  const PrincipalInertia p = ComputePrincipalInertia(r.mp.inertia_com);
+  EXPECT_EQ(p.moments, r.principal.moments);
+  // The same in millimetres: every length ×1000 means a volume ×10⁹ at the same density.
+  LoadOptions mm;
+  mm.unit = LengthUnit::kMillimetre;
+  const SolidResult small = LoadSolid(DataPath("meshes/t_handle.obj"), mm);
+  EXPECT_TRUE(NearRel(small.mp.volume, kVolume * 1e-9, 1e-14));
+}
+
+TEST(LoadSolid, ShellAndWallModels) {
+  LoadOptions shell;
+  shell.model = ShellModel{2.0};
+  const SolidResult s = LoadSolid(DataPath("meshes/t_handle.obj"), shell);
+  EXPECT_EQ(s.model, ModelKind::kShell);
+  EXPECT_EQ(s.mp.volume, 0.0);
+  EXPECT_TRUE(NearRel(s.mp.mass, 2.0 * kArea, 1e-14));
+  shell.mass = TotalMass{3.0};  // a total mass overrides the area density
+  EXPECT_TRUE(NearRel(LoadSolid(DataPath("meshes/t_handle.obj"), shell).mp.density, 3.0 / kArea, 1e-14));
+
+  // A 2 mm wall: the T-handle minus the T of sizes reduced by 4 mm (exact: its faces meet three
+  // planes at a time).
+  LoadOptions wall;
+  wall.model = WallModel{0.002};
+  const SolidResult w = LoadSolid(DataPath("meshes/t_handle.obj"), wall);
+  const double inner = 0.076 * 0.016 * 0.016 + 0.016 * 0.06 * 0.016;  // the shaft loses 2 mm at its foot only
+  EXPECT_EQ(w.model, ModelKind::kWall);
+  EXPECT_EQ(w.wall_thickness, 0.002);
+  EXPECT_TRUE(NearRel(w.mp.volume, kVolume - inner, 1e-12));
+  wall.model = WallModel{-1};
+  EXPECT_THROW(LoadSolid(DataPath("meshes/t_handle.obj"), wall), std::invalid_argument);
+}
+
+TEST(LoadSolid, TypedFindingsAndErrorsWordedPerFrontEnd) {
+  const std::string open = WriteOpenTetrahedron();
+  try {
+    LoadSolid(open, {});
+    FAIL() << "an open mesh was accepted";
+  } catch (const LoadError& e) {
+    EXPECT_THAT(e.text(), HasSubstr("open mesh: 3 boundary edges in 1 hole"));
+    EXPECT_THAT(e.text(), HasSubstr("try {repair}, or pass {allow_open} to compute anyway"));
+    EXPECT_THAT(e.what(), HasSubstr("LoadOptions::allow_open = true"));
+    const Vocabulary cli = [](Option o, std::string_view) -> std::string {
+      return o == Option::kRepair ? "--repair" : "--allow-open";
+    };
+    EXPECT_THAT(WordedError(e, cli), HasSubstr("try --repair, or pass --allow-open"));
+  }
+  LoadOptions allow;
+  allow.allow_open = true;
+  const SolidResult r = LoadSolid(open, allow);
+  ASSERT_EQ(r.findings.size(), 1u);
+  EXPECT_EQ(r.findings[0].kind, FindingKind::kOpenSurface);
+  EXPECT_THAT(r.findings[0].message, HasSubstr("computed anyway ({allow_open})"));
+  // A shell does not care that the surface is open: it says so, as a finding.
+  LoadOptions shell;
+  shell.model = ShellModel{1.0};
+  const SolidResult s = LoadSolid(open, shell);
+  ASSERT_EQ(s.findings.size(), 1u);
+  EXPECT_THAT(s.findings[0].message, HasSubstr("fine for a thin shell"));
+  EXPECT_TRUE(NearRel(s.mp.mass, 1.5, 1e-15));  // three right triangles of area 1/2
+}
+
+TEST(LoadSolid, OverlappingShellsAndInwardSurfacesAreRefused) {
+  try {
+    LoadSolid(DataPath("meshes/hollow_sphere.off"), {});
+    FAIL();
+  } catch (const LoadError& e) {
+    EXPECT_THAT(e.text(), HasSubstr("both face outward"));
+    EXPECT_THAT(e.text(), HasSubstr("{repair} orients it so"));
+  }
+  EXPECT_THAT([] { LoadSolid(DataPath("meshes/ellipe0.003.off"), {}); },
+              ::testing::ThrowsMessage<LoadError>(HasSubstr("the faces point inward")));
+}
+
+TEST(EstimateImplicit, ATorusWithinItsErrorBars) {
+  ImplicitOptions o;
+  o.unit = LengthUnit::kCentimetre;
+  o.sampling.samples = 1 << 16;
+  const SolidResult r = EstimateImplicit(*ToImplicit(primitive::Torus{1.0, 0.25}), o);
+  ASSERT_TRUE(r.estimate);
+  const MassProperties exact = ClosedForm(primitive::Torus{0.01, 0.0025}, 1000.0);
+  EXPECT_EQ(r.model, ModelKind::kImplicit);
+  EXPECT_EQ(r.source, "torus(R=1, r=0.25)");
+  EXPECT_LT(std::abs(r.mp.volume - exact.volume), 4.5 * r.estimate->standard_error.volume);
+  EXPECT_LT(std::abs(r.mp.inertia_com(2, 2) - exact.inertia_com(2, 2)), 4.5 * r.estimate->standard_error.inertia_com(2, 2));
+}
+
+}  // namespace
+}  // namespace massprops
