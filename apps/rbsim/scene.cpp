@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "json_fields.h"
 #include "massprops/io.h"
 
 namespace rbsim {
@@ -18,150 +19,11 @@ namespace {
 
 using nlohmann::json;
 
-std::string Num(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
-// Levenshtein distance, for "did you mean" on unknown keys and names.
-std::size_t EditDistance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diag = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diag = up;
-    }
-  }
-  return row[b.size()];
-}
-
-std::string Suggest(const std::string& word, const std::vector<std::string>& candidates) {
-  std::string best;
-  std::size_t best_d = 3;  // at most two edits away
-  for (const auto& c : candidates) {
-    const std::size_t d = EditDistance(word, c);
-    if (d < best_d) best_d = d, best = c;
-  }
-  return best.empty() ? "" : " (did you mean '" + best + "'?)";
-}
-
-std::string Join(const std::vector<std::string>& words) {
-  std::string s;
-  for (const auto& w : words) s += (s.empty() ? "" : ", ") + w;
-  return s;
-}
-
-std::string TypeName(const json& j) {
-  if (j.is_number()) return "a number";
-  if (j.is_string()) return "a string";
-  if (j.is_array()) return "an array";
-  if (j.is_object()) return "an object";
-  if (j.is_boolean()) return "true/false";
-  return "null";
-}
-
-// A JSON object being read: remembers which keys were asked for, so that Done() can reject the
-// rest as unknown (with the nearest known key as a suggestion).
-class Fields {
- public:
-  Fields(const json& j, std::string path, const std::string& file) : j_(j), path_(std::move(path)), file_(file) {
-    if (!j.is_object()) Fail("must be an object, not " + TypeName(j));
-  }
-
-  [[noreturn]] void Fail(const std::string& what) const {
-    throw SceneError(file_ + ": " + (path_.empty() ? "" : path_ + ": ") + what);
-  }
-  [[noreturn]] void Fail(const std::string& key, const std::string& what) const {
-    throw SceneError(file_ + ": " + Path(key) + ": " + what);
-  }
-  std::string Path(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
-  const std::string& file() const { return file_; }
-
-  const json* Get(const std::string& key) {
-    known_.push_back(key);
-    const auto it = j_.find(key);
-    return it == j_.end() ? nullptr : &*it;
-  }
-  bool Has(const std::string& key) const { return j_.contains(key); }
-
-  double Number(const std::string& key, double fallback, const char* rule = nullptr) {
-    const json* v = Get(key);
-    if (!v) return fallback;
-    return CheckNumber(key, *v, rule);
-  }
-  double RequiredNumber(const std::string& key, const char* rule) {
-    if (!Has(key)) {
-      Get(key);
-      Fail(key, "is required");
-    }
-    return Number(key, 0, rule);
-  }
-  double CheckNumber(const std::string& key, const json& v, const char* rule) const {
-    if (!v.is_number()) Fail(key, "must be a number, not " + TypeName(v));
-    const double x = v.get<double>();
-    if (!std::isfinite(x)) Fail(key, "must be finite");
-    if (rule) {
-      const std::string r = rule;
-      if (r == "positive" && !(x > 0)) Fail(key, "must be positive (got " + Num(x) + ")");
-      if (r == "non-negative" && !(x >= 0)) Fail(key, "must not be negative (got " + Num(x) + ")");
-    }
-    return x;
-  }
-
-  Vector3 Vec3(const std::string& key, const Vector3& fallback, const char* rule = nullptr) {
-    const json* v = Get(key);
-    if (!v) return fallback;
-    return CheckVec3(key, *v, rule);
-  }
-  Vector3 CheckVec3(const std::string& key, const json& v, const char* rule) const {
-    if (!v.is_array() || v.size() != 3) {
-      Fail(key, "must be an array of 3 numbers, not " +
-                    (v.is_array() ? "an array of " + std::to_string(v.size()) : TypeName(v)));
-    }
-    Vector3 out;
-    for (int i = 0; i < 3; ++i) out[i] = CheckNumber(key + "[" + std::to_string(i) + "]", v[static_cast<std::size_t>(i)], rule);
-    return out;
-  }
-
-  std::string String(const std::string& key, const std::string& fallback,
-                     const std::vector<std::string>& allowed = {}) {
-    const json* v = Get(key);
-    if (!v) return fallback;
-    if (!v->is_string()) Fail(key, "must be a string, not " + TypeName(*v));
-    const std::string s = v->get<std::string>();
-    if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), s) == allowed.end()) {
-      Fail(key, "'" + s + "' is not one of " + Join(allowed) + Suggest(s, allowed));
-    }
-    return s;
-  }
-
-  bool Bool(const std::string& key, bool fallback) {
-    const json* v = Get(key);
-    if (!v) return fallback;
-    if (!v->is_boolean()) Fail(key, "must be true or false, not " + TypeName(*v));
-    return v->get<bool>();
-  }
-
-  // Rejects every key that was not asked for.
-  void Done() const {
-    for (auto it = j_.begin(); it != j_.end(); ++it) {
-      if (std::find(known_.begin(), known_.end(), it.key()) == known_.end()) {
-        Fail("unknown key '" + it.key() + "'" + Suggest(it.key(), known_) + "; known keys: " + Join(known_));
-      }
-    }
-  }
-
- private:
-  const json& j_;
-  std::string path_;
-  const std::string& file_;
-  std::vector<std::string> known_;
-};
+using json_fields::Fields;
+using json_fields::Join;
+using json_fields::Num;
+using json_fields::Suggest;
+using json_fields::TypeName;
 
 Quaternion ReadOrientation(Fields& f, const std::string& key, std::vector<std::string>& warnings) {
   const json* v = f.Get(key);

@@ -9,6 +9,7 @@
 #include "massprops/implicit.h"
 #include "massprops/load.h"
 #include "massprops/primitive.h"
+#include "massprops/text.h"
 
 namespace rbsim {
 namespace {
@@ -16,11 +17,7 @@ namespace {
 using massprops::MassProperties;
 using massprops::TriangleMesh;
 
-std::string Num(double v, const char* fmt = "%.6g") {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, v);
-  return buf;
-}
+std::string Num(double v, const char* fmt = "%.6g") { return massprops::FormatDouble(v, fmt); }
 
 // A distinct, readable colour per body (a few hues of a qualitative palette).
 Vector3 DefaultColor(std::size_t i) {
