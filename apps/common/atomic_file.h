@@ -6,6 +6,7 @@
 
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace massprops::app {
 
@@ -32,6 +33,10 @@ class AtomicFile {
   std::ofstream out_;
   bool done_ = false;
 };
+
+/// Refuses an output path that exists and is not a regular file (a device node such as
+/// /dev/null, a FIFO, a directory) or that names one of the inputs. @throws std::runtime_error.
+void CheckOutputPath(const std::string& output, const std::vector<std::string>& inputs);
 
 /// Writes TEXT to PATH whole or not at all. @throws std::runtime_error naming the path.
 void WriteFileAtomically(const std::string& path, const std::string& text);

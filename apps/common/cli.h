@@ -12,6 +12,12 @@ namespace massprops::app {
 /// Exit status for bad arguments (the README promises it; CLI11's own codes are 100+).
 inline constexpr int kBadArguments = 2;
 
+/// Checks of numeric options with readable messages ("must be a finite number > 0, got '-3'"):
+/// NaN and infinities are refused, bounds are printed as written (%g), never as 309 digits.
+CLI::Validator Positive();
+CLI::Validator NonNegative();
+CLI::Validator InRange(double lo, double hi);
+
 /// Parses argv into `app`. Returns -1 when the program should go on, or the exit status
 /// (0 after --help or --version, kBadArguments after a message on stderr).
 int ParseArguments(CLI::App& app, int argc, char** argv);

@@ -16,10 +16,12 @@ enum class Frame { kCenterOfMass, kOrigin };
 struct FormatOptions {
   Format format = Format::kTable;
   Frame frame = Frame::kCenterOfMass;
+  /// JSON: an array (several inputs were given, whether or not each succeeded), else one object.
+  bool json_array = false;
 };
 
 std::string FormatTable(const SolidResult& r, const FormatOptions& options);
-/// One object for one result, an array for several.
+/// One object, or an array when options.json_array.
 std::string FormatJson(const std::vector<SolidResult>& results, const FormatOptions& options);
 std::string FormatCsv(const std::vector<SolidResult>& results, const FormatOptions& options);
 /// The inertial element of a URDF, SDFormat or MJCF file, with a comment naming the source.

@@ -20,19 +20,28 @@ std::string FormatCsv(const std::vector<SolidResult>& results, const FormatOptio
   out << "file,unit,volume_m3,mass_kg,density_kg_m3,com_x_m,com_y_m,com_z_m,"
          "ixx,iyy,izz,ixy,ixz,iyz,i1,i2,i3,surface_area_m2,closed,physically_valid"
       << (origin ? ",origin_ixx,origin_iyy,origin_izz,origin_ixy,origin_ixz,origin_iyz" : "");
-  bool estimates = false;
-  for (const SolidResult& r : results) estimates = estimates || r.estimate.has_value();
+  bool estimates = false, shells = false;
+  for (const SolidResult& r : results) {
+    estimates = estimates || r.estimate.has_value();
+    shells = shells || r.model == ModelKind::kShell;
+  }
   if (estimates) {  // standard errors of the Monte-Carlo paths (empty for exact rows)
     out << ",se_volume,se_mass,se_com_x,se_com_y,se_com_z,se_ixx,se_iyy,se_izz,se_ixy,se_ixz,se_iyz,se_i1,se_i2,se_i3";
   }
+  // Thin shells have no volume and no volume density: those cells stay empty, and the area
+  // density has a column of its own.
+  if (shells) out << ",area_density_kg_m2";
   out << "\n";
   for (const SolidResult& r : results) {
     const Matrix3& I = r.mp.inertia_com;
     const Vector3& c = r.mp.center_of_mass;
     const Vector3& m = r.principal.moments;
+    const bool shell = r.model == ModelKind::kShell;
     out << Quoted(r.source) << "," << UnitName(r.unit);
-    for (double v : {r.mp.volume, r.mp.mass, r.mp.density, c[0], c[1], c[2], I(0, 0), I(1, 1), I(2, 2), I(0, 1),
-                     I(0, 2), I(1, 2), m[0], m[1], m[2], r.mp.surface_area}) {
+    out << "," << (shell ? "" : ExactDecimal(r.mp.volume)) << "," << ExactDecimal(r.mp.mass) << ","
+        << (shell ? "" : ExactDecimal(r.mp.density));
+    for (double v : {c[0], c[1], c[2], I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2), m[0], m[1], m[2],
+                     r.mp.surface_area}) {
       out << "," << ExactDecimal(v);
     }
     out << "," << (r.topology.BoundsVolume() ? "true" : "false") << "," << (r.validity.valid ? "true" : "false");
@@ -51,6 +60,7 @@ std::string FormatCsv(const std::vector<SolidResult>& results, const FormatOptio
     } else if (estimates) {
       out << ",,,,,,,,,,,,,,";
     }
+    if (shells) out << "," << (shell ? ExactDecimal(r.mp.density) : "");
     out << "\n";
   }
   return out.str();

@@ -93,7 +93,7 @@ Json ToJson(const SolidResult& r, const FormatOptions& opt) {
 }  // namespace
 
 std::string FormatJson(const std::vector<SolidResult>& results, const FormatOptions& opt) {
-  if (results.size() == 1) return ToJson(results[0], opt).dump(2) + "\n";
+  if (!opt.json_array && results.size() == 1) return ToJson(results[0], opt).dump(2) + "\n";
   Json all = Json::array();
   for (const SolidResult& r : results) all.push_back(ToJson(r, opt));
   return all.dump(2) + "\n";

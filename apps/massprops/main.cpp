@@ -112,30 +112,30 @@ int main(int argc, char** argv) {
                "Monte Carlo / QMC with error bars (meshes with holes get a sensible answer)");
   auto* mc = app.add_flag("--mc", a.mc, "Plain Monte Carlo (with --implicit or --winding-number)");
   app.add_flag("--qmc", "Randomized quasi-Monte Carlo, scrambled Sobol (the default)")->excludes(mc);
-  app.add_option("--samples", a.samples, "Monte-Carlo points in all (e.g. 1e7)")->check(CLI::Range(2.0, 1e13));
+  app.add_option("--samples", a.samples, "Monte-Carlo points in all (e.g. 1e7)")->check(app::InRange(2, 1e13));
   app.add_option("--randomizations", a.randomizations, "QMC: independent scramblings (error bars from their spread)")
-      ->check(CLI::Range(2, 1000));
+      ->check(app::InRange(2, 1000));
   app.add_option("--seed", a.seed, "Random seed (same seed, same bits, any thread count)");
   app.add_option("--tolerance", a.tolerance,
                  "Sample until the relative standard error of the mass and of each principal moment "
                  "is below this")
-      ->check(CLI::Range(1e-12, 1.0));
+      ->check(app::InRange(1e-12, 1));
   auto* density = app.add_option("--density", a.density, "Uniform density in kg/m^3")
-                      ->check(CLI::PositiveNumber)
+                      ->check(app::Positive())
                       ->capture_default_str();
   app.add_option("--mass", a.mass, "Total mass in kg (sets the density; excludes --density)")
-      ->check(CLI::PositiveNumber)
+      ->check(app::Positive())
       ->excludes(density);
   auto* shell = app.add_flag("--shell", a.shell,
                              "Thin shell: the surface itself carries the mass, at --area-density "
                              "(or --mass); open meshes are fine");
   app.add_option("--area-density", a.area_density, "Area density of a --shell, kg/m^2")
-      ->check(CLI::PositiveNumber)
+      ->check(app::Positive())
       ->needs(shell);
   app.add_option("--wall", a.wall,
                  "Hollow part: the solid between the closed surface and its inward offset by this "
                  "wall thickness (in the file's unit, --unit)")
-      ->check(CLI::PositiveNumber)
+      ->check(app::Positive())
       ->excludes(shell);
   std::vector<std::string> units;
   for (LengthUnit u : kAllLengthUnits) units.emplace_back(UnitName(u));
@@ -154,7 +154,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "triangles", "polygons"}))
       ->capture_default_str();
   app.add_option("--threads", a.threads, "Worker threads (0 = all cores); same bits for any count")
-      ->check(CLI::NonNegativeNumber);
+      ->check(app::NonNegative());
   app.add_flag("--allow-open", a.allow_open,
                "Compute even when the mesh is open or inconsistently oriented (with a warning)");
   app.add_flag("--repair", a.repair,
@@ -196,6 +196,23 @@ int main(int argc, char** argv) {
                "--winding-number (exact integration needs none)");
   }
   if (a.winding_number && (a.shell || a.wall > 0)) return bad("--winding-number does not combine with --shell or --wall");
+  if (!a.implicit.empty() && (a.shell || a.wall > 0)) {
+    return bad("--shell and --wall describe a mesh's surface; an --implicit shape is a solid and takes neither");
+  }
+  if (a.files.empty()) {  // only --implicit: the options about mesh files would be ignored
+    for (const char* flag : {"--repair", "--allow-open", "--full-check", "--check-self-intersections", "--path",
+                             "--reader", "--winding-number"}) {
+      if (app.count(flag) > 0) return bad(std::string(flag) + " applies to mesh files; --implicit shapes take no such option");
+    }
+  }
+
+  if (!a.output.empty()) {
+    try {
+      app::CheckOutputPath(a.output, a.files);
+    } catch (const std::exception& e) {
+      return bad(std::string("-o ") + e.what());
+    }
+  }
 
   cli::FormatOptions format;
   format.format = FromName<cli::Format>({{"table", cli::Format::kTable},
@@ -206,6 +223,7 @@ int main(int argc, char** argv) {
                                          {"mjcf", cli::Format::kMjcf}},
                                         a.format);
   format.frame = a.frame == "origin" ? cli::Frame::kOrigin : cli::Frame::kCenterOfMass;
+  format.json_array = a.files.size() + (a.implicit.empty() ? 0 : 1) > 1;
   const bool robot = format.format == cli::Format::kUrdf || format.format == cli::Format::kSdf ||
                      format.format == cli::Format::kMjcf;
   LoadOptions options = ToLoadOptions(a);
@@ -249,8 +267,10 @@ int main(int argc, char** argv) {
       return EstimateImplicit(*implicit::ParseShape(a.implicit, ReadSdfGridFile), o);
     });
   }
+  if (format.format == cli::Format::kJson && (!results.empty() || format.json_array)) {
+    text = FormatJson(results, format);  // several inputs: an array, even if some (or all) failed
+  }
   if (!results.empty()) {
-    if (format.format == cli::Format::kJson) text = FormatJson(results, format);
     if (format.format == cli::Format::kCsv) text = FormatCsv(results, format);
   }
   if (!a.output.empty()) {

@@ -59,8 +59,8 @@ int main(int argc, char** argv) {
   std::vector<std::string> units;
   for (massprops::LengthUnit u : massprops::kAllLengthUnits) units.emplace_back(massprops::UnitName(u));
   app.add_option("--unit", unit, "--mesh: unit of the file's coordinates")->check(CLI::IsMember(units))->needs(mesh_opt);
-  auto* density_opt = app.add_option("--density", density, "--mesh: density, kg/m^3")->check(CLI::PositiveNumber)->needs(mesh_opt);
-  app.add_option("--mass", mass, "--mesh: total mass, kg")->check(CLI::PositiveNumber)->excludes(density_opt)->needs(mesh_opt);
+  auto* density_opt = app.add_option("--density", density, "--mesh: density, kg/m^3")->check(massprops::app::Positive())->needs(mesh_opt);
+  app.add_option("--mass", mass, "--mesh: total mass, kg")->check(massprops::app::Positive())->excludes(density_opt)->needs(mesh_opt);
   app.add_flag("--repair", repair, "--mesh: repair the mesh first (as massprops --repair)")->needs(mesh_opt);
   app.add_flag("--allow-open", allow_open, "--mesh: simulate even an open mesh (its inertia is then not trustworthy)")->needs(mesh_opt);
   app.add_option("--omega", omega_text, "--mesh: initial angular velocity wx,wy,wz in rad/s")->needs(mesh_opt);
@@ -68,15 +68,15 @@ int main(int argc, char** argv) {
                  "--mesh: axes of --omega: world (= the file's axes at t = 0), principal (I1 <= I2 <= I3)")
       ->check(CLI::IsMember({"world", "body", "principal"}))->needs(mesh_opt);
   app.add_option("--velocity", velocity_text, "--mesh: initial velocity vx,vy,vz in m/s")->needs(mesh_opt);
-  app.add_option("--dt", dt, "Time step, s (overrides the scene)")->check(CLI::PositiveNumber);
-  app.add_option("--duration", duration, "Simulated time, s (overrides the scene)")->check(CLI::PositiveNumber);
+  app.add_option("--dt", dt, "Time step, s (overrides the scene)")->check(massprops::app::Positive());
+  app.add_option("--duration", duration, "Simulated time, s (overrides the scene)")->check(massprops::app::Positive());
   app.add_option("--integrator", integrator, "Integrator (overrides the scene): " + dynamics::IntegratorNames());
-  app.add_option("--rate", rate, "Output rate, samples per simulated second (overrides the scene)")->check(CLI::PositiveNumber);
+  app.add_option("--rate", rate, "Output rate, samples per simulated second (overrides the scene)")->check(massprops::app::Positive());
   app.add_option("--out", out_dir, "Write every output of the run into this directory (created if missing)");
   app.add_option("--outputs", outputs_text, "Which outputs, comma-separated: csv, jsonl, diagnostics, svg, png, glb "
                                             "(overrides the scene; default csv,diagnostics,svg,png,glb)");
   app.add_option("--threads", threads, "Worker threads for mesh loading and large worlds (0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(massprops::app::NonNegative());
   app.add_flag("-q,--quiet", quiet, "No progress bar");
   if (const int status = massprops::app::ParseArguments(app, argc, argv); status >= 0) return status;
   if (massprops::app::RefuseReservedWord("rbsim", scene_file, {"poses"})) return massprops::app::kBadArguments;

@@ -342,6 +342,10 @@ void CheckTiming(const Scene& scene, std::vector<std::string>& warnings) {
 }
 
 Scene LoadScene(const std::string& path, std::vector<std::string>& warnings) {
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
+    throw SceneError(path + ": not a regular file (a FIFO, device or directory); scenes are read from regular files");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path + ": cannot open the scene file");
   std::stringstream text;

@@ -67,8 +67,8 @@ grep -q "flat.obj: the mesh encloses zero volume" "$tmp/err"; check "zero volume
 "$bin" "$data/meshes/Moon.stl" "$tmp/missing.stl" --format json >"$tmp/out" 2>"$tmp/err"
 [ $? -eq 1 ]; check "partial failure exits 1" $?
 grep -q "missing.stl: cannot open" "$tmp/err"; check "missing file named" $?
-python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert d['file'].endswith('Moon.stl')" "$tmp/out"
-check "good file still printed" $?
+python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert len(d) == 1 and d[0]['file'].endswith('Moon.stl')" "$tmp/out"
+check "good file still printed, in an array (several inputs were given)" $?
 
 # 6. Impossible parameters.
 "$bin" "$data/meshes/Moon.stl" --density -5 >"$tmp/out" 2>"$tmp/err"
@@ -259,6 +259,24 @@ assert len(rows) == 2 and rows[0]['se_mass'] == '' and float(rows[1]['se_mass'])
 [ $? -eq 0 ] && grep -Eq "^massprops [0-9]+\.[0-9]+\.[0-9]+$" "$tmp/out"; check "--version" $?
 "$bin" batch "$data/meshes/spot.obj" >/dev/null 2>"$tmp/err"
 [ $? -eq 2 ] && grep -q "a file of that name is given as ./batch" "$tmp/err"; check "reserved word batch" $?
+# Output files: never over a device node or an input.
+"$bin" "$data/meshes/t_handle.obj" -o /dev/null >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ] && grep -q "not a regular file" "$tmp/err" && [ -c /dev/null ]; check "-o /dev/null refused" $?
+cp "$data/meshes/t_handle.obj" "$tmp/in.obj"
+"$bin" "$tmp/in.obj" -o "$tmp/in.obj" >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ] && grep -q "is also an input" "$tmp/err" && cmp -s "$tmp/in.obj" "$data/meshes/t_handle.obj"; check "-o naming an input refused" $?
+mkfifo "$tmp/fifo.obj"
+timeout 10 "$bin" "$tmp/fifo.obj" >/dev/null 2>"$tmp/err"
+[ $? -eq 1 ] && grep -q "not a regular file" "$tmp/err"; check "a FIFO as input is refused, not waited on" $?
+"$bin" --implicit 'sphere(r=1)' --shell --area-density 1 >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ]; check "--implicit with --shell refused" $?
+"$bin" --implicit 'sphere(r=1)' --repair >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ]; check "--implicit alone with a mesh option refused" $?
+"$bin" "$data/meshes/spot.obj" --density nan >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ] && grep -q "finite" "$tmp/err"; check "--density nan refused" $?
+"$bin" "$data/meshes/spot.obj" --threads -1 >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ] && ! grep -q "[0-9]\{30\}" "$tmp/err"; check "range messages without 309 digits" $?
+
 # Advice in messages is worded in the command line's vocabulary.
 "$bin" "$tmp/open.obj" >/dev/null 2>"$tmp/err"
 grep -q "try --repair, or pass --allow-open" "$tmp/err"; check "CLI vocabulary in errors" $?

@@ -94,6 +94,13 @@ printf '{"bodies": [{"solid": {"type": "sphere", "radius": 1}, "orientation": [2
 [ $? -eq 2 ] && grep -q "given as ./poses" "$tmp/err"; check "reserved word poses" $?
 "$bin" "$data/scenes/t_handle.json" --dt -1 >/dev/null 2>"$tmp/err"
 [ $? -eq 2 ]; check "negative --dt exits 2" $?
+for opt in --duration --rate --dt; do
+  "$bin" "$data/scenes/t_handle.json" $opt nan >/dev/null 2>"$tmp/err"
+  [ $? -eq 2 ] && grep -q "finite" "$tmp/err"; check "$opt nan refused" $?
+done
+mkfifo "$tmp/scene.json"
+timeout 10 "$bin" "$tmp/scene.json" >/dev/null 2>"$tmp/err"
+[ $? -eq 1 ] && grep -q "not a regular file" "$tmp/err"; check "a FIFO as scene is refused, not waited on" $?
 
 # 5. Interrupted: SIGINT mid-run leaves no file under a final name, and no temporary file.
 "$bin" "$data/scenes/t_handle.json" --dt 1e-6 --duration 1000 --out "$tmp/int" -q >/dev/null 2>"$tmp/err" &

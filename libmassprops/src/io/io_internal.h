@@ -9,6 +9,10 @@
 
 namespace massprops {
 
+/// Opens a regular file for reading (never blocks on a FIFO); the descriptor is the caller's.
+/// Throws MeshFileError for a missing file or one that is not regular.
+int OpenRegularFile(const std::string& path);
+
 /// A read-only memory map of a whole file (POSIX). Throws MeshFileError for a missing or empty file.
 class MappedFile {
  public:

@@ -11,13 +11,25 @@
 
 namespace massprops {
 
-MappedFile::MappedFile(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+int OpenRegularFile(const std::string& path) {
+  // O_NONBLOCK: opening a FIFO for reading would otherwise wait for a writer, forever.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) Fail(path, std::string("cannot open the file (") + std::strerror(errno) + ")");
   struct stat st {};
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
     ::close(fd);
-    Fail(path, "not a regular file");
+    Fail(path, "not a regular file (a FIFO, device or directory); meshes are read from regular files only");
+  }
+  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+  return fd;
+}
+
+MappedFile::MappedFile(const std::string& path) {
+  const int fd = OpenRegularFile(path);
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) {
+    ::close(fd);
+    Fail(path, std::string("cannot read the file's size (") + std::strerror(errno) + ")");
   }
   size_ = static_cast<std::size_t>(st.st_size);
   if (size_ == 0) {

@@ -129,8 +129,7 @@ std::optional<SoupIntegrals> IntegrateBinaryStlFile(const std::string& path,
   // pread block by block into small per-thread buffers: the file is read once, in parallel, and
   // each block is integrated while it is in cache (faster than a memory map, whose page-cache
   // pages the hardware prefetcher does not stream across, and than one big read).
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) Fail(path, std::string("cannot open the file (") + std::strerror(errno) + ")");
+  const int fd = OpenRegularFile(path);
   struct FdCloser {
     int fd;
     ~FdCloser() { ::close(fd); }
