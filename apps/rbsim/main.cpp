@@ -205,8 +205,7 @@ int main(int argc, char** argv) {
         },
         [&progress](double f) { progress.Fraction(f); }, &g_stop);
   } catch (const std::exception& e) {
-    std::cerr << "error: " << scene.file << ": the run failed at t = " << sim->world.time() << " s: " << e.what()
-              << "\n";
+    std::cerr << "error: " << scene.file << ": " << e.what() << "; no output files were written\n";
     return 1;
   }
   if (stats.interrupted) {

@@ -223,6 +223,14 @@ RunStats Run(Simulation& sim,
   const std::int64_t every = SampleEvery(sim.scene);
   auto sample = [&] {
     const dynamics::Diagnostics d = sim.world.Diagnose();
+    if (!std::isfinite(d.total_energy) || !d.linear_momentum.allFinite() || !d.angular_momentum.allFinite()) {
+      const char* what = !std::isfinite(d.total_energy) ? "energy" : "momentum";
+      throw std::runtime_error(stats.samples == 0
+                                   ? std::string("the initial state's ") + what +
+                                         " is not finite (velocities, masses or forces beyond double precision)"
+                                   : "diverged at t = " + Num(d.time, "%.9g") + " s (the world's " + what +
+                                         " is no longer finite); reduce dt, or use a stable integrator");
+    }
     if (stats.samples == 0) stats.start = d;
     const dynamics::Drift drift = dynamics::DriftSince(stats.start, d);
     stats.max_drift.energy = std::max(stats.max_drift.energy, std::abs(drift.energy));
@@ -236,7 +244,13 @@ RunStats Run(Simulation& sim,
   const std::int64_t progress_every = std::max<std::int64_t>(1, n / 1000);
   for (std::int64_t i = 1; i <= n; ++i) {
     const dynamics::StepStatus status = sim.world.Step(sim.scene.dt);
-    if (!status.ok) throw std::runtime_error(status.message);
+    if (status.diverged) {
+      const auto [body, quantity] = sim.world.FirstNonFinite();
+      throw std::runtime_error("diverged at t = " + Num(sim.world.time(), "%.9g") + " s (body '" +
+                               sim.bodies[static_cast<std::size_t>(body)].name + "': " + quantity +
+                               " no longer finite); reduce dt, or use a stable integrator");
+    }
+    if (!status.ok) throw std::runtime_error("the run failed at t = " + Num(sim.world.time(), "%.9g") + " s: " + status.message);
     stats.max_substeps = std::max(stats.max_substeps, status.substeps);
     stats.steps = i;
     if (i % every == 0 || i == n) sample();

@@ -61,7 +61,9 @@ std::int64_t StepCount(const Scene& scene);
 std::int64_t SampleEvery(const Scene& scene);
 
 /// Runs to the end (or until *stop becomes true), calling on_sample(world, diagnostics) at each
-/// sample and on_progress(fraction) now and then. @throws std::runtime_error from World::Step.
+/// sample and on_progress(fraction) now and then. @throws std::runtime_error when a step fails or
+/// the state diverges (energy, momentum or a body's state no longer finite), naming the time and
+/// the body or quantity.
 RunStats Run(Simulation& sim, const std::function<void(const dynamics::World&, const dynamics::Diagnostics&)>& on_sample,
              const std::function<void(double)>& on_progress = {}, const std::atomic<bool>* stop = nullptr);
 

@@ -70,6 +70,38 @@ StepStatus World::Step(double h) {
     msg << "World::Step: the time step must be finite and positive, got " << h;
     throw std::invalid_argument(msg.str());
   }
+  StepStatus status = Advance(h);
+  if (status.ok) {
+    const auto [body, quantity] = FirstNonFinite();
+    if (body >= 0) {
+      status.ok = false;
+      status.diverged = true;
+      status.body = body;
+      std::ostringstream msg;
+      msg << "diverged at t = " << time_ << " s: body " << body << "'s " << quantity
+          << " is no longer finite (forces too large for this step, or an unstable integrator; reduce the time step)";
+      status.message = msg.str();
+    }
+  }
+  return status;
+}
+
+std::pair<int, const char*> World::FirstNonFinite() const {
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    const RigidBody& b = bodies_[i];
+    // One sum per body: a NaN or an infinity anywhere makes it non-finite.
+    const double sum = b.position.sum() + b.velocity.sum() + b.orientation.coeffs().sum() + b.angular_momentum.sum();
+    if (std::isfinite(sum)) continue;
+    // Find the quantity (the sum can also overflow while every part is finite).
+    if (!b.position.allFinite()) return {static_cast<int>(i), "position"};
+    if (!b.velocity.allFinite()) return {static_cast<int>(i), "velocity"};
+    if (!b.orientation.coeffs().allFinite()) return {static_cast<int>(i), "orientation"};
+    if (!b.angular_momentum.allFinite()) return {static_cast<int>(i), "angular momentum"};
+  }
+  return {-1, ""};
+}
+
+StepStatus World::Advance(double h) {
   const internal::IntegratorInfo& info = internal::Info(integrator_);
   internal::StepContext context(bodies_, forces_, *scratch_, num_threads_);
   StepStatus status;

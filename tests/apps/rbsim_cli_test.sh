@@ -98,6 +98,16 @@ for opt in --duration --rate --dt; do
   "$bin" "$data/scenes/t_handle.json" $opt nan >/dev/null 2>"$tmp/err"
   [ $? -eq 2 ] && grep -q "finite" "$tmp/err"; check "$opt nan refused" $?
 done
+# A run whose state stops being finite stops with "diverged", exit 1, and writes nothing.
+cat >"$tmp/stiff.json" <<'JSON'
+{"dt": 0.01, "duration": 5, "integrator": "explicit-euler",
+ "bodies": [{"name": "box", "solid": {"type": "box", "size": [0.1, 0.1, 0.1]}, "position": [0, 0, -1]}],
+ "forces": [{"type": "spring", "body": "box", "anchor": [0, 0, 0], "k": 1e9}]}
+JSON
+"$bin" "$tmp/stiff.json" --out "$tmp/stiff" -q >/dev/null 2>"$tmp/err"
+[ $? -eq 1 ] && grep -q "diverged at t = " "$tmp/err" && [ -z "$(ls -A "$tmp/stiff" 2>/dev/null)" ]; check "a diverging run stops, exit 1, no files" $?
+"$bin" --mesh "$data/meshes/t_handle.obj" --velocity 1e300,0,0 --duration 0.01 -q >/dev/null 2>"$tmp/err"
+[ $? -eq 1 ] && grep -q "initial state's energy is not finite" "$tmp/err"; check "an initial state beyond double precision is refused" $?
 mkfifo "$tmp/scene.json"
 timeout 10 "$bin" "$tmp/scene.json" >/dev/null 2>"$tmp/err"
 [ $? -eq 1 ] && grep -q "not a regular file" "$tmp/err"; check "a FIFO as scene is refused, not waited on" $?

@@ -406,6 +406,29 @@ TEST(FreeRotation, AStepThatCannotConvergeIsReportedAndLeavesTheStateAsItWas) {
   EXPECT_TRUE(w.Step(1e-12).ok);
 }
 
+TEST(Worlds, ADivergingStateIsReportedWithTheBodyAndQuantity) {
+  // Explicit Euler on a spring far too stiff for the step: the state overflows within steps.
+  for (Integrator integ : kAllIntegrators) {
+    World w(integ);
+    w.AddBody(Body(Vector3(1, 2, 2.5), Vector3::Zero()));
+    RigidBody b = Body(Vector3(1, 2, 2.5), Vector3::Zero());
+    b.position = Vector3(0, 0, -1);
+    w.AddBody(b);
+    w.AddForce(SpringToWorld(1, Vector3::Zero(), Vector3::Zero(), 1e12, 0, 0));
+    StepStatus s;
+    for (int i = 0; i < 2000 && s.ok; ++i) s = w.Step(0.5);
+    if (integ == Integrator::kExplicitEuler || integ == Integrator::kQuaternionEuler) {
+      ASSERT_TRUE(s.diverged) << IntegratorName(integ);
+    }
+    if (s.diverged) {
+      EXPECT_FALSE(s.ok);
+      EXPECT_EQ(s.body, 1) << IntegratorName(integ);
+      EXPECT_THAT(s.message, ::testing::HasSubstr("body 1's")) << IntegratorName(integ);
+      EXPECT_EQ(w.FirstNonFinite().first, 1);
+    }
+  }
+}
+
 TEST(Worlds, ForcesSayWhatTheyConserve) {
   World w;
   w.AddBody(Body(Vector3(1, 2, 2.5), Vector3::Zero()));

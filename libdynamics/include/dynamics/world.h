@@ -4,6 +4,7 @@
 /// momentum diagnostics.
 
 #include <memory>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -90,9 +91,13 @@ struct Conservation {
 
 /// What a step did that the caller should know.
 struct StepStatus {
-  /// False when the implicit solve did not converge even with the smallest sub-step; the state
-  /// is then left as it was before the call, and `message` says why.
+  /// False when the implicit solve did not converge even with the smallest sub-step (the state
+  /// is then left as it was before the call), or when the state stopped being finite (diverged:
+  /// the state holds what the step made of it). `message` says which, naming the body and the
+  /// quantity.
   bool ok = true;
+  bool diverged = false;  ///< the state is no longer finite
+  int body = -1;          ///< the first body whose state is not finite
   int substeps = 1;  ///< > 1 when the implicit solve needed a smaller step to converge
   std::string message;
 };
@@ -132,9 +137,14 @@ class World {
 
   Diagnostics Diagnose() const;
   Conservation Conserves() const;
+  /// The first body whose state (position, velocity, orientation, angular momentum) is not
+  /// finite, with the quantity's name; -1 and "" when all are finite.
+  std::pair<int, const char*> FirstNonFinite() const;
   const std::vector<std::unique_ptr<Force>>& forces() const { return forces_; }
 
  private:
+  StepStatus Advance(double h);
+
   Integrator integrator_;
   std::vector<RigidBody> bodies_;
   std::vector<std::unique_ptr<Force>> forces_;
