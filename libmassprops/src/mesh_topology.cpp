@@ -40,6 +40,60 @@ std::string MeshTopology::Problems() const {
   return msg.str();
 }
 
+namespace {
+
+// The corners of face f as a cyclic sequence starting at its smallest index.
+std::vector<std::int32_t> FromSmallest(const PolygonMesh& mesh, std::int64_t f) {
+  const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
+  const int n = mesh.face_size(f);
+  const int start = static_cast<int>(std::min_element(idx, idx + n) - idx);
+  std::vector<std::int32_t> out(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) out[static_cast<std::size_t>(k)] = idx[(start + k) % n];
+  return out;
+}
+
+// Faces with the same corner set as an earlier one: sorted by a hash of the sorted corners, then
+// compared exactly; the same cyclic order is a duplicate, the reverse order a reversed duplicate.
+void CountDuplicateFaces(const PolygonMesh& mesh, MeshTopology& t) {
+  std::vector<std::pair<std::uint64_t, std::int64_t>> keys;
+  keys.reserve(static_cast<std::size_t>(t.faces));
+  std::vector<std::int32_t> sorted;
+  auto sorted_corners = [&](std::int64_t f) {
+    const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
+    sorted.assign(idx, idx + mesh.face_size(f));
+    std::sort(sorted.begin(), sorted.end());
+    return sorted;
+  };
+  for (std::int64_t f = 0; f < t.faces; ++f) {
+    std::uint64_t h = 0x9E3779B97F4A7C15ull * static_cast<std::uint64_t>(mesh.face_size(f));
+    for (std::int32_t c : sorted_corners(f)) {
+      h ^= static_cast<std::uint64_t>(c) + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
+      h *= 0xBF58476D1CE4E5B9ull;
+    }
+    keys.emplace_back(h, f);
+  }
+  std::sort(keys.begin(), keys.end());
+  for (std::size_t i = 0; i < keys.size();) {
+    std::size_t j = i + 1;
+    while (j < keys.size() && keys[j].first == keys[i].first) ++j;
+    // A run of equal hashes: faces with the corners of its first face are its copies (a 64-bit
+    // hash collision between different corner sets is ignored). Linear in the run's length.
+    const std::vector<std::int32_t> first_sorted = sorted_corners(keys[i].second);
+    const std::vector<std::int32_t> first = FromSmallest(mesh, keys[i].second);
+    std::vector<std::int32_t> first_reversed = first;
+    std::reverse(first_reversed.begin() + 1, first_reversed.end());
+    for (std::size_t a = i + 1; a < j; ++a) {
+      if (sorted_corners(keys[a].second) != first_sorted) continue;
+      const std::vector<std::int32_t> fa = FromSmallest(mesh, keys[a].second);
+      if (fa == first) ++t.duplicate_faces;
+      else if (fa == first_reversed) ++t.reversed_duplicate_faces;
+    }
+    i = j;
+  }
+}
+
+}  // namespace
+
 MeshTopology AnalyzeTopology(const PolygonMesh& mesh) {
   MeshTopology t;
   t.faces = mesh.num_faces();
@@ -102,6 +156,7 @@ MeshTopology AnalyzeTopology(const PolygonMesh& mesh) {
   for (std::int32_t v = 0; v < nv; ++v) {
     if (on_boundary[v] && Find(hole_parent, v) == v) ++t.holes;
   }
+  if (t.non_manifold_edges > 0) CountDuplicateFaces(mesh, t);
   return t;
 }
 
@@ -166,6 +221,18 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
     const std::int32_t* idx = mesh.indices.data() + mesh.offsets[report.shells[s].faces[0]];
     probe[s] = (mesh.V.row(idx[0]) + mesh.V.row(idx[1]) + mesh.V.row(idx[2])).transpose() / 3.0;
   }
+  // Winding number of shell t at a point.
+  auto winding = [&](std::size_t t, const Vector3& x) {
+    double omega = 0;
+    for (std::int64_t f : report.shells[t].faces) {
+      const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
+      const Vector3 a = mesh.V.row(idx[0]).transpose() - x;
+      for (int k = 1; k + 1 < mesh.face_size(f); ++k) {
+        omega += SolidAngle(a, mesh.V.row(idx[k]).transpose() - x, mesh.V.row(idx[k + 1]).transpose() - x);
+      }
+    }
+    return omega / (4.0 * M_PI);
+  };
   // Nesting: winding number of shell t at the probe of shell s; the innermost container wins
   // (the one with the smallest |volume|).
   if (ns > 1) {
@@ -173,26 +240,46 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
       double best = std::numeric_limits<double>::infinity();
       for (std::size_t t = 0; t < ns; ++t) {
         if (t == s || !report.shells[t].closed) continue;
-        double omega = 0;
-        for (std::int64_t f : report.shells[t].faces) {
-          const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
-          const Vector3 a = mesh.V.row(idx[0]).transpose() - probe[s];
-          for (int k = 1; k + 1 < mesh.face_size(f); ++k) {
-            omega += SolidAngle(a, mesh.V.row(idx[k]).transpose() - probe[s],
-                                mesh.V.row(idx[k + 1]).transpose() - probe[s]);
-          }
-        }
-        const double winding = omega / (4.0 * M_PI);
         const double size = std::fabs(report.shells[t].signed_volume);
-        if (std::fabs(winding) > 0.5 && size < best) {
+        if (std::fabs(winding(t, probe[s])) > 0.5 && size < best) {
           best = size;
           report.shells[s].inside_of = static_cast<int>(t);
         }
       }
     }
   }
-  // Valid: each shell's orientation alternates with depth (outward at even depth, inward at odd).
+  // Crossing shells: a shell partly inside and partly outside another (their surfaces cross) is
+  // found from the winding numbers of samples spread over it — face centroids, so that shells
+  // that merely touch (shared corners or edges, w = 1/2 there) are not taken for crossing. Found
+  // whatever the order of the faces.
+  constexpr std::size_t kSamples = 16;
+  for (std::size_t s = 0; s < ns && report.crossing.first < 0; ++s) {
+    const std::vector<std::int64_t>& faces = report.shells[s].faces;
+    const std::size_t count = std::min(kSamples, faces.size());
+    for (std::size_t t = 0; t < ns && report.crossing.first < 0; ++t) {
+      if (t == s || !report.shells[t].closed) continue;
+      bool in = false, out = false;
+      for (std::size_t k = 0; k < count; ++k) {
+        const std::int64_t f = faces[k * faces.size() / count];
+        const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
+        const Vector3 c = (mesh.V.row(idx[0]) + mesh.V.row(idx[1]) + mesh.V.row(idx[2])).transpose() / 3.0;
+        const double w = std::fabs(winding(t, c));
+        in = in || w > 0.75;
+        out = out || w < 0.25;
+      }
+      if (in && out) report.crossing = {static_cast<int>(t), static_cast<int>(s)};
+    }
+  }
+  // Valid: no shells cross, and each shell's orientation alternates with depth (outward at even
+  // depth, inward at odd).
   std::ostringstream problem;
+  if (report.crossing.first >= 0) {
+    problem << "shells " << report.crossing.first + 1 << " and " << report.crossing.second + 1 << " of " << ns
+            << " intersect: part of shell " << report.crossing.second + 1 << " lies inside shell "
+            << report.crossing.first + 1
+            << " and part outside, so their volumes overlap and would be counted twice; merge them into one "
+               "surface (a boolean union) before computing";
+  }
   for (std::size_t s = 0; s < ns && problem.tellp() == 0; ++s) {
     int depth = 0;
     for (int t = report.shells[s].inside_of; t >= 0 && depth <= static_cast<int>(ns);

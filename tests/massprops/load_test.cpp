@@ -68,7 +68,9 @@ TEST(Primitives, ClosedFormTessellationAndImplicitFormAgree) {
     const double e_coarse = std::abs(coarse.volume - exact.volume), e_fine = std::abs(fine.volume - exact.volume);
     EXPECT_TRUE(NearRel(fine.volume, exact.volume, 3e-3));
     EXPECT_TRUE(NearRel(fine.inertia_com.trace(), exact.inertia_com.trace(), 6e-3));
-    if (!std::holds_alternative<pr::Box>(p)) EXPECT_NEAR(e_coarse / e_fine, 4.0, 0.5);
+    if (!std::holds_alternative<pr::Box>(p)) {
+      EXPECT_NEAR(e_coarse / e_fine, 4.0, 0.5);
+    }
     // The implicit form: inside at the center of mass (for the torus, on its ring), outside
     // beyond the bounds.
     const ImplicitPtr solid = ToImplicit(p);

@@ -100,6 +100,7 @@ enum class FindingKind {
   kUnitSuspicion,      ///< the size suggests the coordinates are in another unit
   kUndeterminedAxes,   ///< an estimate's principal moments are equal within their error bars
   kToleranceNotMet,    ///< an adaptive estimate stopped at its sample limit
+  kNonPlanarFaces,     ///< polygons off their plane: integrated as fans from their first corner
 };
 
 struct Finding {

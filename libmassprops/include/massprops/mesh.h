@@ -43,4 +43,15 @@ PolygonMesh ToPolygonMesh(const TriangleMesh& mesh);
 /// True when every face of the polygon mesh is a triangle.
 bool IsAllTriangles(const PolygonMesh& mesh);
 
+/// How far the polygons of a mesh are from planar. A polygon's deviation is the largest distance
+/// of a corner from the plane through its centroid with its Newell normal, relative to the
+/// polygon's size (the diagonal of its corners' bounding box). A non-planar polygon bounds no
+/// unique surface: the two paths (fan of triangles, Mirtich's plane) then differ.
+struct PlanarityReport {
+  std::int64_t non_planar_faces = 0;  ///< polygons whose deviation exceeds the tolerance
+  std::int64_t worst_face = -1;       ///< the polygon with the largest deviation
+  double worst_deviation = 0;         ///< relative to its size
+};
+PlanarityReport CheckPlanarity(const PolygonMesh& mesh, double tolerance = 1e-9);
+
 }  // namespace massprops

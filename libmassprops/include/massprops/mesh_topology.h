@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "massprops/mesh.h"
@@ -24,6 +25,11 @@ struct MeshTopology {
   std::int64_t unbalanced_edges = 0;
   std::int64_t inconsistent_edges = 0;  ///< two faces traverse it in the same direction
   std::int64_t degenerate_faces = 0;    ///< a repeated corner index
+  /// Faces with the same corners as an earlier face, in the same cyclic order (the surface is
+  /// there twice), and in the reverse order (a double-sided surface, or two solids touching face
+  /// to face). Counted when there are non-manifold edges (a repeated face always makes some).
+  std::int64_t duplicate_faces = 0;
+  std::int64_t reversed_duplicate_faces = 0;
   std::int64_t components = 0;          ///< connected pieces (through shared vertices)
 
   /// Closed and consistently oriented (every edge traversed as often forward as backward): the
@@ -54,6 +60,8 @@ struct Shell {
 /// How the shells of a mesh combine into one solid.
 struct ShellReport {
   std::vector<Shell> shells;
+  /// Two shells whose surfaces cross (one partly inside the other), 0-based; {-1, -1}: none.
+  std::pair<int, int> crossing{-1, -1};
   /// Empty when the shells form a valid solid: disjoint outward shells, and cavities (inward
   /// shells) each inside an outward one. Otherwise what is wrong, in words, e.g. an outward shell
   /// inside another outward shell (the volumes overlap; a cavity facing the wrong way?). Option

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <iterator>
+#include <set>
 #include <sstream>
 #include <unordered_map>
 #include <vector>
@@ -122,13 +123,28 @@ RepairedMesh RepairMesh(const PolygonMesh& input, const RepairOptions& options) 
   for (Eigen::Index i = 0; i < input.V.rows(); ++i) {
     points.emplace_back(input.V(i, 0), input.V(i, 1), input.V(i, 2));
   }
+  // Polygons with the corners of an earlier one (in either orientation) are dropped before they
+  // are split into fans: a quad and its reverse make different fans, which CGAL would not see as
+  // duplicates.
   std::vector<Polygon> polys;
-  for (const auto& t : input_tris) {
-    polys.push_back({std::size_t(map[t[0]]), std::size_t(map[t[1]]), std::size_t(map[t[2]])});
+  std::set<std::vector<std::size_t>> seen;
+  std::int64_t duplicate_polygons = 0;
+  for (std::int64_t f = 0; f < input.num_faces(); ++f) {
+    const std::int32_t* idx = input.indices.data() + input.offsets[f];
+    const int n = input.face_size(f);
+    std::vector<std::size_t> corners(static_cast<std::size_t>(n));
+    for (int k = 0; k < n; ++k) corners[static_cast<std::size_t>(k)] = static_cast<std::size_t>(map[idx[k]]);
+    std::vector<std::size_t> key = corners;
+    std::sort(key.begin(), key.end());
+    if (n > 3 && !seen.insert(std::move(key)).second) {
+      ++duplicate_polygons;
+      continue;
+    }
+    for (int k = 1; k + 1 < n; ++k) polys.push_back({corners[0], corners[static_cast<std::size_t>(k)], corners[static_cast<std::size_t>(k) + 1]});
   }
   const std::size_t faces_before = polys.size();
   PMP::repair_polygon_soup(points, polys);
-  rep.removed_faces = static_cast<std::int64_t>(faces_before - polys.size());
+  rep.removed_faces = duplicate_polygons + static_cast<std::int64_t>(faces_before - polys.size());
   const std::size_t points_before = points.size();
   // orient_polygon_soup returns false when it had to duplicate points (non-manifold vertices).
   std::vector<Polygon> before_orient = polys;

@@ -33,7 +33,9 @@ std::string Lower(std::string s) {
 }
 
 double Diagonal(const PolygonMesh& mesh) {
-  return (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
+  const Vector3 extent = (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).transpose();
+  const double d = extent.norm();
+  return std::isfinite(d) ? d : extent.stableNorm();  // squares overflow beyond 1e154
 }
 
 void Stage(const LoadOptions& o, const char* stage) {
@@ -60,6 +62,17 @@ void CheckPlausibleSize(SolidResult& r) {
   }
 }
 
+[[noreturn]] void RefuseMagnitude(const SolidResult& r, double size, LengthUnit unit) {
+  throw LoadError(r.source + ": the part's size (" + Fixed(size, "%.3g") + " " + UnitName(unit) +
+                  " across) makes its volume or inertia " + (size < 1 ? "underflow" : "overflow") +
+                  " double precision; rescale with {unit} (the numbers would be zeros, infinities or noise)");
+}
+
+// A volume and second moment (∝ size³ and size⁵) that double precision can hold as normal numbers.
+void RequireRepresentable(const SolidResult& r, double volume, double second, double size, LengthUnit unit) {
+  if (!std::isnormal(volume) || !std::isnormal(second) || !std::isfinite(size)) RefuseMagnitude(r, size, unit);
+}
+
 // What every path reports once r.mp is known: size and its plausibility, principal axes, and
 // validity (with the tolerance an estimate's noise needs).
 void Conclude(SolidResult& r, double size_m, double validity_tolerance = 1e-12) {
@@ -71,6 +84,16 @@ void Conclude(SolidResult& r, double size_m, double validity_tolerance = 1e-12) 
 
 // Integrals in file units → SI mass properties at the requested density or total mass.
 void Finish(SolidResult& r, const VolumeIntegrals& integrals, const LoadOptions& opt, double size_file_units) {
+  // Volumes go as size³ and inertias as size⁵: both must be normal doubles.
+  const double fifth = std::pow(size_file_units, 5);
+  if (!std::isnormal(fifth) || fifth > 1e300) RefuseMagnitude(r, size_file_units, opt.unit);
+  // Rounding leaves about 1e-16 of the part's size cubed where faces cancel: a volume below
+  // 1e-12 of it is zero, whatever its sign.
+  if (std::abs(integrals.volume) <= 1e-12 * std::pow(size_file_units, 3)) {
+    throw LoadError(r.source + ": the volume is zero up to rounding (" + Fixed(integrals.volume, "%.3g") + " " +
+                    UnitName(opt.unit) + "^3 for a part " + Fixed(size_file_units, "%.4g") + " " + UnitName(opt.unit) +
+                    " across): the faces cancel (a double-sided surface, or a flat one); nothing to compute");
+  }
   if (integrals.volume < 0) {
     throw LoadError(r.source + ": the signed volume is negative (" + Fixed(integrals.volume, "%.6g") + " " +
                     UnitName(opt.unit) + "^3): the faces point inward. Reverse the orientation of every face");
@@ -79,6 +102,10 @@ void Finish(SolidResult& r, const VolumeIntegrals& integrals, const LoadOptions&
   // Integrate in file units, then scale exactly (no rounding of the coordinates themselves).
   const MassProperties unit_density = Scaled(FromIntegrals(integrals, 1.0), scale);
   r.mp = AtDensity(unit_density, ResolveDensity(opt.mass, unit_density.volume));
+  RequireRepresentable(r, r.mp.volume, r.mp.inertia_com.trace(), scale * size_file_units, LengthUnit::kMetre);
+  if (!std::isnormal(r.mp.mass) || !r.mp.inertia_com.allFinite()) {
+    RefuseMagnitude(r, scale * size_file_units, LengthUnit::kMetre);
+  }
   Conclude(r, scale * size_file_units);
 }
 
@@ -144,6 +171,19 @@ bool TryStreamedStl(SolidResult& r, const std::string& file, const LoadOptions& 
   return true;
 }
 
+[[noreturn]] void RefuseDuplicates(const SolidResult& r) {
+  const MeshTopology& t = r.topology;
+  if (2 * t.reversed_duplicate_faces == t.faces) {
+    throw LoadError(r.source + ": the volume is zero up to rounding (double-sided surface): each of the " +
+                    std::to_string(t.faces / 2) + " faces appears with both orientations; keep one side " +
+                    "({repair} drops the duplicates)");
+  }
+  throw LoadError(r.source + ": " + std::to_string(t.duplicate_faces + t.reversed_duplicate_faces) +
+                  " faces repeat the corners of another face (" + std::to_string(t.reversed_duplicate_faces) +
+                  " of them reversed): the surface is there twice, and its volume and inertia would count it "
+                  "twice or cancel it; remove the duplicates ({repair} does)");
+}
+
 void RefuseOpen(const SolidResult& r, const LoadOptions& opt, bool wall) {
   if (wall) {
     throw LoadError(r.source + ": " + r.topology.Problems() +
@@ -206,8 +246,21 @@ void IntegrateSolid(SolidResult& r, const LoadOptions& opt) {
   IntegrationOptions io;
   io.num_threads = opt.num_threads;
   const bool triangles = IsAllTriangles(mesh);
+  const PlanarityReport planarity = triangles ? PlanarityReport{} : CheckPlanarity(mesh);
   VolumeIntegrals integrals;
-  if (opt.path == IntegrationPath::kPolygons || (opt.path == IntegrationPath::kAuto && !triangles)) {
+  if (planarity.non_planar_faces > 0) {
+    // A non-planar polygon bounds no unique surface: say which one was taken.
+    Warn(r, FindingKind::kNonPlanarFaces,
+         std::to_string(planarity.non_planar_faces) +
+             (planarity.non_planar_faces == 1 ? " polygon is not planar (face " : " polygons are not planar (the worst, face ") +
+             std::to_string(planarity.worst_face + 1) + ", leaves its plane by " +
+             Fixed(planarity.worst_deviation, "%.2g") +
+             " of its size): each is integrated as a fan of triangles from its first corner, one of the "
+             "surfaces it could mean");
+    r.path_used = "triangles (signed tetrahedra), polygons split into fans (some are not planar)";
+    const TriangleMesh tri = Triangulate(mesh);
+    integrals = IntegrateTriangles(tri.V, tri.F, io);
+  } else if (opt.path == IntegrationPath::kPolygons || (opt.path == IntegrationPath::kAuto && !triangles)) {
     r.path_used = "polygons (Mirtich), faces integrated whole";
     integrals = IntegratePolygons(mesh, io);
   } else {
@@ -273,6 +326,7 @@ SolidResult LoadSolid(const std::string& file, const LoadOptions& opt) {
     Stage(opt, "checking self-intersections (CGAL)");
     r.self_intersections = CountSelfIntersections(mesh);
   }
+  if (r.topology.duplicate_faces + r.topology.reversed_duplicate_faces > 0) RefuseDuplicates(r);
   if (r.self_intersections > 0) {
     Warn(r, FindingKind::kSelfIntersections,
          std::to_string(r.self_intersections) +

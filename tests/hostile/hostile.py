@@ -1,0 +1,200 @@
+#!/usr/bin/python3
+"""Hostile-input catalogue: a matrix of readers × fault classes, plus option combinations and
+output paths, each run through the massprops command and checked for its exit status, a message
+that names the fault (and the file), and no number printed when the input is refused.
+
+    hostile.py MASSPROPS_BINARY
+
+Prints one line per failed case and 'N passed, M failed'; exit 0 when none failed. Every case is
+generated here (no hostile file is committed). A case is (name, files, args, expected status,
+regex the stderr must match, regex the stdout must match or None for 'prints nothing').
+"""
+import os
+import re
+import struct
+import subprocess
+import sys
+import tempfile
+
+CUBE_V = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+CUBE_Q = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+CUBE_T = [t for q in CUBE_Q for t in ((q[0], q[1], q[2]), (q[0], q[2], q[3]))]
+
+
+def scaled(v, s):
+    return [(x * s, y * s, z * s) for x, y, z in v]
+
+
+def obj(v, f):
+    return "".join("v %r %r %r\n" % p for p in v) + "".join("f " + " ".join(str(i + 1) for i in q) + "\n" for q in f)
+
+
+def off(v, f):
+    return "OFF\n%d %d 0\n" % (len(v), len(f)) + "".join("%r %r %r\n" % p for p in v) + \
+        "".join("%d %s\n" % (len(q), " ".join(map(str, q))) for q in f)
+
+
+def ply_ascii(v, f):
+    head = "ply\nformat ascii 1.0\nelement vertex %d\nproperty double x\nproperty double y\nproperty double z\n" \
+           "element face %d\nproperty list uchar int vertex_indices\nend_header\n" % (len(v), len(f))
+    return head + "".join("%r %r %r\n" % p for p in v) + "".join("%d %s\n" % (len(q), " ".join(map(str, q))) for q in f)
+
+
+def ply_binary(v, f):
+    head = ("ply\nformat binary_little_endian 1.0\nelement vertex %d\nproperty double x\nproperty double y\n"
+            "property double z\nelement face %d\nproperty list uchar int vertex_indices\nend_header\n"
+            % (len(v), len(f))).encode()
+    body = b"".join(struct.pack("<3d", *p) for p in v)
+    body += b"".join(struct.pack("<B", len(q)) + struct.pack("<%di" % len(q), *q) for q in f)
+    return head + body
+
+
+def f32(x):
+    return x if abs(x) <= 3.4e38 else float("inf")  # beyond float range: what a float holds
+
+
+def stl_binary(v, tris):
+    out = b"binary stl".ljust(80, b" ") + struct.pack("<I", len(tris))
+    for t in tris:
+        out += struct.pack("<3f", 0, 0, 0) + b"".join(struct.pack("<3f", *map(f32, v[i])) for i in t) + b"\0\0"
+    return out
+
+
+def stl_ascii(v, tris):
+    s = "solid cube\n"
+    for t in tris:
+        s += "facet normal 0 0 0\nouter loop\n" + "".join("vertex %r %r %r\n" % v[i] for i in t) + \
+             "endloop\nendfacet\n"
+    return s + "endsolid cube\n"
+
+
+def tris_of(f):
+    return [t for q in f for t in ([(q[0], q[k], q[k + 1]) for k in range(1, len(q) - 1)])]
+
+
+# Each reader writes a mesh (vertices, polygon faces) into its format.
+READERS = {
+    "obj": lambda v, f: obj(v, f),
+    "off": lambda v, f: off(v, f),
+    "ply": lambda v, f: ply_ascii(v, f),
+    "bply.ply": lambda v, f: ply_binary(v, f),
+    "stl": lambda v, f: stl_binary(v, tris_of(f)),
+    "astl.stl": lambda v, f: stl_ascii(v, tris_of(f)),
+}
+
+# Fault classes that every reader can express: (name, vertices, faces, status, stderr regex).
+REVERSED = [tuple(reversed(q)) for q in CUBE_Q]
+FAULTS = [
+    ("clean", CUBE_V, CUBE_Q, 0, r"^$"),
+    ("open", CUBE_V, CUBE_Q[:-1], 1, r"open mesh: \d+ boundary edges in 1 hole"),
+    ("inverted", CUBE_V, REVERSED, 1, r"faces point inward"),
+    ("duplicated", CUBE_V, CUBE_Q + CUBE_Q, 1, r"faces repeat the corners of another face"),
+    # Triangulated, a quad and its reverse are different fans: then the volume cancels instead.
+    ("double_sided", CUBE_V, CUBE_Q + REVERSED, 1, r"zero up to rounding \((double-sided surface|0 m\^3)"),
+    ("overlapping", CUBE_V + [(x + .5, y + .5, z + .5) for x, y, z in CUBE_V],
+     CUBE_Q + [tuple(i + 8 for i in q) for q in CUBE_Q], 1, r"shells \d and \d of 2 intersect"),
+    ("overlapping_reordered", CUBE_V + [(x + .5, y + .5, z + .5) for x, y, z in CUBE_V],
+     [tuple(i + 8 for i in q) for q in reversed(CUBE_Q)] + CUBE_Q[::-1], 1, r"shells \d and \d of 2 intersect"),
+    ("tiny", scaled(CUBE_V, 1e-80), CUBE_Q, 1, r"underflow double precision; rescale with --unit"),
+    ("huge", scaled(CUBE_V, 1e200), CUBE_Q, 1, r"overflow double precision; rescale with --unit"),
+]
+# STL stores 32-bit floats: 1e200 is infinite there, 1e-80 zero (both still refused, differently).
+STL_OVERRIDES = {"huge": r"non-finite coordinate", "tiny": r"zero up to rounding|underflow"}
+
+# Text-level faults: (name, extension, content, status, stderr regex).
+TEXT_FAULTS = [
+    ("empty_obj", "obj", "", 1, r"empty"),
+    ("empty_stl", "stl", "", 1, r"empty"),
+    ("garbage_obj", "obj", "v 0 0 zero\n", 1, r"expected a coordinate"),
+    ("nan_obj", "obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", 1, r"non-finite coordinate"),
+    ("inf_off", "off", "OFF\n3 1 0\ninf 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", 1, r"finite|infinite|inf"),
+    ("index_out_of_range_obj", "obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", 1, r"out of range"),
+    ("lying_count_off", "off", "OFF\n8 6 0\n0 0 0\n", 1, r"expected|truncated|vertices"),
+    ("truncated_binary_stl", "stl", (b"x" * 80 + struct.pack("<I", 1000) + b"\0" * 100), 1, r"truncated|bytes"),
+    ("lying_ply_header", "ply", "ply\nformat ascii 1.0\nelement vertex 1000000000\nproperty float x\nend_header\n",
+     1, r"vertex|truncated|expected"),
+    ("unknown_format", "qqq", "hello", 1, r"unknown mesh format 'qqq'"),
+]
+
+
+def main():
+    binary = os.path.abspath(sys.argv[1])
+    tmp = tempfile.mkdtemp(prefix="hostile-")
+    passed, failed = 0, 0
+
+    def run(name, args, status, err_re, out_re=None, cwd=tmp):
+        nonlocal passed, failed
+        p = subprocess.run([binary] + args + ["-q"], cwd=cwd, capture_output=True, timeout=120)
+        err, out = p.stderr.decode(errors="replace"), p.stdout.decode(errors="replace")
+        problems = []
+        if p.returncode != status:
+            problems.append("exit %d, expected %d" % (p.returncode, status))
+        if not re.search(err_re, err):
+            problems.append("stderr %r does not match %r" % (err[:300], err_re))
+        if status != 0 and out_re is None and out.strip():
+            problems.append("printed a result although refused: %r" % out[:200])
+        if out_re is not None and not re.search(out_re, out):
+            problems.append("stdout %r does not match %r" % (out[:200], out_re))
+        inputs = [os.path.basename(a) for a in args if not a.startswith("-") and os.path.isfile(os.path.join(cwd, a))]
+        if status == 1 and problems == [] and inputs and not any(i in err for i in inputs):
+            problems.append("the message does not name the file")
+        if problems:
+            failed += 1
+            print("FAIL: %s: %s" % (name, "; ".join(problems)))
+        else:
+            passed += 1
+
+    def write(name, content):
+        path = os.path.join(tmp, name)
+        with open(path, "wb") as f:
+            f.write(content if isinstance(content, bytes) else content.encode())
+        return path
+
+    for ext, writer in READERS.items():
+        for fault, v, f, status, err_re in FAULTS:
+            if ext == "stl" and fault in STL_OVERRIDES:
+                err_re = STL_OVERRIDES[fault]
+            name = "%s_%s.%s" % (fault, ext.split(".")[0], ext.split(".")[-1])
+            write(name, writer(v, f))
+            out_re = r"volume" if status == 0 else None
+            run(name, [name], status, err_re, out_re)
+    for name, ext, content, status, err_re in TEXT_FAULTS:
+        write(name + "." + ext, content)
+        run(name, [name + "." + ext], status, err_re)
+
+    # Non-planar quads: computed by the fan, with a warning naming the face.
+    v = list(CUBE_V)
+    v[6] = (1, 1, 1.3)
+    write("nonplanar.obj", obj(v, CUBE_Q))
+    run("nonplanar", ["nonplanar.obj"], 0, r"1 polygon is not planar \(face \d+", r"volume")
+    # Double-sided duplicates are dropped by --repair.
+    run("double_sided_repaired", ["double_sided_obj.obj", "--repair"], 0, r"^$|warning", r"volume")
+    # Option combinations that make no sense: exit 2, nothing printed.
+    for name, args in [("implicit_wall", ["--implicit", "sphere(r=1)", "--wall", "0.1"]),
+                       ("implicit_shell", ["--implicit", "sphere(r=1)", "--shell", "--area-density", "1"]),
+                       ("implicit_repair", ["--implicit", "sphere(r=1)", "--repair"]),
+                       ("shell_density", ["clean_obj.obj", "--shell", "--density", "3"]),
+                       ("mass_and_density", ["clean_obj.obj", "--mass", "1", "--density", "3"]),
+                       ("density_nan", ["clean_obj.obj", "--density", "nan"]),
+                       ("density_inf", ["clean_obj.obj", "--density", "inf"]),
+                       ("samples_without_sampling", ["clean_obj.obj", "--samples", "100"]),
+                       ("tolerance_zero", ["clean_obj.obj", "--winding-number", "--tolerance", "0"]),
+                       ("unknown_unit", ["clean_obj.obj", "--unit", "furlong"])]:
+        run(name, args, 2, r"error|must|unit|--")
+    # Output paths: never a device node, a FIFO, a directory or an input.
+    os.mkfifo(os.path.join(tmp, "fifo.out"))
+    for name, target in [("out_dev_null", "/dev/null"), ("out_fifo", "fifo.out"), ("out_dir", tmp),
+                         ("out_input", "clean_obj.obj")]:
+        run(name, ["clean_obj.obj", "-o", target], 2, r"not a regular file|is also an input")
+    os.mkfifo(os.path.join(tmp, "fifo.obj"))
+    run("input_fifo", ["fifo.obj"], 1, r"not a regular file")
+    run("input_directory", [tmp + "/"], 1, r"not a regular file|unknown mesh format|cannot")
+    # Several files, one bad: an array of the good ones, exit 1.
+    run("json_array", ["clean_obj.obj", "open_obj.obj", "--format", "json"], 1, r"open mesh", r"^\[")
+
+    print("%d passed, %d failed" % (passed, failed))
+    return 0 if failed == 0 else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
