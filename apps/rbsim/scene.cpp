@@ -204,9 +204,7 @@ ForceSpec ReadForce(const json& j, const std::string& path, const std::string& f
       s.bodies = {BodyIndex(f, "bodies[0]", (*b)[0], bodies), BodyIndex(f, "bodies[1]", (*b)[1], bodies)};
       if (s.bodies[0] == s.bodies[1]) f.Fail("bodies", "a spring between a body and itself does nothing");
       const json* p = f.Get("points");
-      if (!p) {
-        s.points = {Vector3::Zero(), Vector3::Zero()};  // centers of mass
-      } else {
+      if (p) {  // absent: the centers of mass
         if (!p->is_array() || p->size() != 2) f.Fail("points", "must be two points [[x, y, z], [x, y, z]]");
         s.points = {f.CheckVec3("points[0]", (*p)[0], nullptr), f.CheckVec3("points[1]", (*p)[1], nullptr)};
       }
@@ -215,7 +213,8 @@ ForceSpec ReadForce(const json& j, const std::string& path, const std::string& f
       one_body(true);
       if (!f.Has("anchor")) f.Fail("anchor", "is required: the world point the spring is tied to");
       s.anchor = f.Vec3("anchor", Vector3::Zero());
-      s.point = f.Vec3("point", Vector3::Zero());
+      if (f.Has("point")) s.point = f.Vec3("point", Vector3::Zero());  // absent: the center of mass
+      f.Get("point");
       f.Get("bodies");
       f.Get("points");
     }

@@ -60,8 +60,11 @@ struct ForceSpec {
   std::string field;  ///< "forces[1]"
   std::vector<int> bodies;           ///< body indices it acts on (empty: every body)
   Vector3 vector = Vector3::Zero();  ///< g, force or torque
-  std::vector<Vector3> points;       ///< body points in the body's mesh (or solid) coordinates
-  std::optional<Vector3> point;      ///< force: application point (mesh coordinates)
+  /// Spring between bodies: its ends in each body's mesh (or solid) coordinates; empty: the
+  /// centers of mass.
+  std::vector<Vector3> points;
+  /// Force, spring to the world: the body point (mesh coordinates); empty: the center of mass.
+  std::optional<Vector3> point;
   bool body_frame = false;           ///< force/torque given in body (mesh) axes and turning with it
   Vector3 anchor = Vector3::Zero();  ///< spring to the world: world anchor
   double coefficient = 0;            ///< damping c; spring stiffness k

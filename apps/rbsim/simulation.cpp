@@ -181,13 +181,15 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
         sim.world.AddForce(dynamics::ConstantTorque(body, f.vector));
       }
     } else if (f.type == "spring") {
+      // Unless the scene names points, springs hold the centers of mass (body point 0).
       if (f.bodies.size() == 2) {
-        sim.world.AddForce(dynamics::SpringBetween(f.bodies[0], to_body(f.bodies[0], f.points[0]), f.bodies[1],
-                                                   to_body(f.bodies[1], f.points[1]), f.coefficient,
-                                                   f.rest_length, f.damping));
+        const Vector3 pa = f.points.empty() ? Vector3::Zero() : to_body(f.bodies[0], f.points[0]);
+        const Vector3 pb = f.points.empty() ? Vector3::Zero() : to_body(f.bodies[1], f.points[1]);
+        sim.world.AddForce(
+            dynamics::SpringBetween(f.bodies[0], pa, f.bodies[1], pb, f.coefficient, f.rest_length, f.damping));
       } else {
-        sim.world.AddForce(dynamics::SpringToWorld(body, to_body(body, f.point.value_or(Vector3::Zero())),
-                                                   f.anchor, f.coefficient, f.rest_length, f.damping));
+        const Vector3 p = f.point ? to_body(body, *f.point) : Vector3::Zero();
+        sim.world.AddForce(dynamics::SpringToWorld(body, p, f.anchor, f.coefficient, f.rest_length, f.damping));
       }
     }
   }

@@ -14,6 +14,7 @@
 #include "dynamics/free_rigid_body.h"
 #include "massprops/solids.h"
 #include "outputs.h"
+#include "massprops/text.h"
 #include "scene.h"
 #include "simulation.h"
 #include "test_utils.h"
@@ -204,6 +205,28 @@ TEST(Simulation, HangingBoxSettlesToStaticEquilibrium) {
   EXPECT_LT(b.velocity.norm(), 1e-6);
   EXPECT_LT((corner - Vector3(0, 0, -(0.1 + m * 9.81 / 200))).norm(), 1e-6) << corner.transpose();
   EXPECT_LT((st.position.head<2>() - corner.head<2>()).norm(), 1e-6);  // COM straight below the corner
+}
+
+TEST(Simulation, SpringsHoldTheCenterOfMassUnlessAPointIsGiven) {
+  // The T-handle's center of mass is 7.1 mm from its file's origin. A spring from the world point
+  // where the center of mass starts, with no "point", pulls on the center of mass: nothing moves.
+  // Tied at the file's origin instead, it would swing (and it does when that point is named).
+  const double com_y = (0.08 * 0.02 * 0.02 * 0.01 - 0.02 * 0.06 * 0.02 * 0.03) / (0.08 * 0.02 * 0.02 + 0.02 * 0.06 * 0.02);
+  auto run = [&](const std::string& point) {
+    std::vector<std::string> w;
+    rbsim::Simulation sim = rbsim::BuildSimulation(
+        Parse(R"({"dt": 0.001, "duration": 0.2, "bodies": [{"name": "t", "mesh": "../meshes/t_handle.obj"}],
+                  "forces": [{"type": "spring", "body": "t", "k": 500, "anchor": [0, )" +
+              massprops::ExactDecimal(com_y) + R"(, 0])" + point + "}]}"),
+        w);
+    double moved = 0;  // largest distance of the center of mass from its start
+    rbsim::Run(sim, [&](const dynamics::World& world, const dynamics::Diagnostics&) {
+      moved = std::max(moved, (world.bodies()[0].position - Vector3(0, com_y, 0)).norm());
+    });
+    return moved;
+  };
+  EXPECT_LT(run(""), 1e-9);
+  EXPECT_GT(run(R"(, "point": [0, 0, 0])"), 1e-3);  // the 7 mm stretch swings it
 }
 
 TEST(Simulation, TwoBodyExampleConservesMomentaAndEnergy) {
