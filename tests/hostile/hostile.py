@@ -95,6 +95,9 @@ FAULTS = [
      CUBE_Q + [tuple(i + 8 for i in q) for q in CUBE_Q], 1, r"shells \d and \d of 2 intersect"),
     ("overlapping_reordered", CUBE_V + [(x + .5, y + .5, z + .5) for x, y, z in CUBE_V],
      [tuple(i + 8 for i in q) for q in reversed(CUBE_Q)] + CUBE_Q[::-1], 1, r"shells \d and \d of 2 intersect"),
+    # Each face with corners of its own (MuJoCo's test meshes do this): welded, so it is closed.
+    ("corners_per_face", [CUBE_V[i] for q in CUBE_Q for i in q],
+     [tuple(range(4 * k, 4 * k + 4)) for k in range(6)], 0, r"^$"),
     ("tiny", scaled(CUBE_V, 1e-80), CUBE_Q, 1, r"underflow double precision; rescale with --unit"),
     ("huge", scaled(CUBE_V, 1e200), CUBE_Q, 1, r"overflow double precision; rescale with --unit"),
 ]

@@ -33,7 +33,7 @@ struct LoadedMesh {
 /// Reads an OBJ (v/f records, n-gons, negative indices, several objects, `\` continuations) or an
 /// STL (binary or ASCII, detected from the content, not the `solid` keyword) with our own parsers,
 /// and every other format assimp knows (PLY, OFF, glTF/GLB, 3MF, COLLADA, ...) through assimp.
-/// Corners of STL and assimp meshes with bit-identical positions are welded into shared vertices
+/// Corners with bit-identical positions are welded into shared vertices in every format
 /// (-0.0 equals 0.0).
 /// @throws MeshFileError for a missing, empty, truncated or malformed file, an unknown extension,
 ///         non-finite coordinates, or a face index out of range.

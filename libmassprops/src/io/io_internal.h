@@ -42,6 +42,11 @@ StlLayout DetectStl(const std::string& path, const unsigned char* data, std::siz
 LoadedMesh WeldCorners(const std::string& path, const std::vector<double>& xyz,
                        const std::vector<int>& face_sizes, const char* format);
 
+/// Points the corners of vertices with bit-identical positions (-0.0 == 0.0) at the first such
+/// vertex (the others stay, unreferenced), so that a file repeating each corner per face is
+/// checked as the surface it describes. Returns how many vertices were merged.
+std::int64_t MergeCoincidentVertices(PolygonMesh& mesh);
+
 // One parser per format, each in its own file (mesh_io.cpp holds the table).
 LoadedMesh ParseObj(const std::string& path, std::string_view data);
 LoadedMesh ParseStl(const std::string& path, std::string_view data);

@@ -33,16 +33,22 @@ const ReaderEntry* FindReader(const std::string& extension) {
 
 LoadedMesh ParseMeshBuffer(const std::string& name, const std::string& extension, std::string_view bytes) {
   const std::string ext = io_text::Lower(extension);
-  if (const ReaderEntry* r = FindReader(ext)) return r->parse(name, bytes);
+  if (const ReaderEntry* r = FindReader(ext)) {
+    LoadedMesh out = r->parse(name, bytes);
+    // Indexed formats may still repeat a position under several indices (one per face):
+    // weld them as the STL and assimp readers do.
+    if (ext != "stl") out.welded += MergeCoincidentVertices(out.mesh);
+    return out;
+  }
   Fail(name, "no parser of our own for '" + ext + "' (formats read through assimp need a file)");
 }
 
 LoadedMesh ReadMeshFile(const std::string& path) {
   const std::size_t dot = path.find_last_of('.');
   const std::string ext = dot == std::string::npos ? "" : io_text::Lower(path.substr(dot + 1));
-  if (const ReaderEntry* r = FindReader(ext)) {
+  if (FindReader(ext)) {
     const MappedFile file(path);
-    return r->parse(path, std::string_view(reinterpret_cast<const char*>(file.data()), file.size()));
+    return ParseMeshBuffer(path, ext, std::string_view(reinterpret_cast<const char*>(file.data()), file.size()));
   }
   if (AssimpCanRead(ext)) return ReadWithAssimp(path);
   const std::string plugin = AssimpPluginStatus();
