@@ -1,9 +1,21 @@
-// Loads the assimp plugin (libmassprops_assimp.so) on first use and reads files through it.
+// Loads the assimp plugin (libmassprops_assimp.so) on first use and reads files through it, in a
+// child process with a time limit: assimp can crash or loop on malformed files (Debian's 5.2 hangs
+// on a PLY header cut short and segfaults on some 3MF files), and neither may take the program down.
 
 #include <dlfcn.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -95,22 +107,148 @@ bool AssimpCanRead(const std::string& extension) {
   return p.handle != nullptr && p.can_read(extension.c_str()) != 0;
 }
 
-LoadedMesh ReadWithAssimp(const std::string& path) {
-  const Plugin& p = LoadPlugin();
-  if (p.handle == nullptr) Fail(path, p.error);
+namespace {
+
+// What the reader child sends back through its pipe.
+struct AssimpOutput {
+  std::vector<double> xyz;
+  std::vector<int> face_sizes;
+};
+
+bool WriteAll(int fd, const void* data, std::size_t n) {
+  const char* p = static_cast<const char*>(data);
+  while (n > 0) {
+    const ssize_t w = ::write(fd, p, n);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) return false;
+    p += w;
+    n -= static_cast<std::size_t>(w);
+  }
+  return true;
+}
+
+// The child: reads the file through the plugin and sends [status, message | corners, xyz,
+// faces, sizes] to the parent; never returns.
+[[noreturn]] void ReaderChild(const Plugin& p, const std::string& path, int fd) {
+  if (const char* fault = std::getenv("MASSPROPS_ASSIMP_FAULT")) {  // fault injection, for tests
+    if (std::string(fault) == "crash") ::kill(::getpid(), SIGKILL);
+    if (std::string(fault) == "hang") for (;;) ::pause();
+  }
   double* xyz = nullptr;
   int* sizes = nullptr;
   std::size_t corners = 0, faces = 0;
   char error[512] = {};
-  if (p.read(path.c_str(), &xyz, &corners, &sizes, &faces, error, sizeof error) != 0) {
-    Fail(path, error);
+  const std::int64_t status = p.read(path.c_str(), &xyz, &corners, &sizes, &faces, error, sizeof error);
+  bool ok = WriteAll(fd, &status, sizeof status);
+  if (status != 0) {
+    const std::uint64_t n = std::strlen(error);
+    ok = ok && WriteAll(fd, &n, sizeof n) && WriteAll(fd, error, n);
+  } else {
+    const std::uint64_t c = corners, f = faces;
+    ok = ok && WriteAll(fd, &c, sizeof c) && WriteAll(fd, xyz, 3 * corners * sizeof(double)) &&
+         WriteAll(fd, &f, sizeof f) && WriteAll(fd, sizes, faces * sizeof(int));
   }
-  std::unique_ptr<double, FreeFn> own_xyz(xyz, p.free);
-  std::unique_ptr<int, FreeFn> own_sizes(sizes, p.free);
-  if (faces == 0) Fail(path, "no faces found (the file holds no surface mesh)");
-  const std::vector<double> coords(xyz, xyz + 3 * corners);
-  const std::vector<int> face_sizes(sizes, sizes + faces);
-  LoadedMesh out = WeldCorners(path, coords, face_sizes, "assimp");
+  ::_exit(ok ? 0 : 3);
+}
+
+// Reads everything the child sends until it closes the pipe, or the deadline passes.
+bool ReadUntilClosed(int fd, std::string& out, std::chrono::steady_clock::time_point deadline) {
+  char buf[65536];
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) return false;
+    pollfd pfd{fd, POLLIN, 0};
+    const int r = ::poll(&pfd, 1, static_cast<int>(std::min<long long>(left.count(), 1000)));
+    if (r < 0 && errno == EINTR) continue;
+    if (r <= 0) continue;
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return true;
+    out.append(buf, static_cast<std::size_t>(n));
+  }
+}
+
+double TimeLimitSeconds() {
+  if (const char* env = std::getenv("MASSPROPS_ASSIMP_TIMEOUT")) {
+    const double t = std::atof(env);
+    if (t > 0) return t;
+  }
+  return 120.0;
+}
+
+// Runs the plugin in a child process, so that a crash or a hang inside assimp becomes this file's
+// error and the program (and its other files) goes on.
+AssimpOutput ReadIsolated(const Plugin& p, const std::string& path) {
+  int fds[2];
+  if (::pipe2(fds, O_CLOEXEC) != 0) Fail(path, std::string("cannot create a pipe (") + std::strerror(errno) + ")");
+  std::fflush(nullptr);
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    Fail(path, std::string("cannot start the assimp reader process (") + std::strerror(errno) + ")");
+  }
+  if (pid == 0) {
+    ::close(fds[0]);
+    ReaderChild(p, path, fds[1]);
+  }
+  ::close(fds[1]);
+  const double limit = TimeLimitSeconds();
+  std::string data;
+  const bool finished = ReadUntilClosed(
+      fds[0], data, std::chrono::steady_clock::now() + std::chrono::milliseconds(static_cast<long long>(limit * 1000)));
+  ::close(fds[0]);
+  if (!finished) ::kill(pid, SIGKILL);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (!finished) {
+    Fail(path, "assimp did not finish reading it within " + std::to_string(static_cast<long long>(limit)) +
+                   " s and was stopped (a malformed file can make assimp loop; MASSPROPS_ASSIMP_TIMEOUT sets the limit)");
+  }
+  if (WIFSIGNALED(status)) {
+    const int sig = WTERMSIG(status);
+    Fail(path, "assimp crashed while reading it (signal " + std::to_string(sig) + ", " + ::strsignal(sig) +
+                   "); the file is probably malformed, and no result is given for it");
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) Fail(path, "the assimp reader process failed");
+  // Decode: the child wrote it, in this process's own layout.
+  std::size_t at = 0;
+  auto take = [&](void* dest, std::size_t n) {
+    if (data.size() - at < n) Fail(path, "the assimp reader process sent a truncated result");
+    std::memcpy(dest, data.data() + at, n);
+    at += n;
+  };
+  std::int64_t read_status = 0;
+  take(&read_status, sizeof read_status);
+  if (read_status != 0) {
+    std::uint64_t n = 0;
+    take(&n, sizeof n);
+    std::string message(n, '\0');
+    take(message.data(), n);
+    Fail(path, message);
+  }
+  AssimpOutput out;
+  std::uint64_t corners = 0, faces = 0;
+  take(&corners, sizeof corners);
+  if (corners > data.size() / (3 * sizeof(double))) Fail(path, "the assimp reader process sent a truncated result");
+  out.xyz.resize(3 * corners);
+  take(out.xyz.data(), out.xyz.size() * sizeof(double));
+  take(&faces, sizeof faces);
+  if (faces > data.size() / sizeof(int)) Fail(path, "the assimp reader process sent a truncated result");
+  out.face_sizes.resize(faces);
+  take(out.face_sizes.data(), faces * sizeof(int));
+  return out;
+}
+
+}  // namespace
+
+LoadedMesh ReadWithAssimp(const std::string& path) {
+  const Plugin& p = LoadPlugin();
+  if (p.handle == nullptr) Fail(path, p.error);
+  const AssimpOutput read = ReadIsolated(p, path);
+  if (read.face_sizes.empty()) Fail(path, "no faces found (the file holds no surface mesh)");
+  LoadedMesh out = WeldCorners(path, read.xyz, read.face_sizes, "assimp");
   out.format = "assimp:" + path.substr(path.find_last_of('.') + 1);
   out.float32_coordinates = true;
   return out;
