@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -213,22 +215,35 @@ int main(int argc, char** argv) {
     return 130;
   }
 
+  // Whole or nothing: the .glb and the plots are made in a staging folder, the trajectory files
+  // under temporary names; only when every one succeeded are they all renamed into place.
   std::vector<std::string> written;
+  const std::string staging = out_dir + "/.rbsim-staging-" + std::to_string(::getpid());
   try {
-    if (writer) written = writer->Commit();
-    if (!out_dir.empty() && wants(rbsim::OutputKind::kGlb)) {
-      rbsim::WriteGlb(out_dir + "/animation.glb", *sim, recording);
-      written.push_back(out_dir + "/animation.glb");
-    }
+    std::vector<std::pair<std::string, std::string>> staged;  // (made, final)
+    auto stage = [&](const char* name) {
+      std::filesystem::create_directories(staging);
+      staged.emplace_back(staging + "/" + name, out_dir + "/" + name);
+      return staged.back().first;
+    };
+    if (!out_dir.empty() && wants(rbsim::OutputKind::kGlb)) rbsim::WriteGlb(stage("animation.glb"), *sim, recording);
     for (auto [kind, name] : {std::pair{rbsim::OutputKind::kPlotSvg, "plot.svg"}, std::pair{rbsim::OutputKind::kPlotPng, "plot.png"}}) {
-      if (!out_dir.empty() && wants(kind)) {
-        rbsim::WritePlot(out_dir + "/" + name, *sim, recording);
-        written.push_back(out_dir + "/" + name);
-      }
+      if (!out_dir.empty() && wants(kind)) rbsim::WritePlot(stage(name), *sim, recording);
+    }
+    if (writer) written = writer->Commit();
+    for (const auto& [from, to] : staged) {
+      std::filesystem::rename(from, to);
+      written.push_back(to);
     }
   } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    std::error_code ec;
+    std::filesystem::remove_all(staging, ec);
+    std::cerr << "error: " << e.what() << "; no output files were written\n";
     return 1;
+  }
+  if (!out_dir.empty()) {
+    std::error_code ec;
+    std::filesystem::remove_all(staging, ec);
   }
   std::cout << rbsim::Summary(*sim, stats);
   if (out_dir.empty()) {

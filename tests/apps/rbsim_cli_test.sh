@@ -108,6 +108,13 @@ JSON
 [ $? -eq 1 ] && grep -q "diverged at t = " "$tmp/err" && [ -z "$(ls -A "$tmp/stiff" 2>/dev/null)" ]; check "a diverging run stops, exit 1, no files" $?
 "$bin" --mesh "$data/meshes/t_handle.obj" --velocity 1e300,0,0 --duration 0.01 -q >/dev/null 2>"$tmp/err"
 [ $? -eq 1 ] && grep -q "initial state's energy is not finite" "$tmp/err"; check "an initial state beyond double precision is refused" $?
+# A failing output (gnuplot that draws nothing) leaves no output at all, not the others.
+mkdir -p "$tmp/fakebin"
+printf '#!/bin/sh\ncat >/dev/null\nexit 1\n' >"$tmp/fakebin/gnuplot"
+chmod +x "$tmp/fakebin/gnuplot"
+PATH="$tmp/fakebin:$PATH" "$bin" "$data/scenes/t_handle.json" --duration 0.1 --out "$tmp/failing" -q >/dev/null 2>"$tmp/err"
+[ $? -eq 1 ] && grep -q "no output files were written" "$tmp/err" && [ -z "$(ls -A "$tmp/failing")" ]
+check "a failing plot leaves no output files ($(ls -A "$tmp/failing" | tr '\n' ' '))" $?
 mkfifo "$tmp/scene.json"
 timeout 10 "$bin" "$tmp/scene.json" >/dev/null 2>"$tmp/err"
 [ $? -eq 1 ] && grep -q "not a regular file" "$tmp/err"; check "a FIFO as scene is refused, not waited on" $?
