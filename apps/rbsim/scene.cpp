@@ -358,6 +358,9 @@ Scene LoadScene(const std::string& path, std::vector<std::string>& warnings) {
     const std::size_t upto = std::min<std::size_t>(e.byte, s.size());
     const long line = 1 + std::count(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(upto), '\n');
     throw SceneError(path + ": line " + std::to_string(line) + ": not valid JSON (" + e.what() + ")");
+  } catch (const json::out_of_range& e) {  // a number beyond double precision (1e400)
+    throw SceneError(path + ": a number is beyond double precision: " +
+                     std::string(e.what()).substr(std::string(e.what()).find(']') + 2));
   }
   const std::string base = std::filesystem::path(path).parent_path().string();
   return ParseScene(j, path, base.empty() ? "." : base, warnings);

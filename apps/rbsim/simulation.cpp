@@ -128,12 +128,18 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     SimBody body;
     body.name = spec.name;
     body.color = spec.color.value_or(DefaultColor(i));
-    if (!spec.shape.mesh_file.empty()) {
-      LoadMesh(spec.shape, body, where, warnings, threads);
-    } else if (!spec.shape.implicit.empty()) {
-      LoadImplicit(spec.shape, body, where, warnings, threads);
-    } else {
-      LoadPrimitive(*spec.shape.solid, spec.shape.mass, body);
+    try {
+      if (!spec.shape.mesh_file.empty()) {
+        LoadMesh(spec.shape, body, where, warnings, threads);
+      } else if (!spec.shape.implicit.empty()) {
+        LoadImplicit(spec.shape, body, where, warnings, threads);
+      } else {
+        LoadPrimitive(*spec.shape.solid, spec.shape.mass, body);
+      }
+    } catch (const SceneError&) {
+      throw;
+    } catch (const std::exception& e) {  // every error names the file and the field
+      throw SceneError(where + (spec.shape.solid ? ".solid: " : ": ") + e.what());
     }
     dynamics::RigidBody rb;
     try {

@@ -53,7 +53,7 @@ MassProperties ClosedForm(const Primitive& p, Scalar density) {
   Validate(p);
   namespace pr = primitive;
   namespace so = solids;
-  return std::visit(Overloaded{
+  const MassProperties mp = std::visit(Overloaded{
                         [&](const pr::Box& s) { return so::BoxProperties(s.size, density); },
                         [&](const pr::Sphere& s) { return so::SphereProperties(s.radius, density); },
                         [&](const pr::Ellipsoid& s) { return so::EllipsoidProperties(s.semi_axes, density); },
@@ -63,6 +63,11 @@ MassProperties ClosedForm(const Primitive& p, Scalar density) {
                         [&](const pr::Capsule& s) { return so::CapsuleProperties(s.radius, s.length, density); },
                     },
                     p);
+  if (!std::isnormal(mp.volume) || !std::isnormal(mp.inertia_com.trace()) || !mp.inertia_com.allFinite()) {
+    throw std::invalid_argument(std::string(PrimitiveName(p)) +
+                                ": its volume or inertia under- or overflows double precision at these sizes");
+  }
+  return mp;
 }
 
 TriangleMesh Tessellate(const Primitive& p, int n) {

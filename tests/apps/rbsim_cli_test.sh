@@ -108,6 +108,14 @@ JSON
 [ $? -eq 1 ] && grep -q "diverged at t = " "$tmp/err" && [ -z "$(ls -A "$tmp/stiff" 2>/dev/null)" ]; check "a diverging run stops, exit 1, no files" $?
 "$bin" --mesh "$data/meshes/t_handle.obj" --velocity 1e300,0,0 --duration 0.01 -q >/dev/null 2>"$tmp/err"
 [ $? -eq 1 ] && grep -q "initial state's energy is not finite" "$tmp/err"; check "an initial state beyond double precision is refused" $?
+# Scene values beyond double precision are named with the file and the field.
+printf '{"bodies": [{"solid": {"type": "box", "size": [1, 1, 1]}, "density": 1e400}]}' >"$tmp/big.json"
+"$bin" "$tmp/big.json" -q >/dev/null 2>"$tmp/err"
+[ $? -eq 1 ] && grep -q "big.json: a number is beyond double precision" "$tmp/err"; check "1e400 in a scene named" $?
+printf '{"bodies": [{"solid": {"type": "sphere", "radius": 1e-200}}]}' >"$tmp/tiny.json"
+"$bin" "$tmp/tiny.json" -q >/dev/null 2>"$tmp/err"
+[ $? -eq 1 ] && grep -q "tiny.json: bodies\[0\].solid: sphere: .*under- or overflows" "$tmp/err"; check "an underflowing solid is named with its field" $?
+
 # A failing output (gnuplot that draws nothing) leaves no output at all, not the others.
 mkdir -p "$tmp/fakebin"
 printf '#!/bin/sh\ncat >/dev/null\nexit 1\n' >"$tmp/fakebin/gnuplot"

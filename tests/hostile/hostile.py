@@ -118,6 +118,7 @@ TEXT_FAULTS = [
     ("lying_ply_header", "ply", "ply\nformat ascii 1.0\nelement vertex 1000000000\nproperty float x\nend_header\n",
      1, r"vertex|truncated|expected"),
     ("unknown_format", "qqq", "hello", 1, r"unknown mesh format 'qqq'"),
+    ("zero_triangle_stl", "stl", b"x" * 80 + struct.pack("<I", 0), 1, r"holds no triangles"),
 ]
 
 

@@ -118,6 +118,7 @@ StlLayout DetectStl(const std::string& path, const unsigned char* bytes, std::si
     return {false, n, size - expected};  // a few trailing bytes after the last record
   }
   if (size < 84) Fail(path, "too short for a binary STL (" + std::to_string(size) + " bytes) and not ASCII STL");
+  if (n == 0 && size == 84) Fail(path, "the binary STL holds no triangles (its header says 0)");
   std::ostringstream msg;
   msg << "binary STL header says " << n << " triangles, which need " << expected
       << " bytes, but the file has " << size << " bytes (truncated or not an STL)";
