@@ -227,6 +227,7 @@ int main(int argc, char** argv) {
   const bool robot = format.format == cli::Format::kUrdf || format.format == cli::Format::kSdf ||
                      format.format == cli::Format::kMjcf;
   LoadOptions options = ToLoadOptions(a);
+  options.unit_stated = app.count("--unit") > 0;
 
   int failures = 0;
   std::vector<SolidResult> results;
@@ -260,6 +261,7 @@ int main(int argc, char** argv) {
     run("--implicit", [&](const ProgressCallback& progress) {
       ImplicitOptions o;
       o.unit = options.unit;
+      o.unit_stated = options.unit_stated;
       o.mass = options.mass;
       o.sampling = Sampling(a);
       o.num_threads = a.threads;

@@ -98,10 +98,11 @@ int main(int argc, char** argv) {
       scene = rbsim::LoadScene(scene_file, warnings);
     } else {
       nlohmann::json body = {{"name", std::filesystem::path(mesh).stem().string()},
-                             {"mesh", std::filesystem::absolute(mesh).string()}, {"unit", unit},
+                             {"mesh", std::filesystem::absolute(mesh).string()},
                              {"repair", repair}, {"allow_open", allow_open},
                              {"angular_velocity_frame", omega_frame}};
       if (mass > 0) body["mass"] = mass; else body["density"] = density;
+      if (app.count("--unit") > 0) body["unit"] = unit;
       massprops::Vector3 omega = massprops::Vector3::Zero(), velocity = massprops::Vector3::Zero();
       if (!omega_text.empty() && !ParseVec3(omega_text, omega)) {
         std::cerr << "error: --omega: expected three finite numbers wx,wy,wz, got '" << omega_text << "'\n";

@@ -123,6 +123,7 @@ ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {
     } catch (const std::exception& e) {
       f.Fail("implicit", e.what());
     }
+    s.unit_stated = f.Has("unit");
     s.unit = ReadUnit(f);
   } else if (has_mesh) {
     const std::string file = f.String("mesh", "");
@@ -135,6 +136,7 @@ ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {
       f.Fail("mesh", "'" + file + "' not found" + (file == p.string() ? "" : " (looked for " + p.string() + ")"));
     }
     s.mesh_file = p.lexically_normal().string();
+    s.unit_stated = f.Has("unit");
     s.unit = ReadUnit(f);
     s.repair = f.Bool("repair", false);
     s.allow_open = f.Bool("allow_open", false);

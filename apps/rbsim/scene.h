@@ -38,6 +38,7 @@ struct ShapeSpec {
   std::string implicit;  ///< a shape in massprops' shape syntax (Monte-Carlo mass properties)
   std::optional<massprops::Primitive> solid;  ///< a closed-form solid
   massprops::LengthUnit unit = massprops::LengthUnit::kMetre;  ///< of the mesh or the shape
+  bool unit_stated = false;  ///< the scene gives "unit" (else implausible sizes draw a warning)
   massprops::MassSpec mass = massprops::Density{1000.0};
 };
 

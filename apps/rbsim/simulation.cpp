@@ -55,6 +55,7 @@ void LoadMesh(const ShapeSpec& s, SimBody& body, const std::string& where, std::
               int threads) {
   massprops::LoadOptions opt;
   opt.unit = s.unit;
+  opt.unit_stated = s.unit_stated;
   opt.mass = s.mass;
   opt.repair = s.repair;
   opt.allow_open = s.allow_open;
@@ -92,6 +93,7 @@ void LoadImplicit(const ShapeSpec& s, SimBody& body, const std::string& where, s
   const ImplicitPtr shape = implicit::ParseShape(s.implicit, ReadSdfGridFile);
   ImplicitOptions opt;
   opt.unit = s.unit;
+  opt.unit_stated = s.unit_stated;
   opt.mass = s.mass;
   opt.sampling.tolerance = 1e-4;
   opt.sampling.max_samples = std::int64_t{1} << 27;

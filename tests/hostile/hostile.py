@@ -173,6 +173,12 @@ def main():
     v[6] = (1, 1, 1.3)
     write("nonplanar.obj", obj(v, CUBE_Q))
     run("nonplanar", ["nonplanar.obj"], 0, r"1 polygon is not planar \(face \d+", r"volume")
+    # Units: a 12 x 8 x 3 mm part read in default metres, with a mass: both warnings, with the unit.
+    write("part_mm.obj", obj([(12 * x, 8 * y, 3 * z) for x, y, z in CUBE_V], CUBE_Q))
+    run("units_defaulted", ["part_mm.obj", "--mass", "0.5"], 0,
+        r"14.73 m across, with the unit defaulted to m.*in millimetres it would be 0.0147 m \(--unit mm\)(.|\n)*"
+        r"implies a density of 0.001736 kg/m\^3, lighter than any solid material; with --unit cm", r"volume")
+    run("units_stated", ["part_mm.obj", "--unit", "mm"], 0, r"^$", r"volume")
     # Double-sided duplicates are dropped by --repair.
     run("double_sided_repaired", ["double_sided_obj.obj", "--repair"], 0, r"^$|warning", r"volume")
     # Option combinations that make no sense: exit 2, nothing printed.

@@ -68,6 +68,9 @@ using ProgressCallback = std::function<void(const char* stage)>;
 
 struct LoadOptions {
   LengthUnit unit = LengthUnit::kMetre;  ///< unit of the file's coordinates
+  /// True when the user chose `unit`; false when it is a default, and then a part under 2 mm or
+  /// over 2 m across draws a finding that names the likely unit.
+  bool unit_stated = false;
   MassSpec mass = Density{1000.0};       ///< kg/m^3, or the total mass
   Model model = SolidModel{};
   IntegrationPath path = IntegrationPath::kAuto;
@@ -157,6 +160,7 @@ SolidResult LoadSolid(const std::string& path, const LoadOptions& options = {});
 /// Options of an implicit solid's estimate.
 struct ImplicitOptions {
   LengthUnit unit = LengthUnit::kMetre;  ///< unit of the shape's coordinates
+  bool unit_stated = false;              ///< as LoadOptions::unit_stated
   MassSpec mass = Density{1000.0};
   MonteCarloOptions sampling;  ///< fixed_mass is taken from `mass`, num_threads from here
   int num_threads = 0;

@@ -46,19 +46,65 @@ void Warn(SolidResult& r, FindingKind kind, std::string message) {
   r.findings.push_back({kind, std::move(message)});
 }
 
-// Warns when the size in metres suggests the coordinates are in another unit.
-void CheckPlausibleSize(SolidResult& r) {
+// What the plausibility checks need to know about the request.
+struct Plausibility {
+  bool unit_stated = false;
+  MassSpec mass = Density{1000.0};
+};
+
+// Warns when the size or the density suggests the coordinates are in another unit (the
+// millimetre/metre mix-up changes the mass by 10⁹) or a density in other units.
+void CheckPlausible(SolidResult& r, const Plausibility& p) {
   const double s = r.size_m;
-  if (r.unit == LengthUnit::kMetre && s > 20.0) {
+  const double file_size = s / MetresPerUnit(r.unit);  // in the file's unit
+  const std::string across = Fixed(s) + " m";
+  if (!p.unit_stated && s > 2.0) {
+    // Every other unit that would make it a part of hand size (2 mm to 2 m).
+    std::string readings;
+    for (auto [u, words] : {std::pair{LengthUnit::kMillimetre, "millimetres"}, std::pair{LengthUnit::kCentimetre, "centimetres"},
+                            std::pair{LengthUnit::kInch, "inches"}}) {
+      const double there = file_size * MetresPerUnit(u);
+      if (there >= 0.002 && there <= 2.0) {
+        readings += std::string(readings.empty() ? "; read in " : ", in ") + words + " it would be " + Fixed(there, "%.3g") +
+                    " m ({unit=" + UnitName(u) + "})";
+      }
+    }
     Warn(r, FindingKind::kUnitSuspicion,
-         "the part is " + Fixed(s) + " m across (with {unit=m}); if the file is in millimetres pass {unit=mm} (" +
-             Fixed(s / 1000) + " m), centimetres {unit=cm}, inches {unit=in}");
+         "the part is " + across + " across, with the unit defaulted to " + UnitName(r.unit) + readings + "; {unit=" +
+             UnitName(r.unit) + "} says the default is right");
+  } else if (!p.unit_stated && s < 0.002 && s > 0) {
+    Warn(r, FindingKind::kUnitSuspicion,
+         "the part is only " + Fixed(s * 1000) + " mm across, with the unit defaulted to " + UnitName(r.unit) +
+             "; {unit=" + UnitName(r.unit) + "} says the default is right");
   } else if (s > 1000.0) {
-    Warn(r, FindingKind::kUnitSuspicion, "the part is " + Fixed(s) + " m across: check {unit}");
-  } else if (s < 1e-4) {
+    Warn(r, FindingKind::kUnitSuspicion, "the part is " + across + " across: check {unit}");
+  } else if (s < 1e-4 && s > 0) {
     Warn(r, FindingKind::kUnitSuspicion,
          "the part is only " + Fixed(s * 1000) + " mm across: check {unit} (the file's coordinates are taken as " +
              UnitName(r.unit) + ")");
+  }
+  // Densities: from the lightest foams to osmium, about 1 to 23 000 kg/m^3.
+  constexpr double kLightest = 1.0, kDensest = 25000.0;
+  const double rho = r.mp.density;
+  if (r.model == ModelKind::kShell || !(rho > 0) || (rho >= kLightest && rho <= kDensest)) return;
+  const std::string what = rho > kDensest ? "denser than any material" : "lighter than any solid material";
+  if (FixesMass(p.mass)) {
+    // Which unit of the coordinates would make the same mass a material's density?
+    std::string likely;
+    const double volume_file = r.mp.volume / std::pow(MetresPerUnit(r.unit), 3);
+    for (LengthUnit u : kAllLengthUnits) {
+      const double there = std::get<TotalMass>(p.mass).value / (volume_file * std::pow(MetresPerUnit(u), 3));
+      if (u != r.unit && there >= 300 && there <= kDensest) {
+        likely = "; with {unit=" + std::string(UnitName(u)) + "} it would be " + Fixed(there) + " kg/m^3";
+        break;
+      }
+    }
+    Warn(r, FindingKind::kUnitSuspicion,
+         "a mass of " + Fixed(r.mp.mass) + " kg in " + Fixed(r.mp.volume) + " m^3 implies a density of " +
+             Fixed(rho) + " kg/m^3, " + what + likely);
+  } else {
+    Warn(r, FindingKind::kUnitSuspicion,
+         "a density of " + Fixed(rho) + " kg/m^3 is " + what + " (densities are in kg/m^3: water is 1000, steel 7850)");
   }
 }
 
@@ -75,9 +121,9 @@ void RequireRepresentable(const SolidResult& r, double volume, double second, do
 
 // What every path reports once r.mp is known: size and its plausibility, principal axes, and
 // validity (with the tolerance an estimate's noise needs).
-void Conclude(SolidResult& r, double size_m, double validity_tolerance = 1e-12) {
+void Conclude(SolidResult& r, double size_m, const Plausibility& plausibility, double validity_tolerance = 1e-12) {
   r.size_m = size_m;
-  CheckPlausibleSize(r);
+  CheckPlausible(r, plausibility);
   r.principal = ComputePrincipalInertia(r.mp.inertia_com);
   r.validity = CheckPhysicallyValid(r.principal.moments, validity_tolerance);
 }
@@ -106,12 +152,12 @@ void Finish(SolidResult& r, const VolumeIntegrals& integrals, const LoadOptions&
   if (!std::isnormal(r.mp.mass) || !r.mp.inertia_com.allFinite()) {
     RefuseMagnitude(r, scale * size_file_units, LengthUnit::kMetre);
   }
-  Conclude(r, scale * size_file_units);
+  Conclude(r, scale * size_file_units, {opt.unit_stated, opt.mass});
 }
 
 // Runs the estimator on a solid already in metres and fills the result.
 void Estimate(SolidResult& r, const ImplicitSolid& solid, MonteCarloOptions mc, const MassSpec& mass,
-              int num_threads, const ProgressCallback& progress) {
+              bool unit_stated, int num_threads, const ProgressCallback& progress) {
   mc.num_threads = num_threads;
   mc.fixed_mass = FixesMass(mass) ? std::get<TotalMass>(mass).value : 0.0;
   const double density = FixesMass(mass) ? 1.0 : ResolveDensity(mass, 1.0);
@@ -121,7 +167,7 @@ void Estimate(SolidResult& r, const ImplicitSolid& solid, MonteCarloOptions mc, 
   r.estimate = e;
   r.mp = e.value;
   r.mass_fixed = FixesMass(mass);
-  Conclude(r, solid.Bounds().sizes().norm(), 1e-6);
+  Conclude(r, solid.Bounds().sizes().norm(), {unit_stated, mass}, 1e-6);
   r.path_used = std::string(qmc ? "quasi-Monte Carlo (Owen-scrambled Sobol)" : "Monte Carlo") + ", " +
                 std::to_string(e.samples) + " points" +
                 (qmc ? " in " + std::to_string(e.randomizations) + " randomizations" : "");
@@ -209,7 +255,7 @@ void IntegrateShell(SolidResult& r, const ShellModel& shell, const LoadOptions& 
   const MassSpec spec = FixesMass(opt.mass) ? opt.mass : MassSpec(Density{shell.area_density});
   r.mp = ShellMassProperties(s, ResolveDensity(spec, s.area * scale * scale), scale);
   r.mass_fixed = FixesMass(opt.mass);
-  Conclude(r, scale * Diagonal(mesh));
+  Conclude(r, scale * Diagonal(mesh), {opt.unit_stated, spec});
   if (!r.topology.BoundsVolume()) Warn(r, FindingKind::kOpenSurface, r.topology.Problems() + "; fine for a thin shell");
 }
 
@@ -343,7 +389,8 @@ SolidResult LoadSolid(const std::string& file, const LoadOptions& opt) {
       Warn(r, FindingKind::kOpenSurface, r.topology.Problems() + "; the winding number bridges the holes");
     }
     Stage(opt, "building the winding-number hierarchy");
-    Estimate(r, *implicit::WindingNumberSolid(tri), wn->sampling, opt.mass, opt.num_threads, opt.progress);
+    Estimate(r, *implicit::WindingNumberSolid(tri), wn->sampling, opt.mass, opt.unit_stated, opt.num_threads,
+             opt.progress);
     r.seconds = SecondsSince(t0);
     return r;
   }
@@ -392,8 +439,8 @@ SolidResult EstimateImplicit(const ImplicitSolid& solid, const ImplicitOptions& 
   r.loaded.format = "implicit";
   // Implicit solids are shared and immutable; scaling wraps without copying.
   const ImplicitPtr view(std::shared_ptr<const ImplicitSolid>(), &solid);
-  Estimate(r, *implicit::Scaled(view, MetresPerUnit(opt.unit)), opt.sampling, opt.mass, opt.num_threads,
-           opt.progress);
+  Estimate(r, *implicit::Scaled(view, MetresPerUnit(opt.unit)), opt.sampling, opt.mass, opt.unit_stated,
+           opt.num_threads, opt.progress);
   r.seconds = SecondsSince(t0);
   return r;
 }
