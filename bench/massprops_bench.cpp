@@ -100,8 +100,12 @@ void BM_BaselineStlVolumeLoop(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations() * mesh.F.rows());
 }
-BENCHMARK(BM_BaselineStlVolumeLoop)->ArgName("tris")->Arg(1000000)->Arg(10000000)
-    ->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_BaselineStlVolumeLoop)
+    ->ArgName("tris")
+    ->Arg(1000000)
+    ->Arg(10000000)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // The binary-STL path on records in memory (50-byte records, float32), with the streaming
 // closed-surface check: what `massprops FILE.stl` does after mapping the file.

@@ -23,7 +23,8 @@ ImplicitPtr Solid(int which) {
   static const ImplicitPtr sphere = implicit::Sphere(1.0);
   static const ImplicitPtr csg =
       implicit::ParseShape("union(difference(box(x=2, y=2, z=2), sphere(r=0.9)), move(cylinder(r=0.3, h=3), x=0.5))");
-  static const ImplicitPtr mesh = implicit::WindingNumberSolid(solids::Torus(1.0, 0.3, 158));  // 4·158² ≈ 10^5 triangles
+  static const ImplicitPtr mesh =
+      implicit::WindingNumberSolid(solids::Torus(1.0, 0.3, 158));  // 4·158² ≈ 10^5 triangles
   return which == 0 ? sphere : which == 1 ? csg : mesh;
 }
 

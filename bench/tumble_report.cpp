@@ -40,9 +40,7 @@ Run Simulate(Integrator integ, double h, double T) {
   return {w.bodies()[0], s};
 }
 
-double AngleBetween(const dynamics::Quaternion& a, const dynamics::Quaternion& b) {
-  return a.angularDistance(b);
-}
+double AngleBetween(const dynamics::Quaternion& a, const dynamics::Quaternion& b) { return a.angularDistance(b); }
 
 }  // namespace
 

@@ -8,7 +8,7 @@ PACKAGES=(
   libeigen3-dev libassimp-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libtbb-dev
-  clang-14 libclang-rt-14-dev
+  clang-14 libclang-rt-14-dev clang-format-14
   python3 gnuplot-nox libgnuplot-iostream-dev libboost-iostreams-dev libboost-filesystem-dev
 )
 

@@ -6,23 +6,21 @@
 #include <random>
 #include <string>
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "massprops/mass_properties.h"
 #include "massprops/mesh.h"
 
 namespace massprops::testing {
 
-inline std::string DataPath(const std::string& name) {
-  return std::string(MASSPROPS_DATA_DIR) + "/" + name;
-}
+inline std::string DataPath(const std::string& name) { return std::string(MASSPROPS_DATA_DIR) + "/" + name; }
 
 /// |a − b| <= tol · scale, reported with both values.
 inline ::testing::AssertionResult NearRel(double a, double b, double tol, double scale) {
   if (std::fabs(a - b) <= tol * scale) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << a << " vs " << b << ": |diff| = " << std::fabs(a - b)
-                                       << " > " << tol << " * " << scale;
+  return ::testing::AssertionFailure() << a << " vs " << b << ": |diff| = " << std::fabs(a - b) << " > " << tol << " * "
+                                       << scale;
 }
 inline ::testing::AssertionResult NearRel(double a, double b, double tol) {
   return NearRel(a, b, tol, std::max(std::fabs(a), std::fabs(b)));
@@ -32,19 +30,18 @@ template <typename A, typename B>
 ::testing::AssertionResult MatrixNearRel(const A& a, const B& b, double tol, double scale) {
   const double err = (a - b).cwiseAbs().maxCoeff();
   if (err <= tol * scale) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "max |diff| = " << err << " > " << tol << " * " << scale
-                                       << "\n" << a << "\nvs\n" << b;
+  return ::testing::AssertionFailure() << "max |diff| = " << err << " > " << tol << " * " << scale << "\n"
+                                       << a << "\nvs\n"
+                                       << b;
 }
 
 /// Compares all mass properties; `length` is the size of the part, used to scale the center-of-mass
 /// tolerance (a center at the origin has no relative error to speak of).
-inline void ExpectMassPropertiesNear(const MassProperties& got, const MassProperties& want,
-                                     double tol, double length) {
+inline void ExpectMassPropertiesNear(const MassProperties& got, const MassProperties& want, double tol, double length) {
   EXPECT_TRUE(NearRel(got.volume, want.volume, tol)) << "volume";
   EXPECT_TRUE(NearRel(got.mass, want.mass, tol)) << "mass";
   EXPECT_TRUE(MatrixNearRel(got.center_of_mass, want.center_of_mass, tol, length)) << "center";
-  EXPECT_TRUE(MatrixNearRel(got.inertia_com, want.inertia_com, tol,
-                            want.inertia_com.cwiseAbs().maxCoeff()))
+  EXPECT_TRUE(MatrixNearRel(got.inertia_com, want.inertia_com, tol, want.inertia_com.cwiseAbs().maxCoeff()))
       << "inertia";
 }
 
@@ -88,8 +85,7 @@ inline PolygonMesh WithMovedCopy(const PolygonMesh& m, const Vector3& offset) {
 inline bool SameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 inline bool SameBits(const MassProperties& a, const MassProperties& b) {
-  bool same = SameBits(a.volume, b.volume) && SameBits(a.mass, b.mass) &&
-              SameBits(a.surface_area, b.surface_area);
+  bool same = SameBits(a.volume, b.volume) && SameBits(a.mass, b.mass) && SameBits(a.surface_area, b.surface_area);
   for (int i = 0; i < 3; ++i) {
     same = same && SameBits(a.center_of_mass[i], b.center_of_mass[i]);
     for (int j = 0; j < 3; ++j) same = same && SameBits(a.inertia_com(i, j), b.inertia_com(i, j));

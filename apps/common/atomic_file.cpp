@@ -18,7 +18,8 @@ void RequireRegularOrAbsent(const std::string& path) {
   const auto status = std::filesystem::status(path, ec);
   if (ec || !std::filesystem::exists(status)) return;
   if (!std::filesystem::is_regular_file(status)) {
-    throw std::runtime_error(path + ": not a regular file (a device, FIFO or directory); output is written only to "
+    throw std::runtime_error(path +
+                             ": not a regular file (a device, FIFO or directory); output is written only to "
                              "regular files");
   }
 }
@@ -35,8 +36,7 @@ void CheckOutputPath(const std::string& output, const std::vector<std::string>& 
   }
 }
 
-AtomicFile::AtomicFile(std::string path)
-    : path_(std::move(path)), tmp_(path_ + ".tmp-" + std::to_string(::getpid())) {
+AtomicFile::AtomicFile(std::string path) : path_(std::move(path)), tmp_(path_ + ".tmp-" + std::to_string(::getpid())) {
   RequireRegularOrAbsent(path_);
   out_.open(tmp_, std::ios::binary | std::ios::trunc);
   if (!out_) {

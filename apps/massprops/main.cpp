@@ -84,9 +84,10 @@ LoadOptions ToLoadOptions(const Arguments& a) {
   } else if (a.winding_number) {
     o.model = WindingNumberModel{Sampling(a)};
   }
-  o.path = FromName<IntegrationPath>(
-      {{"auto", IntegrationPath::kAuto}, {"triangles", IntegrationPath::kTriangles}, {"polygons", IntegrationPath::kPolygons}},
-      a.path);
+  o.path = FromName<IntegrationPath>({{"auto", IntegrationPath::kAuto},
+                                      {"triangles", IntegrationPath::kTriangles},
+                                      {"polygons", IntegrationPath::kPolygons}},
+                                     a.path);
   o.reader = a.reader == "assimp" ? Reader::kAssimp : Reader::kAuto;
   o.repair = a.repair;
   o.allow_open = a.allow_open;
@@ -99,8 +100,9 @@ LoadOptions ToLoadOptions(const Arguments& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"massprops: exact mass properties of the solids that mesh files bound.\n"
-               "Reads OBJ, STL, PLY, OFF (own parsers) and other formats through assimp."};
+  CLI::App app{
+      "massprops: exact mass properties of the solids that mesh files bound.\n"
+      "Reads OBJ, STL, PLY, OFF (own parsers) and other formats through assimp."};
   app.set_version_flag("--version", std::string("massprops ") + kVersion);
   Arguments a;
   app.add_option("files", a.files, "Mesh files");
@@ -139,7 +141,9 @@ int main(int argc, char** argv) {
       ->excludes(shell);
   std::vector<std::string> units;
   for (LengthUnit u : kAllLengthUnits) units.emplace_back(UnitName(u));
-  app.add_option("--unit", a.unit, "Unit of the file's coordinates")->check(CLI::IsMember(units))->capture_default_str();
+  app.add_option("--unit", a.unit, "Unit of the file's coordinates")
+      ->check(CLI::IsMember(units))
+      ->capture_default_str();
   app.add_option("--format", a.format, "Output format")
       ->check(CLI::IsMember({"table", "json", "csv", "urdf", "sdf", "mjcf"}))
       ->capture_default_str();
@@ -185,24 +189,28 @@ int main(int argc, char** argv) {
   if (!std::isfinite(a.density) || !std::isfinite(a.mass) || !std::isfinite(a.area_density) || !std::isfinite(a.wall)) {
     return bad("--density, --mass, --area-density and --wall must be finite");
   }
-  if (a.shell && !(a.area_density > 0) && !(a.mass > 0)) return bad("--shell needs --area-density (kg/m^2) or --mass (kg)");
+  if (a.shell && !(a.area_density > 0) && !(a.mass > 0))
+    return bad("--shell needs --area-density (kg/m^2) or --mass (kg)");
   if (a.shell && app.count("--density") > 0) return bad("--shell takes --area-density (kg/m^2), not --density");
   if (a.files.empty() && a.implicit.empty()) return bad("give mesh files, or --implicit SHAPE (see --help)");
   const bool sampling_flags = app.count("--mc") + app.count("--qmc") + app.count("--samples") +
                                   app.count("--randomizations") + app.count("--seed") + app.count("--tolerance") >
                               0;
   if (sampling_flags && a.implicit.empty() && !a.winding_number) {
-    return bad("--mc/--qmc/--samples/--randomizations/--seed/--tolerance belong to --implicit or "
-               "--winding-number (exact integration needs none)");
+    return bad(
+        "--mc/--qmc/--samples/--randomizations/--seed/--tolerance belong to --implicit or "
+        "--winding-number (exact integration needs none)");
   }
-  if (a.winding_number && (a.shell || a.wall > 0)) return bad("--winding-number does not combine with --shell or --wall");
+  if (a.winding_number && (a.shell || a.wall > 0))
+    return bad("--winding-number does not combine with --shell or --wall");
   if (!a.implicit.empty() && (a.shell || a.wall > 0)) {
     return bad("--shell and --wall describe a mesh's surface; an --implicit shape is a solid and takes neither");
   }
   if (a.files.empty()) {  // only --implicit: the options about mesh files would be ignored
     for (const char* flag : {"--repair", "--allow-open", "--full-check", "--check-self-intersections", "--path",
                              "--reader", "--winding-number"}) {
-      if (app.count(flag) > 0) return bad(std::string(flag) + " applies to mesh files; --implicit shapes take no such option");
+      if (app.count(flag) > 0)
+        return bad(std::string(flag) + " applies to mesh files; --implicit shapes take no such option");
     }
   }
 
@@ -224,8 +232,8 @@ int main(int argc, char** argv) {
                                         a.format);
   format.frame = a.frame == "origin" ? cli::Frame::kOrigin : cli::Frame::kCenterOfMass;
   format.json_array = a.files.size() + (a.implicit.empty() ? 0 : 1) > 1;
-  const bool robot = format.format == cli::Format::kUrdf || format.format == cli::Format::kSdf ||
-                     format.format == cli::Format::kMjcf;
+  const bool robot =
+      format.format == cli::Format::kUrdf || format.format == cli::Format::kSdf || format.format == cli::Format::kMjcf;
   LoadOptions options = ToLoadOptions(a);
   options.unit_stated = app.count("--unit") > 0;
 

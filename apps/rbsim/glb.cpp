@@ -38,7 +38,8 @@ class GlbBuilder {
     const std::size_t count = values.size() / static_cast<std::size_t>(components);
     json acc = {{"bufferView", views_.size() - 1}, {"componentType", kFloat}, {"count", count}, {"type", type}};
     if (with_bounds) {
-      std::vector<float> lo(static_cast<std::size_t>(components), INFINITY), hi(static_cast<std::size_t>(components), -INFINITY);
+      std::vector<float> lo(static_cast<std::size_t>(components), INFINITY),
+          hi(static_cast<std::size_t>(components), -INFINITY);
       for (std::size_t i = 0; i < values.size(); ++i) {
         const std::size_t c = i % static_cast<std::size_t>(components);
         lo[c] = std::min(lo[c], values[i]);

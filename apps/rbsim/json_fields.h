@@ -83,7 +83,8 @@ class Fields {
                     (v.is_array() ? "an array of " + std::to_string(v.size()) : TypeName(v)));
     }
     Vector3 out;
-    for (int i = 0; i < 3; ++i) out[i] = CheckNumber(key + "[" + std::to_string(i) + "]", v[static_cast<std::size_t>(i)], rule);
+    for (int i = 0; i < 3; ++i)
+      out[i] = CheckNumber(key + "[" + std::to_string(i) + "]", v[static_cast<std::size_t>(i)], rule);
     return out;
   }
 
@@ -121,6 +122,5 @@ class Fields {
   const std::string& file_;
   std::vector<std::string> known_;
 };
-
 
 }  // namespace rbsim::json_fields

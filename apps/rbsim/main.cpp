@@ -8,8 +8,8 @@
 
 #include <atomic>
 #include <chrono>
-#include <csignal>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -46,37 +46,49 @@ bool ParseVec3(const std::string& text, massprops::Vector3& out) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"rbsim: simulate rigid bodies made from mesh files, with trajectory, diagnostics, plot and an "
-               "animated .glb.\nScene schema: see the README (section 'rbsim scenes')."};
+  CLI::App app{
+      "rbsim: simulate rigid bodies made from mesh files, with trajectory, diagnostics, plot and an "
+      "animated .glb.\nScene schema: see the README (section 'rbsim scenes')."};
   app.set_version_flag("--version", std::string("rbsim ") + massprops::kVersion);
-  std::string scene_file, mesh, unit = "m", omega_text, omega_frame = "world", velocity_text, out_dir,
-                          integrator, outputs_text;
+  std::string scene_file, mesh, unit = "m", omega_text, omega_frame = "world", velocity_text, out_dir, integrator,
+                                outputs_text;
   double density = 1000, mass = 0;
   std::optional<double> dt, duration, rate;
   bool repair = false, allow_open = false, quiet = false;
   int threads = 1;
   auto* scene_opt = app.add_option("scene", scene_file, "Scene file (JSON)");
-  auto* mesh_opt = app.add_option("--mesh", mesh, "Quick path: spin this one mesh torque-free (no scene file)")
-                       ->excludes(scene_opt);
+  auto* mesh_opt =
+      app.add_option("--mesh", mesh, "Quick path: spin this one mesh torque-free (no scene file)")->excludes(scene_opt);
   std::vector<std::string> units;
   for (massprops::LengthUnit u : massprops::kAllLengthUnits) units.emplace_back(massprops::UnitName(u));
-  app.add_option("--unit", unit, "--mesh: unit of the file's coordinates")->check(CLI::IsMember(units))->needs(mesh_opt);
-  auto* density_opt = app.add_option("--density", density, "--mesh: density, kg/m^3")->check(massprops::app::Positive())->needs(mesh_opt);
-  app.add_option("--mass", mass, "--mesh: total mass, kg")->check(massprops::app::Positive())->excludes(density_opt)->needs(mesh_opt);
+  app.add_option("--unit", unit, "--mesh: unit of the file's coordinates")
+      ->check(CLI::IsMember(units))
+      ->needs(mesh_opt);
+  auto* density_opt = app.add_option("--density", density, "--mesh: density, kg/m^3")
+                          ->check(massprops::app::Positive())
+                          ->needs(mesh_opt);
+  app.add_option("--mass", mass, "--mesh: total mass, kg")
+      ->check(massprops::app::Positive())
+      ->excludes(density_opt)
+      ->needs(mesh_opt);
   app.add_flag("--repair", repair, "--mesh: repair the mesh first (as massprops --repair)")->needs(mesh_opt);
-  app.add_flag("--allow-open", allow_open, "--mesh: simulate even an open mesh (its inertia is then not trustworthy)")->needs(mesh_opt);
+  app.add_flag("--allow-open", allow_open, "--mesh: simulate even an open mesh (its inertia is then not trustworthy)")
+      ->needs(mesh_opt);
   app.add_option("--omega", omega_text, "--mesh: initial angular velocity wx,wy,wz in rad/s")->needs(mesh_opt);
   app.add_option("--omega-frame", omega_frame,
                  "--mesh: axes of --omega: world (= the file's axes at t = 0), principal (I1 <= I2 <= I3)")
-      ->check(CLI::IsMember({"world", "body", "principal"}))->needs(mesh_opt);
+      ->check(CLI::IsMember({"world", "body", "principal"}))
+      ->needs(mesh_opt);
   app.add_option("--velocity", velocity_text, "--mesh: initial velocity vx,vy,vz in m/s")->needs(mesh_opt);
   app.add_option("--dt", dt, "Time step, s (overrides the scene)")->check(massprops::app::Positive());
   app.add_option("--duration", duration, "Simulated time, s (overrides the scene)")->check(massprops::app::Positive());
   app.add_option("--integrator", integrator, "Integrator (overrides the scene): " + dynamics::IntegratorNames());
-  app.add_option("--rate", rate, "Output rate, samples per simulated second (overrides the scene)")->check(massprops::app::Positive());
+  app.add_option("--rate", rate, "Output rate, samples per simulated second (overrides the scene)")
+      ->check(massprops::app::Positive());
   app.add_option("--out", out_dir, "Write every output of the run into this directory (created if missing)");
-  app.add_option("--outputs", outputs_text, "Which outputs, comma-separated: csv, jsonl, diagnostics, svg, png, glb "
-                                            "(overrides the scene; default csv,diagnostics,svg,png,glb)");
+  app.add_option("--outputs", outputs_text,
+                 "Which outputs, comma-separated: csv, jsonl, diagnostics, svg, png, glb "
+                 "(overrides the scene; default csv,diagnostics,svg,png,glb)");
   app.add_option("--threads", threads, "Worker threads for mesh loading and large worlds (0 = all cores)")
       ->check(massprops::app::NonNegative());
   app.add_flag("-q,--quiet", quiet, "No progress bar");
@@ -99,9 +111,13 @@ int main(int argc, char** argv) {
     } else {
       nlohmann::json body = {{"name", std::filesystem::path(mesh).stem().string()},
                              {"mesh", std::filesystem::absolute(mesh).string()},
-                             {"repair", repair}, {"allow_open", allow_open},
+                             {"repair", repair},
+                             {"allow_open", allow_open},
                              {"angular_velocity_frame", omega_frame}};
-      if (mass > 0) body["mass"] = mass; else body["density"] = density;
+      if (mass > 0)
+        body["mass"] = mass;
+      else
+        body["density"] = density;
       if (app.count("--unit") > 0) body["unit"] = unit;
       massprops::Vector3 omega = massprops::Vector3::Zero(), velocity = massprops::Vector3::Zero();
       if (!omega_text.empty() && !ParseVec3(omega_text, omega)) {
@@ -177,8 +193,9 @@ int main(int argc, char** argv) {
     std::int64_t triangles = 0;
     for (const auto& b : sim->bodies) triangles += b.display.F.rows();
     if (triangles > 2000000) {
-      std::cerr << "warning: the .glb will carry " << triangles << " triangles (about " << triangles * 72 / 1000000
-                << " MB of vertices); viewers may be slow: decimate the mesh for viewing, or leave glb out of --outputs\n";
+      std::cerr
+          << "warning: the .glb will carry " << triangles << " triangles (about " << triangles * 72 / 1000000
+          << " MB of vertices); viewers may be slow: decimate the mesh for viewing, or leave glb out of --outputs\n";
     }
   }
 
@@ -228,7 +245,8 @@ int main(int argc, char** argv) {
       return staged.back().first;
     };
     if (!out_dir.empty() && wants(rbsim::OutputKind::kGlb)) rbsim::WriteGlb(stage("animation.glb"), *sim, recording);
-    for (auto [kind, name] : {std::pair{rbsim::OutputKind::kPlotSvg, "plot.svg"}, std::pair{rbsim::OutputKind::kPlotPng, "plot.png"}}) {
+    for (auto [kind, name] :
+         {std::pair{rbsim::OutputKind::kPlotSvg, "plot.svg"}, std::pair{rbsim::OutputKind::kPlotPng, "plot.png"}}) {
       if (!out_dir.empty() && wants(kind)) rbsim::WritePlot(stage(name), *sim, recording);
     }
     if (writer) written = writer->Commit();

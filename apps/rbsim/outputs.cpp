@@ -2,13 +2,12 @@
 
 #include <algorithm>
 #include <charconv>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 
 namespace rbsim {
 
-const char* const kTrajectoryCsvHeader =
-    "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,w1,w2,w3";
+const char* const kTrajectoryCsvHeader = "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,w1,w2,w3";
 const char* const kDiagnosticsCsvHeader =
     "time,kinetic_energy,potential_energy,energy,px,py,pz,Lx,Ly,Lz,energy_drift,p_drift,L_drift";
 
@@ -93,10 +92,10 @@ void TrajectoryWriter::Add(const Simulation& sim, const dynamics::World& world, 
       line_ += ',';
       line_ += sim.bodies[b].name;
       line_ += ',';
-      PutList(line_, {s.position.x(), s.position.y(), s.position.z(), s.orientation.w(), s.orientation.x(),
-                      s.orientation.y(), s.orientation.z(), s.velocity.x(), s.velocity.y(), s.velocity.z(),
-                      s.omega_world.x(), s.omega_world.y(), s.omega_world.z(), s.omega_principal.x(),
-                      s.omega_principal.y(), s.omega_principal.z()});
+      PutList(line_,
+              {s.position.x(), s.position.y(), s.position.z(), s.orientation.w(), s.orientation.x(), s.orientation.y(),
+               s.orientation.z(), s.velocity.x(), s.velocity.y(), s.velocity.z(), s.omega_world.x(), s.omega_world.y(),
+               s.omega_world.z(), s.omega_principal.x(), s.omega_principal.y(), s.omega_principal.z()});
       line_ += '\n';
       csv_->stream() << line_;
     }

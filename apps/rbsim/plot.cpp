@@ -1,12 +1,12 @@
 // The run's plot, drawn by gnuplot through gnuplot-iostream (the only file that includes it, with
 // its Boost.Iostreams machinery).
 
+#include <unistd.h>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <tuple>
-#include <unistd.h>
 
 #include <gnuplot-iostream.h>
 
@@ -56,9 +56,10 @@ void WritePlot(const std::string& path, const Simulation& sim, const Recording& 
     momentum.emplace_back(rec.times[i], rec.momentum_drift[i]);
   }
   const SimBody& body = sim.bodies[static_cast<std::size_t>(sim.scene.plot_body)];
-  const std::string title = fs::path(sim.scene.file).filename().string() + ": " + body.name + ", " +
-                            dynamics::IntegratorName(sim.scene.integrator) + ", dt = " +
-                            std::to_string(sim.scene.dt).erase(std::to_string(sim.scene.dt).find_last_not_of('0') + 1) + " s";
+  const std::string title =
+      fs::path(sim.scene.file).filename().string() + ": " + body.name + ", " +
+      dynamics::IntegratorName(sim.scene.integrator) +
+      ", dt = " + std::to_string(sim.scene.dt).erase(std::to_string(sim.scene.dt).find_last_not_of('0') + 1) + " s";
   {
     Gnuplot gp("gnuplot 2>" + ShellQuoted(log));
     gp << (png ? "set terminal pngcairo noenhanced size 1000,900 font 'sans,11'\n"
@@ -74,14 +75,18 @@ void WritePlot(const std::string& path, const Simulation& sim, const Recording& 
     gp.send1d(omega);
     gp.send1d(omega);
     gp << "set format y '%.1e'\nset ylabel 'relative'\n";
-    gp << "set title " << Quoted(sim.conservation.energy ? "energy drift (E - E0)/|E0|  (conserved by the physics)"
-                                                      : "energy change (E - E0)/|E0|  (not conserved: " + sim.conservation.energy_broken_by + ")")
+    gp << "set title "
+       << Quoted(sim.conservation.energy
+                     ? "energy drift (E - E0)/|E0|  (conserved by the physics)"
+                     : "energy change (E - E0)/|E0|  (not conserved: " + sim.conservation.energy_broken_by + ")")
        << "\n";
     gp << "plot '-' with lines lw 1.5 lc rgb '#d55e00' title 'energy'\n";
     gp.send1d(energy);
     gp << "set xlabel 'time, s'\n";
-    gp << "set title " << Quoted(sim.conservation.momentum ? "angular momentum drift (|L| - |L0|)/|L0|, about the world origin"
-                                                        : "angular momentum change (|L| - |L0|)/|L0|  (not conserved: " + sim.conservation.momentum_broken_by + ")")
+    gp << "set title "
+       << Quoted(sim.conservation.momentum ? "angular momentum drift (|L| - |L0|)/|L0|, about the world origin"
+                                           : "angular momentum change (|L| - |L0|)/|L0|  (not conserved: " +
+                                                 sim.conservation.momentum_broken_by + ")")
        << "\n";
     gp << "plot '-' with lines lw 1.5 lc rgb '#0072b2' title '|L|'\n";
     gp.send1d(momentum);

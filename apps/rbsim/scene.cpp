@@ -61,9 +61,7 @@ std::vector<std::string> UnitNames() {
   return names;
 }
 
-massprops::LengthUnit ReadUnit(Fields& f) {
-  return massprops::ParseLengthUnit(f.String("unit", "m", UnitNames()));
-}
+massprops::LengthUnit ReadUnit(Fields& f) { return massprops::ParseLengthUnit(f.String("unit", "m", UnitNames())); }
 
 // A closed-form solid: {"type": NAME, sizes...}, the names and sizes of massprops::Primitive.
 massprops::Primitive ReadPrimitive(Fields& o) {
@@ -115,7 +113,8 @@ ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {
   if (f.Has("density") && f.Has("mass")) f.Fail("give 'density' or 'mass', not both");
   const double density = f.Number("density", 1000.0, "positive");
   const double mass = f.Number("mass", 0.0, "positive");
-  s.mass = mass > 0 ? massprops::MassSpec(massprops::TotalMass{mass}) : massprops::MassSpec(massprops::Density{density});
+  s.mass =
+      mass > 0 ? massprops::MassSpec(massprops::TotalMass{mass}) : massprops::MassSpec(massprops::Density{density});
   if (has_implicit) {
     s.implicit = f.String("implicit", "");
     try {
@@ -210,7 +209,8 @@ ForceSpec ReadForce(const json& j, const std::string& path, const std::string& f
         if (!p->is_array() || p->size() != 2) f.Fail("points", "must be two points [[x, y, z], [x, y, z]]");
         s.points = {f.CheckVec3("points[0]", (*p)[0], nullptr), f.CheckVec3("points[1]", (*p)[1], nullptr)};
       }
-      if (f.Has("body") || f.Has("anchor")) f.Fail("a spring between bodies takes 'bodies' and 'points', not 'body'/'anchor'");
+      if (f.Has("body") || f.Has("anchor"))
+        f.Fail("a spring between bodies takes 'bodies' and 'points', not 'body'/'anchor'");
     } else {
       one_body(true);
       if (!f.Has("anchor")) f.Fail("anchor", "is required: the world point the spring is tied to");
@@ -240,16 +240,15 @@ const char* OutputName(OutputKind kind) {
 }
 
 OutputKind ParseOutputName(const std::string& name) {
-  for (OutputKind k : {OutputKind::kCsv, OutputKind::kJsonl, OutputKind::kDiagnostics,
-                       OutputKind::kPlotSvg, OutputKind::kPlotPng, OutputKind::kGlb}) {
+  for (OutputKind k : {OutputKind::kCsv, OutputKind::kJsonl, OutputKind::kDiagnostics, OutputKind::kPlotSvg,
+                       OutputKind::kPlotPng, OutputKind::kGlb}) {
     if (name == OutputName(k)) return k;
   }
   throw std::invalid_argument("unknown output '" + name + "' (csv, jsonl, diagnostics, svg, png, glb)");
 }
 
 std::vector<OutputKind> DefaultOutputs() {
-  return {OutputKind::kCsv, OutputKind::kDiagnostics, OutputKind::kPlotSvg, OutputKind::kPlotPng,
-          OutputKind::kGlb};
+  return {OutputKind::kCsv, OutputKind::kDiagnostics, OutputKind::kPlotSvg, OutputKind::kPlotPng, OutputKind::kGlb};
 }
 
 Scene ParseScene(const json& j, const std::string& file, const std::string& base_dir,
@@ -303,7 +302,7 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
     body.velocity = b.Vec3("velocity", Vector3::Zero());
     body.angular_velocity = b.Vec3("angular_velocity", Vector3::Zero());
     const std::string frame = b.String("angular_velocity_frame", "world", {"world", "body", "principal"});
-    body.angular_velocity_frame = frame == "world" ? VectorFrame::kWorld
+    body.angular_velocity_frame = frame == "world"  ? VectorFrame::kWorld
                                   : frame == "body" ? VectorFrame::kBody
                                                     : VectorFrame::kPrincipal;
     if (b.Has("color")) {
@@ -338,7 +337,8 @@ void CheckTiming(const Scene& scene, std::vector<std::string>& warnings) {
                      " steps; more than 10^9 is refused");
   }
   if (scene.output_rate * scene.dt > 1.0 + 1e-9) {
-    warnings.push_back(scene.file + ": output_rate " + Num(scene.output_rate) + " Hz is above 1/dt; every step is written");
+    warnings.push_back(scene.file + ": output_rate " + Num(scene.output_rate) +
+                       " Hz is above 1/dt; every step is written");
   }
 }
 

@@ -35,7 +35,7 @@ struct ShapeSpec {
   std::string mesh_file;  ///< resolved path (relative paths are taken from the scene's folder)
   bool repair = false;
   bool allow_open = false;
-  std::string implicit;  ///< a shape in massprops' shape syntax (Monte-Carlo mass properties)
+  std::string implicit;                       ///< a shape in massprops' shape syntax (Monte-Carlo mass properties)
   std::optional<massprops::Primitive> solid;  ///< a closed-form solid
   massprops::LengthUnit unit = massprops::LengthUnit::kMetre;  ///< of the mesh or the shape
   bool unit_stated = false;  ///< the scene gives "unit" (else implausible sizes draw a warning)
@@ -48,7 +48,7 @@ struct BodySpec {
   std::string name;
   std::string field;  ///< "bodies[2]", for messages
   ShapeSpec shape;
-  std::optional<Vector3> position;  ///< center of mass in world; empty: where the file puts it
+  std::optional<Vector3> position;                  ///< center of mass in world; empty: where the file puts it
   Quaternion orientation = Quaternion::Identity();  ///< turns the mesh about its center of mass
   Vector3 velocity = Vector3::Zero();               ///< m/s, world
   Vector3 angular_velocity = Vector3::Zero();       ///< rad/s, in angular_velocity_frame
@@ -57,8 +57,8 @@ struct BodySpec {
 };
 
 struct ForceSpec {
-  std::string type;   ///< gravity, linear_damping, angular_damping, force, torque, spring
-  std::string field;  ///< "forces[1]"
+  std::string type;                  ///< gravity, linear_damping, angular_damping, force, torque, spring
+  std::string field;                 ///< "forces[1]"
   std::vector<int> bodies;           ///< body indices it acts on (empty: every body)
   Vector3 vector = Vector3::Zero();  ///< g, force or torque
   /// Spring between bodies: its ends in each body's mesh (or solid) coordinates; empty: the

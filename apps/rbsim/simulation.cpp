@@ -81,8 +81,8 @@ void LoadMesh(const ShapeSpec& s, SimBody& body, const std::string& where, std::
   for (Eigen::Index i = 0; i < body.display.V.rows(); ++i) {
     body.display.V.row(i) = (scale * body.display.V.row(i).transpose() - r.mp.center_of_mass).transpose();
   }
-  body.source = s.mesh_file + " (unit " + massprops::UnitName(s.unit) + ", " +
-                std::to_string(body.display.F.rows()) + " triangles)";
+  body.source = s.mesh_file + " (unit " + massprops::UnitName(s.unit) + ", " + std::to_string(body.display.F.rows()) +
+                " triangles)";
 }
 
 // An implicit solid: mass properties by quasi-Monte Carlo to a relative standard error of 1e-4,
@@ -260,7 +260,8 @@ RunStats Run(Simulation& sim,
                                sim.bodies[static_cast<std::size_t>(body)].name + "': " + quantity +
                                " no longer finite); reduce dt, or use a stable integrator");
     }
-    if (!status.ok) throw std::runtime_error("the run failed at t = " + Num(sim.world.time(), "%.9g") + " s: " + status.message);
+    if (!status.ok)
+      throw std::runtime_error("the run failed at t = " + Num(sim.world.time(), "%.9g") + " s: " + status.message);
     stats.max_substeps = std::max(stats.max_substeps, status.substeps);
     stats.steps = i;
     if (i % every == 0 || i == n) sample();
@@ -282,16 +283,19 @@ std::string Summary(const Simulation& sim, const RunStats& stats) {
   const auto& e = stats.end;
   const dynamics::Drift end = dynamics::DriftSince(s, e);
   out << "rbsim: " << sim.scene.file << ": " << sim.bodies.size() << (sim.bodies.size() == 1 ? " body, " : " bodies, ")
-      << dynamics::IntegratorName(sim.scene.integrator) << ", dt " << Num(sim.scene.dt) << " s, "
-      << stats.steps << " steps to t = " << Num(e.time) << " s in " << Num(stats.wall_seconds, "%.3g") << " s ("
+      << dynamics::IntegratorName(sim.scene.integrator) << ", dt " << Num(sim.scene.dt) << " s, " << stats.steps
+      << " steps to t = " << Num(e.time) << " s in " << Num(stats.wall_seconds, "%.3g") << " s ("
       << Num(static_cast<double>(stats.steps * static_cast<std::int64_t>(sim.bodies.size())) /
-                 std::max(stats.wall_seconds, 1e-9), "%.3g")
+                 std::max(stats.wall_seconds, 1e-9),
+             "%.3g")
       << " body-steps/s)\n";
   if (stats.max_substeps > 1) {
     out << "  note: the implicit solve needed up to " << stats.max_substeps
         << " sub-steps in some steps: dt is large for these spin rates\n";
   }
-  auto vec = [](const Vector3& v) { return "[" + Num(v.x(), "%.9g") + ", " + Num(v.y(), "%.9g") + ", " + Num(v.z(), "%.9g") + "]"; };
+  auto vec = [](const Vector3& v) {
+    return "[" + Num(v.x(), "%.9g") + ", " + Num(v.y(), "%.9g") + ", " + Num(v.z(), "%.9g") + "]";
+  };
   const dynamics::Conservation& c = sim.conservation;
   const std::string energy_note =
       c.energy ? "conserved by this scene's physics" : "not conserved here: " + c.energy_broken_by;
@@ -310,7 +314,8 @@ std::string Summary(const Simulation& sim, const RunStats& stats) {
                 s.angular_momentum.norm(), e.angular_momentum.norm(), end.angular_momentum,
                 stats.max_drift.angular_momentum, momentum_note.c_str());
   out << line;
-  out << "  (start, end: E, |p| and |L| (L about the world origin); drift: (E - E0)/|E0|, |p - p0|/|p0|, |L - L0|/|L0|)\n";
+  out << "  (start, end: E, |p| and |L| (L about the world origin); drift: (E - E0)/|E0|, |p - p0|/|p0|, |L - "
+         "L0|/|L0|)\n";
   out << "  L end " << vec(e.angular_momentum) << "\n";
   return out.str();
 }

@@ -16,20 +16,20 @@ namespace rbsim {
 /// A body of the scene with what the outputs need besides its dynamic state.
 struct SimBody {
   std::string name;
-  massprops::MassProperties mp;         ///< SI, in the mesh (or solid) frame M
+  massprops::MassProperties mp;           ///< SI, in the mesh (or solid) frame M
   massprops::PrincipalInertia principal;  ///< axes = R_MB (computed once, by the pipeline)
-  massprops::TriangleMesh display;      ///< metres, mesh axes, relative to the center of mass
+  massprops::TriangleMesh display;        ///< metres, mesh axes, relative to the center of mass
   Vector3 color = Vector3(0.8, 0.8, 0.8);
-  std::string source;                   ///< "spot.obj (unit m)" or "cone r=0.1 h=0.3"
+  std::string source;  ///< "spot.obj (unit m)" or "cone r=0.1 h=0.3"
 };
 
 /// How one body is reported: the pose of its mesh (not of its principal frame).
 struct BodyState {
-  Vector3 position;          ///< center of mass, world, m
-  Quaternion orientation;    ///< mesh axes → world (identity for an unturned body at t = 0)
-  Vector3 velocity;          ///< m/s, world
-  Vector3 omega_world;       ///< rad/s, world axes
-  Vector3 omega_principal;   ///< rad/s, principal axes (moments ascending)
+  Vector3 position;         ///< center of mass, world, m
+  Quaternion orientation;   ///< mesh axes → world (identity for an unturned body at t = 0)
+  Vector3 velocity;         ///< m/s, world
+  Vector3 omega_world;      ///< rad/s, world axes
+  Vector3 omega_principal;  ///< rad/s, principal axes (moments ascending)
 };
 
 struct Simulation {
@@ -64,7 +64,8 @@ std::int64_t SampleEvery(const Scene& scene);
 /// sample and on_progress(fraction) now and then. @throws std::runtime_error when a step fails or
 /// the state diverges (energy, momentum or a body's state no longer finite), naming the time and
 /// the body or quantity.
-RunStats Run(Simulation& sim, const std::function<void(const dynamics::World&, const dynamics::Diagnostics&)>& on_sample,
+RunStats Run(Simulation& sim,
+             const std::function<void(const dynamics::World&, const dynamics::Diagnostics&)>& on_sample,
              const std::function<void(double)>& on_progress = {}, const std::atomic<bool>* stop = nullptr);
 
 /// The end-of-run summary: energy and momenta at the start and end, their largest drift, and

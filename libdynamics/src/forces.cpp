@@ -78,8 +78,8 @@ class PointForceImpl : public Force {
 };
 
 // Spring force on the first end, for ends at a and b moving at va and vb.
-Vector3 SpringForce(const Vector3& a, const Vector3& b, const Vector3& va, const Vector3& vb,
-                    double k, double l0, double c) {
+Vector3 SpringForce(const Vector3& a, const Vector3& b, const Vector3& va, const Vector3& vb, double k, double l0,
+                    double c) {
   const Vector3 d = b - a;
   const double len = d.norm();
   if (len == 0.0) return Vector3::Zero();  // direction undefined: no force (measure zero)
@@ -89,8 +89,7 @@ Vector3 SpringForce(const Vector3& a, const Vector3& b, const Vector3& va, const
 
 class SpringImpl : public Force {
  public:
-  SpringImpl(int a, const Vector3& pa, int b, const Vector3& pb_or_anchor, double k, double l0,
-             double c)
+  SpringImpl(int a, const Vector3& pa, int b, const Vector3& pb_or_anchor, double k, double l0, double c)
       : a_(a), b_(b), pa_(pa), pb_(pb_or_anchor), k_(k), l0_(l0), c_(c) {}
   ForceTraits Traits() const override {
     return {c_ > 0 ? "spring damping" : nullptr, b_ >= 0 ? nullptr : "springs to the world"};
@@ -130,13 +129,10 @@ class SpringImpl : public Force {
 
 class CallbackForce : public Force {
  public:
-  CallbackForce(std::function<void(double, const std::vector<RigidBody>&, std::vector<Wrench>&)> fn,
-                ForceTraits traits)
+  CallbackForce(std::function<void(double, const std::vector<RigidBody>&, std::vector<Wrench>&)> fn, ForceTraits traits)
       : fn_(std::move(fn)), traits_(traits) {}
   ForceTraits Traits() const override { return traits_; }
-  void Apply(double t, const std::vector<RigidBody>& b, std::vector<Wrench>& out) const override {
-    fn_(t, b, out);
-  }
+  void Apply(double t, const std::vector<RigidBody>& b, std::vector<Wrench>& out) const override { fn_(t, b, out); }
 
  private:
   std::function<void(double, const std::vector<RigidBody>&, std::vector<Wrench>&)> fn_;
@@ -176,14 +172,13 @@ std::unique_ptr<Force> BodyFrameTorque(int body, const Vector3& torque_body) {
   RequireFinite(torque_body, "torque");
   return std::make_unique<PointForceImpl>(body, Vector3::Zero(), torque_body, true, true);
 }
-std::unique_ptr<Force> PointForce(int body, const Vector3& point_body, const Vector3& force,
-                                  bool body_frame) {
+std::unique_ptr<Force> PointForce(int body, const Vector3& point_body, const Vector3& force, bool body_frame) {
   RequireFinite(point_body, "point");
   RequireFinite(force, "force");
   return std::make_unique<PointForceImpl>(body, point_body, force, body_frame, false);
 }
-std::unique_ptr<Force> SpringToWorld(int body, const Vector3& point_body, const Vector3& anchor,
-                                     double k, double rest_length, double damping) {
+std::unique_ptr<Force> SpringToWorld(int body, const Vector3& point_body, const Vector3& anchor, double k,
+                                     double rest_length, double damping) {
   RequireFinite(point_body, "spring point");
   RequireFinite(anchor, "spring anchor");
   RequireNonNegative(k, "spring stiffness");
@@ -191,9 +186,8 @@ std::unique_ptr<Force> SpringToWorld(int body, const Vector3& point_body, const 
   RequireNonNegative(damping, "spring damping");
   return std::make_unique<SpringImpl>(body, point_body, -1, anchor, k, rest_length, damping);
 }
-std::unique_ptr<Force> SpringBetween(int body_a, const Vector3& point_a, int body_b,
-                                     const Vector3& point_b, double k, double rest_length,
-                                     double damping) {
+std::unique_ptr<Force> SpringBetween(int body_a, const Vector3& point_a, int body_b, const Vector3& point_b, double k,
+                                     double rest_length, double damping) {
   RequireFinite(point_a, "spring point");
   RequireFinite(point_b, "spring point");
   RequireNonNegative(k, "spring stiffness");

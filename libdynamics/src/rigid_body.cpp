@@ -10,9 +10,7 @@ Matrix3 RigidBody::WorldInertia() const {
   return R * inertia.asDiagonal() * R.transpose();
 }
 
-Vector3 RigidBody::BodyAngularVelocity() const {
-  return BodyAngularMomentum().cwiseQuotient(inertia);
-}
+Vector3 RigidBody::BodyAngularVelocity() const { return BodyAngularMomentum().cwiseQuotient(inertia); }
 
 Vector3 RigidBody::AngularVelocity() const { return orientation * BodyAngularVelocity(); }
 
@@ -26,9 +24,7 @@ double RigidBody::RotationalEnergy() const {
   return 0.5 * pi.cwiseProduct(pi).cwiseQuotient(inertia).sum();
 }
 
-double RigidBody::KineticEnergy() const {
-  return 0.5 * mass * velocity.squaredNorm() + RotationalEnergy();
-}
+double RigidBody::KineticEnergy() const { return 0.5 * mass * velocity.squaredNorm() + RotationalEnergy(); }
 
 PlacedBody BodyFromMassProperties(const massprops::MassProperties& mp, const massprops::PrincipalInertia& p) {
   if (!(mp.mass > 0) || !std::isfinite(mp.mass)) {

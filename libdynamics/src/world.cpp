@@ -7,7 +7,6 @@
 #include <stdexcept>
 #include <thread>
 
-
 #include "integrators/integrator.h"
 
 namespace dynamics {
@@ -27,8 +26,8 @@ void CheckBody(const RigidBody& b) {
           << " violate the triangle inequality I1 + I2 >= I3: no real body has them";
     }
   }
-  if (msg.tellp() == 0 && (!b.position.allFinite() || !b.velocity.allFinite() ||
-                           !b.orientation.coeffs().allFinite() || !b.angular_momentum.allFinite())) {
+  if (msg.tellp() == 0 && (!b.position.allFinite() || !b.velocity.allFinite() || !b.orientation.coeffs().allFinite() ||
+                           !b.angular_momentum.allFinite())) {
     msg << "the state is not finite";
   }
   if (msg.tellp() == 0 && std::fabs(b.orientation.norm() - 1.0) > 1e-6) {
@@ -39,8 +38,7 @@ void CheckBody(const RigidBody& b) {
 
 }  // namespace
 
-World::World(Integrator integrator)
-    : integrator_(integrator), scratch_(std::make_unique<internal::StepScratch>()) {}
+World::World(Integrator integrator) : integrator_(integrator), scratch_(std::make_unique<internal::StepScratch>()) {}
 World::~World() = default;
 World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
@@ -57,8 +55,8 @@ void World::AddForce(std::unique_ptr<Force> force) {
   if (!force) throw std::invalid_argument("World::AddForce: null force");
   if (force->MaxBody() >= static_cast<int>(bodies_.size())) {
     std::ostringstream msg;
-    msg << "World::AddForce: the force refers to body " << force->MaxBody() << ", but the world has "
-        << bodies_.size() << " bodies (add the bodies first)";
+    msg << "World::AddForce: the force refers to body " << force->MaxBody() << ", but the world has " << bodies_.size()
+        << " bodies (add the bodies first)";
     throw std::invalid_argument(msg.str());
   }
   forces_.push_back(std::move(force));

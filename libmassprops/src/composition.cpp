@@ -38,16 +38,15 @@ MassProperties Subtract(const MassProperties& whole, const MassProperties& cavit
   out.surface_area = whole.surface_area + cavity.surface_area;
   if (!(out.mass > 0.0)) {
     std::ostringstream msg;
-    msg << "Subtract: the cavity (mass " << cavity.mass << ") is not smaller than the whole (mass "
-        << whole.mass << ")";
+    msg << "Subtract: the cavity (mass " << cavity.mass << ") is not smaller than the whole (mass " << whole.mass
+        << ")";
     throw std::invalid_argument(msg.str());
   }
   return out;
 }
 
 MassProperties Transformed(const MassProperties& mp, const Matrix3& R, const Vector3& t) {
-  if (!R.allFinite() || !t.allFinite() ||
-      (R.transpose() * R - Matrix3::Identity()).cwiseAbs().maxCoeff() > 1e-9 ||
+  if (!R.allFinite() || !t.allFinite() || (R.transpose() * R - Matrix3::Identity()).cwiseAbs().maxCoeff() > 1e-9 ||
       R.determinant() < 0.0) {
     throw std::invalid_argument("Transformed: R is not a rotation (orthonormal, det = +1)");
   }
@@ -72,8 +71,7 @@ MassProperties Scaled(const MassProperties& mp, const Vector3& s) {
   out.center_of_mass = s.cwiseProduct(mp.center_of_mass);
   out.inertia_com = Cs.trace() * Matrix3::Identity() - Cs;
   const bool uniform = std::fabs(s[0]) == std::fabs(s[1]) && std::fabs(s[1]) == std::fabs(s[2]);
-  out.surface_area = uniform ? mp.surface_area * s[0] * s[0]
-                             : std::numeric_limits<double>::quiet_NaN();
+  out.surface_area = uniform ? mp.surface_area * s[0] * s[0] : std::numeric_limits<double>::quiet_NaN();
   return out;
 }
 

@@ -19,9 +19,9 @@ std::string UrdfInertial(const MassProperties& mp, const std::string& in) {
   o << in << "<inertial>\n"
     << in << "  <origin xyz=\"" << Triple(mp.center_of_mass) << "\" rpy=\"0 0 0\"/>\n"
     << in << "  <mass value=\"" << ExactDecimal(mp.mass) << "\"/>\n"
-    << in << "  <inertia ixx=\"" << ExactDecimal(I(0, 0)) << "\" ixy=\"" << ExactDecimal(I(0, 1))
-    << "\" ixz=\"" << ExactDecimal(I(0, 2)) << "\" iyy=\"" << ExactDecimal(I(1, 1)) << "\" iyz=\""
-    << ExactDecimal(I(1, 2)) << "\" izz=\"" << ExactDecimal(I(2, 2)) << "\"/>\n"
+    << in << "  <inertia ixx=\"" << ExactDecimal(I(0, 0)) << "\" ixy=\"" << ExactDecimal(I(0, 1)) << "\" ixz=\""
+    << ExactDecimal(I(0, 2)) << "\" iyy=\"" << ExactDecimal(I(1, 1)) << "\" iyz=\"" << ExactDecimal(I(1, 2))
+    << "\" izz=\"" << ExactDecimal(I(2, 2)) << "\"/>\n"
     << in << "</inertial>\n";
   return o.str();
 }
@@ -49,9 +49,9 @@ std::string MjcfInertial(const MassProperties& mp, const PrincipalInertia& p, co
   q.normalize();
   if (q.w() < 0) q.coeffs() *= -1.0;  // one of the two equal quaternions, w >= 0
   std::ostringstream o;
-  o << in << "<inertial pos=\"" << Triple(mp.center_of_mass) << "\" quat=\"" << ExactDecimal(q.w())
-    << " " << ExactDecimal(q.x()) << " " << ExactDecimal(q.y()) << " " << ExactDecimal(q.z())
-    << "\" mass=\"" << ExactDecimal(mp.mass) << "\" diaginertia=\"" << Triple(p.moments) << "\"/>\n";
+  o << in << "<inertial pos=\"" << Triple(mp.center_of_mass) << "\" quat=\"" << ExactDecimal(q.w()) << " "
+    << ExactDecimal(q.x()) << " " << ExactDecimal(q.y()) << " " << ExactDecimal(q.z()) << "\" mass=\""
+    << ExactDecimal(mp.mass) << "\" diaginertia=\"" << Triple(p.moments) << "\"/>\n";
   return o.str();
 }
 

@@ -24,7 +24,8 @@ class CsgSolid final : public ImplicitSolid {
       if (op_ == kUnion) bounds_.extend(parts_[i]->Bounds());
       if (op_ == kIntersection) bounds_ = bounds_.intersection(parts_[i]->Bounds());
     }
-    if (bounds_.isEmpty()) throw std::invalid_argument("intersection: the parts' bounding boxes do not overlap: the solid is empty");
+    if (bounds_.isEmpty())
+      throw std::invalid_argument("intersection: the parts' bounding boxes do not overlap: the solid is empty");
   }
   Scalar Value(const Vector3& x) const override {
     Scalar v = parts_[0]->Value(x);
@@ -87,7 +88,9 @@ class TransformedSolid final : public ImplicitSolid {
 
 }  // namespace
 
-ImplicitPtr Union(std::vector<ImplicitPtr> parts) { return std::make_shared<CsgSolid>(CsgSolid::kUnion, std::move(parts)); }
+ImplicitPtr Union(std::vector<ImplicitPtr> parts) {
+  return std::make_shared<CsgSolid>(CsgSolid::kUnion, std::move(parts));
+}
 ImplicitPtr Intersection(std::vector<ImplicitPtr> parts) {
   return std::make_shared<CsgSolid>(CsgSolid::kIntersection, std::move(parts));
 }

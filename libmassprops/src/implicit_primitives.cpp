@@ -30,7 +30,9 @@ class EllipsoidSolid final : public ImplicitSolid {
   }
   Scalar Value(const Vector3& x) const override { return x.cwiseQuotient(s_).squaredNorm() - 1.0; }
   AlignedBox3 Bounds() const override { return Centered(s_); }
-  std::string Describe() const override { return "ellipsoid(a=" + Num(s_.x()) + ", b=" + Num(s_.y()) + ", c=" + Num(s_.z()) + ")"; }
+  std::string Describe() const override {
+    return "ellipsoid(a=" + Num(s_.x()) + ", b=" + Num(s_.y()) + ", c=" + Num(s_.z()) + ")";
+  }
 
  private:
   Vector3 s_;
@@ -90,7 +92,8 @@ class TorusSolid final : public ImplicitSolid {
   TorusSolid(Scalar R, Scalar a) : R_(R), a_(a) {
     RequirePositive(R, "torus: R");
     RequirePositive(a, "torus: r");
-    if (!(a < R)) throw std::invalid_argument("torus: r must be smaller than R (got r=" + Num(a) + ", R=" + Num(R) + ")");
+    if (!(a < R))
+      throw std::invalid_argument("torus: r must be smaller than R (got r=" + Num(a) + ", R=" + Num(R) + ")");
   }
   Scalar Value(const Vector3& x) const override { return std::hypot(std::hypot(x.x(), x.y()) - R_, x.z()) - a_; }
   AlignedBox3 Bounds() const override { return Centered(Vector3(R_ + a_, R_ + a_, a_)); }

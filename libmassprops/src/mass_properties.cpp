@@ -28,8 +28,7 @@ struct Bounds {
 
 // Bounding box of the vertices, and the first non-finite vertex if any. min/max are exact, so the
 // result does not depend on the block order.
-Vector3 ReferencePoint(const Eigen::Ref<const VertexMatrix>& V, int num_threads,
-                       const char* what) {
+Vector3 ReferencePoint(const Eigen::Ref<const VertexMatrix>& V, int num_threads, const char* what) {
   const std::int64_t n = V.rows();
   const std::int64_t blocks = (n + kVertexBlock - 1) / kVertexBlock;
   std::vector<Bounds> parts(static_cast<std::size_t>(blocks));
@@ -54,9 +53,8 @@ Vector3 ReferencePoint(const Eigen::Ref<const VertexMatrix>& V, int num_threads,
   }
   if (all.first_bad >= 0) {
     std::ostringstream msg;
-    msg << what << ": vertex " << all.first_bad << " has a non-finite coordinate ("
-        << V(all.first_bad, 0) << ", " << V(all.first_bad, 1) << ", " << V(all.first_bad, 2)
-        << ")";
+    msg << what << ": vertex " << all.first_bad << " has a non-finite coordinate (" << V(all.first_bad, 0) << ", "
+        << V(all.first_bad, 1) << ", " << V(all.first_bad, 2) << ")";
     throw std::invalid_argument(msg.str());
   }
   if (n == 0) return Vector3::Zero();
@@ -134,8 +132,7 @@ VolumeIntegrals VolumeIntegrals::About(const Vector3& new_reference) const {
   VolumeIntegrals r = *this;
   r.reference = new_reference;
   r.first = first + volume * delta;
-  r.second = second + first * delta.transpose() + delta * first.transpose() +
-             volume * delta * delta.transpose();
+  r.second = second + first * delta.transpose() + delta * first.transpose() + volume * delta * delta.transpose();
   return r;
 }
 
@@ -144,8 +141,7 @@ Matrix3 MassProperties::InertiaAbout(const Vector3& point) const {
   return inertia_com + mass * (d.squaredNorm() * Matrix3::Identity() - d * d.transpose());
 }
 
-VolumeIntegrals IntegrateTriangles(const Eigen::Ref<const VertexMatrix>& V,
-                                   const Eigen::Ref<const FaceMatrix>& F,
+VolumeIntegrals IntegrateTriangles(const Eigen::Ref<const VertexMatrix>& V, const Eigen::Ref<const FaceMatrix>& F,
                                    const IntegrationOptions& options) {
   // The bounding-box pass also rejects non-finite vertices.
   const Vector3 center = internal::ReferencePoint(V, options.num_threads, "IntegrateTriangles");
@@ -200,8 +196,8 @@ VolumeIntegrals IntegrateTriangles(const Eigen::Ref<const VertexMatrix>& V,
       for (int k = 0; k < 3; ++k) {
         if (F(f, k) < 0 || F(f, k) >= nv) {
           std::ostringstream msg;
-          msg << "IntegrateTriangles: face " << f << " refers to vertex " << F(f, k)
-              << ", but the mesh has " << nv << " vertices";
+          msg << "IntegrateTriangles: face " << f << " refers to vertex " << F(f, k) << ", but the mesh has " << nv
+              << " vertices";
           throw std::invalid_argument(msg.str());
         }
       }
@@ -238,19 +234,16 @@ MassProperties FromIntegrals(const VolumeIntegrals& in, Scalar density) {
   return mp;
 }
 
-MassProperties ComputeMassProperties(const Eigen::Ref<const VertexMatrix>& V,
-                                     const Eigen::Ref<const FaceMatrix>& F, Scalar density,
-                                     const IntegrationOptions& options) {
+MassProperties ComputeMassProperties(const Eigen::Ref<const VertexMatrix>& V, const Eigen::Ref<const FaceMatrix>& F,
+                                     Scalar density, const IntegrationOptions& options) {
   return FromIntegrals(IntegrateTriangles(V, F, options), density);
 }
 
-MassProperties ComputeMassProperties(const TriangleMesh& mesh, Scalar density,
-                                     const IntegrationOptions& options) {
+MassProperties ComputeMassProperties(const TriangleMesh& mesh, Scalar density, const IntegrationOptions& options) {
   return ComputeMassProperties(mesh.V, mesh.F, density, options);
 }
 
-MassProperties ComputeMassProperties(const PolygonMesh& mesh, Scalar density,
-                                     const IntegrationOptions& options) {
+MassProperties ComputeMassProperties(const PolygonMesh& mesh, Scalar density, const IntegrationOptions& options) {
   return FromIntegrals(IntegratePolygons(mesh, options), density);
 }
 

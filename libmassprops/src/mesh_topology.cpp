@@ -29,13 +29,11 @@ std::string MeshTopology::Problems() const {
     sep = "; ";
   }
   if (unbalanced_edges > 0) {
-    msg << sep << unbalanced_edges
-        << " non-manifold edges (shared by more than two faces) with unmatched orientations";
+    msg << sep << unbalanced_edges << " non-manifold edges (shared by more than two faces) with unmatched orientations";
     sep = "; ";
   }
   if (inconsistent_edges > 0) {
-    msg << sep << "inconsistent orientation: " << inconsistent_edges
-        << " edges where neighbouring faces disagree";
+    msg << sep << "inconsistent orientation: " << inconsistent_edges << " edges where neighbouring faces disagree";
   }
   return msg.str();
 }
@@ -85,8 +83,10 @@ void CountDuplicateFaces(const PolygonMesh& mesh, MeshTopology& t) {
     for (std::size_t a = i + 1; a < j; ++a) {
       if (sorted_corners(keys[a].second) != first_sorted) continue;
       const std::vector<std::int32_t> fa = FromSmallest(mesh, keys[a].second);
-      if (fa == first) ++t.duplicate_faces;
-      else if (fa == first_reversed) ++t.reversed_duplicate_faces;
+      if (fa == first)
+        ++t.duplicate_faces;
+      else if (fa == first_reversed)
+        ++t.reversed_duplicate_faces;
     }
     i = j;
   }
@@ -187,8 +187,8 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
   }
   // Shells in order of their first face.
   std::vector<int> shell_of_root(static_cast<std::size_t>(nv), -1);
-  const Vector3 ref = nv > 0 ? Vector3(0.5 * (mesh.V.colwise().minCoeff() + mesh.V.colwise().maxCoeff()).transpose())
-                             : Vector3::Zero();
+  const Vector3 ref =
+      nv > 0 ? Vector3(0.5 * (mesh.V.colwise().minCoeff() + mesh.V.colwise().maxCoeff()).transpose()) : Vector3::Zero();
   for (std::int64_t f = 0; f < nf; ++f) {
     const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
     const std::int32_t root = Find(parent, idx[0]);
@@ -290,8 +290,7 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
     if (depth % 2 == 0 && !outward) {
       problem << "shell " << s + 1 << " of " << ns << " faces inward but is not inside another shell";
     } else if (depth % 2 == 1 && outward) {
-      problem << "shell " << s + 1 << " of " << ns << " lies inside shell "
-              << report.shells[s].inside_of + 1
+      problem << "shell " << s + 1 << " of " << ns << " lies inside shell " << report.shells[s].inside_of + 1
               << " and both face outward: their volumes overlap (if it is meant as a cavity, its "
                  "faces must point into the cavity; {repair} orients it so)";
     }

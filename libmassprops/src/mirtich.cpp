@@ -7,8 +7,8 @@
 
 #include <cmath>
 #include <sstream>
-#include <string>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "massprops/mass_properties.h"
@@ -53,8 +53,7 @@ void AccumulatePolygon(int n, const CornerFn& p, Moments& m) {
   const int B = (A + 1) % 3;
 
   // Projection integrals over the polygon projected onto the α-β plane.
-  double P1 = 0, Pa = 0, Pb = 0, Paa = 0, Pab = 0, Pbb = 0, Paaa = 0, Paab = 0, Pabb = 0,
-         Pbbb = 0;
+  double P1 = 0, Pa = 0, Pb = 0, Paa = 0, Pab = 0, Pbb = 0, Paaa = 0, Paab = 0, Pabb = 0, Pbbb = 0;
   for (int k = 0; k < n; ++k) {
     const double* e0 = p(k);
     const double* e1 = p(k + 1 == n ? 0 : k + 1);
@@ -109,18 +108,16 @@ void AccumulatePolygon(int n, const CornerFn& p, Moments& m) {
   const double Fc = -k2 * (na * Pa + nb * Pb + w * P1);
   const double Faa = k1 * Paa;
   const double Fbb = k1 * Pbb;
-  const double Fcc = k3 * (na * na * Paa + 2 * na * nb * Pab + nb * nb * Pbb +
-                           w * (2 * (na * Pa + nb * Pb) + w * P1));
+  const double Fcc = k3 * (na * na * Paa + 2 * na * nb * Pab + nb * nb * Pbb + w * (2 * (na * Pa + nb * Pb) + w * P1));
   const double Faaa = k1 * Paaa;
   const double Fbbb = k1 * Pbbb;
-  const double Fccc = -k4 * (na * na * na * Paaa + 3 * na * na * nb * Paab +
-                             3 * na * nb * nb * Pabb + nb * nb * nb * Pbbb +
-                             3 * w * (na * na * Paa + 2 * na * nb * Pab + nb * nb * Pbb) +
-                             w * w * (3 * (na * Pa + nb * Pb) + w * P1));
+  const double Fccc =
+      -k4 * (na * na * na * Paaa + 3 * na * na * nb * Paab + 3 * na * nb * nb * Pabb + nb * nb * nb * Pbbb +
+             3 * w * (na * na * Paa + 2 * na * nb * Pab + nb * nb * Pbb) + w * w * (3 * (na * Pa + nb * Pb) + w * P1));
   const double Faab = k1 * Paab;
   const double Fbbc = -k2 * (na * Pabb + nb * Pbbb + w * Pbb);
-  const double Fcca = k3 * (na * na * Paaa + 2 * na * nb * Paab + nb * nb * Pabb +
-                            w * (2 * (na * Paa + nb * Pab) + w * Pa));
+  const double Fcca =
+      k3 * (na * na * Paaa + 2 * na * nb * Paab + nb * nb * Pabb + w * (2 * (na * Paa + nb * Pab) + w * Pa));
 
   // Volume integrals: T0 = ∫dV (from the x-face integral), T1 = ∫r, T2 = ∫r², TP = products.
   m.v += nrm[0] * (A == 0 ? Fa : (B == 0 ? Fb : Fc));
@@ -196,7 +193,8 @@ VolumeIntegrals IntegratePolygons(const PolygonMesh& mesh, const IntegrationOpti
       for (int k = 0; k < n; ++k) {
         for (int j = 0; j < 3; ++j) corners[3 * k + j] = mesh.V(idx[k], j) - ref[j];
       }
-      AccumulatePolygon(n, [&](int k) { return corners.data() + 3 * k; }, m);
+      AccumulatePolygon(
+          n, [&](int k) { return corners.data() + 3 * k; }, m);
     }
     parts[static_cast<std::size_t>(b)] = m;
   });

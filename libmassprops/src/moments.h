@@ -7,11 +7,11 @@
 namespace massprops::internal {
 
 struct Moments {
-  double v = 0;                  // ∫ dV
-  double x = 0, y = 0, z = 0;    // ∫ r dV
+  double v = 0;                   // ∫ dV
+  double x = 0, y = 0, z = 0;     // ∫ r dV
   double xx = 0, yy = 0, zz = 0;  // ∫ r rᵀ dV, diagonal
   double xy = 0, yz = 0, zx = 0;  // ∫ r rᵀ dV, off-diagonal
-  double area = 0;               // surface area
+  double area = 0;                // surface area
 
   Moments& operator+=(const Moments& o) {
     v += o.v;

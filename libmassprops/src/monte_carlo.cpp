@@ -13,10 +13,10 @@
 namespace massprops {
 namespace {
 
-constexpr int kF = 10;            // integrands: 1, y1, y2, y3, y1², y2², y3², y1y2, y1y3, y2y3
+constexpr int kF = 10;  // integrands: 1, y1, y2, y3, y1², y2², y3², y1y2, y1y3, y2y3
 constexpr int kC = kF * (kF + 1) / 2;
 constexpr std::int64_t kBlock = 4096;
-constexpr int kOutputs = 14;      // V, M, c(3), I xx yy zz xy xz yz, principal (3)
+constexpr int kOutputs = 14;  // V, M, c(3), I xx yy zz xy xz yz, principal (3)
 
 struct Sums {
   std::array<double, kF> s{};
@@ -92,10 +92,12 @@ double StudentT95(int dof) {
   return 1.959964 + 2.37 / dof;  // Cornish–Fisher, first term
 }
 
-void Accumulate(const ImplicitSolid& solid, const Vector3& c, const Vector3& h, const Vector3& u, bool cross, Sums& out) {
+void Accumulate(const ImplicitSolid& solid, const Vector3& c, const Vector3& h, const Vector3& u, bool cross,
+                Sums& out) {
   const Vector3 y = 2.0 * u - Vector3::Ones();
   if (!solid.Inside(c + h.cwiseProduct(y))) return;
-  const double f[kF] = {1.0, y.x(), y.y(), y.z(), y.x() * y.x(), y.y() * y.y(), y.z() * y.z(), y.x() * y.y(), y.x() * y.z(), y.y() * y.z()};
+  const double f[kF] = {1.0,           y.x(),         y.y(),         y.z(),         y.x() * y.x(),
+                        y.y() * y.y(), y.z() * y.z(), y.x() * y.y(), y.x() * y.z(), y.y() * y.z()};
   for (int i = 0; i < kF; ++i) out.s[static_cast<std::size_t>(i)] += f[i];
   if (cross) {
     int k = 0;
@@ -113,8 +115,8 @@ struct Frame {
   double fixed_mass;  // > 0: the density is mass / volume (so the mass carries no error)
 };
 
-std::array<double, kOutputs> Outputs(const std::array<double, kF>& mu, const Frame& fr, MassProperties* mp_out = nullptr,
-                                     Vector3* principal = nullptr) {
+std::array<double, kOutputs> Outputs(const std::array<double, kF>& mu, const Frame& fr,
+                                     MassProperties* mp_out = nullptr, Vector3* principal = nullptr) {
   VolumeIntegrals vi;
   vi.reference = fr.c;
   vi.volume = fr.box_volume * mu[0];
@@ -130,8 +132,20 @@ std::array<double, kOutputs> Outputs(const std::array<double, kF>& mu, const Fra
   if (mp_out) *mp_out = mp;
   if (principal) *principal = p;
   const Matrix3& I = mp.inertia_com;
-  return {mp.volume, mp.mass, mp.center_of_mass.x(), mp.center_of_mass.y(), mp.center_of_mass.z(),
-          I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2), p[0], p[1], p[2]};
+  return {mp.volume,
+          mp.mass,
+          mp.center_of_mass.x(),
+          mp.center_of_mass.y(),
+          mp.center_of_mass.z(),
+          I(0, 0),
+          I(1, 1),
+          I(2, 2),
+          I(0, 1),
+          I(0, 2),
+          I(1, 2),
+          p[0],
+          p[1],
+          p[2]};
 }
 
 void Fill(MassPropertiesEstimate& e, const std::array<double, kOutputs>& se) {
@@ -167,18 +181,23 @@ double MassPropertiesEstimate::MaxRelativeError() const {
   return r;
 }
 
-MassPropertiesEstimate EstimateMassProperties(const ImplicitSolid& solid, Scalar density, const MonteCarloOptions& opt) {
-  if (!(std::isfinite(density) && density > 0)) throw std::invalid_argument("Monte Carlo: the density must be finite and positive");
+MassPropertiesEstimate EstimateMassProperties(const ImplicitSolid& solid, Scalar density,
+                                              const MonteCarloOptions& opt) {
+  if (!(std::isfinite(density) && density > 0))
+    throw std::invalid_argument("Monte Carlo: the density must be finite and positive");
   if (opt.samples < 2) throw std::invalid_argument("Monte Carlo: at least 2 samples");
   const bool qmc = opt.method == SamplingMethod::kQuasiMonteCarlo;
-  if (qmc && opt.randomizations < 2) throw std::invalid_argument("quasi-Monte Carlo: at least 2 randomizations (for the error bars)");
-  if (!(opt.tolerance >= 0) || !std::isfinite(opt.tolerance)) throw std::invalid_argument("Monte Carlo: the tolerance must be finite and >= 0");
+  if (qmc && opt.randomizations < 2)
+    throw std::invalid_argument("quasi-Monte Carlo: at least 2 randomizations (for the error bars)");
+  if (!(opt.tolerance >= 0) || !std::isfinite(opt.tolerance))
+    throw std::invalid_argument("Monte Carlo: the tolerance must be finite and >= 0");
   const AlignedBox3 box = solid.Bounds();
   const Vector3 size = box.sizes();
   if (box.isEmpty() || !(size.array() > 0).all() || !size.allFinite() || !box.min().allFinite()) {
     throw std::invalid_argument("Monte Carlo: the solid's bounding box is empty, flat or not finite");
   }
-  if (!(opt.fixed_mass >= 0) || !std::isfinite(opt.fixed_mass)) throw std::invalid_argument("Monte Carlo: the mass must be finite and positive");
+  if (!(opt.fixed_mass >= 0) || !std::isfinite(opt.fixed_mass))
+    throw std::invalid_argument("Monte Carlo: the mass must be finite and positive");
   Frame fr{box.center(), 0.5 * size, size.prod(), density, opt.fixed_mass};
   const int R = qmc ? opt.randomizations : 1;
   // Points per randomization: QMC in powers of two (where the nets are balanced).
@@ -187,7 +206,8 @@ MassPropertiesEstimate EstimateMassProperties(const ImplicitSolid& solid, Scalar
     std::int64_t p = 1;
     while (p < n) p *= 2;
     n = p;
-    if (n > (std::int64_t{1} << 32)) throw std::invalid_argument("quasi-Monte Carlo: more than 2^32 points per randomization");
+    if (n > (std::int64_t{1} << 32))
+      throw std::invalid_argument("quasi-Monte Carlo: more than 2^32 points per randomization");
   }
   std::vector<std::vector<Sums>> blocks(static_cast<std::size_t>(R));
   std::int64_t done = 0;  // points per randomization already summed
@@ -233,8 +253,9 @@ MassPropertiesEstimate EstimateMassProperties(const ImplicitSolid& solid, Scalar
       } else {
         for (std::int64_t i = b * kBlock; i < end; ++i) {
           const auto idx = static_cast<std::uint64_t>(i);
-          Accumulate(solid, fr.c, fr.h, Vector3(Uniform(opt.seed, idx, 0), Uniform(opt.seed, idx, 1), Uniform(opt.seed, idx, 2)),
-                     true, sums);
+          Accumulate(solid, fr.c, fr.h,
+                     Vector3(Uniform(opt.seed, idx, 0), Uniform(opt.seed, idx, 1), Uniform(opt.seed, idx, 2)), true,
+                     sums);
         }
       }
       blocks[r][static_cast<std::size_t>(b)] = sums;
@@ -254,7 +275,8 @@ MassPropertiesEstimate EstimateMassProperties(const ImplicitSolid& solid, Scalar
                                   " points fell inside the solid (empty, or tiny within its bounding box)");
     }
     std::array<double, kF> mu{};
-    for (int i = 0; i < kF; ++i) mu[static_cast<std::size_t>(i)] = pooled.s[static_cast<std::size_t>(i)] / static_cast<double>(e.samples);
+    for (int i = 0; i < kF; ++i)
+      mu[static_cast<std::size_t>(i)] = pooled.s[static_cast<std::size_t>(i)] / static_cast<double>(e.samples);
     Outputs(mu, fr, &e.value, &e.principal_moments);
     std::array<double, kOutputs> se{};
     if (qmc) {
@@ -263,14 +285,21 @@ MassPropertiesEstimate EstimateMassProperties(const ImplicitSolid& solid, Scalar
       std::array<double, kOutputs> mean{};
       for (int r = 0; r < R; ++r) {
         std::array<double, kF> m{};
-        for (int i = 0; i < kF; ++i) m[static_cast<std::size_t>(i)] = per_r[static_cast<std::size_t>(r)].s[static_cast<std::size_t>(i)] / static_cast<double>(n);
-        if (m[0] == 0) throw std::invalid_argument("quasi-Monte Carlo: a randomization had no point inside the solid; use more samples");
+        for (int i = 0; i < kF; ++i)
+          m[static_cast<std::size_t>(i)] =
+              per_r[static_cast<std::size_t>(r)].s[static_cast<std::size_t>(i)] / static_cast<double>(n);
+        if (m[0] == 0)
+          throw std::invalid_argument(
+              "quasi-Monte Carlo: a randomization had no point inside the solid; use more samples");
         est.push_back(Outputs(m, fr));
-        for (int k = 0; k < kOutputs; ++k) mean[static_cast<std::size_t>(k)] += est.back()[static_cast<std::size_t>(k)] / R;
+        for (int k = 0; k < kOutputs; ++k)
+          mean[static_cast<std::size_t>(k)] += est.back()[static_cast<std::size_t>(k)] / R;
       }
       for (int k = 0; k < kOutputs; ++k) {
         double ss = 0;
-        for (const auto& x : est) ss += (x[static_cast<std::size_t>(k)] - mean[static_cast<std::size_t>(k)]) * (x[static_cast<std::size_t>(k)] - mean[static_cast<std::size_t>(k)]);
+        for (const auto& x : est)
+          ss += (x[static_cast<std::size_t>(k)] - mean[static_cast<std::size_t>(k)]) *
+                (x[static_cast<std::size_t>(k)] - mean[static_cast<std::size_t>(k)]);
         se[static_cast<std::size_t>(k)] = std::sqrt(ss / (R - 1) / R);
       }
       e.interval95_factor = StudentT95(R - 1);
@@ -281,7 +310,9 @@ MassPropertiesEstimate EstimateMassProperties(const ImplicitSolid& solid, Scalar
       int k = 0;
       for (int i = 0; i < kF; ++i) {
         for (int j = i; j < kF; ++j) {
-          const double v = (pooled.c[static_cast<std::size_t>(k++)] / N - mu[static_cast<std::size_t>(i)] * mu[static_cast<std::size_t>(j)]) * N / (N - 1);
+          const double v = (pooled.c[static_cast<std::size_t>(k++)] / N -
+                            mu[static_cast<std::size_t>(i)] * mu[static_cast<std::size_t>(j)]) *
+                           N / (N - 1);
           cov(i, j) = cov(j, i) = v;
         }
       }
@@ -292,7 +323,8 @@ MassPropertiesEstimate EstimateMassProperties(const ImplicitSolid& solid, Scalar
         up[static_cast<std::size_t>(i)] += step;
         down[static_cast<std::size_t>(i)] -= step;
         const auto a = Outputs(up, fr), b = Outputs(down, fr);
-        for (int o = 0; o < kOutputs; ++o) J(o, i) = (a[static_cast<std::size_t>(o)] - b[static_cast<std::size_t>(o)]) / (2 * step);
+        for (int o = 0; o < kOutputs; ++o)
+          J(o, i) = (a[static_cast<std::size_t>(o)] - b[static_cast<std::size_t>(o)]) / (2 * step);
       }
       const Eigen::Matrix<double, kOutputs, kOutputs> var = J * cov * J.transpose() / N;
       for (int o = 0; o < kOutputs; ++o) se[static_cast<std::size_t>(o)] = std::sqrt(std::max(0.0, var(o, o)));

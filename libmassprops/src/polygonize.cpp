@@ -22,9 +22,7 @@ TriangleMesh Polygonize(const ImplicitSolid& solid, int resolution) {
   for (int k = 0; k < 3; ++k) n[k] = static_cast<int>(std::ceil(box.sizes()[k] / cell)) + 2;
   auto at = [&](int i, int j, int k) { return Vector3(lo + cell * Vector3(i, j, k)); };
   std::vector<double> phi(static_cast<std::size_t>((n.x() + 1) * (n.y() + 1) * (n.z() + 1)));
-  auto idx = [&](int i, int j, int k) {
-    return static_cast<std::size_t>(i + (n.x() + 1) * (j + (n.y() + 1) * k));
-  };
+  auto idx = [&](int i, int j, int k) { return static_cast<std::size_t>(i + (n.x() + 1) * (j + (n.y() + 1) * k)); };
   for (int k = 0; k <= n.z(); ++k)
     for (int j = 0; j <= n.y(); ++j)
       for (int i = 0; i <= n.x(); ++i) phi[idx(i, j, k)] = solid.Value(at(i, j, k));
@@ -58,7 +56,8 @@ TriangleMesh Polygonize(const ImplicitSolid& solid, int resolution) {
           auto cut = [&](int a, int b) {
             const double fa = v[static_cast<std::size_t>(a)], fb = v[static_cast<std::size_t>(b)];
             const double s = fa / (fa - fb);
-            return Vector3(p[static_cast<std::size_t>(a)] + s * (p[static_cast<std::size_t>(b)] - p[static_cast<std::size_t>(a)]));
+            return Vector3(p[static_cast<std::size_t>(a)] +
+                           s * (p[static_cast<std::size_t>(b)] - p[static_cast<std::size_t>(a)]));
           };
           Vector3 cin = Vector3::Zero(), cout = Vector3::Zero();
           for (int q : in) cin += p[static_cast<std::size_t>(q)] / static_cast<double>(in.size());
@@ -69,7 +68,8 @@ TriangleMesh Polygonize(const ImplicitSolid& solid, int resolution) {
             const auto& rest = in.size() == 1 ? outv : in;
             emit(cut(lone[0], rest[0]), cut(lone[0], rest[1]), cut(lone[0], rest[2]), outward);
           } else {  // two and two: a quad
-            const Vector3 a = cut(in[0], outv[0]), b = cut(in[0], outv[1]), c = cut(in[1], outv[1]), d = cut(in[1], outv[0]);
+            const Vector3 a = cut(in[0], outv[0]), b = cut(in[0], outv[1]), c = cut(in[1], outv[1]),
+                          d = cut(in[1], outv[0]);
             emit(a, b, c, outward);
             emit(a, c, d, outward);
           }
@@ -80,7 +80,8 @@ TriangleMesh Polygonize(const ImplicitSolid& solid, int resolution) {
   mesh.F.resize(static_cast<Eigen::Index>(out.size() / 3), 3);
   for (std::size_t q = 0; q < out.size(); ++q) mesh.V.row(static_cast<Eigen::Index>(q)) = out[q].transpose();
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-    mesh.F.row(f) << static_cast<std::int32_t>(3 * f), static_cast<std::int32_t>(3 * f + 1), static_cast<std::int32_t>(3 * f + 2);
+    mesh.F.row(f) << static_cast<std::int32_t>(3 * f), static_cast<std::int32_t>(3 * f + 1),
+        static_cast<std::int32_t>(3 * f + 2);
   }
   return mesh;
 }

@@ -18,7 +18,8 @@ Overloaded(Ts...) -> Overloaded<Ts...>;
 
 void RequirePositive(Scalar v, const char* what) {
   if (!(std::isfinite(v) && v > 0)) {
-    throw std::invalid_argument(std::string(what) + " must be finite and positive (got " + FormatDouble(v, "%.6g") + ")");
+    throw std::invalid_argument(std::string(what) + " must be finite and positive (got " + FormatDouble(v, "%.6g") +
+                                ")");
   }
 }
 
@@ -31,20 +32,34 @@ const char* PrimitiveName(const Primitive& p) { return kPrimitiveNames[p.index()
 void Validate(const Primitive& p) {
   namespace pr = primitive;
   std::visit(Overloaded{
-                 [](const pr::Box& s) { for (int i = 0; i < 3; ++i) RequirePositive(s.size[i], "box: edge"); },
+                 [](const pr::Box& s) {
+                   for (int i = 0; i < 3; ++i) RequirePositive(s.size[i], "box: edge");
+                 },
                  [](const pr::Sphere& s) { RequirePositive(s.radius, "sphere: radius"); },
-                 [](const pr::Ellipsoid& s) { for (int i = 0; i < 3; ++i) RequirePositive(s.semi_axes[i], "ellipsoid: semi-axis"); },
-                 [](const pr::Cylinder& s) { RequirePositive(s.radius, "cylinder: radius"); RequirePositive(s.height, "cylinder: height"); },
-                 [](const pr::Cone& s) { RequirePositive(s.radius, "cone: radius"); RequirePositive(s.height, "cone: height"); },
+                 [](const pr::Ellipsoid& s) {
+                   for (int i = 0; i < 3; ++i) RequirePositive(s.semi_axes[i], "ellipsoid: semi-axis");
+                 },
+                 [](const pr::Cylinder& s) {
+                   RequirePositive(s.radius, "cylinder: radius");
+                   RequirePositive(s.height, "cylinder: height");
+                 },
+                 [](const pr::Cone& s) {
+                   RequirePositive(s.radius, "cone: radius");
+                   RequirePositive(s.height, "cone: height");
+                 },
                  [](const pr::Torus& s) {
                    RequirePositive(s.major_radius, "torus: major radius");
                    RequirePositive(s.minor_radius, "torus: minor radius");
                    if (!(s.minor_radius < s.major_radius)) {
-                     throw std::invalid_argument("torus: the minor radius must be smaller than the major radius "
-                                                 "(a self-intersecting torus is not a solid)");
+                     throw std::invalid_argument(
+                         "torus: the minor radius must be smaller than the major radius "
+                         "(a self-intersecting torus is not a solid)");
                    }
                  },
-                 [](const pr::Capsule& s) { RequirePositive(s.radius, "capsule: radius"); RequirePositive(s.length, "capsule: length"); },
+                 [](const pr::Capsule& s) {
+                   RequirePositive(s.radius, "capsule: radius");
+                   RequirePositive(s.length, "capsule: length");
+                 },
              },
              p);
 }
@@ -53,16 +68,17 @@ MassProperties ClosedForm(const Primitive& p, Scalar density) {
   Validate(p);
   namespace pr = primitive;
   namespace so = solids;
-  const MassProperties mp = std::visit(Overloaded{
-                        [&](const pr::Box& s) { return so::BoxProperties(s.size, density); },
-                        [&](const pr::Sphere& s) { return so::SphereProperties(s.radius, density); },
-                        [&](const pr::Ellipsoid& s) { return so::EllipsoidProperties(s.semi_axes, density); },
-                        [&](const pr::Cylinder& s) { return so::CylinderProperties(s.radius, s.height, density); },
-                        [&](const pr::Cone& s) { return so::ConeProperties(s.radius, s.height, density); },
-                        [&](const pr::Torus& s) { return so::TorusProperties(s.major_radius, s.minor_radius, density); },
-                        [&](const pr::Capsule& s) { return so::CapsuleProperties(s.radius, s.length, density); },
-                    },
-                    p);
+  const MassProperties mp =
+      std::visit(Overloaded{
+                     [&](const pr::Box& s) { return so::BoxProperties(s.size, density); },
+                     [&](const pr::Sphere& s) { return so::SphereProperties(s.radius, density); },
+                     [&](const pr::Ellipsoid& s) { return so::EllipsoidProperties(s.semi_axes, density); },
+                     [&](const pr::Cylinder& s) { return so::CylinderProperties(s.radius, s.height, density); },
+                     [&](const pr::Cone& s) { return so::ConeProperties(s.radius, s.height, density); },
+                     [&](const pr::Torus& s) { return so::TorusProperties(s.major_radius, s.minor_radius, density); },
+                     [&](const pr::Capsule& s) { return so::CapsuleProperties(s.radius, s.length, density); },
+                 },
+                 p);
   if (!std::isnormal(mp.volume) || !std::isnormal(mp.inertia_com.trace()) || !mp.inertia_com.allFinite()) {
     throw std::invalid_argument(std::string(PrimitiveName(p)) +
                                 ": its volume or inertia under- or overflows double precision at these sizes");
@@ -104,7 +120,9 @@ std::string Describe(const Primitive& p) {
   namespace pr = primitive;
   return std::visit(
       Overloaded{
-          [](const pr::Box& s) { return "box " + G(s.size.x()) + " x " + G(s.size.y()) + " x " + G(s.size.z()) + " m"; },
+          [](const pr::Box& s) {
+            return "box " + G(s.size.x()) + " x " + G(s.size.y()) + " x " + G(s.size.z()) + " m";
+          },
           [](const pr::Sphere& s) { return "sphere r=" + G(s.radius) + " m"; },
           [](const pr::Ellipsoid& s) {
             return "ellipsoid " + G(s.semi_axes.x()) + ", " + G(s.semi_axes.y()) + ", " + G(s.semi_axes.z()) + " m";

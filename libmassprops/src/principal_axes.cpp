@@ -46,8 +46,7 @@ PrincipalInertia ComputePrincipalInertia(const Matrix3& inertia, double degenera
   PrincipalInertia out;
   out.moments = solver.eigenvalues();  // ascending
   const Matrix3 Q = solver.eigenvectors();
-  const double tol = degenerate_tolerance * std::max(std::fabs(out.moments[2]),
-                                                     std::fabs(out.moments[0]));
+  const double tol = degenerate_tolerance * std::max(std::fabs(out.moments[2]), std::fabs(out.moments[0]));
   const bool same01 = out.moments[1] - out.moments[0] <= tol;
   const bool same12 = out.moments[2] - out.moments[1] <= tol;
 
@@ -58,7 +57,7 @@ PrincipalInertia ComputePrincipalInertia(const Matrix3& inertia, double degenera
   } else if (same01) {  // axis 3 is distinct; 1 and 2 span its perpendicular plane
     const Vector3 u = CanonicalSign(Q.col(2));
     a1 = PerpendicularAxis(u);
-    a2 = u.cross(a1);  // then a1 × a2 = u
+    a2 = u.cross(a1);   // then a1 × a2 = u
   } else if (same12) {  // axis 1 is distinct
     a1 = CanonicalSign(Q.col(0));
     a2 = PerpendicularAxis(a1);
@@ -90,8 +89,7 @@ ValidityReport CheckPhysicallyValid(const Vector3& m, double relative_tolerance)
     Vector3 s = m;
     std::sort(s.data(), s.data() + 3);
     if (s[0] + s[1] < s[2] * (1.0 - relative_tolerance)) {
-      msg << "principal moments violate the triangle inequality: " << s[0] << " + " << s[1]
-          << " < " << s[2];
+      msg << "principal moments violate the triangle inequality: " << s[0] << " + " << s[1] << " < " << s[2];
     }
   }
   r.reason = msg.str();

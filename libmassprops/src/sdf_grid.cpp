@@ -18,7 +18,8 @@ class GridSolid final : public ImplicitSolid {
     if ((n.array() < 2).any()) throw std::invalid_argument("grid: at least 2 samples along each axis");
     for (int i = 0; i < 3; ++i) RequirePositive(h[i], "grid: spacing");
     if (!origin.allFinite()) throw std::invalid_argument("grid: origin not finite");
-    const auto count = static_cast<std::size_t>(n.x()) * static_cast<std::size_t>(n.y()) * static_cast<std::size_t>(n.z());
+    const auto count =
+        static_cast<std::size_t>(n.x()) * static_cast<std::size_t>(n.y()) * static_cast<std::size_t>(n.z());
     if (v_.size() != count) {
       throw std::invalid_argument("grid: " + std::to_string(v_.size()) + " values for " + std::to_string(n.x()) + "×" +
                                   std::to_string(n.y()) + "×" + std::to_string(n.z()) + " samples");
@@ -38,7 +39,9 @@ class GridSolid final : public ImplicitSolid {
     }
     auto at = [&](int dx, int dy, int dz) {
       return v_[static_cast<std::size_t>(i[0] + dx) +
-                static_cast<std::size_t>(n_.x()) * (static_cast<std::size_t>(i[1] + dy) + static_cast<std::size_t>(n_.y()) * static_cast<std::size_t>(i[2] + dz))];
+                static_cast<std::size_t>(n_.x()) *
+                    (static_cast<std::size_t>(i[1] + dy) +
+                     static_cast<std::size_t>(n_.y()) * static_cast<std::size_t>(i[2] + dz))];
     };
     Scalar c[2];
     for (int dz = 0; dz < 2; ++dz) {
@@ -62,8 +65,8 @@ class GridSolid final : public ImplicitSolid {
 
 }  // namespace
 
-ImplicitPtr SdfGrid(const Eigen::Vector3i& size, const Vector3& origin, const Vector3& spacing, std::vector<Scalar> values,
-                    std::string description) {
+ImplicitPtr SdfGrid(const Eigen::Vector3i& size, const Vector3& origin, const Vector3& spacing,
+                    std::vector<Scalar> values, std::string description) {
   return std::make_shared<GridSolid>(size, origin, spacing, std::move(values), std::move(description));
 }
 

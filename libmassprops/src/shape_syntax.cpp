@@ -151,7 +151,9 @@ class Parser {
       return v;
     };
     auto shapes_exactly = [&](std::size_t n) {
-      if (shapes.size() != n) Fail(name + " takes " + std::to_string(n) + " shape" + (n == 1 ? "" : "s") + ", got " + std::to_string(shapes.size()));
+      if (shapes.size() != n)
+        Fail(name + " takes " + std::to_string(n) + " shape" + (n == 1 ? "" : "s") + ", got " +
+             std::to_string(shapes.size()));
     };
     ImplicitPtr out;
     try {
@@ -200,7 +202,8 @@ class Parser {
         const Vector3 axis = vec("axis");
         const Scalar deg = num("deg");
         if (!(axis.norm() > 0)) Fail("rotate: the axis is zero");
-        out = Transformed(shapes[0], Eigen::AngleAxisd(deg * M_PI / 180.0, axis.normalized()).toRotationMatrix(), Vector3::Zero());
+        out = Transformed(shapes[0], Eigen::AngleAxisd(deg * M_PI / 180.0, axis.normalized()).toRotationMatrix(),
+                          Vector3::Zero());
       } else if (name == "scale") {
         shapes_exactly(1);
         out = Scaled(shapes[0], num("s"));
@@ -229,6 +232,8 @@ class Parser {
 
 }  // namespace
 
-ImplicitPtr ParseShape(const std::string& text, const GridFileReader& read_grid) { return Parser(text, read_grid).ParseAll(); }
+ImplicitPtr ParseShape(const std::string& text, const GridFileReader& read_grid) {
+  return Parser(text, read_grid).ParseAll();
+}
 
 }  // namespace massprops::implicit

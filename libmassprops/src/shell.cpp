@@ -34,7 +34,8 @@ Vector3 NewellNormal(const PolygonMesh& mesh, std::int64_t f) {
   for (int i = 0; i < k; ++i) {
     const Vector3 a = mesh.V.row(idx[i]);
     const Vector3 b = mesh.V.row(idx[(i + 1) % k]);
-    n += Vector3((a.y() - b.y()) * (a.z() + b.z()), (a.z() - b.z()) * (a.x() + b.x()), (a.x() - b.x()) * (a.y() + b.y()));
+    n += Vector3((a.y() - b.y()) * (a.z() + b.z()), (a.z() - b.z()) * (a.x() + b.x()),
+                 (a.x() - b.x()) * (a.y() + b.y()));
   }
   return n;
 }
@@ -43,7 +44,8 @@ Vector3 NewellNormal(const PolygonMesh& mesh, std::int64_t f) {
 
 SurfaceIntegrals IntegrateSurface(const PolygonMesh& mesh, const IntegrationOptions& options) {
   internal::CheckPolygonMesh(mesh, "IntegrateSurface");
-  const Vector3 ref = options.reference.value_or(internal::ReferencePoint(mesh.V, options.num_threads, "IntegrateSurface"));
+  const Vector3 ref =
+      options.reference.value_or(internal::ReferencePoint(mesh.V, options.num_threads, "IntegrateSurface"));
   if (!ref.allFinite()) throw std::invalid_argument("IntegrateSurface: the reference point is not finite");
   const std::int64_t nf = mesh.num_faces();
   const std::int64_t blocks = (nf + kFaceBlock - 1) / kFaceBlock;
@@ -147,7 +149,8 @@ OffsetResult OffsetInward(const PolygonMesh& mesh, Scalar t) {
   for (std::int64_t f = 0; f < nf; ++f) {
     const Vector3 n = NewellNormal(out.inner, f);
     if (normals[static_cast<std::size_t>(f)].dot(n) <= 0) {
-      if (out.flipped_faces++ == 0) out.first_flipped_at = mesh.V.row(mesh.indices[static_cast<std::size_t>(mesh.offsets[f])]);
+      if (out.flipped_faces++ == 0)
+        out.first_flipped_at = mesh.V.row(mesh.indices[static_cast<std::size_t>(mesh.offsets[f])]);
     }
   }
   out.inner_volume = IntegratePolygons(out.inner).volume;
@@ -180,7 +183,8 @@ PolygonMesh WallSolid(const PolygonMesh& mesh, const OffsetResult& off) {
   solid.V.conservativeResize(2 * mesh.V.rows(), 3);
   solid.V.bottomRows(mesh.V.rows()) = off.inner.V;
   for (std::int64_t f = 0; f < mesh.num_faces(); ++f) {
-    std::vector<std::int32_t> corners(mesh.indices.begin() + mesh.offsets[f], mesh.indices.begin() + mesh.offsets[f + 1]);
+    std::vector<std::int32_t> corners(mesh.indices.begin() + mesh.offsets[f],
+                                      mesh.indices.begin() + mesh.offsets[f + 1]);
     std::vector<std::int32_t> reversed(corners.rbegin(), corners.rend());
     for (auto& c : reversed) c += nv;
     solid.AddFace(reversed);

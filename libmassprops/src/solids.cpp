@@ -58,8 +58,8 @@ TriangleMesh Revolve(const std::vector<std::pair<double, double>>& profile, int 
 
 // Profile of a half circle of radius r centred at z = zc, from angle t0 to t1 (0 = bottom pole,
 // π = top pole), in `bands` steps; the endpoint is included.
-void AppendArc(std::vector<std::pair<double, double>>& profile, double r, double zc, double t0,
-               double t1, int bands, bool include_first) {
+void AppendArc(std::vector<std::pair<double, double>>& profile, double r, double zc, double t0, double t1, int bands,
+               bool include_first) {
   for (int k = include_first ? 0 : 1; k <= bands; ++k) {
     const double t = t0 + (t1 - t0) * k / bands;
     // Exact poles and equator avoid stray round-off in ρ.
@@ -89,14 +89,12 @@ PolygonMesh Box(const Vector3& size) {
     out.V.row(i) << ((i & 1) ? 0.5 : -0.5) * size[0], ((i & 2) ? 0.5 : -0.5) * size[1],
         ((i & 4) ? 0.5 : -0.5) * size[2];
   }
-  const int faces[6][4] = {{1, 3, 7, 5}, {0, 4, 6, 2}, {2, 6, 7, 3},
-                           {0, 1, 5, 4}, {4, 5, 7, 6}, {0, 2, 3, 1}};
+  const int faces[6][4] = {{1, 3, 7, 5}, {0, 4, 6, 2}, {2, 6, 7, 3}, {0, 1, 5, 4}, {4, 5, 7, 6}, {0, 2, 3, 1}};
   for (const auto& f : faces) out.AddFace(f);
   return out;
 }
 
-TriangleMesh Tetrahedron(const Vector3& p0, const Vector3& p1, const Vector3& p2,
-                         const Vector3& p3) {
+TriangleMesh Tetrahedron(const Vector3& p0, const Vector3& p1, const Vector3& p2, const Vector3& p3) {
   TriangleMesh out;
   out.V.resize(4, 3);
   out.V << p0.transpose(), p1.transpose(), p2.transpose(), p3.transpose();
@@ -109,8 +107,7 @@ TriangleMesh Tetrahedron(const Vector3& p0, const Vector3& p1, const Vector3& p2
 TriangleMesh RegularTetrahedron(Scalar edge) {
   Require(edge > 0 && std::isfinite(edge), "RegularTetrahedron: edge must be positive");
   const double s = edge / (2.0 * std::sqrt(2.0));
-  return Tetrahedron(Vector3(s, s, s), Vector3(s, -s, -s), Vector3(-s, s, -s),
-                     Vector3(-s, -s, s));
+  return Tetrahedron(Vector3(s, s, s), Vector3(s, -s, -s), Vector3(-s, s, -s), Vector3(-s, -s, s));
 }
 
 TriangleMesh Octahedron(Scalar a) {
@@ -239,13 +236,11 @@ MassProperties BoxProperties(const Vector3& s, Scalar rho) {
 }
 
 MassProperties RegularTetrahedronProperties(Scalar a, Scalar rho) {
-  return Make(a * a * a / (6.0 * std::sqrt(2.0)), rho, Vector3::Constant(a * a / 20.0),
-              std::sqrt(3.0) * a * a);
+  return Make(a * a * a / (6.0 * std::sqrt(2.0)), rho, Vector3::Constant(a * a / 20.0), std::sqrt(3.0) * a * a);
 }
 
 MassProperties OctahedronProperties(Scalar a, Scalar rho) {
-  return Make(4.0 / 3.0 * a * a * a, rho, Vector3::Constant(a * a / 5.0),
-              4.0 * std::sqrt(3.0) * a * a);
+  return Make(4.0 / 3.0 * a * a * a, rho, Vector3::Constant(a * a / 5.0), 4.0 * std::sqrt(3.0) * a * a);
 }
 
 MassProperties RegularPrismProperties(int n, Scalar r, Scalar h, Scalar rho) {
@@ -257,8 +252,7 @@ MassProperties RegularPrismProperties(int n, Scalar r, Scalar h, Scalar rho) {
 }
 
 MassProperties SphereProperties(Scalar r, Scalar rho) {
-  return Make(4.0 / 3.0 * kPi * r * r * r, rho, Vector3::Constant(0.4 * r * r),
-              4.0 * kPi * r * r);
+  return Make(4.0 / 3.0 * kPi * r * r * r, rho, Vector3::Constant(0.4 * r * r), 4.0 * kPi * r * r);
 }
 
 MassProperties EllipsoidProperties(const Vector3& s, Scalar rho) {
@@ -278,8 +272,7 @@ MassProperties EllipsoidProperties(const Vector3& s, Scalar rho) {
            2.0 * kPi * a * b / sp * (std::ellint_2(k, phi) * sp * sp + std::ellint_1(k, phi) * cp * cp);
   }
   const Vector3 q = s.cwiseProduct(s);
-  return Make(4.0 / 3.0 * kPi * s.prod(), rho, Vector3(q[1] + q[2], q[0] + q[2], q[0] + q[1]) / 5.0,
-              area);
+  return Make(4.0 / 3.0 * kPi * s.prod(), rho, Vector3(q[1] + q[2], q[0] + q[2], q[0] + q[1]) / 5.0, area);
 }
 
 MassProperties CylinderProperties(Scalar r, Scalar h, Scalar rho) {
@@ -289,14 +282,12 @@ MassProperties CylinderProperties(Scalar r, Scalar h, Scalar rho) {
 
 MassProperties ConeProperties(Scalar r, Scalar h, Scalar rho) {
   const double t = 3.0 / 20.0 * r * r + 3.0 / 80.0 * h * h;
-  return Make(kPi * r * r * h / 3.0, rho, Vector3(t, t, 0.3 * r * r),
-              kPi * r * r + kPi * r * std::sqrt(r * r + h * h));
+  return Make(kPi * r * r * h / 3.0, rho, Vector3(t, t, 0.3 * r * r), kPi * r * r + kPi * r * std::sqrt(r * r + h * h));
 }
 
 MassProperties TorusProperties(Scalar R, Scalar a, Scalar rho) {
   const double t = 0.5 * R * R + 5.0 / 8.0 * a * a;
-  return Make(2.0 * kPi * kPi * R * a * a, rho, Vector3(t, t, R * R + 0.75 * a * a),
-              4.0 * kPi * kPi * R * a);
+  return Make(2.0 * kPi * kPi * R * a * a, rho, Vector3(t, t, R * R + 0.75 * a * a), 4.0 * kPi * kPi * R * a);
 }
 
 MassProperties CapsuleProperties(Scalar r, Scalar h, Scalar rho) {

@@ -58,9 +58,8 @@ struct BlockResult {
 
 // `fetch(begin, n)` returns a pointer to records begin .. begin+n−1 (called once per block).
 template <typename Fetch>
-SoupIntegrals Integrate(const Fetch& fetch, std::int64_t count, std::size_t stride,
-                        std::size_t offset, const Vector3& first_corner,
-                        const IntegrationOptions& options) {
+SoupIntegrals Integrate(const Fetch& fetch, std::int64_t count, std::size_t stride, std::size_t offset,
+                        const Vector3& first_corner, const IntegrationOptions& options) {
   SoupIntegrals out;
   out.triangles = count;
   const Vector3 ref = options.reference.value_or(first_corner);
@@ -138,17 +137,15 @@ Vector3 FirstCorner(const unsigned char* record, std::size_t offset) {
 
 }  // namespace
 
-SoupIntegrals IntegrateFloatTriangleRecords(const unsigned char* data, std::int64_t count,
-                                            std::size_t stride, std::size_t offset,
-                                            const IntegrationOptions& options) {
+SoupIntegrals IntegrateFloatTriangleRecords(const unsigned char* data, std::int64_t count, std::size_t stride,
+                                            std::size_t offset, const IntegrationOptions& options) {
   const Vector3 first = count > 0 ? FirstCorner(data, offset) : Vector3::Zero();
-  return Integrate([&](std::int64_t begin, std::int64_t) { return data + begin * stride; }, count,
-                   stride, offset, first, options);
+  return Integrate([&](std::int64_t begin, std::int64_t) { return data + begin * stride; }, count, stride, offset,
+                   first, options);
 }
 
-SoupIntegrals IntegrateFloatTriangleRecords(const RecordReader& read, std::int64_t count,
-                                            std::size_t stride, std::size_t offset,
-                                            const IntegrationOptions& options) {
+SoupIntegrals IntegrateFloatTriangleRecords(const RecordReader& read, std::int64_t count, std::size_t stride,
+                                            std::size_t offset, const IntegrationOptions& options) {
   Vector3 first = Vector3::Zero();
   if (count > 0) {
     std::vector<unsigned char> rec(stride);

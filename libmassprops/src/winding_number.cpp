@@ -32,7 +32,8 @@ class WindingSolid final : public ImplicitSolid {
     if (F_.rows() == 0) throw std::invalid_argument("winding number: the mesh has no triangles");
     if (!(std::isfinite(beta) && beta > 1)) throw std::invalid_argument("winding number: beta must be > 1");
     for (Eigen::Index i = 0; i < V_.rows(); ++i) {
-      if (!V_.row(i).allFinite()) throw std::invalid_argument("winding number: vertex " + std::to_string(i) + " is not finite");
+      if (!V_.row(i).allFinite())
+        throw std::invalid_argument("winding number: vertex " + std::to_string(i) + " is not finite");
     }
     for (Eigen::Index f = 0; f < F_.rows(); ++f) {
       for (int k = 0; k < 3; ++k) {
@@ -46,7 +47,8 @@ class WindingSolid final : public ImplicitSolid {
     order_.resize(static_cast<std::size_t>(nf));
     std::iota(order_.begin(), order_.end(), 0);
     centroids_.resize(static_cast<std::size_t>(nf));
-    for (int f = 0; f < nf; ++f) centroids_[static_cast<std::size_t>(f)] = (Corner(f, 0) + Corner(f, 1) + Corner(f, 2)) / 3.0;
+    for (int f = 0; f < nf; ++f)
+      centroids_[static_cast<std::size_t>(f)] = (Corner(f, 0) + Corner(f, 1) + Corner(f, 2)) / 3.0;
     nodes_.reserve(static_cast<std::size_t>(2 * nf / kLeafSize + 8));
     Build(0, nf);
     for (Eigen::Index i = 0; i < V_.rows(); ++i) bounds_.extend(Vector3(V_.row(i)));
@@ -123,14 +125,16 @@ class WindingSolid final : public ImplicitSolid {
     }
     node.center = area > 0 ? Vector3(weighted / area) : node.box.center();
     for (int k = 0; k < 8; ++k) {
-      node.radius = std::max(node.radius, (node.box.corner(static_cast<AlignedBox3::CornerType>(k)) - node.center).norm());
+      node.radius =
+          std::max(node.radius, (node.box.corner(static_cast<AlignedBox3::CornerType>(k)) - node.center).norm());
     }
     if (count > kLeafSize) {
       int axis;
       cbox.sizes().maxCoeff(&axis);
       const int mid = first + count / 2;
       std::nth_element(order_.begin() + first, order_.begin() + mid, order_.begin() + first + count, [&](int p, int q) {
-        const double cp = centroids_[static_cast<std::size_t>(p)][axis], cq = centroids_[static_cast<std::size_t>(q)][axis];
+        const double cp = centroids_[static_cast<std::size_t>(p)][axis],
+                     cq = centroids_[static_cast<std::size_t>(q)][axis];
         return cp < cq || (cp == cq && p < q);
       });
       node.left = Build(first, mid - first);
@@ -151,7 +155,9 @@ class WindingSolid final : public ImplicitSolid {
 
 }  // namespace
 
-ImplicitPtr WindingNumberSolid(const TriangleMesh& mesh, Scalar beta) { return std::make_shared<WindingSolid>(mesh, beta); }
+ImplicitPtr WindingNumberSolid(const TriangleMesh& mesh, Scalar beta) {
+  return std::make_shared<WindingSolid>(mesh, beta);
+}
 
 Scalar WindingNumber(const ImplicitSolid& solid, const Vector3& x) {
   const auto* w = dynamic_cast<const WindingSolid*>(&solid);

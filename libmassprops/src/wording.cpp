@@ -22,8 +22,7 @@ const Vocabulary& ApiVocabulary() {
     switch (option) {
       case Option::kRepair: return "LoadOptions::repair = true";
       case Option::kAllowOpen: return "LoadOptions::allow_open = true";
-      case Option::kUnit:
-        return value.empty() ? "LoadOptions::unit" : "LoadOptions::unit = " + std::string(value);
+      case Option::kUnit: return value.empty() ? "LoadOptions::unit" : "LoadOptions::unit = " + std::string(value);
       case Option::kFullCheck: return "LoadOptions::full_check = true";
       case Option::kWall: return "WallModel";
     }

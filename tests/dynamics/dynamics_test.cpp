@@ -137,8 +137,8 @@ TEST(Translation, DampedSpringPeriodAndDecay) {
     for (int i = 1; i <= n; ++i) {
       w.Step(h);
       const double t = i * h;
-      const double x = std::exp(-zeta * omega * t) *
-                       (x0 * std::cos(wd * t) + zeta * omega * x0 / wd * std::sin(wd * t));
+      const double x =
+          std::exp(-zeta * omega * t) * (x0 * std::cos(wd * t) + zeta * omega * x0 / wd * std::sin(wd * t));
       worst = std::max(worst, std::fabs(w.bodies()[0].position.x() - x));
     }
     return worst;
@@ -269,9 +269,9 @@ TEST(FreeRotation, MeasuredOrdersOfConvergence) {
 // energy and of world L over the run, and the order of accuracy from three step sizes.
 struct IntegratorExpectation {
   Integrator integ;
-  double order;          // expected observed order
-  double max_energy;     // bound on the worst relative energy error over 10^5 steps
-  double max_world_l;    // bound on the worst relative change of world L
+  double order;        // expected observed order
+  double max_energy;   // bound on the worst relative energy error over 10^5 steps
+  double max_world_l;  // bound on the worst relative change of world L
 };
 
 class EveryIntegrator : public ::testing::TestWithParam<IntegratorExpectation> {};
@@ -308,28 +308,29 @@ TEST_P(EveryIntegrator, EnergyWorldMomentumAndOrder) {
   double e[3];
   for (int k = 0; k < 3; ++k) e[k] = (FreeOmega(x.integ, I, wr, h / (1 << k), 2.0) - exact.Omega(2.0)).norm();
   const double p1 = std::log2(e[0] / e[1]), p2 = std::log2(e[1] / e[2]);
-  EXPECT_NEAR(p1, x.order, 0.25 * x.order) << IntegratorName(x.integ) << " errors " << e[0] << " " << e[1] << " " << e[2];
-  EXPECT_NEAR(p2, x.order, 0.25 * x.order) << IntegratorName(x.integ) << " errors " << e[0] << " " << e[1] << " " << e[2];
+  EXPECT_NEAR(p1, x.order, 0.25 * x.order)
+      << IntegratorName(x.integ) << " errors " << e[0] << " " << e[1] << " " << e[2];
+  EXPECT_NEAR(p2, x.order, 0.25 * x.order)
+      << IntegratorName(x.integ) << " errors " << e[0] << " " << e[1] << " " << e[2];
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Integrators, EveryIntegrator,
-    ::testing::Values(
-        // The default holds energy and world L to 1e-12 (the bar).
-        IntegratorExpectation{Integrator::kImplicitMidpoint, 2, 1e-12, 1e-12},
-        IntegratorExpectation{Integrator::kSplitting, 2, 1e-3, 1e-12},
-        IntegratorExpectation{Integrator::kRK4, 4, 1e-9, 1e-9},
-        IntegratorExpectation{Integrator::kExplicitEuler, 1, 10.0, 1e-12},
-        IntegratorExpectation{Integrator::kQuaternionEuler, 1, 10.0, 1e-12},
-        IntegratorExpectation{Integrator::kSymplecticEuler, 1, 10.0, 1e-12},
-        IntegratorExpectation{Integrator::kImplicitGyroscopic, 1, 1.0, 10.0},
-        // Exact free flow: no truncation error at all; "order 0" means nothing to measure.
-        IntegratorExpectation{Integrator::kExactSplitting, 0, 1e-9, 1e-12}),
-    [](const ::testing::TestParamInfo<IntegratorExpectation>& p) {
-      std::string name = IntegratorName(p.param.integ);
-      for (char& c : name) c = c == '-' ? '_' : c;
-      return name;
-    });
+INSTANTIATE_TEST_SUITE_P(Integrators, EveryIntegrator,
+                         ::testing::Values(
+                             // The default holds energy and world L to 1e-12 (the bar).
+                             IntegratorExpectation{Integrator::kImplicitMidpoint, 2, 1e-12, 1e-12},
+                             IntegratorExpectation{Integrator::kSplitting, 2, 1e-3, 1e-12},
+                             IntegratorExpectation{Integrator::kRK4, 4, 1e-9, 1e-9},
+                             IntegratorExpectation{Integrator::kExplicitEuler, 1, 10.0, 1e-12},
+                             IntegratorExpectation{Integrator::kQuaternionEuler, 1, 10.0, 1e-12},
+                             IntegratorExpectation{Integrator::kSymplecticEuler, 1, 10.0, 1e-12},
+                             IntegratorExpectation{Integrator::kImplicitGyroscopic, 1, 1.0, 10.0},
+                             // Exact free flow: no truncation error at all; "order 0" means nothing to measure.
+                             IntegratorExpectation{Integrator::kExactSplitting, 0, 1e-9, 1e-12}),
+                         [](const ::testing::TestParamInfo<IntegratorExpectation>& p) {
+                           std::string name = IntegratorName(p.param.integ);
+                           for (char& c : name) c = c == '-' ? '_' : c;
+                           return name;
+                         });
 
 TEST(SeedNotes, ExplicitEulerOnRDriftsWithoutReprojection) {
   // R ← R + h[ω]×R multiplies by (E + h[ω]×), whose singular values are 1 and √(1 + h²|ω|²):
@@ -515,8 +516,9 @@ TEST(Bodies, FromMassPropertiesOfAMesh) {
   EXPECT_LT((b.position - Vector3(4, 5, 6)).norm(), 1e-12);
   const Vector3 want = 3000.0 / 12 * Vector3(1 + 4, 1 + 9, 4 + 9);  // Izz < Ixx < Iyy
   EXPECT_LT((b.inertia - Vector3(want[0], want[1], want[2])).norm(), 1e-9);
-  EXPECT_LT((b.WorldInertia() - R * Vector3(want[2], want[1], want[0]).asDiagonal() * R.transpose())
-                .cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT(
+      (b.WorldInertia() - R * Vector3(want[2], want[1], want[0]).asDiagonal() * R.transpose()).cwiseAbs().maxCoeff(),
+      1e-9);
   // Kinematics: v = v_c + ω × r; T = ½Mv² + ½ωᵀIω.
   RigidBody m = b;
   m.velocity = Vector3(1, 0, 0);
@@ -532,16 +534,19 @@ TEST(Bodies, BadInputIsRefusedWithReasons) {
   b.mass = -1;
   EXPECT_THAT([&] { w.AddBody(b); }, ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("mass")));
   b = Body(Vector3(1, 1, 3), Vector3::Zero());
-  EXPECT_THAT([&] { w.AddBody(b); },
-              ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("triangle inequality")));
+  EXPECT_THAT([&] { w.AddBody(b); }, ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("triangle inequality")));
   b = Body(Vector3(1, 2, 3), Vector3::Zero());
   b.orientation.coeffs() *= 2;
   EXPECT_THAT([&] { w.AddBody(b); }, ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("not unit")));
   b.orientation = Quaternion::Identity();
   b.velocity.x() = std::nan("");
   EXPECT_THAT([&] { w.AddBody(b); }, ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("not finite")));
-  EXPECT_THAT([&] { w.AddForce(Gravity(Vector3(0, 0, -9.81))); w.AddForce(ConstantForce(3, Vector3(1, 0, 0))); },
-              ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("refers to body 3")));
+  EXPECT_THAT(
+      [&] {
+        w.AddForce(Gravity(Vector3(0, 0, -9.81)));
+        w.AddForce(ConstantForce(3, Vector3(1, 0, 0)));
+      },
+      ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("refers to body 3")));
   EXPECT_THAT([&] { w.Step(0.0); }, ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("time step")));
   EXPECT_THROW(SpringToWorld(0, Vector3::Zero(), Vector3::Zero(), -1, 0, 0), std::invalid_argument);
   EXPECT_THROW(ParseIntegrator("verlet"), std::invalid_argument);

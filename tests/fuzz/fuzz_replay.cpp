@@ -32,8 +32,14 @@ int main(int argc, char** argv) {
         case 0: s[pos(rng)] ^= static_cast<char>(1u << (rng() % 8)); break;
         case 1: s[pos(rng)] = static_cast<char>(rng()); break;
         case 2: s.resize(pos(rng)); break;
-        case 3: { const std::size_t p = pos(rng); s.insert(p, s.substr(p, 1 + rng() % 64)); break; }
-        case 4: for (int k = 0; k < 8; ++k) s[pos(rng)] = "0123456789 -.e\n/#fv"[rng() % 19]; break;
+        case 3: {
+          const std::size_t p = pos(rng);
+          s.insert(p, s.substr(p, 1 + rng() % 64));
+          break;
+        }
+        case 4:
+          for (int k = 0; k < 8; ++k) s[pos(rng)] = "0123456789 -.e\n/#fv"[rng() % 19];
+          break;
       }
       run(s);
     }

@@ -1,7 +1,7 @@
 // libFuzzer target for every hand-written parser: the same bytes go through the STL (binary and
 // ASCII), OBJ, PLY and OFF readers, the binary-STL record path, the shape syntax, and — when they
-// parse — the topology checks and the integrators (or a small Monte-Carlo run). Any crash, sanitizer report or hang is a bug; a
-// MeshFileError or std::invalid_argument is the expected answer to bad input.
+// parse — the topology checks and the integrators (or a small Monte-Carlo run). Any crash, sanitizer report or hang is
+// a bug; a MeshFileError or std::invalid_argument is the expected answer to bad input.
 
 #include <cstddef>
 #include <cstdint>
@@ -9,9 +9,9 @@
 
 #include "massprops/implicit.h"
 #include "massprops/io.h"
-#include "massprops/monte_carlo.h"
 #include "massprops/mass_properties.h"
 #include "massprops/mesh_topology.h"
+#include "massprops/monte_carlo.h"
 #include "massprops/triangle_soup.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -48,8 +48,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     try {
       massprops::IntegrationOptions one_thread;
       one_thread.num_threads = 1;
-      massprops::IntegrateFloatTriangleRecords(data, static_cast<std::int64_t>(size / 50), 50, 12,
-                                               one_thread);
+      massprops::IntegrateFloatTriangleRecords(data, static_cast<std::int64_t>(size / 50), 50, 12, one_thread);
     } catch (const std::invalid_argument&) {
     }
   }

@@ -15,9 +15,9 @@ namespace massprops {
 namespace {
 
 using testing::ExpectMassPropertiesNear;
+using ::testing::HasSubstr;
 using testing::MatrixNearRel;
 using testing::NearRel;
-using ::testing::HasSubstr;
 
 MassProperties BoxAt(const Vector3& size, const Vector3& center, double rho) {
   return Transformed(solids::BoxProperties(size, rho), Matrix3::Identity(), center);
@@ -26,25 +26,22 @@ MassProperties BoxAt(const Vector3& size, const Vector3& center, double rho) {
 // Two unit cubes stacked along z with densities 1 and 3 (derived by hand):
 // M = 4, z_c = (0.5·1 + 1.5·3)/4 = 1.25, Izz = 4/6, Ixx = Iyy = 1·(1/6 + 0.75²) + 3·(1/6 + 0.25²).
 TEST(Composition, AssemblyOfTwoDensities) {
-  const MassProperties mp = Combine(BoxAt(Vector3(1, 1, 1), Vector3(0, 0, 0.5), 1.0),
-                                    BoxAt(Vector3(1, 1, 1), Vector3(0, 0, 1.5), 3.0));
+  const MassProperties mp =
+      Combine(BoxAt(Vector3(1, 1, 1), Vector3(0, 0, 0.5), 1.0), BoxAt(Vector3(1, 1, 1), Vector3(0, 0, 1.5), 3.0));
   EXPECT_DOUBLE_EQ(mp.mass, 4.0);
   EXPECT_DOUBLE_EQ(mp.volume, 2.0);
   EXPECT_DOUBLE_EQ(mp.density, 2.0);
   EXPECT_TRUE(MatrixNearRel(mp.center_of_mass, Vector3(0, 0, 1.25), 1e-15, 1.0));
   const double ixx = (1.0 / 6 + 0.5625) + 3 * (1.0 / 6 + 0.0625);
-  EXPECT_TRUE(MatrixNearRel(mp.inertia_com, Vector3(ixx, ixx, 4.0 / 6).asDiagonal().toDenseMatrix(),
-                            1e-15, 2.0));
+  EXPECT_TRUE(MatrixNearRel(mp.inertia_com, Vector3(ixx, ixx, 4.0 / 6).asDiagonal().toDenseMatrix(), 1e-15, 2.0));
 }
 
 // trimesh's test_cube_with_tetras: the unit cube cut into 5 tetrahedra and into 6; composing
 // the tetrahedra's properties must give I = E/6.
 TEST(Composition, CubeFromTetrahedra) {
-  const Vector3 c[8] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0},
-                        {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}};
+  const Vector3 c[8] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}};
   const int five[5][4] = {{0, 1, 2, 4}, {3, 1, 2, 7}, {5, 1, 4, 7}, {6, 2, 4, 7}, {1, 2, 4, 7}};
-  const int six[6][4] = {{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7},
-                         {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}};
+  const int six[6][4] = {{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7}, {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}};
   auto compose = [&](const auto& tets) {
     std::vector<MassProperties> parts;
     for (const auto& t : tets) {
@@ -60,8 +57,7 @@ TEST(Composition, CubeFromTetrahedra) {
 }
 
 TEST(Composition, SubtractGivesTheHollowSphere) {
-  const MassProperties hollow = Subtract(solids::SphereProperties(1.0, 2.0),
-                                         solids::SphereProperties(0.9, 2.0));
+  const MassProperties hollow = Subtract(solids::SphereProperties(1.0, 2.0), solids::SphereProperties(0.9, 2.0));
   ExpectMassPropertiesNear(hollow, solids::HollowSphereProperties(1.0, 0.9, 2.0), 1e-14, 1.0);
   // REFERENCE_VALUES.md: R = 1, r = 0.9, ρ = 1: m = 1.13516214549711, I = 0.68614059070483.
   const MassProperties ref = solids::HollowSphereProperties(1.0, 0.9, 1.0);
@@ -97,8 +93,8 @@ TEST(Composition, TransformedMatchesReintegration) {
 }
 
 TEST(Composition, ScaledMatchesReintegration) {
-  const TriangleMesh tet = solids::Tetrahedron(Vector3(0.3, 0, 0), Vector3(5, 0.2, 0),
-                                               Vector3(0, 4, 1), Vector3(1, 0, 3));
+  const TriangleMesh tet =
+      solids::Tetrahedron(Vector3(0.3, 0, 0), Vector3(5, 0.2, 0), Vector3(0, 4, 1), Vector3(1, 0, 3));
   const MassProperties mp = ComputeMassProperties(tet, 2.0);
   for (const Vector3& s : {Vector3(2, 3, 0.5), Vector3(-1, 1, 1), Vector3(1.5, 1.5, 1.5)}) {
     TriangleMesh scaled = tet;

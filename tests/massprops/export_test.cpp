@@ -32,8 +32,7 @@ std::vector<double> Numbers(const std::string& s) {
 
 MassProperties TiltedTetra() {
   std::mt19937_64 rng(1);
-  const TriangleMesh tet = solids::Tetrahedron(Vector3(0, 0, 0), Vector3(5, 0, 0),
-                                               Vector3(0, 4, 0), Vector3(0, 0, 3));
+  const TriangleMesh tet = solids::Tetrahedron(Vector3(0, 0, 0), Vector3(5, 0, 0), Vector3(0, 4, 0), Vector3(0, 0, 3));
   TriangleMesh m = tet;
   m.V = testing::Transform(tet.V, testing::RandomRotation(rng), Vector3(0.1, 0.2, 0.3));
   return ComputeMassProperties(m, 7.5);

@@ -21,9 +21,9 @@ namespace {
 
 using testing::DataPath;
 using testing::ExpectMassPropertiesNear;
+using ::testing::HasSubstr;
 using testing::MatrixNearRel;
 using testing::NearRel;
-using ::testing::HasSubstr;
 
 // numpy-stl's tests quote MeshLab for these two files (ρ = 1, 6 decimals, tensor convention).
 // MeshLab's HalfDonut Iyy (2.701025) is 1.2e-6 below the exact value for these float32
@@ -39,9 +39,8 @@ TEST(RealMeshes, HalfDonutMatchesMeshLab) {
     const MassProperties mp = ComputeMassProperties(Triangulate(m.mesh), 1.0);
     EXPECT_NEAR(mp.volume, 2.343149, 1e-6);
     EXPECT_TRUE(MatrixNearRel(mp.center_of_mass, Vector3(1.500001, 0.209472, 1.500001), 1e-6, 1.0));
-    EXPECT_TRUE(MatrixNearRel(mp.inertia_com,
-                              Vector3(1.390429, 2.701025, 1.390429).asDiagonal().toDenseMatrix(),
-                              2e-6, 1.0));
+    EXPECT_TRUE(
+        MatrixNearRel(mp.inertia_com, Vector3(1.390429, 2.701025, 1.390429).asDiagonal().toDenseMatrix(), 2e-6, 1.0));
   }
 }
 
@@ -64,10 +63,10 @@ TEST(RealMeshes, CubeCupQuadsMatchTheAnalyticPocketedCube) {
   EXPECT_FALSE(IsAllTriangles(m.mesh));
   const MeshTopology t = AnalyzeTopology(m.mesh);
   EXPECT_TRUE(t.BoundsVolume()) << t.Problems();
-  const MassProperties cube = Transformed(solids::BoxProperties(Vector3(0.1, 0.1, 0.1), 1000),
-                                          Matrix3::Identity(), Vector3(0, 0, 0.05));
-  const MassProperties pocket = Transformed(
-      solids::BoxProperties(Vector3(0.08, 0.08, 0.09), 1000), Matrix3::Identity(), Vector3(0, 0, 0.055));
+  const MassProperties cube =
+      Transformed(solids::BoxProperties(Vector3(0.1, 0.1, 0.1), 1000), Matrix3::Identity(), Vector3(0, 0, 0.05));
+  const MassProperties pocket =
+      Transformed(solids::BoxProperties(Vector3(0.08, 0.08, 0.09), 1000), Matrix3::Identity(), Vector3(0, 0, 0.055));
   const MassProperties want = Subtract(cube, pocket);
   ExpectMassPropertiesNear(ComputeMassProperties(m.mesh, 1000), want, 1e-9, 0.1);
   ExpectMassPropertiesNear(ComputeMassProperties(Triangulate(m.mesh), 1000), want, 1e-9, 0.1);
@@ -151,20 +150,17 @@ TEST_F(BadFiles, BinaryStlWithSolidHeaderAndTrailingByteIsStillBinary) {
 }
 
 TEST_F(BadFiles, AsciiStlGarbageAndNonFinite) {
-  const std::string garbage =
-      Write("garbage.stl", "solid x\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 zero\n");
+  const std::string garbage = Write("garbage.stl", "solid x\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 zero\n");
   EXPECT_THAT([&] { ReadMeshFile(garbage); },
               ::testing::ThrowsMessage<MeshFileError>(HasSubstr("line 4: expected a number")));
-  const std::string two =
-      Write("two.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\n"
-                       "endfacet\nendsolid x\n");
-  EXPECT_THAT([&] { ReadMeshFile(two); },
-              ::testing::ThrowsMessage<MeshFileError>(HasSubstr("a facet has 2 vertices")));
-  const std::string nan =
-      Write("nan.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 nan\nvertex 1 0 0\n"
-                       "vertex 0 1 0\nendloop\nendfacet\nendsolid x\n");
-  EXPECT_THAT([&] { ReadMeshFile(nan); },
-              ::testing::ThrowsMessage<MeshFileError>(HasSubstr("non-finite")));
+  const std::string two = Write("two.stl",
+                                "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\n"
+                                "endfacet\nendsolid x\n");
+  EXPECT_THAT([&] { ReadMeshFile(two); }, ::testing::ThrowsMessage<MeshFileError>(HasSubstr("a facet has 2 vertices")));
+  const std::string nan = Write("nan.stl",
+                                "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 nan\nvertex 1 0 0\n"
+                                "vertex 0 1 0\nendloop\nendfacet\nendsolid x\n");
+  EXPECT_THAT([&] { ReadMeshFile(nan); }, ::testing::ThrowsMessage<MeshFileError>(HasSubstr("non-finite")));
 }
 
 TEST_F(BadFiles, ObjFaults) {
@@ -179,16 +175,15 @@ TEST_F(BadFiles, ObjFaults) {
   EXPECT_THAT([&] { ReadMeshFile(text); },
               ::testing::ThrowsMessage<MeshFileError>(HasSubstr("expected a coordinate, got 'zero'")));
   const std::string nofaces = Write("nofaces.obj", "v 0 0 0\n# nothing else\n");
-  EXPECT_THAT([&] { ReadMeshFile(nofaces); },
-              ::testing::ThrowsMessage<MeshFileError>(HasSubstr("no faces")));
+  EXPECT_THAT([&] { ReadMeshFile(nofaces); }, ::testing::ThrowsMessage<MeshFileError>(HasSubstr("no faces")));
 }
 
 TEST_F(BadFiles, ObjSyntaxThatIsValid) {
   // Negative (relative) indices, v/vt/vn corners, CRLF, a continued line, comments, groups.
-  const std::string path = Write(
-      "valid.obj",
-      "# tetrahedron\r\no tet\r\nv 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nv 0 0 1\r\nvt 0 0\r\nvn 0 0 1\r\n"
-      "g a\r\nf 1/1/1 3/1/1 2/1/1\r\nf 1//1 2//1 \\\r\n 4//1\r\nf -4 -1 -2\r\nf 2 3 4 # last\r\n");
+  const std::string path =
+      Write("valid.obj",
+            "# tetrahedron\r\no tet\r\nv 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nv 0 0 1\r\nvt 0 0\r\nvn 0 0 1\r\n"
+            "g a\r\nf 1/1/1 3/1/1 2/1/1\r\nf 1//1 2//1 \\\r\n 4//1\r\nf -4 -1 -2\r\nf 2 3 4 # last\r\n");
   const LoadedMesh m = ReadMeshFile(path);
   EXPECT_EQ(m.mesh.num_faces(), 4);
   EXPECT_TRUE(AnalyzeTopology(m.mesh).BoundsVolume());
@@ -198,23 +193,20 @@ TEST_F(BadFiles, ObjSyntaxThatIsValid) {
 // PLY and OFF have readers of our own: an OFF box of quads and an ASCII PLY tetrahedron, and
 // binary PLY in both byte orders, with double coordinates that a float would round.
 TEST_F(BadFiles, PlyAndOffReaders) {
-  const std::string off = Write(
-      "box.off",
-      "OFF\n8 6 0\n0 0 0\n2 0 0\n0 3 0\n2 3 0\n0 0 4\n2 0 4\n0 3 4\n2 3 4\n"
-      "4 1 3 7 5\n4 0 4 6 2\n4 2 6 7 3\n4 0 1 5 4\n4 4 5 7 6\n4 0 2 3 1\n");
+  const std::string off = Write("box.off",
+                                "OFF\n8 6 0\n0 0 0\n2 0 0\n0 3 0\n2 3 0\n0 0 4\n2 0 4\n0 3 4\n2 3 4\n"
+                                "4 1 3 7 5\n4 0 4 6 2\n4 2 6 7 3\n4 0 1 5 4\n4 4 5 7 6\n4 0 2 3 1\n");
   const LoadedMesh box = ReadMeshFile(off);
   EXPECT_EQ(box.format, "off");
   EXPECT_FALSE(box.float32_coordinates);
   EXPECT_TRUE(AnalyzeTopology(box.mesh).BoundsVolume());
-  ExpectMassPropertiesNear(ComputeMassProperties(box.mesh, 1.0),
-                           Transformed(solids::BoxProperties(Vector3(2, 3, 4), 1.0),
-                                       Matrix3::Identity(), Vector3(1, 1.5, 2)),
-                           1e-15, 4.0);
-  const std::string ply = Write(
-      "tet.ply",
-      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
-      "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
-      "0 0 0\n5 0 0\n0 4 0\n0 0 3\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+  ExpectMassPropertiesNear(
+      ComputeMassProperties(box.mesh, 1.0),
+      Transformed(solids::BoxProperties(Vector3(2, 3, 4), 1.0), Matrix3::Identity(), Vector3(1, 1.5, 2)), 1e-15, 4.0);
+  const std::string ply = Write("tet.ply",
+                                "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                                "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
+                                "0 0 0\n5 0 0\n0 4 0\n0 0 3\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
   const MassProperties tet = ComputeMassProperties(ReadMeshFile(ply).mesh, 1.0);
   EXPECT_TRUE(NearRel(tet.volume, 10.0, 1e-15));
   EXPECT_TRUE(MatrixNearRel(tet.center_of_mass, Vector3(1.25, 1.0, 0.75), 1e-15, 1.0));
@@ -263,8 +255,7 @@ TEST_F(BadFiles, PlyAndOffReaders) {
   const MassProperties mle = ComputeMassProperties(le.mesh, 1.0);
   EXPECT_TRUE(NearRel(mle.volume, 10.0, 1e-10));
   const double shift = 1e5 + 1.0 / 3.0;
-  EXPECT_TRUE(MatrixNearRel(mle.center_of_mass, Vector3(1.25 + shift, 1.0 + shift, 0.75 + shift),
-                            1e-15, shift));
+  EXPECT_TRUE(MatrixNearRel(mle.center_of_mass, Vector3(1.25 + shift, 1.0 + shift, 0.75 + shift), 1e-15, shift));
   const LoadedMesh be = ReadMeshFile(Write("be.ply", binary_ply(true, false)));
   EXPECT_TRUE(be.float32_coordinates);
   EXPECT_TRUE(NearRel(ComputeMassProperties(be.mesh, 1.0).volume, 10.0, 1e-15));

@@ -16,8 +16,8 @@
 namespace massprops {
 namespace {
 
-using ::testing::HasSubstr;
 using testing::DataPath;
+using ::testing::HasSubstr;
 using testing::NearRel;
 
 // The T-handle of data/meshes: a crossbar 0.08 × 0.02 × 0.02 m (centre y = 0.01) on a shaft
@@ -38,7 +38,8 @@ TEST(Units, OneTable) {
   EXPECT_EQ(MetresPerUnit(LengthUnit::kFoot), 0.3048);
   for (LengthUnit u : kAllLengthUnits) EXPECT_EQ(ParseLengthUnit(UnitName(u)), u);
   EXPECT_FALSE(FindLengthUnit("furlong"));
-  EXPECT_THAT([] { ParseLengthUnit("furlong"); }, ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("m, cm, mm, in, ft")));
+  EXPECT_THAT([] { ParseLengthUnit("furlong"); },
+              ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("m, cm, mm, in, ft")));
 }
 
 TEST(MassSpec, DensityOrMass) {
@@ -54,9 +55,10 @@ TEST(MassSpec, DensityOrMass) {
 
 TEST(Primitives, ClosedFormTessellationAndImplicitFormAgree) {
   namespace pr = primitive;
-  const std::vector<Primitive> all = {pr::Box{Vector3(1, 2, 3)}, pr::Sphere{0.5},  pr::Ellipsoid{Vector3(1, 0.5, 0.25)},
-                                      pr::Cylinder{0.3, 1.0},    pr::Cone{0.4, 1.2}, pr::Torus{1.0, 0.25},
-                                      pr::Capsule{0.2, 0.6}};
+  const std::vector<Primitive> all = {
+      pr::Box{Vector3(1, 2, 3)}, pr::Sphere{0.5},    pr::Ellipsoid{Vector3(1, 0.5, 0.25)},
+      pr::Cylinder{0.3, 1.0},    pr::Cone{0.4, 1.2}, pr::Torus{1.0, 0.25},
+      pr::Capsule{0.2, 0.6}};
   ASSERT_EQ(all.size(), std::size(kPrimitiveNames));
   for (const Primitive& p : all) {
     SCOPED_TRACE(PrimitiveName(p));
@@ -79,7 +81,11 @@ TEST(Primitives, ClosedFormTessellationAndImplicitFormAgree) {
     EXPECT_FALSE(solid->Inside(solid->Bounds().max() + Vector3::Constant(0.01)));
   }
   EXPECT_EQ(Describe(pr::Box{Vector3(1, 2, 3)}), "box 1 x 2 x 3 m");
-  EXPECT_THAT([] { Validate(pr::Torus{1, 2}); }, ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("minor radius")));
+  EXPECT_THAT(
+      [] {
+        Validate(pr::Torus{1, 2});
+      },
+      ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("minor radius")));
   EXPECT_THROW(ClosedForm(pr::Sphere{-1}, 1.0), std::invalid_argument);
 }
 
@@ -191,7 +197,8 @@ TEST(EstimateImplicit, ATorusWithinItsErrorBars) {
   EXPECT_EQ(r.model, ModelKind::kImplicit);
   EXPECT_EQ(r.source, "torus(R=1, r=0.25)");
   EXPECT_LT(std::abs(r.mp.volume - exact.volume), 4.5 * r.estimate->standard_error.volume);
-  EXPECT_LT(std::abs(r.mp.inertia_com(2, 2) - exact.inertia_com(2, 2)), 4.5 * r.estimate->standard_error.inertia_com(2, 2));
+  EXPECT_LT(std::abs(r.mp.inertia_com(2, 2) - exact.inertia_com(2, 2)),
+            4.5 * r.estimate->standard_error.inertia_com(2, 2));
 }
 
 }  // namespace

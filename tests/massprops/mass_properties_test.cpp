@@ -17,9 +17,9 @@ namespace massprops {
 namespace {
 
 using testing::ExpectMassPropertiesNear;
+using ::testing::HasSubstr;
 using testing::MatrixNearRel;
 using testing::NearRel;
-using ::testing::HasSubstr;
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
@@ -36,8 +36,7 @@ TEST(TrianglePath, UnitCube) {
 // Reference: REFERENCE_VALUES.md (exact rationals); positive off-diagonals because the products of
 // inertia are negative.
 TEST(TrianglePath, MirtichTetra) {
-  const TriangleMesh tet = solids::Tetrahedron(Vector3(0, 0, 0), Vector3(5, 0, 0),
-                                               Vector3(0, 4, 0), Vector3(0, 0, 3));
+  const TriangleMesh tet = solids::Tetrahedron(Vector3(0, 0, 0), Vector3(5, 0, 0), Vector3(0, 4, 0), Vector3(0, 0, 3));
   const MassProperties mp = ComputeMassProperties(tet, 1.0);
   EXPECT_TRUE(NearRel(mp.volume, 10.0, 1e-14));
   EXPECT_TRUE(MatrixNearRel(mp.center_of_mass, Vector3(1.25, 1.0, 0.75), 1e-14, 1.0));
@@ -50,9 +49,8 @@ TEST(TrianglePath, MirtichTetra) {
 // Values recomputed exactly from the printed decimals (REFERENCE_VALUES.md); the paper's own
 // printed values agree to 1e-7 with its b'/c' naming swapped.
 TEST(TrianglePath, TononTetrahedron) {
-  const TriangleMesh tet = solids::Tetrahedron(
-      Vector3(8.3322, -11.86875, 0.93355), Vector3(0.75523, 5, 16.37072),
-      Vector3(52.61236, 5, -5.3858), Vector3(2, 5, 3));
+  const TriangleMesh tet = solids::Tetrahedron(Vector3(8.3322, -11.86875, 0.93355), Vector3(0.75523, 5, 16.37072),
+                                               Vector3(52.61236, 5, -5.3858), Vector3(2, 5, 3));
   const MassProperties mp = ComputeMassProperties(tet, 1.0);
   EXPECT_TRUE(NearRel(mp.volume, 1873.23336421647, 1e-12));
   EXPECT_TRUE(MatrixNearRel(mp.center_of_mass, Vector3(15.9249475, 0.7828125, 3.7296175), 1e-12, 16));
@@ -128,8 +126,7 @@ TEST(TrianglePath, NearbyReferencePointKeepsDigitsThatTheOriginLoses) {
   TriangleMesh box = Triangulate(solids::Box(Vector3(1, 2, 3)));
   const Vector3 t(1e5, -1e5, 1e5);  // exactly representable shift: the input is not rounded
   box.V = testing::Transform(box.V, Matrix3::Identity(), t);
-  const MassProperties exact = testing::Moved(solids::BoxProperties(Vector3(1, 2, 3), 1.0),
-                                              Matrix3::Identity(), t);
+  const MassProperties exact = testing::Moved(solids::BoxProperties(Vector3(1, 2, 3), 1.0), Matrix3::Identity(), t);
   const MassProperties good = ComputeMassProperties(box, 1.0);
   IntegrationOptions about_origin;
   about_origin.reference = Vector3::Zero();
@@ -153,8 +150,7 @@ TEST(TrianglePath, InvertedMeshGivesNegativeVolumeAndIsFlaggedInvalid) {
 }
 
 TEST(TrianglePath, VolumeIntegralsShiftExactly) {
-  const TriangleMesh tet = solids::Tetrahedron(Vector3(0, 0, 0), Vector3(5, 0, 0),
-                                               Vector3(0, 4, 0), Vector3(0, 0, 3));
+  const TriangleMesh tet = solids::Tetrahedron(Vector3(0, 0, 0), Vector3(5, 0, 0), Vector3(0, 4, 0), Vector3(0, 0, 3));
   IntegrationOptions at_a, at_b;
   at_a.reference = Vector3(1, 2, 3);
   at_b.reference = Vector3(-4, 0.5, 2);
@@ -176,8 +172,7 @@ TEST(TrianglePath, SameBitsForAnyThreadCount) {
   for (int threads : {2, 3, 4, 8, 0}) {
     IntegrationOptions opt;
     opt.num_threads = threads;
-    EXPECT_TRUE(testing::SameBits(ComputeMassProperties(moved, 7.8, opt), ref))
-        << threads << " threads";
+    EXPECT_TRUE(testing::SameBits(ComputeMassProperties(moved, 7.8, opt), ref)) << threads << " threads";
   }
 }
 
@@ -203,8 +198,7 @@ TEST(TrianglePath, RejectsIndexOutOfRangeNamingTheFace) {
 
 TEST(TrianglePath, RejectsBadDensityAndZeroVolume) {
   const TriangleMesh tet = solids::RegularTetrahedron(1.0);
-  for (double rho : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(),
-                     std::numeric_limits<double>::infinity()}) {
+  for (double rho : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
     EXPECT_THAT([&] { ComputeMassProperties(tet, rho); },
                 ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("density")));
   }

@@ -15,9 +15,9 @@ namespace massprops {
 namespace {
 
 using testing::ExpectMassPropertiesNear;
+using ::testing::HasSubstr;
 using testing::MatrixNearRel;
 using testing::NearRel;
-using ::testing::HasSubstr;
 
 // Mirtich's `cube` (side 20, centred, quad faces): V = 8000, I = 1600000/3 · E.
 TEST(PolygonPath, MirtichCube) {
@@ -29,8 +29,7 @@ TEST(PolygonPath, MirtichCube) {
 }
 
 TEST(PolygonPath, MirtichTetra) {
-  const TriangleMesh tet = solids::Tetrahedron(Vector3(0, 0, 0), Vector3(5, 0, 0),
-                                               Vector3(0, 4, 0), Vector3(0, 0, 3));
+  const TriangleMesh tet = solids::Tetrahedron(Vector3(0, 0, 0), Vector3(5, 0, 0), Vector3(0, 4, 0), Vector3(0, 0, 3));
   const MassProperties mp = ComputeMassProperties(ToPolygonMesh(tet), 1.0);
   EXPECT_TRUE(NearRel(mp.volume, 10.0, 1e-14));
   Matrix3 want;
@@ -50,8 +49,7 @@ TEST(PolygonPath, RegularPrismWithNgonCapsUnderRigidMotions) {
     moved.V = testing::Transform(prism.V, R, t);
     const double tol = 1e-12 + 8 * std::numeric_limits<double>::epsilon() * distance / 0.7;
     SCOPED_TRACE(distance);
-    ExpectMassPropertiesNear(ComputeMassProperties(moved, 3.0), testing::Moved(exact, R, t), tol,
-                             1.0);
+    ExpectMassPropertiesNear(ComputeMassProperties(moved, 3.0), testing::Moved(exact, R, t), tol, 1.0);
   }
 }
 
@@ -70,10 +68,10 @@ TEST(PolygonPath, ConcaveHexagonCaps) {
   L.AddFace(std::vector<int>{6, 7, 8, 9, 10, 11});
   for (int k = 0; k < 6; ++k) L.AddFace(std::vector<int>{k, (k + 1) % 6, 6 + (k + 1) % 6, 6 + k});
 
-  const MassProperties a = Transformed(solids::BoxProperties(Vector3(3, 1, 0.5), 2.0),
-                                       Matrix3::Identity(), Vector3(1.5, 0.5, 0.25));
-  const MassProperties b = Transformed(solids::BoxProperties(Vector3(1, 1, 0.5), 2.0),
-                                       Matrix3::Identity(), Vector3(0.5, 1.5, 0.25));
+  const MassProperties a =
+      Transformed(solids::BoxProperties(Vector3(3, 1, 0.5), 2.0), Matrix3::Identity(), Vector3(1.5, 0.5, 0.25));
+  const MassProperties b =
+      Transformed(solids::BoxProperties(Vector3(1, 1, 0.5), 2.0), Matrix3::Identity(), Vector3(0.5, 1.5, 0.25));
   const MassProperties want = Combine(a, b);
   ExpectMassPropertiesNear(ComputeMassProperties(L, 2.0), want, 1e-14, 3.0);
 }

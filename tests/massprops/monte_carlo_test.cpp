@@ -40,16 +40,19 @@ MonteCarloOptions Mc(std::int64_t samples, std::uint64_t seed = 1) {
 }
 
 // |estimate − truth| within k standard errors (plus rounding), field by field.
-void ExpectWithinErrorBars(const MassPropertiesEstimate& e, const MassProperties& truth, double k, const std::string& what) {
+void ExpectWithinErrorBars(const MassPropertiesEstimate& e, const MassProperties& truth, double k,
+                           const std::string& what) {
   const auto& v = e.value;
   const auto& s = e.standard_error;
   const double tiny = 1e-12 * std::abs(truth.mass);
-  EXPECT_LE(std::abs(v.volume - truth.volume), k * s.volume + tiny) << what << " volume " << v.volume << " vs " << truth.volume;
+  EXPECT_LE(std::abs(v.volume - truth.volume), k * s.volume + tiny)
+      << what << " volume " << v.volume << " vs " << truth.volume;
   EXPECT_LE(std::abs(v.mass - truth.mass), k * s.mass + tiny) << what << " mass";
   const double len = std::cbrt(std::abs(truth.volume));
   for (int i = 0; i < 3; ++i) {
     EXPECT_LE(std::abs(v.center_of_mass[i] - truth.center_of_mass[i]), k * s.center_of_mass[i] + 1e-12 * len)
-        << what << " com " << i << ": " << v.center_of_mass[i] << " vs " << truth.center_of_mass[i] << " se " << s.center_of_mass[i];
+        << what << " com " << i << ": " << v.center_of_mass[i] << " vs " << truth.center_of_mass[i] << " se "
+        << s.center_of_mass[i];
     for (int j = 0; j < 3; ++j) {
       EXPECT_LE(std::abs(v.inertia_com(i, j) - truth.inertia_com(i, j)),
                 k * s.inertia_com(i, j) + 1e-12 * truth.inertia_com.cwiseAbs().maxCoeff())
@@ -59,7 +62,8 @@ void ExpectWithinErrorBars(const MassPropertiesEstimate& e, const MassProperties
   }
   const Vector3 p = ComputePrincipalInertia(truth.inertia_com).moments;
   for (int i = 0; i < 3; ++i) {
-    EXPECT_LE(std::abs(e.principal_moments[i] - p[i]), k * e.principal_moments_se[i] + 1e-12 * p[2]) << what << " principal " << i;
+    EXPECT_LE(std::abs(e.principal_moments[i] - p[i]), k * e.principal_moments_se[i] + 1e-12 * p[2])
+        << what << " principal " << i;
   }
 }
 
@@ -87,12 +91,14 @@ TEST(Implicit, EveryBuiltInSolidAgainstItsClosedForm) {
 TEST(Implicit, CsgAndTransformsAgainstClosedForms) {
   // A 2 m cube with an off-centre spherical cavity: Subtract of the closed forms.
   const ImplicitPtr s = implicit::ParseShape("difference(box(x=2, y=2, z=2), move(sphere(r=0.6), x=0.3, y=-0.2))");
-  const MassProperties truth = Subtract(solids::BoxProperties(Vector3(2, 2, 2), 1.0),
-                                        Transformed(solids::SphereProperties(0.6, 1.0), Matrix3::Identity(), Vector3(0.3, -0.2, 0)));
+  const MassProperties truth =
+      Subtract(solids::BoxProperties(Vector3(2, 2, 2), 1.0),
+               Transformed(solids::SphereProperties(0.6, 1.0), Matrix3::Identity(), Vector3(0.3, -0.2, 0)));
   ExpectWithinErrorBars(EstimateMassProperties(*s, 1.0, Qmc(1 << 20)), truth, 4.5, s->Describe());
   // A turned, scaled, moved ellipsoid: products of inertia are not zero.
   const Matrix3 R = Eigen::AngleAxisd(0.7, Vector3(1, 2, 3).normalized()).toRotationMatrix();
-  const ImplicitPtr t = implicit::Transformed(implicit::Scaled(implicit::Ellipsoid(Vector3(1, 0.5, 0.25)), 2.0), R, Vector3(5, 6, 7));
+  const ImplicitPtr t =
+      implicit::Transformed(implicit::Scaled(implicit::Ellipsoid(Vector3(1, 0.5, 0.25)), 2.0), R, Vector3(5, 6, 7));
   const MassProperties et = Transformed(solids::EllipsoidProperties(Vector3(2, 1, 0.5), 1.0), R, Vector3(5, 6, 7));
   ExpectWithinErrorBars(EstimateMassProperties(*t, 1.0, Mc(1 << 20)), et, 4.5, "moved ellipsoid (MC)");
   // Union of disjoint parts and an intersection with a known answer (a half sphere).
@@ -174,7 +180,8 @@ TEST(Estimators, MeasuredConvergenceRates) {
       double ss = 0;
       const int seeds = 40;
       for (int s = 1; s <= seeds; ++s) {
-        const auto e = EstimateMassProperties(*sphere, 1.0, qmc ? Qmc(n, static_cast<std::uint64_t>(s), 2) : Mc(n, static_cast<std::uint64_t>(s)));
+        const auto e = EstimateMassProperties(
+            *sphere, 1.0, qmc ? Qmc(n, static_cast<std::uint64_t>(s), 2) : Mc(n, static_cast<std::uint64_t>(s)));
         ss += (e.value.volume - truth) * (e.value.volume - truth);
       }
       logn.push_back(std::log(static_cast<double>(n)));
@@ -185,7 +192,8 @@ TEST(Estimators, MeasuredConvergenceRates) {
     const double count = static_cast<double>(logn.size());
     for (std::size_t i = 0; i < logn.size(); ++i) mx += logn[i] / count, my += logerr[i] / count;
     double sxy = 0, sxx = 0;
-    for (std::size_t i = 0; i < logn.size(); ++i) sxy += (logn[i] - mx) * (logerr[i] - my), sxx += (logn[i] - mx) * (logn[i] - mx);
+    for (std::size_t i = 0; i < logn.size(); ++i)
+      sxy += (logn[i] - mx) * (logerr[i] - my), sxx += (logn[i] - mx) * (logn[i] - mx);
     const double slope = sxy / sxx;
     std::printf("%s: RMS error slope %.3f\n", qmc ? "QMC" : "MC", slope);
     RecordProperty(qmc ? "qmc_slope" : "mc_slope", std::to_string(slope));
@@ -229,7 +237,8 @@ TEST(WindingNumber, ClosedMeshWithHolesAndFarAwayAgreesWithTheExactResult) {
   ExpectWithinErrorBars(closed, polyhedral, 4.5, "closed torus");
   // Five triangles removed: no exact polyhedral answer any more; the winding number still agrees.
   TriangleMesh holed = torus;
-  for (int f : {10, 200, 555, 901, 1500}) holed.F.row(f) = holed.F.row(holed.F.rows() - 1), holed.F.conservativeResize(holed.F.rows() - 1, 3);
+  for (int f : {10, 200, 555, 901, 1500})
+    holed.F.row(f) = holed.F.row(holed.F.rows() - 1), holed.F.conservativeResize(holed.F.rows() - 1, 3);
   const MassPropertiesEstimate open = EstimateMassProperties(*implicit::WindingNumberSolid(holed), 1.0, Qmc(1 << 18));
   ExpectWithinErrorBars(open, polyhedral, 4.5, "torus with 5 holes");
   // Far from the origin: the same answer, moved.
@@ -239,7 +248,8 @@ TEST(WindingNumber, ClosedMeshWithHolesAndFarAwayAgreesWithTheExactResult) {
   const MassPropertiesEstimate moved = EstimateMassProperties(*implicit::WindingNumberSolid(far), 1.0, Qmc(1 << 18));
   EXPECT_NEAR(moved.value.mass, open.value.mass, 1e-6 * open.value.mass);
   EXPECT_TRUE(testing::MatrixNearRel(moved.value.center_of_mass - shift, open.value.center_of_mass, 1e-6, 1));
-  EXPECT_TRUE(testing::MatrixNearRel(moved.value.inertia_com, open.value.inertia_com, 1e-6, open.value.inertia_com.norm()));
+  EXPECT_TRUE(
+      testing::MatrixNearRel(moved.value.inertia_com, open.value.inertia_com, 1e-6, open.value.inertia_com.norm()));
 }
 
 TEST(Estimators, SameBitsForAnyThreadCount) {

@@ -14,9 +14,9 @@
 namespace massprops {
 namespace {
 
+using ::testing::HasSubstr;
 using testing::MatrixNearRel;
 using testing::NearRel;
-using ::testing::HasSubstr;
 
 // Checks the documented convention on a decomposition.
 void ExpectConvention(const PrincipalInertia& p) {
@@ -80,8 +80,7 @@ TEST(PrincipalAxes, BodyOfRevolutionHasItsAxisAndADeterministicPair) {
   const Matrix3 I = R * cyl.inertia_com * R.transpose();
   const PrincipalInertia q = ComputePrincipalInertia(0.5 * (I + I.transpose()));
   EXPECT_NEAR(std::fabs(q.axes.col(0).dot(R.col(2))), 1.0, 1e-12);
-  EXPECT_TRUE(MatrixNearRel(q.axes * q.moments.asDiagonal() * q.axes.transpose(), I, 1e-13,
-                            I.cwiseAbs().maxCoeff()));
+  EXPECT_TRUE(MatrixNearRel(q.axes * q.moments.asDiagonal() * q.axes.transpose(), I, 1e-13, I.cwiseAbs().maxCoeff()));
   ExpectConvention(q);
 }
 
@@ -98,8 +97,7 @@ TEST(PrincipalAxes, BodyFrameDiagonalizesTheMesh) {
   in_body.V = testing::Transform(mesh.V, body.rotation, body.translation);
   const MassProperties b = ComputeMassProperties(in_body, 1200.0);
   EXPECT_TRUE(MatrixNearRel(b.center_of_mass, Vector3::Zero(), 1e-13, 2.0));
-  EXPECT_TRUE(MatrixNearRel(b.inertia_com, Matrix3(p.moments.asDiagonal()), 1e-12,
-                            p.moments[2]));
+  EXPECT_TRUE(MatrixNearRel(b.inertia_com, Matrix3(p.moments.asDiagonal()), 1e-12, p.moments[2]));
   // And the inverse is the seed notes' x = R x0 + x_c.
   const RigidTransform back = body.Inverse();
   EXPECT_TRUE(MatrixNearRel(back.rotation, p.axes, 0.0, 1.0));
@@ -116,8 +114,8 @@ TEST(PrincipalAxes, PhysicalValidity) {
   EXPECT_FALSE(CheckPhysicallyValid(Vector3(-1, 2, 2)).valid);
   EXPECT_FALSE(CheckPhysicallyValid(Vector3(std::nan(""), 2, 2)).valid);
   // Every generated solid passes.
-  for (const TriangleMesh& m : {solids::Sphere(1, 8), solids::Torus(2, 0.5, 8),
-                                solids::Cone(1, 3, 8), solids::Capsule(0.5, 2, 8)}) {
+  for (const TriangleMesh& m :
+       {solids::Sphere(1, 8), solids::Torus(2, 0.5, 8), solids::Cone(1, 3, 8), solids::Capsule(0.5, 2, 8)}) {
     const MassProperties mp = ComputeMassProperties(m, 1.0);
     EXPECT_TRUE(CheckPhysicallyValid(ComputePrincipalInertia(mp.inertia_com).moments).valid);
   }

@@ -69,7 +69,7 @@ TEST(Repair, ToleranceWeldClosesCadCracks) {
 
 TEST(Repair, DropsDegenerateAndDuplicateFaces) {
   PolygonMesh box = ToPolygonMesh(Triangulate(solids::Box(Vector3(1, 2, 3))));
-  box.AddFace(std::vector<int>{0, 1, 1});                                   // degenerate
+  box.AddFace(std::vector<int>{0, 1, 1});                                         // degenerate
   box.AddFace(std::vector<int>{box.indices[0], box.indices[1], box.indices[2]});  // duplicate
   const RepairedMesh out = RepairMesh(box);
   EXPECT_EQ(out.report.removed_faces, 2);

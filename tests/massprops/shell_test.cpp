@@ -30,7 +30,8 @@ TEST(Shell, UnitCubeAndBox123MatchTheReferenceTable) {
   EXPECT_TRUE(MatrixNearRel(cube.inertia_com, Matrix3(Vector3::Constant(5.0 / 3).asDiagonal()), 1e-14, 1));
   const MassProperties box = Shell(solids::Box(Vector3(1, 2, 3)));
   EXPECT_TRUE(NearRel(box.surface_area, 22.0, 1e-15));
-  EXPECT_TRUE(MatrixNearRel(box.inertia_com, Matrix3(Vector3(33.8333333333333, 26.3333333333333, 15.1666666666667).asDiagonal()), 1e-13, 34));
+  EXPECT_TRUE(MatrixNearRel(
+      box.inertia_com, Matrix3(Vector3(33.8333333333333, 26.3333333333333, 15.1666666666667).asDiagonal()), 1e-13, 34));
 }
 
 TEST(Shell, ClosedCylinderConvergesToTheReference) {
@@ -38,9 +39,9 @@ TEST(Shell, ClosedCylinderConvergesToTheReference) {
   double prev = 1;
   for (int n : {90, 180, 360}) {
     const MassProperties c = Shell(ToPolygonMesh(solids::Cylinder(1, 2, n)));
-    const double err = std::max({std::abs(c.surface_area / 18.8495559215388 - 1),
-                                 std::abs(c.inertia_com(0, 0) / 18.3259571459405 - 1),
-                                 std::abs(c.inertia_com(2, 2) / 15.707963267949 - 1)});
+    const double err =
+        std::max({std::abs(c.surface_area / 18.8495559215388 - 1), std::abs(c.inertia_com(0, 0) / 18.3259571459405 - 1),
+                  std::abs(c.inertia_com(2, 2) / 15.707963267949 - 1)});
     EXPECT_LT(err, prev / 3.5) << n;  // second order: error / 4 per halving of the edge
     prev = err;
   }
@@ -54,9 +55,11 @@ TEST(Shell, OpenBoxWithoutItsTopAgainstHandIntegration) {
   open.V = box.V;
   for (std::int64_t f = 0; f < box.num_faces(); ++f) {
     Vector3 n = Vector3::Zero();
-    for (std::int64_t k = box.offsets[f]; k < box.offsets[f + 1]; ++k) n += box.V.row(box.indices[static_cast<std::size_t>(k)]).transpose();
+    for (std::int64_t k = box.offsets[f]; k < box.offsets[f + 1]; ++k)
+      n += box.V.row(box.indices[static_cast<std::size_t>(k)]).transpose();
     if (n.z() > 1.5) continue;  // the four corners of the top face sum to z = 2
-    open.AddFace(std::vector<std::int32_t>(box.indices.begin() + box.offsets[f], box.indices.begin() + box.offsets[f + 1]));
+    open.AddFace(
+        std::vector<std::int32_t>(box.indices.begin() + box.offsets[f], box.indices.begin() + box.offsets[f + 1]));
   }
   ASSERT_EQ(open.num_faces(), 5);
   const MassProperties s = Shell(open, 2.0);
@@ -106,8 +109,8 @@ TEST(Wall, HollowBoxIsExact) {
   const double t = 0.01;
   const PolygonMesh wall = WallSolid(solids::Box(size), t);
   const MassProperties got = ComputeMassProperties(wall, 2700.0);
-  const MassProperties want = Subtract(solids::BoxProperties(size, 2700.0),
-                                       solids::BoxProperties(size - Vector3::Constant(2 * t), 2700.0));
+  const MassProperties want =
+      Subtract(solids::BoxProperties(size, 2700.0), solids::BoxProperties(size - Vector3::Constant(2 * t), 2700.0));
   testing::ExpectMassPropertiesNear(got, want, 1e-12, 0.3);
   // The triangulated box (several triangles per face, still three planes per corner): exact too.
   const PolygonMesh tri = ToPolygonMesh(Triangulate(solids::Box(size)));
@@ -120,7 +123,8 @@ TEST(Wall, HollowSphereConvergesToTheThickShellClosedForm) {
   double prev = 1;
   for (int n : {32, 64, 128}) {
     const MassProperties got = ComputeMassProperties(WallSolid(ToPolygonMesh(solids::Sphere(R, n)), t), 1.0);
-    const double err = std::max(std::abs(got.mass / want.mass - 1), std::abs(got.inertia_com(0, 0) / want.inertia_com(0, 0) - 1));
+    const double err =
+        std::max(std::abs(got.mass / want.mass - 1), std::abs(got.inertia_com(0, 0) / want.inertia_com(0, 0) - 1));
     EXPECT_LT(err, prev / 3.0) << n;
     prev = err;
   }

@@ -132,8 +132,7 @@ TEST(TriangleSoup, RejectsNonFiniteNamingTheTriangle) {
   std::string bytes = StlBytes(OffsetTorus());
   const float nan = std::numeric_limits<float>::quiet_NaN();
   std::memcpy(&bytes[84 + 50 * 5000 + 12 + 4 * 7], &nan, 4);
-  EXPECT_THAT([&] { Soup(bytes); },
-              ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("triangle 5000")));
+  EXPECT_THAT([&] { Soup(bytes); }, ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("triangle 5000")));
 }
 
 }  // namespace

@@ -13,8 +13,8 @@
 
 #include "dynamics/free_rigid_body.h"
 #include "massprops/solids.h"
-#include "outputs.h"
 #include "massprops/text.h"
+#include "outputs.h"
 #include "scene.h"
 #include "simulation.h"
 #include "test_utils.h"
@@ -57,7 +57,8 @@ TEST(Scene, ErrorsNameTheFieldAndTheReason) {
   struct Case {
     std::string scene, expect;
   } cases[] = {
-      {OneBody(std::string(kBox) + R"(, "densty": 3)"), "test.json: bodies[0]: unknown key 'densty' (did you mean 'density'?)"},
+      {OneBody(std::string(kBox) + R"(, "densty": 3)"),
+       "test.json: bodies[0]: unknown key 'densty' (did you mean 'density'?)"},
       {OneBody(kBox, R"("dtt": 0.1, )"), "unknown key 'dtt' (did you mean 'dt'?)"},
       {OneBody(std::string(kBox) + R"(, "mass": -2)"), "bodies[0].mass: must be positive (got -2)"},
       {OneBody(std::string(kBox) + R"(, "density": 0)"), "bodies[0].density: must be positive (got 0)"},
@@ -69,28 +70,37 @@ TEST(Scene, ErrorsNameTheFieldAndTheReason) {
       {OneBody(R"("solid": {"type": "bx", "size": [1, 1, 1]})"), "bodies[0].solid.type: 'bx' is not one of"},
       {OneBody(R"("solid": {"type": "box"})"), "bodies[0].solid.size: is required"},
       {OneBody(R"("solid": {"type": "box", "size": [1, -1, 1]})"), "bodies[0].solid.size[1]: must be positive"},
-      {OneBody(R"("solid": {"type": "torus", "major_radius": 1, "minor_radius": 2})"), "minor_radius: must be smaller than major_radius"},
+      {OneBody(R"("solid": {"type": "torus", "major_radius": 1, "minor_radius": 2})"),
+       "minor_radius: must be smaller than major_radius"},
       {OneBody(kBox, R"("dt": "0.1", )"), "test.json: dt: must be a number, not a string"},
       {OneBody(kBox, R"("dt": -0.1, )"), "dt: must be positive (got -0.1)"},
       {OneBody(kBox, R"("dt": 2, "duration": 1, )"), "dt: the step (2 s) is longer than the duration (1 s)"},
       {OneBody(kBox, R"("integrator": "rk5", )"), "integrator: 'rk5' is not one of"},
       {OneBody(kBox, R"("outputs": ["csv", "gif"], )"), "outputs[1]: unknown output 'gif'"},
-      {OneBody(std::string(kBox) + R"(, "orientation": [0, 0, 0, 0])"), "bodies[0].orientation: the quaternion is zero"},
+      {OneBody(std::string(kBox) + R"(, "orientation": [0, 0, 0, 0])"),
+       "bodies[0].orientation: the quaternion is zero"},
       {OneBody(std::string(kBox) + R"(, "orientation": [1, 0, 0])"), "a quaternion is 4 numbers"},
       {OneBody(std::string(kBox) + R"(, "velocity": [1, 2])"), "bodies[0].velocity: must be an array of 3 numbers"},
-      {OneBody(std::string(kBox) + R"(, "angular_velocity_frame": "local")"), "'local' is not one of world, body, principal"},
+      {OneBody(std::string(kBox) + R"(, "angular_velocity_frame": "local")"),
+       "'local' is not one of world, body, principal"},
       {OneBody(std::string(kBox) + R"(, "color": [2, 0, 0])"), "bodies[0].color: components are between 0 and 1"},
       {R"({"bodies": []})", "bodies: must be a non-empty array"},
       {R"({"bodies": [{"name": "a", "solid": {"type": "sphere", "radius": 1}},
-                      {"name": "a", "solid": {"type": "sphere", "radius": 1}}]})", "bodies[1].name: 'a' is used by another body"},
-      {OneBody(std::string(kBox) + R"(, "name": "crate")", R"("forces": [{"type": "spring", "body": "crat", "anchor": [0, 0, 0], "k": 1}], )"),
+                      {"name": "a", "solid": {"type": "sphere", "radius": 1}}]})",
+       "bodies[1].name: 'a' is used by another body"},
+      {OneBody(std::string(kBox) + R"(, "name": "crate")",
+               R"("forces": [{"type": "spring", "body": "crat", "anchor": [0, 0, 0], "k": 1}], )"),
        "forces[0].body: no body is named 'crat' (did you mean 'crate'?)"},
-      {OneBody(kBox, R"("forces": [{"type": "spring", "body": 3, "anchor": [0, 0, 0], "k": 1}], )"), "body index 3 is out of range"},
+      {OneBody(kBox, R"("forces": [{"type": "spring", "body": 3, "anchor": [0, 0, 0], "k": 1}], )"),
+       "body index 3 is out of range"},
       {OneBody(kBox, R"("forces": [{"type": "spring", "body": 0, "k": 1}], )"), "forces[0].anchor: is required"},
-      {OneBody(kBox, R"("forces": [{"type": "spring", "body": 0, "anchor": [0, 0, 0], "k": -1}], )"), "forces[0].k: must not be negative"},
-      {OneBody(kBox, R"("forces": [{"type": "spring", "bodies": [0, 0], "k": 1}], )"), "a spring between a body and itself"},
+      {OneBody(kBox, R"("forces": [{"type": "spring", "body": 0, "anchor": [0, 0, 0], "k": -1}], )"),
+       "forces[0].k: must not be negative"},
+      {OneBody(kBox, R"("forces": [{"type": "spring", "bodies": [0, 0], "k": 1}], )"),
+       "a spring between a body and itself"},
       {OneBody(kBox, R"("forces": [{"type": "magnet"}], )"), "forces[0].type: 'magnet' is not one of"},
-      {OneBody(kBox, R"("forces": [{"type": "gravity", "g": [0, 0, -9.8], "strength": 2}], )"), "forces[0]: unknown key 'strength'"},
+      {OneBody(kBox, R"("forces": [{"type": "gravity", "g": [0, 0, -9.8], "strength": 2}], )"),
+       "forces[0]: unknown key 'strength'"},
       {OneBody(kBox, R"("forces": [{"type": "torque", "body": 0}], )"), "forces[0].torque: is required"},
   };
   for (const auto& c : cases) EXPECT_THAT(ErrorOf(c.scene), HasSubstr(c.expect)) << c.scene;
@@ -177,7 +187,8 @@ TEST(Simulation, THandleFollowsTheExactTorqueFreeFlow) {
       worst_angle = std::max(worst_angle, world.bodies()[0].orientation.angularDistance(exact.Orientation(d.time)));
     });
     EXPECT_LT(worst_omega, omega_tol) << dynamics::IntegratorName(integrator);
-    std::printf("%s: worst |w - w_exact|/|w| %.3g, worst attitude error %.3g rad\n", dynamics::IntegratorName(integrator), worst_omega, worst_angle);
+    std::printf("%s: worst |w - w_exact|/|w| %.3g, worst attitude error %.3g rad\n",
+                dynamics::IntegratorName(integrator), worst_omega, worst_angle);
     EXPECT_LT(worst_angle, angle_tol) << dynamics::IntegratorName(integrator);
   }
 }
@@ -211,7 +222,8 @@ TEST(Simulation, SpringsHoldTheCenterOfMassUnlessAPointIsGiven) {
   // The T-handle's center of mass is 7.1 mm from its file's origin. A spring from the world point
   // where the center of mass starts, with no "point", pulls on the center of mass: nothing moves.
   // Tied at the file's origin instead, it would swing (and it does when that point is named).
-  const double com_y = (0.08 * 0.02 * 0.02 * 0.01 - 0.02 * 0.06 * 0.02 * 0.03) / (0.08 * 0.02 * 0.02 + 0.02 * 0.06 * 0.02);
+  const double com_y =
+      (0.08 * 0.02 * 0.02 * 0.01 - 0.02 * 0.06 * 0.02 * 0.03) / (0.08 * 0.02 * 0.02 + 0.02 * 0.06 * 0.02);
   auto run = [&](const std::string& point) {
     std::vector<std::string> w;
     rbsim::Simulation sim = rbsim::BuildSimulation(
@@ -248,7 +260,8 @@ TEST(Simulation, SceneFramesOfTheInitialAngularVelocity) {
     std::vector<std::string> w;
     rbsim::Simulation sim = rbsim::BuildSimulation(
         Parse(OneBody(std::string(kBox) + R"(, "orientation": {"axis": [0, 0, 1], "angle_deg": 90},
-                      "angular_velocity": [1, 0, 0], "angular_velocity_frame": ")" + frame + "\"")),
+                      "angular_velocity": [1, 0, 0], "angular_velocity_frame": ")" +
+                      frame + "\"")),
         w);
     EXPECT_TRUE(massprops::testing::MatrixNearRel(sim.world.bodies()[0].AngularVelocity(), want, 1e-15, 1)) << frame;
   }
@@ -256,8 +269,8 @@ TEST(Simulation, SceneFramesOfTheInitialAngularVelocity) {
 
 TEST(Simulation, ImplicitBodyHasItsClosedFormInertiaWithinTheEstimate) {
   std::vector<std::string> w;
-  const rbsim::Simulation sim = rbsim::BuildSimulation(
-      Parse(OneBody(R"x("implicit": "torus(R=0.2, r=0.05)", "density": 1000)x")), w);
+  const rbsim::Simulation sim =
+      rbsim::BuildSimulation(Parse(OneBody(R"x("implicit": "torus(R=0.2, r=0.05)", "density": 1000)x")), w);
   const massprops::MassProperties truth = massprops::solids::TorusProperties(0.2, 0.05, 1000);
   const auto& rb = sim.world.bodies()[0];
   EXPECT_NEAR(rb.mass, truth.mass, 5e-4 * truth.mass);  // tolerance 1e-4 relative standard error
@@ -273,7 +286,8 @@ TEST(Outputs, GlbHeaderChunksAndOneKeyPerSample) {
   scene.duration = 1;
   rbsim::Simulation sim = rbsim::BuildSimulation(scene, w);
   rbsim::Recording rec;
-  const auto stats = rbsim::Run(sim, [&](const dynamics::World& world, const dynamics::Diagnostics& d) { rec.Add(sim, world, d); });
+  const auto stats =
+      rbsim::Run(sim, [&](const dynamics::World& world, const dynamics::Diagnostics& d) { rec.Add(sim, world, d); });
   const std::string path = ::testing::TempDir() + "/two.glb";
   rbsim::WriteGlb(path, sim, rec);
   std::ifstream in(path, std::ios::binary);
@@ -302,7 +316,8 @@ TEST(Outputs, GlbHeaderChunksAndOneKeyPerSample) {
   }
   // Keys are unit quaternions on one side of the double cover.
   for (const auto& q : rec.rotations[1]) EXPECT_NEAR(q.norm(), 1.0f, 1e-6f);
-  for (std::size_t i = 1; i < rec.rotations[1].size(); ++i) EXPECT_GE(rec.rotations[1][i].dot(rec.rotations[1][i - 1]), 0.0f);
+  for (std::size_t i = 1; i < rec.rotations[1].size(); ++i)
+    EXPECT_GE(rec.rotations[1][i].dot(rec.rotations[1][i - 1]), 0.0f);
 }
 
 }  // namespace

@@ -52,16 +52,14 @@ std::unique_ptr<Force> ConstantTorque(int body, const Vector3& torque);
 std::unique_ptr<Force> BodyFrameTorque(int body, const Vector3& torque_body);
 /// Constant force at a body point (body coordinates); `body_frame` says whether the force vector
 /// turns with the body. Torque (p − x) × f.
-std::unique_ptr<Force> PointForce(int body, const Vector3& point_body, const Vector3& force,
-                                  bool body_frame);
+std::unique_ptr<Force> PointForce(int body, const Vector3& point_body, const Vector3& force, bool body_frame);
 /// Damped spring from a body point (body coordinates) to a world anchor: stiffness k (N/m), rest
 /// length l0 (m), damping c (N·s/m) along the spring.
-std::unique_ptr<Force> SpringToWorld(int body, const Vector3& point_body, const Vector3& anchor,
-                                     double k, double rest_length, double damping);
+std::unique_ptr<Force> SpringToWorld(int body, const Vector3& point_body, const Vector3& anchor, double k,
+                                     double rest_length, double damping);
 /// Damped spring between points of two bodies (body coordinates).
-std::unique_ptr<Force> SpringBetween(int body_a, const Vector3& point_a, int body_b,
-                                     const Vector3& point_b, double k, double rest_length,
-                                     double damping);
+std::unique_ptr<Force> SpringBetween(int body_a, const Vector3& point_a, int body_b, const Vector3& point_b, double k,
+                                     double rest_length, double damping);
 /// Any user force: called with the time, the bodies and the wrenches to add to. Its traits say
 /// what it breaks (default: energy and momentum, as "user forces").
 std::unique_ptr<Force> ForceCallback(

@@ -20,8 +20,7 @@ class ExactFreeRotation {
  public:
   /// @throws std::invalid_argument if the moments are not strictly increasing and positive, or the
   ///         motion is on (or within 1e-12 of) the separatrix.
-  ExactFreeRotation(const Vector3& inertia, const Vector3& omega0,
-                    const Quaternion& q0 = Quaternion::Identity());
+  ExactFreeRotation(const Vector3& inertia, const Vector3& omega0, const Quaternion& q0 = Quaternion::Identity());
   Vector3 Omega(double t) const;
   Quaternion Orientation(double t) const;
   /// Period of ω, 4K(m)/λ.
@@ -32,8 +31,8 @@ class ExactFreeRotation {
   double lambda() const { return lambda_; }
 
  private:
-  double Precession(double t) const;      // φ(t)
-  double PrecessionOver(double t) const;  // ∫0^t φ̇ by quadrature
+  double Precession(double t) const;                      // φ(t)
+  double PrecessionOver(double t) const;                  // ∫0^t φ̇ by quadrature
   Matrix3 Frame(double phi, const Vector3& omega) const;  // Rz(φ) Rx(θ) Rz(ψ)
 
   Vector3 inertia_ = Vector3::Ones();

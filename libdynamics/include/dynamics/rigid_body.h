@@ -18,10 +18,10 @@ using massprops::Vector3;
 using Quaternion = Eigen::Quaterniond;
 
 struct RigidBody {
-  double mass = 1.0;                      ///< kg
-  Vector3 inertia = Vector3::Ones();      ///< principal moments I1, I2, I3 in frame B, kg·m²
-  Vector3 position = Vector3::Zero();     ///< x, center of mass in world, m
-  Vector3 velocity = Vector3::Zero();     ///< v, m/s
+  double mass = 1.0;                                ///< kg
+  Vector3 inertia = Vector3::Ones();                ///< principal moments I1, I2, I3 in frame B, kg·m²
+  Vector3 position = Vector3::Zero();               ///< x, center of mass in world, m
+  Vector3 velocity = Vector3::Zero();               ///< v, m/s
   Quaternion orientation = Quaternion::Identity();  ///< q: body → world
   Vector3 angular_momentum = Vector3::Zero();       ///< L, world, kg·m²/s
 
@@ -39,9 +39,7 @@ struct RigidBody {
   /// World position of a point given in body coordinates: x + R p_B.
   Vector3 PointPosition(const Vector3& p_body) const { return position + orientation * p_body; }
   /// World velocity of the material point at world position p: v + ω × (p − x).
-  Vector3 PointVelocity(const Vector3& p_world) const {
-    return velocity + AngularVelocity().cross(p_world - position);
-  }
+  Vector3 PointVelocity(const Vector3& p_world) const { return velocity + AngularVelocity().cross(p_world - position); }
   /// ½ M v² + ½ ωᵀ I ω, J.
   double KineticEnergy() const;
   double RotationalEnergy() const;

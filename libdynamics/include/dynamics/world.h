@@ -4,8 +4,8 @@
 /// momentum diagnostics.
 
 #include <memory>
-#include <utility>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dynamics/forces.h"
@@ -50,8 +50,8 @@ std::string IntegratorNames();
 
 /// Every integrator, in the order above.
 inline constexpr Integrator kAllIntegrators[] = {
-    Integrator::kImplicitMidpoint, Integrator::kSplitting,       Integrator::kRK4,
-    Integrator::kExplicitEuler,    Integrator::kQuaternionEuler, Integrator::kSymplecticEuler,
+    Integrator::kImplicitMidpoint,   Integrator::kSplitting,       Integrator::kRK4,
+    Integrator::kExplicitEuler,      Integrator::kQuaternionEuler, Integrator::kSymplecticEuler,
     Integrator::kImplicitGyroscopic, Integrator::kExactSplitting};
 
 /// The seed notes' attitude step R ← R + h[ω]×R, followed (if `reproject`) by the projection
@@ -64,9 +64,9 @@ Integrator ParseIntegrator(const std::string& name);
 /// Energy and momenta of the whole world.
 struct Diagnostics {
   double time = 0;
-  double kinetic_energy = 0;    ///< J
-  double potential_energy = 0;  ///< J, of the forces that have one
-  double total_energy = 0;      ///< J
+  double kinetic_energy = 0;                   ///< J
+  double potential_energy = 0;                 ///< J, of the forces that have one
+  double total_energy = 0;                     ///< J
   Vector3 linear_momentum = Vector3::Zero();   ///< kg·m/s
   Vector3 angular_momentum = Vector3::Zero();  ///< kg·m²/s, about the world origin
 };
@@ -98,7 +98,7 @@ struct StepStatus {
   bool ok = true;
   bool diverged = false;  ///< the state is no longer finite
   int body = -1;          ///< the first body whose state is not finite
-  int substeps = 1;  ///< > 1 when the implicit solve needed a smaller step to converge
+  int substeps = 1;       ///< > 1 when the implicit solve needed a smaller step to converge
   std::string message;
 };
 

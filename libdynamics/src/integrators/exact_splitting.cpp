@@ -24,7 +24,8 @@ bool ExactRotation(RigidBody& b, double h) {
 }  // namespace
 
 bool StepExactSplitting(StepContext& c, double t, double h) {
-  return KickDriftKick(c, t, h, [](RigidBody& b, double dt) { return ExactRotation(b, dt) || MidpointRotation(b, dt); });
+  return KickDriftKick(c, t, h,
+                       [](RigidBody& b, double dt) { return ExactRotation(b, dt) || MidpointRotation(b, dt); });
 }
 
 }  // namespace dynamics::internal

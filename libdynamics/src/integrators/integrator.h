@@ -14,9 +14,9 @@ namespace dynamics::internal {
 /// Scratch kept between steps, so that stepping allocates nothing once a world has run.
 struct StepScratch {
   std::vector<Wrench> wrenches;
-  std::vector<RigidBody> saved;       ///< state at the start of a step that may be retried
-  std::vector<RigidBody> rk4_start;   ///< RK4: state at the start of the step
-  struct Rate {                       ///< RK4: stage derivative of one body
+  std::vector<RigidBody> saved;      ///< state at the start of a step that may be retried
+  std::vector<RigidBody> rk4_start;  ///< RK4: state at the start of the step
+  struct Rate {                      ///< RK4: stage derivative of one body
     Vector3 dx, dv, dL;
     Eigen::Vector4d dq;
   };
@@ -78,7 +78,7 @@ struct IntegratorInfo {
   Integrator id;
   const char* name;  ///< as parsed and printed: "implicit-midpoint", ...
   StepFunction step;
-  bool may_fail;     ///< an implicit solve that can fail: Step saves the state and sub-steps
+  bool may_fail;  ///< an implicit solve that can fail: Step saves the state and sub-steps
 };
 
 /// The table, in the order of kAllIntegrators.

@@ -49,7 +49,8 @@ bool StepRK4(StepContext& c, double t, double h) {
     b.position = start[i].position + h / 6 * (k1[i].dx + 2 * k2[i].dx + 2 * k3[i].dx + k4[i].dx);
     b.velocity = start[i].velocity + h / 6 * (k1[i].dv + 2 * k2[i].dv + 2 * k3[i].dv + k4[i].dv);
     b.angular_momentum = start[i].angular_momentum + h / 6 * (k1[i].dL + 2 * k2[i].dL + 2 * k3[i].dL + k4[i].dL);
-    b.orientation.coeffs() = start[i].orientation.coeffs() + h / 6 * (k1[i].dq + 2 * k2[i].dq + 2 * k3[i].dq + k4[i].dq);
+    b.orientation.coeffs() =
+        start[i].orientation.coeffs() + h / 6 * (k1[i].dq + 2 * k2[i].dq + 2 * k3[i].dq + k4[i].dq);
     b.orientation.normalize();
   });
   return true;

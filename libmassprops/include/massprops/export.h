@@ -21,7 +21,6 @@ std::string UrdfInertial(const MassProperties& mp, const std::string& indent = "
 /// `<inertial>` of an SDFormat link (SI units).
 std::string SdfInertial(const MassProperties& mp, const std::string& indent = "");
 /// `<inertial>` of an MJCF body (SI units): pos, quat, mass, diaginertia.
-std::string MjcfInertial(const MassProperties& mp, const PrincipalInertia& principal,
-                         const std::string& indent = "");
+std::string MjcfInertial(const MassProperties& mp, const PrincipalInertia& principal, const std::string& indent = "");
 
 }  // namespace massprops

@@ -40,10 +40,10 @@ namespace implicit {
 ImplicitPtr Sphere(Scalar r);
 ImplicitPtr Ellipsoid(const Vector3& semi_axes);
 ImplicitPtr Box(const Vector3& size);
-ImplicitPtr Cylinder(Scalar r, Scalar h);  ///< axis z, |z| ≤ h/2
-ImplicitPtr Cone(Scalar r, Scalar h);      ///< axis z, base at z = −h/4, apex at z = 3h/4
+ImplicitPtr Cylinder(Scalar r, Scalar h);       ///< axis z, |z| ≤ h/2
+ImplicitPtr Cone(Scalar r, Scalar h);           ///< axis z, base at z = −h/4, apex at z = 3h/4
 ImplicitPtr Torus(Scalar major, Scalar minor);  ///< axis z; minor < major
-ImplicitPtr Capsule(Scalar r, Scalar h);   ///< axis z, cylinder part |z| ≤ h/2
+ImplicitPtr Capsule(Scalar r, Scalar h);        ///< axis z, cylinder part |z| ≤ h/2
 
 /// CSG (φ = min, max, max(a, −b)).
 ImplicitPtr Union(std::vector<ImplicitPtr> parts);

@@ -42,8 +42,7 @@ LoadedMesh ReadMeshFile(const std::string& path);
 /// Parses a mesh held in memory with the readers of our own: `extension` is "obj", "stl", "ply"
 /// or "off"; `name` is used in messages. The same checks as ReadMeshFile.
 /// @throws MeshFileError as ReadMeshFile.
-LoadedMesh ParseMeshBuffer(const std::string& name, const std::string& extension,
-                           std::string_view bytes);
+LoadedMesh ParseMeshBuffer(const std::string& name, const std::string& extension, std::string_view bytes);
 
 /// Reads any format through assimp, even those with a reader of our own (for comparison).
 /// @throws MeshFileError as ReadMeshFile.
@@ -53,8 +52,7 @@ LoadedMesh ReadMeshFileWithAssimp(const std::string& path);
 /// (no indexed mesh, memory independent of the triangle count), with the streaming closed-surface
 /// check of SoupIntegrals. Returns nothing for an ASCII STL.
 /// @throws MeshFileError for a missing, empty or truncated file, or a non-finite coordinate.
-std::optional<SoupIntegrals> IntegrateBinaryStlFile(const std::string& path,
-                                                    const IntegrationOptions& options = {});
+std::optional<SoupIntegrals> IntegrateBinaryStlFile(const std::string& path, const IntegrationOptions& options = {});
 
 /// Reads a signed-distance grid file (README, "Signed-distance grids"):
 ///

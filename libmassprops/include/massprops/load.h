@@ -71,7 +71,7 @@ struct LoadOptions {
   /// True when the user chose `unit`; false when it is a default, and then a part under 2 mm or
   /// over 2 m across draws a finding that names the likely unit.
   bool unit_stated = false;
-  MassSpec mass = Density{1000.0};       ///< kg/m^3, or the total mass
+  MassSpec mass = Density{1000.0};  ///< kg/m^3, or the total mass
   Model model = SolidModel{};
   IntegrationPath path = IntegrationPath::kAuto;
   Reader reader = Reader::kAuto;
@@ -118,8 +118,8 @@ struct SolidResult {
   ModelKind model = ModelKind::kSolid;
   LoadedMesh loaded;  ///< the mesh integrated (after repair; for a wall, the wall solid)
   MeshTopology topology;
-  ShellReport shells;                  ///< filled when the mesh has more than one component
-  std::optional<RepairReport> repair;  ///< what the repair changed
+  ShellReport shells;                    ///< filled when the mesh has more than one component
+  std::optional<RepairReport> repair;    ///< what the repair changed
   std::int64_t self_intersections = -1;  ///< -1: not checked
   /// False on the streamed binary-STL path (only the closed-cycle check ran) and for implicit
   /// solids (no mesh).
@@ -129,11 +129,11 @@ struct SolidResult {
   MassProperties mp;
   PrincipalInertia principal;
   ValidityReport validity;
-  bool mass_fixed = false;       ///< the density came from a TotalMass
-  double wall_thickness = 0;     ///< WallModel: in the file's unit
-  std::string path_used;         ///< how it was integrated, in words
-  double size_m = 0;             ///< bounding-box diagonal, m
-  double seconds = 0;            ///< wall-clock time of the whole pipeline
+  bool mass_fixed = false;    ///< the density came from a TotalMass
+  double wall_thickness = 0;  ///< WallModel: in the file's unit
+  std::string path_used;      ///< how it was integrated, in words
+  double size_m = 0;          ///< bounding-box diagonal, m
+  double seconds = 0;         ///< wall-clock time of the whole pipeline
   std::vector<Finding> findings;
 };
 

@@ -66,8 +66,7 @@ struct IntegrationOptions {
 /// Sums are taken per fixed block of faces and the blocks added pairwise, so the bits do not
 /// depend on the thread count.
 /// @throws std::invalid_argument if an index is out of range or a vertex is not finite.
-VolumeIntegrals IntegrateTriangles(const Eigen::Ref<const VertexMatrix>& V,
-                                   const Eigen::Ref<const FaceMatrix>& F,
+VolumeIntegrals IntegrateTriangles(const Eigen::Ref<const VertexMatrix>& V, const Eigen::Ref<const FaceMatrix>& F,
                                    const IntegrationOptions& options = {});
 
 /// Volume integrals of the solid bounded by a closed mesh of planar polygons, integrated face by
@@ -88,15 +87,12 @@ MassProperties FromIntegrals(const VolumeIntegrals& integrals, Scalar density);
 /// Does not check that the mesh is closed: an open mesh gives a number that depends on the
 /// reference point; see the mesh checks for that.
 /// @throws std::invalid_argument as IntegrateTriangles and FromIntegrals.
-MassProperties ComputeMassProperties(const Eigen::Ref<const VertexMatrix>& V,
-                                     const Eigen::Ref<const FaceMatrix>& F, Scalar density,
-                                     const IntegrationOptions& options = {});
-MassProperties ComputeMassProperties(const TriangleMesh& mesh, Scalar density,
-                                     const IntegrationOptions& options = {});
+MassProperties ComputeMassProperties(const Eigen::Ref<const VertexMatrix>& V, const Eigen::Ref<const FaceMatrix>& F,
+                                     Scalar density, const IntegrationOptions& options = {});
+MassProperties ComputeMassProperties(const TriangleMesh& mesh, Scalar density, const IntegrationOptions& options = {});
 
 /// Mass properties of the solid bounded by a closed polygon mesh (Mirtich's path).
 /// @throws std::invalid_argument as IntegratePolygons and FromIntegrals.
-MassProperties ComputeMassProperties(const PolygonMesh& mesh, Scalar density,
-                                     const IntegrationOptions& options = {});
+MassProperties ComputeMassProperties(const PolygonMesh& mesh, Scalar density, const IntegrationOptions& options = {});
 
 }  // namespace massprops

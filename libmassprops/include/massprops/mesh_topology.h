@@ -14,7 +14,7 @@ namespace massprops {
 /// Edge and component counts of a polygon mesh.
 struct MeshTopology {
   std::int64_t faces = 0;
-  std::int64_t vertices = 0;            ///< vertices referenced by a face
+  std::int64_t vertices = 0;  ///< vertices referenced by a face
   std::int64_t unreferenced_vertices = 0;
   std::int64_t edges = 0;               ///< undirected edges
   std::int64_t boundary_edges = 0;      ///< used by one face: the surface has a hole
@@ -30,13 +30,11 @@ struct MeshTopology {
   /// to face). Counted when there are non-manifold edges (a repeated face always makes some).
   std::int64_t duplicate_faces = 0;
   std::int64_t reversed_duplicate_faces = 0;
-  std::int64_t components = 0;          ///< connected pieces (through shared vertices)
+  std::int64_t components = 0;  ///< connected pieces (through shared vertices)
 
   /// Closed and consistently oriented (every edge traversed as often forward as backward): the
   /// signed volume integrals are then well defined. Balanced non-manifold edges are allowed.
-  bool BoundsVolume() const {
-    return boundary_edges == 0 && unbalanced_edges == 0 && inconsistent_edges == 0;
-  }
+  bool BoundsVolume() const { return boundary_edges == 0 && unbalanced_edges == 0 && inconsistent_edges == 0; }
   /// One line describing what is wrong, empty when BoundsVolume().
   std::string Problems() const;
 };

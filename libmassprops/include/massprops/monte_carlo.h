@@ -46,14 +46,14 @@ struct MonteCarloOptions {
 struct MassPropertiesEstimate {
   MassProperties value;
   MassProperties standard_error;
-  Vector3 principal_moments = Vector3::Zero();     ///< ascending
+  Vector3 principal_moments = Vector3::Zero();  ///< ascending
   Vector3 principal_moments_se = Vector3::Zero();
   double interval95_factor = 1.96;  ///< half-width of the 95 % interval = factor × standard error
   std::int64_t samples = 0;         ///< points evaluated
   int randomizations = 1;
   SamplingMethod method = SamplingMethod::kMonteCarlo;
-  std::uint64_t seed = 1;           ///< the seed it was drawn with (same seed, same bits)
-  bool tolerance_met = true;        ///< false when max_samples stopped an adaptive run first
+  std::uint64_t seed = 1;     ///< the seed it was drawn with (same seed, same bits)
+  bool tolerance_met = true;  ///< false when max_samples stopped an adaptive run first
   /// Largest relative standard error among the mass and the principal moments.
   double MaxRelativeError() const;
 };

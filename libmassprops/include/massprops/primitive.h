@@ -15,25 +15,37 @@
 namespace massprops {
 namespace primitive {
 
-struct Box { Vector3 size = Vector3::Ones(); };             ///< edge lengths along x, y, z
-struct Sphere { Scalar radius = 1; };
-struct Ellipsoid { Vector3 semi_axes = Vector3::Ones(); };
-struct Cylinder { Scalar radius = 1, height = 1; };          ///< |z| ≤ height/2
-struct Cone { Scalar radius = 1, height = 1; };              ///< base at z = −h/4, apex at 3h/4
-struct Torus { Scalar major_radius = 1, minor_radius = 0.25; };
-struct Capsule { Scalar radius = 1, length = 1; };           ///< cylinder part |z| ≤ length/2
+struct Box {
+  Vector3 size = Vector3::Ones();
+};  ///< edge lengths along x, y, z
+struct Sphere {
+  Scalar radius = 1;
+};
+struct Ellipsoid {
+  Vector3 semi_axes = Vector3::Ones();
+};
+struct Cylinder {
+  Scalar radius = 1, height = 1;
+};  ///< |z| ≤ height/2
+struct Cone {
+  Scalar radius = 1, height = 1;
+};  ///< base at z = −h/4, apex at 3h/4
+struct Torus {
+  Scalar major_radius = 1, minor_radius = 0.25;
+};
+struct Capsule {
+  Scalar radius = 1, length = 1;
+};  ///< cylinder part |z| ≤ length/2
 
 }  // namespace primitive
 
-using Primitive = std::variant<primitive::Box, primitive::Sphere, primitive::Ellipsoid,
-                               primitive::Cylinder, primitive::Cone, primitive::Torus,
-                               primitive::Capsule>;
+using Primitive = std::variant<primitive::Box, primitive::Sphere, primitive::Ellipsoid, primitive::Cylinder,
+                               primitive::Cone, primitive::Torus, primitive::Capsule>;
 
 /// "box", "sphere", "ellipsoid", "cylinder", "cone", "torus", "capsule".
 const char* PrimitiveName(const Primitive& p);
 /// The names above, in the variant's order.
-inline constexpr const char* kPrimitiveNames[] = {"box",  "sphere", "ellipsoid", "cylinder",
-                                                  "cone", "torus",  "capsule"};
+inline constexpr const char* kPrimitiveNames[] = {"box", "sphere", "ellipsoid", "cylinder", "cone", "torus", "capsule"};
 
 /// Checks the sizes: finite and positive, and a torus's tube thinner than its ring.
 /// @throws std::invalid_argument naming the primitive and the size.

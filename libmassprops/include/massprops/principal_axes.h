@@ -22,14 +22,13 @@ namespace massprops {
 ///   repeated pair is the coordinate axis most perpendicular to it (lowest index on ties),
 ///   projected into the plane of the pair.
 struct PrincipalInertia {
-  Vector3 moments = Vector3::Zero();  ///< I1 <= I2 <= I3, kg·m^2
+  Vector3 moments = Vector3::Zero();   ///< I1 <= I2 <= I3, kg·m^2
   Matrix3 axes = Matrix3::Identity();  ///< columns = principal axes in frame M (R_MB)
 };
 
 /// Eigen-decomposition of a symmetric inertia tensor, with the conventions above.
 /// @throws std::invalid_argument if the tensor is not finite or not symmetric (to 1e-12 relative).
-PrincipalInertia ComputePrincipalInertia(const Matrix3& inertia,
-                                         double degenerate_tolerance = 1e-10);
+PrincipalInertia ComputePrincipalInertia(const Matrix3& inertia, double degenerate_tolerance = 1e-10);
 
 /// A rigid motion x ↦ rotation · x + translation.
 struct RigidTransform {
@@ -37,9 +36,7 @@ struct RigidTransform {
   Vector3 translation = Vector3::Zero();
 
   Vector3 Apply(const Vector3& x) const { return rotation * x + translation; }
-  RigidTransform Inverse() const {
-    return {rotation.transpose(), -(rotation.transpose() * translation)};
-  }
+  RigidTransform Inverse() const { return {rotation.transpose(), -(rotation.transpose() * translation)}; }
 };
 
 /// The body frame B of a solid: origin at the center of mass, axes along the principal axes
@@ -55,7 +52,6 @@ struct ValidityReport {
 
 /// Checks that principal moments can belong to a real body: finite, positive, and satisfying the
 /// triangle inequality I1 + I2 >= I3 (to `relative_tolerance` × I3, for rounding).
-ValidityReport CheckPhysicallyValid(const Vector3& principal_moments,
-                                    double relative_tolerance = 1e-12);
+ValidityReport CheckPhysicallyValid(const Vector3& principal_moments, double relative_tolerance = 1e-12);
 
 }  // namespace massprops

@@ -18,13 +18,13 @@ struct RepairOptions {
 
 /// What RepairMesh changed.
 struct RepairReport {
-  std::int64_t welded_vertices = 0;    ///< vertices merged into another within the tolerance
-  std::int64_t removed_faces = 0;      ///< degenerate or duplicate faces dropped
-  bool reoriented = false;             ///< face orientations were made consistent
-  std::int64_t split_vertices = 0;     ///< vertices duplicated to orient non-manifold fans
-  std::int64_t stitched_edges = 0;     ///< border edge pairs stitched together
+  std::int64_t welded_vertices = 0;       ///< vertices merged into another within the tolerance
+  std::int64_t removed_faces = 0;         ///< degenerate or duplicate faces dropped
+  bool reoriented = false;                ///< face orientations were made consistent
+  std::int64_t split_vertices = 0;        ///< vertices duplicated to orient non-manifold fans
+  std::int64_t stitched_edges = 0;        ///< border edge pairs stitched together
   bool oriented_to_bound_volume = false;  ///< shells oriented outward, cavities inward
-  double volume_before = 0;            ///< signed volume before and after (mesh units³)
+  double volume_before = 0;               ///< signed volume before and after (mesh units³)
   double volume_after = 0;
   /// One line per change, for people.
   std::string Summary() const;

@@ -30,19 +30,18 @@ SurfaceIntegrals IntegrateSurface(const PolygonMesh& mesh, const IntegrationOpti
 /// mass and inertia of the surface. `volume` is 0 (a surface has none) and `density` is σ.
 /// `scale` converts the mesh's units to metres (area ∝ scale², inertia ∝ scale⁴).
 /// @throws std::invalid_argument if σ or scale is not finite and positive, or the area is zero.
-MassProperties ShellMassProperties(const SurfaceIntegrals& integrals, Scalar area_density,
-                                   Scalar scale = 1.0);
+MassProperties ShellMassProperties(const SurfaceIntegrals& integrals, Scalar area_density, Scalar scale = 1.0);
 
 /// The inward offset of a closed, outward-oriented surface by t (mesh units): every vertex moves
 /// to the point that lies at distance t inside each plane of its incident faces (least squares
 /// over the distinct planes; exact wherever at most three distinct planes meet at a vertex, as on
 /// boxes and prisms, and O(h²) on tessellated curved surfaces). Faces keep their corners.
 struct OffsetResult {
-  PolygonMesh inner;            ///< same faces, offset vertices, facing outward like the input
-  std::int64_t flipped_faces = 0;  ///< faces whose normal turned over: t is more than fits there
+  PolygonMesh inner;                           ///< same faces, offset vertices, facing outward like the input
+  std::int64_t flipped_faces = 0;              ///< faces whose normal turned over: t is more than fits there
   Vector3 first_flipped_at = Vector3::Zero();  ///< a corner of the first such face
-  Scalar inner_volume = 0;      ///< signed volume of the offset surface (mesh units³)
-  Scalar thickness = 0;         ///< the offset distance
+  Scalar inner_volume = 0;                     ///< signed volume of the offset surface (mesh units³)
+  Scalar thickness = 0;                        ///< the offset distance
 };
 OffsetResult OffsetInward(const PolygonMesh& mesh, Scalar thickness);
 

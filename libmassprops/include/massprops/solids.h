@@ -19,8 +19,7 @@ PolygonMesh Box(const Vector3& size);
 /// Regular tetrahedron with the given edge length.
 TriangleMesh RegularTetrahedron(Scalar edge);
 /// Tetrahedron with the given corners (any order: faces are oriented outward).
-TriangleMesh Tetrahedron(const Vector3& p0, const Vector3& p1, const Vector3& p2,
-                         const Vector3& p3);
+TriangleMesh Tetrahedron(const Vector3& p0, const Vector3& p1, const Vector3& p2, const Vector3& p3);
 /// Regular octahedron with vertices at ±a on each axis.
 TriangleMesh Octahedron(Scalar a);
 /// Right prism over a regular n-gon of circumradius r, height h along z; two n-gon caps and n

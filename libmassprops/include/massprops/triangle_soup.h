@@ -33,19 +33,16 @@ struct SoupIntegrals {
 /// the host's byte order (binary STL: stride 50, offset 12). Corners are converted to double
 /// exactly. The reference point is options.reference, or else the first corner.
 /// @throws std::invalid_argument naming the first triangle with a non-finite coordinate.
-SoupIntegrals IntegrateFloatTriangleRecords(const unsigned char* data, std::int64_t count,
-                                            std::size_t stride, std::size_t offset,
-                                            const IntegrationOptions& options = {});
+SoupIntegrals IntegrateFloatTriangleRecords(const unsigned char* data, std::int64_t count, std::size_t stride,
+                                            std::size_t offset, const IntegrationOptions& options = {});
 
 /// Fills `dest` with `count` records starting at record `first` (count · stride bytes), e.g. by
 /// pread from a file. Called from worker threads, once per block; may throw.
-using RecordReader =
-    std::function<void(std::int64_t first, std::int64_t count, unsigned char* dest)>;
+using RecordReader = std::function<void(std::int64_t first, std::int64_t count, unsigned char* dest)>;
 
 /// As above, with the records fetched block by block through `read` into a small per-thread
 /// buffer that stays in cache while it is integrated: a file is streamed once, with little memory.
-SoupIntegrals IntegrateFloatTriangleRecords(const RecordReader& read, std::int64_t count,
-                                            std::size_t stride, std::size_t offset,
-                                            const IntegrationOptions& options = {});
+SoupIntegrals IntegrateFloatTriangleRecords(const RecordReader& read, std::int64_t count, std::size_t stride,
+                                            std::size_t offset, const IntegrationOptions& options = {});
 
 }  // namespace massprops

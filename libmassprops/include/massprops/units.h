@@ -12,9 +12,8 @@ namespace massprops {
 enum class LengthUnit { kMetre, kCentimetre, kMillimetre, kInch, kFoot };
 
 /// Every unit, in the order above.
-inline constexpr LengthUnit kAllLengthUnits[] = {LengthUnit::kMetre, LengthUnit::kCentimetre,
-                                                 LengthUnit::kMillimetre, LengthUnit::kInch,
-                                                 LengthUnit::kFoot};
+inline constexpr LengthUnit kAllLengthUnits[] = {LengthUnit::kMetre, LengthUnit::kCentimetre, LengthUnit::kMillimetre,
+                                                 LengthUnit::kInch, LengthUnit::kFoot};
 
 /// Metres in one unit (exact: 1, 0.01, 0.001, 0.0254, 0.3048).
 double MetresPerUnit(LengthUnit unit);

@@ -113,9 +113,7 @@ RepairedMesh RepairMesh(const PolygonMesh& input, const RepairOptions& options) 
   rep.volume_before = SignedVolume(input.V, input_tris);
 
   // 1. Tolerance weld.
-  const double diag = input.V.rows() > 0
-                          ? (input.V.colwise().maxCoeff() - input.V.colwise().minCoeff()).norm()
-                          : 0.0;
+  const double diag = input.V.rows() > 0 ? (input.V.colwise().maxCoeff() - input.V.colwise().minCoeff()).norm() : 0.0;
   const std::vector<std::int32_t> map = WeldWithin(input.V, options.weld_tolerance * diag, rep.welded_vertices);
 
   // 2. Soup repair and orientation (CGAL).
@@ -140,7 +138,8 @@ RepairedMesh RepairMesh(const PolygonMesh& input, const RepairOptions& options) 
       ++duplicate_polygons;
       continue;
     }
-    for (int k = 1; k + 1 < n; ++k) polys.push_back({corners[0], corners[static_cast<std::size_t>(k)], corners[static_cast<std::size_t>(k) + 1]});
+    for (int k = 1; k + 1 < n; ++k)
+      polys.push_back({corners[0], corners[static_cast<std::size_t>(k)], corners[static_cast<std::size_t>(k) + 1]});
   }
   const std::size_t faces_before = polys.size();
   PMP::repair_polygon_soup(points, polys);

@@ -16,8 +16,6 @@ namespace {
 
 RepairedMesh RepairMesh(const PolygonMesh&, const RepairOptions&) { Unavailable("the repair"); }
 
-std::int64_t CountSelfIntersections(const PolygonMesh&, std::int64_t) {
-  Unavailable("the self-intersection check");
-}
+std::int64_t CountSelfIntersections(const PolygonMesh&, std::int64_t) { Unavailable("the self-intersection check"); }
 
 }  // namespace massprops

@@ -60,8 +60,9 @@ const Plugin& LoadPlugin() {
     const char* name = "libmassprops_assimp.so";
     std::vector<std::string> candidates;
 #ifndef MASSPROPS_WITH_ASSIMP
-    plugin.error = "this build of massprops was configured without assimp (MASSPROPS_WITH_ASSIMP=OFF): only "
-                   "OBJ, STL, PLY and OFF can be read";
+    plugin.error =
+        "this build of massprops was configured without assimp (MASSPROPS_WITH_ASSIMP=OFF): only "
+        "OBJ, STL, PLY and OFF can be read";
     return;
 #else
     // The environment overrides; then beside the library (a shared libmassprops_io in lib/ has
@@ -132,7 +133,8 @@ bool WriteAll(int fd, const void* data, std::size_t n) {
 [[noreturn]] void ReaderChild(const Plugin& p, const std::string& path, int fd) {
   if (const char* fault = std::getenv("MASSPROPS_ASSIMP_FAULT")) {  // fault injection, for tests
     if (std::string(fault) == "crash") ::kill(::getpid(), SIGKILL);
-    if (std::string(fault) == "hang") for (;;) ::pause();
+    if (std::string(fault) == "hang")
+      for (;;) ::pause();
   }
   double* xyz = nullptr;
   int* sizes = nullptr;
@@ -155,7 +157,8 @@ bool WriteAll(int fd, const void* data, std::size_t n) {
 bool ReadUntilClosed(int fd, std::string& out, std::chrono::steady_clock::time_point deadline) {
   char buf[65536];
   for (;;) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) return false;
     pollfd pfd{fd, POLLIN, 0};
     const int r = ::poll(&pfd, 1, static_cast<int>(std::min<long long>(left.count(), 1000)));
@@ -203,8 +206,9 @@ AssimpOutput ReadIsolated(const Plugin& p, const std::string& path) {
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
   if (!finished) {
-    Fail(path, "assimp did not finish reading it within " + std::to_string(static_cast<long long>(limit)) +
-                   " s and was stopped (a malformed file can make assimp loop; MASSPROPS_ASSIMP_TIMEOUT sets the limit)");
+    Fail(path,
+         "assimp did not finish reading it within " + std::to_string(static_cast<long long>(limit)) +
+             " s and was stopped (a malformed file can make assimp loop; MASSPROPS_ASSIMP_TIMEOUT sets the limit)");
   }
   if (WIFSIGNALED(status)) {
     const int sig = WTERMSIG(status);

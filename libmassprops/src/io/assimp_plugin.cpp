@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/Importer.hpp>
 
 extern "C" {
 
@@ -24,15 +24,16 @@ __attribute__((visibility("default"))) int massprops_assimp_can_read(const char*
 // Reads every mesh of the scene with node transforms applied. On success returns 0 and hands out
 // malloc'ed arrays: corner coordinates (3 per corner) and corner counts per face. On failure
 // returns 1 with the reason in `error`.
-__attribute__((visibility("default"))) int massprops_assimp_read(
-    const char* path, double** xyz, std::size_t* num_corners, int** face_sizes,
-    std::size_t* num_faces, char* error, std::size_t error_size) {
+__attribute__((visibility("default"))) int massprops_assimp_read(const char* path, double** xyz,
+                                                                 std::size_t* num_corners, int** face_sizes,
+                                                                 std::size_t* num_faces, char* error,
+                                                                 std::size_t error_size) {
   Assimp::Importer importer;
   // Bake node transforms into the vertices (glTF, COLLADA and 3MF place meshes through nodes);
   // keep polygons whole; drop points and lines, which bound no volume.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const aiScene* scene = importer.ReadFile(
-      path, aiProcess_PreTransformVertices | aiProcess_SortByPType | aiProcess_ValidateDataStructure);
+  const aiScene* scene =
+      importer.ReadFile(path, aiProcess_PreTransformVertices | aiProcess_SortByPType | aiProcess_ValidateDataStructure);
   if (scene == nullptr) {
     std::snprintf(error, error_size, "assimp could not read it: %s", importer.GetErrorString());
     return 1;
@@ -46,8 +47,7 @@ __attribute__((visibility("default"))) int massprops_assimp_read(
       if (face.mNumIndices < 3) continue;
       for (unsigned k = 0; k < face.mNumIndices; ++k) {
         const aiVector3D& v = mesh->mVertices[face.mIndices[k]];
-        corners.insert(corners.end(), {static_cast<double>(v.x), static_cast<double>(v.y),
-                                       static_cast<double>(v.z)});
+        corners.insert(corners.end(), {static_cast<double>(v.x), static_cast<double>(v.y), static_cast<double>(v.z)});
       }
       sizes.push_back(static_cast<int>(face.mNumIndices));
     }

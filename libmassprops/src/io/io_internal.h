@@ -39,8 +39,8 @@ StlLayout DetectStl(const std::string& path, const unsigned char* data, std::siz
 
 [[noreturn]] void Fail(const std::string& path, const std::string& what);
 
-LoadedMesh WeldCorners(const std::string& path, const std::vector<double>& xyz,
-                       const std::vector<int>& face_sizes, const char* format);
+LoadedMesh WeldCorners(const std::string& path, const std::vector<double>& xyz, const std::vector<int>& face_sizes,
+                       const char* format);
 
 /// Points the corners of vertices with bit-identical positions (-0.0 == 0.0) at the first such
 /// vertex (the others stay, unreferenced), so that a file repeating each corner per face is

@@ -42,9 +42,7 @@ void Stage(const LoadOptions& o, const char* stage) {
   if (o.progress) o.progress(stage);
 }
 
-void Warn(SolidResult& r, FindingKind kind, std::string message) {
-  r.findings.push_back({kind, std::move(message)});
-}
+void Warn(SolidResult& r, FindingKind kind, std::string message) { r.findings.push_back({kind, std::move(message)}); }
 
 // What the plausibility checks need to know about the request.
 struct Plausibility {
@@ -61,17 +59,18 @@ void CheckPlausible(SolidResult& r, const Plausibility& p) {
   if (!p.unit_stated && s > 2.0) {
     // Every other unit that would make it a part of hand size (2 mm to 2 m).
     std::string readings;
-    for (auto [u, words] : {std::pair{LengthUnit::kMillimetre, "millimetres"}, std::pair{LengthUnit::kCentimetre, "centimetres"},
-                            std::pair{LengthUnit::kInch, "inches"}}) {
+    for (auto [u, words] :
+         {std::pair{LengthUnit::kMillimetre, "millimetres"}, std::pair{LengthUnit::kCentimetre, "centimetres"},
+          std::pair{LengthUnit::kInch, "inches"}}) {
       const double there = file_size * MetresPerUnit(u);
       if (there >= 0.002 && there <= 2.0) {
-        readings += std::string(readings.empty() ? "; read in " : ", in ") + words + " it would be " + Fixed(there, "%.3g") +
-                    " m ({unit=" + UnitName(u) + "})";
+        readings += std::string(readings.empty() ? "; read in " : ", in ") + words + " it would be " +
+                    Fixed(there, "%.3g") + " m ({unit=" + UnitName(u) + "})";
       }
     }
     Warn(r, FindingKind::kUnitSuspicion,
-         "the part is " + across + " across, with the unit defaulted to " + UnitName(r.unit) + readings + "; {unit=" +
-             UnitName(r.unit) + "} says the default is right");
+         "the part is " + across + " across, with the unit defaulted to " + UnitName(r.unit) + readings +
+             "; {unit=" + UnitName(r.unit) + "} says the default is right");
   } else if (!p.unit_stated && s < 0.002 && s > 0) {
     Warn(r, FindingKind::kUnitSuspicion,
          "the part is only " + Fixed(s * 1000) + " mm across, with the unit defaulted to " + UnitName(r.unit) +
@@ -100,8 +99,8 @@ void CheckPlausible(SolidResult& r, const Plausibility& p) {
       }
     }
     Warn(r, FindingKind::kUnitSuspicion,
-         "a mass of " + Fixed(r.mp.mass) + " kg in " + Fixed(r.mp.volume) + " m^3 implies a density of " +
-             Fixed(rho) + " kg/m^3, " + what + likely);
+         "a mass of " + Fixed(r.mp.mass) + " kg in " + Fixed(r.mp.volume) + " m^3 implies a density of " + Fixed(rho) +
+             " kg/m^3, " + what + likely);
   } else {
     Warn(r, FindingKind::kUnitSuspicion,
          "a density of " + Fixed(rho) + " kg/m^3 is " + what + " (densities are in kg/m^3: water is 1000, steel 7850)");
@@ -156,8 +155,8 @@ void Finish(SolidResult& r, const VolumeIntegrals& integrals, const LoadOptions&
 }
 
 // Runs the estimator on a solid already in metres and fills the result.
-void Estimate(SolidResult& r, const ImplicitSolid& solid, MonteCarloOptions mc, const MassSpec& mass,
-              bool unit_stated, int num_threads, const ProgressCallback& progress) {
+void Estimate(SolidResult& r, const ImplicitSolid& solid, MonteCarloOptions mc, const MassSpec& mass, bool unit_stated,
+              int num_threads, const ProgressCallback& progress) {
   mc.num_threads = num_threads;
   mc.fixed_mass = FixesMass(mass) ? std::get<TotalMass>(mass).value : 0.0;
   const double density = FixesMass(mass) ? 1.0 : ResolveDensity(mass, 1.0);
@@ -298,7 +297,8 @@ void IntegrateSolid(SolidResult& r, const LoadOptions& opt) {
     // A non-planar polygon bounds no unique surface: say which one was taken.
     Warn(r, FindingKind::kNonPlanarFaces,
          std::to_string(planarity.non_planar_faces) +
-             (planarity.non_planar_faces == 1 ? " polygon is not planar (face " : " polygons are not planar (the worst, face ") +
+             (planarity.non_planar_faces == 1 ? " polygon is not planar (face "
+                                              : " polygons are not planar (the worst, face ") +
              std::to_string(planarity.worst_face + 1) + ", leaves its plane by " +
              Fixed(planarity.worst_deviation, "%.2g") +
              " of its size): each is integrated as a fan of triangles from its first corner, one of the "
@@ -310,7 +310,8 @@ void IntegrateSolid(SolidResult& r, const LoadOptions& opt) {
     r.path_used = "polygons (Mirtich), faces integrated whole";
     integrals = IntegratePolygons(mesh, io);
   } else {
-    r.path_used = triangles ? "triangles (signed tetrahedra)" : "triangles (signed tetrahedra), polygons split into fans";
+    r.path_used =
+        triangles ? "triangles (signed tetrahedra)" : "triangles (signed tetrahedra), polygons split into fans";
     const TriangleMesh tri = Triangulate(mesh);
     integrals = IntegrateTriangles(tri.V, tri.F, io);
   }

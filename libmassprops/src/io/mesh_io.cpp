@@ -53,7 +53,8 @@ LoadedMesh ReadMeshFile(const std::string& path) {
   if (AssimpCanRead(ext)) return ReadWithAssimp(path);
   const std::string plugin = AssimpPluginStatus();
   if (!plugin.empty()) {
-    Fail(path, "cannot read '" + ext + "' files: our own readers take OBJ, STL, PLY and OFF, and for the rest " + plugin);
+    Fail(path,
+         "cannot read '" + ext + "' files: our own readers take OBJ, STL, PLY and OFF, and for the rest " + plugin);
   }
   Fail(path, "unknown mesh format '" + ext + "' (neither our readers nor assimp know it)");
 }

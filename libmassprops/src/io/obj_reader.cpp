@@ -68,8 +68,8 @@ LoadedMesh ParseObj(const std::string& path, std::string_view data) {
         }
         const std::int64_t zero_based = i > 0 ? i - 1 : nv + i;  // negative: relative to the end
         if (zero_based < 0 || zero_based >= nv) {
-          Fail(path, where() + "face index " + std::to_string(i) + " is out of range (" +
-                         std::to_string(nv) + " vertices so far)");
+          Fail(path, where() + "face index " + std::to_string(i) + " is out of range (" + std::to_string(nv) +
+                         " vertices so far)");
         }
         face.push_back(static_cast<std::int32_t>(zero_based));
       }

@@ -75,7 +75,8 @@ LoadedMesh ParseOff(const std::string& path, std::string_view data) {
   std::vector<double> verts;
   verts.reserve(static_cast<std::size_t>(nv) * 3);
   for (std::uint64_t v = 0; v < nv; ++v, ++li) {
-    if (li >= lines.size()) Fail(path, "the OFF file ends after " + std::to_string(v) + " of " + std::to_string(nv) + " vertices");
+    if (li >= lines.size())
+      Fail(path, "the OFF file ends after " + std::to_string(v) + " of " + std::to_string(nv) + " vertices");
     Tokens t(lines[li]);
     for (int k = 0; k < 3; ++k) {
       std::string_view tok;
@@ -88,7 +89,8 @@ LoadedMesh ParseOff(const std::string& path, std::string_view data) {
   PolygonMesh mesh;
   std::vector<std::int64_t> face;
   for (std::uint64_t f = 0; f < nf; ++f, ++li) {
-    if (li >= lines.size()) Fail(path, "the OFF file ends after " + std::to_string(f) + " of " + std::to_string(nf) + " faces");
+    if (li >= lines.size())
+      Fail(path, "the OFF file ends after " + std::to_string(f) + " of " + std::to_string(nf) + " faces");
     Tokens t(lines[li]);
     std::string_view tok;
     std::uint64_t n = 0;
@@ -98,9 +100,11 @@ LoadedMesh ParseOff(const std::string& path, std::string_view data) {
     face.clear();
     for (std::uint64_t k = 0; k < n; ++k) {
       std::int64_t idx;
-      if (!t.Next(tok) || !ParseNumber(tok, idx)) Fail(path, where(li) + "expected " + std::to_string(n) + " vertex indices");
+      if (!t.Next(tok) || !ParseNumber(tok, idx))
+        Fail(path, where(li) + "expected " + std::to_string(n) + " vertex indices");
       if (idx < 0 || static_cast<std::uint64_t>(idx) >= nv) {
-        Fail(path, where(li) + "vertex index " + std::to_string(idx) + " is out of range (" + std::to_string(nv) + " vertices)");
+        Fail(path, where(li) + "vertex index " + std::to_string(idx) + " is out of range (" + std::to_string(nv) +
+                       " vertices)");
       }
       face.push_back(idx);
     }

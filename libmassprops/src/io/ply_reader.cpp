@@ -29,11 +29,11 @@ enum class PlyType { kInt8, kUInt8, kInt16, kUInt16, kInt32, kUInt32, kFloat32, 
 
 bool ParsePlyType(std::string_view name, PlyType& t) {
   static const std::pair<const char*, PlyType> kNames[] = {
-      {"char", PlyType::kInt8},     {"int8", PlyType::kInt8},       {"uchar", PlyType::kUInt8},
-      {"uint8", PlyType::kUInt8},   {"short", PlyType::kInt16},     {"int16", PlyType::kInt16},
-      {"ushort", PlyType::kUInt16}, {"uint16", PlyType::kUInt16},   {"int", PlyType::kInt32},
-      {"int32", PlyType::kInt32},   {"uint", PlyType::kUInt32},     {"uint32", PlyType::kUInt32},
-      {"float", PlyType::kFloat32}, {"float32", PlyType::kFloat32}, {"double", PlyType::kFloat64},
+      {"char", PlyType::kInt8},      {"int8", PlyType::kInt8},       {"uchar", PlyType::kUInt8},
+      {"uint8", PlyType::kUInt8},    {"short", PlyType::kInt16},     {"int16", PlyType::kInt16},
+      {"ushort", PlyType::kUInt16},  {"uint16", PlyType::kUInt16},   {"int", PlyType::kInt32},
+      {"int32", PlyType::kInt32},    {"uint", PlyType::kUInt32},     {"uint32", PlyType::kUInt32},
+      {"float", PlyType::kFloat32},  {"float32", PlyType::kFloat32}, {"double", PlyType::kFloat64},
       {"float64", PlyType::kFloat64}};
   for (const auto& [n, type] : kNames) {
     if (name == n) {
@@ -78,14 +78,42 @@ double ReadBinary(const char* p, PlyType t, bool swap) {
   std::memcpy(b, p, static_cast<std::size_t>(n));
   if (swap) std::reverse(b, b + n);
   switch (t) {
-    case PlyType::kInt8: { std::int8_t v; std::memcpy(&v, b, 1); return v; }
+    case PlyType::kInt8: {
+      std::int8_t v;
+      std::memcpy(&v, b, 1);
+      return v;
+    }
     case PlyType::kUInt8: return b[0];
-    case PlyType::kInt16: { std::int16_t v; std::memcpy(&v, b, 2); return v; }
-    case PlyType::kUInt16: { std::uint16_t v; std::memcpy(&v, b, 2); return v; }
-    case PlyType::kInt32: { std::int32_t v; std::memcpy(&v, b, 4); return v; }
-    case PlyType::kUInt32: { std::uint32_t v; std::memcpy(&v, b, 4); return v; }
-    case PlyType::kFloat32: { float v; std::memcpy(&v, b, 4); return v; }
-    case PlyType::kFloat64: { double v; std::memcpy(&v, b, 8); return v; }
+    case PlyType::kInt16: {
+      std::int16_t v;
+      std::memcpy(&v, b, 2);
+      return v;
+    }
+    case PlyType::kUInt16: {
+      std::uint16_t v;
+      std::memcpy(&v, b, 2);
+      return v;
+    }
+    case PlyType::kInt32: {
+      std::int32_t v;
+      std::memcpy(&v, b, 4);
+      return v;
+    }
+    case PlyType::kUInt32: {
+      std::uint32_t v;
+      std::memcpy(&v, b, 4);
+      return v;
+    }
+    case PlyType::kFloat32: {
+      float v;
+      std::memcpy(&v, b, 4);
+      return v;
+    }
+    case PlyType::kFloat64: {
+      double v;
+      std::memcpy(&v, b, 8);
+      return v;
+    }
   }
   return 0;
 }
@@ -191,14 +219,16 @@ LoadedMesh ParsePly(const std::string& path, std::string_view data) {
           if (ascii) {
             std::string_view tok;
             if (!tokens.Next(tok) || !ParseNumber(tok, count)) {
-              Fail(path, "line " + std::to_string(tokens.line()) + ": bad or missing list count in element '" + e.name + "'");
+              Fail(path,
+                   "line " + std::to_string(tokens.line()) + ": bad or missing list count in element '" + e.name + "'");
             }
           } else {
             if (pos + PlySize(p.count_type) > data.size()) Fail(path, "the binary PLY body is truncated");
             count = ReadBinary(data.data() + pos, p.count_type, swap);
             pos += static_cast<std::size_t>(PlySize(p.count_type));
           }
-          if (!(count >= 0) || count > 1e6) Fail(path, "implausible list length " + std::to_string(count) + " in element '" + e.name + "'");
+          if (!(count >= 0) || count > 1e6)
+            Fail(path, "implausible list length " + std::to_string(count) + " in element '" + e.name + "'");
           items = static_cast<std::uint64_t>(count);
         }
         if (static_cast<int>(k) == iface) face_corners.clear();
@@ -206,9 +236,11 @@ LoadedMesh ParsePly(const std::string& path, std::string_view data) {
           double v;
           if (ascii) {
             std::string_view tok;
-            if (!tokens.Next(tok)) Fail(path, "the PLY body ends early, in element '" + e.name + "' " + std::to_string(r));
+            if (!tokens.Next(tok))
+              Fail(path, "the PLY body ends early, in element '" + e.name + "' " + std::to_string(r));
             if (!ParseNumber(tok, v)) {
-              Fail(path, "line " + std::to_string(tokens.line()) + ": expected a number, got '" + std::string(tok) + "'");
+              Fail(path,
+                   "line " + std::to_string(tokens.line()) + ": expected a number, got '" + std::string(tok) + "'");
             }
           } else {
             if (pos + PlySize(p.type) > data.size()) Fail(path, "the binary PLY body is truncated");
@@ -235,8 +267,8 @@ LoadedMesh ParsePly(const std::string& path, std::string_view data) {
         const auto nv = static_cast<std::int64_t>(verts.size() / 3);
         for (std::int64_t c : face_corners) {
           if (c < 0 || c >= nv) {
-            Fail(path, "face " + std::to_string(r) + " refers to vertex " + std::to_string(c) +
-                           ", but there are " + std::to_string(nv) + " vertices");
+            Fail(path, "face " + std::to_string(r) + " refers to vertex " + std::to_string(c) + ", but there are " +
+                           std::to_string(nv) + " vertices");
           }
         }
         mesh.AddFace(face_corners);
@@ -259,6 +291,5 @@ LoadedMesh ParsePly(const std::string& path, std::string_view data) {
   }
   return out;
 }
-
 
 }  // namespace massprops

@@ -28,8 +28,7 @@ using io_text::Lower;
 using io_text::NextToken;
 using io_text::ParseDouble;
 
-LoadedMesh FromTriangleSoup(const std::string& path, const std::vector<double>& xyz,
-                            const char* format) {
+LoadedMesh FromTriangleSoup(const std::string& path, const std::vector<double>& xyz, const char* format) {
   return WeldCorners(path, xyz, std::vector<int>(xyz.size() / 9, 3), format);
 }
 
@@ -62,24 +61,22 @@ LoadedMesh ReadAsciiStl(const std::string& path, std::string_view data) {
       for (double& c : v) {
         const std::string_view tok = NextToken(s);
         if (!ParseDouble(tok, c)) {
-          Fail(path, "line " + std::to_string(line) + ": expected a number after 'vertex', got '" +
-                         std::string(tok) + "'");
+          Fail(path,
+               "line " + std::to_string(line) + ": expected a number after 'vertex', got '" + std::string(tok) + "'");
         }
       }
       xyz.insert(xyz.end(), v, v + 3);
       ++in_facet_vertices;
     } else if (key == "endloop") {
       if (in_facet_vertices != 3) {
-        Fail(path, "line " + std::to_string(line) + ": a facet has " +
-                       std::to_string(in_facet_vertices) + " vertices; STL facets have 3");
+        Fail(path, "line " + std::to_string(line) + ": a facet has " + std::to_string(in_facet_vertices) +
+                       " vertices; STL facets have 3");
       }
       in_facet_vertices = 0;
     } else if (key == "solid") {
       saw_solid = true;
-    } else if (!(key.empty() || key == "facet" || key == "outer" || key == "endfacet" ||
-                 key == "endsolid")) {
-      Fail(path, "line " + std::to_string(line) + ": unexpected '" + key +
-                     "' in an ASCII STL");
+    } else if (!(key.empty() || key == "facet" || key == "outer" || key == "endfacet" || key == "endsolid")) {
+      Fail(path, "line " + std::to_string(line) + ": unexpected '" + key + "' in an ASCII STL");
     }
     ++line;
   }
@@ -92,8 +89,7 @@ LoadedMesh ReadAsciiStl(const std::string& path, std::string_view data) {
 
 LoadedMesh ParseStl(const std::string& path, std::string_view data) {
   if (data.empty()) Fail(path, "the file is empty");
-  const StlLayout layout =
-      DetectStl(path, reinterpret_cast<const unsigned char*>(data.data()), data.size());
+  const StlLayout layout = DetectStl(path, reinterpret_cast<const unsigned char*>(data.data()), data.size());
   if (layout.ascii) return ReadAsciiStl(path, data);
   return ReadBinaryStl(path, data, layout.triangles);
 }
@@ -109,9 +105,9 @@ StlLayout DetectStl(const std::string& path, const unsigned char* bytes, std::si
     // Binary files from some exporters also begin with "solid"; text has no NUL bytes and
     // mentions "facet" early.
     const std::string_view head(data, std::min<std::size_t>(size, 4096));
-    const bool looks_text = head.find('\0') == std::string_view::npos &&
-                            (head.find("facet") != std::string_view::npos ||
-                             head.find("endsolid") != std::string_view::npos);
+    const bool looks_text =
+        head.find('\0') == std::string_view::npos &&
+        (head.find("facet") != std::string_view::npos || head.find("endsolid") != std::string_view::npos);
     if (looks_text) return {true, 0, 0};
   }
   if (size >= 84 && n > 0 && expected < size && size - expected < 50) {
@@ -120,13 +116,12 @@ StlLayout DetectStl(const std::string& path, const unsigned char* bytes, std::si
   if (size < 84) Fail(path, "too short for a binary STL (" + std::to_string(size) + " bytes) and not ASCII STL");
   if (n == 0 && size == 84) Fail(path, "the binary STL holds no triangles (its header says 0)");
   std::ostringstream msg;
-  msg << "binary STL header says " << n << " triangles, which need " << expected
-      << " bytes, but the file has " << size << " bytes (truncated or not an STL)";
+  msg << "binary STL header says " << n << " triangles, which need " << expected << " bytes, but the file has " << size
+      << " bytes (truncated or not an STL)";
   Fail(path, msg.str());
 }
 
-std::optional<SoupIntegrals> IntegrateBinaryStlFile(const std::string& path,
-                                                    const IntegrationOptions& options) {
+std::optional<SoupIntegrals> IntegrateBinaryStlFile(const std::string& path, const IntegrationOptions& options) {
   // pread block by block into small per-thread buffers: the file is read once, in parallel, and
   // each block is integrated while it is in cache (faster than a memory map, whose page-cache
   // pages the hardware prefetcher does not stream across, and than one big read).

@@ -34,7 +34,6 @@ struct PositionHash {
   }
 };
 
-
 // The weld, over corners given by an accessor (so binary STL records are read in place, without
 // an intermediate copy of every coordinate).
 template <typename CornerAt>
@@ -64,8 +63,7 @@ LoadedMesh Weld(const std::string& path, std::size_t corners, const CornerAt& co
     const PositionKey k = corner_at(c);
     if (!std::isfinite(k.x) || !std::isfinite(k.y) || !std::isfinite(k.z)) {
       std::ostringstream msg;
-      msg << "triangle " << c / 3 << " has a non-finite coordinate (" << k.x << ", " << k.y
-          << ", " << k.z << ")";
+      msg << "triangle " << c / 3 << " has a non-finite coordinate (" << k.x << ", " << k.y << ", " << k.z << ")";
       Fail(path, msg.str());
     }
     // Float-derived doubles have many zero low bits: mix (Stafford's variant 13) and take the top bits.
