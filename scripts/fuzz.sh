@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Fuzzes the hand-written mesh parsers with libFuzzer (clang, AddressSanitizer, UBSan) for
-# SECONDS (default 60), starting from the small meshes in data/ and tests/fuzz/corpus/.
+# Fuzzes the hand-written mesh parsers and the rbsim scene parser with libFuzzer (clang,
+# AddressSanitizer, UBSan), SECONDS in all (default 60: two thirds on the meshes, one third on the
+# scenes), starting from the small meshes in data/, tests/fuzz/corpus/ and tests/fuzz/scene_corpus/.
 # A crash leaves its input as build-fuzz/crash-* and fails the script.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -9,12 +10,17 @@ bash "$root/scripts/install_deps.sh"
 build=$root/build-fuzz
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_COMPILER="$(command -v clang++ || command -v clang++-14)" -DMASSPROPS_BUILD_FUZZERS=ON -DMASSPROPS_BUILD_TESTS=OFF \
-  -DMASSPROPS_BUILD_APPS=OFF -DMASSPROPS_BUILD_BENCH=OFF >/dev/null
-cmake --build "$build" --target mesh_parsers_fuzzer
+  -DMASSPROPS_BUILD_APPS=ON -DMASSPROPS_BUILD_BENCH=OFF >/dev/null
+cmake --build "$build" --target mesh_parsers_fuzzer scene_parser_fuzzer
 corpus=$build/corpus
 mkdir -p "$corpus"
 cp "$root"/tests/fuzz/corpus/* "$corpus"/
 for f in Moon.stl HalfDonut_binary.stl HalfDonut_ascii.stl hollow_sphere.off; do cp "$root/data/meshes/$f" "$corpus"/; done
 cd "$build"
-./mesh_parsers_fuzzer -max_total_time="$seconds" -max_len=65536 -timeout=10 -rss_limit_mb=4096 \
+./mesh_parsers_fuzzer -max_total_time="$((seconds * 2 / 3))" -max_len=65536 -timeout=10 -rss_limit_mb=4096 \
   -print_final_stats=1 "$corpus" 2>&1 | tail -n 25
+scenes=$build/scene_corpus
+mkdir -p "$scenes"
+cp "$root"/tests/fuzz/scene_corpus/* "$scenes"/
+./scene_parser_fuzzer -max_total_time="$((seconds / 3))" -max_len=8192 -timeout=10 -rss_limit_mb=4096 \
+  -print_final_stats=1 "$scenes" 2>&1 | tail -n 25
