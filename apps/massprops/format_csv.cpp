@@ -31,7 +31,7 @@ std::string FormatCsv(const std::vector<SolidResult>& results, const FormatOptio
   // Thin shells have no volume and no volume density: those cells stay empty, and the area
   // density has a column of its own.
   if (shells) out << ",area_density_kg_m2";
-  out << "\n";
+  out << ",warnings\n";
   for (const SolidResult& r : results) {
     const Matrix3& I = r.mp.inertia_com;
     const Vector3& c = r.mp.center_of_mass;
@@ -61,7 +61,9 @@ std::string FormatCsv(const std::vector<SolidResult>& results, const FormatOptio
       out << ",,,,,,,,,,,,,,";
     }
     if (shells) out << "," << (shell ? ExactDecimal(r.mp.density) : "");
-    out << "\n";
+    std::string warnings;  // every finding, "; "-separated
+    for (const Finding& f : r.findings) warnings += (warnings.empty() ? "" : "; ") + Worded(f.message, CliVocabulary());
+    out << "," << (warnings.empty() ? "" : Quoted(warnings)) << "\n";
   }
   return out.str();
 }

@@ -8,9 +8,15 @@ std::string FormatRobot(const SolidResult& r, Format format) {
                            ExactDecimal(r.mp.density) +
                            " kg/m^3; inertia about the center of mass, link axes = the mesh file's axes (unit " +
                            UnitName(r.unit) + ") -->\n";
-  if (format == Format::kUrdf) return note + UrdfInertial(r.mp);
-  if (format == Format::kSdf) return note + SdfInertial(r.mp);
-  return note + MjcfInertial(r.mp, r.principal);
+  std::string warnings;  // XML comments may not contain "--": the option names are spelled out
+  for (const Finding& f : r.findings) {
+    std::string w = Worded(f.message, CliVocabulary());
+    for (auto at = w.find("--"); at != std::string::npos; at = w.find("--", at)) w.replace(at, 2, "option ");
+    warnings += "<!-- warning: " + w + " -->\n";
+  }
+  if (format == Format::kUrdf) return note + warnings + UrdfInertial(r.mp);
+  if (format == Format::kSdf) return note + warnings + SdfInertial(r.mp);
+  return note + warnings + MjcfInertial(r.mp, r.principal);
 }
 
 }  // namespace massprops::cli

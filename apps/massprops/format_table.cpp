@@ -40,10 +40,6 @@ std::string FormatTable(const SolidResult& r, const FormatOptions& opt) {
                                       : std::to_string(r.self_intersections) + " intersecting face pairs")
         << "\n";
   }
-  if (!r.full_topology && !implicit) {
-    out << "checks          streamed: every edge has its reverse, so the volume is well defined; "
-           "shells were not separated (--full-check does, and checks their nesting)\n";
-  }
   if (r.shells.shells.size() > 1) {
     const double s3 = std::pow(MetresPerUnit(r.unit), 3);
     out << "shells          ";
@@ -108,6 +104,7 @@ std::string FormatTable(const SolidResult& r, const FormatOptions& opt) {
   PrintMatrix(out, "                ", r.principal.axes);
   out << "physically valid  "
       << (r.validity.valid ? "yes (moments positive, I1 + I2 >= I3)" : "NO: " + r.validity.reason) << "\n";
+  for (const Finding& f : r.findings) out << "warning         " << Worded(f.message, CliVocabulary()) << "\n";
   return out.str();
 }
 

@@ -212,6 +212,9 @@ bool TryStreamedStl(SolidResult& r, const std::string& file, const LoadOptions& 
   r.full_topology = false;
   r.topology.faces = soup->triangles;
   r.path_used = "triangles (signed tetrahedra), streamed from the file";
+  Warn(r, FindingKind::kStreamedChecks,
+       "streamed: every edge has its reverse, so the volume is well defined, but shells were neither separated "
+       "nor checked for overlap ({full_check} does)");
   Finish(r, soup->integrals, opt, (soup->upper - soup->lower).norm());
   return true;
 }
