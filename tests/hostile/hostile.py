@@ -9,6 +9,7 @@ Prints one line per failed case and 'N passed, M failed'; exit 0 when none faile
 generated here (no hostile file is committed). A case is (name, files, args, expected status,
 regex the stderr must match, regex the stdout must match or None for 'prints nothing').
 """
+import json
 import os
 import re
 import shutil
@@ -212,6 +213,13 @@ def main():
         r"clean_obj.obj", env={"MASSPROPS_ASSIMP_FAULT": "crash"})
     run("assimp_hang", ["box.gltf", "clean_obj.obj", "--format", "csv"], 1, r"box.gltf: assimp did not finish",
         r"clean_obj.obj", env={"MASSPROPS_ASSIMP_FAULT": "hang", "MASSPROPS_ASSIMP_TIMEOUT": "1"})
+    # A glTF node with a mirroring transform (scale -1) turns its faces the other way: two boxes.
+    with open(gltf) as src:
+        doc = json.load(src)
+    doc["nodes"] = [{"mesh": 0, "name": "box"}, {"mesh": 0, "name": "mirrored", "scale": [-1, 1, 1]}]
+    doc["scenes"] = [{"nodes": [0, 1]}]
+    write("mirrored.gltf", json.dumps(doc))
+    run("gltf_mirrored_node", ["mirrored.gltf", "--format", "csv"], 0, r"^$", r",m,0\.01200000\d*,12\.0000")
     write("cut_short.ply", "ply\nformat ascii 1.0\nelement vertex 3\n")
     run("assimp_cut_short_ply", ["cut_short.ply", "--reader", "assimp"], 1, r"cut_short.ply: .+",
         env={"MASSPROPS_ASSIMP_TIMEOUT": "5"})

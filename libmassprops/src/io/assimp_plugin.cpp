@@ -29,27 +29,62 @@ __attribute__((visibility("default"))) int massprops_assimp_read(const char* pat
                                                                  std::size_t* num_faces, char* error,
                                                                  std::size_t error_size) {
   Assimp::Importer importer;
-  // Bake node transforms into the vertices (glTF, COLLADA and 3MF place meshes through nodes);
-  // keep polygons whole; drop points and lines, which bound no volume.
+  // Node transforms are applied here, in double precision, rather than by assimp's
+  // PreTransformVertices (single precision, and it keeps the winding of mirrored instances);
+  // polygons stay whole; points and lines, which bound no volume, are dropped.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const aiScene* scene =
-      importer.ReadFile(path, aiProcess_PreTransformVertices | aiProcess_SortByPType | aiProcess_ValidateDataStructure);
-  if (scene == nullptr) {
+  const aiScene* scene = importer.ReadFile(path, aiProcess_SortByPType | aiProcess_ValidateDataStructure);
+  if (scene == nullptr || scene->mRootNode == nullptr) {
     std::snprintf(error, error_size, "assimp could not read it: %s", importer.GetErrorString());
     return 1;
   }
   std::vector<double> corners;
   std::vector<int> sizes;
-  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
-    const aiMesh* mesh = scene->mMeshes[m];
-    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
-      const aiFace& face = mesh->mFaces[f];
-      if (face.mNumIndices < 3) continue;
-      for (unsigned k = 0; k < face.mNumIndices; ++k) {
-        const aiVector3D& v = mesh->mVertices[face.mIndices[k]];
-        corners.insert(corners.end(), {static_cast<double>(v.x), static_cast<double>(v.y), static_cast<double>(v.z)});
+  // Depth-first over the node hierarchy with the accumulated transform (row-major 4x4, doubles).
+  struct Item {
+    const aiNode* node;
+    double m[16];
+  };
+  std::vector<Item> stack;
+  Item root{scene->mRootNode, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}};
+  stack.push_back(root);
+  while (!stack.empty()) {
+    Item item = stack.back();
+    stack.pop_back();
+    const aiMatrix4x4& t = item.node->mTransformation;
+    const double local[16] = {t.a1, t.a2, t.a3, t.a4, t.b1, t.b2, t.b3, t.b4,
+                              t.c1, t.c2, t.c3, t.c4, t.d1, t.d2, t.d3, t.d4};
+    double m[16];
+    for (int r = 0; r < 4; ++r) {
+      for (int c = 0; c < 4; ++c) {
+        double sum = 0;
+        for (int k = 0; k < 4; ++k) sum += item.m[4 * r + k] * local[4 * k + c];
+        m[4 * r + c] = sum;
       }
-      sizes.push_back(static_cast<int>(face.mNumIndices));
+    }
+    // A transform with a negative determinant mirrors: faces keep their corners but must turn
+    // the other way to face outward (as the glTF specification prescribes).
+    const double det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
+                       m[2] * (m[4] * m[9] - m[5] * m[8]);
+    for (unsigned i = 0; i < item.node->mNumMeshes; ++i) {
+      const aiMesh* mesh = scene->mMeshes[item.node->mMeshes[i]];
+      for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+        const aiFace& face = mesh->mFaces[f];
+        if (face.mNumIndices < 3) continue;
+        for (unsigned k = 0; k < face.mNumIndices; ++k) {
+          const unsigned corner = det < 0 ? face.mIndices[face.mNumIndices - 1 - k] : face.mIndices[k];
+          const aiVector3D& v = mesh->mVertices[corner];
+          const double x = v.x, y = v.y, z = v.z;
+          corners.insert(corners.end(), {m[0] * x + m[1] * y + m[2] * z + m[3], m[4] * x + m[5] * y + m[6] * z + m[7],
+                                         m[8] * x + m[9] * y + m[10] * z + m[11]});
+        }
+        sizes.push_back(static_cast<int>(face.mNumIndices));
+      }
+    }
+    for (unsigned c = item.node->mNumChildren; c-- > 0;) {  // so that the first child comes first
+      Item child{item.node->mChildren[c], {}};
+      std::memcpy(child.m, m, sizeof m);
+      stack.push_back(child);
     }
   }
   *num_corners = corners.size() / 3;
