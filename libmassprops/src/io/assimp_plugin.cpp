@@ -64,8 +64,8 @@ __attribute__((visibility("default"))) int massprops_assimp_read(const char* pat
     }
     // A transform with a negative determinant mirrors: faces keep their corners but must turn
     // the other way to face outward (as the glTF specification prescribes).
-    const double det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
-                       m[2] * (m[4] * m[9] - m[5] * m[8]);
+    const double det =
+        m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) + m[2] * (m[4] * m[9] - m[5] * m[8]);
     for (unsigned i = 0; i < item.node->mNumMeshes; ++i) {
       const aiMesh* mesh = scene->mMeshes[item.node->mMeshes[i]];
       for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
