@@ -15,6 +15,7 @@ std::string RepairReport::Summary() const {
   if (split_vertices) s << "split " << split_vertices << " non-manifold vertices; ";
   if (stitched_edges) s << "stitched " << stitched_edges << " border edges; ";
   if (oriented_to_bound_volume) s << "oriented shells outward and cavities inward; ";
+  if (united_shells) s << "united " << united_shells + 1 << " overlapping shells into one; ";
   s << "signed volume " << volume_before << " -> " << volume_after;
   return s.str();
 }

@@ -180,6 +180,9 @@ def main():
         r"14.73 m across, with the unit defaulted to m.*in millimetres it would be 0.0147 m \(--unit mm\)(.|\n)*"
         r"implies a density of 0.001736 kg/m\^3, lighter than any solid material; with --unit cm", r"volume")
     run("units_stated", ["part_mm.obj", "--unit", "mm"], 0, r"^$", r"volume")
+    # Overlapping shells: --repair computes their union (CGAL corefinement): 2 - 1/8 = 1.875.
+    run("overlapping_united", ["overlapping_obj.obj", "--repair", "--format", "csv", "--unit", "m"], 0, r"^$",
+        r",m,1\.875,1875,")
     # Double-sided duplicates are dropped by --repair.
     run("double_sided_repaired", ["double_sided_obj.obj", "--repair"], 0, r"^$|warning", r"volume")
     # Option combinations that make no sense: exit 2, nothing printed.

@@ -24,6 +24,7 @@ struct RepairReport {
   std::int64_t split_vertices = 0;        ///< vertices duplicated to orient non-manifold fans
   std::int64_t stitched_edges = 0;        ///< border edge pairs stitched together
   bool oriented_to_bound_volume = false;  ///< shells oriented outward, cavities inward
+  std::int64_t united_shells = 0;         ///< overlapping shells merged into their union
   double volume_before = 0;               ///< signed volume before and after (mesh units³)
   double volume_after = 0;
   /// One line per change, for people.
@@ -40,6 +41,12 @@ struct RepairedMesh {
 /// and — when the result is closed — orient_to_bound_a_volume (every shell outward, nested
 /// cavities inward).
 RepairedMesh RepairMesh(const PolygonMesh& mesh, const RepairOptions& options = {});
+
+/// The union of a mesh's closed shells (CGAL corefinement), for shells that overlap: the outward
+/// shells are united one by one, inward ones (cavities) kept as they are. `merged` is how many
+/// shells were united into the first. @throws std::runtime_error when a shell is open or CGAL
+/// cannot unite them (a shell that intersects itself).
+PolygonMesh UnionOfShells(const PolygonMesh& mesh, std::int64_t& merged);
 
 /// Number of pairs of faces that intersect other than along shared edges or vertices (CGAL
 /// self_intersections on the fan-triangulated mesh), counting up to `limit`.

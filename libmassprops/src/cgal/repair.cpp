@@ -8,10 +8,14 @@
 #include <iterator>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <unordered_map>
 #include <vector>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
@@ -104,6 +108,25 @@ Mesh ToCgal(const PolygonMesh& mesh) {
   return out;
 }
 
+PolygonMesh FromCgal(Mesh& mesh) {
+  PolygonMesh out;
+  mesh.collect_garbage();
+  out.V.resize(static_cast<Eigen::Index>(mesh.number_of_vertices()), 3);
+  std::vector<std::int32_t> index(mesh.num_vertices(), -1);
+  std::int32_t next = 0;
+  for (auto v : mesh.vertices()) {
+    const Point& p = mesh.point(v);
+    index[v.idx()] = next;
+    out.V.row(next++) << p.x(), p.y(), p.z();
+  }
+  for (auto f : mesh.faces()) {
+    std::vector<std::int32_t> face;
+    for (auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) face.push_back(index[v.idx()]);
+    out.AddFace(face);
+  }
+  return out;
+}
+
 }  // namespace
 
 RepairedMesh RepairMesh(const PolygonMesh& input, const RepairOptions& options) {
@@ -161,20 +184,7 @@ RepairedMesh RepairMesh(const PolygonMesh& input, const RepairOptions& options) 
   }
 
   // 4. Back to our mesh.
-  mesh.collect_garbage();
-  out.mesh.V.resize(static_cast<Eigen::Index>(mesh.number_of_vertices()), 3);
-  std::vector<std::int32_t> index(mesh.num_vertices(), -1);
-  std::int32_t next = 0;
-  for (auto v : mesh.vertices()) {
-    const Point& p = mesh.point(v);
-    index[v.idx()] = next;
-    out.mesh.V.row(next++) << p.x(), p.y(), p.z();
-  }
-  for (auto f : mesh.faces()) {
-    std::vector<std::int32_t> face;
-    for (auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) face.push_back(index[v.idx()]);
-    out.mesh.AddFace(face);
-  }
+  out.mesh = FromCgal(mesh);
   rep.volume_after = SignedVolume(out.mesh.V, Fans(out.mesh));
   return out;
 }
@@ -194,6 +204,31 @@ struct PairCounter {
   }
 };
 }  // namespace
+
+PolygonMesh UnionOfShells(const PolygonMesh& input, std::int64_t& merged) {
+  Mesh all = ToCgal(input);
+  std::vector<Mesh> parts;
+  PMP::split_connected_components(all, parts);
+  std::vector<Mesh> outward, inward;
+  for (Mesh& part : parts) {
+    if (!CGAL::is_closed(part)) throw std::runtime_error("the union of overlapping shells needs closed shells");
+    (PMP::volume(part) > 0 ? outward : inward).push_back(std::move(part));
+  }
+  if (outward.empty()) throw std::runtime_error("no shell faces outward: nothing to unite");
+  Mesh result = outward[0];
+  for (std::size_t i = 1; i < outward.size(); ++i) {
+    Mesh united;
+    if (!PMP::corefine_and_compute_union(result, outward[i], united)) {
+      throw std::runtime_error(
+          "CGAL could not compute the union of the overlapping shells (a shell intersects "
+          "itself, or does not bound a volume)");
+    }
+    result = std::move(united);
+  }
+  for (const Mesh& cavity : inward) result += cavity;  // cavities facing inward stay as they are
+  merged = static_cast<std::int64_t>(outward.size()) - 1;
+  return FromCgal(result);
+}
 
 std::int64_t CountSelfIntersections(const PolygonMesh& polygons, std::int64_t limit) {
   const Mesh mesh = ToCgal(polygons);

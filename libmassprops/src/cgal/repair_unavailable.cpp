@@ -16,6 +16,8 @@ namespace {
 
 RepairedMesh RepairMesh(const PolygonMesh&, const RepairOptions&) { Unavailable("the repair"); }
 
+PolygonMesh UnionOfShells(const PolygonMesh&, std::int64_t&) { Unavailable("the union of overlapping shells"); }
+
 std::int64_t CountSelfIntersections(const PolygonMesh&, std::int64_t) { Unavailable("the self-intersection check"); }
 
 }  // namespace massprops

@@ -32,6 +32,12 @@ std::string Lower(std::string s) {
   return s;
 }
 
+double SignedVolumeOf(const PolygonMesh& mesh) {
+  IntegrationOptions io;
+  io.num_threads = 1;
+  return IntegratePolygons(mesh, io).volume;
+}
+
 double Diagonal(const PolygonMesh& mesh) {
   const Vector3 extent = (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).transpose();
   const double d = extent.norm();
@@ -419,6 +425,16 @@ SolidResult LoadSolid(const std::string& file, const LoadOptions& opt) {
   if (r.topology.components > 1) {
     Stage(opt, "checking how the shells nest");
     r.shells = AnalyzeShells(mesh);
+    if (r.shells.crossing.first >= 0 && opt.repair) {
+      // Overlapping shells: their union is the solid they describe together.
+      Stage(opt, "uniting the overlapping shells (CGAL)");
+      std::int64_t united = 0;
+      r.loaded.mesh = UnionOfShells(r.loaded.mesh, united);
+      r.repair->united_shells = united;
+      r.repair->volume_after = SignedVolumeOf(r.loaded.mesh);
+      r.topology = AnalyzeTopology(r.loaded.mesh);
+      r.shells = r.topology.components > 1 ? AnalyzeShells(r.loaded.mesh) : ShellReport{};
+    }
     if (!r.shells.problem.empty()) {
       if (!opt.allow_open) throw LoadError(file + ": " + r.shells.problem);
       Warn(r, FindingKind::kOverlappingShells, r.shells.problem + "; computed anyway ({allow_open})");
