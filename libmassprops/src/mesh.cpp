@@ -6,6 +6,25 @@
 
 namespace massprops {
 
+void SplitPolygon(const std::int32_t* corners, int n, std::vector<std::array<std::int32_t, 3>>& out) {
+  constexpr int kFanLimit = 32;
+  if (n <= kFanLimit) {
+    for (int k = 1; k + 1 < n; ++k) out.push_back({corners[0], corners[k], corners[k + 1]});
+    return;
+  }
+  // The chain corners[i..j] closed by the chord j → i: triangle (i, m, j), then (i..m) and (m..j).
+  std::vector<std::pair<int, int>> stack{{0, n - 1}};
+  while (!stack.empty()) {
+    const auto [i, j] = stack.back();
+    stack.pop_back();
+    if (j - i < 2) continue;
+    const int m = i + (j - i) / 2;
+    out.push_back({corners[i], corners[m], corners[j]});
+    stack.emplace_back(m, j);
+    stack.emplace_back(i, m);
+  }
+}
+
 TriangleMesh Triangulate(const PolygonMesh& mesh) {
   std::int64_t count = 0;
   for (std::int64_t f = 0; f < mesh.num_faces(); ++f) count += std::max(mesh.face_size(f) - 2, 0);
@@ -13,9 +32,17 @@ TriangleMesh Triangulate(const PolygonMesh& mesh) {
   out.V = mesh.V;
   out.F.resize(count, 3);
   std::int64_t t = 0;
+  std::vector<std::array<std::int32_t, 3>> tris;
   for (std::int64_t f = 0; f < mesh.num_faces(); ++f) {
+    const int n = mesh.face_size(f);
     const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
-    for (int k = 1; k + 1 < mesh.face_size(f); ++k, ++t) out.F.row(t) << idx[0], idx[k], idx[k + 1];
+    if (n <= 32) {  // the fan, written directly (the common case)
+      for (int k = 1; k + 1 < n; ++k, ++t) out.F.row(t) << idx[0], idx[k], idx[k + 1];
+      continue;
+    }
+    tris.clear();
+    SplitPolygon(idx, n, tris);
+    for (const auto& tri : tris) out.F.row(t++) << tri[0], tri[1], tri[2];
   }
   return out;
 }

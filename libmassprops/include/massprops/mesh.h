@@ -2,6 +2,7 @@
 /// @file
 /// Mesh containers: an indexed triangle mesh and an indexed polygon mesh (faces of any size).
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -33,8 +34,16 @@ struct PolygonMesh {
   }
 };
 
-/// Splits every polygon into a fan of triangles from its first corner (exact for planar convex
-/// polygons, and for any planar polygon as far as the signed integrals are concerned).
+/// Splits polygon corners[0..n) into n − 2 triangles, appended to `out`, oriented as the polygon.
+/// Polygons of up to 32 corners become a fan from the first corner; larger ones a balanced
+/// recursive split along chords (triangle (first, middle, last), then each half), whose triangles
+/// stay compact: a fan of 10^5 corners makes slivers whose bounding boxes all overlap, and every
+/// intersection test and hierarchy over them turns quadratic. For a planar polygon both give the
+/// same signed integrals (each chord is traversed once each way).
+void SplitPolygon(const std::int32_t* corners, int n, std::vector<std::array<std::int32_t, 3>>& out);
+
+/// Splits every polygon into triangles (SplitPolygon): exact for planar convex polygons, and for
+/// any planar polygon as far as the signed integrals are concerned.
 TriangleMesh Triangulate(const PolygonMesh& mesh);
 
 /// Views a triangle mesh as a polygon mesh of triangles (to run it through Mirtich's path).

@@ -49,7 +49,7 @@ std::vector<std::array<std::int32_t, 3>> Fans(const PolygonMesh& m) {
   std::vector<std::array<std::int32_t, 3>> t;
   for (std::int64_t f = 0; f < m.num_faces(); ++f) {
     const std::int32_t* idx = m.indices.data() + m.offsets[f];
-    for (int k = 1; k + 1 < m.face_size(f); ++k) t.push_back({idx[0], idx[k], idx[k + 1]});
+    SplitPolygon(idx, m.face_size(f), t);
   }
   return t;
 }
@@ -161,8 +161,12 @@ RepairedMesh RepairMesh(const PolygonMesh& input, const RepairOptions& options) 
       ++duplicate_polygons;
       continue;
     }
-    for (int k = 1; k + 1 < n; ++k)
-      polys.push_back({corners[0], corners[static_cast<std::size_t>(k)], corners[static_cast<std::size_t>(k) + 1]});
+    const std::vector<std::int32_t> welded(idx, idx + n);
+    std::vector<std::int32_t> mapped(welded.size());
+    for (std::size_t k = 0; k < welded.size(); ++k) mapped[k] = map[static_cast<std::size_t>(welded[k])];
+    std::vector<std::array<std::int32_t, 3>> split;
+    SplitPolygon(mapped.data(), n, split);
+    for (const auto& t : split) polys.push_back({std::size_t(t[0]), std::size_t(t[1]), std::size_t(t[2])});
   }
   const std::size_t faces_before = polys.size();
   PMP::repair_polygon_soup(points, polys);
