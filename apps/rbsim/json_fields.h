@@ -47,6 +47,16 @@ class Fields {
     return it == j_.end() ? nullptr : &*it;
   }
   bool Has(const std::string& key) const { return j_.contains(key); }
+  /// " (the key 'bodys' is there: did you mean 'bodies'?)" when a key of the object is a likely
+  /// misspelling of `key`, else "".
+  std::string MisspelledAs(const std::string& key) const {
+    for (auto it = j_.begin(); it != j_.end(); ++it) {
+      if (it.key() != key && !Suggest(it.key(), {key}).empty()) {
+        return " (the key '" + it.key() + "' is there: did you mean '" + key + "'?)";
+      }
+    }
+    return "";
+  }
 
   double Number(const std::string& key, double fallback, const char* rule = nullptr) {
     const json* v = Get(key);

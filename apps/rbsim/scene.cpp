@@ -285,7 +285,9 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
   }
 
   const json* bodies = f.Get("bodies");
-  if (!bodies || !bodies->is_array() || bodies->empty()) f.Fail("bodies", "must be a non-empty array of bodies");
+  if (!bodies || !bodies->is_array() || bodies->empty()) {
+    f.Fail("bodies", "must be a non-empty array of bodies" + (bodies ? std::string() : f.MisspelledAs("bodies")));
+  }
   std::set<std::string> names;
   for (std::size_t i = 0; i < bodies->size(); ++i) {
     const std::string path = "bodies[" + std::to_string(i) + "]";

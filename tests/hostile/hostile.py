@@ -3,7 +3,7 @@
 output paths, each run through the massprops command and checked for its exit status, a message
 that names the fault (and the file), and no number printed when the input is refused.
 
-    hostile.py MASSPROPS_BINARY
+    hostile.py MASSPROPS_BINARY [RBSIM_BINARY]
 
 Prints one line per failed case and 'N passed, M failed'; exit 0 when none failed. Every case is
 generated here (no hostile file is committed). A case is (name, files, args, expected status,
@@ -125,13 +125,23 @@ TEXT_FAULTS = [
 
 def main():
     binary = os.path.abspath(sys.argv[1])
+    rbsim = os.path.abspath(sys.argv[2]) if len(sys.argv) > 2 else None
     tmp = tempfile.mkdtemp(prefix="hostile-")
     passed, failed = 0, 0
 
-    def run(name, args, status, err_re, out_re=None, cwd=tmp, env=None):
+    def run(name, args, status, err_re, out_re=None, cwd=tmp, env=None, program=None):
         nonlocal passed, failed
-        p = subprocess.run([binary] + args + ["-q"], cwd=cwd, capture_output=True, timeout=120,
+        p = subprocess.run([program or binary] + args + ["-q"], cwd=cwd, capture_output=True, timeout=120,
                            env=dict(os.environ, **(env or {})))
+        if status == 1 and program is None and len([a for a in args if not a.startswith("-")]) == 1:
+            # Refused with -o: nothing is left under the output's name, nor a temporary file.
+            out_dir = tempfile.mkdtemp(dir=tmp)
+            subprocess.run([binary] + args + ["-q", "-o", os.path.join(out_dir, "result.json")], cwd=cwd,
+                           capture_output=True, timeout=120, env=dict(os.environ, **(env or {})))
+            if os.listdir(out_dir):
+                failed += 1
+                print("FAIL: %s: -o left %s behind" % (name, os.listdir(out_dir)))
+                return
         err, out = p.stderr.decode(errors="replace"), p.stdout.decode(errors="replace")
         problems = []
         if p.returncode != status:
@@ -228,6 +238,57 @@ def main():
         env={"MASSPROPS_ASSIMP_TIMEOUT": "5"})
     # Several files, one bad: an array of the good ones, exit 1.
     run("json_array", ["clean_obj.obj", "open_obj.obj", "--format", "json"], 1, r"open mesh", r"^\[")
+
+    # The shape syntax (--implicit) and SDF grid files.
+    write("lying.sdf", "sdfgrid 1\n1000 1000 1000\n0 0 0\n1 1 1\n0 0 0\n")
+    write("nan.sdf", "sdfgrid 1\n2 2 2\n0 0 0\n1 1 1\n" + "-1 " * 7 + "nan\n")
+    write("empty.sdf", "")
+    for name, shape, err_re in [
+            ("shape_nan", "sphere(r=nan)", r"at character \d+"),
+            ("shape_overflow", "box(x=1e400, y=1, z=1)", r"finite|number"),
+            ("shape_truncated", "union(sphere(r=1), ", r"at character \d+"),
+            ("shape_garbage", "@@@", r"at character 1"),
+            ("shape_wrong_type", "sphere(r=\"one\")", r"must be a number"),
+            ("shape_deep", "scale(" * 1000, r"nested more than 200 deep"),
+            ("grid_device", "grid(file=\"/dev/zero\")", r"not a regular file"),
+            ("grid_lying", "grid(file=\"lying.sdf\")", r"promises \d+ values"),
+            ("grid_nan", "grid(file=\"nan.sdf\")", r"not finite|expected"),
+            ("grid_empty", "grid(file=\"empty.sdf\")", r"not an sdfgrid 1 file"),
+            ("grid_missing", "grid(file=\"none.sdf\")", r"cannot open")]:
+        run(name, ["--implicit", shape], 1, err_re)
+
+    # rbsim scenes: every fault names the file and the field, exit 1, nothing written.
+    if rbsim:
+        mesh = os.path.join(tmp, "clean_obj.obj")
+        box = '{"name": "b", "solid": {"type": "box", "size": [0.1, 0.1, 0.1]}}'
+        for name, text, err_re in [
+                ("scene_empty", "", r"not valid JSON"),
+                ("scene_garbage", "{{{", r"line 1: not valid JSON"),
+                ("scene_wrong_type", '{"dt": "fast", "bodies": [%s]}' % box, r"dt: must be a number"),
+                ("scene_overflow", '{"dt": 1e400, "bodies": [%s]}' % box, r"beyond double precision"),
+                ("scene_negative", '{"duration": -1, "bodies": [%s]}' % box, r"duration: must be positive"),
+                ("scene_unknown_key", '{"bodys": [%s]}' % box, r"did you mean 'bodies'"),
+                ("scene_no_bodies", '{"bodies": []}', r"bodies: must be a non-empty array"),
+                ("scene_missing_mesh", '{"bodies": [{"mesh": "none.obj"}]}', r"bodies\[0\].mesh: 'none.obj' not found"),
+                ("scene_open_mesh", '{"bodies": [{"mesh": "%s"}]}' % os.path.join(tmp, "open_obj.obj"),
+                 r"bodies\[0\].mesh: .*\"repair\": true"),
+                ("scene_duplicate_names", '{"bodies": [%s, %s]}' % (box, box), r"'b' is used by another body"),
+                ("scene_huge_velocity", '{"bodies": [{"solid": {"type": "sphere", "radius": 1}, "velocity": [1e300, 0, 0]}]}',
+                 r"initial state's energy is not finite"),
+                ("scene_tiny_solid", '{"bodies": [{"solid": {"type": "sphere", "radius": 1e-200}}]}',
+                 r"bodies\[0\].solid: sphere: .*under- or overflows"),
+                ("scene_zero_quaternion", '{"bodies": [{"solid": {"type": "sphere", "radius": 1}, "orientation": [0, 0, 0, 0]}]}',
+                 r"orientation: the quaternion is zero"),
+                ("scene_bad_integrator", '{"integrator": "verlet", "bodies": [%s]}' % box, r"integrator: 'verlet' is not one of")]:
+            write(name + ".json", text)
+            out_dir = os.path.join(tmp, name + ".out")
+            run(name, [name + ".json", "--out", out_dir, "--duration", "0.01"] if "duration" not in text else
+                [name + ".json", "--out", out_dir], 1, re.escape(name) + r"\.json: (.|\n)*" + err_re,
+                program=rbsim)
+            if os.path.isdir(out_dir) and os.listdir(out_dir):
+                failed += 1
+                print("FAIL: %s: files left in --out: %s" % (name, os.listdir(out_dir)))
+        del mesh
 
     shutil.rmtree(tmp, ignore_errors=True)
     print("%d passed, %d failed" % (passed, failed))
