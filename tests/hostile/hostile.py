@@ -233,6 +233,12 @@ def main():
     doc["scenes"] = [{"nodes": [0, 1]}]
     write("mirrored.gltf", json.dumps(doc))
     run("gltf_mirrored_node", ["mirrored.gltf", "--format", "csv"], 0, r"^$", r",m,0\.01200000\d*,12\.0000")
+    # COLLADA declares its unit (mm) and Z_UP: the unit is applied, and the file's axes are kept
+    # (assimp would turn Z_UP into Y-up, which would rotate the inertia tensor).
+    with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "cube_mm_zup.dae")) as src:
+        write("cube_mm_zup.dae", src.read())
+    run("collada_unit_and_axes", ["cube_mm_zup.dae", "--format", "csv"], 0, r"^$",
+        r",m,1\.0000001\d*e-06,0\.0010000001\d*,1000,0\.005000000\d*,0\.005000000\d*,0\.005000000\d*,")
     write("cut_short.ply", "ply\nformat ascii 1.0\nelement vertex 3\n")
     run("assimp_cut_short_ply", ["cut_short.ply", "--reader", "assimp"], 1, r"cut_short.ply: .+",
         env={"MASSPROPS_ASSIMP_TIMEOUT": "5"})

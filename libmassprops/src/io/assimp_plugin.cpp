@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
@@ -33,6 +34,8 @@ __attribute__((visibility("default"))) int massprops_assimp_read(const char* pat
   // PreTransformVertices (single precision, and it keeps the winding of mirrored instances);
   // polygons stay whole; points and lines, which bound no volume, are dropped.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  // Mass properties are reported in the file's own axes: COLLADA's Z_UP is not turned into Y-up.
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
   const aiScene* scene = importer.ReadFile(path, aiProcess_SortByPType | aiProcess_ValidateDataStructure);
   if (scene == nullptr || scene->mRootNode == nullptr) {
     std::snprintf(error, error_size, "assimp could not read it: %s", importer.GetErrorString());
