@@ -1,6 +1,8 @@
 // libdynamics against closed forms: projectile, springs, the torque-free symmetric and asymmetric
 // tops (Jacobi elliptic solution, Dzhanibekov flip), conservation laws, orders of convergence,
 // determinism, and bad input.
+// Over 400 lines on purpose: one test binary per library (as everywhere in tests/), and these
+// cases share the body builders and the integrator table at the top.
 
 #include <cmath>
 #include <vector>
