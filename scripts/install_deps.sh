@@ -5,7 +5,7 @@ set -euo pipefail
 
 PACKAGES=(
   build-essential cmake ninja-build ccache pkg-config
-  libeigen3-dev libassimp-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
+  libeigen3-dev zlib1g-dev libassimp-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libtbb-dev
   clang-14 libclang-rt-14-dev clang-format-14

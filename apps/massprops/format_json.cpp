@@ -19,6 +19,7 @@ Json ToJson(const SolidResult& r, const FormatOptions& opt) {
   const auto& t = r.topology;
   Json j = {{"file", r.source},
             {"unit", UnitName(r.unit)},
+            {"unit_source", UnitSourceName(r.unit_source)},
             {"model", ModelName(r.model)},
             {"volume", r.mp.volume},
             {"mass", r.mp.mass},

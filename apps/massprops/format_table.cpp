@@ -54,9 +54,10 @@ std::string FormatTable(const SolidResult& r, const FormatOptions& opt) {
   if (r.loaded.float32_coordinates) {
     out << "precision       the file's coordinates are 32-bit floats (~7 significant digits)\n";
   }
-  out << "units           file coordinates in " << UnitName(r.unit) << " (" << MetresPerUnit(r.unit)
-      << " m each), results in SI; " << (shell ? "area density " : "density ") << r.mp.density
-      << (shell ? " kg/m^2" : " kg/m^3") << (r.mass_fixed ? " (from --mass)" : "") << "\n";
+  out << "units           file coordinates in " << UnitName(r.unit) << " (" << MetresPerUnit(r.unit) << " m each"
+      << (r.unit_source == UnitSource::kFile ? ", declared by the file" : "") << "), results in SI; "
+      << (shell ? "area density " : "density ") << r.mp.density << (shell ? " kg/m^2" : " kg/m^3")
+      << (r.mass_fixed ? " (from --mass)" : "") << "\n";
   if (shell) out << "model           thin shell: the surface itself carries the mass (no volume)\n";
   if (r.model == ModelKind::kWall) {
     out << "model           hollow part: the solid between the surface and its inward offset by " << r.wall_thickness

@@ -11,6 +11,7 @@ double MetresPerUnit(LengthUnit unit) {
     case LengthUnit::kMillimetre: return 0.001;
     case LengthUnit::kInch: return 0.0254;
     case LengthUnit::kFoot: return 0.3048;
+    case LengthUnit::kMicrometre: return 1e-6;
   }
   return 1.0;
 }
@@ -22,6 +23,7 @@ const char* UnitName(LengthUnit unit) {
     case LengthUnit::kMillimetre: return "mm";
     case LengthUnit::kInch: return "in";
     case LengthUnit::kFoot: return "ft";
+    case LengthUnit::kMicrometre: return "um";
   }
   return "?";
 }

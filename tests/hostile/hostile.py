@@ -17,6 +17,7 @@ import struct
 import subprocess
 import sys
 import tempfile
+import zipfile
 
 CUBE_V = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
 CUBE_Q = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
@@ -239,6 +240,35 @@ def main():
         write("cube_mm_zup.dae", src.read())
     run("collada_unit_and_axes", ["cube_mm_zup.dae", "--format", "csv"], 0, r"^$",
         r",m,1\.0000001\d*e-06,0\.0010000001\d*,1000,0\.005000000\d*,0\.005000000\d*,0\.005000000\d*,")
+    # Units the file declares: a 5 mm cube in 3MF (unit="millimeter"), a 1 inch cube in AMF; a
+    # stated --unit overrides, with a warning.
+    tris = [(0, 2, 1), (0, 3, 2), (4, 5, 6), (4, 6, 7), (0, 1, 5), (0, 5, 4), (1, 2, 6), (1, 6, 5), (2, 3, 7),
+            (2, 7, 6), (3, 0, 4), (3, 4, 7)]
+    model = ('<?xml version="1.0" encoding="UTF-8"?>\n<model unit="millimeter" xml:lang="en-US" '
+             'xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02"><resources><object id="1" '
+             'type="model"><mesh><vertices>' +
+             "".join('<vertex x="%d" y="%d" z="%d"/>' % (5 * x, 5 * y, 5 * z) for x, y, z in CUBE_V) +
+             "</vertices><triangles>" + "".join('<triangle v1="%d" v2="%d" v3="%d"/>' % t for t in tris) +
+             '</triangles></mesh></object></resources><build><item objectid="1"/></build></model>')
+    with zipfile.ZipFile(os.path.join(tmp, "cube5mm.3mf"), "w", zipfile.ZIP_DEFLATED) as z:
+        z.writestr("[Content_Types].xml", '<?xml version="1.0" encoding="UTF-8"?><Types xmlns="http://schemas.'
+                   'openxmlformats.org/package/2006/content-types"><Default Extension="rels" ContentType="application/'
+                   'vnd.openxmlformats-package.relationships+xml"/><Default Extension="model" ContentType="'
+                   'application/vnd.ms-package.3dmanufacturing-3dmodel+xml"/></Types>')
+        z.writestr("_rels/.rels", '<?xml version="1.0" encoding="UTF-8"?><Relationships xmlns="http://schemas.'
+                   'openxmlformats.org/package/2006/relationships"><Relationship Target="/3D/3dmodel.model" Id="rel0" '
+                   'Type="http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel"/></Relationships>')
+        z.writestr("3D/3dmodel.model", model)
+    run("3mf_declared_mm", ["cube5mm.3mf", "--format", "json"], 0, r"^$", r'"unit": "mm",\s*"unit_source": "file",'
+        r'(.|\n)*"volume": 1\.25\d*e-07')
+    run("3mf_overridden", ["cube5mm.3mf", "--unit", "m", "--format", "csv"], 0,
+        r"declares its coordinates in millimeter; read in m as --unit m says", r",m,125,")
+    amf = ('<?xml version="1.0"?>\n<amf unit="inch"><object id="0"><mesh><vertices>' +
+           "".join("<vertex><coordinates><x>%d</x><y>%d</y><z>%d</z></coordinates></vertex>" % v for v in CUBE_V) +
+           "</vertices><volume>" + "".join("<triangle><v1>%d</v1><v2>%d</v2><v3>%d</v3></triangle>" % t for t in tris) +
+           "</volume></mesh></object></amf>\n")
+    write("cube1in.amf", amf)
+    run("amf_declared_inch", ["cube1in.amf", "--format", "csv"], 0, r"^$", r",in,1\.6387064e-05,")
     write("cut_short.ply", "ply\nformat ascii 1.0\nelement vertex 3\n")
     run("assimp_cut_short_ply", ["cut_short.ply", "--reader", "assimp"], 1, r"cut_short.ply: .+",
         env={"MASSPROPS_ASSIMP_TIMEOUT": "5"})

@@ -11,6 +11,7 @@
 #include "massprops/implicit.h"
 #include "massprops/mesh.h"
 #include "massprops/triangle_soup.h"
+#include "massprops/units.h"
 
 namespace massprops {
 
@@ -28,6 +29,10 @@ struct LoadedMesh {
   /// True when the coordinates went through 32-bit floats (binary STL stores them so; Debian's
   /// assimp reads every format so): expect ~7 significant digits of the input, not 16.
   bool float32_coordinates = false;
+  /// The unit the file declares for its coordinates (3MF, AMF; glTF is metres by its
+  /// specification; COLLADA is converted to metres by its reader), and the file's word for it.
+  std::optional<LengthUnit> declared_unit;
+  std::string declared_unit_name;
 };
 
 /// Reads an OBJ (v/f records, n-gons, negative indices, several objects, `\` continuations) or an

@@ -68,8 +68,9 @@ using ProgressCallback = std::function<void(const char* stage)>;
 
 struct LoadOptions {
   LengthUnit unit = LengthUnit::kMetre;  ///< unit of the file's coordinates
-  /// True when the user chose `unit`; false when it is a default, and then a part under 2 mm or
-  /// over 2 m across draws a finding that names the likely unit.
+  /// True when the user chose `unit`; false when it is a default: then the unit a file declares
+  /// (3MF, AMF, glTF, COLLADA) is used instead, and with none a part under 2 mm or over 2 m
+  /// across draws a finding that names the likely unit.
   bool unit_stated = false;
   MassSpec mass = Density{1000.0};  ///< kg/m^3, or the total mass
   Model model = SolidModel{};
@@ -105,6 +106,7 @@ enum class FindingKind {
   kToleranceNotMet,    ///< an adaptive estimate stopped at its sample limit
   kNonPlanarFaces,     ///< polygons off their plane: integrated as fans from their first corner
   kStreamedChecks,     ///< the streamed binary-STL path: shells neither separated nor checked for overlap
+  kUnitOverridden,     ///< the file declares another unit than the one stated
 };
 
 struct Finding {
@@ -112,10 +114,16 @@ struct Finding {
   std::string message;  ///< with option markers (wording.h)
 };
 
+/// Where the unit of the coordinates came from.
+enum class UnitSource { kDefault, kOption, kFile };
+/// "default", "option", "file".
+const char* UnitSourceName(UnitSource source);
+
 /// Everything the pipeline learned about one input.
 struct SolidResult {
   std::string source;  ///< the file path, or the implicit shape's text
-  LengthUnit unit = LengthUnit::kMetre;
+  LengthUnit unit = LengthUnit::kMetre;  ///< the unit the coordinates were read in
+  UnitSource unit_source = UnitSource::kDefault;
   ModelKind model = ModelKind::kSolid;
   LoadedMesh loaded;  ///< the mesh integrated (after repair; for a wall, the wall solid)
   MeshTopology topology;

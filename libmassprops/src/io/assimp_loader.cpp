@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cstdint>
@@ -253,8 +254,20 @@ LoadedMesh ReadWithAssimp(const std::string& path) {
   const AssimpOutput read = ReadIsolated(p, path);
   if (read.face_sizes.empty()) Fail(path, "no faces found (the file holds no surface mesh)");
   LoadedMesh out = WeldCorners(path, read.xyz, read.face_sizes, "assimp");
-  out.format = "assimp:" + path.substr(path.find_last_of('.') + 1);
+  std::string ext = path.substr(path.find_last_of('.') + 1);
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  out.format = "assimp:" + ext;
   out.float32_coordinates = true;
+  if (const auto declared = ReadDeclaredUnit(path, ext)) {
+    out.declared_unit = declared->unit;
+    out.declared_unit_name = declared->name;
+  } else if (ext == "gltf" || ext == "glb") {
+    out.declared_unit = LengthUnit::kMetre;
+    out.declared_unit_name = "metres (glTF's unit)";
+  } else if (ext == "dae") {
+    out.declared_unit = LengthUnit::kMetre;
+    out.declared_unit_name = "metres (COLLADA's <unit>, applied by its reader)";
+  }
   return out;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Shared pieces of the mesh readers.
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -52,6 +53,14 @@ LoadedMesh ParseObj(const std::string& path, std::string_view data);
 LoadedMesh ParseStl(const std::string& path, std::string_view data);
 LoadedMesh ParsePly(const std::string& path, std::string_view data);
 LoadedMesh ParseOff(const std::string& path, std::string_view data);
+
+/// The unit a 3MF or AMF file declares (their default, millimetres, when they declare none), with
+/// the file's word for it; nothing for other formats or a package that cannot be read.
+struct DeclaredUnitInfo {
+  LengthUnit unit;
+  std::string name;
+};
+std::optional<DeclaredUnitInfo> ReadDeclaredUnit(const std::string& path, const std::string& extension);
 
 /// Empty when the assimp plugin is loaded; otherwise why it is not (where it was looked for).
 std::string AssimpPluginStatus();

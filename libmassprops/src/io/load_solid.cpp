@@ -282,27 +282,61 @@ std::string WordedError(const std::exception& error, const Vocabulary& vocabular
   return error.what();
 }
 
-SolidResult LoadSolid(const std::string& file, const LoadOptions& opt) {
+const char* UnitSourceName(UnitSource source) {
+  switch (source) {
+    case UnitSource::kDefault: return "default";
+    case UnitSource::kOption: return "option";
+    case UnitSource::kFile: return "file";
+  }
+  return "?";
+}
+
+namespace {
+
+// The unit the coordinates are read in: the one stated, else the one the file declares, else the
+// default. A stated unit that differs from the file's is a finding.
+LoadOptions ResolveUnit(SolidResult& r, const LoadOptions& given) {
+  LoadOptions opt = given;
+  const LoadedMesh& m = r.loaded;
+  r.unit_source = given.unit_stated ? UnitSource::kOption : UnitSource::kDefault;
+  if (m.declared_unit && !given.unit_stated) {
+    opt.unit = *m.declared_unit;
+    opt.unit_stated = true;
+    r.unit_source = UnitSource::kFile;
+  } else if (m.declared_unit && *m.declared_unit != given.unit) {
+    Warn(r, FindingKind::kUnitOverridden,
+         std::string("the file declares its coordinates in ") + m.declared_unit_name + "; read in " +
+             UnitName(given.unit) + " as {unit=" + UnitName(given.unit) + "} says");
+  }
+  r.unit = opt.unit;
+  return opt;
+}
+
+}  // namespace
+
+SolidResult LoadSolid(const std::string& file, const LoadOptions& given) {
   const auto t0 = std::chrono::steady_clock::now();
   SolidResult r;
   r.source = file;
-  r.unit = opt.unit;
-  if (const auto* shell = std::get_if<ShellModel>(&opt.model);
-      shell && !FixesMass(opt.mass) && !(std::isfinite(shell->area_density) && shell->area_density > 0)) {
+  r.unit = given.unit;
+  r.unit_source = given.unit_stated ? UnitSource::kOption : UnitSource::kDefault;
+  if (const auto* shell = std::get_if<ShellModel>(&given.model);
+      shell && !FixesMass(given.mass) && !(std::isfinite(shell->area_density) && shell->area_density > 0)) {
     throw std::invalid_argument("a shell needs a finite, positive area density (kg/m^2) or a total mass");
   }
-  if (const auto* wall = std::get_if<WallModel>(&opt.model);
+  if (const auto* wall = std::get_if<WallModel>(&given.model);
       wall && !(std::isfinite(wall->thickness) && wall->thickness > 0)) {
     throw std::invalid_argument("a wall needs a finite, positive thickness");
   }
 
-  if (TryStreamedStl(r, file, opt)) {
+  if (TryStreamedStl(r, file, given)) {
     r.seconds = SecondsSince(t0);
     return r;
   }
 
-  Stage(opt, "reading");
-  r.loaded = opt.reader == Reader::kAssimp ? ReadMeshFileWithAssimp(file) : ReadMeshFile(file);
+  Stage(given, "reading");
+  r.loaded = given.reader == Reader::kAssimp ? ReadMeshFileWithAssimp(file) : ReadMeshFile(file);
+  const LoadOptions opt = ResolveUnit(r, given);  // the unit the file declares, unless one is stated
   if (opt.repair) {
     Stage(opt, "repairing (CGAL)");
     RepairedMesh repaired = RepairMesh(r.loaded.mesh);
