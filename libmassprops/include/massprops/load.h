@@ -121,7 +121,7 @@ const char* UnitSourceName(UnitSource source);
 
 /// Everything the pipeline learned about one input.
 struct SolidResult {
-  std::string source;  ///< the file path, or the implicit shape's text
+  std::string source;                    ///< the file path, or the implicit shape's text
   LengthUnit unit = LengthUnit::kMetre;  ///< the unit the coordinates were read in
   UnitSource unit_source = UnitSource::kDefault;
   ModelKind model = ModelKind::kSolid;
