@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -158,6 +159,65 @@ MeshTopology AnalyzeTopology(const PolygonMesh& mesh) {
   }
   if (t.non_manifold_edges > 0) CountDuplicateFaces(mesh, t);
   return t;
+}
+
+std::int64_t CountUnweldedBoundaryCorners(const PolygonMesh& mesh, double tolerance) {
+  if (!(tolerance > 0)) return 0;
+  // Boundary edges: undirected edges used once.
+  std::vector<std::uint64_t> edges;
+  edges.reserve(mesh.indices.size());
+  for (std::int64_t f = 0; f < mesh.num_faces(); ++f) {
+    const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
+    const int n = mesh.face_size(f);
+    for (int k = 0; k < n; ++k) {
+      const std::uint64_t a = static_cast<std::uint32_t>(idx[k]), b = static_cast<std::uint32_t>(idx[(k + 1) % n]);
+      if (a != b) edges.push_back(std::min(a, b) << 32 | std::max(a, b));
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  std::vector<std::int32_t> corners;
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1) {
+      corners.push_back(static_cast<std::int32_t>(edges[i] >> 32));
+      corners.push_back(static_cast<std::int32_t>(edges[i] & 0xFFFFFFFFu));
+    }
+    i = j;
+  }
+  std::sort(corners.begin(), corners.end());
+  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+  // A hash grid of cell `tolerance`: neighbours are in the 27 cells around.
+  auto cell_of = [&](std::int32_t v) {
+    return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor(mesh.V(v, 0) / tolerance)),
+                                       static_cast<std::int64_t>(std::floor(mesh.V(v, 1) / tolerance)),
+                                       static_cast<std::int64_t>(std::floor(mesh.V(v, 2) / tolerance))};
+  };
+  std::vector<std::pair<std::array<std::int64_t, 3>, std::int32_t>> grid;
+  grid.reserve(corners.size());
+  for (std::int32_t v : corners) grid.emplace_back(cell_of(v), v);
+  std::sort(grid.begin(), grid.end());
+  std::int64_t unwelded = 0;
+  for (std::int32_t v : corners) {
+    const auto c = cell_of(v);
+    bool near = false;
+    for (int dx = -1; dx <= 1 && !near; ++dx) {
+      for (int dy = -1; dy <= 1 && !near; ++dy) {
+        for (int dz = -1; dz <= 1 && !near; ++dz) {
+          const std::array<std::int64_t, 3> key{c[0] + dx, c[1] + dy, c[2] + dz};
+          for (auto it = std::lower_bound(grid.begin(), grid.end(), std::make_pair(key, std::int32_t{-1}));
+               it != grid.end() && it->first == key && !near; ++it) {
+            const std::int32_t w = it->second;
+            if (w == v) continue;
+            const double d = (mesh.V.row(v) - mesh.V.row(w)).norm();
+            near = d <= tolerance && d > 0;
+          }
+        }
+      }
+    }
+    unwelded += near;
+  }
+  return unwelded;
 }
 
 }  // namespace massprops

@@ -180,6 +180,11 @@ def main():
         write(name + "." + ext, content)
         run(name, [name + "." + ext], status, err_re)
 
+    # Unwelded corners (CAD: 0.0 here, -2.7e-16 there) are told apart from holes; --repair welds them.
+    v = list(CUBE_V) + [(0.0, 0.0, -2.7e-16)]
+    write("unwelded.obj", obj(v, [(8, 3, 2, 1)] + CUBE_Q[1:]))
+    run("unwelded_corners", ["unwelded.obj"], 1, r"unwelded corners, cracks rather than holes, which --repair welds")
+    run("unwelded_repaired", ["unwelded.obj", "--repair", "--format", "csv"], 0, r"^$", r",m,1,1000,")
     # Non-planar quads: computed by the fan, with a warning naming the face.
     v = list(CUBE_V)
     v[6] = (1, 1, 1.3)

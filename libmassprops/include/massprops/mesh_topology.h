@@ -41,6 +41,11 @@ struct MeshTopology {
 
 MeshTopology AnalyzeTopology(const PolygonMesh& mesh);
 
+/// Corners on the boundary (of an open mesh) that lie within `tolerance` (absolute) of another
+/// boundary corner at a different position: cracks between corners that should have been one
+/// (CAD exporters write 0.0 here and −2.7e-16 there), not holes. Linear (a hash grid).
+std::int64_t CountUnweldedBoundaryCorners(const PolygonMesh& mesh, double tolerance);
+
 }  // namespace massprops
 
 namespace massprops {

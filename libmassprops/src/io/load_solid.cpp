@@ -172,12 +172,26 @@ bool TryStreamedStl(SolidResult& r, const std::string& file, const LoadOptions& 
                   "twice or cancel it; remove the duplicates ({repair} does)");
 }
 
+// "; 288 of its boundary corners lie within 1e-9 of the part's size from another: unwelded corners
+// (cracks), not holes" when that is what the boundary is.
+std::string UnweldedCorners(const SolidResult& r) {
+  if (r.topology.boundary_edges == 0) return "";
+  const PolygonMesh& m = r.loaded.mesh;
+  const double size = Diagonal(m);
+  const std::int64_t n = CountUnweldedBoundaryCorners(m, 1e-9 * size);
+  if (n == 0) return "";
+  return " (" + std::to_string(n) +
+         " of its boundary corners lie within 1e-9 of the part's size from another: "
+         "unwelded corners, cracks rather than holes, which {repair} welds)";
+}
+
 void RefuseOpen(const SolidResult& r, const LoadOptions& opt, bool wall) {
   if (wall) {
-    throw LoadError(r.source + ": " + r.topology.Problems() +
+    throw LoadError(r.source + ": " + r.topology.Problems() + UnweldedCorners(r) +
                     ". A wall needs a closed surface to offset inward (try {repair})");
   }
   throw LoadError(r.source + ": " + (opt.repair ? "after {repair}: " : "") + r.topology.Problems() +
+                  (opt.repair ? "" : UnweldedCorners(r)) +
                   ". The mesh does not bound a solid, so its mass properties are not defined; " +
                   (opt.repair ? "close the holes in a modelling tool, " : "try {repair}, ") +
                   "or pass {allow_open} to compute anyway");
@@ -381,7 +395,7 @@ SolidResult LoadSolid(const std::string& file, const LoadOptions& given) {
   if (!r.topology.BoundsVolume()) {
     if (!opt.allow_open || wall) RefuseOpen(r, opt, wall != nullptr);
     Warn(r, FindingKind::kOpenSurface,
-         r.topology.Problems() +
+         r.topology.Problems() + UnweldedCorners(r) +
              "; computed anyway ({allow_open}): the result depends on the reference point and is not trustworthy");
   }
   if (r.topology.non_manifold_edges > 0 && r.topology.BoundsVolume()) {
