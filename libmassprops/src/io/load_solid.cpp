@@ -435,6 +435,7 @@ SolidResult EstimateImplicit(const ImplicitSolid& solid, const ImplicitOptions& 
   const auto t0 = std::chrono::steady_clock::now();
   SolidResult r;
   r.unit = opt.unit;
+  r.unit_source = opt.unit_stated ? UnitSource::kOption : UnitSource::kDefault;
   r.model = ModelKind::kImplicit;
   r.source = solid.Describe();
   r.full_topology = false;
