@@ -3,6 +3,8 @@
 # MASSPROPS_SANITIZE=ON). Installs missing dependencies first. Used by run.sh, test.sh and CI.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+# ccache: paths relative to the checkout, so that another clone (CI's) reuses the cache.
+export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$root} CCACHE_NOHASHDIR=${CCACHE_NOHASHDIR:-1}
 bash "$root/scripts/install_deps.sh"
 
 sanitize=${MASSPROPS_SANITIZE:-OFF}

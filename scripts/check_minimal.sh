@@ -5,6 +5,8 @@
 #   check_minimal.sh [BUILD_DIR]   (default: build-minimal)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+# ccache: paths relative to the checkout, so that another clone (CI's) reuses the cache.
+export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$root} CCACHE_NOHASHDIR=${CCACHE_NOHASHDIR:-1}
 build=${1:-$root/build-minimal}
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DMASSPROPS_WITH_ASSIMP=OFF \
   -DMASSPROPS_WITH_CGAL=OFF -DMASSPROPS_BUILD_TESTS=OFF -DMASSPROPS_BUILD_BENCH=OFF >/dev/null

@@ -5,6 +5,8 @@
 # A crash leaves its input as build-fuzz/crash-* and fails the script.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+# ccache: paths relative to the checkout, so that another clone (CI's) reuses the cache.
+export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$root} CCACHE_NOHASHDIR=${CCACHE_NOHASHDIR:-1}
 seconds=${1:-60}
 bash "$root/scripts/install_deps.sh"
 build=$root/build-fuzz
