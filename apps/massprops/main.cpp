@@ -1,6 +1,6 @@
 // massprops: mass properties of the solids that mesh files bound.
 //
-//   massprops FILE... [--density D | --mass M] [--unit m|cm|mm|in|ft]
+//   massprops FILE... [--density D | --mass M] [--unit m|cm|mm|in|ft|um]
 //                     [--format table|json|csv|urdf|sdf|mjcf] [--frame com|origin]
 //                     [--path auto|triangles|polygons] [--threads N] [--allow-open] [-o FILE]
 //
