@@ -11,23 +11,20 @@
 #include "massprops/shell.h"
 #include "massprops/text.h"
 #include "plausibility.h"
+#include "text_tokens.h"
 
 namespace massprops {
 namespace {
 
 using internal::CheckPlausible;
 using internal::Plausibility;
+using internal::Warn;
 
 // Below this many triangles a binary STL is always welded and fully checked (cheap); at or above
 // it the records are integrated as they lie, with the streaming closed-cycle check.
 constexpr std::int64_t kStreamingThreshold = 200000;
 
 std::string Fixed(double v, const char* fmt = "%.4g") { return FormatDouble(v, fmt); }
-
-std::string Lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 double SignedVolumeOf(const PolygonMesh& mesh) {
   IntegrationOptions io;
@@ -44,8 +41,6 @@ double Diagonal(const PolygonMesh& mesh) {
 void Stage(const LoadOptions& o, const char* stage) {
   if (o.progress) o.progress(stage);
 }
-
-void Warn(SolidResult& r, FindingKind kind, std::string message) { r.findings.push_back({kind, std::move(message)}); }
 
 [[noreturn]] void RefuseMagnitude(const SolidResult& r, double size, LengthUnit unit) {
   throw LoadError(r.source + ": the part's size (" + Fixed(size, "%.3g") + " " + UnitName(unit) +
@@ -132,7 +127,7 @@ double SecondsSince(std::chrono::steady_clock::time_point t0) {
 
 // Binary STL of kStreamingThreshold triangles or more, closed: integrate the records as they lie.
 bool TryStreamedStl(SolidResult& r, const std::string& file, const LoadOptions& opt) {
-  const bool stl = Lower(file.substr(file.find_last_of('.') + 1)) == "stl";
+  const bool stl = io_text::Lower(file.substr(file.find_last_of('.') + 1)) == "stl";
   // A binary STL of kStreamingThreshold triangles is at least this big; smaller files skip the
   // streamed pass instead of integrating twice.
   std::error_code size_error;

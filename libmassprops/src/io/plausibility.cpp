@@ -13,8 +13,6 @@ namespace {
 
 std::string Fixed(double v, const char* fmt = "%.4g") { return FormatDouble(v, fmt); }
 
-void Warn(SolidResult& r, FindingKind kind, std::string message) { r.findings.push_back({kind, std::move(message)}); }
-
 }  // namespace
 
 // Warns when the size or the density suggests the coordinates are in another unit (the

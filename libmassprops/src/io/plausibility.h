@@ -1,6 +1,10 @@
 #pragma once
 // The pipeline's plausibility checks (internal to massprops::io): sizes and densities that suggest
-// the coordinates are in another unit, as findings worded with option markers.
+// the coordinates are in another unit, as findings worded with option markers; and the one helper
+// that adds a finding.
+
+#include <string>
+#include <utility>
 
 #include "massprops/load.h"
 
@@ -11,6 +15,11 @@ struct Plausibility {
   bool unit_stated = false;
   MassSpec mass = Density{1000.0};
 };
+
+/// A finding, added to the result.
+inline void Warn(SolidResult& r, FindingKind kind, std::string message) {
+  r.findings.push_back({kind, std::move(message)});
+}
 
 /// Adds kUnitSuspicion findings to `r` (whose size_m, unit, model and mass properties are set).
 void CheckPlausible(SolidResult& r, const Plausibility& p);
