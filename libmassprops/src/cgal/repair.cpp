@@ -148,22 +148,19 @@ RepairedMesh RepairMesh(const PolygonMesh& input, const RepairOptions& options) 
   // are split into fans: a quad and its reverse make different fans, which CGAL would not see as
   // duplicates.
   std::vector<Polygon> polys;
-  std::set<std::vector<std::size_t>> seen;
+  std::set<std::vector<std::int32_t>> seen;
   std::int64_t duplicate_polygons = 0;
   for (std::int64_t f = 0; f < input.num_faces(); ++f) {
     const std::int32_t* idx = input.indices.data() + input.offsets[f];
     const int n = input.face_size(f);
-    std::vector<std::size_t> corners(static_cast<std::size_t>(n));
-    for (int k = 0; k < n; ++k) corners[static_cast<std::size_t>(k)] = static_cast<std::size_t>(map[idx[k]]);
-    std::vector<std::size_t> key = corners;
+    std::vector<std::int32_t> mapped(static_cast<std::size_t>(n));  // corners after the weld
+    for (int k = 0; k < n; ++k) mapped[static_cast<std::size_t>(k)] = map[static_cast<std::size_t>(idx[k])];
+    std::vector<std::int32_t> key = mapped;
     std::sort(key.begin(), key.end());
     if (n > 3 && !seen.insert(std::move(key)).second) {
       ++duplicate_polygons;
       continue;
     }
-    const std::vector<std::int32_t> welded(idx, idx + n);
-    std::vector<std::int32_t> mapped(welded.size());
-    for (std::size_t k = 0; k < welded.size(); ++k) mapped[k] = map[static_cast<std::size_t>(welded[k])];
     std::vector<std::array<std::int32_t, 3>> split;
     SplitPolygon(mapped.data(), n, split);
     for (const auto& t : split) polys.push_back({std::size_t(t[0]), std::size_t(t[1]), std::size_t(t[2])});

@@ -17,14 +17,13 @@ namespace massprops {
 namespace {
 
 using internal::CheckPlausible;
+using internal::Fixed;
 using internal::Plausibility;
 using internal::Warn;
 
 // Below this many triangles a binary STL is always welded and fully checked (cheap); at or above
 // it the records are integrated as they lie, with the streaming closed-cycle check.
 constexpr std::int64_t kStreamingThreshold = 200000;
-
-std::string Fixed(double v, const char* fmt = "%.4g") { return FormatDouble(v, fmt); }
 
 double SignedVolumeOf(const PolygonMesh& mesh) {
   IntegrationOptions io;

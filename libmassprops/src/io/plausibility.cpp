@@ -9,11 +9,7 @@
 #include "massprops/text.h"
 
 namespace massprops::internal {
-namespace {
-
-std::string Fixed(double v, const char* fmt = "%.4g") { return FormatDouble(v, fmt); }
-
-}  // namespace
+namespace {}  // namespace
 
 // Warns when the size or the density suggests the coordinates are in another unit (the
 // millimetre/metre mix-up changes the mass by 10⁹) or a density in other units.

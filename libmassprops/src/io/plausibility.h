@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "massprops/load.h"
+#include "massprops/text.h"
 
 namespace massprops::internal {
 
@@ -15,6 +16,9 @@ struct Plausibility {
   bool unit_stated = false;
   MassSpec mass = Density{1000.0};
 };
+
+/// "%.4g" (or another printf format) of one number, for messages.
+inline std::string Fixed(double v, const char* fmt = "%.4g") { return FormatDouble(v, fmt); }
 
 /// A finding, added to the result.
 inline void Warn(SolidResult& r, FindingKind kind, std::string message) {
