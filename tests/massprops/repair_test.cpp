@@ -3,6 +3,8 @@
 
 #include "massprops/repair.h"
 
+#include <cmath>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -82,6 +84,63 @@ TEST(SelfIntersections, CountsOverlapsOnly) {
   // Two boxes passing through each other, as one mesh.
   const PolygonMesh both = testing::WithMovedCopy(solids::Box(Vector3(1, 1, 1)), Vector3(0.5, 0.3, 0.2));
   EXPECT_GT(CountSelfIntersections(both), 0);
+}
+
+// A prism over a five-pointed star whose corner list starts at an inner (reflex) corner: the cap's
+// split into triangles overlaps itself where the star does not, which is no intersection.
+PolygonMesh StarPrism(double dz) {
+  PolygonMesh m;
+  const int n = 10;
+  m.V.resize(2 * n, 3);
+  for (int k = 0; k < n; ++k) {
+    const double r = k % 2 == 0 ? 0.4 : 1.0, phi = 2.0 * 3.141592653589793 * k / n;
+    m.V.row(k) << r * std::cos(phi), r * std::sin(phi), dz;
+    m.V.row(n + k) << r * std::cos(phi), r * std::sin(phi), dz + 1.0;
+  }
+  std::vector<int> bottom, top;
+  for (int k = 0; k < n; ++k) {
+    bottom.push_back((n - k) % n);
+    top.push_back(n + k);
+    m.AddFace(std::array<int, 4>{k, (k + 1) % n, n + (k + 1) % n, n + k});
+  }
+  m.AddFace(bottom);
+  m.AddFace(top);
+  return m;
+}
+
+TEST(SelfIntersections, ANonConvexFaceIsNoIntersection) {
+  const PolygonMesh star = StarPrism(0.0);
+  ASSERT_TRUE(AnalyzeTopology(star).BoundsVolume());
+  EXPECT_EQ(CountSelfIntersections(star), 0);
+  // The same star through a shifted copy of itself.
+  const PolygonMesh both = testing::WithMovedCopy(star, Vector3(0.1, 0.05, 0.5));
+  EXPECT_GT(CountSelfIntersections(both), 0);
+}
+
+// Faces that share an edge or a corner meet there only, unless they fold onto each other.
+TEST(SelfIntersections, SharedEdgesAndCornersFoldedOrNot) {
+  PolygonMesh m;
+  m.V.resize(6, 3);
+  m.V << 0, 0, 0, 1, 0, 0, 0, 1, 0,  //
+      0.5, 0.2, 0,                   // on the plane, the side of corner 2: folds over (0, 1, 2)
+      0.5, -1, 0,                    // the other side: a flat continuation
+      0.3, 0.3, 1;                   // off the plane
+  PolygonMesh folded = m;
+  folded.AddFace(std::array<int, 3>{0, 1, 2});
+  folded.AddFace(std::array<int, 3>{1, 0, 3});
+  EXPECT_EQ(CountSelfIntersections(folded), 1);
+  PolygonMesh flat = m;
+  flat.AddFace(std::array<int, 3>{0, 1, 2});
+  flat.AddFace(std::array<int, 3>{1, 0, 4});
+  EXPECT_EQ(CountSelfIntersections(flat), 0);
+  PolygonMesh inside = m;  // share corner 0; the second runs inside the first from 0 to 3
+  inside.AddFace(std::array<int, 3>{0, 1, 2});
+  inside.AddFace(std::array<int, 3>{0, 3, 5});
+  EXPECT_EQ(CountSelfIntersections(inside), 1);
+  PolygonMesh outside = m;  // share corner 0 only
+  outside.AddFace(std::array<int, 3>{0, 1, 2});
+  outside.AddFace(std::array<int, 3>{0, 4, 5});
+  EXPECT_EQ(CountSelfIntersections(outside), 0);
 }
 
 }  // namespace

@@ -48,8 +48,10 @@ RepairedMesh RepairMesh(const PolygonMesh& mesh, const RepairOptions& options = 
 /// cannot unite them (a shell that intersects itself).
 PolygonMesh UnionOfShells(const PolygonMesh& mesh, std::int64_t& merged);
 
-/// Number of pairs of faces that intersect other than along shared edges or vertices (CGAL
-/// self_intersections on the fan-triangulated mesh), counting up to `limit`.
+/// Number of pairs of faces that intersect other than along shared edges or vertices, counting up
+/// to `limit`: polygons are split into triangles (SplitPolygon), candidate pairs come from CGAL's
+/// box intersection, and each pair is decided with exact predicates. Triangles of the same polygon
+/// are not tested against each other.
 std::int64_t CountSelfIntersections(const PolygonMesh& mesh, std::int64_t limit = 1000000);
 
 }  // namespace massprops

@@ -12,6 +12,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include <CGAL/Box_intersection_d/Box_with_info_d.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
@@ -20,9 +21,9 @@
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
-#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/stitch_borders.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/box_intersection_d.h>
 
 namespace massprops {
 namespace {
@@ -190,22 +191,6 @@ RepairedMesh RepairMesh(const PolygonMesh& input, const RepairOptions& options) 
   return out;
 }
 
-namespace {
-// Output iterator that counts the pairs and stops recording past a limit (memory stays bounded on
-// badly broken meshes).
-struct PairCounter {
-  std::int64_t* count;
-  PairCounter& operator*() { return *this; }
-  PairCounter& operator++() { return *this; }
-  PairCounter operator++(int) { return *this; }
-  template <typename T>
-  PairCounter& operator=(const T&) {
-    ++*count;
-    return *this;
-  }
-};
-}  // namespace
-
 PolygonMesh UnionOfShells(const PolygonMesh& input, std::int64_t& merged) {
   Mesh all = ToCgal(input);
   std::vector<Mesh> parts;
@@ -231,11 +216,112 @@ PolygonMesh UnionOfShells(const PolygonMesh& input, std::int64_t& merged) {
   return FromCgal(result);
 }
 
+namespace {
+// The sign of orient3d(a, b, c, d) when double arithmetic certifies it (Shewchuk's first error
+// bound, "Adaptive precision floating-point arithmetic", 1997), else 0: not known.
+int CertainOrientation(const Point& a, const Point& b, const Point& c, const Point& d) {
+  const double adx = a.x() - d.x(), ady = a.y() - d.y(), adz = a.z() - d.z();
+  const double bdx = b.x() - d.x(), bdy = b.y() - d.y(), bdz = b.z() - d.z();
+  const double cdx = c.x() - d.x(), cdy = c.y() - d.y(), cdz = c.z() - d.z();
+  const double det = adx * (bdy * cdz - bdz * cdy) + bdx * (cdy * adz - cdz * ady) + cdx * (ady * bdz - adz * bdy);
+  const double permanent = std::abs(adx) * (std::abs(bdy * cdz) + std::abs(bdz * cdy)) +
+                           std::abs(bdx) * (std::abs(cdy * adz) + std::abs(cdz * ady)) +
+                           std::abs(cdx) * (std::abs(ady * bdz) + std::abs(adz * bdy));
+  if (!(permanent > 1e-250 && permanent < 1e250)) return 0;  // underflow or overflow: no bound
+  const double bound = 7.771561172376103e-16 * permanent;    // (7 + 56ε)ε, ε = 2^-53
+  return det > bound ? 1 : det < -bound ? -1 : 0;
+}
+
+// Whether two triangles meet other than along what they share. Triangles are index triples into
+// `p`; shared corners are shared indices (the mesh is welded). A shared edge: they meet elsewhere
+// only when folded onto each other (coplanar, opposite corners on the same side). A shared corner:
+// the set they share beyond it is a segment from that corner, which ends on the edge opposite it
+// in one of them — so it suffices to test each opposite edge against the other triangle.
+bool TrianglesIntersect(const std::vector<Point>& p, const std::array<std::int32_t, 3>& s,
+                        const std::array<std::int32_t, 3>& t) {
+  int shared = 0;
+  int s_at[3] = {-1, -1, -1};  // for each corner of s, its position in t (or -1)
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      if (s[i] == t[j]) {
+        s_at[i] = j;
+        ++shared;
+      }
+    }
+  }
+  auto P = [&](std::int32_t i) -> const Point& { return p[static_cast<std::size_t>(i)]; };
+  if (shared == 3) return true;  // the same triangle twice
+  if (shared == 2) {
+    int lone_s = 0;
+    while (s_at[lone_s] >= 0) ++lone_s;
+    const int a = (lone_s + 1) % 3, b = (lone_s + 2) % 3;
+    const int lone_t = 3 - s_at[a] - s_at[b];
+    const Point &pa = P(s[a]), &pb = P(s[b]), &ps = P(s[lone_s]), &pt = P(t[lone_t]);
+    return CGAL::orientation(pa, pb, ps, pt) == CGAL::COPLANAR &&
+           CGAL::coplanar_orientation(pa, pb, ps, pt) == CGAL::POSITIVE;
+  }
+  // Cheap rejection first: the corners one triangle does not share all certainly on one side of
+  // the other's plane. (Exact predicates decide corners that lie on a plane, at a high price; a big
+  // polygon's split meets the side faces of its rim exactly so, in millions of pairs.)
+  auto strictly_beside = [&](const std::array<std::int32_t, 3>& u, const std::array<std::int32_t, 3>& w) {
+    int side = 0;
+    for (int k = 0; k < 3; ++k) {
+      if (w[k] == u[0] || w[k] == u[1] || w[k] == u[2]) continue;
+      const int o = CertainOrientation(P(u[0]), P(u[1]), P(u[2]), P(w[k]));
+      if (o == 0 || (side != 0 && o != side)) return false;
+      side = o;
+    }
+    return true;
+  };
+  if (strictly_beside(s, t) || strictly_beside(t, s)) return false;
+  const Kernel::Triangle_3 ts(P(s[0]), P(s[1]), P(s[2])), tt(P(t[0]), P(t[1]), P(t[2]));
+  if (shared == 0) return CGAL::do_intersect(ts, tt);
+  int cs = 0;
+  while (s_at[cs] < 0) ++cs;
+  const int ct = s_at[cs];
+  const Kernel::Segment_3 opposite_s(P(s[(cs + 1) % 3]), P(s[(cs + 2) % 3]));
+  const Kernel::Segment_3 opposite_t(P(t[(ct + 1) % 3]), P(t[(ct + 2) % 3]));
+  return CGAL::do_intersect(opposite_s, tt) || CGAL::do_intersect(opposite_t, ts);
+}
+}  // namespace
+
+// Pairs of triangles from one polygon are not tested: they meet only if the polygon is folded in
+// its own plane, and testing them made a large polygon's split (all coplanar, all near each other)
+// the whole cost — and a non-convex polygon's split overlaps itself where the polygon does not.
 std::int64_t CountSelfIntersections(const PolygonMesh& polygons, std::int64_t limit) {
-  const Mesh mesh = ToCgal(polygons);
+  std::vector<Point> points;
+  points.reserve(static_cast<std::size_t>(polygons.V.rows()));
+  for (Eigen::Index i = 0; i < polygons.V.rows(); ++i) {
+    points.emplace_back(polygons.V(i, 0), polygons.V(i, 1), polygons.V(i, 2));
+  }
+  std::vector<std::array<std::int32_t, 3>> tris;
+  std::vector<std::int64_t> owner;  // the polygon each triangle comes from
+  for (std::int64_t f = 0; f < polygons.num_faces(); ++f) {
+    SplitPolygon(polygons.indices.data() + polygons.offsets[f], polygons.face_size(f), tris);
+    owner.resize(tris.size(), f);
+  }
+  using Box =
+      CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::int32_t, CGAL::Box_intersection_d::ID_FROM_BOX_ADDRESS>;
+  std::vector<Box> boxes;
+  boxes.reserve(tris.size());
+  for (std::size_t i = 0; i < tris.size(); ++i) {
+    const auto& t = tris[i];
+    const Point &a = points[std::size_t(t[0])], &b = points[std::size_t(t[1])], &c = points[std::size_t(t[2])];
+    if (CGAL::collinear(a, b, c)) continue;  // no area: nothing to intersect
+    boxes.emplace_back(a.bbox() + b.bbox() + c.bbox(), static_cast<std::int32_t>(i));
+  }
+  std::vector<const Box*> handles;
+  handles.reserve(boxes.size());
+  for (const Box& b : boxes) handles.push_back(&b);
   std::int64_t count = 0;
-  PMP::self_intersections(faces(mesh), mesh, PairCounter{&count});
-  return std::min(count, limit);
+  auto test = [&](const Box* x, const Box* y) {
+    if (count >= limit) return;
+    const auto i = static_cast<std::size_t>(x->info()), j = static_cast<std::size_t>(y->info());
+    if (owner[i] == owner[j]) return;
+    if (TrianglesIntersect(points, tris[i], tris[j])) ++count;
+  };
+  CGAL::box_self_intersection_d(handles.begin(), handles.end(), test);
+  return count;
 }
 
 }  // namespace massprops
