@@ -95,67 +95,90 @@ void CountDuplicateFaces(const PolygonMesh& mesh, MeshTopology& t) {
 
 }  // namespace
 
+// Directed edges are grouped by their smaller vertex (a counting sort: vertices are numbered in
+// order of first appearance, so the groups fill in near file order), and each group — a vertex's
+// few edges to larger neighbours — is sorted on its own. Linear, and a quarter of the memory of
+// sorting 64-bit edge keys.
 MeshTopology AnalyzeTopology(const PolygonMesh& mesh) {
   MeshTopology t;
   t.faces = mesh.num_faces();
-  const auto nv = static_cast<std::int32_t>(mesh.V.rows());
-  std::vector<char> used(static_cast<std::size_t>(nv), 0);
-  std::vector<std::int32_t> parent(static_cast<std::size_t>(nv));
-  std::iota(parent.begin(), parent.end(), 0);
-  // Each directed edge as (min << 33 | max << 1 | reversed).
-  std::vector<std::uint64_t> edges;
-  edges.reserve(mesh.indices.size());
-  for (std::int64_t f = 0; f < t.faces; ++f) {
+  const auto nv = static_cast<std::size_t>(mesh.V.rows());
+  std::vector<char> used(nv, 0);
+  std::vector<std::uint32_t> start(nv + 1, 0);  // directed edges by smaller vertex
+  auto for_each_edge = [&mesh](std::int64_t f, auto&& fn) {
     const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
     const int n = mesh.face_size(f);
+    for (int k = 0; k < n; ++k)
+      fn(static_cast<std::uint32_t>(idx[k]), static_cast<std::uint32_t>(idx[k + 1 < n ? k + 1 : 0]));
+  };
+  for (std::int64_t f = 0; f < t.faces; ++f) {
     bool degenerate = false;
-    for (int k = 0; k < n; ++k) {
-      const std::uint32_t a = static_cast<std::uint32_t>(idx[k]);
-      const std::uint32_t b = static_cast<std::uint32_t>(idx[(k + 1) % n]);
+    for_each_edge(f, [&](std::uint32_t a, std::uint32_t b) {
       used[a] = 1;
       if (a == b) {
         degenerate = true;
-        continue;
+      } else {
+        ++start[std::min(a, b) + 1];
       }
-      parent[Find(parent, idx[k])] = Find(parent, idx[(k + 1) % n]);
-      const std::uint64_t lo = std::min(a, b), hi = std::max(a, b);
-      edges.push_back(lo << 33 | hi << 1 | (a > b ? 1u : 0u));
-    }
+    });
     t.degenerate_faces += degenerate;
   }
-  std::sort(edges.begin(), edges.end());
-  std::vector<std::int32_t> hole_parent(static_cast<std::size_t>(nv));
-  std::iota(hole_parent.begin(), hole_parent.end(), 0);
-  std::vector<char> on_boundary(static_cast<std::size_t>(nv), 0);
-  for (std::size_t i = 0; i < edges.size();) {
-    std::size_t j = i;
-    int forward = 0, backward = 0;
-    while (j < edges.size() && (edges[j] >> 1) == (edges[i] >> 1)) {
-      ((edges[j] & 1) ? backward : forward)++;
-      ++j;
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  // Each directed edge as (larger vertex << 1 | reversed), in the group of its smaller vertex.
+  std::vector<std::uint32_t> other(start[nv]);
+  {
+    std::vector<std::uint32_t> cursor(start.begin(), start.end() - 1);
+    for (std::int64_t f = 0; f < t.faces; ++f) {
+      for_each_edge(f, [&](std::uint32_t a, std::uint32_t b) {
+        if (a != b) other[cursor[std::min(a, b)]++] = std::max(a, b) << 1 | (a > b ? 1u : 0u);
+      });
     }
-    ++t.edges;
-    const int uses = forward + backward;
-    if (uses == 1) {
-      ++t.boundary_edges;
-      const auto a = static_cast<std::int32_t>(edges[i] >> 33);
-      const auto b = static_cast<std::int32_t>((edges[i] >> 1) & 0xFFFFFFFFu);
-      on_boundary[a] = on_boundary[b] = 1;
-      hole_parent[Find(hole_parent, a)] = Find(hole_parent, b);
-    }
-    if (uses > 2) ++t.non_manifold_edges;
-    if (uses > 2 && forward != backward) ++t.unbalanced_edges;
-    if (uses == 2 && forward != 1) ++t.inconsistent_edges;
-    i = j;
   }
-  for (std::int32_t v = 0; v < nv; ++v) {
+  std::vector<std::int32_t> parent(nv), hole_parent(nv);
+  std::iota(parent.begin(), parent.end(), 0);
+  std::iota(hole_parent.begin(), hole_parent.end(), 0);
+  std::vector<char> on_boundary(nv, 0);
+  for (std::size_t a = 0; a < nv; ++a) {
+    std::uint32_t* begin = other.data() + start[a];
+    std::uint32_t* end = other.data() + start[a + 1];
+    if (end - begin <= 16) {  // insertion sort: groups are small
+      for (std::uint32_t* i = begin + 1; i < end; ++i) {
+        const std::uint32_t x = *i;
+        std::uint32_t* j = i;
+        for (; j > begin && *(j - 1) > x; --j) *j = *(j - 1);
+        *j = x;
+      }
+    } else {
+      std::sort(begin, end);
+    }
+    for (std::uint32_t* i = begin; i < end;) {
+      std::uint32_t* j = i;
+      int forward = 0, backward = 0;
+      for (; j < end && (*j >> 1) == (*i >> 1); ++j) ((*j & 1) ? backward : forward)++;
+      const auto b = static_cast<std::int32_t>(*i >> 1);
+      const auto av = static_cast<std::int32_t>(a);
+      ++t.edges;
+      parent[static_cast<std::size_t>(Find(parent, av))] = Find(parent, b);
+      const int uses = forward + backward;
+      if (uses == 1) {
+        ++t.boundary_edges;
+        on_boundary[a] = on_boundary[static_cast<std::size_t>(b)] = 1;
+        hole_parent[static_cast<std::size_t>(Find(hole_parent, av))] = Find(hole_parent, b);
+      }
+      if (uses > 2) ++t.non_manifold_edges;
+      if (uses > 2 && forward != backward) ++t.unbalanced_edges;
+      if (uses == 2 && forward != 1) ++t.inconsistent_edges;
+      i = j;
+    }
+  }
+  for (std::size_t v = 0; v < nv; ++v) {
     if (!used[v]) continue;
     ++t.vertices;
-    if (Find(parent, v) == v) ++t.components;
+    if (Find(parent, static_cast<std::int32_t>(v)) == static_cast<std::int32_t>(v)) ++t.components;
   }
-  t.unreferenced_vertices = nv - t.vertices;
-  for (std::int32_t v = 0; v < nv; ++v) {
-    if (on_boundary[v] && Find(hole_parent, v) == v) ++t.holes;
+  t.unreferenced_vertices = static_cast<std::int64_t>(nv) - t.vertices;
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (on_boundary[v] && Find(hole_parent, static_cast<std::int32_t>(v)) == static_cast<std::int32_t>(v)) ++t.holes;
   }
   if (t.non_manifold_edges > 0) CountDuplicateFaces(mesh, t);
   return t;

@@ -2,14 +2,24 @@
 // The weld (internal): corners with bit-identical positions (-0.0 == 0.0) become one vertex,
 // numbered in order of first appearance. A template over a corner accessor, so that binary STL
 // records are welded in place, without a copy of every coordinate.
+//
+// Two levels, for the cache and for threads: chunks of consecutive corners are welded on their own
+// (file order has locality), their distinct positions are scattered into partitions by hash (each
+// partition's table stays in cache) and welded there, and vertices are numbered by the rank of
+// their first corner (a bitmap with prefix counts). Every step's result depends on the input only,
+// so the vertex order is the same bits whatever the thread count — and the same as one hash table
+// over all corners in order.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "../parallel.h"
 #include "io_internal.h"
 
 namespace massprops::weld {
@@ -18,21 +28,220 @@ namespace massprops::weld {
 struct PositionKey {
   double x, y, z;
   bool operator==(const PositionKey& o) const { return x == o.x && y == o.y && z == o.z; }
+  bool Finite() const { return std::isfinite(x) && std::isfinite(y) && std::isfinite(z); }
 };
-struct PositionHash {
-  std::size_t operator()(const PositionKey& k) const {
-    auto bits = [](double d) {
-      std::uint64_t u;
-      d = d == 0.0 ? 0.0 : d;
-      std::memcpy(&u, &d, sizeof u);
-      return u;
-    };
-    std::uint64_t h = bits(k.x) * 0x9E3779B97F4A7C15ull;
-    h ^= bits(k.y) + 0x7F4A7C159E3779B9ull + (h << 6) + (h >> 2);
-    h ^= bits(k.z) + 0x94D049BB133111EBull + (h << 6) + (h >> 2);
-    return static_cast<std::size_t>(h);
+
+// A well-mixed 64-bit hash of a position (-0.0 and 0.0 alike): float-derived doubles have many
+// zero low bits, so the coordinates are combined and then mixed (Stafford's variant 13).
+inline std::uint64_t Hash(const PositionKey& k) {
+  auto bits = [](double d) {
+    std::uint64_t u;
+    d = d == 0.0 ? 0.0 : d;
+    std::memcpy(&u, &d, sizeof u);
+    return u;
+  };
+  std::uint64_t h = bits(k.x) * 0x9E3779B97F4A7C15ull;
+  h ^= bits(k.y) + 0x7F4A7C159E3779B9ull + (h << 6) + (h >> 2);
+  h ^= bits(k.z) + 0x94D049BB133111EBull + (h << 6) + (h >> 2);
+  h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ull;
+  h = (h ^ (h >> 27)) * 0x94D049BB133111EBull;
+  return h ^ (h >> 31);
+}
+
+/// Corners grouped by position.
+struct Grouping {
+  std::vector<std::int32_t> vertex_of;      ///< per corner: its vertex, numbered by first appearance
+  std::vector<std::uint32_t> first_corner;  ///< per vertex: the corner where it first appears
+  /// The first corner with a non-finite coordinate, or the corner count when there is none (the
+  /// grouping is then not made).
+  std::size_t first_non_finite = 0;
+};
+
+namespace detail {
+
+// An open-addressing table (linear probing, at most half full) from positions to dense ids in
+// order of insertion.
+class PositionTable {
+ public:
+  explicit PositionTable(std::size_t expected) {
+    while (slots_ < 2 * expected) slots_ *= 2;
+    table_.assign(slots_, -1);
   }
+  // The id of k, inserting it (with id = size()) when new; `inserted` tells which.
+  std::uint32_t Find(const PositionKey& k, std::uint64_t hash, bool& inserted) {
+    std::size_t slot = static_cast<std::size_t>(hash) & (slots_ - 1);
+    while (true) {
+      const std::int32_t id = table_[slot];
+      if (id < 0) break;
+      if (keys_[static_cast<std::size_t>(id)] == k) {
+        inserted = false;
+        return static_cast<std::uint32_t>(id);
+      }
+      slot = (slot + 1) & (slots_ - 1);
+    }
+    inserted = true;
+    const auto id = static_cast<std::uint32_t>(keys_.size());
+    table_[slot] = static_cast<std::int32_t>(id);
+    keys_.push_back(k);
+    hashes_.push_back(hash);
+    if (2 * keys_.size() > slots_) Grow();
+    return id;
+  }
+  std::vector<PositionKey>& keys() { return keys_; }
+  std::vector<std::uint64_t>& hashes() { return hashes_; }
+
+ private:
+  void Grow() {
+    slots_ *= 2;
+    table_.assign(slots_, -1);
+    for (std::size_t v = 0; v < keys_.size(); ++v) {
+      std::size_t s = static_cast<std::size_t>(hashes_[v]) & (slots_ - 1);
+      while (table_[s] >= 0) s = (s + 1) & (slots_ - 1);
+      table_[s] = static_cast<std::int32_t>(v);
+    }
+  }
+  std::size_t slots_ = 64;
+  std::vector<std::int32_t> table_;
+  std::vector<PositionKey> keys_;
+  std::vector<std::uint64_t> hashes_;
 };
+
+}  // namespace detail
+
+template <typename CornerAt>
+Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threads = 0) {
+  Grouping g;
+  g.first_non_finite = n;
+  if (n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
+    throw std::length_error("more than 2^31 corners");
+  }
+  // 1. Weld each chunk of consecutive corners on its own (read in file order; neighbouring faces
+  // share most corners, so a chunk's distinct positions are few). Its distinct positions are
+  // "entries", listed in order of their first corner.
+  constexpr std::size_t kChunk = std::size_t{1} << 16;
+  const std::size_t chunks = std::max<std::size_t>(1, (n + kChunk - 1) / kChunk);
+  std::vector<std::uint32_t> local(n);
+  std::vector<std::vector<PositionKey>> chunk_keys(chunks);
+  std::vector<std::vector<std::uint64_t>> chunk_hashes(chunks);
+  std::vector<std::vector<std::uint32_t>> chunk_first(chunks);
+  std::vector<std::size_t> bad(chunks, n);
+  internal::ParallelForBlocks(static_cast<std::int64_t>(chunks), num_threads, [&](std::int64_t bb) {
+    const auto b = static_cast<std::size_t>(bb);
+    const std::size_t lo = b * kChunk, hi = std::min(n, lo + kChunk);
+    detail::PositionTable table((hi - lo) / 4);
+    for (std::size_t i = lo; i < hi; ++i) {
+      const PositionKey k = corner_at(i);
+      if (!k.Finite()) {
+        bad[b] = i;
+        return;
+      }
+      bool inserted = false;
+      local[i] = table.Find(k, Hash(k), inserted);
+      if (inserted) chunk_first[b].push_back(static_cast<std::uint32_t>(i));
+    }
+    chunk_keys[b] = std::move(table.keys());
+    chunk_hashes[b] = std::move(table.hashes());
+  });
+  g.first_non_finite = *std::min_element(bad.begin(), bad.end());
+  if (g.first_non_finite < n) return g;
+  std::vector<std::size_t> entry_base(chunks + 1, 0);
+  for (std::size_t b = 0; b < chunks; ++b) entry_base[b + 1] = entry_base[b] + chunk_keys[b].size();
+  const std::size_t entries = entry_base[chunks];
+
+  // 2. Scatter the entries into partitions by their hash's top bits (each partition's table then
+  // stays in cache): partition-major, chunk by chunk, so each partition lists its entries in the
+  // order of their first corners.
+  int bits = 0;  // partitions of about 2^14 entries
+  while (bits < 10 && (entries >> (14 + bits)) > 0) ++bits;
+  const std::size_t parts = std::size_t{1} << bits;
+  auto part_of = [bits](std::uint64_t h) {
+    return bits == 0 ? std::size_t{0} : static_cast<std::size_t>(h >> (64 - bits));
+  };
+  std::vector<std::size_t> cursor(chunks * parts, 0);
+  for (std::size_t b = 0; b < chunks; ++b) {
+    for (std::uint64_t h : chunk_hashes[b]) ++cursor[b * parts + part_of(h)];
+  }
+  std::vector<std::size_t> begin(parts + 1, 0);
+  {
+    std::size_t at = 0;
+    for (std::size_t p = 0; p < parts; ++p) {
+      begin[p] = at;
+      for (std::size_t b = 0; b < chunks; ++b) {
+        const std::size_t c = cursor[b * parts + p];
+        cursor[b * parts + p] = at;
+        at += c;
+      }
+    }
+    begin[parts] = at;
+  }
+  // Entry numbers, positions and first corners, grouped by partition (copied so that each
+  // partition reads its own entries in sequence).
+  std::vector<std::uint32_t> bucket(entries);
+  std::vector<PositionKey> bucket_key(entries);
+  std::vector<std::uint32_t> bucket_first(entries);
+  internal::ParallelForBlocks(static_cast<std::int64_t>(chunks), num_threads, [&](std::int64_t bb) {
+    const auto b = static_cast<std::size_t>(bb);  // each chunk writes its own slots
+    std::size_t* cur = cursor.data() + b * parts;
+    for (std::size_t e = 0; e < chunk_hashes[b].size(); ++e) {
+      const std::size_t at = cur[part_of(chunk_hashes[b][e])]++;
+      bucket[at] = static_cast<std::uint32_t>(entry_base[b] + e);
+      bucket_key[at] = chunk_keys[b][e];
+      bucket_first[at] = chunk_first[b][e];
+    }
+  });
+
+  // 3. Weld each partition's entries: its vertices, each with its first corner.
+  std::vector<std::uint32_t> entry_vertex(entries);  // partition-local for now
+  std::vector<std::vector<std::uint32_t>> firsts(parts);
+  internal::ParallelForBlocks(static_cast<std::int64_t>(parts), num_threads, [&](std::int64_t pb) {
+    const auto p = static_cast<std::size_t>(pb);
+    detail::PositionTable table((begin[p + 1] - begin[p]) / 2);
+    for (std::size_t i = begin[p]; i < begin[p + 1]; ++i) {
+      const PositionKey& k = bucket_key[i];
+      bool inserted = false;
+      entry_vertex[bucket[i]] = table.Find(k, Hash(k), inserted);
+      if (inserted) firsts[p].push_back(bucket_first[i]);
+    }
+  });
+
+  // 4. Number the vertices by their first corners: a bitmap of first corners with prefix counts
+  // gives each one's rank.
+  const std::size_t words = (n + 63) / 64;
+  std::vector<std::uint64_t> is_first(words, 0);
+  std::size_t vertices = 0;
+  for (const auto& first : firsts) {
+    for (std::uint32_t c : first) is_first[c >> 6] |= std::uint64_t{1} << (c & 63);
+    vertices += first.size();
+  }
+  std::vector<std::uint32_t> rank_before(words + 1, 0);
+  for (std::size_t w = 0; w < words; ++w) {
+    rank_before[w + 1] = rank_before[w] + static_cast<std::uint32_t>(__builtin_popcountll(is_first[w]));
+  }
+  auto rank = [&](std::uint32_t c) {
+    const std::uint64_t below = is_first[c >> 6] & ((std::uint64_t{1} << (c & 63)) - 1);
+    return rank_before[c >> 6] + static_cast<std::uint32_t>(__builtin_popcountll(below));
+  };
+  g.first_corner.resize(vertices);
+  internal::ParallelForBlocks(static_cast<std::int64_t>(parts), num_threads, [&](std::int64_t pb) {
+    const auto p = static_cast<std::size_t>(pb);
+    std::vector<std::uint32_t> global(firsts[p].size());
+    for (std::size_t v = 0; v < global.size(); ++v) {
+      global[v] = rank(firsts[p][v]);
+      g.first_corner[global[v]] = firsts[p][v];
+    }
+    for (std::size_t i = begin[p]; i < begin[p + 1]; ++i) entry_vertex[bucket[i]] = global[entry_vertex[bucket[i]]];
+  });
+
+  // 5. Each corner's vertex, through its chunk's entry.
+  g.vertex_of.resize(n);
+  internal::ParallelForBlocks(static_cast<std::int64_t>(chunks), num_threads, [&](std::int64_t bb) {
+    const auto b = static_cast<std::size_t>(bb);
+    const std::size_t lo = b * kChunk, hi = std::min(n, lo + kChunk);
+    const std::uint32_t* ev = entry_vertex.data() + entry_base[b];
+    for (std::size_t i = lo; i < hi; ++i) g.vertex_of[i] = static_cast<std::int32_t>(ev[local[i]]);
+  });
+  return g;
+}
 
 // The weld, over corners given by an accessor (so binary STL records are read in place, without
 // an intermediate copy of every coordinate).
@@ -41,64 +250,23 @@ LoadedMesh Weld(const std::string& path, std::size_t corners, const CornerAt& co
                 const std::vector<int>& face_sizes, const char* format) {
   LoadedMesh out;
   out.format = format;
-  // Open addressing with linear probing over a power-of-two table of vertex ids (−1: empty),
-  // at most half full: no allocation per vertex, unlike a node-based map. Vertices are numbered
-  // in order of first appearance.
-  // A closed triangle mesh has about corners/6 distinct vertices: start there and double the
-  // table whenever it gets half full.
-  std::size_t slots = 16;
-  int shift = 60;  // slot = top log2(slots) bits of the mixed hash
-  while (slots < corners / 3) slots *= 2, --shift;
-  std::vector<std::int32_t> table(slots, -1);
-  auto mix = [](std::uint64_t h) {
-    h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ull;
-    h = (h ^ (h >> 27)) * 0x94D049BB133111EBull;
-    return h ^ (h >> 31);
-  };
-  const PositionHash hash;
-  std::vector<double> verts;
-  verts.reserve(corners / 2 + 3);
-  out.mesh.indices.reserve(corners);
-  for (std::size_t c = 0; c < corners; ++c) {
-    const PositionKey k = corner_at(c);
-    if (!std::isfinite(k.x) || !std::isfinite(k.y) || !std::isfinite(k.z)) {
-      std::ostringstream msg;
-      msg << "triangle " << c / 3 << " has a non-finite coordinate (" << k.x << ", " << k.y << ", " << k.z << ")";
-      Fail(path, msg.str());
-    }
-    // Float-derived doubles have many zero low bits: mix (Stafford's variant 13) and take the top bits.
-    std::size_t slot = static_cast<std::size_t>(mix(hash(k)) >> shift);
-    while (true) {
-      const std::int32_t id = table[slot];
-      if (id < 0) {
-        table[slot] = static_cast<std::int32_t>(verts.size() / 3);
-        out.mesh.indices.push_back(table[slot]);
-        verts.insert(verts.end(), {k.x, k.y, k.z});
-        if (2 * (verts.size() / 3) > slots) {  // grow: reinsert every vertex id
-          slots *= 2;
-          --shift;
-          table.assign(slots, -1);
-          for (std::size_t v = 0; v < verts.size() / 3; ++v) {
-            const PositionKey kv{verts[3 * v], verts[3 * v + 1], verts[3 * v + 2]};
-            std::size_t sl = static_cast<std::size_t>(mix(hash(kv)) >> shift);
-            while (table[sl] >= 0) sl = (sl + 1) & (slots - 1);
-            table[sl] = static_cast<std::int32_t>(v);
-          }
-        }
-        break;
-      }
-      const double* v = verts.data() + 3 * static_cast<std::size_t>(id);
-      if (v[0] == k.x && v[1] == k.y && v[2] == k.z) {
-        out.mesh.indices.push_back(id);
-        ++out.welded;
-        break;
-      }
-      slot = (slot + 1) & (slots - 1);
-    }
+  Grouping g = GroupByPosition(corners, corner_at);
+  if (g.first_non_finite < corners) {
+    const PositionKey k = corner_at(g.first_non_finite);
+    std::ostringstream msg;
+    msg << "triangle " << g.first_non_finite / 3 << " has a non-finite coordinate (" << k.x << ", " << k.y << ", "
+        << k.z << ")";
+    Fail(path, msg.str());
   }
+  out.welded = static_cast<std::int64_t>(corners - g.first_corner.size());
+  out.mesh.V.resize(static_cast<Eigen::Index>(g.first_corner.size()), 3);
+  for (std::size_t v = 0; v < g.first_corner.size(); ++v) {
+    const PositionKey k = corner_at(g.first_corner[v]);
+    out.mesh.V.row(static_cast<Eigen::Index>(v)) << k.x, k.y, k.z;
+  }
+  out.mesh.indices = std::move(g.vertex_of);
   out.mesh.offsets.reserve(face_sizes.size() + 1);
   for (int n : face_sizes) out.mesh.offsets.push_back(out.mesh.offsets.back() + n);
-  out.mesh.V = Eigen::Map<const VertexMatrix>(verts.data(), static_cast<Eigen::Index>(verts.size() / 3), 3);
   return out;
 }
 

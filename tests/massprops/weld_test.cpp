@@ -1,0 +1,70 @@
+// The partitioned weld against the obvious one (an ordered map over all corners, in order): the
+// same vertices in the same order, whatever the thread count, for corners spread over many chunks
+// and partitions.
+
+#include "weld.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <random>
+#include <tuple>
+#include <vector>
+
+namespace massprops {
+namespace {
+
+using weld::PositionKey;
+
+std::vector<PositionKey> Corners(std::size_t n, std::size_t pool, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<PositionKey> positions(pool);
+  for (auto& p : positions) p = {u(rng), u(rng), u(rng)};
+  positions[0] = {0.0, 0.5, -0.0};  // signed zeros are one position
+  positions[1] = {-0.0, 0.5, 0.0};
+  std::vector<PositionKey> out(n);
+  std::size_t near = 0;
+  for (std::size_t c = 0; c < n; ++c) {
+    // Mostly near the previous corners (as faces in a file), sometimes anywhere.
+    near = rng() % 8 == 0 ? rng() % pool : (near + rng() % 5) % pool;
+    out[c] = positions[near];
+  }
+  return out;
+}
+
+TEST(Weld, SameVerticesInOrderOfFirstAppearanceWhateverTheThreads) {
+  const std::vector<PositionKey> corners = Corners(400000, 50000, 7);
+  // The obvious weld.
+  std::map<std::tuple<double, double, double>, std::int32_t> seen;
+  std::vector<std::int32_t> expected(corners.size());
+  std::vector<std::uint32_t> expected_first;
+  for (std::size_t c = 0; c < corners.size(); ++c) {
+    const PositionKey& k = corners[c];
+    auto z = [](double d) { return d == 0.0 ? 0.0 : d; };
+    const auto [it, inserted] =
+        seen.emplace(std::make_tuple(z(k.x), z(k.y), z(k.z)), static_cast<std::int32_t>(seen.size()));
+    if (inserted) expected_first.push_back(static_cast<std::uint32_t>(c));
+    expected[c] = it->second;
+  }
+  ASSERT_GT(corners.size(), 4 * expected_first.size());  // many corners per vertex
+  for (int threads : {1, 2, 7}) {
+    const weld::Grouping g = weld::GroupByPosition(
+        corners.size(), [&](std::size_t c) { return corners[c]; }, threads);
+    EXPECT_EQ(g.first_non_finite, corners.size());
+    EXPECT_EQ(g.vertex_of, expected) << threads << " threads";
+    EXPECT_EQ(g.first_corner, expected_first) << threads << " threads";
+  }
+}
+
+TEST(Weld, FindsTheFirstNonFiniteCorner) {
+  std::vector<PositionKey> corners = Corners(200000, 1000, 3);
+  corners[150001].y = std::numeric_limits<double>::infinity();
+  corners[70000].z = std::nan("");
+  const weld::Grouping g = weld::GroupByPosition(
+      corners.size(), [&](std::size_t c) { return corners[c]; }, 2);
+  EXPECT_EQ(g.first_non_finite, 70000u);
+}
+
+}  // namespace
+}  // namespace massprops
