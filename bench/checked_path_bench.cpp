@@ -1,6 +1,6 @@
-// The checked path, stage by stage, on a binary STL of a torus (2·10^6 triangles by default;
-// MASSPROPS_BENCH_TRIANGLES overrides): reading and welding, the edge analysis, integration, and the
-// whole pipeline with --full-check. Read it beside `cat` of the same file (bench/end_to_end.py
+// The checked path, stage by stage, on a torus of 2·10^6 triangles (MASSPROPS_BENCH_TRIANGLES
+// overrides): reading and welding a binary STL, reading an OBJ, the edge analysis, integration, and
+// the whole pipeline with --full-check. Read it beside `cat` of the same file (bench/end_to_end.py
 // measures that ratio); the stages say where the rest of the time goes.
 
 #include <benchmark/benchmark.h>
@@ -22,17 +22,25 @@
 
 namespace {
 
-// Writes the torus once per process into the temporary folder (removed at exit).
+massprops::TriangleMesh Torus() {
+  const char* env = std::getenv("MASSPROPS_BENCH_TRIANGLES");
+  const long long target = env ? std::atoll(env) : 2000000;
+  int n = 3;
+  while (4LL * n * n < target) ++n;
+  return massprops::solids::Torus(2.0, 0.5, n);
+}
+
+std::string TempPath(const char* ext) {
+  return (std::filesystem::temp_directory_path() / ("checked_path_bench_" + std::to_string(::getpid()) + "." + ext))
+      .string();
+}
+
+// The torus as a binary STL and as an OBJ (17 significant digits), written once per process into
+// the temporary folder and removed at exit.
 const std::string& TorusFile() {
   static const std::string path = [] {
-    const char* env = std::getenv("MASSPROPS_BENCH_TRIANGLES");
-    const long long target = env ? std::atoll(env) : 2000000;
-    int n = 3;
-    while (4LL * n * n < target) ++n;
-    const massprops::TriangleMesh m = massprops::solids::Torus(2.0, 0.5, n);
-    const std::string p =
-        (std::filesystem::temp_directory_path() / ("checked_path_bench_" + std::to_string(::getpid()) + ".stl"))
-            .string();
+    const massprops::TriangleMesh m = Torus();
+    const std::string p = TempPath("stl");
     std::ofstream out(p, std::ios::binary);
     std::string header(80, ' ');
     out.write(header.data(), 80);
@@ -53,8 +61,30 @@ const std::string& TorusFile() {
   return path;
 }
 
+const std::string& TorusObjFile() {
+  static const std::string path = [] {
+    const massprops::TriangleMesh m = Torus();
+    const std::string p = TempPath("obj");
+    std::FILE* f = std::fopen(p.c_str(), "w");
+    for (Eigen::Index v = 0; v < m.V.rows(); ++v)
+      std::fprintf(f, "v %.17g %.17g %.17g\n", m.V(v, 0), m.V(v, 1), m.V(v, 2));
+    for (Eigen::Index t = 0; t < m.F.rows(); ++t)
+      std::fprintf(f, "f %d %d %d\n", m.F(t, 0) + 1, m.F(t, 1) + 1, m.F(t, 2) + 1);
+    std::fclose(f);
+    std::atexit([] { std::filesystem::remove(TorusObjFile()); });
+    return p;
+  }();
+  return path;
+}
+
 void BM_ReadAndWeld(benchmark::State& state) {
+  TorusFile();  // written before the clock starts
   for (auto _ : state) benchmark::DoNotOptimize(massprops::ReadMeshFile(TorusFile()));
+}
+
+void BM_ReadObj(benchmark::State& state) {
+  TorusObjFile();
+  for (auto _ : state) benchmark::DoNotOptimize(massprops::ReadMeshFile(TorusObjFile()));
 }
 
 void BM_EdgeAnalysis(benchmark::State& state) {
@@ -77,6 +107,7 @@ void BM_LoadSolidFullCheck(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_ReadAndWeld)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ReadObj)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_EdgeAnalysis)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_Integrate)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_LoadSolidFullCheck)->Unit(benchmark::kMillisecond)->UseRealTime();

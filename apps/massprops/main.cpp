@@ -9,10 +9,14 @@
 // and the fault; the exit status is 1 when any file failed, 2 for bad arguments. An output file
 // is written whole or not at all.
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -21,6 +25,7 @@
 #include "cli.h"
 #include "format.h"
 #include "massprops/implicit.h"
+#include "massprops/io.h"
 #include "massprops/load.h"
 #include "massprops/version.h"
 #include "progress.h"
@@ -240,42 +245,76 @@ int main(int argc, char** argv) {
   int failures = 0;
   std::vector<SolidResult> results;
   std::string text;
-  auto run = [&](const std::string& name, const auto& compute) {
-    try {
-      app::Progress progress("massprops", name, !a.quiet);
-      SolidResult r = compute([&progress](const char* stage) { progress.Stage(stage); });
-      for (const Finding& f : r.findings) {
-        std::cerr << "warning: " << name << ": " << Worded(f.message, cli::CliVocabulary()) << "\n";
-      }
-      if (format.format == cli::Format::kTable) text += (text.empty() ? "" : "\n") + FormatTable(r, format);
-      if (robot) text += FormatRobot(r, format.format);
-      results.push_back(std::move(r));
-    } catch (const MeshFileError& e) {  // already names the file
-      ++failures;
-      std::cerr << "error: " << WordedError(e, cli::CliVocabulary()) << "\n";
-    } catch (const std::exception& e) {
-      ++failures;
-      std::cerr << "error: " << name << ": " << e.what() << "\n";
-    }
+  // One input's outcome: its result, or its error (one line, worded for the command line).
+  struct Outcome {
+    std::optional<SolidResult> result;
+    std::string error;
   };
-  for (const std::string& file : a.files) {
-    run(file, [&](const ProgressCallback& progress) {
+  auto compute = [&](const std::string& name, bool show_progress, const auto& solve) {
+    Outcome out;
+    try {
+      app::Progress progress("massprops", name, show_progress);
+      out.result = solve([&progress](const char* stage) { progress.Stage(stage); });
+    } catch (const MeshFileError& e) {  // already names the file
+      out.error = WordedError(e, cli::CliVocabulary());
+    } catch (const std::exception& e) {
+      out.error = name + ": " + e.what();
+    }
+    return out;
+  };
+  // Messages and results in the order of the inputs, whatever order they were computed in.
+  auto emit = [&](const std::string& name, Outcome&& o) {
+    if (!o.result) {
+      ++failures;
+      std::cerr << "error: " << o.error << "\n";
+      return;
+    }
+    const SolidResult& r = *o.result;
+    for (const Finding& f : r.findings) {
+      std::cerr << "warning: " << name << ": " << Worded(f.message, cli::CliVocabulary()) << "\n";
+    }
+    if (format.format == cli::Format::kTable) text += (text.empty() ? "" : "\n") + FormatTable(r, format);
+    if (robot) text += FormatRobot(r, format.format);
+    results.push_back(std::move(*o.result));
+  };
+  auto load = [&](const std::string& file, bool show_progress) {
+    return compute(file, show_progress, [&](const ProgressCallback& progress) {
       LoadOptions o = options;
       o.progress = progress;
       return LoadSolid(file, o);
     });
+  };
+  // Several files read by our own readers are computed side by side, one per thread (a dataset's
+  // small files gain the cores a single file's stages would use); assimp's formats run in a child
+  // process, forked from one thread at a time. No progress line then: the lines would interleave.
+  const bool side_by_side = a.files.size() > 1 && options.reader == Reader::kAuto &&
+                            std::all_of(a.files.begin(), a.files.end(), HasOwnReader);
+  if (side_by_side) {
+    std::vector<Outcome> outcomes(a.files.size());
+    std::atomic<std::size_t> next{0};
+    auto worker = [&] {
+      for (std::size_t i = next++; i < a.files.size(); i = next++) outcomes[i] = load(a.files[i], false);
+    };
+    const unsigned cores = a.threads > 0 ? static_cast<unsigned>(a.threads) : std::thread::hardware_concurrency();
+    std::vector<std::thread> pool;
+    for (unsigned t = 1; t < std::min<std::size_t>(std::max(cores, 1u), a.files.size()); ++t) pool.emplace_back(worker);
+    worker();
+    for (std::thread& t : pool) t.join();
+    for (std::size_t i = 0; i < a.files.size(); ++i) emit(a.files[i], std::move(outcomes[i]));
+  } else {
+    for (const std::string& file : a.files) emit(file, load(file, !a.quiet));
   }
   if (!a.implicit.empty()) {
-    run("--implicit", [&](const ProgressCallback& progress) {
-      ImplicitOptions o;
-      o.unit = options.unit;
-      o.unit_stated = options.unit_stated;
-      o.mass = options.mass;
-      o.sampling = Sampling(a);
-      o.num_threads = a.threads;
-      o.progress = progress;
-      return EstimateImplicit(*implicit::ParseShape(a.implicit, ReadSdfGridFile), o);
-    });
+    emit("--implicit", compute("--implicit", !a.quiet, [&](const ProgressCallback& progress) {
+           ImplicitOptions o;
+           o.unit = options.unit;
+           o.unit_stated = options.unit_stated;
+           o.mass = options.mass;
+           o.sampling = Sampling(a);
+           o.num_threads = a.threads;
+           o.progress = progress;
+           return EstimateImplicit(*implicit::ParseShape(a.implicit, ReadSdfGridFile), o);
+         }));
   }
   if (format.format == cli::Format::kJson && (!results.empty() || format.json_array)) {
     text = FormatJson(results, format);  // several inputs: an array, even if some (or all) failed

@@ -277,6 +277,14 @@ timeout 10 "$bin" "$tmp/fifo.obj" >/dev/null 2>"$tmp/err"
 "$bin" "$data/meshes/spot.obj" --threads -1 >/dev/null 2>"$tmp/err"
 [ $? -eq 2 ] && ! grep -q "[0-9]\{30\}" "$tmp/err"; check "range messages without 309 digits" $?
 
+# Several files are computed side by side; what is printed (results, warnings, errors, their
+# order) is the same bytes as one at a time.
+many=("$data"/meshes/*.obj "$data"/meshes/*.stl "$data"/meshes/*.STL "$data"/meshes/*.off "$tmp/open.obj")
+"$bin" "${many[@]}" --format json --threads 1 >"$tmp/one.json" 2>"$tmp/one.err"; one=$?
+"$bin" "${many[@]}" --format json --threads 4 >"$tmp/four.json" 2>"$tmp/four.err"; four=$?
+[ $one -eq 1 ] && [ $four -eq 1 ] && cmp -s "$tmp/one.json" "$tmp/four.json" && cmp -s "$tmp/one.err" "$tmp/four.err" &&
+  grep -q "open.obj" "$tmp/four.err"; check "several files: same output whatever the threads" $?
+
 # Advice in messages is worded in the command line's vocabulary.
 "$bin" "$tmp/open.obj" >/dev/null 2>"$tmp/err"
 grep -q "try --repair, or pass --allow-open" "$tmp/err"; check "CLI vocabulary in errors" $?

@@ -19,6 +19,7 @@ namespace {
 using testing::DataPath;
 using ::testing::HasSubstr;
 using testing::NearRel;
+using ::testing::Not;
 
 // The T-handle of data/meshes: a crossbar 0.08 × 0.02 × 0.02 m (centre y = 0.01) on a shaft
 // 0.02 × 0.06 × 0.02 m (centre y = −0.03).
@@ -121,6 +122,57 @@ TEST(LoadSolid, TheTHandleAgainstItsClosedForm) {
   mm.unit = LengthUnit::kMillimetre;
   const SolidResult small = LoadSolid(DataPath("meshes/t_handle.obj"), mm);
   EXPECT_TRUE(NearRel(small.mp.volume, kVolume * 1e-9, 1e-14));
+}
+
+// A binary STL of a torus of 4n² triangles, in float32 as STL stores them.
+std::string WriteTorusStl(int n, const std::string& name) {
+  const TriangleMesh m = solids::Torus(2.0, 0.5, n);
+  const std::string path = ::testing::TempDir() + "/" + name;
+  std::ofstream out(path, std::ios::binary);
+  const std::string header(80, ' ');
+  out.write(header.data(), 80);
+  const auto count = static_cast<std::uint32_t>(m.F.rows());
+  out.write(reinterpret_cast<const char*>(&count), 4);
+  for (Eigen::Index f = 0; f < m.F.rows(); ++f) {
+    float rec[12] = {};
+    for (int k = 0; k < 3; ++k) {
+      for (int j = 0; j < 3; ++j) rec[3 + 3 * k + j] = static_cast<float>(m.V(m.F(f, k), j));
+    }
+    out.write(reinterpret_cast<const char*>(rec), 48);
+    out.write("\0\0", 2);
+  }
+  return path;
+}
+
+// Big binary STLs are integrated as they lie; the checked path (--full-check) welds them. Both
+// must give the same numbers for the same float coordinates, and the streamed one says what it
+// did not check.
+TEST(LoadSolid, StreamedAndCheckedPathsAgree) {
+  const std::string path = WriteTorusStl(160, "torus_102400.stl");  // 4·160² = 102 400 triangles
+  LoadOptions o;
+  o.unit_stated = true;
+  const SolidResult streamed = LoadSolid(path, o);
+  o.full_check = true;
+  const SolidResult checked = LoadSolid(path, o);
+  EXPECT_THAT(streamed.path_used, HasSubstr("streamed"));
+  EXPECT_FALSE(streamed.full_topology);
+  ASSERT_EQ(streamed.findings.size(), 1u);
+  EXPECT_EQ(streamed.findings[0].kind, FindingKind::kStreamedChecks);
+  EXPECT_THAT(checked.path_used, Not(HasSubstr("streamed")));
+  EXPECT_TRUE(checked.full_topology);
+  EXPECT_TRUE(checked.findings.empty());
+  EXPECT_EQ(checked.topology.faces, 102400);
+  EXPECT_EQ(checked.topology.vertices, 51200);
+  EXPECT_TRUE(NearRel(streamed.mp.volume, checked.mp.volume, 1e-13));
+  EXPECT_TRUE(NearRel(streamed.mp.inertia_com(2, 2), checked.mp.inertia_com(2, 2), 1e-13));
+  EXPECT_NEAR(streamed.mp.center_of_mass.norm(), checked.mp.center_of_mass.norm(), 1e-14);
+  // Within the tessellation's error of the torus, V = 2π²Ra² (from below).
+  const double exact = 2 * M_PI * M_PI * 2.0 * 0.25;
+  EXPECT_LT(checked.mp.volume, exact);
+  EXPECT_GT(checked.mp.volume, exact * (1 - 1e-3));
+  // Just below the threshold, the default path is the checked one.
+  const SolidResult small = LoadSolid(WriteTorusStl(150, "torus_90000.stl"), LoadOptions{});
+  EXPECT_TRUE(small.full_topology);
 }
 
 TEST(LoadSolid, ShellAndWallModels) {

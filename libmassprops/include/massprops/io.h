@@ -49,6 +49,10 @@ LoadedMesh ReadMeshFile(const std::string& path);
 /// @throws MeshFileError as ReadMeshFile.
 LoadedMesh ParseMeshBuffer(const std::string& name, const std::string& extension, std::string_view bytes);
 
+/// Whether ReadMeshFile reads `path` with a reader of our own (OBJ, STL, PLY, OFF, by extension),
+/// in this process; the other formats go through assimp in a child process.
+bool HasOwnReader(const std::string& path);
+
 /// Reads any format through assimp, even those with a reader of our own (for comparison).
 /// @throws MeshFileError as ReadMeshFile.
 LoadedMesh ReadMeshFileWithAssimp(const std::string& path);

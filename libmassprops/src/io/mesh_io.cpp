@@ -43,6 +43,11 @@ LoadedMesh ParseMeshBuffer(const std::string& name, const std::string& extension
   Fail(name, "no parser of our own for '" + ext + "' (formats read through assimp need a file)");
 }
 
+bool HasOwnReader(const std::string& path) {
+  const std::size_t dot = path.find_last_of('.');
+  return dot != std::string::npos && FindReader(io_text::Lower(path.substr(dot + 1))) != nullptr;
+}
+
 LoadedMesh ReadMeshFile(const std::string& path) {
   const std::size_t dot = path.find_last_of('.');
   const std::string ext = dot == std::string::npos ? "" : io_text::Lower(path.substr(dot + 1));

@@ -1,85 +1,204 @@
 // Wavefront OBJ: v/f records, n-gons kept whole, negative indices, several objects, backslash
-// continuations, CRLF. Coordinates parsed as doubles.
+// continuations, CRLF. Coordinates parsed as doubles (correctly rounded).
+//
+// Large files are cut at line ends into chunks parsed in parallel; each chunk keeps the indices as
+// written, and a second pass resolves them (relative indices count back from the vertices read so
+// far in the whole file). The first fault in file order is the one reported, with its line, so the
+// result and the messages are those of a single pass.
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "../parallel.h"
 #include "io_internal.h"
 #include "text_tokens.h"
 
 namespace massprops {
+namespace {
 
 using io_text::NextToken;
 using io_text::ParseDouble;
 
-LoadedMesh ParseObj(const std::string& path, std::string_view data) {
-  if (data.empty()) Fail(path, "the file is empty");
-  LoadedMesh out;
-  out.format = "obj";
+// What one chunk read: vertices, and faces with their indices as written.
+struct Chunk {
+  std::string_view text;
   std::vector<double> verts;
-  std::vector<std::int32_t> face;
-  std::string joined;
-  std::string_view rest(data);
-  std::size_t line = 0;
+  std::vector<std::int64_t> indices;  // as written (1-based, or negative: relative)
+  std::vector<std::int32_t> face_sizes;
+  std::vector<std::int64_t> verts_before;  // per face: this chunk's vertices read before it
+  std::vector<std::size_t> face_line;      // per face: its line within the chunk (1-based)
+  std::size_t lines = 0;                   // physical lines (newlines) in the chunk
+  std::size_t error_line = 0;              // 0: none; else the line (within the chunk) of the fault
+  std::string error;
+};
+
+// A chunk boundary at or after `from`: just past a newline that does not continue its line.
+std::size_t LineBoundary(std::string_view data, std::size_t from) {
+  while (from < data.size()) {
+    const std::size_t eol = data.find('\n', from);
+    if (eol == std::string_view::npos) return data.size();
+    std::size_t end = eol;
+    while (end > 0 && (data[end - 1] == '\r' || data[end - 1] == ' ' || data[end - 1] == '\t')) --end;
+    if (end == 0 || data[end - 1] != '\\') return eol + 1;
+    from = eol + 1;
+  }
+  return data.size();
+}
+
+void ParseChunk(Chunk& c) {
+  std::string_view rest = c.text;
+  std::string joined;  // only for lines continued with a backslash
+  auto fail = [&](std::size_t line, std::string what) {
+    c.error_line = line;
+    c.error = std::move(what);
+  };
   while (!rest.empty()) {
-    // One logical line: physical lines joined where they end with a backslash.
-    joined.clear();
-    const std::size_t first_line = line + 1;
-    for (;;) {
+    const std::size_t first_line = c.lines + 1;
+    std::string_view s;
+    {
       const std::size_t eol = rest.find('\n');
       std::string_view ln = rest.substr(0, eol);
       rest.remove_prefix(eol == std::string_view::npos ? rest.size() : eol + 1);
-      ++line;
+      ++c.lines;
       while (!ln.empty() && (ln.back() == '\r' || ln.back() == ' ' || ln.back() == '\t')) ln.remove_suffix(1);
       if (!ln.empty() && ln.back() == '\\' && !rest.empty()) {
-        ln.remove_suffix(1);
-        joined.append(ln);
+        // One logical line: physical lines joined where they end with a backslash.
+        joined.assign(ln.substr(0, ln.size() - 1));
         joined.push_back(' ');
-        continue;
+        for (;;) {
+          const std::size_t e = rest.find('\n');
+          std::string_view next = rest.substr(0, e);
+          rest.remove_prefix(e == std::string_view::npos ? rest.size() : e + 1);
+          ++c.lines;
+          while (!next.empty() && (next.back() == '\r' || next.back() == ' ' || next.back() == '\t')) {
+            next.remove_suffix(1);
+          }
+          if (!next.empty() && next.back() == '\\' && !rest.empty()) {
+            joined.append(next.substr(0, next.size() - 1));
+            joined.push_back(' ');
+            continue;
+          }
+          joined.append(next);
+          break;
+        }
+        s = joined;
+      } else {
+        s = ln;
       }
-      joined.append(ln);
-      break;
     }
-    std::string_view s(joined);
     const std::size_t hash = s.find('#');
     if (hash != std::string_view::npos) s = s.substr(0, hash);
     const std::string_view key = NextToken(s);
-    auto where = [&]() { return "line " + std::to_string(first_line) + ": "; };
     if (key == "v") {
       for (int k = 0; k < 3; ++k) {
         const std::string_view tok = NextToken(s);
-        double c;
-        if (!ParseDouble(tok, c)) Fail(path, where() + "expected a coordinate, got '" + std::string(tok) + "'");
-        if (!std::isfinite(c)) Fail(path, where() + "non-finite coordinate '" + std::string(tok) + "'");
-        verts.push_back(c);
+        double x;
+        if (!ParseDouble(tok, x)) return fail(first_line, "expected a coordinate, got '" + std::string(tok) + "'");
+        if (!std::isfinite(x)) return fail(first_line, "non-finite coordinate '" + std::string(tok) + "'");
+        c.verts.push_back(x);
       }
     } else if (key == "f") {
-      face.clear();
-      const auto nv = static_cast<std::int64_t>(verts.size() / 3);
+      std::int32_t n = 0;
       for (std::string_view tok = NextToken(s); !tok.empty(); tok = NextToken(s)) {
         const std::string_view idx = tok.substr(0, tok.find('/'));
         std::int64_t i = 0;
         const auto res = std::from_chars(idx.data(), idx.data() + idx.size(), i);
         if (res.ec != std::errc() || res.ptr != idx.data() + idx.size() || i == 0) {
-          Fail(path, where() + "bad face index '" + std::string(tok) + "'");
+          c.indices.resize(c.indices.size() - static_cast<std::size_t>(n));
+          return fail(first_line, "bad face index '" + std::string(tok) + "'");
         }
-        const std::int64_t zero_based = i > 0 ? i - 1 : nv + i;  // negative: relative to the end
-        if (zero_based < 0 || zero_based >= nv) {
-          Fail(path, where() + "face index " + std::to_string(i) + " is out of range (" + std::to_string(nv) +
-                         " vertices so far)");
-        }
-        face.push_back(static_cast<std::int32_t>(zero_based));
+        c.indices.push_back(i);
+        ++n;
       }
-      if (face.size() < 3) Fail(path, where() + "a face needs at least 3 corners");
-      out.mesh.AddFace(face);
+      if (n < 3) {
+        c.indices.resize(c.indices.size() - static_cast<std::size_t>(n));
+        return fail(first_line, "a face needs at least 3 corners");
+      }
+      c.face_sizes.push_back(n);
+      c.verts_before.push_back(static_cast<std::int64_t>(c.verts.size() / 3));
+      c.face_line.push_back(first_line);
     }
     // vt, vn, o, g, s, usemtl, mtllib, l, ...: not geometry of the solid.
   }
-  if (verts.empty() || out.mesh.num_faces() == 0) Fail(path, "no faces found in the OBJ file");
-  out.mesh.V = Eigen::Map<const VertexMatrix>(verts.data(), static_cast<Eigen::Index>(verts.size() / 3), 3);
+}
+
+}  // namespace
+
+LoadedMesh ParseObj(const std::string& path, std::string_view data) {
+  if (data.empty()) Fail(path, "the file is empty");
+  // Chunks of about 4 MB (one for small files: no threads started).
+  constexpr std::size_t kChunkBytes = std::size_t{4} << 20;
+  std::vector<Chunk> chunks;
+  for (std::size_t at = 0; at < data.size();) {
+    const std::size_t end = at + kChunkBytes >= data.size() ? data.size() : LineBoundary(data, at + kChunkBytes);
+    chunks.emplace_back().text = data.substr(at, end - at);
+    at = end;
+  }
+  internal::ParallelForBlocks(static_cast<std::int64_t>(chunks.size()), 0,
+                              [&](std::int64_t b) { ParseChunk(chunks[static_cast<std::size_t>(b)]); });
+
+  // Resolve the indices: each chunk's vertices follow those of the chunks before it.
+  std::vector<std::int64_t> vert_base(chunks.size() + 1, 0), index_base(chunks.size() + 1, 0),
+      face_base(chunks.size() + 1, 0);
+  std::vector<std::size_t> line_base(chunks.size() + 1, 0);
+  for (std::size_t k = 0; k < chunks.size(); ++k) {
+    vert_base[k + 1] = vert_base[k] + static_cast<std::int64_t>(chunks[k].verts.size() / 3);
+    index_base[k + 1] = index_base[k] + static_cast<std::int64_t>(chunks[k].indices.size());
+    face_base[k + 1] = face_base[k] + static_cast<std::int64_t>(chunks[k].face_sizes.size());
+    line_base[k + 1] = line_base[k] + chunks[k].lines;
+  }
+  if (index_base.back() > std::numeric_limits<std::int32_t>::max() ||
+      vert_base.back() > std::numeric_limits<std::int32_t>::max()) {
+    Fail(path, "more than 2^31 vertices or face corners");
+  }
+  LoadedMesh out;
+  out.format = "obj";
+  PolygonMesh& mesh = out.mesh;
+  mesh.indices.resize(static_cast<std::size_t>(index_base.back()));
+  mesh.offsets.resize(static_cast<std::size_t>(face_base.back()) + 1);
+  mesh.offsets[0] = 0;
+  std::vector<std::size_t> range_error_line(chunks.size(), 0);
+  std::vector<std::string> range_error(chunks.size());
+  internal::ParallelForBlocks(static_cast<std::int64_t>(chunks.size()), 0, [&](std::int64_t bb) {
+    const auto b = static_cast<std::size_t>(bb);
+    const Chunk& c = chunks[b];
+    std::size_t at = static_cast<std::size_t>(index_base[b]);
+    std::size_t f = static_cast<std::size_t>(face_base[b]);
+    for (std::size_t i = 0, k = 0; k < c.face_sizes.size(); ++k, ++f) {
+      const std::int64_t nv = vert_base[b] + c.verts_before[k];  // vertices so far in the file
+      for (std::int32_t j = 0; j < c.face_sizes[k]; ++j, ++i, ++at) {
+        const std::int64_t written = c.indices[i];
+        const std::int64_t zero_based = written > 0 ? written - 1 : nv + written;  // negative: from the end
+        if (zero_based < 0 || zero_based >= nv) {
+          range_error_line[b] = c.face_line[k];
+          range_error[b] =
+              "face index " + std::to_string(written) + " is out of range (" + std::to_string(nv) + " vertices so far)";
+          return;
+        }
+        mesh.indices[at] = static_cast<std::int32_t>(zero_based);
+      }
+      mesh.offsets[f + 1] = static_cast<std::int64_t>(at);
+    }
+  });
+  // The first fault in file order: chunks are in order, and within a chunk a parse fault ends
+  // the chunk, so an index fault before it comes first.
+  for (std::size_t b = 0; b < chunks.size(); ++b) {
+    const std::size_t line = range_error_line[b] > 0 ? range_error_line[b] : chunks[b].error_line;
+    if (line == 0) continue;
+    const std::string& what = range_error_line[b] > 0 ? range_error[b] : chunks[b].error;
+    Fail(path, "line " + std::to_string(line_base[b] + line) + ": " + what);
+  }
+  if (vert_base.back() == 0 || face_base.back() == 0) Fail(path, "no faces found in the OBJ file");
+  mesh.V.resize(vert_base.back(), 3);
+  internal::ParallelForBlocks(static_cast<std::int64_t>(chunks.size()), 0, [&](std::int64_t bb) {
+    const auto b = static_cast<std::size_t>(bb);
+    const std::vector<double>& v = chunks[b].verts;
+    std::copy(v.begin(), v.end(), mesh.V.data() + 3 * vert_base[b]);
+  });
   return out;
 }
 

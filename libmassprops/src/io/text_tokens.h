@@ -7,6 +7,15 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <type_traits>
+
+// Numbers are parsed by fast_float when it is there (Debian's libfast-float-dev; several times
+// faster than libstdc++'s from_chars), else by from_chars: both round correctly, so the doubles
+// are the same bits either way.
+#if __has_include(<fast_float/fast_float.h>)
+#include <fast_float/fast_float.h>
+#define MASSPROPS_FAST_FLOAT 1
+#endif
 
 namespace massprops::io_text {
 
@@ -27,9 +36,15 @@ inline std::string_view NextToken(std::string_view& s) {
   return tok;
 }
 
+// Parses a whole token as a double (a leading '+' allowed; "inf" and "nan" parse, and callers
+// refuse them where they must).
 inline bool ParseDouble(std::string_view tok, double& out) {
   if (!tok.empty() && tok.front() == '+') tok.remove_prefix(1);
+#ifdef MASSPROPS_FAST_FLOAT
+  const auto res = fast_float::from_chars(tok.data(), tok.data() + tok.size(), out);
+#else
   const auto res = std::from_chars(tok.data(), tok.data() + tok.size(), out);
+#endif
   return res.ec == std::errc() && res.ptr == tok.data() + tok.size();
 }
 
@@ -64,9 +79,13 @@ class Tokens {
 
 template <typename T>
 bool ParseNumber(std::string_view tok, T& out) {
-  if (!tok.empty() && tok.front() == '+') tok.remove_prefix(1);
-  const auto res = std::from_chars(tok.data(), tok.data() + tok.size(), out);
-  return res.ec == std::errc() && res.ptr == tok.data() + tok.size();
+  if constexpr (std::is_same_v<T, double>) {
+    return ParseDouble(tok, out);
+  } else {
+    if (!tok.empty() && tok.front() == '+') tok.remove_prefix(1);
+    const auto res = std::from_chars(tok.data(), tok.data() + tok.size(), out);
+    return res.ec == std::errc() && res.ptr == tok.data() + tok.size();
+  }
 }
 
 }  // namespace massprops::io_text
