@@ -3,6 +3,7 @@
 
 #include "massprops/io.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -188,6 +189,50 @@ TEST_F(BadFiles, ObjSyntaxThatIsValid) {
   EXPECT_EQ(m.mesh.num_faces(), 4);
   EXPECT_TRUE(AnalyzeTopology(m.mesh).BoundsVolume());
   EXPECT_TRUE(NearRel(ComputeMassProperties(m.mesh, 1.0).volume, 1.0 / 6, 1e-15));
+}
+
+// Big OBJ files are parsed in chunks of a few MB side by side: the mesh is the one written
+// (doubles exact through 17 digits, relative indices resolved against the whole file), and a
+// fault is reported with its line in the whole file.
+TEST_F(BadFiles, ObjInChunksIsTheFileAsWritten) {
+  const TriangleMesh torus = solids::Torus(2.0, 0.5, 300);  // 180 000 triangles, ~14 MB
+  std::string text;
+  char line[128];
+  // Each triangle's corners written again before it, addressed by relative indices, so that a
+  // face refers to the vertices just before it wherever the chunks are cut.
+  for (Eigen::Index f = 0; f < torus.F.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const auto v = torus.V.row(torus.F(f, k));
+      std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", v(0), v(1), v(2));
+      text += line;
+    }
+    text += "f -3 -2 -1\n";
+  }
+  const LoadedMesh m = ParseMeshBuffer("big.obj", "obj", text);
+  ASSERT_EQ(m.mesh.num_faces(), torus.F.rows());
+  ASSERT_EQ(m.mesh.V.rows(), 3 * torus.F.rows());
+  for (Eigen::Index f = 0; f < torus.F.rows(); f += 997) {
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Index corner = m.mesh.indices[static_cast<std::size_t>(3 * f + k)];
+      EXPECT_EQ(m.mesh.V.row(corner), torus.V.row(torus.F(f, k)));  // welded to the first copy: same position
+    }
+  }
+  EXPECT_TRUE(AnalyzeTopology(m.mesh).BoundsVolume());  // the repeated corners were welded
+  EXPECT_EQ(m.welded, 3 * torus.F.rows() - torus.V.rows());
+  // A fault near the end, and one in the middle: the first in the file is reported, with its line.
+  const std::size_t lines = 4 * static_cast<std::size_t>(torus.F.rows());
+  std::string late = text + "v 1 2 x\n";
+  EXPECT_THAT([&] { ParseMeshBuffer("late.obj", "obj", late); },
+              ::testing::ThrowsMessage<MeshFileError>(
+                  HasSubstr("late.obj: line " + std::to_string(lines + 1) + ": expected a coordinate, got 'x'")));
+  std::string both = text;
+  const std::size_t middle = both.find("f -3 -2 -1\n", both.size() / 2);
+  const std::size_t middle_line = static_cast<std::size_t>(std::count(both.begin(), both.begin() + middle, '\n')) + 1;
+  both.replace(middle, 11, "f -3 -2 -1 1000000\n");
+  both += "v 1 2 x\n";
+  EXPECT_THAT([&] { ParseMeshBuffer("both.obj", "obj", both); },
+              ::testing::ThrowsMessage<MeshFileError>(
+                  HasSubstr("both.obj: line " + std::to_string(middle_line) + ": face index 1000000 is out of range")));
 }
 
 // PLY and OFF have readers of our own: an OFF box of quads and an ASCII PLY tetrahedron, and
