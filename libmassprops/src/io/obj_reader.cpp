@@ -49,6 +49,66 @@ std::size_t LineBoundary(std::string_view data, std::size_t from) {
   return data.size();
 }
 
+inline bool Blank(char ch) { return ch == ' ' || ch == '\t'; }
+
+// The common lines — "v x y z ..." and "f i j k ..." (with optional /vt/vn parts), no comment,
+// no continuation — parsed in one pass over the characters. Returns false, having changed
+// nothing, for anything else; the general path then reads the line (same results, same faults).
+bool ParseCommonLine(const char* p, const char* end, Chunk& c) {
+  if (end - p < 2 || !Blank(p[1])) return false;
+  const char* last = end;
+  while (last > p && (last[-1] == '\r' || Blank(last[-1]))) --last;
+  if (last[-1] == '\\') return false;  // continued on the next line
+  if (p[0] == 'v') {
+    double xyz[3];
+    const char* q = p + 1;
+    for (double& x : xyz) {
+      while (q < last && Blank(*q)) ++q;
+      if (q < last && *q == '+') ++q;
+#ifdef MASSPROPS_FAST_FLOAT
+      const auto res = fast_float::from_chars(q, last, x);
+#else
+      const auto res = std::from_chars(q, last, x);
+#endif
+      if (res.ec != std::errc() || (res.ptr < last && !Blank(*res.ptr)) || !std::isfinite(x)) return false;
+      q = res.ptr;
+    }
+    c.verts.insert(c.verts.end(), xyz, xyz + 3);
+    return true;
+  }
+  if (p[0] == 'f') {
+    const std::size_t before = c.indices.size();
+    const char* q = p + 1;
+    std::int32_t n = 0;
+    while (true) {
+      while (q < last && Blank(*q)) ++q;
+      if (q == last) break;
+      const bool negative = *q == '-';
+      if (negative) ++q;
+      const char* digits = q;
+      std::int64_t i = 0;
+      while (q < last && *q >= '0' && *q <= '9' && q - digits < 15) i = 10 * i + (*q++ - '0');
+      if (q == digits || i == 0 || (q < last && *q >= '0' && *q <= '9')) break;  // no digits, 0, or too long
+      if (negative) i = -i;
+      if (q < last && *q == '/') {
+        while (q < last && !Blank(*q) && *q != '#') ++q;
+      }
+      if (q < last && !Blank(*q)) break;
+      c.indices.push_back(i);
+      ++n;
+    }
+    if (q != last || n < 3) {
+      c.indices.resize(before);
+      return false;
+    }
+    c.face_sizes.push_back(n);
+    c.verts_before.push_back(static_cast<std::int64_t>(c.verts.size() / 3));
+    c.face_line.push_back(c.lines);
+    return true;
+  }
+  return false;
+}
+
 void ParseChunk(Chunk& c) {
   std::string_view rest = c.text;
   std::string joined;  // only for lines continued with a backslash
@@ -56,6 +116,8 @@ void ParseChunk(Chunk& c) {
     c.error_line = line;
     c.error = std::move(what);
   };
+  c.verts.reserve(rest.size() / 20);
+  c.indices.reserve(rest.size() / 10);
   while (!rest.empty()) {
     const std::size_t first_line = c.lines + 1;
     std::string_view s;
@@ -64,6 +126,7 @@ void ParseChunk(Chunk& c) {
       std::string_view ln = rest.substr(0, eol);
       rest.remove_prefix(eol == std::string_view::npos ? rest.size() : eol + 1);
       ++c.lines;
+      if (ParseCommonLine(ln.data(), ln.data() + ln.size(), c)) continue;
       while (!ln.empty() && (ln.back() == '\r' || ln.back() == ' ' || ln.back() == '\t')) ln.remove_suffix(1);
       if (!ln.empty() && ln.back() == '\\' && !rest.empty()) {
         // One logical line: physical lines joined where they end with a backslash.
