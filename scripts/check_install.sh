@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the build into a fresh temporary prefix, builds tests/consumer against it with
-# find_package(massprops) and runs it, and runs the installed massprops on a glTF file (read
-# through the assimp plugin installed beside the library). Exit 0 when all of it works.
+# find_package(massprops) and runs it, and runs the installed massprops and the installed Python
+# module on a glTF file (read through the assimp plugin installed beside the library). Exit 0 when all of it works.
 #   check_install.sh [BUILD_DIR]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -17,6 +17,14 @@ cmake --build "$work" >/dev/null
 env -u MASSPROPS_ASSIMP_PLUGIN "$prefix/bin/massprops" "$root/data/meshes/box_0.1x0.2x0.3.gltf" --format csv -q \
   | tail -n 1 | grep -q '^"[^"]*box_0.1x0.2x0.3.gltf",m,0.0060000017' \
   || { echo "check_install: the installed massprops did not read the glTF box"; exit 1; }
+# The installed Python module, from the prefix's dist-packages, with Debian's interpreter.
+pydir=$(echo "$prefix"/lib/python3*/dist-packages)
+env -u MASSPROPS_ASSIMP_PLUGIN PYTHONPATH="$pydir" /usr/bin/python3 -c "
+import massprops, sys
+assert massprops.__file__.startswith('$prefix'), massprops.__file__
+r = massprops.load('$root/data/meshes/box_0.1x0.2x0.3.gltf')
+assert abs(r.mass - 6.0) < 1e-5 and abs(r.inertia_com[0][0] - 0.065) < 1e-7, r
+" || { echo "check_install: the installed Python module did not work"; exit 1; }
 "$prefix/bin/massprops" --version
 "$prefix/bin/rbsim" --version
 echo "check_install: installed package, find_package consumer and glTF reading work"

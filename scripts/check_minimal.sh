@@ -9,7 +9,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$root} CCACHE_NOHASHDIR=${CCACHE_NOHASHDIR:-1}
 build=${1:-$root/build-minimal}
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DMASSPROPS_WITH_ASSIMP=OFF \
-  -DMASSPROPS_WITH_CGAL=OFF -DMASSPROPS_BUILD_TESTS=OFF -DMASSPROPS_BUILD_BENCH=OFF >/dev/null
+  -DMASSPROPS_WITH_CGAL=OFF -DMASSPROPS_BUILD_TESTS=OFF -DMASSPROPS_BUILD_BENCH=OFF -DMASSPROPS_BUILD_PYTHON=OFF >/dev/null
 cmake --build "$build" --target massprops_cli >/dev/null
 bin=$build/apps/massprops
 "$bin" "$root/data/meshes/t_handle.obj" --format csv -q | tail -n 1 | grep -q ',m,5.6e-05,0.056,' \

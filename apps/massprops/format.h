@@ -1,6 +1,7 @@
 #pragma once
 // massprops' output formats: each turns pipeline results (massprops/load.h) into text, and
-// computes nothing. One file per format.
+// computes nothing. One file per format; the Python module prints its to_dict() through the same
+// JSON formatter, so the schema has one home.
 
 #include <string>
 #include <vector>
@@ -18,6 +19,8 @@ struct FormatOptions {
   Frame frame = Frame::kCenterOfMass;
   /// JSON: an array (several inputs were given, whether or not each succeeded), else one object.
   bool json_array = false;
+  /// The words for options that warnings advise; null: the command line's (CliVocabulary).
+  const Vocabulary* vocabulary = nullptr;
 };
 
 std::string FormatTable(const SolidResult& r, const FormatOptions& options);
@@ -29,5 +32,9 @@ std::string FormatRobot(const SolidResult& r, Format format);
 
 /// The command line's words for the options the library's messages advise (wording.h).
 const Vocabulary& CliVocabulary();
+/// options.vocabulary, or the command line's.
+inline const Vocabulary& WordsOf(const FormatOptions& options) {
+  return options.vocabulary ? *options.vocabulary : CliVocabulary();
+}
 
 }  // namespace massprops::cli

@@ -62,7 +62,7 @@ std::string FormatCsv(const std::vector<SolidResult>& results, const FormatOptio
     }
     if (shells) out << "," << (shell ? ExactDecimal(r.mp.density) : "");
     std::string warnings;  // every finding, "; "-separated
-    for (const Finding& f : r.findings) warnings += (warnings.empty() ? "" : "; ") + Worded(f.message, CliVocabulary());
+    for (const Finding& f : r.findings) warnings += (warnings.empty() ? "" : "; ") + Worded(f.message, WordsOf(opt));
     out << "," << (warnings.empty() ? "" : Quoted(warnings)) << "\n";
   }
   return out.str();

@@ -86,7 +86,7 @@ Json ToJson(const SolidResult& r, const FormatOptions& opt) {
   }
   if (r.repair) j["repair"] = r.repair->Summary();
   Json warnings = Json::array();
-  for (const Finding& f : r.findings) warnings.push_back(Worded(f.message, CliVocabulary()));
+  for (const Finding& f : r.findings) warnings.push_back(Worded(f.message, WordsOf(opt)));
   j["warnings"] = warnings;
   return j;
 }

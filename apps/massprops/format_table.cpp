@@ -105,7 +105,7 @@ std::string FormatTable(const SolidResult& r, const FormatOptions& opt) {
   PrintMatrix(out, "                ", r.principal.axes);
   out << "physically valid  "
       << (r.validity.valid ? "yes (moments positive, I1 + I2 >= I3)" : "NO: " + r.validity.reason) << "\n";
-  for (const Finding& f : r.findings) out << "warning         " << Worded(f.message, CliVocabulary()) << "\n";
+  for (const Finding& f : r.findings) out << "warning         " << Worded(f.message, WordsOf(opt)) << "\n";
   return out.str();
 }
 

@@ -21,6 +21,13 @@ class MeshFileError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// The file itself could not be opened or read (missing, unreadable, not a regular file), as
+/// opposed to content that is not a valid mesh. Bindings map it to the OS error type (OSError).
+class FileAccessError : public MeshFileError {
+ public:
+  using MeshFileError::MeshFileError;
+};
+
 /// What was read, and how.
 struct LoadedMesh {
   PolygonMesh mesh;         ///< faces as in the file (OBJ n-gons are kept whole)

@@ -166,6 +166,13 @@ std::string WordedError(const std::exception& error, const Vocabulary& vocabular
 ///         std::invalid_argument for an invalid option value.
 SolidResult LoadSolid(const std::string& path, const LoadOptions& options = {});
 
+/// The same checks and integration for a mesh already in memory (arrays from Python, a mesh built
+/// in code): `name` stands for the file in messages and in SolidResult::source. Corners at
+/// bit-identical positions are welded first, as every reader does. Options about reading
+/// (reader, full_check) do not apply.
+/// @throws as LoadSolid, except MeshFileError.
+SolidResult SolveMesh(LoadedMesh mesh, const std::string& name, const LoadOptions& options = {});
+
 /// Options of an implicit solid's estimate.
 struct ImplicitOptions {
   LengthUnit unit = LengthUnit::kMetre;  ///< unit of the shape's coordinates

@@ -39,6 +39,8 @@ struct StlLayout {
 StlLayout DetectStl(const std::string& path, const unsigned char* data, std::size_t size);
 
 [[noreturn]] void Fail(const std::string& path, const std::string& what);
+/// As Fail, for a file that cannot be opened or read at all (FileAccessError).
+[[noreturn]] void FailAccess(const std::string& path, const std::string& what);
 
 LoadedMesh WeldCorners(const std::string& path, const std::vector<double>& xyz, const std::vector<int>& face_sizes,
                        const char* format);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "io_internal.h"
 #include "massprops/composition.h"
 #include "massprops/implicit.h"
 #include "massprops/load.h"
@@ -325,12 +326,12 @@ LoadOptions ResolveUnit(SolidResult& r, const LoadOptions& given) {
 
 }  // namespace
 
-SolidResult LoadSolid(const std::string& file, const LoadOptions& given) {
-  const auto t0 = std::chrono::steady_clock::now();
-  SolidResult r;
-  r.source = file;
-  r.unit = given.unit;
-  r.unit_source = given.unit_stated ? UnitSource::kOption : UnitSource::kDefault;
+namespace {
+
+// Everything after reading: repair, checks, the model's integration, findings.
+SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_clock::time_point t0);
+
+void RequireValidModel(const LoadOptions& given) {
   if (const auto* shell = std::get_if<ShellModel>(&given.model);
       shell && !FixesMass(given.mass) && !(std::isfinite(shell->area_density) && shell->area_density > 0)) {
     throw std::invalid_argument("a shell needs a finite, positive area density (kg/m^2) or a total mass");
@@ -339,14 +340,42 @@ SolidResult LoadSolid(const std::string& file, const LoadOptions& given) {
       wall && !(std::isfinite(wall->thickness) && wall->thickness > 0)) {
     throw std::invalid_argument("a wall needs a finite, positive thickness");
   }
+}
 
+}  // namespace
+
+SolidResult LoadSolid(const std::string& file, const LoadOptions& given) {
+  const auto t0 = std::chrono::steady_clock::now();
+  SolidResult r;
+  r.source = file;
+  r.unit = given.unit;
+  r.unit_source = given.unit_stated ? UnitSource::kOption : UnitSource::kDefault;
+  RequireValidModel(given);
   if (TryStreamedStl(r, file, given)) {
     r.seconds = SecondsSince(t0);
     return r;
   }
-
   Stage(given, "reading");
   r.loaded = given.reader == Reader::kAssimp ? ReadMeshFileWithAssimp(file) : ReadMeshFile(file);
+  return Solve(std::move(r), given, t0);
+}
+
+SolidResult SolveMesh(LoadedMesh mesh, const std::string& name, const LoadOptions& given) {
+  const auto t0 = std::chrono::steady_clock::now();
+  SolidResult r;
+  r.source = name;
+  r.unit = given.unit;
+  r.unit_source = given.unit_stated ? UnitSource::kOption : UnitSource::kDefault;
+  RequireValidModel(given);
+  r.loaded = std::move(mesh);
+  // The readers' contract: corners at bit-identical positions are one vertex.
+  r.loaded.welded += MergeCoincidentVertices(r.loaded.mesh);
+  return Solve(std::move(r), given, t0);
+}
+
+namespace {
+
+SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_clock::time_point t0) {
   const LoadOptions opt = ResolveUnit(r, given);  // the unit the file declares, unless one is stated
   if (opt.repair) {
     Stage(opt, "repairing (CGAL)");
@@ -415,7 +444,7 @@ SolidResult LoadSolid(const std::string& file, const LoadOptions& given) {
       r.shells = r.topology.components > 1 ? AnalyzeShells(r.loaded.mesh) : ShellReport{};
     }
     if (!r.shells.problem.empty()) {
-      if (!opt.allow_open) throw LoadError(file + ": " + r.shells.problem);
+      if (!opt.allow_open) throw LoadError(r.source + ": " + r.shells.problem);
       Warn(r, FindingKind::kOverlappingShells, r.shells.problem + "; computed anyway ({allow_open})");
     }
   }
@@ -427,6 +456,8 @@ SolidResult LoadSolid(const std::string& file, const LoadOptions& given) {
   r.seconds = SecondsSince(t0);
   return r;
 }
+
+}  // namespace
 
 SolidResult EstimateImplicit(const ImplicitSolid& solid, const ImplicitOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();

@@ -14,11 +14,11 @@ namespace massprops {
 int OpenRegularFile(const std::string& path) {
   // O_NONBLOCK: opening a FIFO for reading would otherwise wait for a writer, forever.
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-  if (fd < 0) Fail(path, std::string("cannot open the file (") + std::strerror(errno) + ")");
+  if (fd < 0) FailAccess(path, std::string("cannot open the file (") + std::strerror(errno) + ")");
   struct stat st {};
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
     ::close(fd);
-    Fail(path, "not a regular file (a FIFO, device or directory); meshes are read from regular files only");
+    FailAccess(path, "not a regular file (a FIFO, device or directory); meshes are read from regular files only");
   }
   ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
   return fd;
@@ -29,7 +29,7 @@ MappedFile::MappedFile(const std::string& path) {
   struct stat st {};
   if (::fstat(fd, &st) != 0) {
     ::close(fd);
-    Fail(path, std::string("cannot read the file's size (") + std::strerror(errno) + ")");
+    FailAccess(path, std::string("cannot read the file's size (") + std::strerror(errno) + ")");
   }
   size_ = static_cast<std::size_t>(st.st_size);
   if (size_ == 0) {

@@ -65,5 +65,8 @@ LoadedMesh ReadMeshFile(const std::string& path) {
 }
 
 [[noreturn]] void Fail(const std::string& path, const std::string& what) { throw MeshFileError(path + ": " + what); }
+[[noreturn]] void FailAccess(const std::string& path, const std::string& what) {
+  throw FileAccessError(path + ": " + what);
+}
 
 }  // namespace massprops

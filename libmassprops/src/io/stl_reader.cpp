@@ -131,13 +131,13 @@ std::optional<SoupIntegrals> IntegrateBinaryStlFile(const std::string& path, con
     ~FdCloser() { ::close(fd); }
   } closer{fd};
   struct stat st {};
-  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) Fail(path, "not a regular file");
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) FailAccess(path, "not a regular file");
   const auto size = static_cast<std::size_t>(st.st_size);
   if (size == 0) Fail(path, "the file is empty");
   ::posix_fadvise(fd, 0, 0, POSIX_FADV_SEQUENTIAL);
   std::vector<unsigned char> head(std::min<std::size_t>(size, 4096));
   if (::pread(fd, head.data(), head.size(), 0) != static_cast<ssize_t>(head.size())) {
-    Fail(path, "cannot read the file");
+    FailAccess(path, "cannot read the file");
   }
   const StlLayout layout = DetectStl(path, head.data(), size);
   if (layout.ascii) return std::nullopt;

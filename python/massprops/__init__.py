@@ -1,0 +1,138 @@
+"""Exact mass properties of the solids that triangle meshes bound (Python bindings of libmassprops).
+
+    >>> import massprops
+    >>> r = massprops.load("part.stl", unit="mm", density=2700)
+    >>> r.mass, r.center_of_mass, r.inertia_com, r.principal_moments, r.principal_axes
+    >>> r = massprops.mass_properties(vertices, faces, density=1000)    # numpy arrays
+    >>> r = massprops.mass_properties(trimesh_mesh)                     # anything with .vertices/.faces
+
+Every call goes through the same pipeline as the ``massprops`` command (checks, findings,
+refusals), with the GIL released; ``Result.to_dict()`` is the command's ``--format json`` object,
+number for number. Bad input raises ValueError with the command's message (worded with Python's
+keywords: ``repair=True``), a file that cannot be opened raises OSError.
+
+Keywords (all optional): ``unit`` ('m', 'cm', 'mm', 'um', 'in', 'ft'; default: what the file
+declares, else metres), ``density`` (kg/m³, default 1000) or ``mass`` (kg, the total), ``repair``,
+``allow_open``, ``full_check``, ``check_self_intersections``, ``shell`` (an area density in kg/m²:
+the surface is a thin shell), ``wall`` (a thickness in the file's unit: a hollow part),
+``winding_number`` (with ``samples``, ``seed``), ``path`` ('auto', 'triangles', 'polygons'),
+``reader`` ('auto', 'assimp'), ``threads`` (0: every core; the bits do not depend on it).
+"""
+
+import json as _json
+
+import numpy as _np
+
+from . import _core
+from ._core import dynamics  # noqa: F401  (massprops.dynamics: RigidBody, World)
+
+__version__ = _core.__version__
+__all__ = ["load", "mass_properties", "Result", "dynamics", "body"]
+
+
+class Result:
+    """Mass properties of one solid, in SI units, with what the checks found.
+
+    Attributes: volume (m³), mass (kg), density, center_of_mass (3,), inertia_com (3, 3) about the
+    center of mass in the input's axes (off-diagonal entries are the negated products of inertia,
+    as URDF and MJCF expect), principal_moments (3,) ascending, principal_axes (3, 3) (columns,
+    right-handed), surface_area, physically_valid, warnings (list of str), mesh (dict: the mesh
+    report), unit, model, standard_errors (dict of arrays, or None when the result is exact).
+    """
+
+    def __init__(self, record):
+        self._record = record
+        a = _np.asarray
+        self.volume = record["volume"]
+        self.mass = record["mass"]
+        self.density = record["density"]
+        self.center_of_mass = a(record["center_of_mass"], dtype=float)
+        self.inertia_com = a(record["inertia_com"], dtype=float)
+        self.principal_moments = a(record["principal_moments"], dtype=float)
+        self.principal_axes = a(record["principal_axes"], dtype=float)
+        self.surface_area = record["surface_area"]
+        self.physically_valid = record["physically_valid"]
+        self.warnings = list(record["warnings"])
+        self.mesh = record.get("mesh")
+        self.unit = record["unit"]
+        self.model = record["model"]
+        self.source = record["file"]
+        estimate = record.get("estimate")
+        self.standard_errors = None
+        if estimate is not None:
+            se = estimate["standard_errors"]
+            self.standard_errors = {k: (a(v, dtype=float) if isinstance(v, list) else v) for k, v in se.items()}
+
+    def inertia_about(self, point):
+        """The inertia tensor about a point (3,) in the input's axes, metres (parallel-axis theorem)."""
+        d = self.center_of_mass - _np.asarray(point, dtype=float)
+        return self.inertia_com + self.mass * (d @ d * _np.eye(3) - _np.outer(d, d))
+
+    def to_dict(self):
+        """The command's JSON object for this result (a deep copy)."""
+        return _json.loads(_json.dumps(self._record))
+
+    def __eq__(self, other):
+        return isinstance(other, Result) and self._record == other._record
+
+    def __repr__(self):
+        return (f"<massprops.Result {self.source!r}: mass {self.mass:.6g} kg, volume {self.volume:.6g} m^3, "
+                f"center of mass {_np.array2string(self.center_of_mass, precision=6)}"
+                f"{', ' + str(len(self.warnings)) + ' warning(s)' if self.warnings else ''}>")
+
+    # Pickled as the record: the arrays are rebuilt from it, bit for bit.
+    def __getstate__(self):
+        return self._record
+
+    def __setstate__(self, record):
+        self.__init__(record)
+
+
+def load(path, **options):
+    """Reads, checks and integrates a mesh file, as the ``massprops`` command does."""
+    return Result(_json.loads(_core.load(str(path), **options)))
+
+
+def _faces_to_arrays(faces):
+    """Faces as (indices, offsets): an (m, k) integer array, or a sequence of polygons."""
+    if isinstance(faces, _np.ndarray) and faces.ndim == 2:
+        if not _np.issubdtype(faces.dtype, _np.integer):
+            raise ValueError(f"faces must be integers, not {faces.dtype}")
+        m, k = faces.shape
+        return faces.reshape(-1).astype(_np.int64, copy=False), _np.arange(0, m * k + 1, k, dtype=_np.int64)
+    polygons = [_np.asarray(f).reshape(-1) for f in faces]
+    for i, f in enumerate(polygons):
+        if f.size and not _np.issubdtype(f.dtype, _np.integer):
+            raise ValueError(f"faces: face {i} has non-integer corners ({f.dtype})")
+    sizes = _np.array([f.size for f in polygons], dtype=_np.int64)
+    offsets = _np.concatenate([[0], _np.cumsum(sizes)]).astype(_np.int64)
+    indices = _np.concatenate(polygons).astype(_np.int64) if polygons else _np.zeros(0, dtype=_np.int64)
+    return indices, offsets
+
+
+def mass_properties(vertices, faces=None, *, name="<arrays>", **options):
+    """Mass properties of the solid a mesh in memory bounds.
+
+    ``vertices``: (n, 3) float64 or float32; ``faces``: an (m, 3) (or (m, k)) integer array of
+    0-based vertex indices, or a sequence of polygons. Or pass one object with ``vertices`` and
+    ``faces`` attributes (a trimesh.Trimesh, for instance) as the only argument.
+    """
+    if faces is None:
+        if not (hasattr(vertices, "vertices") and hasattr(vertices, "faces")):
+            raise TypeError("mass_properties needs vertices and faces, or one object with .vertices and .faces")
+        vertices, faces = vertices.vertices, vertices.faces
+    v = _np.asarray(vertices)
+    if v.ndim != 2 or v.shape[1] != 3:
+        raise ValueError(f"vertices must have shape (n, 3), not {v.shape}")
+    if not _np.issubdtype(v.dtype, _np.floating) and not _np.issubdtype(v.dtype, _np.integer):
+        raise ValueError(f"vertices must be numbers, not {v.dtype}")
+    float32 = v.dtype == _np.float32
+    indices, offsets = _faces_to_arrays(faces)
+    return Result(_json.loads(_core.solve_arrays(_np.ascontiguousarray(v, dtype=_np.float64), indices, offsets,
+                                                 float32, name, **options)))
+
+
+def body(result):
+    """A dynamics.RigidBody from a Result: its center of mass where the mesh's is, its frame the
+    principal axes (so the mesh frame is the world frame at the start)."""
+    return dynamics.body_from_mass_properties(result.mass, result.center_of_mass, result.inertia_com)

@@ -1,0 +1,315 @@
+// The compiled half of the Python module (massprops._core): it only maps keyword arguments onto
+// the library's typed options, calls the pipeline with the GIL released, and returns the result
+// as the command's JSON (one home for the schema: apps/massprops/format_json.cpp). The Python
+// half (massprops/__init__.py) turns that into a result object with numpy arrays.
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "dynamics/forces.h"
+#include "dynamics/rigid_body.h"
+#include "dynamics/world.h"
+#include "format.h"
+#include "massprops/io.h"
+#include "massprops/load.h"
+#include "massprops/version.h"
+
+namespace py = pybind11;
+using namespace massprops;
+
+namespace {
+
+// Python's words for the options that messages advise.
+const Vocabulary& PythonVocabulary() {
+  static const Vocabulary v = [](Option option, std::string_view value) -> std::string {
+    switch (option) {
+      case Option::kRepair: return "repair=True";
+      case Option::kAllowOpen: return "allow_open=True";
+      case Option::kUnit: return value.empty() ? "unit=..." : "unit='" + std::string(value) + "'";
+      case Option::kFullCheck: return "full_check=True";
+      case Option::kWall: return "wall=...";
+    }
+    return "?";
+  };
+  return v;
+}
+
+// Keyword arguments → LoadOptions. Every keyword is checked here, so a misspelt one is a
+// TypeError and a bad value a ValueError naming it.
+LoadOptions ToLoadOptions(const py::kwargs& kw) {
+  LoadOptions o;
+  std::optional<double> density, mass, shell, wall;
+  bool winding_number = false;
+  MonteCarloOptions sampling;
+  for (const auto& [key_handle, value] : kw) {
+    const std::string key = py::cast<std::string>(key_handle);
+    if (value.is_none()) continue;
+    auto number = [&](double lo) {
+      const double x = py::cast<double>(value);
+      if (!std::isfinite(x) || !(x > lo)) {
+        throw py::value_error(key + " must be a finite number above " + std::to_string(static_cast<int>(lo)) +
+                              ", not " + py::cast<std::string>(py::repr(value)));
+      }
+      return x;
+    };
+    if (key == "unit") {
+      o.unit = ParseLengthUnit(py::cast<std::string>(value));
+      o.unit_stated = true;
+    } else if (key == "density") {
+      density = number(0);
+    } else if (key == "mass") {
+      mass = number(0);
+    } else if (key == "shell") {
+      shell = number(0);
+    } else if (key == "wall") {
+      wall = number(0);
+    } else if (key == "winding_number") {
+      winding_number = py::cast<bool>(value);
+    } else if (key == "samples") {
+      sampling.samples = py::cast<std::int64_t>(value);
+    } else if (key == "seed") {
+      sampling.seed = py::cast<std::uint64_t>(value);
+    } else if (key == "repair") {
+      o.repair = py::cast<bool>(value);
+    } else if (key == "allow_open") {
+      o.allow_open = py::cast<bool>(value);
+    } else if (key == "full_check") {
+      o.full_check = py::cast<bool>(value);
+    } else if (key == "check_self_intersections") {
+      o.check_self_intersections = py::cast<bool>(value);
+    } else if (key == "threads") {
+      o.num_threads = py::cast<int>(value);
+      if (o.num_threads < 0) throw py::value_error("threads must be 0 (every core) or more");
+    } else if (key == "reader") {
+      const std::string r = py::cast<std::string>(value);
+      if (r != "auto" && r != "assimp") throw py::value_error("reader must be 'auto' or 'assimp', not '" + r + "'");
+      o.reader = r == "assimp" ? Reader::kAssimp : Reader::kAuto;
+    } else if (key == "path") {
+      const std::string p = py::cast<std::string>(value);
+      if (p == "auto")
+        o.path = IntegrationPath::kAuto;
+      else if (p == "triangles")
+        o.path = IntegrationPath::kTriangles;
+      else if (p == "polygons")
+        o.path = IntegrationPath::kPolygons;
+      else
+        throw py::value_error("path must be 'auto', 'triangles' or 'polygons', not '" + p + "'");
+    } else {
+      throw py::type_error("unexpected keyword argument '" + key + "'");
+    }
+  }
+  if (density && mass) throw py::value_error("give density or mass, not both");
+  if ((shell ? 1 : 0) + (wall ? 1 : 0) + (winding_number ? 1 : 0) > 1) {
+    throw py::value_error("shell, wall and winding_number are different models: give one");
+  }
+  if (mass) o.mass = TotalMass{*mass};
+  if (density) o.mass = Density{*density};
+  if (shell) o.model = ShellModel{*shell};
+  if (wall) o.model = WallModel{*wall};
+  if (winding_number) o.model = WindingNumberModel{sampling};
+  return o;
+}
+
+std::string ToJson(const SolidResult& r) {
+  cli::FormatOptions f;
+  f.format = cli::Format::kJson;
+  f.vocabulary = &PythonVocabulary();
+  return cli::FormatJson({r}, f);
+}
+
+// Runs `solve` without the GIL; errors become the exceptions Python users expect, worded in
+// Python's vocabulary.
+template <typename Solve>
+std::string Run(const Solve& solve) {
+  std::optional<SolidResult> r;
+  std::string message;
+  enum { kNone, kAccess, kValue } kind = kNone;
+  {
+    py::gil_scoped_release release;
+    try {
+      r = solve();
+    } catch (const FileAccessError& e) {
+      kind = kAccess;
+      message = e.what();
+    } catch (const std::exception& e) {  // LoadError, MeshFileError, invalid_argument
+      kind = kValue;
+      message = WordedError(e, PythonVocabulary());
+    }
+  }
+  if (kind == kAccess) {
+    PyErr_SetString(PyExc_OSError, message.c_str());
+    throw py::error_already_set();
+  }
+  if (kind == kValue) throw py::value_error(message);
+  return ToJson(*r);
+}
+
+std::string Load(const std::string& path, const py::kwargs& kw) {
+  const LoadOptions o = ToLoadOptions(kw);
+  return Run([&] { return LoadSolid(path, o); });
+}
+
+// vertices (n, 3) float64; indices and offsets as PolygonMesh keeps them (face f has the corners
+// indices[offsets[f] .. offsets[f+1]-1]); float32: the caller's coordinates were float32.
+std::string SolveArrays(py::array_t<double, py::array::c_style | py::array::forcecast> vertices,
+                        py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> indices,
+                        py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> offsets, bool float32,
+                        const std::string& name, const py::kwargs& kw) {
+  const LoadOptions o = ToLoadOptions(kw);
+  if (vertices.ndim() != 2 || vertices.shape(1) != 3) throw py::value_error("vertices must have shape (n, 3)");
+  const auto nv = static_cast<std::int64_t>(vertices.shape(0));
+  if (nv > std::numeric_limits<std::int32_t>::max()) throw py::value_error("more than 2^31 vertices");
+  LoadedMesh m;
+  m.format = "arrays";
+  m.float32_coordinates = float32;
+  m.mesh.V = Eigen::Map<const VertexMatrix>(vertices.data(), nv, 3);
+  const auto idx = indices.unchecked<1>();
+  const auto off = offsets.unchecked<1>();
+  if (off.shape(0) < 2 || off(0) != 0 || off(off.shape(0) - 1) != idx.shape(0)) {
+    throw py::value_error("faces: offsets must run from 0 to the number of corners");
+  }
+  m.mesh.indices.resize(static_cast<std::size_t>(idx.shape(0)));
+  for (py::ssize_t i = 0; i < idx.shape(0); ++i) {
+    const std::int64_t v = idx(i);
+    if (v < 0 || v >= nv) {
+      throw py::value_error("faces: corner " + std::to_string(i) + " refers to vertex " + std::to_string(v) +
+                            ", but there are " + std::to_string(nv) + " vertices");
+    }
+    m.mesh.indices[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(v);
+  }
+  m.mesh.offsets.assign(off.data(0), off.data(0) + off.shape(0));
+  for (std::size_t f = 0; f + 1 < m.mesh.offsets.size(); ++f) {
+    if (m.mesh.offsets[f + 1] - m.mesh.offsets[f] < 3) {
+      throw py::value_error("faces: face " + std::to_string(f) + " has fewer than 3 corners");
+    }
+  }
+  for (Eigen::Index i = 0; i < m.mesh.V.size(); ++i) {
+    if (!std::isfinite(m.mesh.V.data()[i])) {
+      throw py::value_error("vertices: vertex " + std::to_string(i / 3) + " has a non-finite coordinate");
+    }
+  }
+  return Run([&] { return SolveMesh(std::move(m), name, o); });
+}
+
+Vector3 Vec(const py::handle& h) {
+  const auto a = py::cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(h);
+  if (a.size() != 3) throw py::value_error("expected 3 numbers");
+  return Vector3(a.data()[0], a.data()[1], a.data()[2]);
+}
+py::array_t<double> Arr(const Vector3& v) { return py::array_t<double>(3, v.data()); }
+
+void BindDynamics(py::module_& m) {
+  using dynamics::RigidBody;
+  py::class_<RigidBody>(m, "RigidBody", "A free rigid body: mass, principal moments, state (SI units).")
+      .def(py::init([](double mass, const py::handle& inertia) {
+             RigidBody b;
+             b.mass = mass;
+             b.inertia = Vec(inertia);
+             return b;
+           }),
+           py::arg("mass") = 1.0, py::arg("inertia") = py::make_tuple(1.0, 1.0, 1.0))
+      .def_readwrite("mass", &RigidBody::mass)
+      .def_property(
+          "inertia", [](const RigidBody& b) { return Arr(b.inertia); },
+          [](RigidBody& b, const py::handle& v) { b.inertia = Vec(v); }, "principal moments in the body frame")
+      .def_property(
+          "position", [](const RigidBody& b) { return Arr(b.position); },
+          [](RigidBody& b, const py::handle& v) { b.position = Vec(v); }, "center of mass in the world, m")
+      .def_property(
+          "velocity", [](const RigidBody& b) { return Arr(b.velocity); },
+          [](RigidBody& b, const py::handle& v) { b.velocity = Vec(v); })
+      .def_property(
+          "orientation",
+          [](const RigidBody& b) {
+            const auto& q = b.orientation;
+            return py::array_t<double>(4, std::array<double, 4>{q.w(), q.x(), q.y(), q.z()}.data());
+          },
+          [](RigidBody& b, const py::handle& v) {
+            const auto a = py::cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(v);
+            if (a.size() != 4) throw py::value_error("orientation is a quaternion (w, x, y, z)");
+            b.orientation = dynamics::Quaternion(a.data()[0], a.data()[1], a.data()[2], a.data()[3]).normalized();
+          },
+          "body → world rotation as a unit quaternion (w, x, y, z)")
+      .def_property(
+          "angular_momentum", [](const RigidBody& b) { return Arr(b.angular_momentum); },
+          [](RigidBody& b, const py::handle& v) { b.angular_momentum = Vec(v); }, "world axes, kg m^2/s")
+      .def_property(
+          "angular_velocity", [](const RigidBody& b) { return Arr(b.AngularVelocity()); },
+          [](RigidBody& b, const py::handle& v) { b.SetAngularVelocity(Vec(v)); }, "world axes, rad/s")
+      .def("rotation", [](const RigidBody& b) {
+        const Matrix3 r = b.Rotation();
+        py::array_t<double> out({3, 3});
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) out.mutable_at(i, j) = r(i, j);
+        return out;
+      });
+
+  m.def(
+      "body_from_mass_properties",
+      [](double mass, const py::handle& com, py::array_t<double, py::array::c_style | py::array::forcecast> inertia) {
+        if (inertia.size() != 9) throw py::value_error("inertia_com must be 3 x 3");
+        MassProperties mp;
+        mp.mass = mass;
+        mp.center_of_mass = Vec(com);
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) mp.inertia_com(i, j) = inertia.data()[3 * i + j];
+        const dynamics::PlacedBody placed = dynamics::BodyFromMassProperties(mp);
+        return placed.body;
+      },
+      py::arg("mass"), py::arg("center_of_mass"), py::arg("inertia_com"));
+
+  py::class_<dynamics::World>(m, "World", "Free rigid bodies under forces, stepped by an integrator.")
+      .def(py::init(
+               [](const std::string& integrator) { return dynamics::World(dynamics::ParseIntegrator(integrator)); }),
+           py::arg("integrator") = "implicit-midpoint")
+      .def("add_body", &dynamics::World::AddBody, py::arg("body"))
+      .def(
+          "add_gravity", [](dynamics::World& w, const py::handle& g) { w.AddForce(dynamics::Gravity(Vec(g))); },
+          py::arg("g"))
+      .def(
+          "step",
+          [](dynamics::World& w, double h, int steps) {
+            dynamics::StepStatus s;
+            {
+              py::gil_scoped_release release;
+              for (int i = 0; i < steps && s.ok; ++i) s = w.Step(h);
+            }
+            if (!s.ok) throw py::value_error("step at t = " + std::to_string(w.time()) + ": " + s.message);
+          },
+          py::arg("h"), py::arg("steps") = 1, "Advances steps × h seconds; raises when a step fails or diverges")
+      .def_property_readonly("time", &dynamics::World::time)
+      .def_property_readonly(
+          "bodies", [](dynamics::World& w) { return w.bodies(); }, "copies of the bodies' current states")
+      .def("body", [](const dynamics::World& w, int i) { return w.bodies().at(static_cast<std::size_t>(i)); })
+      .def("set_body",
+           [](dynamics::World& w, int i, const RigidBody& b) { w.bodies().at(static_cast<std::size_t>(i)) = b; })
+      .def("diagnose", [](const dynamics::World& w) {
+        const dynamics::Diagnostics d = w.Diagnose();
+        py::dict out;
+        out["time"] = d.time;
+        out["kinetic_energy"] = d.kinetic_energy;
+        out["potential_energy"] = d.potential_energy;
+        out["total_energy"] = d.total_energy;
+        out["linear_momentum"] = Arr(d.linear_momentum);
+        out["angular_momentum"] = Arr(d.angular_momentum);
+        return out;
+      });
+  m.def("integrators", &dynamics::IntegratorNames);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "massprops' compiled core: the library pipeline, results as the command's JSON";
+  m.attr("__version__") = kVersion;
+  m.def("load", &Load, py::arg("path"), "LoadSolid(path, options) -> JSON of the result");
+  m.def("solve_arrays", &SolveArrays, py::arg("vertices"), py::arg("indices"), py::arg("offsets"), py::arg("float32"),
+        py::arg("name"), "SolveMesh(arrays, options) -> JSON of the result");
+  py::module_ dyn = m.def_submodule("dynamics", "Rigid bodies and worlds (libdynamics)");
+  BindDynamics(dyn);
+}

@@ -1,0 +1,243 @@
+"""The Python module against the command (the same pipeline must give the same bits), closed forms,
+and its own promises: errors as Python exceptions, duck typing, pickling, the GIL released,
+dynamics from a result. Run by ctest (tests/CMakeLists.txt) with PYTHONPATH at the build tree.
+"""
+import json
+import os
+import pickle
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import massprops
+
+DATA = os.environ.get("MASSPROPS_DATA", os.path.join(os.path.dirname(__file__), "..", "..", "data"))
+CLI = os.environ.get("MASSPROPS_CLI", "massprops")
+MESHES = os.path.join(DATA, "meshes")
+
+
+def command_json(*args):
+    out = subprocess.run([CLI, *args, "--format", "json", "-q"], capture_output=True, text=True)
+    return out.returncode, (json.loads(out.stdout) if out.stdout.strip() else None), out.stderr
+
+
+def without_words(record):
+    """The record less its warnings, which each front end words in its own vocabulary."""
+    r = dict(record)
+    r.pop("warnings")
+    return r
+
+
+# Every mesh in data/ the command accepts with default options, and the options that make the
+# others computable.
+CASES = [
+    ("spot.obj", {}, []),
+    ("t_handle.obj", {"mass": 1.0}, ["--mass", "1"]),
+    ("cube_cup_quad.obj", {"unit": "m"}, ["--unit", "m"]),
+    ("Moon.stl", {}, []),
+    ("HalfDonut_binary.stl", {"density": 2700}, ["--density", "2700"]),
+    ("HalfDonut_ascii.stl", {}, []),
+    ("hollow_sphere.off", {"repair": True}, ["--repair"]),
+    ("blobby-shuffled.off", {"repair": True}, ["--repair"]),
+    ("featuretype.STL", {"repair": True, "unit": "mm"}, ["--repair", "--unit", "mm"]),
+    ("box_0.1x0.2x0.3.gltf", {}, []),
+    ("spot.obj", {"shell": 2.0}, ["--shell", "--area-density", "2"]),
+    ("spot.obj", {"wall": 0.005}, ["--wall", "0.005"]),
+]
+
+
+@pytest.mark.parametrize("name,kw,flags", CASES, ids=[f"{c[0]}-{'-'.join(c[1]) or 'default'}" for c in CASES])
+def test_load_equals_the_command_to_the_last_bit(name, kw, flags):
+    path = os.path.join(MESHES, name)
+    status, expected, err = command_json(path, *flags)
+    assert status == 0, err
+    r = massprops.load(path, **kw)
+    got = r.to_dict()
+    assert without_words(got) == without_words(expected)  # == on floats: every bit
+    assert len(got["warnings"]) == len(expected["warnings"])
+    assert r.volume == expected["volume"] and r.mass == expected["mass"]
+    assert np.array_equal(r.inertia_com, np.array(expected["inertia_com"]))
+    assert np.array_equal(r.principal_axes, np.array(expected["principal_axes"]))
+
+
+def test_warnings_name_python_keywords():
+    r = massprops.load(os.path.join(MESHES, "spot.obj"))  # 2.6 m across in default metres
+    assert any("unit='mm'" in w for w in r.warnings), r.warnings
+    assert not any("--unit" in w for w in r.warnings)
+
+
+def test_bad_input_raises_with_the_commands_message(tmp_path):
+    with pytest.raises(ValueError, match=r"ellipe0\.003\.off: the signed volume is negative.*faces point inward"):
+        massprops.load(os.path.join(MESHES, "ellipe0.003.off"))
+    with pytest.raises(ValueError, match=r"inconsistent orientation.*try repair=True, or pass allow_open=True"):
+        massprops.load(os.path.join(MESHES, "blobby-shuffled.off"))
+    with pytest.raises(OSError, match="cannot open the file"):
+        massprops.load(os.path.join(MESHES, "no_such_file.obj"))
+    (tmp_path / "folder.obj").mkdir()
+    with pytest.raises(OSError, match="not a regular file"):
+        massprops.load(tmp_path / "folder.obj")
+    with pytest.raises(TypeError, match="densty"):
+        massprops.load(os.path.join(MESHES, "spot.obj"), densty=1)
+    with pytest.raises(ValueError, match="density or mass, not both"):
+        massprops.load(os.path.join(MESHES, "spot.obj"), density=1, mass=2)
+    with pytest.raises(ValueError, match="density must be a finite number"):
+        massprops.load(os.path.join(MESHES, "spot.obj"), density=float("nan"))
+    with pytest.raises(ValueError, match="wall=.*a wall of 0.01 is thicker than the part allows"):
+        massprops.load(os.path.join(MESHES, "spot.obj"), wall=0.01)
+    with pytest.raises(ValueError, match="furlong"):
+        massprops.load(os.path.join(MESHES, "spot.obj"), unit="furlong")
+
+
+def read_obj(path):
+    """Vertices and polygons of an OBJ, parsed in plain Python (float() rounds as the reader does)."""
+    v, f = [], []
+    with open(path) as fh:
+        for line in fh:
+            t = line.split()
+            if t and t[0] == "v":
+                v.append([float(x) for x in t[1:4]])
+            elif t and t[0] == "f":
+                f.append([int(x.split("/")[0]) - 1 for x in t[1:]])
+    return np.array(v), f
+
+
+def test_arrays_give_the_files_numbers():
+    path = os.path.join(MESHES, "cube_cup_quad.obj")  # 7438 quads: polygons kept whole
+    v, polygons = read_obj(path)
+    from_file = massprops.load(path, unit="m")
+    from_arrays = massprops.mass_properties(v, polygons, unit="m")
+    assert from_arrays.volume == from_file.volume
+    assert np.array_equal(from_arrays.inertia_com, from_file.inertia_com)
+    assert from_arrays.mesh["faces"] == 7438 and from_arrays.mesh["format"] == "arrays"
+    # Quads as an (m, 4) array, and split into triangles: the same solid.
+    quads = massprops.mass_properties(v, np.array(polygons), unit="m")
+    assert quads.volume == from_file.volume
+    tris = np.array([[q[0], q[k], q[k + 1]] for q in polygons for k in (1, 2)])
+    split = massprops.mass_properties(v, tris, unit="m")
+    assert split.volume == pytest.approx(from_file.volume, rel=1e-13)
+
+
+def box(size):
+    x, y, z = size
+    v = np.array([[i * x, j * y, k * z] for i in (0, 1) for j in (0, 1) for k in (0, 1)], dtype=float) - np.array(size) / 2
+    q = [[0, 1, 3, 2], [4, 6, 7, 5], [0, 4, 5, 1], [2, 3, 7, 6], [0, 2, 6, 4], [1, 5, 7, 3]]
+    return v, q
+
+
+def test_a_box_against_its_closed_form_and_inertia_about_a_point():
+    v, q = box((1.0, 2.0, 3.0))
+    r = massprops.mass_properties(v + [10, 0, 0], q, density=1000, unit="m")
+    m = 6000.0
+    assert r.mass == pytest.approx(m, rel=1e-15)
+    assert np.allclose(r.center_of_mass, [10, 0, 0], rtol=0, atol=1e-14)
+    assert np.allclose(np.diag(r.inertia_com), m / 12 * np.array([4 + 9, 1 + 9, 1 + 4]), rtol=1e-14, atol=0)
+    assert r.principal_moments == pytest.approx(sorted(m / 12 * np.array([13, 10, 5])), rel=1e-14)
+    # About the origin: the command's inertia_origin (computed in C++), by the parallel-axis theorem here.
+    about = r.inertia_about([0, 0, 0])
+    assert about[0, 0] == pytest.approx(m * 13 / 12, rel=1e-14)
+    assert about[1, 1] == pytest.approx(m * 10 / 12 + m * 100, rel=1e-14)
+
+
+def test_float32_coordinates_are_reported():
+    v, q = box((1.0, 1.0, 1.0))
+    r = massprops.mass_properties(v.astype(np.float32), q, unit="m")
+    assert r.mesh["float32_coordinates"] is True
+    assert r.volume == pytest.approx(1.0, rel=1e-15)
+
+
+def test_any_object_with_vertices_and_faces():
+    class Trimeshish:  # what trimesh.Trimesh offers: (n, 3) float64 vertices, (m, 3) int64 faces
+        def __init__(self, v, f):
+            self.vertices, self.faces = v, f
+
+    v, q = box((0.1, 0.2, 0.3))
+    tris = np.array([[p[0], p[k], p[k + 1]] for p in q for k in (1, 2)], dtype=np.int64)
+    r = massprops.mass_properties(Trimeshish(v, tris), unit="m")
+    assert r.volume == pytest.approx(0.006, rel=1e-14)
+    assert massprops.mass_properties(v, tris, unit="m") == r
+    with pytest.raises(TypeError, match="vertices and faces"):
+        massprops.mass_properties(v)
+
+
+def test_array_faults_raise():
+    v, q = box((1.0, 1.0, 1.0))
+    with pytest.raises(ValueError, match="refers to vertex 8, but there are 8 vertices"):
+        massprops.mass_properties(v, [[0, 1, 8]] + q[1:])
+    with pytest.raises(ValueError, match="open mesh"):
+        massprops.mass_properties(v, q[1:])
+    bad = v.copy()
+    bad[3, 1] = np.nan
+    with pytest.raises(ValueError, match="vertex 3 has a non-finite coordinate"):
+        massprops.mass_properties(bad, q)
+    with pytest.raises(ValueError, match=r"shape \(n, 3\)"):
+        massprops.mass_properties(v[:, :2], q)
+
+
+def test_pickling_round_trips_bit_for_bit():
+    r = massprops.load(os.path.join(MESHES, "Moon.stl"))
+    back = pickle.loads(pickle.dumps(r))
+    assert back == r
+    assert np.array_equal(back.inertia_com, r.inertia_com) and back.warnings == r.warnings
+
+
+def test_same_bits_whatever_the_threads():
+    path = os.path.join(MESHES, "spot.obj")
+    a = massprops.load(path, threads=1).to_dict()
+    b = massprops.load(path, threads=2).to_dict()
+    assert a == b
+
+
+def test_estimates_carry_standard_errors():
+    r = massprops.load(os.path.join(MESHES, "t_handle.obj"), winding_number=True, samples=65536, seed=3)
+    assert r.standard_errors is not None and r.standard_errors["volume"] > 0
+    assert abs(r.volume - 5.6e-5) < 5 * r.standard_errors["volume"]
+
+
+def test_the_gil_is_released_while_computing():
+    ticks = []
+    done = threading.Event()
+
+    def count():
+        while not done.is_set():
+            ticks.append(time.perf_counter())
+
+    t = threading.Thread(target=count)
+    t.start()
+    time.sleep(0.01)
+    start = time.perf_counter()
+    massprops.load(os.path.join(MESHES, "t_handle.obj"), winding_number=True, samples=2_000_000, threads=1)
+    end = time.perf_counter()
+    done.set()
+    t.join()
+    during = [x for x in ticks if start < x < end]
+    # Held, the counting thread would be stopped for the whole call; released, it keeps counting.
+    assert end - start > 0.05
+    assert len(during) > 1000
+
+
+def test_dynamics_from_a_result():
+    r = massprops.load(os.path.join(MESHES, "t_handle.obj"))
+    body = massprops.body(r)
+    assert body.mass == r.mass
+    assert np.allclose(body.position, r.center_of_mass, rtol=0, atol=1e-18)
+    assert np.allclose(sorted(body.inertia), r.principal_moments, rtol=1e-12)
+    body.angular_velocity = [0.1, 5.0, 0.2]  # near the unstable middle axis: a tumbling handle
+    world = massprops.dynamics.World("implicit-midpoint")
+    world.add_body(body)
+    start = world.diagnose()
+    world.step(1e-3, steps=2000)
+    end = world.diagnose()
+    assert world.time == pytest.approx(2.0)
+    assert end["total_energy"] == pytest.approx(start["total_energy"], rel=1e-12)
+    assert np.allclose(end["angular_momentum"], start["angular_momentum"], rtol=1e-12, atol=0)
+    # Under gravity the center of mass falls as x0 + g t²/2 (the midpoint rule is exact for it).
+    falling = massprops.dynamics.World()
+    falling.add_body(massprops.body(r))
+    falling.add_gravity([0, 0, -9.81])
+    falling.step(0.01, steps=100)
+    assert falling.body(0).position[2] == pytest.approx(r.center_of_mass[2] - 9.81 / 2, rel=1e-12)
+    with pytest.raises(ValueError, match="unknown integrator"):
+        massprops.dynamics.World("leapfrog-ish")
