@@ -3,10 +3,7 @@
 // on a PLY header cut short and segfaults on some 3MF files), and neither may take the program down.
 
 #include <dlfcn.h>
-#include <fcntl.h>
-#include <poll.h>
 #include <signal.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -23,6 +20,7 @@
 #include <vector>
 
 #include "io_internal.h"
+#include "massprops/isolation.h"
 
 namespace massprops {
 namespace {
@@ -117,21 +115,9 @@ struct AssimpOutput {
   std::vector<int> face_sizes;
 };
 
-bool WriteAll(int fd, const void* data, std::size_t n) {
-  const char* p = static_cast<const char*>(data);
-  while (n > 0) {
-    const ssize_t w = ::write(fd, p, n);
-    if (w < 0 && errno == EINTR) continue;
-    if (w <= 0) return false;
-    p += w;
-    n -= static_cast<std::size_t>(w);
-  }
-  return true;
-}
-
-// The child: reads the file through the plugin and sends [status, message | corners, xyz,
-// faces, sizes] to the parent; never returns.
-[[noreturn]] void ReaderChild(const Plugin& p, const std::string& path, int fd) {
+// The child's work: reads the file through the plugin and returns [status, message | corners,
+// xyz, faces, sizes] for the parent, in this process's own layout.
+std::string ReadInChild(const Plugin& p, const std::string& path) {
   if (const char* fault = std::getenv("MASSPROPS_ASSIMP_FAULT")) {  // fault injection, for tests
     if (std::string(fault) == "crash") ::kill(::getpid(), SIGKILL);
     if (std::string(fault) == "hang")
@@ -142,34 +128,21 @@ bool WriteAll(int fd, const void* data, std::size_t n) {
   std::size_t corners = 0, faces = 0;
   char error[512] = {};
   const std::int64_t status = p.read(path.c_str(), &xyz, &corners, &sizes, &faces, error, sizeof error);
-  bool ok = WriteAll(fd, &status, sizeof status);
+  std::string out;
+  auto put = [&out](const void* data, std::size_t n) { out.append(static_cast<const char*>(data), n); };
+  put(&status, sizeof status);
   if (status != 0) {
     const std::uint64_t n = std::strlen(error);
-    ok = ok && WriteAll(fd, &n, sizeof n) && WriteAll(fd, error, n);
+    put(&n, sizeof n);
+    put(error, n);
   } else {
     const std::uint64_t c = corners, f = faces;
-    ok = ok && WriteAll(fd, &c, sizeof c) && WriteAll(fd, xyz, 3 * corners * sizeof(double)) &&
-         WriteAll(fd, &f, sizeof f) && WriteAll(fd, sizes, faces * sizeof(int));
+    put(&c, sizeof c);
+    put(xyz, 3 * corners * sizeof(double));
+    put(&f, sizeof f);
+    put(sizes, faces * sizeof(int));
   }
-  ::_exit(ok ? 0 : 3);
-}
-
-// Reads everything the child sends until it closes the pipe, or the deadline passes.
-bool ReadUntilClosed(int fd, std::string& out, std::chrono::steady_clock::time_point deadline) {
-  char buf[65536];
-  for (;;) {
-    const auto left =
-        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
-    if (left.count() <= 0) return false;
-    pollfd pfd{fd, POLLIN, 0};
-    const int r = ::poll(&pfd, 1, static_cast<int>(std::min<long long>(left.count(), 1000)));
-    if (r < 0 && errno == EINTR) continue;
-    if (r <= 0) continue;
-    const ssize_t n = ::read(fd, buf, sizeof buf);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return true;
-    out.append(buf, static_cast<std::size_t>(n));
-  }
+  return out;
 }
 
 double TimeLimitSeconds() {
@@ -183,40 +156,27 @@ double TimeLimitSeconds() {
 // Runs the plugin in a child process, so that a crash or a hang inside assimp becomes this file's
 // error and the program (and its other files) goes on.
 AssimpOutput ReadIsolated(const Plugin& p, const std::string& path) {
-  int fds[2];
-  if (::pipe2(fds, O_CLOEXEC) != 0) Fail(path, std::string("cannot create a pipe (") + std::strerror(errno) + ")");
-  std::fflush(nullptr);
-  const pid_t pid = ::fork();
-  if (pid < 0) {
-    ::close(fds[0]);
-    ::close(fds[1]);
-    Fail(path, std::string("cannot start the assimp reader process (") + std::strerror(errno) + ")");
-  }
-  if (pid == 0) {
-    ::close(fds[0]);
-    ReaderChild(p, path, fds[1]);
-  }
-  ::close(fds[1]);
   const double limit = TimeLimitSeconds();
-  std::string data;
-  const bool finished = ReadUntilClosed(
-      fds[0], data, std::chrono::steady_clock::now() + std::chrono::milliseconds(static_cast<long long>(limit * 1000)));
-  ::close(fds[0]);
-  if (!finished) ::kill(pid, SIGKILL);
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  IsolatedOutcome outcome;
+  try {
+    RunIsolated(
+        1, 1, limit, [&](std::size_t) { return ReadInChild(p, path); },
+        [&](std::size_t, IsolatedOutcome&& o) { outcome = std::move(o); });
+  } catch (const std::runtime_error& e) {
+    Fail(path, std::string("cannot start the assimp reader process (") + e.what() + ")");
   }
-  if (!finished) {
+  if (outcome.end == IsolatedEnd::kTimedOut) {
     Fail(path,
          "assimp did not finish reading it within " + std::to_string(static_cast<long long>(limit)) +
              " s and was stopped (a malformed file can make assimp loop; MASSPROPS_ASSIMP_TIMEOUT sets the limit)");
   }
-  if (WIFSIGNALED(status)) {
-    const int sig = WTERMSIG(status);
+  if (outcome.end == IsolatedEnd::kCrashed) {
+    const int sig = outcome.signal;
     Fail(path, "assimp crashed while reading it (signal " + std::to_string(sig) + ", " + ::strsignal(sig) +
                    "); the file is probably malformed, and no result is given for it");
   }
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) Fail(path, "the assimp reader process failed");
+  if (outcome.end != IsolatedEnd::kFinished) Fail(path, "the assimp reader process failed");
+  const std::string& data = outcome.output;
   // Decode: the child wrote it, in this process's own layout.
   std::size_t at = 0;
   auto take = [&](void* dest, std::size_t n) {

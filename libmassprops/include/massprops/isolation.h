@@ -1,0 +1,38 @@
+#pragma once
+/// @file
+/// Work that may crash or hang, run where it cannot take the caller down: each item in a forked
+/// child process with a time limit, several at a time (POSIX). Third-party readers (assimp) and
+/// the batch mode over datasets use it; a crash or a timeout becomes that item's outcome.
+
+#include <cstddef>
+#include <functional>
+#include <string>
+
+namespace massprops {
+
+/// How an isolated item ended.
+enum class IsolatedEnd {
+  kFinished,  ///< the child returned its output and exited 0
+  kCrashed,   ///< killed by a signal (a segfault, an abort) before finishing
+  kTimedOut,  ///< still running at the time limit: killed
+  kFailed,    ///< exited non-zero (the work threw, or the child could not report)
+};
+
+struct IsolatedOutcome {
+  IsolatedEnd end = IsolatedEnd::kFinished;
+  std::string output;  ///< what work(i) returned, when kFinished
+  int signal = 0;      ///< kCrashed: the signal's number
+  double seconds = 0;  ///< wall time of the child
+};
+
+/// Runs work(i) for every i in [0, count), each in its own forked child process, at most `jobs`
+/// at a time, each stopped after `seconds_limit` seconds. `done(i, outcome)` is called in this
+/// process in the order of i (outcomes that finish early wait for the ones before them), so what
+/// the caller writes does not depend on `jobs`. Call it from a single-threaded point of the
+/// program: a forked child has only the forking thread. `work` runs in the child only; what it
+/// returns is sent back through a pipe. @throws std::runtime_error if a process or pipe cannot be
+/// made.
+void RunIsolated(std::size_t count, int jobs, double seconds_limit, const std::function<std::string(std::size_t)>& work,
+                 const std::function<void(std::size_t, IsolatedOutcome&&)>& done);
+
+}  // namespace massprops
