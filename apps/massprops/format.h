@@ -26,6 +26,8 @@ struct FormatOptions {
 std::string FormatTable(const SolidResult& r, const FormatOptions& options);
 /// One object, or an array when options.json_array.
 std::string FormatJson(const std::vector<SolidResult>& results, const FormatOptions& options);
+/// One object on one line, no newline (a record of `massprops batch`).
+std::string FormatJsonLine(const SolidResult& r, const FormatOptions& options);
 std::string FormatCsv(const std::vector<SolidResult>& results, const FormatOptions& options);
 /// The inertial element of a URDF, SDFormat or MJCF file, with a comment naming the source.
 std::string FormatRobot(const SolidResult& r, Format format);

@@ -93,6 +93,8 @@ Json ToJson(const SolidResult& r, const FormatOptions& opt) {
 
 }  // namespace
 
+std::string FormatJsonLine(const SolidResult& r, const FormatOptions& opt) { return ToJson(r, opt).dump(); }
+
 std::string FormatJson(const std::vector<SolidResult>& results, const FormatOptions& opt) {
   if (!opt.json_array && results.size() == 1) return ToJson(results[0], opt).dump(2) + "\n";
   Json all = Json::array();

@@ -22,6 +22,7 @@
 #include <CLI/CLI.hpp>
 
 #include "atomic_file.h"
+#include "batch.h"
 #include "cli.h"
 #include "format.h"
 #include "massprops/implicit.h"
@@ -104,12 +105,47 @@ LoadOptions ToLoadOptions(const Arguments& a) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+// massprops merge OUT SHARD...
+int MergeMain(int argc, char** argv) {
   CLI::App app{
-      "massprops: exact mass properties of the solids that mesh files bound.\n"
-      "Reads OBJ, STL, PLY, OFF (own parsers) and other formats through assimp."};
+      "massprops merge: joins the outputs of `massprops batch --shard i/n` runs into one file, checking "
+      "that every file has exactly one record"};
+  std::string out;
+  std::vector<std::string> shards;
+  app.add_option("output", out, "The merged JSON Lines file (written whole or not at all)")->required();
+  app.add_option("shards", shards, "The shards' outputs")->required();
+  if (const int status = app::ParseArguments(app, argc, argv); status >= 0) return status;
+  return cli::RunMerge(out, shards);
+}
+
+int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "merge") return MergeMain(argc - 1, argv + 1);
+  // massprops batch (DIR | MANIFEST) -o OUT [batch options] [the usual options]
+  const bool batch = argc > 1 && std::string(argv[1]) == "batch";
+  if (batch) {
+    argv[1] = argv[0];
+    ++argv;
+    --argc;
+  }
+  CLI::App app{batch ? "massprops batch: every mesh file of a folder or a manifest, each in its own process, one JSON "
+                       "line each in the output (see the README's dataset section)"
+                     : "massprops: exact mass properties of the solids that mesh files bound.\n"
+                       "Reads OBJ, STL, PLY, OFF (own parsers) and other formats through assimp.\n"
+                       "Subcommands: massprops batch (DIR | MANIFEST) -o OUT.jsonl; massprops merge OUT SHARD..."};
   app.set_version_flag("--version", std::string("massprops ") + kVersion);
   Arguments a;
+  cli::BatchOptions b;
+  std::string shard;
+  if (batch) {
+    app.add_option("--jobs", b.jobs, "Files computed at a time, each in its own process (0 = one per core)")
+        ->check(app::NonNegative());
+    app.add_option("--shard", shard, "i/n: only the files whose index in sorted order is i mod n (job arrays)");
+    app.add_flag("--resume", b.resume, "Go on from the records already in the output (a torn last line is dropped)");
+    app.add_option("--timeout", b.timeout_seconds, "Seconds a file may take before it is stopped (a timeout record)")
+        ->check(app::Positive())
+        ->capture_default_str();
+    app.add_flag("--summary", b.summary_json, "Print the summary as JSON on stdout");
+  }
   app.add_option("files", a.files, "Mesh files");
   app.add_option("--implicit", a.implicit,
                  "Estimate a solid given in the shape syntax, e.g. 'torus(R=1, r=0.25)' "
@@ -188,7 +224,7 @@ int main(int argc, char** argv) {
     std::cerr << "error: " << what << "\n";
     return app::kBadArguments;
   };
-  if (!a.files.empty() && app::RefuseReservedWord("massprops", a.files[0], {"batch", "merge", "fill", "validate"})) {
+  if (!batch && !a.files.empty() && app::RefuseReservedWord("massprops", a.files[0], {"fill", "validate"})) {
     return app::kBadArguments;
   }
   if (!std::isfinite(a.density) || !std::isfinite(a.mass) || !std::isfinite(a.area_density) || !std::isfinite(a.wall)) {
@@ -225,6 +261,29 @@ int main(int argc, char** argv) {
     } catch (const std::exception& e) {
       return bad(std::string("-o ") + e.what());
     }
+  }
+
+  if (batch) {
+    if (a.files.size() != 1) return bad("batch takes one folder or manifest (a text file with one path a line)");
+    if (a.output.empty()) return bad("batch needs -o FILE.jsonl (records are appended to it, one line each)");
+    if (!a.implicit.empty()) return bad("batch computes mesh files; --implicit has no place in it");
+    if (app.count("--format") > 0 || app.count("--frame") > 0) {
+      return bad("batch writes JSON Lines records; --format and --frame do not apply");
+    }
+    if (!shard.empty()) {
+      try {
+        cli::ParseShard(shard, b.shard_index, b.shard_count);
+      } catch (const std::exception& e) {
+        return bad(e.what());
+      }
+    }
+    b.input = a.files[0];
+    b.output = a.output;
+    b.quiet = a.quiet;
+    b.threads_given = app.count("--threads") > 0;
+    b.load = ToLoadOptions(a);
+    b.load.unit_stated = app.count("--unit") > 0;
+    return cli::RunBatch(b);
   }
 
   cli::FormatOptions format;

@@ -257,8 +257,8 @@ assert len(rows) == 2 and rows[0]['se_mass'] == '' and float(rows[1]['se_mass'])
 [ $? -eq 2 ]; check "negative density exits 2" $?
 "$bin" --version >"$tmp/out" 2>&1
 [ $? -eq 0 ] && grep -Eq "^massprops [0-9]+\.[0-9]+\.[0-9]+$" "$tmp/out"; check "--version" $?
-"$bin" batch "$data/meshes/spot.obj" >/dev/null 2>"$tmp/err"
-[ $? -eq 2 ] && grep -q "a file of that name is given as ./batch" "$tmp/err"; check "reserved word batch" $?
+"$bin" fill "$data/meshes/spot.obj" >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ] && grep -q "a file of that name is given as ./fill" "$tmp/err"; check "reserved word fill" $?
 # Output files: never over a device node or an input.
 "$bin" "$data/meshes/t_handle.obj" -o /dev/null >/dev/null 2>"$tmp/err"
 [ $? -eq 2 ] && grep -q "not a regular file" "$tmp/err" && [ -c /dev/null ]; check "-o /dev/null refused" $?

@@ -60,6 +60,10 @@ LoadedMesh ParseMeshBuffer(const std::string& name, const std::string& extension
 /// in this process; the other formats go through assimp in a child process.
 bool HasOwnReader(const std::string& path);
 
+/// Whether ReadMeshFile can read `path` at all, by its extension: a reader of our own, or one of
+/// assimp's formats (asks the assimp plugin, loading it on first use).
+bool IsMeshFile(const std::string& path);
+
 /// Reads any format through assimp, even those with a reader of our own (for comparison).
 /// @throws MeshFileError as ReadMeshFile.
 LoadedMesh ReadMeshFileWithAssimp(const std::string& path);

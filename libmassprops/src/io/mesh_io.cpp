@@ -48,6 +48,13 @@ bool HasOwnReader(const std::string& path) {
   return dot != std::string::npos && FindReader(io_text::Lower(path.substr(dot + 1))) != nullptr;
 }
 
+bool IsMeshFile(const std::string& path) {
+  const std::size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || path.find('/', dot) != std::string::npos) return false;
+  const std::string ext = io_text::Lower(path.substr(dot + 1));
+  return FindReader(ext) != nullptr || AssimpCanRead(ext);
+}
+
 LoadedMesh ReadMeshFile(const std::string& path) {
   const std::size_t dot = path.find_last_of('.');
   const std::string ext = dot == std::string::npos ? "" : io_text::Lower(path.substr(dot + 1));
