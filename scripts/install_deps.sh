@@ -8,7 +8,7 @@ PACKAGES=(
   libeigen3-dev zlib1g-dev libassimp-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libtbb-dev libfast-float-dev
-  python3-dev python3-numpy python3-pytest pybind11-dev python3-stl
+  python3-dev python3-numpy python3-pytest pybind11-dev python3-stl python3-distributed python3-pandas
   clang-14 libclang-rt-14-dev clang-format-14
   python3 gnuplot-nox libgnuplot-iostream-dev libboost-iostreams-dev libboost-filesystem-dev
 )

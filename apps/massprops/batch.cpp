@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
-#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -23,6 +22,7 @@
 #include "format.h"
 #include "massprops/io.h"
 #include "massprops/isolation.h"
+#include "record.h"
 
 namespace massprops::cli {
 namespace {
@@ -105,34 +105,6 @@ std::string RefusalReason(const std::string& message) {
     if (message.find(needle) != std::string::npos) return reason;
   }
   return "other";
-}
-
-// The child's work: one file's record, as one line of JSON.
-std::string ComputeRecord(const std::string& file, std::size_t index, std::size_t of, const LoadOptions& options) {
-  if (const char* fault = std::getenv("MASSPROPS_BATCH_FAULT")) {  // fault injection, for tests
-    const std::string f(fault);
-    const std::size_t colon = f.find(':');
-    if (colon != std::string::npos && file.find(f.substr(colon + 1)) != std::string::npos) {
-      if (f.compare(0, colon, "crash") == 0) std::raise(SIGSEGV);
-      if (f.compare(0, colon, "hang") == 0)
-        for (;;) ::pause();
-    }
-  }
-  Json rec = {{"file", file}, {"index", index}, {"of", of}};
-  FormatOptions format;
-  format.format = Format::kJson;
-  try {
-    const SolidResult r = LoadSolid(file, options);
-    rec["status"] = "ok";
-    rec["result"] = Json::parse(FormatJsonLine(r, format));
-  } catch (const LoadError& e) {
-    rec["status"] = "refused";
-    rec["message"] = WordedError(e, CliVocabulary());
-  } catch (const std::exception& e) {  // unreadable, malformed, or an option the file cannot take
-    rec["status"] = "error";
-    rec["message"] = WordedError(e, CliVocabulary());
-  }
-  return rec.dump();
 }
 
 struct Summary {
@@ -275,24 +247,7 @@ int RunBatch(const BatchOptions& b) {
         [&](std::size_t k) { return ComputeRecord(all[todo[k]], todo[k], all.size(), load); },
         [&](std::size_t k, IsolatedOutcome&& o) {
           const std::size_t i = todo[k];
-          Json rec;
-          if (o.end == IsolatedEnd::kFinished) {
-            rec = Json::parse(o.output);
-          } else {
-            rec = {{"file", all[i]}, {"index", i}, {"of", all.size()}};
-            if (o.end == IsolatedEnd::kCrashed) {
-              rec["status"] = "crashed";
-              rec["message"] = "the process computing it crashed (signal " + std::to_string(o.signal) + ", " +
-                               ::strsignal(o.signal) + ")";
-            } else if (o.end == IsolatedEnd::kTimedOut) {
-              rec["status"] = "timeout";
-              rec["message"] = "not finished within " + std::to_string(static_cast<long long>(b.timeout_seconds)) +
-                               " s (--timeout): stopped";
-            } else {
-              rec["status"] = "error";
-              rec["message"] = "the process computing it failed";
-            }
-          }
+          const Json rec = Json::parse(RecordOf(all[i], i, all.size(), std::move(o), b.timeout_seconds));
           summary.Add(rec);
           const std::string line = rec.dump() + "\n";  // one write: a whole record, or (if cut) a torn line
           if (!write_failed && ::write(fd, line.data(), line.size()) != static_cast<ssize_t>(line.size())) {

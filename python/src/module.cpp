@@ -18,6 +18,7 @@
 #include "massprops/io.h"
 #include "massprops/load.h"
 #include "massprops/version.h"
+#include "record.h"
 
 namespace py = pybind11;
 using namespace massprops;
@@ -310,6 +311,16 @@ PYBIND11_MODULE(_core, m) {
   m.def("load", &Load, py::arg("path"), "LoadSolid(path, options) -> JSON of the result");
   m.def("solve_arrays", &SolveArrays, py::arg("vertices"), py::arg("indices"), py::arg("offsets"), py::arg("float32"),
         py::arg("name"), "SolveMesh(arrays, options) -> JSON of the result");
+  m.def(
+      "batch_record",
+      [](const std::string& path, std::size_t index, std::size_t of, double timeout, const py::kwargs& kw) {
+        if (!(timeout > 0)) throw py::value_error("timeout must be positive");
+        const LoadOptions o = ToLoadOptions(kw);
+        py::gil_scoped_release release;
+        return cli::IsolatedRecord(path, index, of, o, timeout);
+      },
+      py::arg("path"), py::arg("index"), py::arg("of"), py::arg("timeout"),
+      "The `massprops batch` record of one file (JSON), computed in an isolated child process");
   py::module_ dyn = m.def_submodule("dynamics", "Rigid bodies and worlds (libdynamics)");
   BindDynamics(dyn);
 }

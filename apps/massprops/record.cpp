@@ -1,0 +1,78 @@
+#include "record.h"
+
+#include <algorithm>
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
+
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "format.h"
+
+namespace massprops::cli {
+
+using Json = nlohmann::ordered_json;
+
+std::string ComputeRecord(const std::string& file, std::size_t index, std::size_t of, const LoadOptions& options) {
+  if (const char* fault = std::getenv("MASSPROPS_BATCH_FAULT")) {  // fault injection, for tests:
+    std::string spec(fault);                                       // "crash:NAME,hang:NAME"
+    for (std::size_t at = 0; at < spec.size();) {
+      const std::size_t end = std::min(spec.find(',', at), spec.size());
+      const std::string f = spec.substr(at, end - at);
+      const std::size_t colon = f.find(':');
+      if (colon != std::string::npos && file.find(f.substr(colon + 1)) != std::string::npos) {
+        if (f.compare(0, colon, "crash") == 0) std::raise(SIGSEGV);
+        if (f.compare(0, colon, "hang") == 0)
+          for (;;) ::pause();
+      }
+      at = end + 1;
+    }
+  }
+  Json rec = {{"file", file}, {"index", index}, {"of", of}};
+  FormatOptions format;
+  format.format = Format::kJson;
+  try {
+    const SolidResult r = LoadSolid(file, options);
+    rec["status"] = "ok";
+    rec["result"] = Json::parse(FormatJsonLine(r, format));
+  } catch (const LoadError& e) {
+    rec["status"] = "refused";
+    rec["message"] = WordedError(e, CliVocabulary());
+  } catch (const std::exception& e) {  // unreadable, malformed, or an option the file cannot take
+    rec["status"] = "error";
+    rec["message"] = WordedError(e, CliVocabulary());
+  }
+  return rec.dump();
+}
+
+std::string RecordOf(const std::string& file, std::size_t index, std::size_t of, IsolatedOutcome&& o,
+                     double timeout_seconds) {
+  if (o.end == IsolatedEnd::kFinished) return std::move(o.output);
+  Json rec = {{"file", file}, {"index", index}, {"of", of}};
+  if (o.end == IsolatedEnd::kCrashed) {
+    rec["status"] = "crashed";
+    rec["message"] =
+        "the process computing it crashed (signal " + std::to_string(o.signal) + ", " + ::strsignal(o.signal) + ")";
+  } else if (o.end == IsolatedEnd::kTimedOut) {
+    rec["status"] = "timeout";
+    rec["message"] =
+        "not finished within " + std::to_string(static_cast<long long>(timeout_seconds)) + " s (--timeout): stopped";
+  } else {
+    rec["status"] = "error";
+    rec["message"] = "the process computing it failed";
+  }
+  return rec.dump();
+}
+
+std::string IsolatedRecord(const std::string& file, std::size_t index, std::size_t of, const LoadOptions& options,
+                           double timeout_seconds) {
+  std::string line;
+  RunIsolated(
+      1, 1, timeout_seconds, [&](std::size_t) { return ComputeRecord(file, index, of, options); },
+      [&](std::size_t, IsolatedOutcome&& o) { line = RecordOf(file, index, of, std::move(o), timeout_seconds); });
+  return line;
+}
+
+}  // namespace massprops::cli

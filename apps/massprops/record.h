@@ -1,0 +1,27 @@
+#pragma once
+// One file's record in a dataset run (massprops batch, the Python module's dask.map_files): what
+// the isolated child computes, and what the parent makes of its outcome. One line of JSON:
+//   {"file", "index", "of", "status": ok|refused|error|crashed|timeout, "result" | "message"}
+
+#include <cstddef>
+#include <string>
+
+#include "massprops/isolation.h"
+#include "massprops/load.h"
+
+namespace massprops::cli {
+
+/// The child's work: the record of `file` (number `index` of `of` in sorted order). Refusals and
+/// read errors are records, not exceptions.
+std::string ComputeRecord(const std::string& file, std::size_t index, std::size_t of, const LoadOptions& options);
+
+/// The record for an isolated child's outcome: its own when it finished, else one that says it
+/// crashed, timed out or failed.
+std::string RecordOf(const std::string& file, std::size_t index, std::size_t of, IsolatedOutcome&& outcome,
+                     double timeout_seconds);
+
+/// ComputeRecord in an isolated child with a time limit, then RecordOf: one file, nothing shared.
+std::string IsolatedRecord(const std::string& file, std::size_t index, std::size_t of, const LoadOptions& options,
+                           double timeout_seconds);
+
+}  // namespace massprops::cli
