@@ -16,6 +16,7 @@
 #include "dynamics/world.h"
 #include "format.h"
 #include "massprops/io.h"
+#include "massprops/isolation.h"
 #include "massprops/load.h"
 #include "massprops/version.h"
 #include "record.h"
@@ -312,15 +313,23 @@ PYBIND11_MODULE(_core, m) {
   m.def("solve_arrays", &SolveArrays, py::arg("vertices"), py::arg("indices"), py::arg("offsets"), py::arg("float32"),
         py::arg("name"), "SolveMesh(arrays, options) -> JSON of the result");
   m.def(
-      "batch_record",
-      [](const std::string& path, std::size_t index, std::size_t of, double timeout, const py::kwargs& kw) {
+      "batch_records",
+      [](const std::vector<std::string>& paths, const std::vector<std::size_t>& indices, std::size_t of, double timeout,
+         const py::kwargs& kw) {
         if (!(timeout > 0)) throw py::value_error("timeout must be positive");
+        if (indices.size() != paths.size()) throw py::value_error("one index per path");
         const LoadOptions o = ToLoadOptions(kw);
+        std::vector<std::string> lines(paths.size());
         py::gil_scoped_release release;
-        return cli::IsolatedRecord(path, index, of, o, timeout);
+        RunIsolated(
+            paths.size(), 1, timeout, [&](std::size_t k) { return cli::ComputeRecord(paths[k], indices[k], of, o); },
+            [&](std::size_t k, IsolatedOutcome&& out) {
+              lines[k] = cli::RecordOf(paths[k], indices[k], of, std::move(out), timeout);
+            });
+        return lines;
       },
-      py::arg("path"), py::arg("index"), py::arg("of"), py::arg("timeout"),
-      "The `massprops batch` record of one file (JSON), computed in an isolated child process");
+      py::arg("paths"), py::arg("indices"), py::arg("of"), py::arg("timeout"),
+      "The `massprops batch` records (JSON lines) of some files, each computed in its own child process");
   py::module_ dyn = m.def_submodule("dynamics", "Rigid bodies and worlds (libdynamics)");
   BindDynamics(dyn);
 }
