@@ -33,8 +33,14 @@ std::vector<PositionKey> Corners(std::size_t n, std::size_t pool, std::uint32_t 
   return out;
 }
 
+void ExpectTheObviousWeld(const std::vector<PositionKey>& corners);
+
 TEST(Weld, SameVerticesInOrderOfFirstAppearanceWhateverTheThreads) {
-  const std::vector<PositionKey> corners = Corners(400000, 50000, 7);
+  ExpectTheObviousWeld(Corners(400000, 50000, 7));  // many chunks and partitions
+  ExpectTheObviousWeld(Corners(3000, 500, 5));      // one chunk
+}
+
+void ExpectTheObviousWeld(const std::vector<PositionKey>& corners) {
   // The obvious weld.
   std::map<std::tuple<double, double, double>, std::int32_t> seen;
   std::vector<std::int32_t> expected(corners.size());

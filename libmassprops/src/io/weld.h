@@ -144,6 +144,11 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
   });
   g.first_non_finite = *std::min_element(bad.begin(), bad.end());
   if (g.first_non_finite < n) return g;
+  if (chunks == 1) {  // one chunk: its table saw every corner in order, and is the weld
+    g.vertex_of.assign(local.begin(), local.end());
+    g.first_corner = std::move(chunk_first[0]);
+    return g;
+  }
   std::vector<std::size_t> entry_base(chunks + 1, 0);
   for (std::size_t b = 0; b < chunks; ++b) entry_base[b + 1] = entry_base[b] + chunk_keys[b].size();
   const std::size_t entries = entry_base[chunks];
