@@ -3,10 +3,13 @@
 // computes nothing. One file per format; the Python module prints its to_dict() through the same
 // JSON formatter, so the schema has one home.
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "massprops/load.h"
+#include "massprops/principal_axes.h"
+#include "massprops/units.h"
 
 namespace massprops::cli {
 
@@ -21,6 +24,10 @@ struct FormatOptions {
   bool json_array = false;
   /// The words for options that warnings advise; null: the command line's (CliVocabulary).
   const Vocabulary* vocabulary = nullptr;
+  /// The units the table, JSON and CSV are read in (SI by default); URDF, SDF and MJCF are SI.
+  ReportUnits units;
+  /// Also report the inertia tensor about this point, in these axes (--about, --axes).
+  std::optional<ReferenceFrame> reference;
 };
 
 std::string FormatTable(const SolidResult& r, const FormatOptions& options);

@@ -12,14 +12,38 @@ std::string Quoted(const std::string& s) {  // RFC 4180
   return o + "\"";
 }
 
+// A unit as a column-name suffix: "g*mm^2" → "g_mm2", "kg/m^3" → "kg_m3".
+std::string Suffix(const std::string& unit) {
+  std::string o;
+  for (char ch : unit) {
+    if (ch == '*' || ch == '/') {
+      o += '_';
+    } else if (ch != '^') {
+      o += ch;
+    }
+  }
+  return o;
+}
+
 }  // namespace
 
 std::string FormatCsv(const std::vector<SolidResult>& results, const FormatOptions& opt) {
   std::ostringstream out;
   const bool origin = opt.frame == Frame::kOrigin;
-  out << "file,unit,volume_m3,mass_kg,density_kg_m3,com_x_m,com_y_m,com_z_m,"
-         "ixx,iyy,izz,ixy,ixz,iyz,i1,i2,i3,surface_area_m2,closed,physically_valid"
-      << (origin ? ",origin_ixx,origin_iyy,origin_izz,origin_ixy,origin_ixz,origin_iyz" : "");
+  const ReportUnits& u = opt.units;
+  const std::string l = UnitName(u.length);
+  // SI keeps the columns' historical names (inertia columns without a unit); other units name theirs.
+  const std::string in = u.IsSi() ? "" : "_" + Suffix(UnitName(u.inertia));
+  out << "file,unit,volume_" << Suffix(u.VolumeName()) << ",mass_" << UnitName(u.mass) << ",density_"
+      << Suffix(u.DensityName()) << ",com_x_" << l << ",com_y_" << l << ",com_z_" << l;
+  for (const char* name : {"ixx", "iyy", "izz", "ixy", "ixz", "iyz", "i1", "i2", "i3"}) out << "," << name << in;
+  out << ",surface_area_" << Suffix(u.AreaName()) << ",closed,physically_valid";
+  if (origin) {
+    for (const char* name : {"ixx", "iyy", "izz", "ixy", "ixz", "iyz"}) out << ",origin_" << name << in;
+  }
+  if (opt.reference) {
+    for (const char* name : {"ixx", "iyy", "izz", "ixy", "ixz", "iyz"}) out << ",about_" << name << in;
+  }
   bool estimates = false, shells = false;
   for (const SolidResult& r : results) {
     estimates = estimates || r.estimate.has_value();
@@ -30,37 +54,42 @@ std::string FormatCsv(const std::vector<SolidResult>& results, const FormatOptio
   }
   // Thin shells have no volume and no volume density: those cells stay empty, and the area
   // density has a column of its own.
-  if (shells) out << ",area_density_kg_m2";
+  if (shells) out << ",area_density_" << Suffix(u.AreaDensityName());
   out << ",warnings\n";
   for (const SolidResult& r : results) {
-    const Matrix3& I = r.mp.inertia_com;
-    const Vector3& c = r.mp.center_of_mass;
-    const Vector3& m = r.principal.moments;
+    const Matrix3 I = r.mp.inertia_com / u.Inertia();
+    const Vector3 c = r.mp.center_of_mass / u.Length();
+    const Vector3 m = r.principal.moments / u.Inertia();
     const bool shell = r.model == ModelKind::kShell;
     out << Quoted(r.source) << "," << UnitName(r.unit);
-    out << "," << (shell ? "" : ExactDecimal(r.mp.volume)) << "," << ExactDecimal(r.mp.mass) << ","
-        << (shell ? "" : ExactDecimal(r.mp.density));
+    out << "," << (shell ? "" : ExactDecimal(r.mp.volume / u.Volume())) << "," << ExactDecimal(r.mp.mass / u.Mass())
+        << "," << (shell ? "" : ExactDecimal(r.mp.density / u.Density()));
     for (double v : {c[0], c[1], c[2], I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2), m[0], m[1], m[2],
-                     r.mp.surface_area}) {
+                     r.mp.surface_area / u.Area()}) {
       out << "," << ExactDecimal(v);
     }
     out << "," << (r.topology.BoundsVolume() ? "true" : "false") << "," << (r.validity.valid ? "true" : "false");
     if (origin) {
-      const Matrix3 O = r.mp.InertiaAbout(Vector3::Zero());
+      const Matrix3 O = r.mp.InertiaAbout(Vector3::Zero()) / u.Inertia();
       for (double v : {O(0, 0), O(1, 1), O(2, 2), O(0, 1), O(0, 2), O(1, 2)}) out << "," << ExactDecimal(v);
+    }
+    if (opt.reference) {
+      const Matrix3 A = InertiaInFrame(r.mp, *opt.reference) / u.Inertia();
+      for (double v : {A(0, 0), A(1, 1), A(2, 2), A(0, 1), A(0, 2), A(1, 2)}) out << "," << ExactDecimal(v);
     }
     if (estimates && r.estimate) {
       const MassProperties& e = r.estimate->standard_error;
-      const Vector3& p = r.estimate->principal_moments_se;
-      for (double v : {e.volume, e.mass, e.center_of_mass[0], e.center_of_mass[1], e.center_of_mass[2],
-                       e.inertia_com(0, 0), e.inertia_com(1, 1), e.inertia_com(2, 2), e.inertia_com(0, 1),
-                       e.inertia_com(0, 2), e.inertia_com(1, 2), p[0], p[1], p[2]}) {
+      const Vector3 p = r.estimate->principal_moments_se / u.Inertia();
+      const Matrix3 ei = e.inertia_com / u.Inertia();
+      const Vector3 ec = e.center_of_mass / u.Length();
+      for (double v : {e.volume / u.Volume(), e.mass / u.Mass(), ec[0], ec[1], ec[2], ei(0, 0), ei(1, 1), ei(2, 2),
+                       ei(0, 1), ei(0, 2), ei(1, 2), p[0], p[1], p[2]}) {
         out << "," << ExactDecimal(v);
       }
     } else if (estimates) {
       out << ",,,,,,,,,,,,,,";
     }
-    if (shells) out << "," << (shell ? ExactDecimal(r.mp.density) : "");
+    if (shells) out << "," << (shell ? ExactDecimal(r.mp.density / u.AreaDensity()) : "");
     std::string warnings;  // every finding, "; "-separated
     for (const Finding& f : r.findings) warnings += (warnings.empty() ? "" : "; ") + Worded(f.message, WordsOf(opt));
     out << "," << (warnings.empty() ? "" : Quoted(warnings)) << "\n";

@@ -14,27 +14,42 @@ Json Mat(const Matrix3& m) {
 }
 
 Json ToJson(const SolidResult& r, const FormatOptions& opt) {
-  const auto& c = r.mp.center_of_mass;
-  const auto& m = r.principal.moments;
+  const ReportUnits& u = opt.units;
+  const Vector3 c = r.mp.center_of_mass / u.Length();
+  const Vector3 m = r.principal.moments / u.Inertia();
   const auto& t = r.topology;
+  const bool shell = r.model == ModelKind::kShell;
   Json j = {{"file", r.source},
             {"unit", UnitName(r.unit)},
             {"unit_source", UnitSourceName(r.unit_source)},
             {"model", ModelName(r.model)},
-            {"volume", r.mp.volume},
-            {"mass", r.mp.mass},
-            {"density", r.mp.density},
+            {"units",
+             {{"mass", UnitName(u.mass)},
+              {"length", UnitName(u.length)},
+              {"area", u.AreaName()},
+              {"volume", u.VolumeName()},
+              {"density", shell ? u.AreaDensityName() : u.DensityName()},
+              {"inertia", UnitName(u.inertia)}}},
+            {"volume", r.mp.volume / u.Volume()},
+            {"mass", r.mp.mass / u.Mass()},
+            {"density", r.mp.density / u.Density()},
             {"center_of_mass", {c[0], c[1], c[2]}},
-            {"inertia_com", Mat(r.mp.inertia_com)}};
-  if (r.model == ModelKind::kShell) {
+            {"inertia_com", Mat(r.mp.inertia_com / u.Inertia())}};
+  if (shell) {
     j["density"] = nullptr;
-    j["area_density"] = r.mp.density;
+    j["area_density"] = r.mp.density / u.AreaDensity();
   }
   if (r.model == ModelKind::kWall) j["wall_thickness_m"] = r.wall_thickness * MetresPerUnit(r.unit);
-  if (opt.frame == Frame::kOrigin) j["inertia_origin"] = Mat(r.mp.InertiaAbout(Vector3::Zero()));
+  if (opt.frame == Frame::kOrigin) j["inertia_origin"] = Mat(r.mp.InertiaAbout(Vector3::Zero()) / u.Inertia());
+  if (opt.reference) {
+    const Vector3 p = opt.reference->point.value_or(r.mp.center_of_mass) / u.Length();
+    j["inertia_about"] = {{"point", {p[0], p[1], p[2]}},
+                          {"axes", Mat(opt.reference->axes)},
+                          {"tensor", Mat(InertiaInFrame(r.mp, *opt.reference) / u.Inertia())}};
+  }
   j["principal_moments"] = {m[0], m[1], m[2]};
   j["principal_axes"] = Mat(r.principal.axes);
-  j["surface_area"] = r.mp.surface_area;
+  j["surface_area"] = r.mp.surface_area / u.Area();
   j["physically_valid"] = r.validity.valid;
   auto known = [&](std::int64_t v) { return r.full_topology ? Json(v) : Json(nullptr); };
   std::int64_t triangles = t.faces;
@@ -54,7 +69,7 @@ Json ToJson(const SolidResult& r, const FormatOptions& opt) {
                {"degenerate_faces", known(t.degenerate_faces)},
                {"float32_coordinates", r.loaded.float32_coordinates}};
   if (r.shells.shells.size() > 1) {
-    const double s3 = std::pow(MetresPerUnit(r.unit), 3);
+    const double s3 = std::pow(MetresPerUnit(r.unit), 3) / u.Volume();
     Json shells = Json::array();
     for (const Shell& sh : r.shells.shells) {
       shells.push_back({{"faces", sh.faces.size()},
@@ -68,8 +83,8 @@ Json ToJson(const SolidResult& r, const FormatOptions& opt) {
   if (r.estimate) {
     const MassPropertiesEstimate& e = *r.estimate;
     const MassProperties& se = e.standard_error;
-    const auto& sc = se.center_of_mass;
-    const auto& pm = e.principal_moments_se;
+    const Vector3 sc = se.center_of_mass / u.Length();
+    const Vector3 pm = e.principal_moments_se / u.Inertia();
     j["estimate"] = {{"method", e.method == SamplingMethod::kMonteCarlo ? "monte-carlo" : "quasi-monte-carlo"},
                      {"samples", e.samples},
                      {"randomizations", e.randomizations},
@@ -77,10 +92,10 @@ Json ToJson(const SolidResult& r, const FormatOptions& opt) {
                      {"interval95_factor", e.interval95_factor},
                      {"tolerance_met", e.tolerance_met},
                      {"standard_errors",
-                      {{"volume", se.volume},
-                       {"mass", se.mass},
+                      {{"volume", se.volume / u.Volume()},
+                       {"mass", se.mass / u.Mass()},
                        {"center_of_mass", {sc[0], sc[1], sc[2]}},
-                       {"inertia_com", Mat(se.inertia_com)},
+                       {"inertia_com", Mat(se.inertia_com / u.Inertia())},
                        {"principal_moments", {pm[0], pm[1], pm[2]}}}}};
     j["surface_area"] = nullptr;
   }

@@ -19,6 +19,11 @@ void PrintMatrix(std::ostream& out, const std::string& indent, const Matrix3& m)
 
 std::string FormatTable(const SolidResult& r, const FormatOptions& opt) {
   std::ostringstream out;
+  const ReportUnits& u = opt.units;
+  const std::string len = UnitName(u.length), mass_unit = UnitName(u.mass), inertia_unit = UnitName(u.inertia);
+  auto vec = [&](const Vector3& v, double unit) {
+    return "[" + Num(v[0] / unit) + "  " + Num(v[1] / unit) + "  " + Num(v[2] / unit) + " ]";
+  };
   const auto& t = r.topology;
   const bool implicit = r.model == ModelKind::kImplicit;
   const bool shell = r.model == ModelKind::kShell;
@@ -46,7 +51,7 @@ std::string FormatTable(const SolidResult& r, const FormatOptions& opt) {
     for (std::size_t i = 0; i < r.shells.shells.size(); ++i) {
       const Shell& sh = r.shells.shells[i];
       out << (i ? "; " : "") << "#" << i + 1 << " " << sh.faces.size() << " faces, "
-          << FormatDouble(sh.signed_volume * s3, "%.6g") << " m^3"
+          << FormatDouble(sh.signed_volume * s3 / u.Volume(), "%.6g") << " " << u.VolumeName()
           << (sh.inside_of >= 0 ? " (cavity in #" + std::to_string(sh.inside_of + 1) + ")" : "");
     }
     out << "\n";
@@ -55,51 +60,66 @@ std::string FormatTable(const SolidResult& r, const FormatOptions& opt) {
     out << "precision       the file's coordinates are 32-bit floats (~7 significant digits)\n";
   }
   out << "units           file coordinates in " << UnitName(r.unit) << " (" << MetresPerUnit(r.unit) << " m each"
-      << (r.unit_source == UnitSource::kFile ? ", declared by the file" : "") << "), results in SI; "
-      << (shell ? "area density " : "density ") << r.mp.density << (shell ? " kg/m^2" : " kg/m^3")
-      << (r.mass_fixed ? " (from --mass)" : "") << "\n";
+      << (r.unit_source == UnitSource::kFile ? ", declared by the file" : "") << "), results in "
+      << (u.IsSi() ? std::string("SI") : u.Describe()) << "; " << (shell ? "area density " : "density ")
+      << (shell ? r.mp.density / u.AreaDensity() : r.mp.density / u.Density()) << " "
+      << (shell ? u.AreaDensityName() : u.DensityName()) << (r.mass_fixed ? " (from --mass)" : "") << "\n";
   if (shell) out << "model           thin shell: the surface itself carries the mass (no volume)\n";
   if (r.model == ModelKind::kWall) {
     out << "model           hollow part: the solid between the surface and its inward offset by " << r.wall_thickness
         << " " << UnitName(r.unit) << "\n";
   }
   out << "integration     " << r.path_used << ", " << FormatDouble(r.seconds, "%.3g") << " s\n";
-  out << "size            " << Num(r.size_m) << " m (bounding-box diagonal)\n";
+  out << "size            " << Num(r.size_m / u.Length()) << " " << len << " (bounding-box diagonal)\n";
   const MassProperties* se = r.estimate ? &r.estimate->standard_error : nullptr;
-  auto pm = [&](double v) { return "  +- " + FormatDouble(v, "%.2e"); };
+  auto pm = [&](double v, double unit) { return "  +- " + FormatDouble(v / unit, "%.2e"); };
   if (r.estimate) {
     out << "error bars      +- one standard error; 95 % interval = +- "
         << FormatDouble(r.estimate->interval95_factor, "%.3g") << " standard errors"
         << (r.estimate->method == SamplingMethod::kQuasiMonteCarlo ? " (Student t over the randomizations)" : "")
         << "\n";
   }
-  if (!shell) out << "volume          " << Num(r.mp.volume) << " m^3" << (se ? pm(se->volume) : "") << "\n";
-  if (!r.estimate) out << "surface area    " << Num(r.mp.surface_area) << " m^2\n";
-  out << "mass            " << Num(r.mp.mass) << " kg" << (se ? pm(se->mass) : "") << "\n";
-  const Vector3& c = r.mp.center_of_mass;
-  out << "center of mass  [" << Num(c[0]) << "  " << Num(c[1]) << "  " << Num(c[2]) << " ] m, in the file's axes\n";
-  if (se) {
-    out << "  +-            [" << Num(se->center_of_mass[0]) << "  " << Num(se->center_of_mass[1]) << "  "
-        << Num(se->center_of_mass[2]) << " ]\n";
+  if (!shell) {
+    out << "volume          " << Num(r.mp.volume / u.Volume()) << " " << u.VolumeName()
+        << (se ? pm(se->volume, u.Volume()) : "") << "\n";
   }
-  out << "inertia about the center of mass, file's axes (kg m^2):\n";
-  PrintMatrix(out, "                ", r.mp.inertia_com);
+  if (!r.estimate) out << "surface area    " << Num(r.mp.surface_area / u.Area()) << " " << u.AreaName() << "\n";
+  out << "mass            " << Num(r.mp.mass / u.Mass()) << " " << mass_unit << (se ? pm(se->mass, u.Mass()) : "")
+      << "\n";
+  out << "center of mass  " << vec(r.mp.center_of_mass, u.Length()) << " " << len << ", in the file's axes\n";
+  if (se) out << "  +-            " << vec(se->center_of_mass, u.Length()) << "\n";
+  const std::string inertia_label = " (" + (u.IsSi() ? std::string("kg m^2") : inertia_unit) + "):\n";
+  out << "inertia about the center of mass, file's axes" << inertia_label;
+  PrintMatrix(out, "                ", r.mp.inertia_com / u.Inertia());
   if (se) {
     out << "  +-\n";
-    PrintMatrix(out, "                ", se->inertia_com);
+    PrintMatrix(out, "                ", se->inertia_com / u.Inertia());
   }
   if (opt.frame == Frame::kOrigin) {
-    out << "inertia about the file's origin, file's axes (kg m^2):\n";
-    PrintMatrix(out, "                ", r.mp.InertiaAbout(Vector3::Zero()));
+    out << "inertia about the file's origin, file's axes" << inertia_label;
+    PrintMatrix(out, "                ", r.mp.InertiaAbout(Vector3::Zero()) / u.Inertia());
+  }
+  if (opt.reference) {
+    const ReferenceFrame& f = *opt.reference;
+    out << "inertia about " << (f.point ? vec(*f.point, u.Length()) + " " + len : std::string("the center of mass"))
+        << (f.axes.isIdentity(0) ? ", file's axes" : ", in the axes given") << inertia_label;
+    PrintMatrix(out, "                ", InertiaInFrame(r.mp, f) / u.Inertia());
+    if (!f.axes.isIdentity(0)) {
+      out << "  axes (columns, in the file's axes):\n";
+      PrintMatrix(out, "                ", f.axes);
+    }
   }
   out << "                convention: I = integral of rho (|r|^2 E - r r^T) dV; off-diagonal\n"
          "                entries are the NEGATED products of inertia (Ixy = -integral rho x y dV),\n"
          "                as URDF ixy/ixz/iyz and MJCF fullinertia expect them\n";
   const Vector3& m = r.principal.moments;
-  out << "principal moments (ascending)  " << Num(m[0]) << "  " << Num(m[1]) << "  " << Num(m[2]) << " kg m^2\n";
+  const double ui = u.Inertia();
+  out << "principal moments (ascending)  " << Num(m[0] / ui) << "  " << Num(m[1] / ui) << "  " << Num(m[2] / ui) << " "
+      << (u.IsSi() ? std::string("kg m^2") : inertia_unit) << "\n";
   if (r.estimate) {
     const Vector3& ms = r.estimate->principal_moments_se;
-    out << "  +-                             " << Num(ms[0]) << "  " << Num(ms[1]) << "  " << Num(ms[2]) << "\n";
+    out << "  +-                             " << Num(ms[0] / ui) << "  " << Num(ms[1] / ui) << "  " << Num(ms[2] / ui)
+        << "\n";
   }
   out << "principal axes (columns, right-handed, in the file's axes):\n";
   PrintMatrix(out, "                ", r.principal.axes);

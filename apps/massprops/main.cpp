@@ -28,6 +28,8 @@
 #include "massprops/implicit.h"
 #include "massprops/io.h"
 #include "massprops/load.h"
+#include "massprops/principal_axes.h"
+#include "massprops/units.h"
 #include "massprops/version.h"
 #include "progress.h"
 
@@ -62,6 +64,10 @@ struct Arguments {
   std::uint64_t seed = 1;
   double tolerance = 0;
   std::string reader = "auto";
+  std::vector<double> about;       // a point, in the file's unit and axes
+  std::vector<double> axes;        // 9 numbers, rows of the rotation whose columns are the axes
+  std::vector<double> axes_euler;  // yaw, pitch, roll in degrees (z, y', x'')
+  std::string output_units;
 };
 
 template <typename T>
@@ -216,6 +222,23 @@ int main(int argc, char** argv) {
                  "for every format (32-bit coordinates; for comparison)")
       ->check(CLI::IsMember({"auto", "assimp"}))
       ->capture_default_str();
+  app.add_option("--about", a.about,
+                 "Also report the inertia tensor about this point X,Y,Z (in the file's unit and axes)")
+      ->delimiter(',')
+      ->expected(3);
+  auto* axes = app.add_option("--axes", a.axes,
+                              "Report that tensor in these axes: a rotation as 9 numbers, row by row, whose "
+                              "columns are the axes in the file's axes")
+                   ->delimiter(',')
+                   ->expected(9);
+  app.add_option("--axes-euler", a.axes_euler,
+                 "The axes as yaw,pitch,roll in degrees (intrinsic z, y', x'': R = Rz Ry Rx)")
+      ->delimiter(',')
+      ->expected(3)
+      ->excludes(axes);
+  app.add_option("--output-units", a.output_units,
+                 "Units of the table, JSON and CSV: si (default), mmgs (g, mm, g*mm^2), cgs, ips (lb, in, "
+                 "lb*in^2), or MASS,LENGTH,INERTIA such as kg,mm,kg*mm^2");
   app.add_flag("-q,--quiet", a.quiet, "No progress line on stderr");
   app.add_option("-o,--output", a.output, "Write the output to this file (whole or not at all)");
   if (const int status = app::ParseArguments(app, argc, argv); status >= 0) return status;
@@ -296,8 +319,47 @@ int main(int argc, char** argv) {
                                         a.format);
   format.frame = a.frame == "origin" ? cli::Frame::kOrigin : cli::Frame::kCenterOfMass;
   format.json_array = a.files.size() + (a.implicit.empty() ? 0 : 1) > 1;
+  if (!a.output_units.empty()) {
+    try {
+      format.units = ParseReportUnits(a.output_units);
+    } catch (const std::exception& e) {
+      return bad(std::string("--output-units: ") + e.what());
+    }
+  }
+  if (!a.about.empty() || !a.axes.empty() || !a.axes_euler.empty()) {
+    ReferenceFrame f;
+    for (double v : a.about) {
+      if (!std::isfinite(v)) return bad("--about needs three finite numbers");
+    }
+    for (double v : a.axes) {
+      if (!std::isfinite(v)) return bad("--axes needs nine finite numbers");
+    }
+    for (double v : a.axes_euler) {
+      if (!std::isfinite(v)) return bad("--axes-euler needs three finite angles");
+    }
+    if (!a.about.empty()) f.point = Vector3(a.about[0], a.about[1], a.about[2]) * MetresPerUnit(ToLoadOptions(a).unit);
+    try {
+      if (!a.axes.empty()) {
+        Matrix3 r;
+        r << a.axes[0], a.axes[1], a.axes[2], a.axes[3], a.axes[4], a.axes[5], a.axes[6], a.axes[7], a.axes[8];
+        f.axes = RequireRotation(r);
+      }
+      if (!a.axes_euler.empty()) {
+        const double deg = 3.14159265358979323846 / 180;
+        f.axes = RotationFromEulerZYX(a.axes_euler[0] * deg, a.axes_euler[1] * deg, a.axes_euler[2] * deg);
+      }
+    } catch (const std::exception& e) {
+      return bad(std::string("--axes: ") + e.what());
+    }
+    format.reference = f;
+  }
   const bool robot =
       format.format == cli::Format::kUrdf || format.format == cli::Format::kSdf || format.format == cli::Format::kMjcf;
+  if (robot && (!a.output_units.empty() || format.reference)) {
+    return bad(
+        "URDF, SDF and MJCF give the inertia about the center of mass in SI; --output-units, --about and "
+        "--axes are for the table, JSON and CSV");
+  }
   LoadOptions options = ToLoadOptions(a);
   options.unit_stated = app.count("--unit") > 0;
 

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 
 namespace massprops {
 namespace {
@@ -74,6 +75,29 @@ PrincipalInertia ComputePrincipalInertia(const Matrix3& inertia, double degenera
 RigidTransform BodyFrameTransform(const MassProperties& mp, const PrincipalInertia& principal) {
   RigidTransform M_from_B{principal.axes, mp.center_of_mass};  // x_M = R_MB x_B + com
   return M_from_B.Inverse();
+}
+
+Matrix3 InertiaInFrame(const MassProperties& mp, const ReferenceFrame& frame) {
+  const Matrix3 about = frame.point ? mp.InertiaAbout(*frame.point) : mp.inertia_com;
+  return frame.axes.transpose() * about * frame.axes;
+}
+
+Matrix3 RequireRotation(const Matrix3& m) {
+  if (!m.allFinite()) throw std::invalid_argument("the axes are not finite");
+  const double off = (m.transpose() * m - Matrix3::Identity()).cwiseAbs().maxCoeff();
+  if (off > 1e-9) {
+    std::ostringstream msg;
+    msg << "the axes are not orthonormal (|RᵀR − E| = " << off << "; give unit, perpendicular columns)";
+    throw std::invalid_argument(msg.str());
+  }
+  if (m.determinant() < 0) throw std::invalid_argument("the axes are left-handed (determinant −1): give a rotation");
+  return m;
+}
+
+Matrix3 RotationFromEulerZYX(double yaw, double pitch, double roll) {
+  return (Eigen::AngleAxisd(yaw, Vector3::UnitZ()) * Eigen::AngleAxisd(pitch, Vector3::UnitY()) *
+          Eigen::AngleAxisd(roll, Vector3::UnitX()))
+      .toRotationMatrix();
 }
 
 ValidityReport CheckPhysicallyValid(const Vector3& m, double relative_tolerance) {

@@ -285,6 +285,42 @@ many=("$data"/meshes/*.obj "$data"/meshes/*.stl "$data"/meshes/*.STL "$data"/mes
 [ $one -eq 1 ] && [ $four -eq 1 ] && cmp -s "$tmp/one.json" "$tmp/four.json" && cmp -s "$tmp/one.err" "$tmp/four.err" &&
   grep -q "open.obj" "$tmp/four.err"; check "several files: same output whatever the threads" $?
 
+# Report frames and units: the T-handle (56 g at density 1000, its center of mass at y = −1/140 m)
+# in g, mm, g*mm^2, about the crossbar's top (0, 0.02, 0) m, turned by 90° about z.
+"$bin" "$data/meshes/t_handle.obj" --unit m --output-units mmgs --about 0,0.02,0 --axes-euler 90,0,0 \
+  --format json -q >"$tmp/mmgs.json"
+[ $? -eq 0 ]; check "--output-units/--about/--axes-euler run" $?
+"$bin" "$data/meshes/t_handle.obj" --unit m --format json -q >"$tmp/si.json"
+/usr/bin/python3 - "$tmp/mmgs.json" "$tmp/si.json" <<'PY'
+import json, sys
+g, si = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+close = lambda a, b, rel=1e-14: abs(a - b) <= rel * max(abs(a), abs(b), 1e-300)
+assert g["units"] == {"mass": "g", "length": "mm", "area": "mm^2", "volume": "mm^3", "density": "g/mm^3",
+                      "inertia": "g*mm^2"}, g["units"]
+assert si["units"]["inertia"] == "kg*m^2"
+assert close(g["mass"], si["mass"] * 1e3) and close(g["volume"], si["volume"] * 1e9)
+assert close(g["center_of_mass"][1], si["center_of_mass"][1] * 1e3)
+assert all(close(a, b * 1e9) for a, b in zip(g["principal_moments"], si["principal_moments"]))
+# About (0, 20 mm, 0): d = 20 + 1000/140 mm along y; in the turned axes x' = y, y' = −x.
+m, d = 56.0, 20 + 1000 / 140
+t = g["inertia_about"]["tensor"]
+ic = si["inertia_com"]
+assert g["inertia_about"]["point"] == [0, 20, 0]
+assert close(t[0][0], ic[1][1] * 1e9, 1e-12)                 # about y: no shift along y
+assert close(t[1][1], ic[0][0] * 1e9 + m * d * d, 1e-12)     # about x: + m d²
+assert close(t[2][2], ic[2][2] * 1e9 + m * d * d, 1e-12)
+PY
+check "units and frames agree with SI and the parallel-axis theorem" $?
+"$bin" "$data/meshes/t_handle.obj" --output-units ips --format csv -q | head -1 | grep -q "volume_in3,mass_lb,density_lb_in3,com_x_in" && \
+  "$bin" "$data/meshes/t_handle.obj" --output-units ips --format csv -q | head -1 | grep -q "ixx_lb_in2"
+check "CSV columns named by their units" $?
+"$bin" "$data/meshes/t_handle.obj" --output-units g,mm >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ] && grep -q "si, mmgs, cgs or ips" "$tmp/err"; check "bad --output-units exits 2" $?
+"$bin" "$data/meshes/t_handle.obj" --axes 1,0,0,0,1,0,0,0,2 >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ] && grep -q "not orthonormal" "$tmp/err"; check "--axes that are no rotation exit 2" $?
+"$bin" "$data/meshes/t_handle.obj" --about 0,0,0 --format urdf >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ] && grep -q "URDF, SDF and MJCF" "$tmp/err"; check "--about with URDF exits 2" $?
+
 # Advice in messages is worded in the command line's vocabulary.
 "$bin" "$tmp/open.obj" >/dev/null 2>"$tmp/err"
 grep -q "try --repair, or pass --allow-open" "$tmp/err"; check "CLI vocabulary in errors" $?

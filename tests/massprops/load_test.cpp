@@ -10,6 +10,7 @@
 
 #include "massprops/load.h"
 #include "massprops/primitive.h"
+#include "massprops/principal_axes.h"
 #include "massprops/solids.h"
 #include "test_utils.h"
 
@@ -41,6 +42,46 @@ TEST(Units, OneTable) {
   EXPECT_FALSE(FindLengthUnit("furlong"));
   EXPECT_THAT([] { ParseLengthUnit("furlong"); },
               ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("m, cm, mm, in, ft")));
+}
+
+TEST(Units, ReportUnitsAndTheirFactors) {
+  const ReportUnits mmgs = ParseReportUnits("mmgs");
+  EXPECT_EQ(mmgs.Describe(), "g, mm, g*mm^2");
+  EXPECT_EQ(mmgs.Inertia(), 1e-3 * 1e-3 * 1e-3);
+  EXPECT_EQ(mmgs.DensityName(), "g/mm^3");
+  EXPECT_TRUE(NearRel(mmgs.Density(), 1e6, 1e-15));  // 1 g/mm^3 = 10^6 kg/m^3
+  const ReportUnits ips = ParseReportUnits("ips");
+  EXPECT_EQ(ips.Inertia(), 0.45359237 * 0.0254 * 0.0254);  // 1 lb*in^2, by the definitions of lb and in
+  EXPECT_EQ(ParseReportUnits("lb,ft,lb*ft^2").Inertia(), 0.45359237 * 0.3048 * 0.3048);
+  EXPECT_TRUE(ParseReportUnits("si").IsSi());
+  EXPECT_EQ(ParseReportUnits("kg,um,kg*mm^2").length, LengthUnit::kMicrometre);
+  EXPECT_THAT([] { ParseReportUnits("g,mm"); },
+              ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("si, mmgs, cgs or ips")));
+  EXPECT_THROW(ParseReportUnits("stone,mm,g*mm^2"), std::invalid_argument);
+}
+
+// A 1 × 2 × 3 box: about a corner, its inertia has the closed form m(b² + c²)/3 on the diagonal and
+// −m·a·b/4 off it; turned by 90° about z, x and y trade places.
+TEST(ReferenceFrames, AboutAPointAndInOtherAxes) {
+  const MassProperties box = solids::BoxProperties(Vector3(1, 2, 3), 1000.0);  // centred at the origin
+  const double m = box.mass;
+  ReferenceFrame corner;
+  corner.point = Vector3(-0.5, -1, -1.5);
+  const Matrix3 I = InertiaInFrame(box, corner);
+  EXPECT_TRUE(NearRel(I(0, 0), m * (4 + 9) / 3, 1e-14));
+  EXPECT_TRUE(NearRel(I(2, 2), m * (1 + 4) / 3, 1e-14));
+  EXPECT_TRUE(NearRel(I(0, 1), -m * 1 * 2 / 4, 1e-14));
+  ReferenceFrame turned;
+  turned.axes = RotationFromEulerZYX(M_PI / 2, 0, 0);
+  const Matrix3 T = InertiaInFrame(box, turned);  // about the center of mass
+  EXPECT_TRUE(NearRel(T(0, 0), box.inertia_com(1, 1), 1e-14));
+  EXPECT_TRUE(NearRel(T(1, 1), box.inertia_com(0, 0), 1e-14));
+  EXPECT_NEAR(T(0, 1), 0, 1e-12 * m);
+  EXPECT_NO_THROW(RequireRotation(turned.axes));
+  EXPECT_THAT([] { RequireRotation(Matrix3::Identity() * 2); },
+              ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("not orthonormal")));
+  EXPECT_THAT([] { RequireRotation(Vector3(1, 1, -1).asDiagonal()); },
+              ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("left-handed")));
 }
 
 TEST(MassSpec, DensityOrMass) {

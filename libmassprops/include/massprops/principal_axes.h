@@ -1,8 +1,9 @@
 #pragma once
 /// @file
-/// Principal moments and axes of an inertia tensor, the body frame of a mesh, and the
-/// physical-validity check of an inertia tensor.
+/// Principal moments and axes of an inertia tensor, the body frame of a mesh, reference frames a
+/// report reads the tensor in, and the physical-validity check of an inertia tensor.
 
+#include <optional>
 #include <string>
 
 #include "massprops/mass_properties.h"
@@ -43,6 +44,22 @@ struct RigidTransform {
 /// (inertia diagonal, ascending). Returns the transform that carries mesh coordinates into body
 /// coordinates, x_B = R_MBᵀ (x_M − com); its inverse is the seed notes' x = R x0 + x_c.
 RigidTransform BodyFrameTransform(const MassProperties& mp, const PrincipalInertia& principal);
+
+/// A frame a report reads the inertia tensor in: about `point` (metres, in the input's axes; none:
+/// the center of mass), along `axes` (a rotation; its columns are the frame's axes in the input's
+/// axes).
+struct ReferenceFrame {
+  std::optional<Vector3> point;
+  Matrix3 axes = Matrix3::Identity();
+};
+/// The inertia tensor about the frame's point (the parallel-axis theorem) in its axes: Rᵀ I_p R.
+Matrix3 InertiaInFrame(const MassProperties& mp, const ReferenceFrame& frame);
+/// `m` if it is a rotation: orthonormal to 1e-9 and right-handed (det +1).
+/// @throws std::invalid_argument saying which it is not.
+Matrix3 RequireRotation(const Matrix3& m);
+/// The rotation whose columns are a frame's axes after intrinsic rotations by `yaw` about z, then
+/// `pitch` about the new y, then `roll` about the newest x (radians): R = Rz(yaw) Ry(pitch) Rx(roll).
+Matrix3 RotationFromEulerZYX(double yaw, double pitch, double roll);
 
 /// Result of the physical-validity check.
 struct ValidityReport {
