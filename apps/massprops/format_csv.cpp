@@ -55,6 +55,13 @@ std::string FormatCsv(const std::vector<SolidResult>& results, const FormatOptio
   // Thin shells have no volume and no volume density: those cells stay empty, and the area
   // density has a column of its own.
   if (shells) out << ",area_density_" << Suffix(u.AreaDensityName());
+  bool hulls = false;
+  for (const SolidResult& r : results) hulls = hulls || r.hull.has_value();
+  if (hulls) {
+    out << ",hull_volume_" << Suffix(u.VolumeName()) << ",hull_mass_" << UnitName(u.mass);
+    for (const char* name : {"com_x", "com_y", "com_z"}) out << ",hull_" << name << "_" << l;
+    for (const char* name : {"ixx", "iyy", "izz", "ixy", "ixz", "iyz", "i1", "i2", "i3"}) out << ",hull_" << name << in;
+  }
   out << ",warnings\n";
   for (const SolidResult& r : results) {
     const Matrix3 I = r.mp.inertia_com / u.Inertia();
@@ -90,6 +97,17 @@ std::string FormatCsv(const std::vector<SolidResult>& results, const FormatOptio
       out << ",,,,,,,,,,,,,,";
     }
     if (shells) out << "," << (shell ? ExactDecimal(r.mp.density / u.AreaDensity()) : "");
+    if (hulls && r.hull) {
+      const MassProperties& h = r.hull->mp;
+      const Matrix3 hi = h.inertia_com / u.Inertia();
+      const Vector3 hc = h.center_of_mass / u.Length(), hm = r.hull->principal.moments / u.Inertia();
+      for (double v : {h.volume / u.Volume(), h.mass / u.Mass(), hc[0], hc[1], hc[2], hi(0, 0), hi(1, 1), hi(2, 2),
+                       hi(0, 1), hi(0, 2), hi(1, 2), hm[0], hm[1], hm[2]}) {
+        out << "," << ExactDecimal(v);
+      }
+    } else if (hulls) {
+      out << ",,,,,,,,,,,,,,";
+    }
     std::string warnings;  // every finding, "; "-separated
     for (const Finding& f : r.findings) warnings += (warnings.empty() ? "" : "; ") + Worded(f.message, WordsOf(opt));
     out << "," << (warnings.empty() ? "" : Quoted(warnings)) << "\n";

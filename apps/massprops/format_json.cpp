@@ -100,6 +100,19 @@ Json ToJson(const SolidResult& r, const FormatOptions& opt) {
     j["surface_area"] = nullptr;
   }
   if (r.repair) j["repair"] = r.repair->Summary();
+  if (r.hull) {
+    const HullReport& h = *r.hull;
+    const Vector3 hc = h.mp.center_of_mass / u.Length();
+    const Vector3 hm = h.principal.moments / u.Inertia();
+    j["hull"] = {{"vertices", h.vertices},
+                 {"faces", h.faces},
+                 {"volume", h.mp.volume / u.Volume()},
+                 {"mass", h.mp.mass / u.Mass()},
+                 {"center_of_mass", {hc[0], hc[1], hc[2]}},
+                 {"inertia_com", Mat(h.mp.inertia_com / u.Inertia())},
+                 {"principal_moments", {hm[0], hm[1], hm[2]}},
+                 {"principal_axes", Mat(h.principal.axes)}};
+  }
   Json warnings = Json::array();
   for (const Finding& f : r.findings) warnings.push_back(Worded(f.message, WordsOf(opt)));
   j["warnings"] = warnings;

@@ -123,6 +123,21 @@ std::string FormatTable(const SolidResult& r, const FormatOptions& opt) {
   }
   out << "principal axes (columns, right-handed, in the file's axes):\n";
   PrintMatrix(out, "                ", r.principal.axes);
+  if (r.hull) {
+    const HullReport& h = *r.hull;
+    auto pct = [](double a, double b) { return FormatDouble(100 * (a - b) / b, "%+.3g") + " %"; };
+    out << "convex hull     as collision engines see the body (" << h.vertices << " vertices, " << h.faces
+        << " triangles), " << (r.mass_fixed ? "the same mass" : "the same density") << ":\n";
+    out << "  volume        " << Num(h.mp.volume / u.Volume()) << " " << u.VolumeName() << "  ("
+        << pct(h.mp.volume, r.mp.volume) << " of the part's)\n";
+    out << "  mass          " << Num(h.mp.mass / u.Mass()) << " " << mass_unit << "\n";
+    out << "  center of mass " << vec(h.mp.center_of_mass, u.Length()) << " " << len << "\n";
+    out << "  inertia about its center of mass, file's axes" << inertia_label;
+    PrintMatrix(out, "                ", h.mp.inertia_com / u.Inertia());
+    const Vector3& hm = h.principal.moments;
+    out << "  principal moments            " << Num(hm[0] / ui) << "  " << Num(hm[1] / ui) << "  " << Num(hm[2] / ui)
+        << "  (" << pct(hm[0], m[0]) << ", " << pct(hm[1], m[1]) << ", " << pct(hm[2], m[2]) << ")\n";
+  }
   out << "physically valid  "
       << (r.validity.valid ? "yes (moments positive, I1 + I2 >= I3)" : "NO: " + r.validity.reason) << "\n";
   for (const Finding& f : r.findings) out << "warning         " << Worded(f.message, WordsOf(opt)) << "\n";

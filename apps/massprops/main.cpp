@@ -53,6 +53,7 @@ struct Arguments {
   bool full_check = false;
   bool repair = false;
   bool check_self_intersections = false;
+  bool hull = false;
   bool shell = false;
   double area_density = 0.0;
   double wall = 0.0;
@@ -105,6 +106,7 @@ LoadOptions ToLoadOptions(const Arguments& a) {
   o.allow_open = a.allow_open;
   o.full_check = a.full_check;
   o.check_self_intersections = a.check_self_intersections;
+  o.hull = a.hull;
   o.num_threads = a.threads;
   return o;
 }
@@ -214,6 +216,9 @@ int main(int argc, char** argv) {
                "shells outward and cavities inward; what changed is reported");
   app.add_flag("--check-self-intersections", a.check_self_intersections,
                "Count pairs of faces that intersect (CGAL); a warning when there are any");
+  app.add_flag("--hull", a.hull,
+               "Also the mass properties of the convex hull (CGAL), as collision engines see the body, at the "
+               "same density (or --mass), printed beside the exact ones");
   app.add_flag("--full-check", a.full_check,
                "Binary STL: weld the corners and count vertices, components and bad edges even "
                "when the streaming check finds the surface closed (slower)");
@@ -267,12 +272,15 @@ int main(int argc, char** argv) {
   }
   if (a.winding_number && (a.shell || a.wall > 0))
     return bad("--winding-number does not combine with --shell or --wall");
+  if (a.hull && (a.shell || a.winding_number)) {
+    return bad("--hull is the convex hull as a solid: it goes with solids and --wall, not --shell or --winding-number");
+  }
   if (!a.implicit.empty() && (a.shell || a.wall > 0)) {
     return bad("--shell and --wall describe a mesh's surface; an --implicit shape is a solid and takes neither");
   }
   if (a.files.empty()) {  // only --implicit: the options about mesh files would be ignored
     for (const char* flag : {"--repair", "--allow-open", "--full-check", "--check-self-intersections", "--path",
-                             "--reader", "--winding-number"}) {
+                             "--reader", "--winding-number", "--hull"}) {
       if (app.count(flag) > 0)
         return bad(std::string(flag) + " applies to mesh files; --implicit shapes take no such option");
     }

@@ -321,6 +321,13 @@ check "CSV columns named by their units" $?
 "$bin" "$data/meshes/t_handle.obj" --about 0,0,0 --format urdf >/dev/null 2>"$tmp/err"
 [ $? -eq 2 ] && grep -q "URDF, SDF and MJCF" "$tmp/err"; check "--about with URDF exits 2" $?
 
+# The convex hull beside the exact numbers: the T-handle's hull is a hexagonal prism, 9.2e-5 m^3.
+"$bin" "$data/meshes/t_handle.obj" --unit m --hull --format json -q | \
+  /usr/bin/python3 -c "import json, sys; h = json.load(sys.stdin)['hull']; assert abs(h['volume'] - 9.2e-5) < 1e-18, h"
+check "--hull in JSON" $?
+"$bin" "$data/meshes/t_handle.obj" --hull --shell --area-density 1 >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ]; check "--hull with --shell exits 2" $?
+
 # Advice in messages is worded in the command line's vocabulary.
 "$bin" "$tmp/open.obj" >/dev/null 2>"$tmp/err"
 grep -q "try --repair, or pass --allow-open" "$tmp/err"; check "CLI vocabulary in errors" $?

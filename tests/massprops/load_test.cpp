@@ -2,6 +2,7 @@
 // rule, primitives, wording. Truth: closed forms of the T-handle (two boxes) and of the
 // primitives, and hand-counted topology.
 
+#include <array>
 #include <cmath>
 #include <fstream>
 
@@ -214,6 +215,44 @@ TEST(LoadSolid, StreamedAndCheckedPathsAgree) {
   // Just below the threshold, the default path is the checked one.
   const SolidResult small = LoadSolid(WriteTorusStl(150, "torus_90000.stl"), LoadOptions{});
   EXPECT_TRUE(small.full_topology);
+}
+
+// The convex hull, as collision engines see a body: a convex part is its own hull; the T-handle's
+// hull is the prism over the hexagon (±0.04, 0.02), (±0.04, 0), (±0.01, −0.06), 0.02 deep, built
+// here by hand and integrated without CGAL.
+TEST(LoadSolid, ConvexHullBesideTheExactNumbers) {
+  LoadOptions o;
+  o.hull = true;
+  o.unit_stated = true;
+  const SolidResult t = LoadSolid(DataPath("meshes/t_handle.obj"), o);
+  ASSERT_TRUE(t.hull.has_value());
+  PolygonMesh prism;
+  const double xy[6][2] = {{-0.04, 0.02}, {-0.04, 0}, {-0.01, -0.06}, {0.01, -0.06}, {0.04, 0}, {0.04, 0.02}};
+  prism.V.resize(12, 3);
+  for (int k = 0; k < 6; ++k) {
+    prism.V.row(k) << xy[k][0], xy[k][1], 0.01;
+    prism.V.row(6 + k) << xy[k][0], xy[k][1], -0.01;
+  }
+  prism.AddFace(std::vector<int>{0, 1, 2, 3, 4, 5});    // z = +0.01, counter-clockwise seen from +z
+  prism.AddFace(std::vector<int>{11, 10, 9, 8, 7, 6});  // z = −0.01
+  for (int k = 0; k < 6; ++k) prism.AddFace(std::array<int, 4>{k, 6 + k, 6 + (k + 1) % 6, (k + 1) % 6});
+  const MassProperties want = ComputeMassProperties(prism, 1000.0);
+  EXPECT_TRUE(NearRel(want.volume, 0.0046 * 0.02, 1e-14));  // the hexagon's area × depth
+  EXPECT_TRUE(NearRel(t.hull->mp.volume, want.volume, 1e-13));
+  EXPECT_NEAR((t.hull->mp.center_of_mass - want.center_of_mass).norm(), 0, 1e-15);
+  EXPECT_LT((t.hull->mp.inertia_com - want.inertia_com).norm(), 1e-13 * want.inertia_com.norm());
+  EXPECT_EQ(t.hull->vertices, 12);
+  // A convex part is its own hull, and a fixed mass stays the mass of the hull.
+  o.mass = TotalMass{2.0};
+  const SolidResult moon = LoadSolid(DataPath("meshes/Moon.stl"), o);
+  EXPECT_TRUE(NearRel(moon.hull->mp.mass, 2.0, 1e-14));
+  LoadedMesh box_mesh;
+  box_mesh.mesh = solids::Box(Vector3(1, 2, 3));
+  const SolidResult box = SolveMesh(box_mesh, "box", o);
+  EXPECT_TRUE(NearRel(box.hull->mp.volume, 6.0, 1e-14));
+  EXPECT_LT((box.hull->mp.inertia_com - box.mp.inertia_com).norm(), 1e-14 * box.mp.inertia_com.norm());
+  o.model = ShellModel{1.0};
+  EXPECT_THROW(LoadSolid(DataPath("meshes/t_handle.obj"), o), std::invalid_argument);
 }
 
 TEST(LoadSolid, ShellAndWallModels) {

@@ -86,6 +86,9 @@ struct LoadOptions {
   bool full_check = false;
   /// Count intersecting face pairs with CGAL (needs a build with CGAL).
   bool check_self_intersections = false;
+  /// Also compute the mass properties of the convex hull (CGAL), as collision engines see the
+  /// body, at the same density (or the same total mass). Solid and wall models.
+  bool hull = false;
   int num_threads = 0;  ///< 0: every core; the bits do not depend on it
   ProgressCallback progress;
 };
@@ -120,6 +123,13 @@ enum class UnitSource { kDefault, kOption, kFile };
 const char* UnitSourceName(UnitSource source);
 
 /// Everything the pipeline learned about one input.
+/// The convex hull's mass properties beside the exact ones (LoadOptions::hull).
+struct HullReport {
+  MassProperties mp;  ///< SI, in the file's axes
+  PrincipalInertia principal;
+  std::int64_t vertices = 0, faces = 0;  ///< of the hull (triangles)
+};
+
 struct SolidResult {
   std::string source;                    ///< the file path, or the implicit shape's text
   LengthUnit unit = LengthUnit::kMetre;  ///< the unit the coordinates were read in
@@ -144,6 +154,7 @@ struct SolidResult {
   double size_m = 0;          ///< bounding-box diagonal, m
   double seconds = 0;         ///< wall-clock time of the whole pipeline
   std::vector<Finding> findings;
+  std::optional<HullReport> hull;  ///< LoadOptions::hull
 };
 
 /// An input the pipeline refuses: what() names the file, the fault and (with the C++ option

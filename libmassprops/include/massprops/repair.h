@@ -48,6 +48,11 @@ RepairedMesh RepairMesh(const PolygonMesh& mesh, const RepairOptions& options = 
 /// cannot unite them (a shell that intersects itself).
 PolygonMesh UnionOfShells(const PolygonMesh& mesh, std::int64_t& merged);
 
+/// The convex hull of the mesh's corners (CGAL convex_hull_3, exact predicates): triangles facing
+/// outward, on the input's own coordinates. What collision engines see of a body (MuJoCo's
+/// inertia="convex"). @throws std::invalid_argument when every corner lies in one plane.
+PolygonMesh ConvexHull(const PolygonMesh& mesh);
+
 /// Number of pairs of faces that intersect other than along shared edges or vertices, counting up
 /// to `limit`: polygons are split into triangles (SplitPolygon), candidate pairs come from CGAL's
 /// box intersection, and each pair is decided with exact predicates. Triangles of the same polygon

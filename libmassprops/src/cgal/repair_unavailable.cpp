@@ -20,4 +20,6 @@ PolygonMesh UnionOfShells(const PolygonMesh&, std::int64_t&) { Unavailable("the 
 
 std::int64_t CountSelfIntersections(const PolygonMesh&, std::int64_t) { Unavailable("the self-intersection check"); }
 
+PolygonMesh ConvexHull(const PolygonMesh&) { Unavailable("the convex hull"); }
+
 }  // namespace massprops

@@ -9,6 +9,7 @@
 #include "massprops/composition.h"
 #include "massprops/implicit.h"
 #include "massprops/load.h"
+#include "massprops/repair.h"
 #include "massprops/shell.h"
 #include "massprops/text.h"
 #include "plausibility.h"
@@ -138,7 +139,7 @@ bool TryStreamedStl(SolidResult& r, const std::string& file, const LoadOptions& 
   const bool big = !size_error && bytes >= 84 + 50 * static_cast<std::uintmax_t>(kStreamingThreshold);
   const bool solid = std::holds_alternative<SolidModel>(opt.model);
   if (!(stl && big && solid && opt.path != IntegrationPath::kPolygons && !opt.full_check &&
-        opt.reader == Reader::kAuto && !opt.repair && !opt.check_self_intersections)) {
+        opt.reader == Reader::kAuto && !opt.repair && !opt.check_self_intersections && !opt.hull)) {
     return false;
   }
   IntegrationOptions io;
@@ -274,6 +275,27 @@ void IntegrateSolid(SolidResult& r, const LoadOptions& opt) {
   Finish(r, integrals, opt, Diagonal(mesh));
 }
 
+// The convex hull's mass properties, at the same density as the part (or the same total mass).
+void AddHull(SolidResult& r, const PolygonMesh& surface, const LoadOptions& opt) {
+  Stage(opt, "computing the convex hull (CGAL)");
+  HullReport h;
+  PolygonMesh hull;
+  try {
+    hull = ConvexHull(surface);
+  } catch (const std::invalid_argument& e) {
+    throw LoadError(r.source + ": " + e.what());
+  }
+  IntegrationOptions io;
+  io.num_threads = opt.num_threads;
+  const VolumeIntegrals integrals = IntegratePolygons(hull, io);
+  const MassProperties unit_density = Scaled(FromIntegrals(integrals, 1.0), MetresPerUnit(opt.unit));
+  h.mp = AtDensity(unit_density, FixesMass(opt.mass) ? ResolveDensity(opt.mass, unit_density.volume) : r.mp.density);
+  h.principal = ComputePrincipalInertia(h.mp.inertia_com);
+  h.vertices = hull.V.rows();
+  h.faces = hull.num_faces();
+  r.hull = h;
+}
+
 }  // namespace
 
 const char* ModelName(ModelKind kind) {
@@ -332,6 +354,12 @@ namespace {
 SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_clock::time_point t0);
 
 void RequireValidModel(const LoadOptions& given) {
+  if (given.hull && !std::holds_alternative<SolidModel>(given.model) &&
+      !std::holds_alternative<WallModel>(given.model)) {
+    throw std::invalid_argument(
+        "the convex hull is a solid: it goes with the solid and wall models, not a shell or a "
+        "winding-number estimate");
+  }
   if (const auto* shell = std::get_if<ShellModel>(&given.model);
       shell && !FixesMass(given.mass) && !(std::isfinite(shell->area_density) && shell->area_density > 0)) {
     throw std::invalid_argument("a shell needs a finite, positive area density (kg/m^2) or a total mass");
@@ -448,11 +476,13 @@ SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_c
       Warn(r, FindingKind::kOverlappingShells, r.shells.problem + "; computed anyway ({allow_open})");
     }
   }
+  const PolygonMesh surface = opt.hull ? r.loaded.mesh : PolygonMesh{};  // before a wall replaces it
   if (wall) {
     IntegrateWall(r, *wall, opt);
   } else {
     IntegrateSolid(r, opt);
   }
+  if (opt.hull) AddHull(r, surface, opt);
   r.seconds = SecondsSince(t0);
   return r;
 }
