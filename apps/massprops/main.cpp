@@ -32,6 +32,7 @@
 #include "massprops/units.h"
 #include "massprops/version.h"
 #include "progress.h"
+#include "validate.h"
 
 namespace {
 
@@ -128,6 +129,7 @@ int MergeMain(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "merge") return MergeMain(argc - 1, argv + 1);
+  if (argc > 1 && std::string(argv[1]) == "validate") return cli::ValidateMain(argc - 1, argv + 1);
   // massprops batch (DIR | MANIFEST) -o OUT [batch options] [the usual options]
   const bool batch = argc > 1 && std::string(argv[1]) == "batch";
   if (batch) {
@@ -139,7 +141,8 @@ int main(int argc, char** argv) {
                        "line each in the output (see the README's dataset section)"
                      : "massprops: exact mass properties of the solids that mesh files bound.\n"
                        "Reads OBJ, STL, PLY, OFF (own parsers) and other formats through assimp.\n"
-                       "Subcommands: massprops batch (DIR | MANIFEST) -o OUT.jsonl; massprops merge OUT SHARD..."};
+                       "Subcommands: massprops batch (DIR | MANIFEST) -o OUT.jsonl; massprops merge OUT SHARD...; "
+                       "massprops validate"};
   app.set_version_flag("--version", std::string("massprops ") + kVersion);
   Arguments a;
   cli::BatchOptions b;
@@ -252,7 +255,7 @@ int main(int argc, char** argv) {
     std::cerr << "error: " << what << "\n";
     return app::kBadArguments;
   };
-  if (!batch && !a.files.empty() && app::RefuseReservedWord("massprops", a.files[0], {"fill", "validate"})) {
+  if (!batch && !a.files.empty() && app::RefuseReservedWord("massprops", a.files[0], {"fill"})) {
     return app::kBadArguments;
   }
   if (!std::isfinite(a.density) || !std::isfinite(a.mass) || !std::isfinite(a.area_density) || !std::isfinite(a.wall)) {

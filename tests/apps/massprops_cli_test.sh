@@ -328,6 +328,17 @@ check "--hull in JSON" $?
 "$bin" "$data/meshes/t_handle.obj" --hull --shell --area-density 1 >/dev/null 2>"$tmp/err"
 [ $? -eq 2 ]; check "--hull with --shell exits 2" $?
 
+# massprops validate: the convergence table, as JSON, and its plot.
+"$bin" validate --solids box,torus --resolutions 16,32 --format json --plot "$tmp/conv.png" >"$tmp/val.json"
+[ $? -eq 0 ] && head -c 8 "$tmp/conv.png" | od -c | grep -q "P   N   G" && /usr/bin/python3 -c "
+import json; rows = json.load(open('$tmp/val.json'))
+assert {r['solid'] for r in rows} == {'box', 'torus'} and len(rows) == 4 + 8
+assert all(abs(r['inertia_order'] - 2) < 0.1 for r in rows if r['resolution'] == 32)
+"
+check "validate: JSON rows and a PNG" $?
+"$bin" validate --solids dodecahedron >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ] && grep -q "unknown solid" "$tmp/err"; check "validate: unknown solid exits 2" $?
+
 # Advice in messages is worded in the command line's vocabulary.
 "$bin" "$tmp/open.obj" >/dev/null 2>"$tmp/err"
 grep -q "try --repair, or pass --allow-open" "$tmp/err"; check "CLI vocabulary in errors" $?
