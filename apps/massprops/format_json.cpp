@@ -100,6 +100,16 @@ Json ToJson(const SolidResult& r, const FormatOptions& opt) {
     j["surface_area"] = nullptr;
   }
   if (r.repair) j["repair"] = r.repair->Summary();
+  if (r.exact) {
+    const ExactReport& e = *r.exact;
+    Json enclosures = Json::array();
+    for (const auto& [lo, hi] : e.moments) enclosures.push_back({lo / u.Inertia(), hi / u.Inertia()});
+    j["exact"] = {{"certified", true},
+                  {"principal_moments_enclosure", enclosures},
+                  {"distinct_principal_moments", e.distinct_moments},
+                  {"default_path_inertia_difference", e.inertia_difference},
+                  {"default_path_com_difference", e.com_difference}};
+  }
   if (r.hull) {
     const HullReport& h = *r.hull;
     const Vector3 hc = h.mp.center_of_mass / u.Length();

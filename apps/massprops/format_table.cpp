@@ -123,6 +123,17 @@ std::string FormatTable(const SolidResult& r, const FormatOptions& opt) {
   }
   out << "principal axes (columns, right-handed, in the file's axes):\n";
   PrintMatrix(out, "                ", r.principal.axes);
+  if (r.exact) {
+    const ExactReport& e = *r.exact;
+    out << "certified       volume, mass, center of mass and inertia above are the correctly rounded values of\n"
+           "                the exact rationals the stored coordinates define (GMP); principal moments lie in\n";
+    for (const auto& [lo, hi] : e.moments) {
+      out << "                [" << FormatDouble(lo / ui, "%.17g") << ", " << FormatDouble(hi / ui, "%.17g") << "] "
+          << (u.IsSi() ? std::string("kg m^2") : inertia_unit) << "\n";
+    }
+    out << "                the default path differed by " << FormatDouble(e.inertia_difference, "%.2g")
+        << " (|dI|/|I|) and " << FormatDouble(e.com_difference, "%.2g") << " (|dc|/size)\n";
+  }
   if (r.hull) {
     const HullReport& h = *r.hull;
     auto pct = [](double a, double b) { return FormatDouble(100 * (a - b) / b, "%+.3g") + " %"; };

@@ -55,6 +55,7 @@ struct Arguments {
   bool repair = false;
   bool check_self_intersections = false;
   bool hull = false;
+  bool exact = false;
   bool shell = false;
   double area_density = 0.0;
   double wall = 0.0;
@@ -108,6 +109,7 @@ LoadOptions ToLoadOptions(const Arguments& a) {
   o.full_check = a.full_check;
   o.check_self_intersections = a.check_self_intersections;
   o.hull = a.hull;
+  o.exact = a.exact;
   o.num_threads = a.threads;
   return o;
 }
@@ -222,6 +224,9 @@ int main(int argc, char** argv) {
   app.add_flag("--hull", a.hull,
                "Also the mass properties of the convex hull (CGAL), as collision engines see the body, at the "
                "same density (or --mass), printed beside the exact ones");
+  app.add_flag("--exact", a.exact,
+               "Certified results: exact rational integration of the stored coordinates (GMP); every number "
+               "correctly rounded, principal moments as enclosures, the default path's difference shown");
   app.add_flag("--full-check", a.full_check,
                "Binary STL: weld the corners and count vertices, components and bad edges even "
                "when the streaming check finds the surface closed (slower)");
@@ -275,6 +280,9 @@ int main(int argc, char** argv) {
   }
   if (a.winding_number && (a.shell || a.wall > 0))
     return bad("--winding-number does not combine with --shell or --wall");
+  if (a.exact && (a.shell || a.wall > 0 || a.winding_number)) {
+    return bad("--exact certifies a solid's integrals: not with --shell, --wall or --winding-number");
+  }
   if (a.hull && (a.shell || a.winding_number)) {
     return bad("--hull is the convex hull as a solid: it goes with solids and --wall, not --shell or --winding-number");
   }
@@ -283,7 +291,7 @@ int main(int argc, char** argv) {
   }
   if (a.files.empty()) {  // only --implicit: the options about mesh files would be ignored
     for (const char* flag : {"--repair", "--allow-open", "--full-check", "--check-self-intersections", "--path",
-                             "--reader", "--winding-number", "--hull"}) {
+                             "--reader", "--winding-number", "--hull", "--exact"}) {
       if (app.count(flag) > 0)
         return bad(std::string(flag) + " applies to mesh files; --implicit shapes take no such option");
     }

@@ -82,6 +82,8 @@ LoadOptions ToLoadOptions(const py::kwargs& kw) {
       o.allow_open = py::cast<bool>(value);
     } else if (key == "full_check") {
       o.full_check = py::cast<bool>(value);
+    } else if (key == "exact") {
+      o.exact = py::cast<bool>(value);
     } else if (key == "hull") {
       o.hull = py::cast<bool>(value);
     } else if (key == "check_self_intersections") {

@@ -328,6 +328,19 @@ check "--hull in JSON" $?
 "$bin" "$data/meshes/t_handle.obj" --hull --shell --area-density 1 >/dev/null 2>"$tmp/err"
 [ $? -eq 2 ]; check "--hull with --shell exits 2" $?
 
+# --exact: certified numbers, with the default path's difference.
+"$bin" "$data/meshes/t_handle.obj" --unit m --exact --format json -q | /usr/bin/python3 -c "
+import json, sys
+d = json.load(sys.stdin)
+e = d['exact']
+assert e['certified'] and e['default_path_inertia_difference'] < 1e-12, e
+assert all(lo <= m <= hi for (lo, hi), m in zip(e['principal_moments_enclosure'], d['principal_moments'])), e
+assert d['volume'] == 5.6e-05 and d['mass'] == 0.056
+"
+check "--exact in JSON" $?
+"$bin" "$data/meshes/t_handle.obj" --exact --wall 0.001 >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ]; check "--exact with --wall exits 2" $?
+
 # massprops validate: the convergence table, as JSON, and its plot.
 "$bin" validate --solids box,torus --resolutions 16,32 --format json --plot "$tmp/conv.png" >"$tmp/val.json"
 [ $? -eq 0 ] && head -c 8 "$tmp/conv.png" | od -c | grep -q "P   N   G" && /usr/bin/python3 -c "

@@ -10,6 +10,7 @@
 /// options that would help as markers ({repair}, see wording.h), so each front end words them in
 /// its own vocabulary.
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -89,6 +90,9 @@ struct LoadOptions {
   /// Also compute the mass properties of the convex hull (CGAL), as collision engines see the
   /// body, at the same density (or the same total mass). Solid and wall models.
   bool hull = false;
+  /// Certified results (exact.h): volume, mass, center of mass and inertia become the correctly
+  /// rounded exact values, with enclosures of the principal moments. Solid model.
+  bool exact = false;
   int num_threads = 0;  ///< 0: every core; the bits do not depend on it
   ProgressCallback progress;
 };
@@ -123,6 +127,14 @@ enum class UnitSource { kDefault, kOption, kFile };
 const char* UnitSourceName(UnitSource source);
 
 /// Everything the pipeline learned about one input.
+/// What LoadOptions::exact certified, and how far the default path was from it.
+struct ExactReport {
+  std::array<std::pair<double, double>, 3> moments{};  ///< each principal moment lies in [first, second]
+  int distinct_moments = 3;
+  double inertia_difference = 0;  ///< ‖I_default − I_exact‖ / ‖I_exact‖ (Frobenius)
+  double com_difference = 0;      ///< |c_default − c_exact| / size
+};
+
 /// The convex hull's mass properties beside the exact ones (LoadOptions::hull).
 struct HullReport {
   MassProperties mp;  ///< SI, in the file's axes
@@ -154,7 +166,8 @@ struct SolidResult {
   double size_m = 0;          ///< bounding-box diagonal, m
   double seconds = 0;         ///< wall-clock time of the whole pipeline
   std::vector<Finding> findings;
-  std::optional<HullReport> hull;  ///< LoadOptions::hull
+  std::optional<HullReport> hull;    ///< LoadOptions::hull
+  std::optional<ExactReport> exact;  ///< LoadOptions::exact: mp holds the certified values
 };
 
 /// An input the pipeline refuses: what() names the file, the fault and (with the C++ option

@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 
+#include "massprops/exact.h"
 #include "massprops/repair.h"
 
 namespace massprops {
@@ -21,5 +22,9 @@ PolygonMesh UnionOfShells(const PolygonMesh&, std::int64_t&) { Unavailable("the 
 std::int64_t CountSelfIntersections(const PolygonMesh&, std::int64_t) { Unavailable("the self-intersection check"); }
 
 PolygonMesh ConvexHull(const PolygonMesh&) { Unavailable("the convex hull"); }
+
+ExactMassProperties ExactMassPropertiesOf(const PolygonMesh&, double, const MassSpec&, int) {
+  Unavailable("exact integration (GMP, MPFR)");
+}
 
 }  // namespace massprops
