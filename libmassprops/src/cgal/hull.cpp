@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "from_surface_mesh.h"
 #include "massprops/repair.h"
 
 namespace massprops {
@@ -29,21 +30,7 @@ PolygonMesh ConvexHull(const PolygonMesh& mesh) {
   CGAL::Surface_mesh<Point> hull;
   CGAL::convex_hull_3(points.begin(), points.end(), hull);
   if (hull.number_of_faces() < 4 || !CGAL::is_closed(hull)) throw flat();  // coplanar input: a polygon
-  PolygonMesh out;
-  out.V.resize(static_cast<Eigen::Index>(hull.number_of_vertices()), 3);
-  std::vector<std::int32_t> index(hull.num_vertices(), -1);
-  std::int32_t next = 0;
-  for (auto v : hull.vertices()) {
-    const Point& p = hull.point(v);
-    index[v.idx()] = next;
-    out.V.row(next++) << p.x(), p.y(), p.z();
-  }
-  for (auto f : hull.faces()) {
-    std::vector<std::int32_t> face;
-    for (auto v : CGAL::vertices_around_face(hull.halfedge(f), hull)) face.push_back(index[v.idx()]);
-    out.AddFace(face);
-  }
-  return out;
+  return cgal_internal::FromSurfaceMesh(hull);
 }
 
 }  // namespace massprops

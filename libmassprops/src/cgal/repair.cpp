@@ -23,7 +23,9 @@
 #include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/stitch_borders.h>
 #include <CGAL/Surface_mesh.h>
+
 #include <CGAL/box_intersection_d.h>
+#include "from_surface_mesh.h"
 
 namespace massprops {
 namespace {
@@ -109,24 +111,7 @@ Mesh ToCgal(const PolygonMesh& mesh) {
   return out;
 }
 
-PolygonMesh FromCgal(Mesh& mesh) {
-  PolygonMesh out;
-  mesh.collect_garbage();
-  out.V.resize(static_cast<Eigen::Index>(mesh.number_of_vertices()), 3);
-  std::vector<std::int32_t> index(mesh.num_vertices(), -1);
-  std::int32_t next = 0;
-  for (auto v : mesh.vertices()) {
-    const Point& p = mesh.point(v);
-    index[v.idx()] = next;
-    out.V.row(next++) << p.x(), p.y(), p.z();
-  }
-  for (auto f : mesh.faces()) {
-    std::vector<std::int32_t> face;
-    for (auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) face.push_back(index[v.idx()]);
-    out.AddFace(face);
-  }
-  return out;
-}
+PolygonMesh FromCgal(Mesh& mesh) { return cgal_internal::FromSurfaceMesh(mesh); }
 
 }  // namespace
 

@@ -397,15 +397,21 @@ void RequireValidModel(const LoadOptions& given) {
   }
 }
 
+// A result for `source`, the options checked.
+SolidResult Begin(const std::string& source, const LoadOptions& given) {
+  SolidResult r;
+  r.source = source;
+  r.unit = given.unit;
+  r.unit_source = given.unit_stated ? UnitSource::kOption : UnitSource::kDefault;
+  RequireValidModel(given);
+  return r;
+}
+
 }  // namespace
 
 SolidResult LoadSolid(const std::string& file, const LoadOptions& given) {
   const auto t0 = std::chrono::steady_clock::now();
-  SolidResult r;
-  r.source = file;
-  r.unit = given.unit;
-  r.unit_source = given.unit_stated ? UnitSource::kOption : UnitSource::kDefault;
-  RequireValidModel(given);
+  SolidResult r = Begin(file, given);
   if (TryStreamedStl(r, file, given)) {
     r.seconds = SecondsSince(t0);
     return r;
@@ -417,11 +423,7 @@ SolidResult LoadSolid(const std::string& file, const LoadOptions& given) {
 
 SolidResult SolveMesh(LoadedMesh mesh, const std::string& name, const LoadOptions& given) {
   const auto t0 = std::chrono::steady_clock::now();
-  SolidResult r;
-  r.source = name;
-  r.unit = given.unit;
-  r.unit_source = given.unit_stated ? UnitSource::kOption : UnitSource::kDefault;
-  RequireValidModel(given);
+  SolidResult r = Begin(name, given);
   r.loaded = std::move(mesh);
   // The readers' contract: corners at bit-identical positions are one vertex.
   r.loaded.welded += MergeCoincidentVertices(r.loaded.mesh);
