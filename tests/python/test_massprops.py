@@ -46,6 +46,7 @@ CASES = [
     ("box_0.1x0.2x0.3.gltf", {}, []),
     ("spot.obj", {"shell": 2.0}, ["--shell", "--area-density", "2"]),
     ("spot.obj", {"wall": 0.005}, ["--wall", "0.005"]),
+    ("t_handle.obj", {"exact": True, "hull": True, "unit": "m"}, ["--exact", "--hull", "--unit", "m"]),
 ]
 
 
