@@ -7,9 +7,9 @@
     >>> records = massprops.dask.map_files(paths, client=client, unit="mm", timeout=300)
     >>> df = massprops.dask.to_dataframe(records)
 
-Each file is computed in a child process of its worker (as the command does it), so a file that
-crashes a reader or hangs becomes a ``crashed`` or ``timeout`` record instead of killing the
-worker; a worker that dies anyway (killed, out of memory) has its tasks run again elsewhere by
+Each task's files are computed in a child process of its worker, and a file that crashes or hangs
+it is computed again alone in a child of its own (as the command isolates files), so such a file
+becomes a ``crashed`` or ``timeout`` record instead of killing the worker; a worker that dies anyway (killed, out of memory) has its tasks run again elsewhere by
 Dask. Records come back in the order of the sorted paths, each exactly once, equal to the lines
 ``massprops batch`` writes for the same paths and options.
 """

@@ -323,17 +323,38 @@ PYBIND11_MODULE(_core, m) {
         if (!(timeout > 0)) throw py::value_error("timeout must be positive");
         if (indices.size() != paths.size()) throw py::value_error("one index per path");
         const LoadOptions o = ToLoadOptions(kw);
-        std::vector<std::string> lines(paths.size());
+        std::vector<std::string> lines;
         py::gil_scoped_release release;
-        RunIsolated(
-            paths.size(), 1, timeout, [&](std::size_t k) { return cli::ComputeRecord(paths[k], indices[k], of, o); },
-            [&](std::size_t k, IsolatedOutcome&& out) {
-              lines[k] = cli::RecordOf(paths[k], indices[k], of, std::move(out), timeout);
-            });
+        // One child computes the files in turn, sending each record as a line; each file may take
+        // `timeout` (the limit runs from the last record). Forking a worker process costs far more
+        // than a file of 10^4 triangles, so one child serves them all until one crashes or hangs:
+        // that file is then computed alone, in a child of its own, and a new child takes the rest.
+        while (lines.size() < paths.size()) {
+          const std::size_t first = lines.size();
+          IsolatedOutcome outcome;
+          RunIsolatedStreaming(
+              1, 1, timeout,
+              [&](std::size_t, const IsolatedSend& send) {
+                for (std::size_t k = first; k < paths.size(); ++k) {
+                  send(cli::ComputeRecord(paths[k], indices[k], of, o) + "\n");
+                }
+              },
+              [&](std::size_t, IsolatedOutcome&& out) { outcome = std::move(out); });
+          for (std::size_t at = 0, eol; (eol = outcome.output.find('\n', at)) != std::string::npos; at = eol + 1) {
+            lines.push_back(outcome.output.substr(at, eol - at));
+          }
+          if (outcome.end == IsolatedEnd::kFinished || lines.size() == paths.size()) continue;
+          const std::size_t k = lines.size();  // the file the child was computing when it ended
+          RunIsolated(
+              1, 1, timeout, [&](std::size_t) { return cli::ComputeRecord(paths[k], indices[k], of, o); },
+              [&](std::size_t, IsolatedOutcome&& out) {
+                lines.push_back(cli::RecordOf(paths[k], indices[k], of, std::move(out), timeout));
+              });
+        }
         return lines;
       },
       py::arg("paths"), py::arg("indices"), py::arg("of"), py::arg("timeout"),
-      "The `massprops batch` records (JSON lines) of some files, each computed in its own child process");
+      "The `massprops batch` records (JSON lines) of some files, each one's crash or hang isolated");
   py::module_ dyn = m.def_submodule("dynamics", "Rigid bodies and worlds (libdynamics)");
   BindDynamics(dyn);
 }

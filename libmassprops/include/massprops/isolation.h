@@ -20,7 +20,7 @@ enum class IsolatedEnd {
 
 struct IsolatedOutcome {
   IsolatedEnd end = IsolatedEnd::kFinished;
-  std::string output;  ///< what work(i) returned, when kFinished
+  std::string output;  ///< what the child sent: whole when kFinished, what came before the end otherwise
   int signal = 0;      ///< kCrashed: the signal's number
   double seconds = 0;  ///< wall time of the child
 };
@@ -34,5 +34,16 @@ struct IsolatedOutcome {
 /// made.
 void RunIsolated(std::size_t count, int jobs, double seconds_limit, const std::function<std::string(std::size_t)>& work,
                  const std::function<void(std::size_t, IsolatedOutcome&&)>& done);
+
+/// Sends bytes from a streaming child to the parent as they are made.
+using IsolatedSend = std::function<void(const std::string& bytes)>;
+
+/// As RunIsolated, for work that sends its output piece by piece (`send`) and may take long in
+/// all: the time limit runs from the last piece received (or the start), so a child that keeps
+/// sending keeps running, and one that falls silent for `seconds_silent` is stopped. What it sent
+/// before a crash or a stop is in the outcome's output.
+void RunIsolatedStreaming(std::size_t count, int jobs, double seconds_silent,
+                          const std::function<void(std::size_t, const IsolatedSend&)>& work,
+                          const std::function<void(std::size_t, IsolatedOutcome&&)>& done);
 
 }  // namespace massprops

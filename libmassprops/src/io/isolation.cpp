@@ -41,18 +41,21 @@ bool WriteAll(int fd, const char* p, std::size_t n) {
   return true;
 }
 
-[[noreturn]] void RunChild(const std::function<std::string(std::size_t)>& work, std::size_t i, int fd) {
+using StreamingWork = std::function<void(std::size_t, const IsolatedSend&)>;
+
+[[noreturn]] void RunChild(const StreamingWork& work, std::size_t i, int fd) {
   int code = 0;
   try {
-    const std::string out = work(i);
-    code = WriteAll(fd, out.data(), out.size()) ? 0 : 3;
+    bool ok = true;
+    work(i, [&](const std::string& bytes) { ok = ok && WriteAll(fd, bytes.data(), bytes.size()); });
+    code = ok ? 0 : 3;
   } catch (...) {
     code = 4;
   }
   ::_exit(code);
 }
 
-Child Launch(const std::function<std::string(std::size_t)>& work, std::size_t i, double limit) {
+Child Launch(const StreamingWork& work, std::size_t i, double limit) {
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0)
     throw std::runtime_error(std::string("cannot create a pipe: ") + std::strerror(errno));
@@ -87,16 +90,13 @@ IsolatedOutcome Reap(Child& c, bool timed_out) {
     out.signal = WTERMSIG(status);
   } else if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     out.end = IsolatedEnd::kFailed;
-  } else {
-    out.output = std::move(c.output);
   }
+  out.output = std::move(c.output);
   return out;
 }
 
-}  // namespace
-
-void RunIsolated(std::size_t count, int jobs, double seconds_limit, const std::function<std::string(std::size_t)>& work,
-                 const std::function<void(std::size_t, IsolatedOutcome&&)>& done) {
+void Run(std::size_t count, int jobs, double seconds_limit, bool silence, const StreamingWork& work,
+         const std::function<void(std::size_t, IsolatedOutcome&&)>& done) {
   jobs = std::max(jobs, 1);
   std::vector<Child> running;
   std::map<std::size_t, IsolatedOutcome> finished;  // waiting for the items before them
@@ -131,7 +131,11 @@ void RunIsolated(std::size_t count, int jobs, double seconds_limit, const std::f
       bool ended = false, timed_out = false;
       if (pfds[k].revents & (POLLIN | POLLHUP | POLLERR)) {
         const ssize_t n = ::read(c.fd, buf, sizeof buf);
-        if (n > 0) c.output.append(buf, static_cast<std::size_t>(n));
+        if (n > 0) {
+          c.output.append(buf, static_cast<std::size_t>(n));
+          if (silence)
+            c.deadline = Clock::now() + std::chrono::milliseconds(static_cast<long long>(seconds_limit * 1000));
+        }
         ended = n == 0 || (n < 0 && errno != EINTR && errno != EAGAIN);
       }
       if (!ended && now >= c.deadline) ended = timed_out = true;
@@ -149,6 +153,20 @@ void RunIsolated(std::size_t count, int jobs, double seconds_limit, const std::f
       done(delivered++, std::move(outcome));
     }
   }
+}
+
+}  // namespace
+
+void RunIsolated(std::size_t count, int jobs, double seconds_limit, const std::function<std::string(std::size_t)>& work,
+                 const std::function<void(std::size_t, IsolatedOutcome&&)>& done) {
+  Run(
+      count, jobs, seconds_limit, false, [&](std::size_t i, const IsolatedSend& send) { send(work(i)); }, done);
+}
+
+void RunIsolatedStreaming(std::size_t count, int jobs, double seconds_silent,
+                          const std::function<void(std::size_t, const IsolatedSend&)>& work,
+                          const std::function<void(std::size_t, IsolatedOutcome&&)>& done) {
+  Run(count, jobs, seconds_silent, true, work, done);
 }
 
 }  // namespace massprops
