@@ -338,6 +338,8 @@ int main(int argc, char** argv) {
                                         a.format);
   format.frame = a.frame == "origin" ? cli::Frame::kOrigin : cli::Frame::kCenterOfMass;
   format.json_array = a.files.size() + (a.implicit.empty() ? 0 : 1) > 1;
+  LoadOptions options = ToLoadOptions(a);
+  options.unit_stated = app.count("--unit") > 0;
   if (!a.output_units.empty()) {
     try {
       format.units = ParseReportUnits(a.output_units);
@@ -356,7 +358,7 @@ int main(int argc, char** argv) {
     for (double v : a.axes_euler) {
       if (!std::isfinite(v)) return bad("--axes-euler needs three finite angles");
     }
-    if (!a.about.empty()) f.point = Vector3(a.about[0], a.about[1], a.about[2]) * MetresPerUnit(ToLoadOptions(a).unit);
+    if (!a.about.empty()) f.point = Vector3(a.about[0], a.about[1], a.about[2]) * MetresPerUnit(options.unit);
     try {
       if (!a.axes.empty()) {
         Matrix3 r;
@@ -379,8 +381,6 @@ int main(int argc, char** argv) {
         "URDF, SDF and MJCF give the inertia about the center of mass in SI; --output-units, --about and "
         "--axes are for the table, JSON and CSV");
   }
-  LoadOptions options = ToLoadOptions(a);
-  options.unit_stated = app.count("--unit") > 0;
 
   int failures = 0;
   std::vector<SolidResult> results;

@@ -345,11 +345,7 @@ PYBIND11_MODULE(_core, m) {
           }
           if (outcome.end == IsolatedEnd::kFinished || lines.size() == paths.size()) continue;
           const std::size_t k = lines.size();  // the file the child was computing when it ended
-          RunIsolated(
-              1, 1, timeout, [&](std::size_t) { return cli::ComputeRecord(paths[k], indices[k], of, o); },
-              [&](std::size_t, IsolatedOutcome&& out) {
-                lines.push_back(cli::RecordOf(paths[k], indices[k], of, std::move(out), timeout));
-              });
+          lines.push_back(cli::IsolatedRecord(paths[k], indices[k], of, o, timeout));
         }
         return lines;
       },

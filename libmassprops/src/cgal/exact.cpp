@@ -242,10 +242,7 @@ ExactMassProperties ExactMassPropertiesOf(const PolygonMesh& polygons, double me
   out.distinct_moments = static_cast<int>(roots.size());
   // Each of the three moments (ascending, with multiplicity) takes the enclosure nearest its
   // double-precision value.
-  Matrix3 Id;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) Id(i, j) = Rounded(I[i][j]);
-  Eigen::SelfAdjointEigenSolver<Matrix3> eig(Id, Eigen::EigenvaluesOnly);
+  Eigen::SelfAdjointEigenSolver<Matrix3> eig(out.mp.inertia_com, Eigen::EigenvaluesOnly);
   for (int k = 0; k < 3; ++k) {
     const double approx = eig.eigenvalues()[k];
     std::size_t best = 0;
