@@ -55,9 +55,9 @@ inline bool Blank(char ch) { return ch == ' ' || ch == '\t'; }
 // no continuation — parsed in one pass over the characters. Returns false, having changed
 // nothing, for anything else; the general path then reads the line (same results, same faults).
 bool ParseCommonLine(const char* p, const char* end, Chunk& c) {
-  if (end - p < 2 || !Blank(p[1])) return false;
-  const char* last = end;
-  while (last > p && (last[-1] == '\r' || Blank(last[-1]))) --last;
+  if (end - p < 2 || (p[0] != 'v' && p[0] != 'f') || !Blank(p[1])) return false;
+  const char* last = end;  // p[0] is not blank: the trim stops after it
+  while (last[-1] == '\r' || Blank(last[-1])) --last;
   if (last[-1] == '\\') return false;  // continued on the next line
   if (p[0] == 'v') {
     double xyz[3];
