@@ -27,15 +27,24 @@ std::string Suffix(const std::string& unit) {
 
 }  // namespace
 
-std::string FormatCsv(const std::vector<SolidResult>& results, const FormatOptions& opt) {
+std::string FormatCsv(const std::vector<SolidResult>& given, const FormatOptions& opt) {
+  // An assembly is a row per part, then its whole (the part column empty).
+  std::vector<const SolidResult*> results;
+  bool parts = false;
+  for (const SolidResult& r : given) {
+    for (const SolidResult& part : r.parts) results.push_back(&part);
+    results.push_back(&r);
+    parts = parts || !r.parts.empty();
+  }
   std::ostringstream out;
   const bool origin = opt.frame == Frame::kOrigin;
   const ReportUnits& u = opt.units;
   const std::string l = UnitName(u.length);
   // SI keeps the columns' historical names (inertia columns without a unit); other units name theirs.
   const std::string in = u.IsSi() ? "" : "_" + Suffix(UnitName(u.inertia));
-  out << "file,unit,volume_" << Suffix(u.VolumeName()) << ",mass_" << UnitName(u.mass) << ",density_"
-      << Suffix(u.DensityName()) << ",com_x_" << l << ",com_y_" << l << ",com_z_" << l;
+  out << (parts ? "file,part,unit,volume_" : "file,unit,volume_") << Suffix(u.VolumeName()) << ",mass_"
+      << UnitName(u.mass) << ",density_" << Suffix(u.DensityName()) << ",com_x_" << l << ",com_y_" << l << ",com_z_"
+      << l;
   for (const char* name : {"ixx", "iyy", "izz", "ixy", "ixz", "iyz", "i1", "i2", "i3"}) out << "," << name << in;
   out << ",surface_area_" << Suffix(u.AreaName()) << ",closed,physically_valid";
   if (origin) {
@@ -45,9 +54,9 @@ std::string FormatCsv(const std::vector<SolidResult>& results, const FormatOptio
     for (const char* name : {"ixx", "iyy", "izz", "ixy", "ixz", "iyz"}) out << ",about_" << name << in;
   }
   bool estimates = false, shells = false;
-  for (const SolidResult& r : results) {
-    estimates = estimates || r.estimate.has_value();
-    shells = shells || r.model == ModelKind::kShell;
+  for (const SolidResult* r : results) {
+    estimates = estimates || r->estimate.has_value();
+    shells = shells || r->model == ModelKind::kShell;
   }
   if (estimates) {  // standard errors of the Monte-Carlo paths (empty for exact rows)
     out << ",se_volume,se_mass,se_com_x,se_com_y,se_com_z,se_ixx,se_iyy,se_izz,se_ixy,se_ixz,se_iyz,se_i1,se_i2,se_i3";
@@ -56,19 +65,21 @@ std::string FormatCsv(const std::vector<SolidResult>& results, const FormatOptio
   // density has a column of its own.
   if (shells) out << ",area_density_" << Suffix(u.AreaDensityName());
   bool hulls = false;
-  for (const SolidResult& r : results) hulls = hulls || r.hull.has_value();
+  for (const SolidResult* r : results) hulls = hulls || r->hull.has_value();
   if (hulls) {
     out << ",hull_volume_" << Suffix(u.VolumeName()) << ",hull_mass_" << UnitName(u.mass);
     for (const char* name : {"com_x", "com_y", "com_z"}) out << ",hull_" << name << "_" << l;
     for (const char* name : {"ixx", "iyy", "izz", "ixy", "ixz", "iyz", "i1", "i2", "i3"}) out << ",hull_" << name << in;
   }
   out << ",warnings\n";
-  for (const SolidResult& r : results) {
+  for (const SolidResult* row : results) {
+    const SolidResult& r = *row;
     const Matrix3 I = r.mp.inertia_com / u.Inertia();
     const Vector3 c = r.mp.center_of_mass / u.Length();
     const Vector3 m = r.principal.moments / u.Inertia();
     const bool shell = r.model == ModelKind::kShell;
-    out << Quoted(r.source) << "," << UnitName(r.unit);
+    out << Quoted(r.source) << (parts ? "," + (r.part.empty() ? std::string() : Quoted(r.part)) : "") << ","
+        << UnitName(r.unit);
     out << "," << (shell ? "" : ExactDecimal(r.mp.volume / u.Volume())) << "," << ExactDecimal(r.mp.mass / u.Mass())
         << "," << (shell ? "" : ExactDecimal(r.mp.density / u.Density()));
     for (double v : {c[0], c[1], c[2], I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2), m[0], m[1], m[2],

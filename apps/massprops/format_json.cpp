@@ -20,6 +20,7 @@ Json ToJson(const SolidResult& r, const FormatOptions& opt) {
   const auto& t = r.topology;
   const bool shell = r.model == ModelKind::kShell;
   Json j = {{"file", r.source},
+            {"part", r.part},
             {"unit", UnitName(r.unit)},
             {"unit_source", UnitSourceName(r.unit_source)},
             {"model", ModelName(r.model)},
@@ -126,6 +127,12 @@ Json ToJson(const SolidResult& r, const FormatOptions& opt) {
   Json warnings = Json::array();
   for (const Finding& f : r.findings) warnings.push_back(Worded(f.message, WordsOf(opt)));
   j["warnings"] = warnings;
+  if (r.part.empty()) j.erase("part");
+  if (!r.parts.empty()) {
+    Json parts = Json::array();
+    for (const SolidResult& part : r.parts) parts.push_back(ToJson(part, opt));
+    j["parts"] = parts;
+  }
   return j;
 }
 

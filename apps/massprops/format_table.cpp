@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -15,9 +16,40 @@ void PrintMatrix(std::ostream& out, const std::string& indent, const Matrix3& m)
   }
 }
 
+std::string FormatOne(const SolidResult& r, const FormatOptions& opt);
+
 }  // namespace
 
 std::string FormatTable(const SolidResult& r, const FormatOptions& opt) {
+  if (r.parts.empty()) return FormatOne(r, opt);
+  // An assembly: every part in full, a summary line per part, then the whole.
+  std::ostringstream out;
+  const ReportUnits& u = opt.units;
+  for (const SolidResult& part : r.parts) out << FormatOne(part, opt) << "\n";
+  std::size_t width = 4;
+  for (const SolidResult& part : r.parts) width = std::max(width, part.part.size());
+  auto row = [&](const std::string& name, const SolidResult& x) {
+    const Vector3 c = x.mp.center_of_mass / u.Length();
+    const Vector3 m = x.principal.moments / u.Inertia();
+    out << "  " << name << std::string(width - name.size(), ' ') << "  " << FormatDouble(x.mp.mass / u.Mass(), "%12.6g")
+        << "  " << FormatDouble(x.mp.volume / u.Volume(), "%12.6g") << "  [" << FormatDouble(c[0], "% .5e") << " "
+        << FormatDouble(c[1], "% .5e") << " " << FormatDouble(c[2], "% .5e") << "]  [" << FormatDouble(m[0], "%.5e")
+        << " " << FormatDouble(m[1], "%.5e") << " " << FormatDouble(m[2], "%.5e") << "]\n";
+  };
+  out << "parts of " << r.source << " (mass " << UnitName(u.mass) << ", volume " << u.VolumeName()
+      << ", center of mass " << UnitName(u.length) << ", principal moments "
+      << (u.IsSi() ? std::string("kg m^2") : std::string(UnitName(u.inertia))) << "):\n";
+  out << "  part" << std::string(width - 4, ' ') << "          mass        volume  center of mass"
+      << std::string(30, ' ') << "principal moments\n";
+  for (const SolidResult& part : r.parts) row(part.part, part);
+  row(std::string(width > 5 ? width - 5 : 0, ' ') + "whole", r);
+  out << "\n" << FormatOne(r, opt);
+  return out.str();
+}
+
+namespace {
+
+std::string FormatOne(const SolidResult& r, const FormatOptions& opt) {
   std::ostringstream out;
   const ReportUnits& u = opt.units;
   const std::string len = UnitName(u.length), mass_unit = UnitName(u.mass), inertia_unit = UnitName(u.inertia);
@@ -37,6 +69,10 @@ std::string FormatTable(const SolidResult& r, const FormatOptions& opt) {
   } else {
     out << "file            " << r.source << "  (" << r.loaded.format << ", " << t.faces
         << " triangles, closed and consistently oriented: every edge matched by its reverse)\n";
+  }
+  if (!r.part.empty()) out << "part            " << r.part << "\n";
+  if (!r.parts.empty()) {
+    out << "parts           " << r.parts.size() << ", each computed on its own; the whole is their composition\n";
   }
   if (r.repair) out << "repair          " << r.repair->Summary() << "\n";
   if (r.self_intersections >= 0) {
@@ -154,5 +190,7 @@ std::string FormatTable(const SolidResult& r, const FormatOptions& opt) {
   for (const Finding& f : r.findings) out << "warning         " << Worded(f.message, WordsOf(opt)) << "\n";
   return out.str();
 }
+
+}  // namespace
 
 }  // namespace massprops::cli

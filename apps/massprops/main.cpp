@@ -24,6 +24,7 @@
 #include "atomic_file.h"
 #include "batch.h"
 #include "cli.h"
+#include "density_map.h"
 #include "format.h"
 #include "massprops/implicit.h"
 #include "massprops/io.h"
@@ -71,6 +72,8 @@ struct Arguments {
   std::vector<double> axes;        // 9 numbers, rows of the rotation whose columns are the axes
   std::vector<double> axes_euler;  // yaw, pitch, roll in degrees (z, y', x'')
   std::string output_units;
+  bool parts = false;
+  std::string density_map;
 };
 
 template <typename T>
@@ -110,6 +113,7 @@ LoadOptions ToLoadOptions(const Arguments& a) {
   o.check_self_intersections = a.check_self_intersections;
   o.hull = a.hull;
   o.exact = a.exact;
+  o.parts = a.parts || !a.density_map.empty();
   o.num_threads = a.threads;
   return o;
 }
@@ -252,6 +256,12 @@ int main(int argc, char** argv) {
   app.add_option("--output-units", a.output_units,
                  "Units of the table, JSON and CSV: si (default), mmgs (g, mm, g*mm^2), cgs, ips (lb, in, "
                  "lb*in^2), or MASS,LENGTH,INERTIA such as kg,mm,kg*mm^2");
+  app.add_flag("--parts", a.parts,
+               "Each part the file names (OBJ objects or groups; glTF, 3MF, COLLADA, FBX nodes) on its own, "
+               "and the whole as their composition");
+  app.add_option("--density-map", a.density_map,
+                 "JSON or CSV: part name or glob pattern -> density (kg/m^3) or mass (kg); first match wins; "
+                 "implies --parts");
   app.add_flag("-q,--quiet", a.quiet, "No progress line on stderr");
   app.add_option("-o,--output", a.output, "Write the output to this file (whole or not at all)");
   if (const int status = app::ParseArguments(app, argc, argv); status >= 0) return status;
@@ -289,9 +299,13 @@ int main(int argc, char** argv) {
   if (!a.implicit.empty() && (a.shell || a.wall > 0)) {
     return bad("--shell and --wall describe a mesh's surface; an --implicit shape is a solid and takes neither");
   }
+  if ((a.parts || !a.density_map.empty()) && (a.shell || a.winding_number || a.exact)) {
+    return bad("--parts and --density-map compute solids (or --wall): not --shell, --winding-number or --exact");
+  }
   if (a.files.empty()) {  // only --implicit: the options about mesh files would be ignored
-    for (const char* flag : {"--repair", "--allow-open", "--full-check", "--check-self-intersections", "--path",
-                             "--reader", "--winding-number", "--hull", "--exact"}) {
+    for (const char* flag :
+         {"--parts", "--density-map", "--repair", "--allow-open", "--full-check", "--check-self-intersections",
+          "--path", "--reader", "--winding-number", "--hull", "--exact"}) {
       if (app.count(flag) > 0)
         return bad(std::string(flag) + " applies to mesh files; --implicit shapes take no such option");
     }
@@ -325,6 +339,13 @@ int main(int argc, char** argv) {
     b.threads_given = app.count("--threads") > 0;
     b.load = ToLoadOptions(a);
     b.load.unit_stated = app.count("--unit") > 0;
+    if (!a.density_map.empty()) {
+      try {
+        b.load.part_masses = cli::ReadDensityMap(a.density_map);
+      } catch (const std::exception& e) {
+        return bad(e.what());
+      }
+    }
     return cli::RunBatch(b);
   }
 
@@ -340,6 +361,13 @@ int main(int argc, char** argv) {
   format.json_array = a.files.size() + (a.implicit.empty() ? 0 : 1) > 1;
   LoadOptions options = ToLoadOptions(a);
   options.unit_stated = app.count("--unit") > 0;
+  if (!a.density_map.empty()) {
+    try {
+      options.part_masses = cli::ReadDensityMap(a.density_map);
+    } catch (const std::exception& e) {
+      return bad(e.what());
+    }
+  }
   if (!a.output_units.empty()) {
     try {
       format.units = ParseReportUnits(a.output_units);

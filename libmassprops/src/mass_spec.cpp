@@ -1,5 +1,7 @@
 #include "massprops/mass_spec.h"
 
+#include <fnmatch.h>
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -26,6 +28,13 @@ MassProperties AtDensity(const MassProperties& unit_density, double density) {
   mp.inertia_com = unit_density.inertia_com * density;
   mp.density = density;
   return mp;
+}
+
+const PartMass* MatchPart(const std::vector<PartMass>& map, const std::string& part) {
+  for (const PartMass& entry : map) {
+    if (entry.pattern == part || ::fnmatch(entry.pattern.c_str(), part.c_str(), 0) == 0) return &entry;
+  }
+  return nullptr;
 }
 
 }  // namespace massprops

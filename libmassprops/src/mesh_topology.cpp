@@ -289,8 +289,22 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
       shell.signed_volume += a.dot(b.cross(c)) / 6.0;
     }
   }
-  // Closedness per shell, and a probe point per shell (centroid of its first face's first
-  // triangle: inside the shell's surface, off any other shell unless they touch).
+  // A point just behind face f (the centroid of its first triangle, moved against the face's
+  // normal by 1e-7 of the triangle's size): inside the face's shell, and off any other shell's
+  // surface even where two shells touch along a face (an assembly's parts resting on each
+  // other), where a point on the face itself would have winding number 0 or 1 by rounding.
+  auto behind_face = [&](std::int64_t f) {
+    const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
+    const Vector3 a = mesh.V.row(idx[0]).transpose(), b = mesh.V.row(idx[1]).transpose(),
+                  c = mesh.V.row(idx[2]).transpose();
+    const Vector3 centroid = (a + b + c) / 3.0;
+    const Vector3 n = (b - a).cross(c - a);
+    const double size = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    const double length = n.norm();
+    if (!(length > 0) || !std::isfinite(length)) return centroid;
+    return Vector3(centroid - (1e-7 * size / length) * n);
+  };
+  // Closedness per shell, and a probe point per shell (just behind its first face).
   const std::size_t ns = report.shells.size();
   std::vector<Vector3> probe(ns);
   for (std::size_t s = 0; s < ns; ++s) {
@@ -301,8 +315,7 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
       sub.AddFace(std::vector<std::int32_t>(idx, idx + mesh.face_size(f)));
     }
     report.shells[s].closed = AnalyzeTopology(sub).BoundsVolume();
-    const std::int32_t* idx = mesh.indices.data() + mesh.offsets[report.shells[s].faces[0]];
-    probe[s] = (mesh.V.row(idx[0]) + mesh.V.row(idx[1]) + mesh.V.row(idx[2])).transpose() / 3.0;
+    probe[s] = behind_face(report.shells[s].faces[0]);
   }
   // Winding number of shell t at a point.
   auto winding = [&](std::size_t t, const Vector3& x) {
@@ -332,8 +345,8 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
     }
   }
   // Crossing shells: a shell partly inside and partly outside another (their surfaces cross) is
-  // found from the winding numbers of samples spread over it — face centroids, so that shells
-  // that merely touch (shared corners or edges, w = 1/2 there) are not taken for crossing. Found
+  // found from the winding numbers of samples spread over it — points just behind face centroids,
+  // so that shells that merely touch (shared corners, edges or faces) are not taken for crossing. Found
   // whatever the order of the faces.
   constexpr std::size_t kSamples = 16;
   for (std::size_t s = 0; s < ns && report.crossing.first < 0; ++s) {
@@ -343,10 +356,7 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
       if (t == s || !report.shells[t].closed) continue;
       bool in = false, out = false;
       for (std::size_t k = 0; k < count; ++k) {
-        const std::int64_t f = faces[k * faces.size() / count];
-        const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
-        const Vector3 c = (mesh.V.row(idx[0]) + mesh.V.row(idx[1]) + mesh.V.row(idx[2])).transpose() / 3.0;
-        const double w = std::fabs(winding(t, c));
+        const double w = std::fabs(winding(t, behind_face(faces[k * faces.size() / count])));
         in = in || w > 0.75;
         out = out || w < 0.25;
       }

@@ -40,6 +40,10 @@ struct LoadedMesh {
   /// specification; COLLADA is converted to metres by its reader), and the file's word for it.
   std::optional<LengthUnit> declared_unit;
   std::string declared_unit_name;
+  /// The parts the file names (OBJ objects, or groups when it has no objects; assimp's nodes),
+  /// and the part of each face; both empty when the file names none.
+  std::vector<std::string> part_names;
+  std::vector<std::int32_t> face_part;
 };
 
 /// Reads an OBJ (v/f records, n-gons, negative indices, several objects, `\` continuations) or an

@@ -93,6 +93,13 @@ struct LoadOptions {
   /// Certified results (exact.h): volume, mass, center of mass and inertia become the correctly
   /// rounded exact values, with enclosures of the principal moments. Solid model.
   bool exact = false;
+  /// Compute every part the file names (OBJ objects or groups, the nodes of glTF, 3MF, COLLADA,
+  /// FBX ...) on its own, each through the whole pipeline, and the whole as their composition
+  /// (SolidResult::parts). Solid and wall models. A file that names no parts is one part.
+  bool parts = false;
+  /// With `parts`: densities or total masses per part, first match wins; the others take `mass`
+  /// (a TotalMass there is then shared by the parts at one density). Every entry must match a part.
+  std::vector<PartMass> part_masses;
   int num_threads = 0;  ///< 0: every core; the bits do not depend on it
   ProgressCallback progress;
 };
@@ -168,6 +175,11 @@ struct SolidResult {
   std::vector<Finding> findings;
   std::optional<HullReport> hull;    ///< LoadOptions::hull
   std::optional<ExactReport> exact;  ///< LoadOptions::exact: mp holds the certified values
+  /// LoadOptions::parts: each part's own result (its name in `part`), in the file's order. The
+  /// whole's mass properties are their composition; its topology their sums; its findings
+  /// theirs, each naming its part.
+  std::vector<SolidResult> parts;
+  std::string part;  ///< the part's name, in a result of `parts`
 };
 
 /// An input the pipeline refuses: what() names the file, the fault and (with the C++ option

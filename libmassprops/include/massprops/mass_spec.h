@@ -3,7 +3,9 @@
 /// How much a solid weighs: a uniform density, or a total mass that fixes it. The one rule for
 /// turning unit-density mass properties into those of the part.
 
+#include <string>
 #include <variant>
+#include <vector>
 
 #include "massprops/mass_properties.h"
 
@@ -25,6 +27,16 @@ double ResolveDensity(const MassSpec& spec, double measure);
 
 /// Unit-density mass properties (mass = volume, inertia per unit density) at `density`.
 MassProperties AtDensity(const MassProperties& unit_density, double density);
+
+/// The density or total mass of the parts whose names match `pattern`: the exact name, or a
+/// shell-style glob (`*`, `?`, `[...]`).
+struct PartMass {
+  std::string pattern;
+  MassSpec mass;
+};
+
+/// The first entry of `map` whose pattern matches `part`, or null.
+const PartMass* MatchPart(const std::vector<PartMass>& map, const std::string& part);
 
 /// True when the spec fixes the total mass.
 inline bool FixesMass(const MassSpec& spec) { return std::holds_alternative<TotalMass>(spec); }

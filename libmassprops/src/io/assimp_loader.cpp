@@ -26,7 +26,8 @@ namespace massprops {
 namespace {
 
 using CanReadFn = int (*)(const char*);
-using ReadFn = int (*)(const char*, double**, std::size_t*, int**, std::size_t*, char*, std::size_t);
+using ReadFn = int (*)(const char*, double**, std::size_t*, int**, int**, std::size_t*, char**, std::size_t*, char*,
+                       std::size_t);
 using FreeFn = void (*)(void*);
 
 struct Plugin {
@@ -90,7 +91,7 @@ const Plugin& LoadPlugin() {
       return;
     }
     plugin.can_read = reinterpret_cast<CanReadFn>(::dlsym(plugin.handle, "massprops_assimp_can_read"));
-    plugin.read = reinterpret_cast<ReadFn>(::dlsym(plugin.handle, "massprops_assimp_read"));
+    plugin.read = reinterpret_cast<ReadFn>(::dlsym(plugin.handle, "massprops_assimp_read_parts"));
     plugin.free = reinterpret_cast<FreeFn>(::dlsym(plugin.handle, "massprops_assimp_free"));
     if (!plugin.can_read || !plugin.read || !plugin.free) {
       plugin.error = "the assimp plugin lacks its entry points (a mismatched build?)";
@@ -113,6 +114,8 @@ namespace {
 struct AssimpOutput {
   std::vector<double> xyz;
   std::vector<int> face_sizes;
+  std::vector<int> face_parts;
+  std::vector<std::string> part_names;
 };
 
 // The child's work: reads the file through the plugin and returns [status, message | corners,
@@ -125,9 +128,12 @@ std::string ReadInChild(const Plugin& p, const std::string& path) {
   }
   double* xyz = nullptr;
   int* sizes = nullptr;
-  std::size_t corners = 0, faces = 0;
+  int* parts = nullptr;
+  char* names = nullptr;
+  std::size_t corners = 0, faces = 0, names_size = 0;
   char error[512] = {};
-  const std::int64_t status = p.read(path.c_str(), &xyz, &corners, &sizes, &faces, error, sizeof error);
+  const std::int64_t status =
+      p.read(path.c_str(), &xyz, &corners, &sizes, &parts, &faces, &names, &names_size, error, sizeof error);
   std::string out;
   auto put = [&out](const void* data, std::size_t n) { out.append(static_cast<const char*>(data), n); };
   put(&status, sizeof status);
@@ -141,6 +147,10 @@ std::string ReadInChild(const Plugin& p, const std::string& path) {
     put(xyz, 3 * corners * sizeof(double));
     put(&f, sizeof f);
     put(sizes, faces * sizeof(int));
+    put(parts, faces * sizeof(int));
+    const std::uint64_t n = names_size;
+    put(&n, sizeof n);
+    put(names, names_size);
   }
   return out;
 }
@@ -203,6 +213,24 @@ AssimpOutput ReadIsolated(const Plugin& p, const std::string& path) {
   if (faces > data.size() / sizeof(int)) Fail(path, "the assimp reader process sent a truncated result");
   out.face_sizes.resize(faces);
   take(out.face_sizes.data(), faces * sizeof(int));
+  out.face_parts.resize(faces);
+  take(out.face_parts.data(), faces * sizeof(int));
+  std::uint64_t names_size = 0;
+  take(&names_size, sizeof names_size);
+  if (names_size > data.size()) Fail(path, "the assimp reader process sent a truncated result");
+  std::string names(names_size, '\0');
+  take(names.data(), names_size);
+  for (std::size_t at_name = 0; at_name < names.size();) {
+    const std::size_t end = names.find('\0', at_name);
+    if (end == std::string::npos) break;
+    out.part_names.push_back(names.substr(at_name, end - at_name));
+    at_name = end + 1;
+  }
+  for (int part : out.face_parts) {
+    if (part < 0 || static_cast<std::size_t>(part) >= out.part_names.size()) {
+      Fail(path, "the assimp reader process sent a malformed result");
+    }
+  }
   return out;
 }
 
@@ -218,6 +246,8 @@ LoadedMesh ReadWithAssimp(const std::string& path) {
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   out.format = "assimp:" + ext;
   out.float32_coordinates = true;
+  out.part_names = read.part_names;
+  out.face_part.assign(read.face_parts.begin(), read.face_parts.end());
   if (const auto declared = ReadDeclaredUnit(path, ext)) {
     out.declared_unit = declared->unit;
     out.declared_unit_name = declared->name;

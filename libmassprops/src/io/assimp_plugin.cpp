@@ -23,12 +23,14 @@ __attribute__((visibility("default"))) int massprops_assimp_can_read(const char*
 }
 
 // Reads every mesh of the scene with node transforms applied. On success returns 0 and hands out
-// malloc'ed arrays: corner coordinates (3 per corner) and corner counts per face. On failure
-// returns 1 with the reason in `error`.
-__attribute__((visibility("default"))) int massprops_assimp_read(const char* path, double** xyz,
-                                                                 std::size_t* num_corners, int** face_sizes,
-                                                                 std::size_t* num_faces, char* error,
-                                                                 std::size_t error_size) {
+// malloc'ed arrays: corner coordinates (3 per corner), corner counts per face, the part (the node
+// holding the mesh) of each face, and the parts' names, each ended by a NUL. On failure returns 1
+// with the reason in `error`.
+__attribute__((visibility("default"))) int massprops_assimp_read_parts(const char* path, double** xyz,
+                                                                       std::size_t* num_corners, int** face_sizes,
+                                                                       int** face_parts, std::size_t* num_faces,
+                                                                       char** part_names, std::size_t* names_size,
+                                                                       char* error, std::size_t error_size) {
   Assimp::Importer importer;
   // Node transforms are applied here, in double precision, rather than by assimp's
   // PreTransformVertices (single precision, and it keeps the winding of mirrored instances);
@@ -42,7 +44,9 @@ __attribute__((visibility("default"))) int massprops_assimp_read(const char* pat
     return 1;
   }
   std::vector<double> corners;
-  std::vector<int> sizes;
+  std::vector<int> sizes, parts;
+  std::string names;  // NUL after each
+  int num_parts = 0;
   // Depth-first over the node hierarchy with the accumulated transform (row-major 4x4, doubles).
   struct Item {
     const aiNode* node;
@@ -69,6 +73,15 @@ __attribute__((visibility("default"))) int massprops_assimp_read(const char* pat
     // the other way to face outward (as the glTF specification prescribes).
     const double det =
         m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) + m[2] * (m[4] * m[9] - m[5] * m[8]);
+    if (item.node->mNumMeshes > 0) {
+      // A part: the node, named as the file names it (else after its first mesh, else by number).
+      std::string name = item.node->mName.C_Str();
+      if (name.empty()) name = scene->mMeshes[item.node->mMeshes[0]]->mName.C_Str();
+      if (name.empty()) name = "node " + std::to_string(num_parts + 1);
+      names += name;
+      names.push_back('\0');
+      ++num_parts;
+    }
     for (unsigned i = 0; i < item.node->mNumMeshes; ++i) {
       const aiMesh* mesh = scene->mMeshes[item.node->mMeshes[i]];
       for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
@@ -82,6 +95,7 @@ __attribute__((visibility("default"))) int massprops_assimp_read(const char* pat
                                          m[8] * x + m[9] * y + m[10] * z + m[11]});
         }
         sizes.push_back(static_cast<int>(face.mNumIndices));
+        parts.push_back(num_parts - 1);
       }
     }
     for (unsigned c = item.node->mNumChildren; c-- > 0;) {  // so that the first child comes first
@@ -94,14 +108,21 @@ __attribute__((visibility("default"))) int massprops_assimp_read(const char* pat
   *num_faces = sizes.size();
   *xyz = static_cast<double*>(std::malloc(std::max<std::size_t>(corners.size(), 1) * sizeof(double)));
   *face_sizes = static_cast<int*>(std::malloc(std::max<std::size_t>(sizes.size(), 1) * sizeof(int)));
-  if (*xyz == nullptr || *face_sizes == nullptr) {
+  *face_parts = static_cast<int*>(std::malloc(std::max<std::size_t>(parts.size(), 1) * sizeof(int)));
+  *part_names = static_cast<char*>(std::malloc(std::max<std::size_t>(names.size(), 1)));
+  *names_size = names.size();
+  if (*xyz == nullptr || *face_sizes == nullptr || *face_parts == nullptr || *part_names == nullptr) {
     std::free(*xyz);
     std::free(*face_sizes);
+    std::free(*face_parts);
+    std::free(*part_names);
     std::snprintf(error, error_size, "out of memory");
     return 1;
   }
   std::memcpy(*xyz, corners.data(), corners.size() * sizeof(double));
   std::memcpy(*face_sizes, sizes.data(), sizes.size() * sizeof(int));
+  std::memcpy(*face_parts, parts.data(), parts.size() * sizeof(int));
+  std::memcpy(*part_names, names.data(), names.size());
   return 0;
 }
 

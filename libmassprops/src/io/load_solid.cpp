@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "io_internal.h"
+#include "load_internal.h"
 #include "massprops/composition.h"
 #include "massprops/exact.h"
 #include "massprops/implicit.h"
@@ -349,7 +350,7 @@ const char* UnitSourceName(UnitSource source) {
   return "?";
 }
 
-namespace {
+namespace internal {
 
 // The unit the coordinates are read in: the one stated, else the one the file declares, else the
 // default. A stated unit that differs from the file's is a finding.
@@ -370,12 +371,9 @@ LoadOptions ResolveUnit(SolidResult& r, const LoadOptions& given) {
   return opt;
 }
 
-}  // namespace
+}  // namespace internal
 
 namespace {
-
-// Everything after reading: repair, checks, the model's integration, findings.
-SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_clock::time_point t0);
 
 void RequireValidModel(const LoadOptions& given) {
   if (given.exact && !std::holds_alternative<SolidModel>(given.model)) {
@@ -395,6 +393,19 @@ void RequireValidModel(const LoadOptions& given) {
       wall && !(std::isfinite(wall->thickness) && wall->thickness > 0)) {
     throw std::invalid_argument("a wall needs a finite, positive thickness");
   }
+  if (!given.part_masses.empty() && !given.parts) {
+    throw std::invalid_argument("densities per part need the parts to be computed (LoadOptions::parts)");
+  }
+  if (given.parts) {
+    if (!std::holds_alternative<SolidModel>(given.model) && !std::holds_alternative<WallModel>(given.model)) {
+      throw std::invalid_argument("parts are computed as solids or walls, not as shells or winding-number estimates");
+    }
+    if (given.exact) {
+      throw std::invalid_argument(
+          "certified results are for one solid: the composition of parts is not certified (run the exact "
+          "integration without parts)");
+    }
+  }
 }
 
 // A result for `source`, the options checked.
@@ -412,13 +423,13 @@ SolidResult Begin(const std::string& source, const LoadOptions& given) {
 SolidResult LoadSolid(const std::string& file, const LoadOptions& given) {
   const auto t0 = std::chrono::steady_clock::now();
   SolidResult r = Begin(file, given);
-  if (TryStreamedStl(r, file, given)) {
+  if (!given.parts && TryStreamedStl(r, file, given)) {
     r.seconds = SecondsSince(t0);
     return r;
   }
   Stage(given, "reading");
   r.loaded = given.reader == Reader::kAssimp ? ReadMeshFileWithAssimp(file) : ReadMeshFile(file);
-  return Solve(std::move(r), given, t0);
+  return given.parts ? internal::SolveParts(std::move(r), given, t0) : internal::Solve(std::move(r), given, t0);
 }
 
 SolidResult SolveMesh(LoadedMesh mesh, const std::string& name, const LoadOptions& given) {
@@ -427,10 +438,10 @@ SolidResult SolveMesh(LoadedMesh mesh, const std::string& name, const LoadOption
   r.loaded = std::move(mesh);
   // The readers' contract: corners at bit-identical positions are one vertex.
   r.loaded.welded += MergeCoincidentVertices(r.loaded.mesh);
-  return Solve(std::move(r), given, t0);
+  return given.parts ? internal::SolveParts(std::move(r), given, t0) : internal::Solve(std::move(r), given, t0);
 }
 
-namespace {
+namespace internal {
 
 SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_clock::time_point t0) {
   const LoadOptions opt = ResolveUnit(r, given);  // the unit the file declares, unless one is stated
@@ -517,7 +528,7 @@ SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_c
   return r;
 }
 
-}  // namespace
+}  // namespace internal
 
 SolidResult EstimateImplicit(const ImplicitSolid& solid, const ImplicitOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "../parallel.h"
@@ -34,6 +35,13 @@ struct Chunk {
   std::size_t lines = 0;                   // physical lines (newlines) in the chunk
   std::size_t error_line = 0;              // 0: none; else the line (within the chunk) of the fault
   std::string error;
+  // `o` and `g` records: the faces of this chunk read before each, and its name.
+  struct PartStart {
+    std::size_t faces_before;
+    bool object;  // `o` (else `g`)
+    std::string name;
+  };
+  std::vector<PartStart> part_starts;
 };
 
 // A chunk boundary at or after `from`: just past a newline that does not continue its line.
@@ -184,9 +192,66 @@ void ParseChunk(Chunk& c) {
       c.face_sizes.push_back(n);
       c.verts_before.push_back(static_cast<std::int64_t>(c.verts.size() / 3));
       c.face_line.push_back(first_line);
+    } else if (key == "o" || key == "g") {
+      // The rest of the line is the name (OBJ allows several group names; they name one part).
+      std::string name;
+      for (std::string_view tok = NextToken(s); !tok.empty(); tok = NextToken(s)) {
+        if (!name.empty()) name.push_back(' ');
+        name.append(tok);
+      }
+      c.part_starts.push_back({c.face_sizes.size(), key == "o", std::move(name)});
     }
-    // vt, vn, o, g, s, usemtl, mtllib, l, ...: not geometry of the solid.
+    // vt, vn, s, usemtl, mtllib, l, ...: not geometry of the solid.
   }
+}
+
+// The parts: objects (`o`) when the file names any, else groups (`g`). Faces under the same name
+// form one part wherever they are in the file; faces before the first name form the part "".
+void AssignParts(const std::vector<Chunk>& chunks, const std::vector<std::int64_t>& face_base, LoadedMesh& out) {
+  bool objects = false, groups = false;
+  for (const Chunk& c : chunks) {
+    for (const auto& p : c.part_starts) (p.object ? objects : groups) = true;
+  }
+  if (!objects && !groups) return;
+  std::vector<std::int32_t>& face_part = out.face_part;
+  face_part.assign(static_cast<std::size_t>(face_base.back()), 0);
+  std::vector<std::string>& names = out.part_names;
+  std::unordered_map<std::string, std::int32_t> index;
+  auto part_of = [&](const std::string& name) {
+    const auto [it, inserted] = index.emplace(name, static_cast<std::int32_t>(names.size()));
+    if (inserted) names.push_back(name);
+    return it->second;
+  };
+  std::int32_t current = -1;  // faces before any name: the part "" (created when it has faces)
+  std::size_t f = 0;
+  for (std::size_t b = 0; b < chunks.size(); ++b) {
+    const Chunk& c = chunks[b];
+    std::size_t k = 0;
+    auto fill_to = [&](std::size_t end) {  // this chunk's faces before `end`
+      for (; k < end; ++k, ++f) {
+        if (current < 0) current = part_of("");
+        face_part[f] = current;
+      }
+    };
+    for (const auto& p : c.part_starts) {
+      if (p.object != objects) continue;  // groups inside objects do not split them
+      fill_to(p.faces_before);
+      current = part_of(p.name);
+    }
+    fill_to(c.face_sizes.size());
+  }
+  // Names that received no faces (an `o` line followed by another) are not parts.
+  std::vector<std::int64_t> count(names.size(), 0);
+  for (std::int32_t p : face_part) ++count[static_cast<std::size_t>(p)];
+  std::vector<std::int32_t> renumber(names.size(), -1);
+  std::vector<std::string> kept;
+  for (std::size_t p = 0; p < names.size(); ++p) {
+    if (count[p] == 0) continue;
+    renumber[p] = static_cast<std::int32_t>(kept.size());
+    kept.push_back(std::move(names[p]));
+  }
+  for (std::int32_t& p : face_part) p = renumber[static_cast<std::size_t>(p)];
+  names = std::move(kept);
 }
 
 }  // namespace
@@ -256,6 +321,7 @@ LoadedMesh ParseObj(const std::string& path, std::string_view data) {
     Fail(path, "line " + std::to_string(line_base[b] + line) + ": " + what);
   }
   if (vert_base.back() == 0 || face_base.back() == 0) Fail(path, "no faces found in the OBJ file");
+  AssignParts(chunks, face_base, out);
   mesh.V.resize(vert_base.back(), 3);
   internal::ParallelForBlocks(static_cast<std::int64_t>(chunks.size()), 0, [&](std::int64_t bb) {
     const auto b = static_cast<std::size_t>(bb);
