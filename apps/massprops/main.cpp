@@ -25,6 +25,7 @@
 #include "batch.h"
 #include "cli.h"
 #include "density_map.h"
+#include "fill.h"
 #include "format.h"
 #include "massprops/implicit.h"
 #include "massprops/io.h"
@@ -136,6 +137,7 @@ int MergeMain(int argc, char** argv) {
 int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "merge") return MergeMain(argc - 1, argv + 1);
   if (argc > 1 && std::string(argv[1]) == "validate") return cli::ValidateMain(argc - 1, argv + 1);
+  if (argc > 1 && std::string(argv[1]) == "fill") return cli::FillMain(argc - 1, argv + 1);
   // massprops batch (DIR | MANIFEST) -o OUT [batch options] [the usual options]
   const bool batch = argc > 1 && std::string(argv[1]) == "batch";
   if (batch) {
@@ -148,7 +150,7 @@ int main(int argc, char** argv) {
                      : "massprops: exact mass properties of the solids that mesh files bound.\n"
                        "Reads OBJ, STL, PLY, OFF (own parsers) and other formats through assimp.\n"
                        "Subcommands: massprops batch (DIR | MANIFEST) -o OUT.jsonl; massprops merge OUT SHARD...; "
-                       "massprops validate"};
+                       "massprops validate; massprops fill ROBOT -o OUT"};
   app.set_version_flag("--version", std::string("massprops ") + kVersion);
   Arguments a;
   cli::BatchOptions b;
@@ -270,9 +272,6 @@ int main(int argc, char** argv) {
     std::cerr << "error: " << what << "\n";
     return app::kBadArguments;
   };
-  if (!batch && !a.files.empty() && app::RefuseReservedWord("massprops", a.files[0], {"fill"})) {
-    return app::kBadArguments;
-  }
   if (!std::isfinite(a.density) || !std::isfinite(a.mass) || !std::isfinite(a.area_density) || !std::isfinite(a.wall)) {
     return bad("--density, --mass, --area-density and --wall must be finite");
   }

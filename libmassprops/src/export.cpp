@@ -48,10 +48,17 @@ std::string MjcfInertial(const MassProperties& mp, const PrincipalInertia& p, co
   Eigen::Quaterniond q(p.axes);  // rotation taking principal-frame vectors to mesh axes
   q.normalize();
   if (q.w() < 0) q.coeffs() *= -1.0;  // one of the two equal quaternions, w >= 0
+  // A flat body's moments sit on the triangle inequality (I1 + I2 = I3), where rounding can put
+  // them a few ulps outside it, and MuJoCo refuses an inertia with I1 + I2 < I3 by any amount:
+  // the largest moment then takes the sum's value (a change within rounding of the moments).
+  Vector3 moments = p.moments;
+  if (moments[0] + moments[1] < moments[2] && moments[2] - (moments[0] + moments[1]) <= 1e-12 * moments[2]) {
+    moments[2] = moments[0] + moments[1];
+  }
   std::ostringstream o;
   o << in << "<inertial pos=\"" << Triple(mp.center_of_mass) << "\" quat=\"" << ExactDecimal(q.w()) << " "
     << ExactDecimal(q.x()) << " " << ExactDecimal(q.y()) << " " << ExactDecimal(q.z()) << "\" mass=\""
-    << ExactDecimal(mp.mass) << "\" diaginertia=\"" << Triple(p.moments) << "\"/>\n";
+    << ExactDecimal(mp.mass) << "\" diaginertia=\"" << Triple(moments) << "\"/>\n";
   return o.str();
 }
 

@@ -257,8 +257,60 @@ assert len(rows) == 2 and rows[0]['se_mass'] == '' and float(rows[1]['se_mass'])
 [ $? -eq 2 ]; check "negative density exits 2" $?
 "$bin" --version >"$tmp/out" 2>&1
 [ $? -eq 0 ] && grep -Eq "^massprops [0-9]+\.[0-9]+\.[0-9]+$" "$tmp/out"; check "--version" $?
-"$bin" fill "$data/meshes/spot.obj" >/dev/null 2>"$tmp/err"
-[ $? -eq 2 ] && grep -q "a file of that name is given as ./fill" "$tmp/err"; check "reserved word fill" $?
+
+# Assemblies: --parts and --density-map (values against closed forms: tests/massprops/parts_test.cpp).
+"$bin" "$data/meshes/assembly_bracket.obj" --parts --format json -q >"$tmp/parts.json" 2>"$tmp/err"
+check "--parts exits 0" $?
+python3 - "$tmp/parts.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert [p["part"] for p in d["parts"]] == ["base", "post", "insert_brass"], d["parts"]
+assert abs(sum(p["mass"] for p in d["parts"]) - d["mass"]) < 1e-15
+assert "part" not in d and all("parts" not in p for p in d["parts"])
+PY
+check "--parts JSON: a parts array whose masses add up" $?
+"$bin" "$data/meshes/assembly_bracket.obj" --parts --format csv -q >"$tmp/parts.csv" 2>"$tmp/err"
+[ "$(wc -l <"$tmp/parts.csv")" -eq 5 ] && head -1 "$tmp/parts.csv" | grep -q "^file,part,unit," &&
+  grep -q '"insert_brass"' "$tmp/parts.csv"; check "--parts CSV: a row per part and one for the whole" $?
+printf 'part,density,mass\nbase,2700,\npost,7850,\n"insert_*",,0.017\n' >"$tmp/map.csv"
+"$bin" "$data/meshes/assembly_bracket.obj" --density-map "$tmp/map.csv" --format json -q >"$tmp/csvmap.json" 2>"$tmp/err"
+check "--density-map CSV exits 0" $?
+"$bin" "$data/meshes/assembly_bracket.obj" --density-map "$data/meshes/assembly_bracket_materials.json" \
+  --format json -q >"$tmp/jsonmap.json" 2>"$tmp/err"
+check "--density-map JSON exits 0" $?
+python3 - "$tmp/csvmap.json" "$tmp/jsonmap.json" <<'PY'
+import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:])
+assert a["mass"] == b["mass"] and a["inertia_com"] == b["inertia_com"]
+assert abs(a["mass"] - (2700 * 6e-5 + 7850 * 3.2e-5 + 0.017)) < 1e-12, a["mass"]
+PY
+check "--density-map: the CSV and JSON maps give the same whole" $?
+echo '{"bse": 2700}' >"$tmp/typo.json"
+"$bin" "$data/meshes/assembly_bracket.obj" --density-map "$tmp/typo.json" -q >/dev/null 2>"$tmp/err"
+[ $? -eq 1 ] && grep -q "'bse' matches no part" "$tmp/err"; check "--density-map entry matching no part is an error" $?
+echo '{"base": "dense"}' >"$tmp/bad.json"
+"$bin" "$data/meshes/assembly_bracket.obj" --density-map "$tmp/bad.json" -q >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ] && grep -q "entry 'base'" "$tmp/err"; check "malformed --density-map exits 2" $?
+"$bin" "$data/meshes/assembly_bracket.obj" --parts --shell --area-density 1 -q >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ]; check "--parts with --shell exits 2" $?
+
+# Robot descriptions: massprops fill (values: tests/robot/fill_test.cpp; consumers:
+# tests/robot/consumers_test.py).
+"$bin" fill "$data/robots/demo_arm.urdf" -o "$tmp/arm.urdf" >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 0 ] && grep -q "5 filled, 0 failed, 1 without geometry" "$tmp/out" && [ "$(grep -c "<inertial>" "$tmp/arm.urdf")" -eq 5 ]
+check "fill a URDF" $?
+"$bin" fill "$data/robots/demo_arm.urdf" >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ]; check "fill without -o exits 2" $?
+"$bin" fill "$data/robots/demo_arm.urdf" -o "$data/robots/demo_arm.urdf" >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ]; check "fill refuses to overwrite its input" $?
+"$bin" fill "$data/robots/demo_arm.urdf" -o "$tmp/x.urdf" --package nodir >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ] && grep -q "NAME=DIR" "$tmp/err"; check "fill --package without = exits 2" $?
+printf '<robot name="r">\n  <link name="a"><collision><geometry><mesh filename="gone.stl"/></geometry></collision></link>\n  <link name="b"><collision><geometry><sphere radius="0.1"/></geometry></collision></link>\n</robot>\n' >"$tmp/r.urdf"
+"$bin" fill "$tmp/r.urdf" -o "$tmp/r_out.urdf" >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 1 ] && grep -q "link 'a'.*gone.stl" "$tmp/err" && [ "$(grep -c "<inertial>" "$tmp/r_out.urdf")" -eq 1 ]
+check "fill: a link that fails is named, the others are filled, exit 1" $?
+"$bin" fill "$data/meshes/spot.obj" -o "$tmp/x.urdf" >/dev/null 2>"$tmp/err"
+[ $? -eq 1 ] && grep -q "not well-formed XML" "$tmp/err"; check "fill of a non-XML file exits 1" $?
 # Output files: never over a device node or an input.
 "$bin" "$data/meshes/t_handle.obj" -o /dev/null >/dev/null 2>"$tmp/err"
 [ $? -eq 2 ] && grep -q "not a regular file" "$tmp/err" && [ -c /dev/null ]; check "-o /dev/null refused" $?

@@ -1,0 +1,224 @@
+// massprops::robot: reads a robot description, computes each link from its geometries and
+// writes the inertials back (robot.h).
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "massprops/composition.h"
+#include "massprops/robot.h"
+#include "massprops/text.h"
+#include "robot_internal.h"
+
+namespace massprops {
+
+const char* RobotFormatName(RobotFormat format) {
+  switch (format) {
+    case RobotFormat::kUrdf: return "urdf";
+    case RobotFormat::kSdf: return "sdf";
+    case RobotFormat::kMjcf: return "mjcf";
+  }
+  return "?";
+}
+
+bool FillResult::AllFilled() const {
+  for (const LinkFill& l : links) {
+    if (l.status == LinkStatus::kFailed) return false;
+  }
+  return true;
+}
+
+namespace {
+
+using robot::Document;
+using robot::Geometry;
+using robot::Link;
+
+RobotFormat FormatOf(const Document& doc) {
+  const pugi::xml_node root = doc.xml.document_element();
+  const std::string name = root.name();
+  if (name == "robot") return RobotFormat::kUrdf;
+  if (name == "sdf") return RobotFormat::kSdf;
+  if (name == "mujoco") return RobotFormat::kMjcf;
+  throw std::runtime_error(doc.path + ": the root element <" + name +
+                           "> is none of <robot> (URDF), <sdf> (SDFormat) or <mujoco> (MJCF)");
+}
+
+void Parse(Document& doc, const std::string& path) {
+  std::error_code e;
+  if (!std::filesystem::is_regular_file(path, e)) throw std::runtime_error(path + ": not a regular file");
+  doc.path = path;
+  doc.dir = std::filesystem::path(path).parent_path().string();
+  std::ifstream file(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << file.rdbuf();
+  if (!file) throw std::runtime_error(path + ": cannot be read");
+  doc.text = bytes.str();
+  // Comments and the blanks between elements are kept, so that the file is written back as it
+  // was, but for the inertials. Offsets are then offsets into doc.text.
+  const pugi::xml_parse_result parsed = doc.xml.load_buffer(
+      doc.text.data(), doc.text.size(), (pugi::parse_full | pugi::parse_ws_pcdata) & ~pugi::parse_eol);
+  if (!parsed) {
+    throw std::runtime_error(path + ": not well-formed XML at byte " + std::to_string(parsed.offset) + " (" +
+                             parsed.description() + ")");
+  }
+}
+
+// Mass properties of the meshes, at unit density, each read and checked once.
+class MeshCache {
+ public:
+  explicit MeshCache(const LoadOptions& load) : load_(load) {
+    load_.mass = Density{1.0};
+    load_.parts = false;
+    load_.part_masses.clear();
+    load_.hull = false;
+    load_.exact = false;
+    load_.progress = nullptr;
+  }
+  const SolidResult& Get(const std::string& path) {
+    auto it = cache_.find(path);
+    if (it == cache_.end()) it = cache_.emplace(path, LoadSolid(path, load_)).first;
+    return it->second;
+  }
+
+ private:
+  LoadOptions load_;
+  std::map<std::string, SolidResult> cache_;
+};
+
+// The geometry at unit density, in the link frame; findings go to `notes`.
+MassProperties UnitDensity(const Geometry& g, MeshCache& meshes, std::vector<std::string>& notes) {
+  MassProperties mp;
+  if (const auto* p = std::get_if<Primitive>(&g.shape)) {
+    mp = ClosedForm(*p, 1.0);
+  } else {
+    const auto& mesh = std::get<robot::MeshRef>(g.shape);
+    const SolidResult& r = meshes.Get(mesh.path);
+    for (const Finding& f : r.findings) {
+      // The size the scale gives it is the one that matters: unit guesses about the raw file
+      // do not apply.
+      if (f.kind != FindingKind::kUnitSuspicion) notes.push_back(g.where + ": " + f.message);
+    }
+    mp = mesh.scale == Vector3::Ones() ? r.mp : Scaled(r.mp, mesh.scale);
+  }
+  return Transformed(mp, g.rotation, g.translation);
+}
+
+// `mp` with its mass scaled to `mass` (same shape, same center of mass).
+MassProperties WithMass(MassProperties mp, double mass) {
+  const double k = mass / mp.mass;
+  mp.mass = mass;
+  mp.inertia_com *= k;
+  mp.density *= k;
+  return mp;
+}
+
+LinkFill Compute(const Link& link, const FillOptions& options, MeshCache& meshes) {
+  LinkFill out;
+  out.name = link.name;
+  out.notes = link.notes;
+  if (!link.error.empty()) {
+    out.status = LinkStatus::kFailed;
+    out.message = link.error;
+    return out;
+  }
+  if (link.geometries.empty()) {
+    out.status = LinkStatus::kNoGeometry;
+    return out;
+  }
+  const PartMass* entry = MatchPart(options.link_masses, link.name);
+  try {
+    std::vector<MassProperties> parts;
+    for (const Geometry& g : link.geometries) {
+      const MassProperties unit = UnitDensity(g, meshes, out.notes);
+      if (entry != nullptr && std::holds_alternative<Density>(entry->mass)) {
+        parts.push_back(AtDensity(unit, std::get<Density>(entry->mass).value));
+      } else if (entry == nullptr && g.own && std::holds_alternative<TotalMass>(*g.own)) {
+        parts.push_back(WithMass(AtDensity(unit, 1.0), std::get<TotalMass>(*g.own).value));
+      } else if (entry == nullptr && g.own) {
+        parts.push_back(AtDensity(unit, std::get<Density>(*g.own).value));
+      } else {
+        parts.push_back(AtDensity(unit, options.density));
+      }
+    }
+    out.mp = Combine(parts);
+    if (entry != nullptr && std::holds_alternative<TotalMass>(entry->mass)) {
+      out.mp = WithMass(out.mp, std::get<TotalMass>(entry->mass).value);
+    } else if (options.keep_mass && link.stated_mass) {
+      if (!(*link.stated_mass > 0)) throw std::runtime_error("its stated mass is not positive");
+      out.mp = WithMass(out.mp, *link.stated_mass);
+      out.notes.push_back("mass kept: " + ExactDecimal(*link.stated_mass) + " kg");
+    } else if (options.keep_mass) {
+      out.notes.push_back("no mass to keep: computed at the density");
+    }
+  } catch (const LoadError& e) {
+    out.status = LinkStatus::kFailed;
+    out.message = e.text();
+    return out;
+  } catch (const std::exception& e) {
+    out.status = LinkStatus::kFailed;
+    out.message = e.what();
+    return out;
+  }
+  out.principal = ComputePrincipalInertia(out.mp.inertia_com);
+  out.geometries = static_cast<int>(link.geometries.size());
+  out.status = LinkStatus::kFilled;
+  return out;
+}
+
+}  // namespace
+
+RobotFormat DetectRobotFormat(const std::string& path) {
+  Document doc;
+  Parse(doc, path);
+  return FormatOf(doc);
+}
+
+FillResult FillRobotDescription(const std::string& path, const FillOptions& options) {
+  if (!(std::isfinite(options.density) && options.density > 0)) {
+    throw std::invalid_argument("the density must be finite and positive");
+  }
+  Document doc;
+  Parse(doc, path);
+  FillResult result;
+  result.format = FormatOf(doc);
+  std::vector<Link> links = result.format == RobotFormat::kUrdf  ? robot::UrdfLinks(doc, options)
+                            : result.format == RobotFormat::kSdf ? robot::SdfLinks(doc, options)
+                                                                 : robot::MjcfLinks(doc, options);
+  for (const PartMass& entry : options.link_masses) {
+    bool used = false;
+    for (const Link& l : links) used = used || MatchPart({entry}, l.name) != nullptr;
+    if (!used) {
+      throw std::invalid_argument("the density map's entry '" + entry.pattern + "' matches no link of " + path);
+    }
+  }
+  MeshCache meshes(options.load);
+  for (Link& link : links) {
+    LinkFill fill = Compute(link, options, meshes);
+    if (fill.status == LinkStatus::kFilled) {
+      if (result.format == RobotFormat::kUrdf) robot::WriteUrdfInertial(link, fill.mp);
+      if (result.format == RobotFormat::kSdf) robot::WriteSdfInertial(link, fill.mp);
+      if (result.format == RobotFormat::kMjcf) robot::WriteMjcfInertial(link, fill.mp, fill.principal);
+    }
+    result.links.push_back(std::move(fill));
+  }
+  result.notes = doc.notes;
+  // What precedes and follows the root element (the declaration, comments, line breaks) is
+  // copied from the file as it was: pugixml keeps no blanks between top-level nodes.
+  const pugi::xml_node root = doc.xml.document_element();
+  const std::string& original = doc.text;
+  const auto start = static_cast<std::size_t>(root.offset_debug());  // just past the '<'
+  const std::size_t close = original.rfind(std::string("</") + root.name());
+  std::size_t end = close == std::string::npos ? std::string::npos : original.find('>', close);
+  if (end == std::string::npos) end = original.find_last_of('>');  // a root without children: <robot/>
+  std::ostringstream text;
+  if (start >= 1 && start <= original.size()) text << original.substr(0, start - 1);
+  root.print(text, "", pugi::format_raw);
+  if (end != std::string::npos) text << original.substr(end + 1);
+  result.document = text.str();
+  return result;
+}
+
+}  // namespace massprops

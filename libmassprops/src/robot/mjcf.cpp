@@ -1,0 +1,320 @@
+// MJCF (MuJoCo): every <body> in <worldbody>; its geoms (the <geom> children) that collide
+// (contype or conaffinity non-zero, the default) or, for GeometrySource::kVisual, those that do
+// not. A geom's attributes come from itself, else from its default class (its `class`, else the
+// nearest enclosing body's `childclass`, else the top-level <default>) and that class's parents.
+// Types: sphere (the default), capsule, cylinder (size "r half-length" or fromto), box (half
+// sizes), ellipsoid (semi-axes) and mesh (an <asset><mesh file scale> under <compiler meshdir>).
+// Orientation: quat (w x y z), axisangle, euler (with <compiler angle eulerseq>), xyaxes, zaxis.
+// A geom's own mass or density attribute is its own; a mass or density of 0 removes it.
+
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/Geometry>
+
+#include "massprops/export.h"
+#include "robot_internal.h"
+
+namespace massprops::robot {
+namespace {
+
+struct Compiler {
+  bool degrees = true;
+  std::string eulerseq = "xyz";
+  std::string meshdir;
+};
+
+class Defaults {
+ public:
+  explicit Defaults(pugi::xml_node root) {
+    for (pugi::xml_node d : root.children("default")) Collect(d, "main");
+  }
+  // The attribute `name` of a `kind` element (geom, mesh) of class `cls`, through its parents.
+  pugi::xml_attribute Find(const std::string& cls, const char* kind, const char* name) const {
+    auto it = classes_.find(cls);
+    if (it == classes_.end()) return {};
+    for (pugi::xml_node d = it->second; d && std::string(d.name()) == "default"; d = d.parent()) {
+      if (const pugi::xml_attribute a = d.child(kind).attribute(name)) return a;
+    }
+    return {};
+  }
+  bool Has(const std::string& cls) const { return classes_.count(cls) > 0; }
+
+ private:
+  void Collect(pugi::xml_node d, const std::string& fallback) {
+    const std::string name = d.attribute("class") ? d.attribute("class").value() : fallback;
+    classes_[name] = d;
+    for (pugi::xml_node child : d.children("default")) Collect(child, "");
+  }
+  std::map<std::string, pugi::xml_node> classes_;
+};
+
+// The rotation an euler attribute describes (MuJoCo: lower-case axes rotate with the frame,
+// upper-case axes stay fixed).
+Matrix3 FromEuler(const std::vector<double>& a, const Compiler& c, const std::string& what) {
+  if (c.eulerseq.size() != 3) throw ElementError(what + ": <compiler eulerseq> must name three axes");
+  Matrix3 r = Matrix3::Identity();
+  for (int i = 0; i < 3; ++i) {
+    const char axis = c.eulerseq[static_cast<std::size_t>(i)];
+    const char lower = static_cast<char>(std::tolower(static_cast<unsigned char>(axis)));
+    if (lower != 'x' && lower != 'y' && lower != 'z') throw ElementError(what + ": bad <compiler eulerseq>");
+    const Vector3 u = lower == 'x' ? Vector3::UnitX() : lower == 'y' ? Vector3::UnitY() : Vector3::UnitZ();
+    const Matrix3 ri =
+        Eigen::AngleAxisd(a[static_cast<std::size_t>(i)] * (c.degrees ? M_PI / 180 : 1.0), u).toRotationMatrix();
+    r = axis == lower ? Matrix3(r * ri) : Matrix3(ri * r);
+  }
+  return r;
+}
+
+// The rotation taking z to `z` by the shortest arc.
+Matrix3 FromZAxis(const Vector3& z, const std::string& what) {
+  const double n = z.norm();
+  if (!(n > 1e-12)) throw ElementError(what + ": a zero axis");
+  return Eigen::Quaterniond::FromTwoVectors(Vector3::UnitZ(), z / n).toRotationMatrix();
+}
+
+class GeomReader {
+ public:
+  GeomReader(const Document& doc, const FillOptions& options, const Compiler& compiler, const Defaults& defaults,
+             pugi::xml_node root)
+      : doc_(doc), options_(options), compiler_(compiler), defaults_(defaults) {
+    for (pugi::xml_node asset : root.children("asset")) {
+      for (pugi::xml_node mesh : asset.children("mesh")) {
+        std::string name = mesh.attribute("name").value();
+        if (name.empty()) name = std::filesystem::path(mesh.attribute("file").value()).stem().string();
+        meshes_[name] = mesh;
+      }
+    }
+  }
+
+  // The geom's attribute, from itself or its class.
+  pugi::xml_attribute Attr(pugi::xml_node geom, const std::string& cls, const char* name) const {
+    if (const pugi::xml_attribute a = geom.attribute(name)) return a;
+    return defaults_.Find(cls, "geom", name);
+  }
+
+  // Nothing for a geom that has no mass (mass or density 0).
+  std::optional<Geometry> Read(pugi::xml_node geom, const std::string& cls, const std::string& what) const {
+    Geometry g;
+    g.where = what;
+    auto attr = [&](const char* name) { return Attr(geom, cls, name); };
+    if (const pugi::xml_attribute mass = attr("mass")) {
+      const double m = Numbers(mass.value(), 1, what + " mass")[0];
+      if (m == 0) return std::nullopt;
+      if (!(m > 0)) throw ElementError(what + ": a negative mass");
+      g.own = TotalMass{m};
+    } else if (const pugi::xml_attribute density = attr("density")) {
+      const double rho = Numbers(density.value(), 1, what + " density")[0];
+      if (rho == 0) return std::nullopt;
+      if (!(rho > 0)) throw ElementError(what + ": a negative density");
+      g.own = Density{rho};
+    }
+    const std::string type = attr("type") ? attr("type").value() : "sphere";
+    const pugi::xml_attribute fromto = attr("fromto");
+    std::vector<double> size;
+    if (const pugi::xml_attribute s = attr("size")) {
+      const std::string text = s.value();
+      for (std::size_t n = 3; n >= 1; --n) {  // MuJoCo reads as many as the type needs
+        try {
+          size = Numbers(text, n, what + " size");
+          break;
+        } catch (const ElementError&) {
+          if (n == 1) throw;
+        }
+      }
+    }
+    auto need = [&](std::size_t n) {
+      if (size.size() < n) throw ElementError(what + ": a " + type + " needs " + std::to_string(n) + " sizes");
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!(size[i] > 0)) throw ElementError(what + ": sizes must be positive");
+      }
+    };
+    if (type == "sphere") {
+      need(1);
+      g.shape = Primitive(primitive::Sphere{size[0]});
+    } else if (type == "capsule" || type == "cylinder") {
+      double half = 0;
+      if (fromto) {
+        need(1);
+        const auto p = Numbers(fromto.value(), 6, what + " fromto");
+        const Vector3 a(p[0], p[1], p[2]), b(p[3], p[4], p[5]);
+        half = (b - a).norm() / 2;
+        if (!(half > 0)) throw ElementError(what + ": fromto's two points coincide");
+        g.translation = (a + b) / 2;
+        g.rotation = FromZAxis(b - a, what);
+      } else {
+        need(2);
+        half = size[1];
+      }
+      if (type == "capsule") {
+        g.shape = Primitive(primitive::Capsule{size[0], 2 * half});
+      } else {
+        g.shape = Primitive(primitive::Cylinder{size[0], 2 * half});
+      }
+    } else if (type == "box") {
+      need(3);
+      g.shape = Primitive(primitive::Box{2 * Vector3(size[0], size[1], size[2])});
+    } else if (type == "ellipsoid") {
+      need(3);
+      g.shape = Primitive(primitive::Ellipsoid{Vector3(size[0], size[1], size[2])});
+    } else if (type == "mesh") {
+      g.shape = Mesh(attr("mesh").value(), what);
+    } else {
+      throw ElementError(what + ": a " + type + " geom bounds no volume this reader computes");
+    }
+    if (fromto && type != "capsule" && type != "cylinder") {
+      throw ElementError(what + ": fromto is followed for capsules and cylinders only");
+    }
+    if (!fromto) Place(geom, cls, g, what);
+    return g;
+  }
+
+ private:
+  MeshRef Mesh(const std::string& name, const std::string& what) const {
+    const auto it = meshes_.find(name);
+    if (it == meshes_.end()) throw ElementError(what + ": no <asset><mesh> named '" + name + "'");
+    const pugi::xml_node mesh = it->second;
+    const std::string cls = mesh.attribute("class") ? mesh.attribute("class").value() : "main";
+    auto attr = [&](const char* a) {
+      if (const pugi::xml_attribute own = mesh.attribute(a)) return own;
+      return defaults_.Find(cls, "mesh", a);
+    };
+    if (attr("refpos") || attr("refquat")) {
+      throw ElementError(what + ": mesh '" + name + "' has refpos/refquat, which this reader does not follow");
+    }
+    if (!mesh.attribute("file")) throw ElementError(what + ": mesh '" + name + "' has no file");
+    MeshRef ref;
+    std::filesystem::path file = mesh.attribute("file").value();
+    if (file.is_relative() && !compiler_.meshdir.empty()) file = std::filesystem::path(compiler_.meshdir) / file;
+    ref.path = ResolveUri(file.string(), doc_, options_);
+    if (const pugi::xml_attribute scale = attr("scale")) {
+      const auto s = Numbers(scale.value(), 3, what + " mesh '" + name + "' scale");
+      ref.scale = Vector3(s[0], s[1], s[2]);
+    }
+    return ref;
+  }
+
+  void Place(pugi::xml_node geom, const std::string& cls, Geometry& g, const std::string& what) const {
+    auto attr = [&](const char* name) { return Attr(geom, cls, name); };
+    if (const pugi::xml_attribute pos = attr("pos")) {
+      const auto p = Numbers(pos.value(), 3, what + " pos");
+      g.translation = Vector3(p[0], p[1], p[2]);
+    }
+    if (const pugi::xml_attribute q = attr("quat")) {
+      const auto v = Numbers(q.value(), 4, what + " quat");
+      g.rotation = FromQuaternion(v[0], v[1], v[2], v[3], what + " quat");
+    }
+    if (const pugi::xml_attribute aa = attr("axisangle")) {
+      const auto v = Numbers(aa.value(), 4, what + " axisangle");
+      const Vector3 axis(v[0], v[1], v[2]);
+      if (!(axis.norm() > 1e-12)) throw ElementError(what + ": axisangle has a zero axis");
+      g.rotation =
+          Eigen::AngleAxisd(v[3] * (compiler_.degrees ? M_PI / 180 : 1.0), axis.normalized()).toRotationMatrix();
+    }
+    if (const pugi::xml_attribute e = attr("euler")) {
+      g.rotation = FromEuler(Numbers(e.value(), 3, what + " euler"), compiler_, what);
+    }
+    if (const pugi::xml_attribute xy = attr("xyaxes")) {
+      const auto v = Numbers(xy.value(), 6, what + " xyaxes");
+      Vector3 x(v[0], v[1], v[2]), y(v[3], v[4], v[5]);
+      if (!(x.norm() > 1e-12)) throw ElementError(what + ": xyaxes has a zero x axis");
+      x.normalize();
+      y -= x * x.dot(y);
+      if (!(y.norm() > 1e-12)) throw ElementError(what + ": xyaxes' axes are parallel");
+      y.normalize();
+      g.rotation.col(0) = x;
+      g.rotation.col(1) = y;
+      g.rotation.col(2) = x.cross(y);
+    }
+    if (const pugi::xml_attribute z = attr("zaxis")) {
+      const auto v = Numbers(z.value(), 3, what + " zaxis");
+      g.rotation = FromZAxis(Vector3(v[0], v[1], v[2]), what);
+    }
+  }
+
+  const Document& doc_;
+  const FillOptions& options_;
+  const Compiler& compiler_;
+  const Defaults& defaults_;
+  std::map<std::string, pugi::xml_node> meshes_;
+};
+
+void CollectBodies(pugi::xml_node parent, std::vector<pugi::xml_node>& out) {
+  for (pugi::xml_node body : parent.children("body")) {
+    out.push_back(body);
+    CollectBodies(body, out);
+  }
+}
+
+}  // namespace
+
+std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options) {
+  const pugi::xml_node root = doc.xml.child("mujoco");
+  if (const pugi::xpath_node include = doc.xml.select_node("//include")) {
+    throw std::runtime_error(doc.path + ": <include file=\"" + std::string(include.node().attribute("file").value()) +
+                             "\"> is not followed: give the file with its includes expanded");
+  }
+  Compiler compiler;
+  for (pugi::xml_node c : root.children("compiler")) {
+    if (const pugi::xml_attribute angle = c.attribute("angle"))
+      compiler.degrees = std::string(angle.value()) != "radian";
+    if (const pugi::xml_attribute seq = c.attribute("eulerseq")) compiler.eulerseq = seq.value();
+    if (const pugi::xml_attribute dir = c.attribute("meshdir")) compiler.meshdir = dir.value();
+    if (!c.attribute("meshdir") && c.attribute("assetdir")) compiler.meshdir = c.attribute("assetdir").value();
+    if (std::string(c.attribute("inertiafromgeom").value()) == "true") {
+      doc.notes.push_back(
+          "<compiler inertiafromgeom=\"true\"> makes MuJoCo ignore every <inertial>, the filled ones too: set it "
+          "to \"auto\"");
+    }
+  }
+  const Defaults defaults(root);
+  const GeomReader reader(doc, options, compiler, defaults, root);
+  const bool visual = options.from == GeometrySource::kVisual;
+  std::vector<pugi::xml_node> bodies;
+  for (pugi::xml_node world : root.children("worldbody")) CollectBodies(world, bodies);
+  std::vector<Link> links;
+  for (pugi::xml_node body : bodies) {
+    Link link;
+    link.element = body;
+    link.name = body.attribute("name").value();
+    if (link.name.empty()) link.name = "body #" + std::to_string(links.size() + 1);
+    if (const pugi::xml_attribute m = body.child("inertial").attribute("mass")) link.stated_mass = m.as_double();
+    // The class that applies to this body's geoms without a class of their own.
+    std::string childclass = "main";
+    for (pugi::xml_node b = body; b && std::string(b.name()) == "body"; b = b.parent()) {
+      if (b.attribute("childclass")) {
+        childclass = b.attribute("childclass").value();
+        break;
+      }
+    }
+    int k = 0;
+    for (pugi::xml_node geom : body.children("geom")) {
+      ++k;
+      const std::string cls = geom.attribute("class") ? geom.attribute("class").value() : childclass;
+      const std::string what = Describe(geom, k);
+      try {
+        if (cls != "main" && !defaults.Has(cls)) throw ElementError(what + ": no <default class=\"" + cls + "\">");
+        const pugi::xml_attribute contype = reader.Attr(geom, cls, "contype");
+        const pugi::xml_attribute conaffinity = reader.Attr(geom, cls, "conaffinity");
+        const bool collides = (contype ? contype.as_int() : 1) != 0 || (conaffinity ? conaffinity.as_int() : 1) != 0;
+        if (collides == visual) continue;
+        if (auto g = reader.Read(geom, cls, what)) link.geometries.push_back(std::move(*g));
+      } catch (const ElementError& e) {
+        link.error = e.what();
+        break;
+      }
+    }
+    links.push_back(std::move(link));
+  }
+  return links;
+}
+
+void WriteMjcfInertial(Link& link, const MassProperties& mp, const PrincipalInertia& principal) {
+  ReplaceOrInsert(link.element, link.element.child("inertial"), MjcfInertial(mp, principal));
+}
+
+}  // namespace massprops::robot

@@ -1,0 +1,79 @@
+#pragma once
+// The pieces of massprops::robot: what a link is made of, read from each format (urdf.cpp,
+// sdf.cpp, mjcf.cpp), and the helpers they share (xml.cpp). fill.cpp computes and writes.
+
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <pugixml.hpp>
+
+#include "massprops/primitive.h"
+#include "massprops/robot.h"
+
+namespace massprops::robot {
+
+struct MeshRef {
+  std::string path;  ///< resolved to a file
+  Vector3 scale = Vector3::Ones();
+};
+
+/// One geometry of a link: its shape in its own frame, placed in the link frame by x ↦ R x + t.
+struct Geometry {
+  std::variant<Primitive, MeshRef> shape;
+  Matrix3 rotation = Matrix3::Identity();
+  Vector3 translation = Vector3::Zero();
+  std::optional<MassSpec> own;  ///< MJCF: the geom's own density or mass
+  std::string where;            ///< "collision 'base_box'", for messages
+};
+
+struct Link {
+  std::string name;
+  pugi::xml_node element;  ///< the link (URDF, SDF) or body (MJCF) element
+  std::vector<Geometry> geometries;
+  std::optional<double> stated_mass;  ///< the mass its inertial states now
+  std::string error;                  ///< a geometry that could not be understood
+  std::vector<std::string> notes;
+};
+
+struct Document {
+  std::string path;
+  std::string dir;   ///< the folder of `path`, for relative references
+  std::string text;  ///< the file's bytes
+  pugi::xml_document xml;
+  std::vector<std::string> notes;
+};
+
+/// A fault in one element, with the element named; caught per link.
+struct ElementError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+std::vector<Link> UrdfLinks(Document& doc, const FillOptions& options);
+std::vector<Link> SdfLinks(Document& doc, const FillOptions& options);
+std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options);
+void WriteUrdfInertial(Link& link, const MassProperties& mp);
+void WriteSdfInertial(Link& link, const MassProperties& mp);
+void WriteMjcfInertial(Link& link, const MassProperties& mp, const PrincipalInertia& principal);
+
+// Shared helpers (xml.cpp).
+
+/// Exactly `n` numbers, blank-separated. @throws ElementError naming `what`.
+std::vector<double> Numbers(const std::string& text, std::size_t n, const std::string& what);
+/// One finite, positive number. @throws ElementError naming `what`.
+double Positive(const std::string& text, const std::string& what);
+/// R = Rz(yaw) Ry(pitch) Rx(roll): URDF and SDFormat's fixed-axis roll, pitch, yaw.
+Matrix3 FromRollPitchYaw(double roll, double pitch, double yaw);
+/// The rotation of a unit quaternion (w, x, y, z), normalized first. @throws ElementError.
+Matrix3 FromQuaternion(double w, double x, double y, double z, const std::string& what);
+/// A file named by a robot description: package://, model://, file:// or a path (relative to
+/// the description's folder). @throws ElementError when it does not resolve to a regular file.
+std::string ResolveUri(const std::string& uri, const Document& doc, const FillOptions& options);
+/// Replaces `old` (when it exists) by the elements of `snippet`, or inserts them as the first
+/// children of `parent`, indented as its other children are.
+void ReplaceOrInsert(pugi::xml_node parent, pugi::xml_node old, const std::string& snippet);
+/// The name of an element for messages: its name attribute, else "<tag> #k" (k-th of its kind).
+std::string Describe(pugi::xml_node element, int k);
+
+}  // namespace massprops::robot

@@ -1,0 +1,123 @@
+// SDFormat: <link> elements (in <model>s, nested or in a <world>); their <collision> (or
+// <visual>) elements each hold a <pose> (x y z roll pitch yaw; radians unless degrees="true";
+// or x y z qx qy qz qw with rotation_format="quat_xyzw") relative to the link, and a <geometry>
+// with one <box><size>, <sphere><radius>, <cylinder><radius><length>, <capsule><radius><length>,
+// <ellipsoid><radii> or <mesh><uri><scale>.
+
+#include <cmath>
+#include <string>
+
+#include "massprops/export.h"
+#include "robot_internal.h"
+
+namespace massprops::robot {
+namespace {
+
+std::string Text(pugi::xml_node parent, const char* child, const std::string& what) {
+  const pugi::xml_node n = parent.child(child);
+  if (!n) throw ElementError(what + ": no <" + child + ">");
+  return n.text().get();
+}
+
+void ReadPose(pugi::xml_node element, const std::string& link, Geometry& g, const std::string& what) {
+  const pugi::xml_node pose = element.child("pose");
+  if (!pose) return;
+  const std::string relative_to = pose.attribute("relative_to").value();
+  if (!relative_to.empty() && relative_to != link) {
+    throw ElementError(what + ": <pose relative_to=\"" + relative_to +
+                       "\"> names another frame than its link (only poses relative to the link are followed)");
+  }
+  const std::string format = pose.attribute("rotation_format").value();
+  if (format == "quat_xyzw") {
+    const auto v = Numbers(pose.text().get(), 7, what + " <pose>");
+    g.translation = Vector3(v[0], v[1], v[2]);
+    g.rotation = FromQuaternion(v[6], v[3], v[4], v[5], what + " <pose>");
+    return;
+  }
+  if (!format.empty() && format != "euler_rpy") {
+    throw ElementError(what + ": <pose rotation_format=\"" + format + "\"> is not euler_rpy or quat_xyzw");
+  }
+  const auto v = Numbers(pose.text().get(), 6, what + " <pose>");
+  const double unit = pose.attribute("degrees").as_bool() ? M_PI / 180 : 1.0;
+  g.translation = Vector3(v[0], v[1], v[2]);
+  g.rotation = FromRollPitchYaw(v[3] * unit, v[4] * unit, v[5] * unit);
+}
+
+Geometry ReadGeometry(pugi::xml_node element, const std::string& link, const std::string& what, const Document& doc,
+                      const FillOptions& options) {
+  Geometry g;
+  g.where = what;
+  ReadPose(element, link, g, what);
+  const pugi::xml_node geometry = element.child("geometry");
+  if (!geometry) throw ElementError(what + ": no <geometry>");
+  const pugi::xml_node shape = geometry.find_child([](pugi::xml_node n) { return n.type() == pugi::node_element; });
+  if (!shape) throw ElementError(what + ": an empty <geometry>");
+  const std::string kind = shape.name();
+  const std::string in = what + " <" + kind + ">";
+  if (kind == "box") {
+    const auto s = Numbers(Text(shape, "size", in), 3, in + " <size>");
+    for (double v : s) {
+      if (!(v > 0)) throw ElementError(in + " <size> must be positive");
+    }
+    g.shape = Primitive(primitive::Box{Vector3(s[0], s[1], s[2])});
+  } else if (kind == "sphere") {
+    g.shape = Primitive(primitive::Sphere{Positive(Text(shape, "radius", in), in + " <radius>")});
+  } else if (kind == "cylinder") {
+    g.shape = Primitive(primitive::Cylinder{Positive(Text(shape, "radius", in), in + " <radius>"),
+                                            Positive(Text(shape, "length", in), in + " <length>")});
+  } else if (kind == "capsule") {
+    g.shape = Primitive(primitive::Capsule{Positive(Text(shape, "radius", in), in + " <radius>"),
+                                           Positive(Text(shape, "length", in), in + " <length>")});
+  } else if (kind == "ellipsoid") {
+    const auto r = Numbers(Text(shape, "radii", in), 3, in + " <radii>");
+    for (double v : r) {
+      if (!(v > 0)) throw ElementError(in + " <radii> must be positive");
+    }
+    g.shape = Primitive(primitive::Ellipsoid{Vector3(r[0], r[1], r[2])});
+  } else if (kind == "mesh") {
+    if (shape.child("submesh")) throw ElementError(in + ": <submesh> (one piece of a mesh file) is not followed");
+    MeshRef mesh;
+    mesh.path = ResolveUri(Text(shape, "uri", in), doc, options);
+    if (const pugi::xml_node scale = shape.child("scale")) {
+      const auto s = Numbers(scale.text().get(), 3, in + " <scale>");
+      mesh.scale = Vector3(s[0], s[1], s[2]);
+    }
+    g.shape = mesh;
+  } else {
+    throw ElementError(what + ": <" + kind + "> is not a geometry this reader knows");
+  }
+  return g;
+}
+
+}  // namespace
+
+std::vector<Link> SdfLinks(Document& doc, const FillOptions& options) {
+  std::vector<Link> links;
+  const char* tag = options.from == GeometrySource::kVisual ? "visual" : "collision";
+  for (const pugi::xpath_node& found : doc.xml.select_nodes("/sdf//link")) {
+    const pugi::xml_node element = found.node();
+    Link link;
+    link.element = element;
+    link.name = element.attribute("name").value();
+    if (link.name.empty()) link.name = Describe(element, static_cast<int>(links.size()) + 1);
+    if (const pugi::xml_node mass = element.child("inertial").child("mass")) link.stated_mass = mass.text().as_double();
+    int k = 0;
+    for (pugi::xml_node geometry : element.children(tag)) {
+      ++k;
+      try {
+        link.geometries.push_back(ReadGeometry(geometry, link.name, Describe(geometry, k), doc, options));
+      } catch (const ElementError& e) {
+        link.error = e.what();
+        break;
+      }
+    }
+    links.push_back(std::move(link));
+  }
+  return links;
+}
+
+void WriteSdfInertial(Link& link, const MassProperties& mp) {
+  ReplaceOrInsert(link.element, link.element.child("inertial"), SdfInertial(mp));
+}
+
+}  // namespace massprops::robot

@@ -1,0 +1,189 @@
+// Helpers shared by the robot formats: numbers and rotations from attributes, file references,
+// and the edit that puts an inertial into a link without disturbing the rest of the file.
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <system_error>
+
+#include <Eigen/Geometry>
+
+#include "robot_internal.h"
+
+namespace massprops::robot {
+
+namespace fs = std::filesystem;
+
+std::vector<double> Numbers(const std::string& text, std::size_t n, const std::string& what) {
+  std::vector<double> out;
+  const char* p = text.c_str();
+  while (true) {
+    while (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r') ++p;
+    if (*p == 0) break;
+    char* end = nullptr;
+    const double v = std::strtod(p, &end);
+    if (end == p || !std::isfinite(v) || (*end != 0 && *end != ' ' && *end != '\t' && *end != '\n' && *end != '\r')) {
+      throw ElementError(what + ": '" + text + "' is not a list of " + std::to_string(n) + " finite numbers");
+    }
+    out.push_back(v);
+    p = end;
+  }
+  if (out.size() != n) {
+    throw ElementError(what + ": expected " + std::to_string(n) + " numbers, got '" + text + "'");
+  }
+  return out;
+}
+
+double Positive(const std::string& text, const std::string& what) {
+  const double v = Numbers(text, 1, what)[0];
+  if (!(v > 0)) throw ElementError(what + ": must be positive, got '" + text + "'");
+  return v;
+}
+
+Matrix3 FromRollPitchYaw(double roll, double pitch, double yaw) {
+  return (Eigen::AngleAxisd(yaw, Vector3::UnitZ()) * Eigen::AngleAxisd(pitch, Vector3::UnitY()) *
+          Eigen::AngleAxisd(roll, Vector3::UnitX()))
+      .toRotationMatrix();
+}
+
+Matrix3 FromQuaternion(double w, double x, double y, double z, const std::string& what) {
+  Eigen::Quaterniond q(w, x, y, z);
+  const double norm = q.norm();
+  if (!(norm > 1e-12)) throw ElementError(what + ": a zero quaternion is no rotation");
+  q.coeffs() /= norm;
+  return q.toRotationMatrix();
+}
+
+namespace {
+
+bool IsRegular(const fs::path& p) {
+  std::error_code e;
+  return fs::is_regular_file(p, e);
+}
+
+// The folder a package:// or model:// NAME stands for, or empty.
+std::string FindPackage(const std::string& name, const Document& doc, const FillOptions& options, bool model) {
+  for (const auto& [pkg, dir] : options.packages) {
+    if (pkg == name) return dir;
+  }
+  // The description's ancestors: a folder called NAME, or one whose package.xml says <name>NAME.
+  std::error_code e;
+  fs::path at = fs::absolute(fs::path(doc.path), e).parent_path();
+  for (int depth = 0; depth < 32 && !at.empty(); ++depth) {
+    if (at.filename() == name) return at.string();
+    std::ifstream manifest(at / "package.xml");
+    if (manifest) {
+      std::stringstream text;
+      text << manifest.rdbuf();
+      if (text.str().find("<name>" + name + "</name>") != std::string::npos) return at.string();
+    }
+    if (at == at.parent_path()) break;
+    at = at.parent_path();
+  }
+  if (model) {
+    for (const char* var : {"GZ_SIM_RESOURCE_PATH", "IGN_GAZEBO_RESOURCE_PATH", "SDF_PATH", "GAZEBO_MODEL_PATH"}) {
+      const char* value = std::getenv(var);
+      if (value == nullptr) continue;
+      std::stringstream list(value);
+      for (std::string dir; std::getline(list, dir, ':');) {
+        if (!dir.empty() && fs::is_directory(fs::path(dir) / name, e)) return (fs::path(dir) / name).string();
+      }
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string ResolveUri(const std::string& uri, const Document& doc, const FillOptions& options) {
+  for (const char* scheme : {"package://", "model://"}) {
+    const std::string s = scheme;
+    if (uri.compare(0, s.size(), s) != 0) continue;
+    const std::string rest = uri.substr(s.size());
+    const std::size_t slash = rest.find('/');
+    const std::string name = rest.substr(0, slash);
+    const std::string dir = FindPackage(name, doc, options, s == "model://");
+    if (dir.empty()) {
+      throw ElementError("'" + uri + "': the " + (s == "model://" ? "model" : "package") + " '" + name +
+                         "' is not found (map it with --package " + name + "=DIR)");
+    }
+    const fs::path file = fs::path(dir) / (slash == std::string::npos ? "" : rest.substr(slash + 1));
+    if (!IsRegular(file)) throw ElementError("'" + uri + "': " + file.string() + " is not a readable file");
+    return file.string();
+  }
+  std::string path = uri;
+  if (path.compare(0, 7, "file://") == 0) path = path.substr(7);
+  if (path.find("://") != std::string::npos) throw ElementError("'" + uri + "': an unsupported kind of address");
+  fs::path file(path);
+  if (file.is_relative()) file = fs::path(doc.dir) / file;
+  if (!IsRegular(file)) throw ElementError("'" + uri + "': " + file.string() + " is not a readable file");
+  return file.string();
+}
+
+namespace {
+
+// The indentation of a node: the blanks after the last line break of the text before it.
+std::string IndentBefore(pugi::xml_node node) {
+  const pugi::xml_node before = node.previous_sibling();
+  if (!before || before.type() != pugi::node_pcdata) return "";
+  const std::string text = before.value();
+  const std::size_t eol = text.find_last_of('\n');
+  return eol == std::string::npos ? "" : text.substr(eol + 1);
+}
+
+}  // namespace
+
+void ReplaceOrInsert(pugi::xml_node parent, pugi::xml_node old, const std::string& snippet) {
+  pugi::xml_document fragment;
+  const pugi::xml_parse_result parsed =
+      fragment.load_string(snippet.c_str(), pugi::parse_default | pugi::parse_fragment | pugi::parse_ws_pcdata);
+  if (!parsed) throw std::logic_error("robot: an inertial snippet is not XML");
+  pugi::xml_node element = fragment.first_child();
+  while (element && element.type() != pugi::node_element) element = element.next_sibling();
+  if (!element) throw std::logic_error("robot: an empty inertial snippet");
+  // Indentation: as the parent's first element child, else one step deeper than the parent.
+  const pugi::xml_node first = parent.find_child([](pugi::xml_node n) { return n.type() == pugi::node_element; });
+  const std::string indent = old ? IndentBefore(old) : first ? IndentBefore(first) : IndentBefore(parent) + "  ";
+  // Re-indent the snippet's own line breaks (it is written with none).
+  for (pugi::xml_node n = element; n;) {
+    if (n.type() == pugi::node_pcdata) {
+      std::string text = n.value();
+      for (std::size_t at = text.find('\n'); at != std::string::npos; at = text.find('\n', at + 1)) {
+        text.insert(at + 1, indent);
+      }
+      n.set_value(text.c_str());
+    }
+    // Depth-first walk of the element's subtree.
+    if (n.first_child()) {
+      n = n.first_child();
+    } else {
+      while (n && n != element && !n.next_sibling()) n = n.parent();
+      if (!n || n == element) break;
+      n = n.next_sibling();
+    }
+  }
+  if (old) {
+    parent.insert_copy_before(element, old);
+    parent.remove_child(old);
+  } else if (first) {
+    const pugi::xml_node added = parent.insert_copy_before(element, first);
+    parent.insert_child_after(pugi::node_pcdata, added).set_value(("\n" + indent).c_str());
+  } else {
+    const std::string closing = IndentBefore(parent);
+    pugi::xml_node text = parent.last_child();
+    if (!text || text.type() != pugi::node_pcdata) text = parent.append_child(pugi::node_pcdata);
+    text.set_value(("\n" + indent).c_str());
+    parent.append_copy(element);
+    parent.append_child(pugi::node_pcdata).set_value(("\n" + closing).c_str());
+  }
+}
+
+std::string Describe(pugi::xml_node element, int k) {
+  const char* name = element.attribute("name").value();
+  if (*name != 0) return std::string(element.name()) + " '" + name + "'";
+  return std::string(element.name()) + " #" + std::to_string(k);
+}
+
+}  // namespace massprops::robot
