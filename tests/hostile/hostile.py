@@ -220,6 +220,25 @@ def main():
         run(name, ["clean_obj.obj", "-o", target], 2, r"not a regular file|is also an input")
     os.mkfifo(os.path.join(tmp, "fifo.obj"))
     run("input_fifo", ["fifo.obj"], 1, r"not a regular file")
+    # massprops fill: robot descriptions that are not what they claim, or are built to hurt.
+    os.mkfifo(os.path.join(tmp, "fifo.urdf"))
+    run("fill_fifo", ["fill", "fifo.urdf", "-o", "f.urdf"], 1, r"fifo.urdf: not a regular file")
+    write("deep.xml", "<mujoco><worldbody>" + '<body><geom size="0.1"/>' * 20000 + "</body>" * 20000 +
+          "</worldbody></mujoco>")
+    run("fill_deep_mjcf", ["fill", "deep.xml", "-o", "deep_out.xml"], 0, r"^$")
+    write("huge.urdf", '<robot name="r"><link name="a"><collision><geometry><mesh filename="clean_obj.obj" '
+          'scale="1e120 1e120 1e120"/></geometry></collision></link></robot>')
+    run("fill_huge_scale", ["fill", "huge.urdf", "-o", "h.urdf"], 1, r"link 'a'.*out of range")
+    write("nan.urdf", '<robot name="r"><link name="a"><collision><geometry><box size="1 nan 2"/></geometry>'
+          '</collision></link></robot>')
+    run("fill_nan_size", ["fill", "nan.urdf", "-o", "n.urdf"], 1, r"link 'a'.*finite numbers")
+    write("notxml.urdf", "solid x\nendsolid x\n")
+    run("fill_not_xml", ["fill", "notxml.urdf", "-o", "x.urdf"], 1, r"notxml.urdf: not well-formed XML")
+    write("scene.xml", "<scene><body/></scene>")
+    run("fill_unknown_root", ["fill", "scene.xml", "-o", "s.xml"], 1, r"none of <robot>")
+    write("inc.xml", '<mujoco><include file="x.xml"/></mujoco>')
+    run("fill_include", ["fill", "inc.xml", "-o", "i.xml"], 1, r"is not followed")
+    run("fill_onto_itself", ["fill", "huge.urdf", "-o", "huge.urdf"], 2, r"error")
     run("input_directory", [tmp + "/"], 1, r"not a regular file|unknown mesh format|cannot")
     # assimp runs in a child process with a time limit: a crash or a hang there is that file's
     # error, and the other files still print (fault injection: the crashing and hanging files of

@@ -1,6 +1,7 @@
 // massprops::robot: reads a robot description, computes each link from its geometries and
 // writes the inertials back (robot.h).
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -103,6 +104,10 @@ MassProperties UnitDensity(const Geometry& g, MeshCache& meshes, std::vector<std
     }
     mp = mesh.scale == Vector3::Ones() ? r.mp : Scaled(r.mp, mesh.scale);
   }
+  if (!(std::isfinite(mp.volume) && mp.volume > 0 && mp.inertia_com.allFinite() && mp.center_of_mass.allFinite())) {
+    throw std::runtime_error(g.where + ": its volume or inertia is not a finite positive number (volume " +
+                             ExactDecimal(mp.volume) + " m^3): a scale or size out of range");
+  }
   return Transformed(mp, g.rotation, g.translation);
 }
 
@@ -160,6 +165,13 @@ LinkFill Compute(const Link& link, const FillOptions& options, MeshCache& meshes
   } catch (const std::exception& e) {
     out.status = LinkStatus::kFailed;
     out.message = e.what();
+    return out;
+  }
+  if (!(std::isfinite(out.mp.mass) && out.mp.mass > 0 && out.mp.center_of_mass.allFinite() &&
+        out.mp.inertia_com.allFinite())) {
+    out.status = LinkStatus::kFailed;
+    out.message = "its mass properties are not finite (mass " + ExactDecimal(out.mp.mass) +
+                  " kg): a scale or size out of range";
     return out;
   }
   out.principal = ComputePrincipalInertia(out.mp.inertia_com);

@@ -7,6 +7,7 @@
 // Orientation: quat (w x y z), axisangle, euler (with <compiler angle eulerseq>), xyaxes, zaxis.
 // A geom's own mass or density attribute is its own; a mass or density of 0 removes it.
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -45,10 +46,16 @@ class Defaults {
   bool Has(const std::string& cls) const { return classes_.count(cls) > 0; }
 
  private:
-  void Collect(pugi::xml_node d, const std::string& fallback) {
-    const std::string name = d.attribute("class") ? d.attribute("class").value() : fallback;
-    classes_[name] = d;
-    for (pugi::xml_node child : d.children("default")) Collect(child, "");
+  // Iteratively: a file may nest defaults deeper than the stack would hold.
+  void Collect(pugi::xml_node top, const std::string& fallback) {
+    std::vector<pugi::xml_node> stack{top};
+    while (!stack.empty()) {
+      const pugi::xml_node d = stack.back();
+      stack.pop_back();
+      const std::string name = d.attribute("class") ? d.attribute("class").value() : d == top ? fallback : "";
+      classes_[name] = d;
+      for (pugi::xml_node child : d.children("default")) stack.push_back(child);
+    }
   }
   std::map<std::string, pugi::xml_node> classes_;
 };
@@ -243,19 +250,34 @@ class GeomReader {
   std::map<std::string, pugi::xml_node> meshes_;
 };
 
-void CollectBodies(pugi::xml_node parent, std::vector<pugi::xml_node>& out) {
-  for (pugi::xml_node body : parent.children("body")) {
-    out.push_back(body);
-    CollectBodies(body, out);
+// Every body under `world`, parents before children, in file order, with the class its geoms
+// take when they name none (the nearest `childclass`, itself included, else "main").
+// Iteratively: a chain of bodies may be deeper than the stack would hold.
+std::vector<std::pair<pugi::xml_node, std::string>> CollectBodies(pugi::xml_node world) {
+  std::vector<std::pair<pugi::xml_node, std::string>> out, stack;
+  auto push_children = [&stack](pugi::xml_node parent, const std::string& inherited) {
+    const std::size_t first = stack.size();
+    for (pugi::xml_node body : parent.children("body")) {
+      stack.emplace_back(body, body.attribute("childclass") ? body.attribute("childclass").value() : inherited);
+    }
+    std::reverse(stack.begin() + static_cast<std::ptrdiff_t>(first), stack.end());
+  };
+  push_children(world, "main");
+  while (!stack.empty()) {
+    auto item = std::move(stack.back());
+    stack.pop_back();
+    push_children(item.first, item.second);
+    out.push_back(std::move(item));
   }
+  return out;
 }
 
 }  // namespace
 
 std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options) {
   const pugi::xml_node root = doc.xml.child("mujoco");
-  if (const pugi::xpath_node include = doc.xml.select_node("//include")) {
-    throw std::runtime_error(doc.path + ": <include file=\"" + std::string(include.node().attribute("file").value()) +
+  if (const pugi::xml_node include = FindElement(doc.xml, "include")) {
+    throw std::runtime_error(doc.path + ": <include file=\"" + std::string(include.attribute("file").value()) +
                              "\"> is not followed: give the file with its includes expanded");
   }
   Compiler compiler;
@@ -274,23 +296,17 @@ std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options) {
   const Defaults defaults(root);
   const GeomReader reader(doc, options, compiler, defaults, root);
   const bool visual = options.from == GeometrySource::kVisual;
-  std::vector<pugi::xml_node> bodies;
-  for (pugi::xml_node world : root.children("worldbody")) CollectBodies(world, bodies);
+  std::vector<std::pair<pugi::xml_node, std::string>> bodies;
+  for (pugi::xml_node world : root.children("worldbody")) {
+    for (auto& b : CollectBodies(world)) bodies.push_back(std::move(b));
+  }
   std::vector<Link> links;
-  for (pugi::xml_node body : bodies) {
+  for (const auto& [body, childclass] : bodies) {
     Link link;
     link.element = body;
     link.name = body.attribute("name").value();
     if (link.name.empty()) link.name = "body #" + std::to_string(links.size() + 1);
     if (const pugi::xml_attribute m = body.child("inertial").attribute("mass")) link.stated_mass = m.as_double();
-    // The class that applies to this body's geoms without a class of their own.
-    std::string childclass = "main";
-    for (pugi::xml_node b = body; b && std::string(b.name()) == "body"; b = b.parent()) {
-      if (b.attribute("childclass")) {
-        childclass = b.attribute("childclass").value();
-        break;
-      }
-    }
     int k = 0;
     for (pugi::xml_node geom : body.children("geom")) {
       ++k;

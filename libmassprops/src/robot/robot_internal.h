@@ -73,6 +73,11 @@ std::string ResolveUri(const std::string& uri, const Document& doc, const FillOp
 /// Replaces `old` (when it exists) by the elements of `snippet`, or inserts them as the first
 /// children of `parent`, indented as its other children are.
 void ReplaceOrInsert(pugi::xml_node parent, pugi::xml_node old, const std::string& snippet);
+/// Every element named `name` under `root`, in document order (without recursion: XML may nest
+/// deeper than the stack would hold).
+std::vector<pugi::xml_node> FindElements(pugi::xml_node root, const char* name);
+/// The first of them, or a null node.
+pugi::xml_node FindElement(pugi::xml_node root, const char* name);
 /// The name of an element for messages: its name attribute, else "<tag> #k" (k-th of its kind).
 std::string Describe(pugi::xml_node element, int k);
 

@@ -94,8 +94,7 @@ Geometry ReadGeometry(pugi::xml_node element, const std::string& link, const std
 std::vector<Link> SdfLinks(Document& doc, const FillOptions& options) {
   std::vector<Link> links;
   const char* tag = options.from == GeometrySource::kVisual ? "visual" : "collision";
-  for (const pugi::xpath_node& found : doc.xml.select_nodes("/sdf//link")) {
-    const pugi::xml_node element = found.node();
+  for (const pugi::xml_node element : FindElements(doc.xml.child("sdf"), "link")) {
     Link link;
     link.element = element;
     link.name = element.attribute("name").value();

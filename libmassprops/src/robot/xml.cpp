@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -178,6 +179,29 @@ void ReplaceOrInsert(pugi::xml_node parent, pugi::xml_node old, const std::strin
     parent.append_copy(element);
     parent.append_child(pugi::node_pcdata).set_value(("\n" + closing).c_str());
   }
+}
+
+std::vector<pugi::xml_node> FindElements(pugi::xml_node root, const char* name) {
+  std::vector<pugi::xml_node> found;
+  if (!root) return found;
+  // pugixml's own depth-first walk, which keeps its place in the nodes, not on the stack.
+  struct Walker : pugi::xml_tree_walker {
+    const char* name;
+    std::vector<pugi::xml_node>* found;
+    bool for_each(pugi::xml_node& node) override {
+      if (node.type() == pugi::node_element && std::strcmp(node.name(), name) == 0) found->push_back(node);
+      return true;
+    }
+  } walker;
+  walker.name = name;
+  walker.found = &found;
+  root.traverse(walker);
+  return found;
+}
+
+pugi::xml_node FindElement(pugi::xml_node root, const char* name) {
+  const std::vector<pugi::xml_node> all = FindElements(root, name);
+  return all.empty() ? pugi::xml_node() : all.front();
 }
 
 std::string Describe(pugi::xml_node element, int k) {
