@@ -6,7 +6,6 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include "atomic_file.h"
 #include "cli.h"
@@ -17,12 +16,6 @@
 
 namespace massprops::cli {
 namespace {
-
-using Json = nlohmann::ordered_json;
-
-const char* StatusName(LinkStatus s) {
-  return s == LinkStatus::kFilled ? "filled" : s == LinkStatus::kFailed ? "failed" : "no geometry";
-}
 
 std::string Table(const std::string& file, const FillResult& r) {
   std::ostringstream out;
@@ -56,29 +49,6 @@ std::string Table(const std::string& file, const FillResult& r) {
   }
   for (const std::string& n : r.notes) out << "note: " << n << "\n";
   return out.str();
-}
-
-Json Report(const std::string& file, const std::string& output, const FillResult& r) {
-  auto vec = [](const Vector3& v) { return Json::array({v[0], v[1], v[2]}); };
-  Json links = Json::array();
-  for (const LinkFill& l : r.links) {
-    Json j = {{"name", l.name}, {"status", StatusName(l.status)}};
-    if (l.status == LinkStatus::kFilled) {
-      const Matrix3& I = l.mp.inertia_com;
-      j["geometries"] = l.geometries;
-      j["mass"] = l.mp.mass;
-      j["center_of_mass"] = vec(l.mp.center_of_mass);
-      j["inertia_com"] = Json::array({vec(I.row(0)), vec(I.row(1)), vec(I.row(2))});
-      j["principal_moments"] = vec(l.principal.moments);
-    }
-    if (l.status == LinkStatus::kFailed) j["message"] = Worded(l.message, CliVocabulary());
-    Json notes = Json::array();
-    for (const std::string& n : l.notes) notes.push_back(Worded(n, CliVocabulary()));
-    j["notes"] = notes;
-    links.push_back(j);
-  }
-  return {
-      {"file", file}, {"output", output}, {"format", RobotFormatName(r.format)}, {"links", links}, {"notes", r.notes}};
 }
 
 }  // namespace
@@ -140,7 +110,7 @@ int FillMain(int argc, char** argv) {
     std::cerr << "error: " << e.what() << "\n";
     return 1;
   }
-  if (!quiet) std::cout << (report == "json" ? Report(input, output, r).dump(2) + "\n" : Table(input, r));
+  if (!quiet) std::cout << (report == "json" ? FormatFillJson(input, output, r, CliVocabulary()) : Table(input, r));
   for (const LinkFill& l : r.links) {
     if (l.status == LinkStatus::kFailed) {
       std::cerr << "error: " << input << ": link '" << l.name << "': " << Worded(l.message, CliVocabulary())

@@ -9,6 +9,7 @@
 
 #include "massprops/load.h"
 #include "massprops/principal_axes.h"
+#include "massprops/robot.h"
 #include "massprops/units.h"
 
 namespace massprops::cli {
@@ -38,6 +39,11 @@ std::string FormatJsonLine(const SolidResult& r, const FormatOptions& options);
 std::string FormatCsv(const std::vector<SolidResult>& results, const FormatOptions& options);
 /// The inertial element of a URDF, SDFormat or MJCF file, with a comment naming the source.
 std::string FormatRobot(const SolidResult& r, Format format);
+
+/// The report of `massprops fill` (and the Python module's fill): the file, the output, the
+/// format, and each link with its status, mass properties or message, and notes.
+std::string FormatFillJson(const std::string& file, const std::string& output, const FillResult& r,
+                           const Vocabulary& words);
 
 /// The command line's words for the options the library's messages advise (wording.h).
 const Vocabulary& CliVocabulary();

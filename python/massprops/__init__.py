@@ -16,7 +16,15 @@ declares, else metres), ``density`` (kg/m³, default 1000) or ``mass`` (kg, the 
 ``allow_open``, ``full_check``, ``check_self_intersections``, ``shell`` (an area density in kg/m²:
 the surface is a thin shell), ``wall`` (a thickness in the file's unit: a hollow part),
 ``winding_number`` (with ``samples``, ``seed``), ``path`` ('auto', 'triangles', 'polygons'),
-``reader`` ('auto', 'assimp'), ``threads`` (0: every core; the bits do not depend on it).
+``reader`` ('auto', 'assimp'), ``threads`` (0: every core; the bits do not depend on it),
+``parts`` (each OBJ object or group, glTF/3MF/COLLADA node on its own: ``Result.parts``; the whole
+is their composition), ``densities`` (a dict, part name or glob -> kg/m³ or ``{"mass": kg}``;
+implies ``parts``).
+
+    >>> r = massprops.load("assembly.obj", densities={"steel*": 7850, "grip": {"mass": 0.1}})
+    >>> [(p.part, p.mass) for p in r.parts], r.mass
+
+``fill`` fills every link's inertial of a URDF, SDFormat or MJCF file (``massprops fill``).
 """
 
 import json as _json
@@ -27,7 +35,7 @@ from . import _core
 from ._core import dynamics  # noqa: F401  (massprops.dynamics: RigidBody, World)
 
 __version__ = _core.__version__
-__all__ = ["load", "mass_properties", "Result", "dynamics", "body"]
+__all__ = ["load", "mass_properties", "fill", "Result", "dynamics", "body"]
 
 
 class Result:
@@ -37,7 +45,9 @@ class Result:
     center of mass in the input's axes (off-diagonal entries are the negated products of inertia,
     as URDF and MJCF expect), principal_moments (3,) ascending, principal_axes (3, 3) (columns,
     right-handed), surface_area, physically_valid, warnings (list of str), mesh (dict: the mesh
-    report), unit, model, standard_errors (dict of arrays, or None when the result is exact).
+    report), unit, model, standard_errors (dict of arrays, or None when the result is exact),
+    parts (a list of Result, one per part, with ``parts=True``; else empty), part (the part's name
+    in such a result; else None).
     """
 
     def __init__(self, record):
@@ -57,6 +67,8 @@ class Result:
         self.unit = record["unit"]
         self.model = record["model"]
         self.source = record["file"]
+        self.part = record.get("part")
+        self.parts = [Result(p) for p in record.get("parts", [])]
         estimate = record.get("estimate")
         self.standard_errors = None
         if estimate is not None:
@@ -91,6 +103,44 @@ class Result:
 def load(path, **options):
     """Reads, checks and integrates a mesh file, as the ``massprops`` command does."""
     return Result(_json.loads(_core.load(str(path), **options)))
+
+
+def fill(path, output=None, *, density=1000.0, densities=None, keep_mass=False, source="collision",
+         packages=None, repair=False, allow_open=False):
+    """Every link's inertial of a URDF, SDFormat or MJCF file, from its geometries.
+
+    Returns the report (a dict: ``links``, each with ``name``, ``status`` ('filled', 'failed',
+    'no geometry'), ``mass``, ``center_of_mass``, ``inertia_com``, ``principal_moments``,
+    ``message``, ``notes``) with the filled document under ``"document"``; writes it to ``output``
+    when given (whole or not at all). ``densities``: link name or glob -> kg/m³ or ``{"mass": kg}``;
+    ``keep_mass``: keep each link's stated mass; ``source``: 'collision' or 'visual';
+    ``packages``: {name: folder} for package:// and model://. Links that cannot be computed are
+    reported and left as they were.
+    """
+    text, document = _core.fill(str(path), float(density), densities, bool(keep_mass), source, dict(packages or {}),
+                                bool(repair), bool(allow_open))
+    report = _json.loads(text)
+    report["document"] = document
+    if output is not None:
+        import os
+        import tempfile
+
+        output = os.fspath(output)
+        if os.path.exists(output) and not os.path.isfile(output):
+            raise ValueError(f"{output}: not a regular file; the filled document is written only to one")
+        if os.path.exists(output) and os.path.samefile(output, path):
+            raise ValueError(f"{output} is the input: write the filled file elsewhere")
+        folder = os.path.dirname(os.path.abspath(output))
+        fd, temporary = tempfile.mkstemp(dir=folder, prefix=".massprops-fill-")
+        try:
+            with os.fdopen(fd, "w") as f:
+                f.write(document)
+            os.replace(temporary, output)
+        except BaseException:
+            os.unlink(temporary)
+            raise
+        report["output"] = output
+    return report
 
 
 def _faces_to_arrays(faces):

@@ -18,6 +18,7 @@
 #include "massprops/io.h"
 #include "massprops/isolation.h"
 #include "massprops/load.h"
+#include "massprops/robot.h"
 #include "massprops/version.h"
 #include "record.h"
 
@@ -39,6 +40,38 @@ const Vocabulary& PythonVocabulary() {
     return "?";
   };
   return v;
+}
+
+// {"name or glob": density, or {"density": kg/m^3} or {"mass": kg}} in the dict's order.
+std::vector<PartMass> PartMasses(const py::handle& value, const std::string& key) {
+  if (!py::isinstance<py::dict>(value)) {
+    throw py::type_error(key + " must be a dict: part name or glob -> density, or {'mass': kg}");
+  }
+  std::vector<PartMass> map;
+  for (const auto& [name, spec] : py::reinterpret_borrow<py::dict>(value)) {
+    const std::string pattern = py::cast<std::string>(name);
+    auto positive = [&](const py::handle& x, const char* what) {
+      const double v = py::cast<double>(x);
+      if (!(std::isfinite(v) && v > 0)) {
+        throw py::value_error(key + "['" + pattern + "']: the " + what + " must be a finite positive number");
+      }
+      return v;
+    };
+    if (py::isinstance<py::dict>(spec)) {
+      const py::dict d = py::reinterpret_borrow<py::dict>(spec);
+      if (d.size() != 1 || !(d.contains("mass") || d.contains("density"))) {
+        throw py::value_error(key + "['" + pattern + "'] must be a number (kg/m^3), {'density': x} or {'mass': kg}");
+      }
+      if (d.contains("mass")) {
+        map.push_back({pattern, TotalMass{positive(d["mass"], "mass")}});
+      } else {
+        map.push_back({pattern, Density{positive(d["density"], "density")}});
+      }
+    } else {
+      map.push_back({pattern, Density{positive(spec, "density")}});
+    }
+  }
+  return map;
 }
 
 // Keyword arguments → LoadOptions. Every keyword is checked here, so a misspelt one is a
@@ -86,6 +119,11 @@ LoadOptions ToLoadOptions(const py::kwargs& kw) {
       o.exact = py::cast<bool>(value);
     } else if (key == "hull") {
       o.hull = py::cast<bool>(value);
+    } else if (key == "parts") {
+      o.parts = py::cast<bool>(value);
+    } else if (key == "densities") {
+      o.part_masses = PartMasses(value, "densities");
+      o.parts = true;
     } else if (key == "check_self_intersections") {
       o.check_self_intersections = py::cast<bool>(value);
     } else if (key == "threads") {
@@ -158,6 +196,44 @@ std::string Run(const Solve& solve) {
 std::string Load(const std::string& path, const py::kwargs& kw) {
   const LoadOptions o = ToLoadOptions(kw);
   return Run([&] { return LoadSolid(path, o); });
+}
+
+// FillRobotDescription without the GIL: (the report as JSON, the filled document).
+py::tuple Fill(const std::string& path, double density, const py::object& densities, bool keep_mass,
+               const std::string& source, const py::dict& packages, bool repair, bool allow_open) {
+  FillOptions o;
+  if (!(std::isfinite(density) && density > 0)) throw py::value_error("density must be a finite positive number");
+  o.density = density;
+  if (!densities.is_none()) o.link_masses = PartMasses(densities, "densities");
+  o.keep_mass = keep_mass;
+  if (source != "collision" && source != "visual") {
+    throw py::value_error("source must be 'collision' or 'visual', not '" + source + "'");
+  }
+  o.from = source == "visual" ? GeometrySource::kVisual : GeometrySource::kCollision;
+  for (const auto& [name, dir] : packages)
+    o.packages.emplace_back(py::cast<std::string>(name), py::cast<std::string>(dir));
+  o.load.repair = repair;
+  o.load.allow_open = allow_open;
+  FillResult r;
+  std::string message;
+  bool access_error = false;
+  {
+    py::gil_scoped_release release;
+    try {
+      r = FillRobotDescription(path, o);
+    } catch (const FileAccessError& e) {
+      access_error = true;
+      message = e.what();
+    } catch (const std::exception& e) {  // malformed XML, a construct not followed, a bad option
+      message = e.what();
+    }
+  }
+  if (access_error) {
+    PyErr_SetString(PyExc_OSError, message.c_str());
+    throw py::error_already_set();
+  }
+  if (!message.empty()) throw py::value_error(message);
+  return py::make_tuple(cli::FormatFillJson(path, "", r, PythonVocabulary()), r.document);
 }
 
 // vertices (n, 3) float64; indices and offsets as PolygonMesh keeps them (face f has the corners
@@ -314,6 +390,9 @@ PYBIND11_MODULE(_core, m) {
   m.doc() = "massprops' compiled core: the library pipeline, results as the command's JSON";
   m.attr("__version__") = kVersion;
   m.def("load", &Load, py::arg("path"), "LoadSolid(path, options) -> JSON of the result");
+  m.def("fill", &Fill, py::arg("path"), py::arg("density"), py::arg("densities"), py::arg("keep_mass"),
+        py::arg("source"), py::arg("packages"), py::arg("repair"), py::arg("allow_open"),
+        "FillRobotDescription -> (report JSON, document)");
   m.def("solve_arrays", &SolveArrays, py::arg("vertices"), py::arg("indices"), py::arg("offsets"), py::arg("float32"),
         py::arg("name"), "SolveMesh(arrays, options) -> JSON of the result");
   m.def(

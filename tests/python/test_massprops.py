@@ -47,10 +47,14 @@ CASES = [
     ("spot.obj", {"shell": 2.0}, ["--shell", "--area-density", "2"]),
     ("spot.obj", {"wall": 0.005}, ["--wall", "0.005"]),
     ("t_handle.obj", {"exact": True, "hull": True, "unit": "m"}, ["--exact", "--hull", "--unit", "m"]),
+    ("assembly_bracket.obj", {"parts": True}, ["--parts"]),
+    ("assembly_bracket.obj", {"densities": {"base": 2700, "post": 7850, "insert_*": {"mass": 0.017}}},
+     ["--density-map", os.path.join(MESHES, "assembly_bracket_materials.json")]),
+    ("assembly_nodes.gltf", {"parts": True}, ["--parts"]),
 ]
 
 
-@pytest.mark.parametrize("name,kw,flags", CASES, ids=[f"{c[0]}-{'-'.join(c[1]) or 'default'}" for c in CASES])
+@pytest.mark.parametrize("name,kw,flags", CASES, ids=[f"{i}-{c[0]}-{'-'.join(c[1]) or 'default'}" for i, c in enumerate(CASES)])
 def test_load_equals_the_command_to_the_last_bit(name, kw, flags):
     path = os.path.join(MESHES, name)
     status, expected, err = command_json(path, *flags)
@@ -242,3 +246,41 @@ def test_dynamics_from_a_result():
     assert falling.body(0).position[2] == pytest.approx(r.center_of_mass[2] - 9.81 / 2, rel=1e-12)
     with pytest.raises(ValueError, match="unknown integrator"):
         massprops.dynamics.World("leapfrog-ish")
+
+
+def test_parts_are_results_and_compose_to_the_whole():
+    r = massprops.load(os.path.join(MESHES, "assembly_bracket.obj"), densities={"base": 2700, "post": 7850})
+    assert [p.part for p in r.parts] == ["base", "post", "insert_brass"]
+    # Closed forms of the boxes (scripts/make_assembly.py): 0.10 x 0.06 x 0.01 aluminium, ...
+    assert r.parts[0].mass == pytest.approx(2700 * 0.10 * 0.06 * 0.01, rel=1e-14)
+    assert r.parts[1].mass == pytest.approx(7850 * 0.02 * 0.02 * 0.08, rel=1e-14)
+    assert r.parts[2].mass == pytest.approx(1000 * 0.01 * 0.01 * 0.02, rel=1e-14)
+    m = sum(p.mass for p in r.parts)
+    c = sum(p.mass * p.center_of_mass for p in r.parts) / m
+    inertia = sum(p.inertia_about(c) for p in r.parts)
+    assert r.mass == pytest.approx(m, rel=1e-15)
+    assert np.allclose(r.center_of_mass, c, rtol=0, atol=1e-16)
+    assert np.allclose(r.inertia_com, inertia, rtol=1e-13, atol=0)
+    with pytest.raises(ValueError, match="'bse' matches no part"):
+        massprops.load(os.path.join(MESHES, "assembly_bracket.obj"), densities={"bse": 1})
+    with pytest.raises(TypeError):
+        massprops.load(os.path.join(MESHES, "assembly_bracket.obj"), densities=[("base", 1)])
+
+
+def test_fill_matches_the_command_and_writes_whole(tmp_path):
+    robot = os.path.join(DATA, "robots", "demo_arm.urdf")
+    out = subprocess.run([CLI, "fill", robot, "-o", str(tmp_path / "cli.urdf"), "--format", "json"],
+                         capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    expected = json.loads(out.stdout)
+    report = massprops.fill(robot, tmp_path / "py.urdf")
+    assert report["links"] == expected["links"]
+    assert (tmp_path / "py.urdf").read_text() == (tmp_path / "cli.urdf").read_text() == report["document"]
+    with pytest.raises(ValueError, match="is the input"):
+        massprops.fill(robot, robot)
+    with pytest.raises(OSError):
+        massprops.fill(tmp_path / "missing.urdf")
+    kept = massprops.fill(robot, keep_mass=True, densities={"fore*": 7850})
+    links = {l["name"]: l for l in kept["links"]}
+    assert links["upper_arm"]["mass"] == 1.5
+    assert links["forearm"]["mass"] == pytest.approx(7.85 * {l["name"]: l for l in expected["links"]}["forearm"]["mass"])

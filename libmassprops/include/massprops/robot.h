@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "massprops/io.h"
 #include "massprops/load.h"
 #include "massprops/mass_properties.h"
 #include "massprops/mass_spec.h"
@@ -83,7 +84,8 @@ RobotFormat DetectRobotFormat(const std::string& path);
 
 /// Reads `path`, computes every link's mass properties and returns the filled document.
 /// Links that cannot be computed are reported, not thrown.
-/// @throws std::runtime_error naming the file when it cannot be read or parsed as XML, or uses a
+/// @throws FileAccessError (io.h) when the file cannot be opened or is not a regular file;
+///         std::runtime_error naming the file when it cannot be parsed as XML, or uses a
 ///         construct this reader does not follow (MJCF <include>); std::invalid_argument for a
 ///         bad option or a density-map entry that matches no link.
 FillResult FillRobotDescription(const std::string& path, const FillOptions& options = {});

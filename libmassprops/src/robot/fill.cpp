@@ -49,13 +49,13 @@ RobotFormat FormatOf(const Document& doc) {
 
 void Parse(Document& doc, const std::string& path) {
   std::error_code e;
-  if (!std::filesystem::is_regular_file(path, e)) throw std::runtime_error(path + ": not a regular file");
+  if (!std::filesystem::is_regular_file(path, e)) throw FileAccessError(path + ": not a regular file");
   doc.path = path;
   doc.dir = std::filesystem::path(path).parent_path().string();
   std::ifstream file(path, std::ios::binary);
   std::ostringstream bytes;
   bytes << file.rdbuf();
-  if (!file) throw std::runtime_error(path + ": cannot be read");
+  if (!file) throw FileAccessError(path + ": cannot be read");
   doc.text = bytes.str();
   // Comments and the blanks between elements are kept, so that the file is written back as it
   // was, but for the inertials. Offsets are then offsets into doc.text.
@@ -170,8 +170,8 @@ LinkFill Compute(const Link& link, const FillOptions& options, MeshCache& meshes
   if (!(std::isfinite(out.mp.mass) && out.mp.mass > 0 && out.mp.center_of_mass.allFinite() &&
         out.mp.inertia_com.allFinite())) {
     out.status = LinkStatus::kFailed;
-    out.message = "its mass properties are not finite (mass " + ExactDecimal(out.mp.mass) +
-                  " kg): a scale or size out of range";
+    out.message =
+        "its mass properties are not finite (mass " + ExactDecimal(out.mp.mass) + " kg): a scale or size out of range";
     return out;
   }
   out.principal = ComputePrincipalInertia(out.mp.inertia_com);
