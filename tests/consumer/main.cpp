@@ -9,6 +9,7 @@
 #include "dynamics/world.h"
 #include "massprops/load.h"
 #include "massprops/primitive.h"
+#include "massprops/robot.h"
 #include "massprops/version.h"
 
 namespace {
@@ -48,6 +49,11 @@ int main(int argc, char** argv) {
                      shaft.mass * std::pow(-0.03 - y, 2);
   Check("t_handle volume", r.mp.volume, v, 1e-14);
   Check("t_handle mass", r.mp.mass, 1.0, 1e-14);
+  // massprops::robot: the demo arm's base link is a 0.2 x 0.2 x 0.1 m box at 1000 kg/m^3.
+  const massprops::FillResult arm = massprops::FillRobotDescription(data + "/robots/demo_arm.urdf");
+  for (const massprops::LinkFill& link : arm.links) {
+    if (link.name == "base_link") Check("demo_arm base_link mass", link.mp.mass, 4.0, 1e-14);
+  }
   Check("t_handle com y", r.mp.center_of_mass.y(), y, 1e-13);
   Check("t_handle Izz", r.mp.inertia_com(2, 2), izz, 1e-13);
   if (!r.findings.empty()) {
