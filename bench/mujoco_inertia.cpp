@@ -35,7 +35,8 @@ std::string WriteSphere(const std::string& dir) {
   const std::string path = dir + "/sphere_r0.5.obj";
   std::ofstream out(path);
   out.precision(17);
-  for (Eigen::Index v = 0; v < t.V.rows(); ++v) out << "v " << t.V(v, 0) << " " << t.V(v, 1) << " " << t.V(v, 2) << "\n";
+  for (Eigen::Index v = 0; v < t.V.rows(); ++v)
+    out << "v " << t.V(v, 0) << " " << t.V(v, 1) << " " << t.V(v, 2) << "\n";
   for (Eigen::Index f = 0; f < t.F.rows(); ++f) {
     out << "f " << t.F(f, 0) + 1 << " " << t.F(f, 1) + 1 << " " << t.F(f, 2) + 1 << "\n";
   }
@@ -50,9 +51,12 @@ int main(int argc, char** argv) {
   const std::string data = argc > 1 ? argv[1] : MASSPROPS_DATA_DIR;
   const std::string dir = std::filesystem::temp_directory_path() / ("mujoco_inertia_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
-  std::vector<std::string> meshes = {data + "/meshes/spot.obj", data + "/meshes/Moon.stl",
-                                     data + "/meshes/t_handle.obj", data + "/meshes/cube_cup_quad.obj",
-                                     data + "/meshes/HalfDonut_binary.stl", WriteSphere(dir)};
+  std::vector<std::string> meshes = {data + "/meshes/spot.obj",
+                                     data + "/meshes/Moon.stl",
+                                     data + "/meshes/t_handle.obj",
+                                     data + "/meshes/cube_cup_quad.obj",
+                                     data + "/meshes/HalfDonut_binary.stl",
+                                     WriteSphere(dir)};
   std::printf("MuJoCo %s's mesh inertia (no <inertial>, density 1000) against the exact values\n", mj_versionString());
   std::printf("%-24s %12s %10s %10s %10s %10s\n", "mesh", "mass (kg)", "mass", "I1", "I2", "I3");
   for (const std::string& mesh : meshes) {
