@@ -105,6 +105,7 @@ struct StepStatus {
 namespace internal {
 struct StepScratch;
 }  // namespace internal
+class ContactWorld;
 
 class World {
  public:
@@ -143,6 +144,7 @@ class World {
   const std::vector<std::unique_ptr<Force>>& forces() const { return forces_; }
 
  private:
+  friend class ContactWorld;  // steps the bodies itself when they touch (contact.h)
   StepStatus Advance(double h);
 
   Integrator integrator_;

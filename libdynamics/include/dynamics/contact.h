@@ -1,0 +1,133 @@
+#pragma once
+/// @file
+/// Contact: bodies that rest, slide, roll, bounce and stack on ground planes, static bodies and
+/// each other.
+///
+/// Model. Rigid, non-penetrating contact with Coulomb friction (distinct static and kinetic
+/// coefficients) and Newton restitution, solved at the velocity level each step:
+///   1. kick: v⁻ = v + h F/m, L⁻ = L + h τ (the world's forces at the start of the step);
+///   2. contacts at the start-of-step positions, within a speculative margin;
+///   3. impulses (sequential, warm-started from the previous step's contacts, iterated to
+///      convergence) such that every contact's normal velocity after the step is at least
+///      −(gap)/h (a gap closes exactly, never overshoots) or, at an impact faster than the
+///      resting threshold, e times the approach speed; friction keeps a contact stuck while the
+///      impulse it needs stays within μs times the normal impulse, and otherwise slides at μk;
+///   4. drift: x += h v⁺ and the free rotation of the world's integrator with L⁺.
+/// With no contact in the world the step is the world's own integrator, bit for bit: free flight
+/// is unchanged. Contact steps are first order (semi-implicit Euler) and dissipative: they never
+/// add energy (no position projection pushes bodies apart).
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "dynamics/world.h"
+
+namespace dynamics {
+
+/// Surface properties. A pair uses the geometric mean of the friction coefficients and the
+/// larger restitution, unless ContactWorld::SetPairMaterial says otherwise.
+struct Material {
+  double static_friction = 0.6;   ///< μs: a contact sticks while |f_t| ≤ μs f_n
+  double kinetic_friction = 0.5;  ///< μk ≤ μs: sliding friction
+  double restitution = 0.0;       ///< e in [0, 1]: normal speed after an impact / before
+};
+
+/// Collision shapes, in their own frame (centred; axis of symmetry along z).
+namespace shape {
+struct Sphere {
+  double radius = 0.5;
+};
+struct Box {
+  Vector3 half_extents = Vector3::Constant(0.5);
+};
+/// A cylinder |z| ≤ half_length of radius r with hemispherical caps.
+struct Capsule {
+  double radius = 0.5, half_length = 0.5;
+};
+struct Cylinder {
+  double radius = 0.5, half_length = 0.5;
+};
+/// A convex polytope given by its vertices (the convex hull of a mesh, or a mesh that is convex).
+struct Convex {
+  std::vector<Vector3> vertices;
+};
+}  // namespace shape
+using Shape = std::variant<shape::Sphere, shape::Box, shape::Capsule, shape::Cylinder, shape::Convex>;
+/// "sphere", "box", "capsule", "cylinder", "convex".
+const char* ShapeName(const Shape& s);
+
+/// A shape attached to a body: placed in the body frame B by x_B = R x_S + t.
+struct Collider {
+  Shape shape;
+  Matrix3 rotation = Matrix3::Identity();
+  Vector3 translation = Vector3::Zero();
+  Material material;
+};
+
+/// The half-space {x : n·x ≤ offset} (n a unit normal pointing out of the ground), fixed.
+struct Ground {
+  Vector3 normal = Vector3::UnitZ();
+  double offset = 0;
+  Material material;
+};
+
+struct ContactOptions {
+  /// Solver iterations per step at most; it stops earlier once no impulse changes by more than
+  /// `tolerance` times the largest impulse.
+  int max_iterations = 64;
+  double tolerance = 1e-12;
+  /// Impacts slower than this (m/s) do not bounce (resting contact under gravity would
+  /// otherwise chatter); 0: twice the speed the step's forces give in one step.
+  double restitution_threshold = 0;
+};
+
+/// What the last step's contact did (diagnostics).
+struct ContactStats {
+  int contacts = 0;            ///< contact points in the step
+  int pairs = 0;               ///< touching pairs
+  int iterations = 0;          ///< solver iterations used
+  double max_penetration = 0;  ///< m, the deepest overlap at the start of the step
+  /// J: kinetic energy the contact impulses removed in this step (≥ 0 up to rounding).
+  double dissipated = 0;
+};
+
+/// A World with contact. The bodies, forces and integrator are the world's; each dynamic body has
+/// one collider; static bodies and ground planes have no state.
+class ContactWorld {
+ public:
+  explicit ContactWorld(World world = World(), ContactOptions options = {});
+  ~ContactWorld();
+  ContactWorld(ContactWorld&&) noexcept;
+  ContactWorld& operator=(ContactWorld&&) noexcept;
+
+  /// Adds a moving body with its collider; returns its index in world().bodies().
+  /// @throws std::invalid_argument as World::AddBody, or for a shape with non-positive sizes.
+  int AddBody(const RigidBody& body, Collider collider);
+  /// A body fixed in the world (a table, a ramp): its collider placed by x_W = R x_B + t.
+  void AddStatic(Collider collider, const Matrix3& rotation = Matrix3::Identity(),
+                 const Vector3& translation = Vector3::Zero());
+  /// @throws std::invalid_argument for a zero or non-finite normal.
+  void AddGround(Ground ground);
+  void AddForce(std::unique_ptr<Force> force) { world_.AddForce(std::move(force)); }
+  /// The material of contacts between bodies a and b (-1: the ground and static bodies).
+  void SetPairMaterial(int a, int b, const Material& material);
+
+  /// Advances by h seconds (see the file comment). @throws as World::Step.
+  StepStatus Step(double h);
+
+  const World& world() const { return world_; }
+  World& world() { return world_; }
+  const ContactStats& stats() const { return stats_; }
+
+ private:
+  struct Impl;
+  World world_;
+  ContactOptions options_;
+  ContactStats stats_;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace dynamics

@@ -1,0 +1,499 @@
+// ContactWorld (contact.h): broad phase, contact points, the sequential-impulse solve with
+// static and kinetic friction and restitution, and the step around it.
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <tuple>
+
+#include "../integrators/integrator.h"
+#include "dynamics/contact.h"
+#include "narrow_phase.h"
+
+namespace dynamics {
+
+const char* ShapeName(const Shape& s) {
+  static const char* const kNames[] = {"sphere", "box", "capsule", "cylinder", "convex"};
+  return kNames[s.index()];
+}
+
+namespace {
+
+struct StaticBody {
+  Collider collider;
+  contact::Posed posed;  // in the world
+  Vector3 lower, upper;  // bounds
+};
+
+// One contact point in the solve. Body b = -1: the ground or a static body.
+struct Row {
+  int a = -1, b = -1;
+  Vector3 ra = Vector3::Zero(), rb = Vector3::Zero(), n = Vector3::UnitZ(), t1 = Vector3::UnitX(),
+          t2 = Vector3::UnitY();
+  Matrix3 Ka = Matrix3::Zero(), Kb = Matrix3::Zero();  // each body's share of K (below)
+  int level = 0;                                       // of its lower body in the support graph
+  double mass_n = 0;                                   // 1 / (n·K n)
+  Eigen::Matrix2d mass_t = Eigen::Matrix2d::Zero();    // (T K Tᵀ)⁻¹
+  double target = 0;                                   // the least normal velocity after the step
+  double mu_s = 0, mu_k = 0;
+  double mu = 0;         // the bound of this step: μs for a contact that holds, μk for one that slides
+  bool sliding = false;  // slid last step, and slides now
+  Eigen::Vector2d slip_direction = Eigen::Vector2d::Zero();  // unit, of the sliding at the start
+  double lambda_n = 0;
+  Eigen::Vector2d lambda_t = Eigen::Vector2d::Zero();
+  std::tuple<int, int, std::uint32_t> key;  // (a, b or -1 - static index, feature): warm starting
+  double separation = 0;
+};
+
+// The normal and tangential effective masses of a row for the response matrix K.
+void SetEffectiveMasses(Row& r, const Matrix3& K) {
+  r.mass_n = 1.0 / r.n.dot(K * r.n);
+  Eigen::Matrix2d Kt;
+  Kt << r.t1.dot(K * r.t1), r.t1.dot(K * r.t2), r.t2.dot(K * r.t1), r.t2.dot(K * r.t2);
+  r.mass_t = Kt.inverse();
+}
+
+struct Velocities {
+  Vector3 v, w;  // linear, angular (world)
+};
+
+}  // namespace
+
+struct ContactWorld::Impl {
+  std::vector<Collider> colliders;  // one per dynamic body
+  std::vector<StaticBody> statics;
+  std::vector<Ground> grounds;
+  std::map<std::pair<int, int>, Material> pair_materials;
+  // Impulses of the last step, by contact key: the warm start of the next.
+  struct Cached {
+    double lambda_n;
+    Eigen::Vector2d lambda_t;
+    bool stuck;  // its friction was inside the cone: it holds with μs next step
+  };
+  std::map<std::tuple<int, int, std::uint32_t>, Cached> cache;
+  // Scratch.
+  std::vector<Row> rows;
+  std::vector<contact::ContactPoint> points;
+  std::vector<Velocities> vel;
+  std::vector<Matrix3> inv_inertia;
+};
+
+ContactWorld::ContactWorld(World world, ContactOptions options)
+    : world_(std::move(world)), options_(options), impl_(std::make_unique<Impl>()) {
+  if (!world_.bodies().empty()) {
+    throw std::invalid_argument("ContactWorld: start from a world without bodies (each body needs a collider)");
+  }
+}
+ContactWorld::~ContactWorld() = default;
+ContactWorld::ContactWorld(ContactWorld&&) noexcept = default;
+ContactWorld& ContactWorld::operator=(ContactWorld&&) noexcept = default;
+
+namespace {
+
+void ValidateMaterial(const Material& m) {
+  if (!(std::isfinite(m.static_friction) && m.static_friction >= 0 && std::isfinite(m.kinetic_friction) &&
+        m.kinetic_friction >= 0 && m.kinetic_friction <= m.static_friction)) {
+    throw std::invalid_argument("friction coefficients must be finite, non-negative, and kinetic <= static");
+  }
+  if (!(m.restitution >= 0 && m.restitution <= 1)) throw std::invalid_argument("restitution must lie in [0, 1]");
+}
+
+contact::Posed PoseOf(const Collider& c, const RigidBody& b) {
+  const Matrix3 R = b.Rotation();
+  return {&c.shape, R * c.rotation, b.position + R * c.translation};
+}
+
+}  // namespace
+
+int ContactWorld::AddBody(const RigidBody& body, Collider collider) {
+  contact::ValidateShape(collider.shape);
+  ValidateMaterial(collider.material);
+  const int index = world_.AddBody(body);
+  impl_->colliders.push_back(std::move(collider));
+  return index;
+}
+
+void ContactWorld::AddStatic(Collider collider, const Matrix3& rotation, const Vector3& translation) {
+  contact::ValidateShape(collider.shape);
+  ValidateMaterial(collider.material);
+  if (!rotation.allFinite() || std::abs(rotation.determinant() - 1) > 1e-9 ||
+      !(rotation.transpose() * rotation).isApprox(Matrix3::Identity(), 1e-9) || !translation.allFinite()) {
+    throw std::invalid_argument("a static body's placement needs a rotation and a finite translation");
+  }
+  StaticBody s;
+  s.collider = std::move(collider);
+  s.posed = {nullptr, rotation * s.collider.rotation, translation + rotation * s.collider.translation};
+  const double r = contact::BoundingRadius(s.collider.shape);
+  s.lower = s.posed.t - Vector3::Constant(r);
+  s.upper = s.posed.t + Vector3::Constant(r);
+  impl_->statics.push_back(std::move(s));
+}
+
+void ContactWorld::AddGround(Ground ground) {
+  const double len = ground.normal.norm();
+  if (!(std::isfinite(len) && len > 0) || !std::isfinite(ground.offset)) {
+    throw std::invalid_argument("a ground plane needs a finite, non-zero normal and a finite offset");
+  }
+  ValidateMaterial(ground.material);
+  ground.offset /= len;
+  ground.normal /= len;
+  impl_->grounds.push_back(ground);
+}
+
+void ContactWorld::SetPairMaterial(int a, int b, const Material& material) {
+  ValidateMaterial(material);
+  impl_->pair_materials[{std::min(a, b), std::max(a, b)}] = material;
+}
+
+StepStatus ContactWorld::Step(double h) {
+  if (!(h > 0) || !std::isfinite(h)) return world_.Step(h);  // throws, naming the step
+  Impl& m = *impl_;
+  std::vector<RigidBody>& bodies = world_.bodies_;
+  const int nb = static_cast<int>(bodies.size());
+  stats_ = {};
+  // 1. The kick: velocities after this step's forces, before contact.
+  internal::StepContext context(bodies, world_.forces_, *world_.scratch_, world_.num_threads_);
+  context.ComputeWrenches(world_.time_);
+  const std::vector<Wrench>& w = context.wrenches();
+  m.vel.resize(static_cast<std::size_t>(nb));
+  m.inv_inertia.resize(static_cast<std::size_t>(nb));
+  double kick_speed = 0;  // the largest speed the forces give in one step
+  for (int i = 0; i < nb; ++i) {
+    const RigidBody& b = bodies[static_cast<std::size_t>(i)];
+    const Matrix3 R = b.Rotation();
+    m.inv_inertia[static_cast<std::size_t>(i)] = R * b.inertia.cwiseInverse().asDiagonal() * R.transpose();
+    const Vector3 dv = h / b.mass * w[static_cast<std::size_t>(i)].force;
+    kick_speed = std::max(kick_speed, dv.norm());
+    const Vector3 L = b.angular_momentum + h * w[static_cast<std::size_t>(i)].torque;
+    m.vel[static_cast<std::size_t>(i)] = {b.velocity + dv, m.inv_inertia[static_cast<std::size_t>(i)] * L};
+  }
+  const double bounce_threshold =
+      options_.restitution_threshold > 0 ? options_.restitution_threshold : 2 * kick_speed + 1e-12;
+  // 2. Contacts at the start-of-step positions, within each body's reach in this step.
+  std::vector<double> reach(static_cast<std::size_t>(nb)), radius(static_cast<std::size_t>(nb));
+  std::vector<contact::Posed> posed(static_cast<std::size_t>(nb));
+  for (int i = 0; i < nb; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    posed[k] = PoseOf(m.colliders[k], bodies[k]);
+    radius[k] = contact::BoundingRadius(m.colliders[k].shape);
+    const Vector3 c = posed[k].t - bodies[k].position;
+    reach[k] = h * (m.vel[k].v.norm() + m.vel[k].w.norm() * (radius[k] + c.norm())) + 1e-9 * radius[k];
+  }
+  m.rows.clear();
+  auto material_of = [&](int a, int b, const Material& ma, const Material& mb) {
+    const auto it = m.pair_materials.find({std::min(a, b), std::max(a, b)});
+    if (it != m.pair_materials.end()) return it->second;
+    return Material{std::sqrt(ma.static_friction * mb.static_friction),
+                    std::sqrt(ma.kinetic_friction * mb.kinetic_friction), std::max(ma.restitution, mb.restitution)};
+  };
+  auto add_rows = [&](int a, int b, int key_b, const Material& mat) {
+    for (const contact::ContactPoint& p : m.points) {
+      Row r;
+      r.a = a;
+      r.b = b;
+      r.n = p.normal;
+      r.ra = p.point - bodies[static_cast<std::size_t>(a)].position;
+      r.rb = b >= 0 ? Vector3(p.point - bodies[static_cast<std::size_t>(b)].position) : Vector3::Zero();
+      r.mu_s = mat.static_friction;
+      r.mu_k = mat.kinetic_friction;
+      r.separation = p.separation;
+      r.key = {a, key_b, p.feature};
+      // Restitution at an impact faster than the resting threshold; else the gap may close.
+      const Velocities& va = m.vel[static_cast<std::size_t>(a)];
+      Vector3 rel = va.v + va.w.cross(r.ra);
+      if (b >= 0) rel -= m.vel[static_cast<std::size_t>(b)].v + m.vel[static_cast<std::size_t>(b)].w.cross(r.rb);
+      const double approach = -r.n.dot(rel);
+      if (mat.restitution > 0 && approach > bounce_threshold && p.separation < approach * h) {
+        r.target = mat.restitution * approach;
+      } else {
+        r.target = -std::max(p.separation, 0.0) / h;
+      }
+      stats_.max_penetration = std::max(stats_.max_penetration, -p.separation);
+      m.rows.push_back(r);
+    }
+    if (!m.points.empty()) ++stats_.pairs;
+  };
+  for (int i = 0; i < nb; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    for (const Ground& g : m.grounds) {
+      const double reach_g = reach[k];
+      if (g.normal.dot(posed[k].t) - g.offset - radius[k] >= reach_g) continue;
+      m.points.clear();
+      contact::CollideGround(posed[k], g.normal, g.offset, reach_g, m.points);
+      add_rows(i, -1, -1, material_of(i, -1, m.colliders[k].material, g.material));
+    }
+  }
+  // Broad phase: sweep and prune along x over bounding spheres grown by the reach.
+  struct Interval {
+    double lo, hi;
+    int id;  // >= 0: dynamic body; < 0: -1 - static index
+  };
+  std::vector<Interval> intervals;
+  intervals.reserve(static_cast<std::size_t>(nb) + m.statics.size());
+  for (int i = 0; i < nb; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    intervals.push_back({posed[k].t.x() - radius[k] - reach[k], posed[k].t.x() + radius[k] + reach[k], i});
+  }
+  for (std::size_t s = 0; s < m.statics.size(); ++s) {
+    intervals.push_back({m.statics[s].lower.x(), m.statics[s].upper.x(), -1 - static_cast<int>(s)});
+  }
+  std::sort(intervals.begin(), intervals.end(),
+            [](const Interval& x, const Interval& y) { return x.lo < y.lo || (x.lo == y.lo && x.id < y.id); });
+  StepStatus failure;
+  for (std::size_t i = 0; i < intervals.size(); ++i) {
+    for (std::size_t j = i + 1; j < intervals.size() && intervals[j].lo <= intervals[i].hi; ++j) {
+      int a = intervals[i].id, b = intervals[j].id;
+      if (a < 0 && b < 0) continue;                     // two static bodies
+      if (a < 0 || (b >= 0 && b < a)) std::swap(a, b);  // a dynamic; the lower index first
+      const auto ka = static_cast<std::size_t>(a);
+      contact::Posed pb;
+      double rb = 0, reach_b = 0;
+      const Material* mb;
+      if (b >= 0) {
+        pb = posed[static_cast<std::size_t>(b)];
+        rb = radius[static_cast<std::size_t>(b)];
+        reach_b = reach[static_cast<std::size_t>(b)];
+        mb = &m.colliders[static_cast<std::size_t>(b)].material;
+      } else {
+        const StaticBody& s = m.statics[static_cast<std::size_t>(-1 - b)];
+        pb = s.posed;
+        pb.shape = &s.collider.shape;
+        rb = contact::BoundingRadius(s.collider.shape);
+        mb = &s.collider.material;
+      }
+      const double margin = reach[ka] + reach_b;
+      if ((posed[ka].t - pb.t).norm() - radius[ka] - rb >= margin) continue;
+      m.points.clear();
+      if (!contact::Collide(posed[ka], pb, margin, m.points)) {
+        failure.ok = false;
+        std::ostringstream msg;
+        msg << "contact between a " << ShapeName(*posed[ka].shape) << " (body " << a << ") and a "
+            << ShapeName(*pb.shape) << (b >= 0 ? " (body " + std::to_string(b) + ")" : std::string(" (static)"))
+            << " is not supported yet";
+        failure.message = msg.str();
+        return failure;
+      }
+      add_rows(a, b >= 0 ? b : -1, b, material_of(a, b >= 0 ? b : -1, m.colliders[ka].material, *mb));
+    }
+  }
+  stats_.contacts = static_cast<int>(m.rows.size());
+  if (m.rows.empty()) {  // free flight: the world's own integrator, bit for bit
+    m.cache.clear();
+    return world_.Step(h);
+  }
+  // 3. The impulses.
+  auto inv_mass = [&](int i) { return i >= 0 ? 1.0 / bodies[static_cast<std::size_t>(i)].mass : 0.0; };
+  auto inv_I = [&](int i) { return i >= 0 ? m.inv_inertia[static_cast<std::size_t>(i)] : Matrix3::Zero().eval(); };
+  auto relative_before = [&](const Row& r) {
+    const Velocities& va = m.vel[static_cast<std::size_t>(r.a)];
+    Vector3 v = va.v + va.w.cross(r.ra);
+    if (r.b >= 0) v -= m.vel[static_cast<std::size_t>(r.b)].v + m.vel[static_cast<std::size_t>(r.b)].w.cross(r.rb);
+    return v;
+  };
+  for (Row& r : m.rows) {
+    const Vector3 helper = std::abs(r.n.x()) < 0.6 ? Vector3::UnitX() : Vector3::UnitY();
+    r.t1 = r.n.cross(helper).normalized();
+    r.t2 = r.n.cross(r.t1);
+    // K = (1/ma + 1/mb) E − [ra]× Ia⁻¹ [ra]× − [rb]× Ib⁻¹ [rb]×: the point's response to an impulse.
+    const Matrix3 Sa = internal::Skew(r.ra), Sb = internal::Skew(r.rb);
+    r.Ka = inv_mass(r.a) * Matrix3::Identity() - Sa * inv_I(r.a) * Sa;
+    r.Kb = inv_mass(r.b) * Matrix3::Identity() - Sb * inv_I(r.b) * Sb;
+    SetEffectiveMasses(r, r.Ka + r.Kb);
+    // Static or kinetic: a contact that held last step (or a new one whose points barely slide)
+    // holds while its friction stays within μs; one that slid slides at μk until it stops.
+    const auto it = m.cache.find(r.key);
+    bool stuck;
+    if (it != m.cache.end()) {
+      r.lambda_n = it->second.lambda_n;
+      r.lambda_t = it->second.lambda_t;
+      stuck = it->second.stuck;
+    } else {
+      const Vector3 rel = relative_before(r);
+      stuck = (rel - r.n * r.n.dot(rel)).norm() <= bounce_threshold;
+    }
+    r.mu = stuck ? r.mu_s : r.mu_k;
+    if (!stuck) {
+      // Friction opposes the sliding: its direction at the start of the step, kept through the
+      // iterations (the direction of the impulse that would stop the point is tilted by the
+      // body's rotation, and following the changing velocity would not converge).
+      const Vector3 rel = relative_before(r);
+      const Eigen::Vector2d vt(r.t1.dot(rel), r.t2.dot(rel));
+      r.sliding = vt.norm() > 0;
+      if (r.sliding) r.slip_direction = vt / vt.norm();
+    }
+  }
+  int frozen = -1;  // shock propagation: the body held still (the lower one of a row)
+  auto apply = [&](const Row& r, const Vector3& impulse) {
+    if (r.a != frozen) {
+      Velocities& va = m.vel[static_cast<std::size_t>(r.a)];
+      va.v += inv_mass(r.a) * impulse;
+      va.w += m.inv_inertia[static_cast<std::size_t>(r.a)] * r.ra.cross(impulse);
+    }
+    if (r.b >= 0 && r.b != frozen) {
+      Velocities& vb = m.vel[static_cast<std::size_t>(r.b)];
+      vb.v -= inv_mass(r.b) * impulse;
+      vb.w -= m.inv_inertia[static_cast<std::size_t>(r.b)] * r.rb.cross(impulse);
+    }
+  };
+  auto relative = [&](const Row& r) {
+    const Velocities& va = m.vel[static_cast<std::size_t>(r.a)];
+    Vector3 v = va.v + va.w.cross(r.ra);
+    if (r.b >= 0) {
+      const Velocities& vb = m.vel[static_cast<std::size_t>(r.b)];
+      v -= vb.v + vb.w.cross(r.rb);
+    }
+    return v;
+  };
+  double energy_before = 0;
+  for (int i = 0; i < nb; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const RigidBody& b = bodies[k];
+    energy_before += 0.5 * b.mass * m.vel[k].v.squaredNorm() + 0.5 * m.vel[k].w.dot(b.WorldInertia() * m.vel[k].w);
+  }
+  // The support graph: level 0 touches the ground or a static body, level k + 1 rests on level
+  // k; bodies touching none of them come last. Rows are solved from the ground up.
+  std::vector<int> body_level(static_cast<std::size_t>(nb), std::numeric_limits<int>::max());
+  {
+    std::vector<int> frontier;
+    for (const Row& r : m.rows) {
+      if (r.b < 0 && body_level[static_cast<std::size_t>(r.a)] != 0) {
+        body_level[static_cast<std::size_t>(r.a)] = 0;
+        frontier.push_back(r.a);
+      }
+    }
+    for (int level = 1; !frontier.empty(); ++level) {
+      std::vector<int> next;
+      for (const Row& r : m.rows) {
+        if (r.b < 0) continue;
+        for (const auto& [lower, upper] : {std::pair{r.a, r.b}, std::pair{r.b, r.a}}) {
+          if (body_level[static_cast<std::size_t>(lower)] == level - 1 &&
+              body_level[static_cast<std::size_t>(upper)] == std::numeric_limits<int>::max()) {
+            body_level[static_cast<std::size_t>(upper)] = level;
+            next.push_back(upper);
+          }
+        }
+      }
+      frontier = std::move(next);
+    }
+  }
+  int max_level = -1;
+  for (Row& r : m.rows) {
+    const int la = body_level[static_cast<std::size_t>(r.a)];
+    r.level = r.b < 0 ? la : std::min(la, body_level[static_cast<std::size_t>(r.b)]);
+    if (r.level != std::numeric_limits<int>::max()) max_level = std::max(max_level, r.level);
+  }
+  std::stable_sort(m.rows.begin(), m.rows.end(), [](const Row& x, const Row& y) { return x.level < y.level; });
+  // Warm start, then iterate until no impulse changes.
+  for (const Row& r : m.rows) apply(r, r.n * r.lambda_n + r.t1 * r.lambda_t[0] + r.t2 * r.lambda_t[1]);
+  // One Gauss-Seidel update of a row: the normal impulse, then the friction.
+  auto update = [&](Row& r, double& change, double& scale) {
+    // Normal: the least impulse that keeps the normal velocity at its target.
+    const double vn = r.n.dot(relative(r));
+    const double ln = std::max(r.lambda_n + r.mass_n * (r.target - vn), 0.0);
+    const double dn = ln - r.lambda_n;
+    r.lambda_n = ln;
+    apply(r, r.n * dn);
+    // Friction: the impulse that stops the point's sliding, within the cone μ λn. Within the
+    // cone it holds (or comes to rest in this step); beyond it, a sliding contact takes μk λn
+    // against its sliding, a holding one breaks away at the cone's edge.
+    const Vector3 rel = relative(r);
+    const Eigen::Vector2d vt(r.t1.dot(rel), r.t2.dot(rel));
+    const Eigen::Vector2d stop = r.lambda_t - r.mass_t * vt;
+    const double bound = r.mu * r.lambda_n;
+    Eigen::Vector2d lt = stop;
+    if (stop.norm() > bound) {
+      lt = r.sliding ? Eigen::Vector2d(-bound * r.slip_direction) : Eigen::Vector2d(stop * (bound / stop.norm()));
+    }
+    const Eigen::Vector2d dt = lt - r.lambda_t;
+    r.lambda_t = lt;
+    apply(r, r.t1 * dt[0] + r.t2 * dt[1]);
+    change = std::max({change, std::abs(dn), dt.norm()});
+    scale = std::max({scale, r.lambda_n, lt.norm()});
+  };
+  // Sweeps from the ground up, then back down (symmetric Gauss-Seidel carries a load through a
+  // stack in both directions), until no impulse changes.
+  int iteration = 0;
+  for (; iteration < options_.max_iterations; ++iteration) {
+    double change = 0, scale = 0;
+    if (iteration % 2 == 0) {
+      for (Row& r : m.rows) update(r, change, scale);
+    } else {
+      for (auto it = m.rows.rbegin(); it != m.rows.rend(); ++it) update(*it, change, scale);
+    }
+    if (change <= options_.tolerance * scale) {
+      ++iteration;
+      break;
+    }
+  }
+  // Shock propagation (Guendelman, Bridson & Fedkiw 2003): level by level from the ground up,
+  // each body's contacts with the level below are solved with the lower body held still, so
+  // what the iterations left of a resting stack's velocities does not survive the step.
+  if (iteration >= options_.max_iterations) {
+    for (int level = 0; level <= max_level; ++level) {
+      for (int pass = 0; pass < options_.max_iterations; ++pass) {
+        double change = 0, scale = 0;
+        for (Row& r : m.rows) {
+          if (r.level != level) continue;
+          const int la = body_level[static_cast<std::size_t>(r.a)];
+          const int lb = r.b >= 0 ? body_level[static_cast<std::size_t>(r.b)] : -1;
+          if (la == lb) continue;
+          frozen = la < lb ? r.a : r.b;
+          const Row saved = r;
+          SetEffectiveMasses(r, frozen == r.a ? r.Kb : r.Ka);
+          update(r, change, scale);
+          r.mass_n = saved.mass_n;
+          r.mass_t = saved.mass_t;
+          frozen = -1;
+        }
+        if (change <= options_.tolerance * scale) break;
+      }
+    }
+  }
+  stats_.iterations = iteration;
+  m.cache.clear();
+  for (const Row& r : m.rows) {
+    // On the cone's surface: it slides (or just broke away); inside: it holds.
+    const bool stuck = r.lambda_t.norm() < r.mu * r.lambda_n * (1 - 1e-9) || r.lambda_n == 0;
+    m.cache[r.key] = {r.lambda_n, r.lambda_t, stuck};
+  }
+  double energy_after = 0;
+  for (int i = 0; i < nb; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    energy_after +=
+        0.5 * bodies[k].mass * m.vel[k].v.squaredNorm() + 0.5 * m.vel[k].w.dot(bodies[k].WorldInertia() * m.vel[k].w);
+  }
+  stats_.dissipated = energy_before - energy_after;
+  // 4. The drift: positions with the new velocities, the free rotation with the new L.
+  StepStatus status;
+  for (int i = 0; i < nb; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    RigidBody& b = bodies[k];
+    const RigidBody before = b;
+    b.velocity = m.vel[k].v;
+    b.angular_momentum = b.WorldInertia() * m.vel[k].w;
+    b.position += h * b.velocity;
+    if (!internal::MidpointRotation(b, h)) {
+      b = before;
+      status.ok = false;
+      status.body = i;
+      status.message = "the free rotation of body " + std::to_string(i) +
+                       " did not converge in a contact step (angular velocity too large for this step)";
+      return status;
+    }
+  }
+  world_.time_ += h;
+  const auto [bad, quantity] = world_.FirstNonFinite();
+  if (bad >= 0) {
+    status.ok = false;
+    status.diverged = true;
+    status.body = bad;
+    status.message = "diverged at t = " + std::to_string(world_.time_) + " s: body " + std::to_string(bad) + "'s " +
+                     quantity + " is no longer finite";
+  }
+  return status;
+}
+
+}  // namespace dynamics

@@ -1,0 +1,37 @@
+#pragma once
+// Contact points between posed shapes (internal to the contact solver). Every function appends
+// the points where the shapes are closer than `margin` (separation < margin; negative when they
+// overlap), with the normal pointing from the second shape (or the ground) into the first.
+
+#include <cstdint>
+#include <vector>
+
+#include "dynamics/contact.h"
+
+namespace dynamics::contact {
+
+struct ContactPoint {
+  Vector3 point;              ///< world, between the two surfaces
+  Vector3 normal;             ///< unit, from the second shape into the first
+  double separation = 0;      ///< m, negative when overlapping
+  std::uint32_t feature = 0;  ///< which corner, end or rim point: keys warm starting
+};
+
+/// A shape in the world: x_W = R x_S + t.
+struct Posed {
+  const Shape* shape = nullptr;
+  Matrix3 R = Matrix3::Identity();
+  Vector3 t = Vector3::Zero();
+};
+
+/// The radius of a sphere about the shape's origin that holds it.
+double BoundingRadius(const Shape& shape);
+/// Throws std::invalid_argument for a size that is not finite and positive.
+void ValidateShape(const Shape& shape);
+
+/// The shape against the half-space {x : n·x ≤ offset}.
+void CollideGround(const Posed& a, const Vector3& n, double offset, double margin, std::vector<ContactPoint>& out);
+/// Two shapes; false when this pair of kinds has no contact routine yet.
+bool Collide(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out);
+
+}  // namespace dynamics::contact
