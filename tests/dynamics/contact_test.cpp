@@ -265,12 +265,101 @@ TEST(Contact, UnsupportedPairsAndBadShapesAreSaid) {
   EXPECT_THROW(w.AddGround({Vector3::Zero(), 0, {}}), std::invalid_argument);
   EXPECT_THROW(w.AddBody(RigidBody{}, Collider{shape::Sphere{1}, Matrix3::Identity(), Vector3::Zero(), Mat(0.2, 0.5)}),
                std::invalid_argument);  // kinetic above static
-  shape::Convex tetra{{Vector3(0, 0, 0), Vector3(1, 0, 0), Vector3(0, 1, 0), Vector3(0, 0, 1)}};
+  const shape::Convex tetra{{Vector3(0, 0, 0), Vector3(1, 0, 0), Vector3(0, 1, 0), Vector3(0, 0, 1)},
+                            {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}}};
+  EXPECT_THROW(w.AddBody(RigidBody{}, Of(shape::Convex{tetra.vertices, {}})), std::invalid_argument);
   w.AddBody(SphereBody(0.5, 1000, Vector3::Zero()), Of(tetra));
   w.AddBody(SphereBody(0.5, 1000, Vector3(0.5, 0, 0)), Of(shape::Cylinder{0.5, 0.5}));
   const StepStatus s = w.Step(1e-3);
   EXPECT_FALSE(s.ok);
   EXPECT_NE(s.message.find("not supported yet"), std::string::npos) << s.message;
+}
+
+// A triangular prism given as a convex hull (vertices and outward triangles), dropped tilted onto
+// a table (a static box): it comes to rest on one of its faces, on the table's top.
+TEST(Contact, ConvexHullComesToRestOnATable) {
+  const double s = 0.1, len = 0.2;
+  std::vector<Vector3> v;
+  for (double y : {-len / 2, len / 2}) {
+    v.emplace_back(-s / 2, y, -s * std::sqrt(3.0) / 6);
+    v.emplace_back(s / 2, y, -s * std::sqrt(3.0) / 6);
+    v.emplace_back(0, y, s * std::sqrt(3.0) / 3);
+  }
+  const shape::Convex prism{v,
+                            {{0, 1, 2}, {3, 5, 4}, {0, 3, 4}, {0, 4, 1}, {1, 4, 5}, {1, 5, 2}, {2, 5, 3}, {2, 3, 0}}};
+  RigidBody b;
+  b.mass = 1000 * (std::sqrt(3.0) / 4 * s * s) * len;
+  b.inertia =
+      Vector3(b.mass * (s * s / 12 + len * len / 12), b.mass * s * s / 12, b.mass * (s * s / 12 + len * len / 12));
+  b.position = Vector3(0, 0, 0.3);
+  b.orientation = Quaternion(Eigen::AngleAxisd(0.5, Vector3(1, 0.3, 0).normalized()));
+  ContactWorld w;
+  w.AddBody(b, Collider{prism, Matrix3::Identity(), Vector3::Zero(), Mat(0.6, 0.5)});
+  w.AddStatic(Collider{shape::Box{Vector3(0.5, 0.5, 0.05)}, Matrix3::Identity(), Vector3::Zero(), Mat(0.6, 0.5)},
+              Matrix3::Identity(), Vector3(0, 0, -0.05));  // top at z = 0
+  w.AddForce(Gravity(Vector3(0, 0, -kG)));
+  double deepest = 0;
+  Simulate(w, 1e-3, 4000, [&](int) { deepest = std::max(deepest, w.stats().max_penetration); });
+  const RigidBody& c = w.world().bodies()[0];
+  EXPECT_LT(c.velocity.norm(), 1e-4);
+  // On a rectangular face (the center of mass s √3/6 above it) or a triangular end (len / 2).
+  const double z = c.position.z();
+  EXPECT_TRUE(std::abs(z - s * std::sqrt(3.0) / 6) < 1e-4 || std::abs(z - len / 2) < 1e-4) << z;
+  EXPECT_LT(deepest, 1e-5);
+}
+
+// A small fast ball (10 cm per step) against a 1 mm plate: stopped at the plate, not through it.
+TEST(Contact, FastSmallBodiesDoNotTunnel) {
+  ContactWorld w;
+  RigidBody ball = SphereBody(0.01, 1000, Vector3(0, 0, 1));
+  ball.velocity = Vector3(0, 0, -100);
+  w.AddBody(ball, Collider{shape::Sphere{0.01}, Matrix3::Identity(), Vector3::Zero(), Mat(0.5, 0.5)});
+  w.AddStatic(Of(shape::Box{Vector3(0.5, 0.5, 0.0005)}));
+  Simulate(w, 1e-3, 100);
+  const RigidBody& b = w.world().bodies()[0];
+  EXPECT_NEAR(b.position.z(), 0.0005 + 0.01, 1e-9);
+  EXPECT_EQ(b.velocity.norm(), 0.0);
+}
+
+// A sphere on a ramp that is a static box turned by θ: the closed form of the rolling sphere.
+TEST(Contact, SphereRollsDownAStaticRamp) {
+  const double theta = 20 * M_PI / 180, r = 0.05;
+  const Matrix3 R = Eigen::AngleAxisd(-theta, Vector3::UnitY()).toRotationMatrix();  // its +x rises
+  const Vector3 n = R * Vector3::UnitZ();
+  ContactWorld w;
+  w.AddStatic(Collider{shape::Box{Vector3(2, 0.5, 0.05)}, Matrix3::Identity(), Vector3::Zero(), Mat(0.5, 0.5)}, R,
+              -0.05 * n);  // top face through the origin
+  w.AddBody(SphereBody(r, 1000, n * r),
+            Collider{shape::Sphere{r}, Matrix3::Identity(), Vector3::Zero(), Mat(0.5, 0.5)});
+  w.AddForce(Gravity(Vector3(0, 0, -kG)));
+  Simulate(w, 1e-3, 500);
+  const RigidBody& b = w.world().bodies()[0];
+  const Vector3 downhill = -(R * Vector3::UnitX());
+  const double a = kG * std::sin(theta) / 1.4;
+  EXPECT_NEAR(b.velocity.dot(downhill), a * 0.5, 1e-3 * a * 0.5);
+  EXPECT_NEAR((b.position).dot(n), r, 1e-9);
+}
+
+TEST(Contact, SameBitsWhateverTheThreads) {
+  auto run = [](int threads) {
+    ContactWorld w;
+    for (int i = 0; i < 6; ++i) {
+      RigidBody b = BoxBody(Vector3::Constant(0.05), 600, Vector3(0.02 * i, 0.01 * i, 0.06 + 0.12 * i),
+                            Quaternion(Eigen::AngleAxisd(0.2 * i, Vector3(0, 1, 1).normalized())));
+      w.AddBody(
+          b, Collider{shape::Box{Vector3::Constant(0.05)}, Matrix3::Identity(), Vector3::Zero(), Mat(0.6, 0.5, 0.2)});
+    }
+    w.AddGround({Vector3::UnitZ(), 0, Mat(0.6, 0.5, 0.2)});
+    w.AddForce(Gravity(Vector3(0, 0, -kG)));
+    w.world().set_num_threads(threads);
+    for (int i = 0; i < 800; ++i) w.Step(1e-3);
+    return w.world().bodies();
+  };
+  const std::vector<RigidBody> one = run(1), two = run(2);
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    EXPECT_EQ(one[i].position, two[i].position);
+    EXPECT_EQ(one[i].orientation.coeffs(), two[i].orientation.coeffs());
+  }
 }
 
 }  // namespace

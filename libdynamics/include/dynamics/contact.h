@@ -17,6 +17,7 @@
 /// is unchanged. Contact steps are first order (semi-implicit Euler) and dissipative: they never
 /// add energy (no position projection pushes bodies apart).
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -50,9 +51,11 @@ struct Capsule {
 struct Cylinder {
   double radius = 0.5, half_length = 0.5;
 };
-/// A convex polytope given by its vertices (the convex hull of a mesh, or a mesh that is convex).
+/// A convex polytope: its vertices and the triangles of its surface, outward (the convex hull of
+/// a mesh, massprops::ConvexHull, or a mesh that is convex). Coplanar triangles act as one face.
 struct Convex {
   std::vector<Vector3> vertices;
+  std::vector<std::array<int, 3>> triangles;
 };
 }  // namespace shape
 using Shape = std::variant<shape::Sphere, shape::Box, shape::Capsule, shape::Cylinder, shape::Convex>;

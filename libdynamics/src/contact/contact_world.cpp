@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -12,6 +13,7 @@
 #include "../integrators/integrator.h"
 #include "dynamics/contact.h"
 #include "narrow_phase.h"
+#include "polytope.h"
 
 namespace dynamics {
 
@@ -22,8 +24,20 @@ const char* ShapeName(const Shape& s) {
 
 namespace {
 
+// The polytope of a box or convex collider (null for the others).
+std::shared_ptr<const contact::Polytope> PolytopeOf(const Shape& s) {
+  if (const auto* box = std::get_if<shape::Box>(&s)) {
+    return std::make_shared<contact::Polytope>(contact::BoxPolytope(box->half_extents));
+  }
+  if (const auto* convex = std::get_if<shape::Convex>(&s)) {
+    return std::make_shared<contact::Polytope>(contact::MakePolytope(convex->vertices, convex->triangles));
+  }
+  return nullptr;
+}
+
 struct StaticBody {
   Collider collider;
+  std::shared_ptr<const contact::Polytope> polytope;
   contact::Posed posed;  // in the world
   Vector3 lower, upper;  // bounds
 };
@@ -64,6 +78,7 @@ struct Velocities {
 
 struct ContactWorld::Impl {
   std::vector<Collider> colliders;  // one per dynamic body
+  std::vector<std::shared_ptr<const contact::Polytope>> polytopes;
   std::vector<StaticBody> statics;
   std::vector<Ground> grounds;
   std::map<std::pair<int, int>, Material> pair_materials;
@@ -101,9 +116,9 @@ void ValidateMaterial(const Material& m) {
   if (!(m.restitution >= 0 && m.restitution <= 1)) throw std::invalid_argument("restitution must lie in [0, 1]");
 }
 
-contact::Posed PoseOf(const Collider& c, const RigidBody& b) {
+contact::Posed PoseOf(const Collider& c, const contact::Polytope* polytope, const RigidBody& b) {
   const Matrix3 R = b.Rotation();
-  return {&c.shape, R * c.rotation, b.position + R * c.translation};
+  return {&c.shape, polytope, R * c.rotation, b.position + R * c.translation};
 }
 
 }  // namespace
@@ -111,8 +126,10 @@ contact::Posed PoseOf(const Collider& c, const RigidBody& b) {
 int ContactWorld::AddBody(const RigidBody& body, Collider collider) {
   contact::ValidateShape(collider.shape);
   ValidateMaterial(collider.material);
+  auto polytope = PolytopeOf(collider.shape);
   const int index = world_.AddBody(body);
   impl_->colliders.push_back(std::move(collider));
+  impl_->polytopes.push_back(std::move(polytope));
   return index;
 }
 
@@ -125,7 +142,9 @@ void ContactWorld::AddStatic(Collider collider, const Matrix3& rotation, const V
   }
   StaticBody s;
   s.collider = std::move(collider);
-  s.posed = {nullptr, rotation * s.collider.rotation, translation + rotation * s.collider.translation};
+  s.polytope = PolytopeOf(s.collider.shape);
+  s.posed = {nullptr, s.polytope.get(), rotation * s.collider.rotation,
+             translation + rotation * s.collider.translation};
   const double r = contact::BoundingRadius(s.collider.shape);
   s.lower = s.posed.t - Vector3::Constant(r);
   s.upper = s.posed.t + Vector3::Constant(r);
@@ -177,7 +196,7 @@ StepStatus ContactWorld::Step(double h) {
   std::vector<contact::Posed> posed(static_cast<std::size_t>(nb));
   for (int i = 0; i < nb; ++i) {
     const auto k = static_cast<std::size_t>(i);
-    posed[k] = PoseOf(m.colliders[k], bodies[k]);
+    posed[k] = PoseOf(m.colliders[k], m.polytopes[k].get(), bodies[k]);
     radius[k] = contact::BoundingRadius(m.colliders[k].shape);
     const Vector3 c = posed[k].t - bodies[k].position;
     reach[k] = h * (m.vel[k].v.norm() + m.vel[k].w.norm() * (radius[k] + c.norm())) + 1e-9 * radius[k];

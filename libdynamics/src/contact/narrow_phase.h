@@ -17,9 +17,12 @@ struct ContactPoint {
   std::uint32_t feature = 0;  ///< which corner, end or rim point: keys warm starting
 };
 
+struct Polytope;
+
 /// A shape in the world: x_W = R x_S + t.
 struct Posed {
   const Shape* shape = nullptr;
+  const Polytope* polytope = nullptr;  ///< boxes and convex shapes
   Matrix3 R = Matrix3::Identity();
   Vector3 t = Vector3::Zero();
 };

@@ -1,0 +1,34 @@
+#pragma once
+// Convex polytopes for contact (internal): boxes and convex hulls as faces, planes and edges, the
+// separating-axis test between two of them with the incident face clipped against the reference
+// face (a manifold of up to four points), and a sphere against one.
+
+#include <array>
+#include <vector>
+
+#include "narrow_phase.h"
+
+namespace dynamics::contact {
+
+struct Polytope {
+  std::vector<Vector3> vertices;           ///< shape frame
+  std::vector<std::vector<int>> faces;     ///< counter-clockwise from outside; coplanar triangles merged
+  std::vector<Vector3> normals;            ///< unit, outward, per face
+  std::vector<std::pair<int, int>> edges;  ///< each once
+  Vector3 centroid = Vector3::Zero();
+};
+
+/// The polytope of a convex hull given as triangles (outward); coplanar triangles become one face.
+/// @throws std::invalid_argument when the triangles do not bound a convex solid.
+Polytope MakePolytope(const std::vector<Vector3>& vertices, const std::vector<std::array<int, 3>>& triangles);
+Polytope BoxPolytope(const Vector3& half_extents);
+
+/// Contact points of two posed polytopes (normals from b into a).
+void PolytopePolytope(const Polytope& pa, const Posed& a, const Polytope& pb, const Posed& b, double margin,
+                      std::vector<ContactPoint>& out);
+/// A sphere (centre c, radius r) against a posed polytope; normals into the sphere when
+/// `sphere_first`, else into the polytope.
+void SpherePolytope(const Vector3& c, double r, const Polytope& p, const Posed& posed, double margin, bool sphere_first,
+                    std::uint32_t feature, std::vector<ContactPoint>& out);
+
+}  // namespace dynamics::contact
