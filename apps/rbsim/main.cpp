@@ -229,7 +229,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   if (stats.interrupted) {
-    std::cerr << "rbsim: interrupted at t = " << sim->world.time() << " s; no output files were written\n";
+    std::cerr << "rbsim: interrupted at t = " << sim->world().time() << " s; no output files were written\n";
     return 130;
   }
 

@@ -146,6 +146,71 @@ ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {
   return s;
 }
 
+dynamics::Material ReadMaterial(Fields& f) {
+  dynamics::Material m;
+  const json* v = f.Get("material");
+  if (!v) return m;
+  Fields o(*v, f.Path("material"), f.file());
+  if (o.Has("friction") && (o.Has("static_friction") || o.Has("kinetic_friction"))) {
+    o.Fail("give 'friction' (both coefficients) or 'static_friction' and 'kinetic_friction', not both");
+  }
+  const double mu = o.Number("friction", -1, "non-negative");
+  m.static_friction = o.Number("static_friction", mu >= 0 ? mu : m.static_friction, "non-negative");
+  m.kinetic_friction =
+      o.Number("kinetic_friction", mu >= 0 ? mu : std::min(m.kinetic_friction, m.static_friction), "non-negative");
+  if (m.kinetic_friction > m.static_friction) {
+    o.Fail("kinetic_friction", "must not exceed static_friction (" + Num(m.static_friction) + ")");
+  }
+  m.restitution = o.Number("restitution", 0.0, "non-negative");
+  if (m.restitution > 1) o.Fail("restitution", "lies between 0 and 1");
+  o.Done();
+  return m;
+}
+
+// "collision": "none" | "hull" | a primitive {"type": "box", ...}; absent: the solid itself when
+// it is a box, sphere, capsule or cylinder.
+CollisionSpec ReadCollision(Fields& f) {
+  CollisionSpec c;
+  c.material = ReadMaterial(f);
+  const json* v = f.Get("collision");
+  if (!v) return c;
+  if (v->is_string()) {
+    const std::string s = v->get<std::string>();
+    if (s == "none") {
+      c.kind = CollisionSpec::Kind::kNone;
+    } else if (s == "hull") {
+      c.kind = CollisionSpec::Kind::kHull;
+    } else {
+      f.Fail("collision",
+             "'" + s + "' is not \"none\", \"hull\" or a primitive {\"type\": ...}" + Suggest(s, {"none", "hull"}));
+    }
+    return c;
+  }
+  if (!v->is_object()) f.Fail("collision", "must be \"none\", \"hull\" or a primitive {\"type\": ...}");
+  Fields o(*v, f.Path("collision"), f.file());
+  c.primitive = ReadPrimitive(o);
+  namespace pr = massprops::primitive;
+  if (!std::holds_alternative<pr::Box>(*c.primitive) && !std::holds_alternative<pr::Sphere>(*c.primitive) &&
+      !std::holds_alternative<pr::Capsule>(*c.primitive) && !std::holds_alternative<pr::Cylinder>(*c.primitive)) {
+    f.Fail("collision", "collides as a box, sphere, capsule or cylinder (or \"hull\"), not a " +
+                            std::string(massprops::PrimitiveName(*c.primitive)));
+  }
+  c.kind = CollisionSpec::Kind::kPrimitive;
+  return c;
+}
+
+GroundSpec ReadGround(const json& j, const std::string& path, const std::string& file) {
+  Fields f(j, path, file);
+  GroundSpec g;
+  g.normal = f.Vec3("normal", Vector3::UnitZ());
+  if (!(g.normal.norm() > 0)) f.Fail("normal", "must not be the zero vector");
+  g.normal.normalize();
+  g.offset = f.Number("offset", 0.0);
+  g.material = ReadMaterial(f);
+  f.Done();
+  return g;
+}
+
 int BodyIndex(Fields& f, const std::string& key, const json& v, const std::vector<BodySpec>& bodies) {
   if (v.is_number_integer()) {
     const auto i = v.get<long long>();
@@ -312,8 +377,44 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
       if (body.color->maxCoeff() > 1) b.Fail("color", "components are between 0 and 1");
     }
     b.Get("color");
+    body.collision = ReadCollision(b);
     b.Done();
     scene.bodies.push_back(std::move(body));
+  }
+  if (const json* g = f.Get("ground")) {
+    if (g->is_array()) {
+      for (std::size_t i = 0; i < g->size(); ++i) {
+        scene.grounds.push_back(ReadGround((*g)[i], "ground[" + std::to_string(i) + "]", file));
+      }
+    } else {
+      scene.grounds.push_back(ReadGround(*g, "ground", file));
+    }
+  }
+  if (const json* st = f.Get("static")) {
+    if (!st->is_array()) f.Fail("static", "must be an array of fixed bodies");
+    for (std::size_t i = 0; i < st->size(); ++i) {
+      const std::string path = "static[" + std::to_string(i) + "]";
+      Fields b((*st)[i], path, file);
+      StaticSpec s;
+      s.field = path;
+      s.name = b.String("name", "static" + std::to_string(i));
+      s.shape = ReadShape(b, base_dir);
+      s.position = b.Vec3("position", Vector3::Zero());
+      s.orientation = ReadOrientation(b, "orientation", warnings);
+      s.collision = ReadCollision(b);
+      if (s.collision.kind == CollisionSpec::Kind::kNone)
+        b.Fail("collision", "a static body that collides with nothing does nothing");
+      b.Get("color");
+      b.Done();
+      scene.statics.push_back(std::move(s));
+    }
+  }
+  if (const json* c = f.Get("contact")) {
+    Fields o(*c, "contact", file);
+    scene.contact.max_iterations =
+        static_cast<int>(o.Number("max_iterations", scene.contact.max_iterations, "positive"));
+    scene.contact.restitution_threshold = o.Number("restitution_threshold", 0.0, "non-negative");
+    o.Done();
   }
   if (const json* forces = f.Get("forces")) {
     if (!forces->is_array()) f.Fail("forces", "must be an array");

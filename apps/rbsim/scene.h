@@ -10,6 +10,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "dynamics/contact.h"
 #include "dynamics/world.h"
 #include "massprops/mass_properties.h"
 #include "massprops/mass_spec.h"
@@ -44,6 +45,26 @@ struct ShapeSpec {
 
 enum class VectorFrame { kWorld, kBody, kPrincipal };
 
+/// What a body collides as (dynamics/contact.h).
+struct CollisionSpec {
+  enum class Kind {
+    kAuto,       ///< a box, sphere, capsule or cylinder solid as itself; anything else: no contact
+    kNone,       ///< passes through everything
+    kHull,       ///< the convex hull of its mesh (or of its solid's or shape's tessellation)
+    kPrimitive,  ///< the primitive given, centred on the center of mass, in the mesh's axes
+  };
+  Kind kind = Kind::kAuto;
+  std::optional<massprops::Primitive> primitive;
+  dynamics::Material material;
+};
+
+/// A ground plane {x : normal·x ≤ offset}.
+struct GroundSpec {
+  Vector3 normal = Vector3::UnitZ();
+  double offset = 0;
+  dynamics::Material material;
+};
+
 struct BodySpec {
   std::string name;
   std::string field;  ///< "bodies[2]", for messages
@@ -54,6 +75,17 @@ struct BodySpec {
   Vector3 angular_velocity = Vector3::Zero();       ///< rad/s, in angular_velocity_frame
   VectorFrame angular_velocity_frame = VectorFrame::kWorld;
   std::optional<Vector3> color;  ///< linear RGB in [0, 1] for the .glb
+  CollisionSpec collision;
+};
+
+/// A body fixed in the world: its mesh or solid placed by x_W = R x_M + t.
+struct StaticSpec {
+  std::string name;
+  std::string field;  ///< "static[0]"
+  ShapeSpec shape;
+  Vector3 position = Vector3::Zero();
+  Quaternion orientation = Quaternion::Identity();
+  CollisionSpec collision;
 };
 
 struct ForceSpec {
@@ -86,6 +118,9 @@ struct Scene {
   int plot_body = 0;
   std::vector<BodySpec> bodies;
   std::vector<ForceSpec> forces;
+  std::vector<GroundSpec> grounds;
+  std::vector<StaticSpec> statics;
+  dynamics::ContactOptions contact;
 };
 
 /// Parses and validates a scene. `base_dir` resolves relative mesh paths. Non-fatal findings

@@ -1,5 +1,7 @@
 #include "simulation.h"
 
+#include "massprops/repair.h"
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -117,13 +119,59 @@ void LoadImplicit(const ShapeSpec& s, SimBody& body, const std::string& where, s
                 Num(e.MaxRelativeError(), "%.1g") + ")";
 }
 
+// The collider of a body (in its principal frame: x_B = R_MBᵀ (x_M − com)), or none.
+std::optional<dynamics::Collider> ColliderOf(const CollisionSpec& c, const ShapeSpec& shape, const SimBody& body) {
+  namespace pr = massprops::primitive;
+  const massprops::Primitive* primitive = c.primitive ? &*c.primitive : nullptr;
+  if (c.kind == CollisionSpec::Kind::kNone) return std::nullopt;
+  if (c.kind == CollisionSpec::Kind::kAuto) {
+    const bool simple =
+        shape.solid &&
+        (std::holds_alternative<pr::Box>(*shape.solid) || std::holds_alternative<pr::Sphere>(*shape.solid) ||
+         std::holds_alternative<pr::Capsule>(*shape.solid) || std::holds_alternative<pr::Cylinder>(*shape.solid));
+    if (!simple) return std::nullopt;
+    primitive = &*shape.solid;
+  }
+  dynamics::Collider out;
+  out.material = c.material;
+  out.rotation = body.principal.axes.transpose();  // mesh axes → body axes
+  if (c.kind == CollisionSpec::Kind::kHull) {
+    const massprops::PolygonMesh hull = massprops::ConvexHull(massprops::ToPolygonMesh(body.display));
+    dynamics::shape::Convex convex;
+    for (Eigen::Index v = 0; v < hull.V.rows(); ++v) convex.vertices.push_back(hull.V.row(v).transpose());
+    for (std::int64_t f = 0; f < hull.num_faces(); ++f) {
+      const std::int32_t* idx = hull.indices.data() + hull.offsets[f];
+      for (int k = 1; k + 1 < hull.face_size(f); ++k) convex.triangles.push_back({idx[0], idx[k], idx[k + 1]});
+    }
+    out.shape = std::move(convex);
+    return out;
+  }
+  const massprops::Primitive& p = *primitive;
+  if (const auto* box = std::get_if<pr::Box>(&p)) out.shape = dynamics::shape::Box{box->size / 2};
+  if (const auto* sphere = std::get_if<pr::Sphere>(&p)) out.shape = dynamics::shape::Sphere{sphere->radius};
+  if (const auto* capsule = std::get_if<pr::Capsule>(&p)) {
+    out.shape = dynamics::shape::Capsule{capsule->radius, capsule->length / 2};
+  }
+  if (const auto* cylinder = std::get_if<pr::Cylinder>(&p)) {
+    out.shape = dynamics::shape::Cylinder{cylinder->radius, cylinder->height / 2};
+  }
+  return out;
+}
+
 }  // namespace
 
 Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warnings, int threads) {
   Simulation sim;
   sim.scene = scene;
-  sim.world.set_integrator(scene.integrator);
-  sim.world.set_num_threads(threads);
+  sim.physics = dynamics::ContactWorld(dynamics::World(scene.integrator), scene.contact);
+  sim.world().set_num_threads(threads);
+  // Contact is on when the scene asks for it: a ground, a static body, or a body's "collision".
+  // Then box, sphere, capsule and cylinder solids collide as themselves unless they say "none";
+  // scenes without any of these run as before, bodies passing through each other.
+  bool wants_contact = !scene.grounds.empty() || !scene.statics.empty();
+  for (const BodySpec& b : scene.bodies)
+    wants_contact = wants_contact || b.collision.kind != CollisionSpec::Kind::kAuto;
+  sim.contact = wants_contact;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodySpec& spec = scene.bodies[i];
     const std::string where = scene.file + ": " + spec.field;
@@ -157,11 +205,45 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     if (spec.angular_velocity_frame == VectorFrame::kPrincipal) omega = rb.orientation * omega;
     rb.SetAngularVelocity(omega);
     try {
-      sim.world.AddBody(rb);
+      const auto collider = wants_contact ? ColliderOf(spec.collision, spec.shape, body) : std::nullopt;
+      if (collider) {
+        sim.physics.AddBody(rb, *collider);
+      } else {
+        sim.physics.AddBody(rb);
+      }
+    } catch (const SceneError&) {
+      throw;
     } catch (const std::exception& e) {
       throw SceneError(where + ": " + e.what());
     }
     sim.bodies.push_back(std::move(body));
+  }
+
+  for (const GroundSpec& g : scene.grounds) sim.physics.AddGround({g.normal, g.offset, g.material});
+  for (const StaticSpec& st : scene.statics) {
+    const std::string where = scene.file + ": " + st.field;
+    SimBody shape;  // its mass properties only place the solid; statics do not move
+    try {
+      if (!st.shape.mesh_file.empty()) {
+        LoadMesh(st.shape, shape, where, warnings, threads);
+      } else if (!st.shape.implicit.empty()) {
+        LoadImplicit(st.shape, shape, where, warnings, threads);
+      } else {
+        LoadPrimitive(*st.shape.solid, st.shape.mass, shape);
+      }
+      // In the static's own frame (its mesh or solid frame): the collider sits at the center of
+      // mass with the mesh's axes.
+      shape.principal.axes = Matrix3::Identity();
+      CollisionSpec c = st.collision;
+      auto collider = ColliderOf(c, st.shape, shape);
+      if (!collider) throw SceneError(where + ": collides as nothing (give \"collision\": \"hull\" or a primitive)");
+      const Matrix3 R = st.orientation.toRotationMatrix();
+      sim.physics.AddStatic(*collider, R, st.position + R * shape.mp.center_of_mass);
+    } catch (const SceneError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw SceneError(where + ": " + e.what());
+    }
   }
 
   // Mesh coordinates → body (principal) coordinates, x_B = R_MBᵀ (x_M − com).
@@ -173,35 +255,46 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     const int body = f.bodies.empty() ? -1 : f.bodies[0];
     const auto principal_axes = [&](int b) { return sim.bodies[static_cast<std::size_t>(b)].principal.axes; };
     if (f.type == "gravity") {
-      sim.world.AddForce(dynamics::Gravity(f.vector));
+      sim.world().AddForce(dynamics::Gravity(f.vector));
     } else if (f.type == "linear_damping") {
-      sim.world.AddForce(dynamics::LinearDamping(f.coefficient, body));
+      sim.world().AddForce(dynamics::LinearDamping(f.coefficient, body));
     } else if (f.type == "angular_damping") {
-      sim.world.AddForce(dynamics::AngularDamping(f.coefficient, body));
+      sim.world().AddForce(dynamics::AngularDamping(f.coefficient, body));
     } else if (f.type == "force") {
       const Vector3 point = f.point ? to_body(body, *f.point) : Vector3::Zero();
       const Vector3 vec = f.body_frame ? Vector3(principal_axes(body).transpose() * f.vector) : f.vector;
-      sim.world.AddForce(dynamics::PointForce(body, point, vec, f.body_frame));
+      sim.world().AddForce(dynamics::PointForce(body, point, vec, f.body_frame));
     } else if (f.type == "torque") {
       if (f.body_frame) {
-        sim.world.AddForce(dynamics::BodyFrameTorque(body, principal_axes(body).transpose() * f.vector));
+        sim.world().AddForce(dynamics::BodyFrameTorque(body, principal_axes(body).transpose() * f.vector));
       } else {
-        sim.world.AddForce(dynamics::ConstantTorque(body, f.vector));
+        sim.world().AddForce(dynamics::ConstantTorque(body, f.vector));
       }
     } else if (f.type == "spring") {
       // Unless the scene names points, springs hold the centers of mass (body point 0).
       if (f.bodies.size() == 2) {
         const Vector3 pa = f.points.empty() ? Vector3::Zero() : to_body(f.bodies[0], f.points[0]);
         const Vector3 pb = f.points.empty() ? Vector3::Zero() : to_body(f.bodies[1], f.points[1]);
-        sim.world.AddForce(
+        sim.world().AddForce(
             dynamics::SpringBetween(f.bodies[0], pa, f.bodies[1], pb, f.coefficient, f.rest_length, f.damping));
       } else {
         const Vector3 p = f.point ? to_body(body, *f.point) : Vector3::Zero();
-        sim.world.AddForce(dynamics::SpringToWorld(body, p, f.anchor, f.coefficient, f.rest_length, f.damping));
+        sim.world().AddForce(dynamics::SpringToWorld(body, p, f.anchor, f.coefficient, f.rest_length, f.damping));
       }
     }
   }
-  sim.conservation = sim.world.Conserves();
+  sim.conservation = sim.world().Conserves();
+  if (sim.contact) {
+    // Contact steps are dissipative (friction, restitution below 1, and the semi-implicit step
+    // itself); the ground and static bodies push: momentum is theirs to change.
+    auto note = [](std::string& list, const char* what) { list += (list.empty() ? "" : ", ") + std::string(what); };
+    sim.conservation.energy = false;
+    note(sim.conservation.energy_broken_by, "contact");
+    if (!scene.grounds.empty() || !scene.statics.empty()) {
+      sim.conservation.momentum = false;
+      note(sim.conservation.momentum_broken_by, "ground and static bodies");
+    }
+  }
   return sim;
 }
 
@@ -232,7 +325,7 @@ RunStats Run(Simulation& sim,
   const std::int64_t n = StepCount(sim.scene);
   const std::int64_t every = SampleEvery(sim.scene);
   auto sample = [&] {
-    const dynamics::Diagnostics d = sim.world.Diagnose();
+    const dynamics::Diagnostics d = sim.world().Diagnose();
     if (!std::isfinite(d.total_energy) || !d.linear_momentum.allFinite() || !d.angular_momentum.allFinite()) {
       const char* what = !std::isfinite(d.total_energy) ? "energy" : "momentum";
       throw std::runtime_error(stats.samples == 0
@@ -248,20 +341,24 @@ RunStats Run(Simulation& sim,
     stats.max_drift.angular_momentum = std::max(stats.max_drift.angular_momentum, std::abs(drift.angular_momentum));
     stats.end = d;
     ++stats.samples;
-    on_sample(sim.world, d);
+    on_sample(sim.world(), d);
   };
   sample();
   const std::int64_t progress_every = std::max<std::int64_t>(1, n / 1000);
   for (std::int64_t i = 1; i <= n; ++i) {
-    const dynamics::StepStatus status = sim.world.Step(sim.scene.dt);
+    const dynamics::StepStatus status = sim.physics.Step(sim.scene.dt);
+    const dynamics::ContactStats& cs = sim.physics.stats();
+    stats.max_contacts = std::max(stats.max_contacts, cs.contacts);
+    stats.max_penetration = std::max(stats.max_penetration, cs.max_penetration);
+    stats.dissipated_by_contact += cs.dissipated;
     if (status.diverged) {
-      const auto [body, quantity] = sim.world.FirstNonFinite();
-      throw std::runtime_error("diverged at t = " + Num(sim.world.time(), "%.9g") + " s (body '" +
+      const auto [body, quantity] = sim.world().FirstNonFinite();
+      throw std::runtime_error("diverged at t = " + Num(sim.world().time(), "%.9g") + " s (body '" +
                                sim.bodies[static_cast<std::size_t>(body)].name + "': " + quantity +
                                " no longer finite); reduce dt, or use a stable integrator");
     }
     if (!status.ok)
-      throw std::runtime_error("the run failed at t = " + Num(sim.world.time(), "%.9g") + " s: " + status.message);
+      throw std::runtime_error("the run failed at t = " + Num(sim.world().time(), "%.9g") + " s: " + status.message);
     stats.max_substeps = std::max(stats.max_substeps, status.substeps);
     stats.steps = i;
     if (i % every == 0 || i == n) sample();
@@ -317,6 +414,11 @@ std::string Summary(const Simulation& sim, const RunStats& stats) {
   out << "  (start, end: E, |p| and |L| (L about the world origin); drift: (E - E0)/|E0|, |p - p0|/|p0|, |L - "
          "L0|/|L0|)\n";
   out << "  L end " << vec(e.angular_momentum) << "\n";
+  if (sim.contact) {
+    out << "  contact: up to " << stats.max_contacts << " points in a step, deepest overlap "
+        << Num(stats.max_penetration, "%.3g") << " m, " << Num(stats.dissipated_by_contact, "%.6g")
+        << " J of kinetic energy taken by the contact impulses\n";
+  }
   return out.str();
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "dynamics/contact.h"
 #include "dynamics/world.h"
 #include "massprops/principal_axes.h"
 #include "scene.h"
@@ -35,8 +36,13 @@ struct BodyState {
 struct Simulation {
   Scene scene;
   std::vector<SimBody> bodies;
-  dynamics::World world;
+  /// The bodies, forces and integrator (world()), with the scene's ground planes, static bodies
+  /// and colliders; without any it steps exactly as the world alone.
+  dynamics::ContactWorld physics;
   dynamics::Conservation conservation;  ///< what the scene's physics conserves (from the forces)
+  bool contact = false;                 ///< the scene has ground, static bodies or colliders
+  dynamics::World& world() { return physics.world(); }
+  const dynamics::World& world() const { return physics.world(); }
 };
 
 /// Loads every body (mesh files through the massprops checks, solids from closed forms) and
@@ -53,6 +59,10 @@ struct RunStats {
   bool interrupted = false;
   dynamics::Diagnostics start, end;
   dynamics::Drift max_drift;  ///< largest |relative drift| over the samples
+  // Contact (scenes with ground, static bodies or colliders).
+  int max_contacts = 0;              ///< most contact points in a step
+  double max_penetration = 0;        ///< m, the deepest overlap seen
+  double dissipated_by_contact = 0;  ///< J, kinetic energy the contact impulses removed
 };
 
 /// Steps = ceil(duration / dt) (the last step lands on or just past the duration); a sample is

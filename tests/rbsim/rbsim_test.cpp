@@ -102,6 +102,19 @@ TEST(Scene, ErrorsNameTheFieldAndTheReason) {
       {OneBody(kBox, R"("forces": [{"type": "gravity", "g": [0, 0, -9.8], "strength": 2}], )"),
        "forces[0]: unknown key 'strength'"},
       {OneBody(kBox, R"("forces": [{"type": "torque", "body": 0}], )"), "forces[0].torque: is required"},
+      {OneBody(std::string(kBox) + R"(, "collision": "hul")"), "bodies[0].collision: 'hul' is not"},
+      {OneBody(std::string(kBox) + R"(, "collision": {"type": "torus", "major_radius": 1, "minor_radius": 0.2})"),
+       "bodies[0].collision: collides as a box, sphere, capsule or cylinder"},
+      {OneBody(std::string(kBox) + R"(, "material": {"static_friction": 0.2, "kinetic_friction": 0.5})"),
+       "bodies[0].material.kinetic_friction: must not exceed static_friction"},
+      {OneBody(std::string(kBox) + R"(, "material": {"restitution": 1.5})"),
+       "bodies[0].material.restitution: lies between 0 and 1"},
+      {OneBody(std::string(kBox) + R"(, "material": {"frction": 0.5})"), "unknown key 'frction' (did you mean"},
+      {OneBody(kBox, R"("ground": {"normal": [0, 0, 0]}, )"), "ground.normal: must not be the zero vector"},
+      {OneBody(kBox, R"("static": [{"solid": {"type": "box", "size": [1, 1, 1]}, "collision": "none"}], )"),
+       "static[0].collision: a static body that collides with nothing"},
+      {OneBody(kBox, R"("static": [{"solid": {"type": "cone", "radius": 1, "height": 1}}], )"),
+       "static[0]: collides as nothing"},
   };
   for (const auto& c : cases) EXPECT_THAT(ErrorOf(c.scene), HasSubstr(c.expect)) << c.scene;
 }
@@ -149,7 +162,8 @@ TEST(Scene, NonUnitQuaternionIsNormalizedWithAWarning) {
 }
 
 TEST(Scene, ExampleScenesAreValid) {
-  for (const char* name : {"t_handle", "heavy_top", "tumbling_spot", "hanging_spring", "two_bodies", "csg_part"}) {
+  for (const char* name : {"t_handle", "heavy_top", "tumbling_spot", "hanging_spring", "two_bodies", "csg_part",
+                           "box_stack", "incline_roll", "dominoes", "spot_on_table", "pile"}) {
     std::vector<std::string> w;
     EXPECT_NO_THROW(rbsim::BuildSimulation(rbsim::LoadScene(DataPath(std::string("scenes/") + name + ".json"), w), w))
         << name;
@@ -175,7 +189,7 @@ TEST(Simulation, THandleFollowsTheExactTorqueFreeFlow) {
     scene.duration = 8;
     scene.integrator = integrator;
     rbsim::Simulation sim = rbsim::BuildSimulation(scene, w);
-    const dynamics::RigidBody& b0 = sim.world.bodies()[0];
+    const dynamics::RigidBody& b0 = sim.world().bodies()[0];
     // The scene's ω = (10, 0.01, 0.01) in the mesh axes; the crossbar (mesh x) is the intermediate axis.
     ASSERT_TRUE(massprops::testing::MatrixNearRel(b0.BodyAngularVelocity(), Vector3(0.01, 10, -0.01), 1e-12, 10));
     const dynamics::ExactFreeRotation exact(b0.inertia, b0.BodyAngularVelocity(), b0.orientation);
@@ -209,7 +223,7 @@ TEST(Simulation, HangingBoxSettlesToStaticEquilibrium) {
   std::vector<std::string> w;
   rbsim::Simulation sim = rbsim::BuildSimulation(s, w);
   rbsim::Run(sim, [](const dynamics::World&, const dynamics::Diagnostics&) {});
-  const dynamics::RigidBody& b = sim.world.bodies()[0];
+  const dynamics::RigidBody& b = sim.world().bodies()[0];
   const rbsim::BodyState st = rbsim::StateOf(sim.bodies[0], b);
   const Vector3 corner = st.position + st.orientation * Vector3(0.1, 0.05, 0.025);
   const double m = 500 * 0.2 * 0.1 * 0.05;
@@ -254,6 +268,45 @@ TEST(Simulation, TwoBodyExampleConservesMomentaAndEnergy) {
   EXPECT_EQ(stats.samples, 10000 / 17 + 2);  // t = 0, every 17 steps (≈ 60 Hz), and the last step
 }
 
+// The contact examples through the scene path: the rolling ball at its closed-form rate, the
+// stack standing, every domino down, Spot's hull at rest on the table.
+TEST(Simulation, ContactExamples) {
+  std::vector<std::string> w;
+  auto run = [&](const char* name) {
+    auto sim = std::make_unique<rbsim::Simulation>(
+        rbsim::BuildSimulation(rbsim::LoadScene(DataPath(std::string("scenes/") + name + ".json"), w), w));
+    EXPECT_TRUE(sim->contact) << name;
+    EXPECT_FALSE(sim->conservation.energy) << name;
+    const rbsim::RunStats stats = rbsim::Run(*sim, [](const dynamics::World&, const dynamics::Diagnostics&) {});
+    return std::make_pair(std::move(sim), stats);
+  };
+  {
+    auto [sim, stats] = run("incline_roll");
+    const double a = 9.81 * std::sin(20 * M_PI / 180) / 1.4;
+    EXPECT_NEAR(sim->world().bodies()[0].velocity.norm(), a * 1.0, 1e-3 * a);
+    EXPECT_LT(stats.max_penetration, 1e-12);
+  }
+  {
+    auto [sim, stats] = run("box_stack");
+    for (std::size_t i = 0; i < 10; ++i) {
+      const auto& b = sim->world().bodies()[i];
+      EXPECT_LT(b.velocity.norm(), 1e-4);
+      EXPECT_NEAR(b.position.z(), 0.05 + 0.1 * static_cast<double>(i), 1e-3);
+    }
+    EXPECT_LT(stats.max_penetration, 1e-5);
+  }
+  {
+    auto [sim, stats] = run("dominoes");
+    for (const auto& b : sim->world().bodies()) EXPECT_LT(b.position.z(), 0.03);  // lying down (upright: 0.05)
+  }
+  {
+    auto [sim, stats] = run("spot_on_table");
+    const auto& b = sim->world().bodies()[0];
+    EXPECT_LT(b.velocity.norm(), 1e-3);
+    EXPECT_GT(b.position.z(), 0);  // on the table, not through it
+  }
+}
+
 TEST(Simulation, SceneFramesOfTheInitialAngularVelocity) {
   // A box turned 90° about z: ω given in its body (mesh) axes along x is world y.
   for (auto [frame, want] : {std::pair{"world", Vector3(1, 0, 0)}, std::pair{"body", Vector3(0, 1, 0)}}) {
@@ -263,7 +316,7 @@ TEST(Simulation, SceneFramesOfTheInitialAngularVelocity) {
                       "angular_velocity": [1, 0, 0], "angular_velocity_frame": ")" +
                       frame + "\"")),
         w);
-    EXPECT_TRUE(massprops::testing::MatrixNearRel(sim.world.bodies()[0].AngularVelocity(), want, 1e-15, 1)) << frame;
+    EXPECT_TRUE(massprops::testing::MatrixNearRel(sim.world().bodies()[0].AngularVelocity(), want, 1e-15, 1)) << frame;
   }
 }
 
@@ -272,7 +325,7 @@ TEST(Simulation, ImplicitBodyHasItsClosedFormInertiaWithinTheEstimate) {
   const rbsim::Simulation sim =
       rbsim::BuildSimulation(Parse(OneBody(R"x("implicit": "torus(R=0.2, r=0.05)", "density": 1000)x")), w);
   const massprops::MassProperties truth = massprops::solids::TorusProperties(0.2, 0.05, 1000);
-  const auto& rb = sim.world.bodies()[0];
+  const auto& rb = sim.world().bodies()[0];
   EXPECT_NEAR(rb.mass, truth.mass, 5e-4 * truth.mass);  // tolerance 1e-4 relative standard error
   EXPECT_NEAR(rb.inertia[2], truth.inertia_com(2, 2), 5e-4 * truth.inertia_com(2, 2));
   // The display surface encloses about the same volume (marching tetrahedra, O(cell) error).

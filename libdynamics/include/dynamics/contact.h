@@ -109,6 +109,8 @@ class ContactWorld {
   /// Adds a moving body with its collider; returns its index in world().bodies().
   /// @throws std::invalid_argument as World::AddBody, or for a shape with non-positive sizes.
   int AddBody(const RigidBody& body, Collider collider);
+  /// A body without a collider: it moves through everything (a marker, a body held by springs).
+  int AddBody(const RigidBody& body);
   /// A body fixed in the world (a table, a ramp): its collider placed by x_W = R x_B + t.
   void AddStatic(Collider collider, const Matrix3& rotation = Matrix3::Identity(),
                  const Vector3& translation = Vector3::Zero());

@@ -78,6 +78,7 @@ struct Velocities {
 
 struct ContactWorld::Impl {
   std::vector<Collider> colliders;  // one per dynamic body
+  std::vector<bool> collides;       // false: the body has no collider
   std::vector<std::shared_ptr<const contact::Polytope>> polytopes;
   std::vector<StaticBody> statics;
   std::vector<Ground> grounds;
@@ -130,6 +131,15 @@ int ContactWorld::AddBody(const RigidBody& body, Collider collider) {
   const int index = world_.AddBody(body);
   impl_->colliders.push_back(std::move(collider));
   impl_->polytopes.push_back(std::move(polytope));
+  impl_->collides.push_back(true);
+  return index;
+}
+
+int ContactWorld::AddBody(const RigidBody& body) {
+  const int index = world_.AddBody(body);
+  impl_->colliders.push_back(Collider{shape::Sphere{1}, Matrix3::Identity(), Vector3::Zero(), Material{}});
+  impl_->polytopes.push_back(nullptr);
+  impl_->collides.push_back(false);
   return index;
 }
 
@@ -170,6 +180,11 @@ void ContactWorld::SetPairMaterial(int a, int b, const Material& material) {
 StepStatus ContactWorld::Step(double h) {
   if (!(h > 0) || !std::isfinite(h)) return world_.Step(h);  // throws, naming the step
   Impl& m = *impl_;
+  if (m.grounds.empty() && m.statics.empty() &&
+      std::find(m.collides.begin(), m.collides.end(), true) == m.collides.end()) {
+    stats_ = {};
+    return world_.Step(h);  // nothing can touch: the world's integrator, at no extra cost
+  }
   std::vector<RigidBody>& bodies = world_.bodies_;
   const int nb = static_cast<int>(bodies.size());
   stats_ = {};
@@ -237,6 +252,7 @@ StepStatus ContactWorld::Step(double h) {
   };
   for (int i = 0; i < nb; ++i) {
     const auto k = static_cast<std::size_t>(i);
+    if (!m.collides[k]) continue;
     for (const Ground& g : m.grounds) {
       const double reach_g = reach[k];
       if (g.normal.dot(posed[k].t) - g.offset - radius[k] >= reach_g) continue;
@@ -254,6 +270,7 @@ StepStatus ContactWorld::Step(double h) {
   intervals.reserve(static_cast<std::size_t>(nb) + m.statics.size());
   for (int i = 0; i < nb; ++i) {
     const auto k = static_cast<std::size_t>(i);
+    if (!m.collides[k]) continue;
     intervals.push_back({posed[k].t.x() - radius[k] - reach[k], posed[k].t.x() + radius[k] + reach[k], i});
   }
   for (std::size_t s = 0; s < m.statics.size(); ++s) {

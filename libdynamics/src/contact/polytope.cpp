@@ -112,14 +112,19 @@ Polytope MakePolytope(const std::vector<Vector3>& vertices, const std::vector<st
     p.faces.push_back(face);
     p.normals.push_back(n);
   }
-  std::map<std::pair<int, int>, bool> edges;
-  for (const auto& f : p.faces) {
+  std::map<std::pair<int, int>, std::vector<int>> edges;  // edge → the faces it bounds
+  for (std::size_t fi = 0; fi < p.faces.size(); ++fi) {
+    const auto& f = p.faces[fi];
     for (std::size_t i = 0; i < f.size(); ++i) {
       const int a = f[i], b = f[(i + 1) % f.size()];
-      edges[{std::min(a, b), std::max(a, b)}] = true;
+      edges[{std::min(a, b), std::max(a, b)}].push_back(static_cast<int>(fi));
     }
   }
-  for (const auto& [e, unused] : edges) p.edges.push_back(e);
+  for (const auto& [e, faces] : edges) {
+    if (faces.size() != 2) throw std::invalid_argument("the convex shape's hull is not closed");
+    p.edges.push_back(e);
+    p.edge_faces.emplace_back(faces[0], faces[1]);
+  }
   return p;
 }
 
@@ -167,6 +172,17 @@ void PolytopePolytope(const Polytope& pa, const Posed& a, const Polytope& pb, co
     for (std::size_t j = 0; j < pb.edges.size(); ++j) {
       const Vector3 eb =
           wb.v[static_cast<std::size_t>(pb.edges[j].second)] - wb.v[static_cast<std::size_t>(pb.edges[j].first)];
+      // Only pairs whose arcs on the Gauss map cross (Gregorius, GDC 2013) can be the axis:
+      // the others are never closer than a face axis, and skipping them makes hulls cheap.
+      {
+        const Vector3& na = wa.n[static_cast<std::size_t>(pa.edge_faces[i].first)];
+        const Vector3& nb = wa.n[static_cast<std::size_t>(pa.edge_faces[i].second)];
+        const Vector3 nc = -wb.n[static_cast<std::size_t>(pb.edge_faces[j].first)];
+        const Vector3 nd = -wb.n[static_cast<std::size_t>(pb.edge_faces[j].second)];
+        const Vector3 bxa = nb.cross(na), dxc = nd.cross(nc);
+        const double cba = nc.dot(bxa), dba = nd.dot(bxa), adc = na.dot(dxc), bdc = nb.dot(dxc);
+        if (!(cba * dba < 0 && adc * bdc < 0 && cba * bdc > 0)) continue;
+      }
       Vector3 u = ea.cross(eb);
       const double len = u.norm();
       if (len < 1e-9 * ea.norm() * eb.norm()) continue;

@@ -11,10 +11,11 @@
 namespace dynamics::contact {
 
 struct Polytope {
-  std::vector<Vector3> vertices;           ///< shape frame
-  std::vector<std::vector<int>> faces;     ///< counter-clockwise from outside; coplanar triangles merged
-  std::vector<Vector3> normals;            ///< unit, outward, per face
-  std::vector<std::pair<int, int>> edges;  ///< each once
+  std::vector<Vector3> vertices;                ///< shape frame
+  std::vector<std::vector<int>> faces;          ///< counter-clockwise from outside; coplanar triangles merged
+  std::vector<Vector3> normals;                 ///< unit, outward, per face
+  std::vector<std::pair<int, int>> edges;       ///< each once
+  std::vector<std::pair<int, int>> edge_faces;  ///< the two faces that meet at each edge
   Vector3 centroid = Vector3::Zero();
 };
 
