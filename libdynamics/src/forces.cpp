@@ -29,7 +29,7 @@ class DampingForce : public Force {
   DampingForce(double c, int body, bool angular) : c_(c), body_(body), angular_(angular) {}
   ForceTraits Traits() const override {
     if (c_ == 0) return {};
-    return {"damping", "damping"};
+    return {"damping", "damping", true};
   }
   void Apply(double, const std::vector<RigidBody>& b, std::vector<Wrench>& out) const override {
     for (std::size_t i = 0; i < b.size(); ++i) {
@@ -92,7 +92,7 @@ class SpringImpl : public Force {
   SpringImpl(int a, const Vector3& pa, int b, const Vector3& pb_or_anchor, double k, double l0, double c)
       : a_(a), b_(b), pa_(pa), pb_(pb_or_anchor), k_(k), l0_(l0), c_(c) {}
   ForceTraits Traits() const override {
-    return {c_ > 0 ? "spring damping" : nullptr, b_ >= 0 ? nullptr : "springs to the world"};
+    return {c_ > 0 ? "spring damping" : nullptr, b_ >= 0 ? nullptr : "springs to the world", c_ > 0};
   }
   void Apply(double, const std::vector<RigidBody>& bodies, std::vector<Wrench>& out) const override {
     const RigidBody& A = bodies[static_cast<std::size_t>(a_)];

@@ -25,6 +25,9 @@ struct ForceTraits {
   const char* breaks_energy = nullptr;
   /// Non-null when the force is external (not equal-and-opposite pairs between bodies).
   const char* breaks_momentum = nullptr;
+  /// True when the force depends on velocities (damping, damped springs): the kick–drift–kick
+  /// integrators then solve the first half kick implicitly, which keeps them second order.
+  bool velocity_dependent = false;
 };
 
 class Force {
@@ -61,9 +64,10 @@ std::unique_ptr<Force> SpringToWorld(int body, const Vector3& point_body, const 
 std::unique_ptr<Force> SpringBetween(int body_a, const Vector3& point_a, int body_b, const Vector3& point_b, double k,
                                      double rest_length, double damping);
 /// Any user force: called with the time, the bodies and the wrenches to add to. Its traits say
-/// what it breaks (default: energy and momentum, as "user forces").
+/// what it breaks (default: energy and momentum, as "user forces") and whether it depends on the
+/// velocities (default: yes, the safe assumption).
 std::unique_ptr<Force> ForceCallback(
     std::function<void(double, const std::vector<RigidBody>&, std::vector<Wrench>&)> fn,
-    ForceTraits traits = {"user forces", "user forces"});
+    ForceTraits traits = {"user forces", "user forces", true});
 
 }  // namespace dynamics

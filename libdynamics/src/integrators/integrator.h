@@ -14,9 +14,12 @@ namespace dynamics::internal {
 /// Scratch kept between steps, so that stepping allocates nothing once a world has run.
 struct StepScratch {
   std::vector<Wrench> wrenches;
-  std::vector<RigidBody> saved;      ///< state at the start of a step that may be retried
-  std::vector<RigidBody> rk4_start;  ///< RK4: state at the start of the step
-  struct Rate {                      ///< RK4: stage derivative of one body
+  std::vector<RigidBody> saved;       ///< state at the start of a step that may be retried
+  std::vector<RigidBody> rk4_start;   ///< RK4: state at the start of the step
+  std::vector<RigidBody> kick_start;  ///< kick–drift–kick: state before an implicit half kick
+  std::vector<double> gross_force;    ///< per body: Σ over forces of |force| + |torque| (a rounding scale)
+  std::vector<Wrench> one_force;      ///< one force's wrenches
+  struct Rate {                       ///< RK4: stage derivative of one body
     Vector3 dx, dv, dL;
     Eigen::Vector4d dq;
   };
@@ -40,6 +43,24 @@ class StepContext {
     for (const auto& f : forces_) f->Apply(t, bodies, out);
   }
   std::vector<Wrench>& wrenches() { return scratch.wrenches; }
+  /// gross[i] = Σ over the forces of |f| + |τ| on body i at time t: the scale of the rounding in
+  /// the net wrench.
+  void GrossWrenchMagnitudes(double t, std::vector<double>& gross) {
+    gross.assign(bodies.size(), 0.0);
+    std::vector<Wrench>& one = scratch.one_force;
+    for (const auto& f : forces_) {
+      one.assign(bodies.size(), Wrench{});
+      f->Apply(t, bodies, one);
+      for (std::size_t i = 0; i < bodies.size(); ++i) gross[i] += one[i].force.norm() + one[i].torque.norm();
+    }
+  }
+  /// True when a force depends on the velocities.
+  bool VelocityDependent() const {
+    for (const auto& f : forces_) {
+      if (f->Traits().velocity_dependent) return true;
+    }
+    return false;
+  }
 
   /// fn(i) for every body, on worker threads for large worlds. Bodies are independent within a
   /// phase, so the results do not depend on the thread count.
@@ -114,7 +135,43 @@ bool KickDriftKick(StepContext& c, double t, double h, const Rotate& rotate) {
     });
   };
   c.ComputeWrenches(t);
-  half_kick();
+  if (!c.VelocityDependent()) {
+    half_kick();
+  } else {
+    // Velocity-dependent forces: the first half kick is implicit in the velocities it produces,
+    // v½ = vₙ + h/2 a(xₙ, v½) (fixed-point iteration), and the second explicit in v½: the two
+    // are each other's adjoint, so the composition stays symmetric and second order (an explicit
+    // first kick makes it first order: measured 1.00–1.21 with damping).
+    std::vector<RigidBody>& start = c.scratch.kick_start;
+    start.assign(bodies.begin(), bodies.end());
+    // Convergence is judged against what rounding leaves: each body's momenta and the gross size
+    // of the forces on it (a body at rest under balanced forces has tiny momenta but not tiny
+    // rounding in its net force).
+    std::vector<double>& gross = c.scratch.gross_force;
+    c.GrossWrenchMagnitudes(t, gross);
+    bool converged = false;
+    for (int iteration = 0; iteration < 100 && !converged; ++iteration) {
+      const std::vector<Wrench>& w = c.wrenches();
+      converged = true;
+      for (std::size_t i = 0; i < bodies.size(); ++i) {
+        const Vector3 v = start[i].velocity + 0.5 * h / bodies[i].mass * w[i].force;
+        const Vector3 L = start[i].angular_momentum + 0.5 * h * w[i].torque;
+        const double change =
+            std::max((v - bodies[i].velocity).norm() * bodies[i].mass, (L - bodies[i].angular_momentum).norm());
+        const double scale = std::max({v.norm() * bodies[i].mass, L.norm(), start[i].velocity.norm() * bodies[i].mass,
+                                       start[i].angular_momentum.norm()}) +
+                             h * gross[i];
+        converged = converged && change <= 4e-15 * scale;
+        bodies[i].velocity = v;
+        bodies[i].angular_momentum = L;
+      }
+      if (!converged) c.ComputeWrenches(t);
+    }
+    if (!converged) {  // the damping is too stiff for this step: the caller sub-steps
+      std::copy(start.begin(), start.end(), bodies.begin());
+      return false;
+    }
+  }
   std::atomic<bool> ok{true};
   c.ForEachBody([&](std::size_t i) {  // drift
     bodies[i].position += h * bodies[i].velocity;

@@ -10,7 +10,7 @@ namespace {
 
 constexpr IntegratorInfo kTable[] = {
     {Integrator::kImplicitMidpoint, "implicit-midpoint", StepImplicitMidpoint, true},
-    {Integrator::kSplitting, "splitting", StepSplitting, false},
+    {Integrator::kSplitting, "splitting", StepSplitting, true},
     {Integrator::kRK4, "rk4", StepRK4, false},
     {Integrator::kExplicitEuler, "explicit-euler", StepExplicitEuler, false},
     {Integrator::kQuaternionEuler, "quaternion-euler", StepQuaternionEuler, false},
