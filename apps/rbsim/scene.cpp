@@ -414,6 +414,9 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
     scene.contact.max_iterations =
         static_cast<int>(o.Number("max_iterations", scene.contact.max_iterations, "positive"));
     scene.contact.restitution_threshold = o.Number("restitution_threshold", 0.0, "non-negative");
+    scene.contact.sleeping = o.Bool("sleeping", false);
+    scene.contact.sleep_speed = o.Number("sleep_speed", scene.contact.sleep_speed, "positive");
+    scene.contact.sleep_time = o.Number("sleep_time", scene.contact.sleep_time, "positive");
     o.Done();
   }
   if (const json* forces = f.Get("forces")) {

@@ -340,6 +340,34 @@ TEST(Contact, SphereRollsDownAStaticRamp) {
   EXPECT_NEAR((b.position).dot(n), r, 1e-9);
 }
 
+// Sleeping: a settled stack stops being stepped (its positions then stay exactly put), and a
+// ball dropped on it wakes the whole island.
+TEST(Contact, SleepingStackWakesWhenTouched) {
+  ContactOptions options;
+  options.sleeping = true;
+  ContactWorld w(World(), options);
+  const Vector3 half = Vector3::Constant(0.05);
+  for (int i = 0; i < 3; ++i) {
+    w.AddBody(BoxBody(half, 500, Vector3(0, 0, 0.05 + 0.1 * i)),
+              Collider{shape::Box{half}, Matrix3::Identity(), Vector3::Zero(), Mat(0.6, 0.5)});
+  }
+  w.AddGround({Vector3::UnitZ(), 0, Mat(0.6, 0.5)});
+  w.AddForce(Gravity(Vector3(0, 0, -kG)));
+  Simulate(w, 1e-3, 1000);
+  EXPECT_EQ(w.stats().sleeping, 3);
+  const Vector3 top = w.world().bodies()[2].position;
+  Simulate(w, 1e-3, 1000);
+  EXPECT_EQ(w.world().bodies()[2].position, top);  // not stepped: not a bit of drift
+  // A ball falls onto the stack: the island wakes, and sleeps again once all is still.
+  RigidBody ball = SphereBody(0.03, 1000, Vector3(0, 0, 0.6));
+  w.AddBody(ball, Collider{shape::Sphere{0.03}, Matrix3::Identity(), Vector3::Zero(), Mat(0.6, 0.5)});
+  bool woke = false;
+  Simulate(w, 1e-3, 3000, [&](int) { woke = woke || w.stats().sleeping == 0; });
+  EXPECT_TRUE(woke);
+  EXPECT_EQ(w.stats().sleeping, 4);
+  EXPECT_NEAR(w.world().bodies()[3].position.z(), 0.3 + 0.03, 1e-4);  // the ball rests on the top box
+}
+
 TEST(Contact, SameBitsWhateverTheThreads) {
   auto run = [](int threads) {
     ContactWorld w;

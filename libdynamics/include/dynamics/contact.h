@@ -85,6 +85,12 @@ struct ContactOptions {
   /// Impacts slower than this (m/s) do not bounce (resting contact under gravity would
   /// otherwise chatter); 0: twice the speed the step's forces give in one step.
   double restitution_threshold = 0;
+  /// Sleeping: a group of touching bodies (an island) whose points all move slower than
+  /// `sleep_speed` (m/s; the angular speed times the body's radius counts) for `sleep_time`
+  /// seconds stops being stepped, and wakes when an awake body touches it. Off by default.
+  bool sleeping = false;
+  double sleep_speed = 1e-3;
+  double sleep_time = 0.5;
 };
 
 /// What the last step's contact did (diagnostics).
@@ -95,6 +101,7 @@ struct ContactStats {
   double max_penetration = 0;  ///< m, the deepest overlap at the start of the step
   /// J: kinetic energy the contact impulses removed in this step (≥ 0 up to rounding).
   double dissipated = 0;
+  int sleeping = 0;  ///< bodies asleep after the step
 };
 
 /// A World with contact. The bodies, forces and integrator are the world's; each dynamic body has

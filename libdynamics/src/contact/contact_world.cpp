@@ -79,6 +79,8 @@ struct Velocities {
 struct ContactWorld::Impl {
   std::vector<Collider> colliders;  // one per dynamic body
   std::vector<bool> collides;       // false: the body has no collider
+  std::vector<bool> asleep;         // sleeping (ContactOptions::sleeping)
+  std::vector<double> still_for;    // s the body has been slow
   std::vector<std::shared_ptr<const contact::Polytope>> polytopes;
   std::vector<StaticBody> statics;
   std::vector<Ground> grounds;
@@ -132,6 +134,8 @@ int ContactWorld::AddBody(const RigidBody& body, Collider collider) {
   impl_->colliders.push_back(std::move(collider));
   impl_->polytopes.push_back(std::move(polytope));
   impl_->collides.push_back(true);
+  impl_->asleep.push_back(false);
+  impl_->still_for.push_back(0.0);
   return index;
 }
 
@@ -140,6 +144,8 @@ int ContactWorld::AddBody(const RigidBody& body) {
   impl_->colliders.push_back(Collider{shape::Sphere{1}, Matrix3::Identity(), Vector3::Zero(), Material{}});
   impl_->polytopes.push_back(nullptr);
   impl_->collides.push_back(false);
+  impl_->asleep.push_back(false);
+  impl_->still_for.push_back(0.0);
   return index;
 }
 
@@ -318,10 +324,54 @@ StepStatus ContactWorld::Step(double h) {
   stats_.contacts = static_cast<int>(m.rows.size());
   if (m.rows.empty()) {  // free flight: the world's own integrator, bit for bit
     m.cache.clear();
+    std::fill(m.asleep.begin(), m.asleep.end(), false);
+    std::fill(m.still_for.begin(), m.still_for.end(), 0.0);
     return world_.Step(h);
   }
+  // Islands: bodies joined by contacts (union-find). An island sleeps as a whole and wakes as a
+  // whole: one awake body touching it wakes every body in it.
+  std::vector<int> island(static_cast<std::size_t>(nb));
+  for (int i = 0; i < nb; ++i) island[static_cast<std::size_t>(i)] = i;
+  auto find = [&](int i) {
+    while (island[static_cast<std::size_t>(i)] != i) {
+      island[static_cast<std::size_t>(i)] = island[static_cast<std::size_t>(island[static_cast<std::size_t>(i)])];
+      i = island[static_cast<std::size_t>(i)];
+    }
+    return i;
+  };
+  for (const Row& r : m.rows) {
+    if (r.b >= 0) island[static_cast<std::size_t>(find(r.a))] = find(r.b);
+  }
+  std::vector<char> island_awake(static_cast<std::size_t>(nb), 0);
+  for (int i = 0; i < nb; ++i) {
+    if (!m.asleep[static_cast<std::size_t>(i)]) island_awake[static_cast<std::size_t>(find(i))] = 1;
+  }
+  for (int i = 0; i < nb; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (m.asleep[k] && island_awake[static_cast<std::size_t>(find(i))]) m.asleep[k] = false;  // woken
+    if (m.asleep[k]) {  // held still: no kick, and as heavy as the ground for the others
+      m.vel[k] = {Vector3::Zero(), Vector3::Zero()};
+      m.inv_inertia[k] = Matrix3::Zero();
+    }
+  }
+  // Contacts between bodies that are all held still have nothing to solve; their impulses are
+  // kept for when the island wakes.
+  std::vector<std::pair<std::tuple<int, int, std::uint32_t>, Impl::Cached>> kept;
+  m.rows.erase(std::remove_if(m.rows.begin(), m.rows.end(),
+                              [&](const Row& r) {
+                                const bool still = m.asleep[static_cast<std::size_t>(r.a)] &&
+                                                   (r.b < 0 || m.asleep[static_cast<std::size_t>(r.b)]);
+                                if (still) {
+                                  const auto it = m.cache.find(r.key);
+                                  if (it != m.cache.end()) kept.emplace_back(*it);
+                                }
+                                return still;
+                              }),
+               m.rows.end());
   // 3. The impulses.
-  auto inv_mass = [&](int i) { return i >= 0 ? 1.0 / bodies[static_cast<std::size_t>(i)].mass : 0.0; };
+  auto inv_mass = [&](int i) {
+    return i >= 0 && !m.asleep[static_cast<std::size_t>(i)] ? 1.0 / bodies[static_cast<std::size_t>(i)].mass : 0.0;
+  };
   auto inv_I = [&](int i) { return i >= 0 ? m.inv_inertia[static_cast<std::size_t>(i)] : Matrix3::Zero().eval(); };
   auto relative_before = [&](const Row& r) {
     const Velocities& va = m.vel[static_cast<std::size_t>(r.a)];
@@ -490,6 +540,7 @@ StepStatus ContactWorld::Step(double h) {
   }
   stats_.iterations = iteration;
   m.cache.clear();
+  for (const auto& [key, value] : kept) m.cache[key] = value;
   for (const Row& r : m.rows) {
     // On the cone's surface: it slides (or just broke away); inside: it holds.
     const bool stuck = r.lambda_t.norm() < r.mu * r.lambda_n * (1 - 1e-9) || r.lambda_n == 0;
@@ -507,6 +558,11 @@ StepStatus ContactWorld::Step(double h) {
   for (int i = 0; i < nb; ++i) {
     const auto k = static_cast<std::size_t>(i);
     RigidBody& b = bodies[k];
+    if (m.asleep[k]) {
+      b.velocity.setZero();
+      b.angular_momentum.setZero();
+      continue;
+    }
     const RigidBody before = b;
     b.velocity = m.vel[k].v;
     b.angular_momentum = b.WorldInertia() * m.vel[k].w;
@@ -521,6 +577,30 @@ StepStatus ContactWorld::Step(double h) {
     }
   }
   world_.time_ += h;
+  if (options_.sleeping) {
+    // An island whose bodies have all been slow for sleep_time falls asleep.
+    std::vector<char> slow(static_cast<std::size_t>(nb), 1);
+    for (int i = 0; i < nb; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      const RigidBody& b = bodies[k];
+      const bool still = b.velocity.norm() + b.AngularVelocity().norm() * radius[k] < options_.sleep_speed;
+      m.still_for[k] = still ? m.still_for[k] + h : 0.0;
+      if (m.still_for[k] < options_.sleep_time) slow[static_cast<std::size_t>(find(i))] = 0;
+    }
+    std::vector<char> touches(static_cast<std::size_t>(nb), 0);  // islands resting on something
+    for (const Row& r : m.rows) touches[static_cast<std::size_t>(find(r.a))] = 1;
+    for (int i = 0; i < nb; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      const int root = find(i);
+      if (m.collides[k] && slow[static_cast<std::size_t>(root)] && touches[static_cast<std::size_t>(root)] &&
+          !m.asleep[k]) {
+        m.asleep[k] = true;
+        bodies[k].velocity.setZero();
+        bodies[k].angular_momentum.setZero();
+      }
+    }
+    stats_.sleeping = static_cast<int>(std::count(m.asleep.begin(), m.asleep.end(), true));
+  }
   const auto [bad, quantity] = world_.FirstNonFinite();
   if (bad >= 0) {
     status.ok = false;
