@@ -119,6 +119,18 @@ void LoadImplicit(const ShapeSpec& s, SimBody& body, const std::string& where, s
                 Num(e.MaxRelativeError(), "%.1g") + ")";
 }
 
+// A body's mass properties and display mesh, from its mesh file, implicit shape or solid.
+void LoadShape(const ShapeSpec& s, SimBody& body, const std::string& where, std::vector<std::string>& warnings,
+               int threads) {
+  if (!s.mesh_file.empty()) {
+    LoadMesh(s, body, where, warnings, threads);
+  } else if (!s.implicit.empty()) {
+    LoadImplicit(s, body, where, warnings, threads);
+  } else {
+    LoadPrimitive(*s.solid, s.mass, body);
+  }
+}
+
 // The collider of a body (in its principal frame: x_B = R_MBᵀ (x_M − com)), or none.
 std::optional<dynamics::Collider> ColliderOf(const CollisionSpec& c, const ShapeSpec& shape, const SimBody& body) {
   namespace pr = massprops::primitive;
@@ -179,13 +191,7 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     body.name = spec.name;
     body.color = spec.color.value_or(DefaultColor(i));
     try {
-      if (!spec.shape.mesh_file.empty()) {
-        LoadMesh(spec.shape, body, where, warnings, threads);
-      } else if (!spec.shape.implicit.empty()) {
-        LoadImplicit(spec.shape, body, where, warnings, threads);
-      } else {
-        LoadPrimitive(*spec.shape.solid, spec.shape.mass, body);
-      }
+      LoadShape(spec.shape, body, where, warnings, threads);
     } catch (const SceneError&) {
       throw;
     } catch (const std::exception& e) {  // every error names the file and the field
@@ -224,13 +230,7 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     const std::string where = scene.file + ": " + st.field;
     SimBody shape;  // its mass properties only place the solid; statics do not move
     try {
-      if (!st.shape.mesh_file.empty()) {
-        LoadMesh(st.shape, shape, where, warnings, threads);
-      } else if (!st.shape.implicit.empty()) {
-        LoadImplicit(st.shape, shape, where, warnings, threads);
-      } else {
-        LoadPrimitive(*st.shape.solid, st.shape.mass, shape);
-      }
+      LoadShape(st.shape, shape, where, warnings, threads);
       // In the static's own frame (its mesh or solid frame): the collider sits at the center of
       // mass with the mesh's axes.
       shape.principal.axes = Matrix3::Identity();

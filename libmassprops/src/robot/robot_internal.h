@@ -50,6 +50,25 @@ struct ElementError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// The name of an element for messages: its name attribute, else "<tag> #k" (k-th of its kind).
+std::string Describe(pugi::xml_node element, int k);
+
+/// Each `tag` child of the link's element read by read(element, "collision 'name'") into
+/// link.geometries; the first fault stops there and becomes link.error.
+template <typename Read>
+void ReadGeometries(Link& link, const char* tag, const Read& read) {
+  int k = 0;
+  for (pugi::xml_node geometry : link.element.children(tag)) {
+    ++k;
+    try {
+      link.geometries.push_back(read(geometry, Describe(geometry, k)));
+    } catch (const ElementError& e) {
+      link.error = e.what();
+      return;
+    }
+  }
+}
+
 std::vector<Link> UrdfLinks(Document& doc, const FillOptions& options);
 std::vector<Link> SdfLinks(Document& doc, const FillOptions& options);
 std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options);
@@ -78,7 +97,5 @@ void ReplaceOrInsert(pugi::xml_node parent, pugi::xml_node old, const std::strin
 std::vector<pugi::xml_node> FindElements(pugi::xml_node root, const char* name);
 /// The first of them, or a null node.
 pugi::xml_node FindElement(pugi::xml_node root, const char* name);
-/// The name of an element for messages: its name attribute, else "<tag> #k" (k-th of its kind).
-std::string Describe(pugi::xml_node element, int k);
 
 }  // namespace massprops::robot

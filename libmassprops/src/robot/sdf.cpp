@@ -100,16 +100,9 @@ std::vector<Link> SdfLinks(Document& doc, const FillOptions& options) {
     link.name = element.attribute("name").value();
     if (link.name.empty()) link.name = Describe(element, static_cast<int>(links.size()) + 1);
     if (const pugi::xml_node mass = element.child("inertial").child("mass")) link.stated_mass = mass.text().as_double();
-    int k = 0;
-    for (pugi::xml_node geometry : element.children(tag)) {
-      ++k;
-      try {
-        link.geometries.push_back(ReadGeometry(geometry, link.name, Describe(geometry, k), doc, options));
-      } catch (const ElementError& e) {
-        link.error = e.what();
-        break;
-      }
-    }
+    ReadGeometries(link, tag, [&](pugi::xml_node geometry, const std::string& what) {
+      return ReadGeometry(geometry, link.name, what, doc, options);
+    });
     links.push_back(std::move(link));
   }
   return links;

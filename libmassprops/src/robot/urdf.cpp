@@ -80,16 +80,9 @@ std::vector<Link> UrdfLinks(Document& doc, const FillOptions& options) {
         link.stated_mass = m.as_double();
       }
     }
-    int k = 0;
-    for (pugi::xml_node geometry : element.children(tag)) {
-      ++k;
-      try {
-        link.geometries.push_back(ReadGeometry(geometry, Describe(geometry, k), doc, options));
-      } catch (const ElementError& e) {
-        link.error = e.what();
-        break;
-      }
-    }
+    ReadGeometries(link, tag, [&](pugi::xml_node geometry, const std::string& what) {
+      return ReadGeometry(geometry, what, doc, options);
+    });
     links.push_back(std::move(link));
   }
   return links;
