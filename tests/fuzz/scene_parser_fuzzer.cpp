@@ -28,7 +28,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     rbsim::Simulation sim = rbsim::BuildSimulation(scene, warnings, 1);
     for (int i = 0; i < 20; ++i) {
-      if (!sim.world.Step(scene.dt).ok) break;
+      if (!sim.physics.Step(scene.dt).ok) break;
     }
   } catch (const rbsim::SceneError&) {
   }
