@@ -103,10 +103,10 @@ void WriteGlb(const std::string& path, const Simulation& sim, const Recording& r
   json samplers = json::array(), channels = json::array();
   const int time_accessor = b.AddAccessor(times, 1, "SCALAR", false, true);
 
-  for (std::size_t i = 0; i < sim.bodies.size(); ++i) {
-    const SimBody& body = sim.bodies[i];
-    const auto& V = body.display.V;
-    const auto& F = body.display.F;
+  // A mesh with one material: flat-shaded triangles.
+  auto add_mesh = [&](const std::string& name, const massprops::TriangleMesh& mesh, const Vector3& color) {
+    const auto& V = mesh.V;
+    const auto& F = mesh.F;
     std::vector<float> pos, nrm;
     pos.reserve(static_cast<std::size_t>(F.rows()) * 9);
     nrm.reserve(static_cast<std::size_t>(F.rows()) * 9);
@@ -125,15 +125,27 @@ void WriteGlb(const std::string& path, const Simulation& sim, const Recording& r
     }
     const int pos_acc = b.AddAccessor(pos, 3, "VEC3", true, true);
     const int nrm_acc = b.AddAccessor(nrm, 3, "VEC3", true, false);
-    materials.push_back({{"name", body.name},
+    materials.push_back({{"name", name},
                          {"pbrMetallicRoughness",
-                          {{"baseColorFactor", {body.color.x(), body.color.y(), body.color.z(), 1.0}},
+                          {{"baseColorFactor", {color.x(), color.y(), color.z(), 1.0}},
                            {"metallicFactor", 0.0},
                            {"roughnessFactor", 0.6}}}});
-    meshes.push_back({{"name", body.name},
+    meshes.push_back({{"name", name},
                       {"primitives", json::array({{{"attributes", {{"POSITION", pos_acc}, {"NORMAL", nrm_acc}}},
                                                    {"material", materials.size() - 1},
                                                    {"mode", 4}}})}});
+    return meshes.size() - 1;
+  };
+  // Static bodies and ground planes: fixed nodes, no animation.
+  for (const SimStatic& st : sim.statics) {
+    if (st.display.F.rows() == 0) continue;
+    const std::size_t mesh = add_mesh(st.name, st.display, st.color);
+    root_children.push_back(nodes.size() + 1);  // node 0 is the root
+    nodes.push_back({{"name", st.name}, {"mesh", mesh}});
+  }
+  for (std::size_t i = 0; i < sim.bodies.size(); ++i) {
+    const SimBody& body = sim.bodies[i];
+    const std::size_t mesh = add_mesh(body.name, body.display, body.color);
     std::vector<float> tr, rot;
     for (const auto& t : rec.translations[i]) tr.insert(tr.end(), {t.x(), t.y(), t.z()});
     for (const auto& q : rec.rotations[i]) rot.insert(rot.end(), {q.x(), q.y(), q.z(), q.w()});
@@ -143,7 +155,7 @@ void WriteGlb(const std::string& path, const Simulation& sim, const Recording& r
     const auto& t0 = rec.translations[i].front();
     const auto& q0 = rec.rotations[i].front();
     nodes.push_back({{"name", body.name},
-                     {"mesh", meshes.size() - 1},
+                     {"mesh", mesh},
                      {"translation", {t0.x(), t0.y(), t0.z()}},
                      {"rotation", {q0.x(), q0.y(), q0.z(), q0.w()}}});
     root_children.push_back(node);

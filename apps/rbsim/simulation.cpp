@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 
 #include "dynamics/forces.h"
@@ -225,7 +226,46 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     sim.bodies.push_back(std::move(body));
   }
 
-  for (const GroundSpec& g : scene.grounds) sim.physics.AddGround({g.normal, g.offset, g.material});
+  // Ground planes, drawn as squares four times as wide as the bodies' spread, under their centre.
+  Vector3 lo = Vector3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (std::size_t i = 0; i < sim.bodies.size(); ++i) {
+    const dynamics::RigidBody& rb = sim.world().bodies()[i];
+    const double r = sim.bodies[i].display.V.rows() > 0 ? sim.bodies[i].display.V.rowwise().norm().maxCoeff() : 0.0;
+    lo = lo.cwiseMin(rb.position - Vector3::Constant(r));
+    hi = hi.cwiseMax(rb.position + Vector3::Constant(r));
+  }
+  for (std::size_t k = 0; k < scene.grounds.size(); ++k) {
+    const GroundSpec& g = scene.grounds[k];
+    sim.physics.AddGround({g.normal, g.offset, g.material});
+    const Vector3 centre = 0.5 * (lo + hi);
+    const Vector3 foot = centre - g.normal * (g.normal.dot(centre) - g.offset);
+    const double half = 2 * std::max((hi - lo).maxCoeff(), 0.1);
+    const Vector3 u = g.normal.cross(std::abs(g.normal.x()) < 0.6 ? Vector3::UnitX() : Vector3::UnitY()).normalized();
+    const Vector3 w = g.normal.cross(u);
+    // A checkerboard of 12 × 12 tiles in two shades (a sense of scale and motion in the .glb).
+    constexpr int kTiles = 12;
+    SimStatic shade[2] = {{"ground" + std::to_string(k) + "_light", {}, Vector3(0.80, 0.78, 0.72)},
+                          {"ground" + std::to_string(k) + "_dark", {}, Vector3(0.62, 0.60, 0.55)}};
+    for (SimStatic& sh : shade) {
+      sh.display.V.resize(4 * kTiles * kTiles / 2, 3);
+      sh.display.F.resize(kTiles * kTiles, 3);
+    }
+    int count[2] = {0, 0};
+    const double tile = 2 * half / kTiles;
+    for (int i = 0; i < kTiles; ++i) {
+      for (int j = 0; j < kTiles; ++j) {
+        SimStatic& sh = shade[(i + j) % 2];
+        const int n = count[(i + j) % 2]++;
+        const Vector3 corner = foot + (-half + i * tile) * u + (-half + j * tile) * w;
+        const Vector3 c[4] = {corner, corner + tile * u, corner + tile * u + tile * w, corner + tile * w};
+        for (int q = 0; q < 4; ++q) sh.display.V.row(4 * n + q) = c[q].transpose();
+        // Counter-clockwise seen from above the ground (u × w = n).
+        sh.display.F.row(2 * n) << 4 * n, 4 * n + 1, 4 * n + 2;
+        sh.display.F.row(2 * n + 1) << 4 * n, 4 * n + 2, 4 * n + 3;
+      }
+    }
+    for (SimStatic& sh : shade) sim.statics.push_back(std::move(sh));
+  }
   for (const StaticSpec& st : scene.statics) {
     const std::string where = scene.file + ": " + st.field;
     SimBody shape;  // its mass properties only place the solid; statics do not move
@@ -238,7 +278,13 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
       auto collider = ColliderOf(c, st.shape, shape);
       if (!collider) throw SceneError(where + ": collides as nothing (give \"collision\": \"hull\" or a primitive)");
       const Matrix3 R = st.orientation.toRotationMatrix();
-      sim.physics.AddStatic(*collider, R, st.position + R * shape.mp.center_of_mass);
+      const Vector3 at = st.position + R * shape.mp.center_of_mass;
+      sim.physics.AddStatic(*collider, R, at);
+      SimStatic drawn{st.name, shape.display};
+      for (Eigen::Index v = 0; v < drawn.display.V.rows(); ++v) {
+        drawn.display.V.row(v) = (R * drawn.display.V.row(v).transpose() + at).transpose();
+      }
+      sim.statics.push_back(std::move(drawn));
     } catch (const SceneError&) {
       throw;
     } catch (const std::exception& e) {

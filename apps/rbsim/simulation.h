@@ -33,9 +33,17 @@ struct BodyState {
   Vector3 omega_principal;  ///< rad/s, principal axes (moments ascending)
 };
 
+/// A static body or ground plane as the outputs draw it: its surface in the world, fixed.
+struct SimStatic {
+  std::string name;
+  massprops::TriangleMesh display;  ///< metres, world coordinates
+  Vector3 color = Vector3(0.55, 0.55, 0.55);
+};
+
 struct Simulation {
   Scene scene;
   std::vector<SimBody> bodies;
+  std::vector<SimStatic> statics;  ///< static bodies and ground planes, for the .glb
   /// The bodies, forces and integrator (world()), with the scene's ground planes, static bodies
   /// and colliders; without any it steps exactly as the world alone.
   dynamics::ContactWorld physics;

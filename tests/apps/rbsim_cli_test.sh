@@ -64,6 +64,24 @@ rows=$(( ($(wc -l <"$tmp/two/trajectory.csv") - 1) / 2 ))
 node "$validator/validate_glb.mjs" "$tmp/two/animation.glb" "$rows" 2 >"$tmp/val2" 2>&1
 check "two bodies: glb valid with 2 animated nodes" $?
 
+# 2b. Contact: a static table and Spot's hull; the .glb carries the table (fixed) beside the
+# animated body, the summary the contact line; the dominoes' ground becomes checkerboard nodes.
+"$bin" "$data/scenes/spot_on_table.json" --duration 0.3 --out "$tmp/spot" --outputs csv,glb >"$tmp/spot.out" 2>&1
+check "spot_on_table exits 0" $?
+grep -q "contact: up to" "$tmp/spot.out"; check "contact summary line" $?
+rows=$(($(wc -l <"$tmp/spot/trajectory.csv") - 1))
+node "$validator/validate_glb.mjs" "$tmp/spot/animation.glb" "$rows" 1 >"$tmp/val3" 2>&1
+check "contact scene: glb valid, the table fixed beside the animated body" $?
+python3 - "$tmp/spot/animation.glb" <<'PY'
+import json, struct, sys
+data = open(sys.argv[1], "rb").read()
+n = struct.unpack_from("<I", data, 12)[0]
+doc = json.loads(data[20:20 + n])
+names = [node.get("name") for node in doc["nodes"]]
+assert "table" in names and "spot" in names, names
+PY
+check "contact scene: the .glb has the table node" $?
+
 # 3. The quick path: one mesh, torque-free, from the command line.
 "$bin" --mesh "$data/meshes/spot.obj" --omega 0,10,0.01 --duration 1 --out "$tmp/q" --outputs csv >"$tmp/out" 2>&1
 check "quick path exits 0" $?
