@@ -425,6 +425,35 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
       scene.forces.push_back(ReadForce((*forces)[i], "forces[" + std::to_string(i) + "]", file, scene.bodies));
     }
   }
+  if (const json* pairs = f.Get("pairs")) {
+    if (!pairs->is_array()) f.Fail("pairs", "must be an array of {\"bodies\": [a, b], \"material\": {...}}");
+    for (std::size_t i = 0; i < pairs->size(); ++i) {
+      const std::string path = "pairs[" + std::to_string(i) + "]";
+      Fields p((*pairs)[i], path, file);
+      const json* b = p.Get("bodies");
+      if (!b || !b->is_array() || b->size() != 2) {
+        p.Fail("bodies", "must name two bodies (a name, an index, or \"ground\" for the ground and static bodies)");
+      }
+      Scene::PairMaterial pm;
+      int ends[2];
+      for (int k = 0; k < 2; ++k) {
+        const json& e = (*b)[static_cast<std::size_t>(k)];
+        const bool named_body =
+            e.is_string() && std::any_of(scene.bodies.begin(), scene.bodies.end(),
+                                         [&](const BodySpec& x) { return x.name == e.get<std::string>(); });
+        ends[k] = e.is_string() && e.get<std::string>() == "ground" && !named_body
+                      ? -1
+                      : BodyIndex(p, "bodies[" + std::to_string(k) + "]", e, scene.bodies);
+      }
+      if (ends[0] == ends[1]) p.Fail("bodies", "a pair needs two different bodies");
+      pm.a = ends[0];
+      pm.b = ends[1];
+      if (!p.Has("material")) p.Fail("material", "is required");
+      pm.material = ReadMaterial(p);
+      p.Done();
+      scene.pairs.push_back(pm);
+    }
+  }
   if (const json* pb = f.Get("plot_body")) {
     scene.plot_body = BodyIndex(f, "plot_body", *pb, scene.bodies);
   }

@@ -121,6 +121,12 @@ struct Scene {
   std::vector<GroundSpec> grounds;
   std::vector<StaticSpec> statics;
   dynamics::ContactOptions contact;
+  /// Materials of particular pairs: body indices, -1 for the ground and static bodies.
+  struct PairMaterial {
+    int a = -1, b = -1;
+    dynamics::Material material;
+  };
+  std::vector<PairMaterial> pairs;
 };
 
 /// Parses and validates a scene. `base_dir` resolves relative mesh paths. Non-fatal findings

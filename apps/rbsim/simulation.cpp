@@ -292,6 +292,9 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     }
   }
 
+  for (const Scene::PairMaterial& p : scene.pairs) sim.physics.SetPairMaterial(p.a, p.b, p.material);
+  if (!scene.pairs.empty()) sim.contact = true;
+
   // Mesh coordinates → body (principal) coordinates, x_B = R_MBᵀ (x_M − com).
   auto to_body = [&](int b, const Vector3& p_mesh) {
     const SimBody& sb = sim.bodies[static_cast<std::size_t>(b)];

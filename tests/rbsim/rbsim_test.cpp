@@ -115,6 +115,9 @@ TEST(Scene, ErrorsNameTheFieldAndTheReason) {
        "static[0].collision: a static body that collides with nothing"},
       {OneBody(kBox, R"("static": [{"solid": {"type": "cone", "radius": 1, "height": 1}}], )"),
        "static[0]: collides as nothing"},
+      {OneBody(kBox, R"("pairs": [{"bodies": ["body0", "grnd"], "material": {"friction": 1}}], )"),
+       "pairs[0].bodies[1]: no body is named 'grnd'"},
+      {OneBody(kBox, R"("pairs": [{"bodies": [0, "ground"]}], )"), "pairs[0].material: is required"},
   };
   for (const auto& c : cases) EXPECT_THAT(ErrorOf(c.scene), HasSubstr(c.expect)) << c.scene;
 }
@@ -305,6 +308,22 @@ TEST(Simulation, ContactExamples) {
     EXPECT_LT(b.velocity.norm(), 1e-3);
     EXPECT_GT(b.position.z(), 0);  // on the table, not through it
   }
+}
+
+// A pair's own material overrides the bodies': the ball on a frictionless incline slides at
+// g sin θ instead of rolling at 5/7 of it.
+TEST(Simulation, PairMaterialOverridesTheBodies) {
+  std::vector<std::string> w;
+  rbsim::Scene s = Parse(R"({"dt": 0.001, "duration": 0.5,
+    "ground": {"normal": [0, 0, 1], "material": {"friction": 0.5}},
+    "bodies": [{"name": "ball", "solid": {"type": "sphere", "radius": 0.05}, "position": [0, 0, 0.05],
+                "material": {"friction": 0.5}}],
+    "pairs": [{"bodies": ["ball", "ground"], "material": {"friction": 0}}],
+    "forces": [{"type": "gravity", "g": [2, 0, -9]}]})");
+  rbsim::Simulation sim = rbsim::BuildSimulation(s, w);
+  rbsim::Run(sim, [](const dynamics::World&, const dynamics::Diagnostics&) {});
+  EXPECT_NEAR(sim.world().bodies()[0].velocity.x(), 2 * 0.5, 1e-9);
+  EXPECT_NEAR(sim.world().bodies()[0].AngularVelocity().norm(), 0, 1e-12);
 }
 
 TEST(Simulation, SceneFramesOfTheInitialAngularVelocity) {

@@ -32,6 +32,29 @@ std::shared_ptr<const contact::Polytope> PolytopeOf(const Shape& s) {
   if (const auto* convex = std::get_if<shape::Convex>(&s)) {
     return std::make_shared<contact::Polytope>(contact::MakePolytope(convex->vertices, convex->triangles));
   }
+  if (const auto* cylinder = std::get_if<shape::Cylinder>(&s)) {
+    // Against bodies, a cylinder is the 32-sided prism inscribed in it (its side at most
+    // r (1 − cos(π/32)) = 0.0048 r inside the true one); against planes it stays exact.
+    constexpr int kSides = 32;
+    std::vector<Vector3> v;
+    for (const double z : {cylinder->half_length, -cylinder->half_length}) {
+      for (int i = 0; i < kSides; ++i) {
+        const double phi = 2 * M_PI * i / kSides;
+        v.emplace_back(cylinder->radius * std::cos(phi), cylinder->radius * std::sin(phi), z);
+      }
+    }
+    std::vector<std::array<int, 3>> t;
+    for (int i = 1; i + 1 < kSides; ++i) {
+      t.push_back({0, i, i + 1});                         // top, counter-clockwise from +z
+      t.push_back({kSides, kSides + i + 1, kSides + i});  // bottom, from −z
+    }
+    for (int i = 0; i < kSides; ++i) {
+      const int j = (i + 1) % kSides;
+      t.push_back({i, kSides + i, kSides + j});
+      t.push_back({i, kSides + j, j});
+    }
+    return std::make_shared<contact::Polytope>(contact::MakePolytope(v, t));
+  }
   return nullptr;
 }
 
