@@ -27,9 +27,18 @@ struct FormatOptions {
   const Vocabulary* vocabulary = nullptr;
   /// The units the table, JSON and CSV are read in (SI by default); URDF, SDF and MJCF are SI.
   ReportUnits units;
-  /// Also report the inertia tensor about this point, in these axes (--about, --axes).
+  /// Also report the inertia tensor about this point, in these axes (--about, --axes). The point
+  /// is in the coordinates of each input file, in the unit that file is read in (a file that
+  /// declares millimetres takes --about in millimetres): ReferenceOf scales it per result.
   std::optional<ReferenceFrame> reference;
 };
+
+/// options.reference for the result r: its point turned into metres with r's unit.
+inline ReferenceFrame ReferenceOf(const SolidResult& r, const FormatOptions& options) {
+  ReferenceFrame f = *options.reference;
+  if (f.point) f.point = *f.point * MetresPerUnit(r.unit);
+  return f;
+}
 
 std::string FormatTable(const SolidResult& r, const FormatOptions& options);
 /// One object, or an array when options.json_array.

@@ -92,7 +92,7 @@ std::string FormatCsv(const std::vector<SolidResult>& given, const FormatOptions
       for (double v : {O(0, 0), O(1, 1), O(2, 2), O(0, 1), O(0, 2), O(1, 2)}) out << "," << ExactDecimal(v);
     }
     if (opt.reference) {
-      const Matrix3 A = InertiaInFrame(r.mp, *opt.reference) / u.Inertia();
+      const Matrix3 A = InertiaInFrame(r.mp, ReferenceOf(r, opt)) / u.Inertia();
       for (double v : {A(0, 0), A(1, 1), A(2, 2), A(0, 1), A(0, 2), A(1, 2)}) out << "," << ExactDecimal(v);
     }
     if (estimates && r.estimate) {

@@ -43,10 +43,10 @@ Json ToJson(const SolidResult& r, const FormatOptions& opt) {
   if (r.model == ModelKind::kWall) j["wall_thickness_m"] = r.wall_thickness * MetresPerUnit(r.unit);
   if (opt.frame == Frame::kOrigin) j["inertia_origin"] = Mat(r.mp.InertiaAbout(Vector3::Zero()) / u.Inertia());
   if (opt.reference) {
-    const Vector3 p = opt.reference->point.value_or(r.mp.center_of_mass) / u.Length();
-    j["inertia_about"] = {{"point", {p[0], p[1], p[2]}},
-                          {"axes", Mat(opt.reference->axes)},
-                          {"tensor", Mat(InertiaInFrame(r.mp, *opt.reference) / u.Inertia())}};
+    const ReferenceFrame f = ReferenceOf(r, opt);
+    const Vector3 p = f.point.value_or(r.mp.center_of_mass) / u.Length();
+    j["inertia_about"] = {
+        {"point", {p[0], p[1], p[2]}}, {"axes", Mat(f.axes)}, {"tensor", Mat(InertiaInFrame(r.mp, f) / u.Inertia())}};
   }
   j["principal_moments"] = {m[0], m[1], m[2]};
   j["principal_axes"] = Mat(r.principal.axes);

@@ -136,7 +136,7 @@ std::string FormatOne(const SolidResult& r, const FormatOptions& opt) {
     PrintMatrix(out, "                ", r.mp.InertiaAbout(Vector3::Zero()) / u.Inertia());
   }
   if (opt.reference) {
-    const ReferenceFrame& f = *opt.reference;
+    const ReferenceFrame f = ReferenceOf(r, opt);
     out << "inertia about " << (f.point ? vec(*f.point, u.Length()) + " " + len : std::string("the center of mass"))
         << (f.axes.isIdentity(0) ? ", file's axes" : ", in the axes given") << inertia_label;
     PrintMatrix(out, "                ", InertiaInFrame(r.mp, f) / u.Inertia());

@@ -385,7 +385,8 @@ int main(int argc, char** argv) {
     for (double v : a.axes_euler) {
       if (!std::isfinite(v)) return bad("--axes-euler needs three finite angles");
     }
-    if (!a.about.empty()) f.point = Vector3(a.about[0], a.about[1], a.about[2]) * MetresPerUnit(options.unit);
+    // In each file's unit (the one stated, or the one the file declares): scaled per result.
+    if (!a.about.empty()) f.point = Vector3(a.about[0], a.about[1], a.about[2]);
     try {
       if (!a.axes.empty()) {
         Matrix3 r;

@@ -285,6 +285,9 @@ def main():
         z.writestr("3D/3dmodel.model", model)
     run("3mf_declared_mm", ["cube5mm.3mf", "--format", "json"], 0, r"^$", r'"unit": "mm",\s*"unit_source": "file",'
         r'(.|\n)*"volume": 1\.25\d*e-07')
+    # --about is in the file's unit, the declared one included: 5,5,5 is the far corner (5 mm).
+    run("3mf_about_in_file_unit", ["cube5mm.3mf", "--about", "5,5,5", "--format", "json"], 0, r"^$",
+        r'"point": \[\s*0\.005\d*,\s*0\.005\d*,\s*0\.005\d*\s*\]')
     run("3mf_overridden", ["cube5mm.3mf", "--unit", "m", "--format", "csv"], 0,
         r"declares its coordinates in millimeter; read in m as --unit m says", r",m,125,")
     amf = ('<?xml version="1.0"?>\n<amf unit="inch"><object id="0"><mesh><vertices>' +
