@@ -75,6 +75,28 @@ def tris_of(f):
     return [t for q in f for t in ([(q[0], q[k], q[k + 1]) for k in range(1, len(q) - 1)])]
 
 
+def gltf(v, f):
+    """glTF 2.0, one node and one triangle mesh, positions as 32-bit floats (beyond their range:
+    infinite), indices 32-bit, the buffer embedded as base64."""
+    import base64
+
+    def f32c(x):
+        return x if abs(x) < 3.4e38 else (float("inf") if x > 0 else float("-inf"))
+
+    tris = tris_of(f)
+    pos = b"".join(struct.pack("<3f", *(f32c(c) for c in p)) for p in v)
+    idx = b"".join(struct.pack("<3I", *t) for t in tris)
+    doc = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+           "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "mode": 4}]}],
+           "buffers": [{"byteLength": len(pos) + len(idx),
+                        "uri": "data:application/octet-stream;base64," + base64.b64encode(pos + idx).decode()}],
+           "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": len(pos)},
+                           {"buffer": 0, "byteOffset": len(pos), "byteLength": len(idx)}],
+           "accessors": [{"bufferView": 0, "componentType": 5126, "count": len(v), "type": "VEC3"},
+                         {"bufferView": 1, "componentType": 5125, "count": 3 * len(tris), "type": "SCALAR"}]}
+    return json.dumps(doc)
+
+
 # Each reader writes a mesh (vertices, polygon faces) into its format.
 READERS = {
     "obj": lambda v, f: obj(v, f),
@@ -84,6 +106,11 @@ READERS = {
     "stl": lambda v, f: stl_binary(v, tris_of(f)),
     "astl.stl": lambda v, f: stl_ascii(v, tris_of(f)),
 }
+# Formats only assimp reads (in its isolated child, coordinates as 32-bit floats).
+ASSIMP_READERS = {"gltf": gltf}
+# The same faults through assimp: 1e200 is infinite in its 32-bit floats, 1e-80 zero.
+ASSIMP_OVERRIDES = {"huge": r"non-finite coordinate", "tiny": r"zero up to rounding|underflow",
+                    "double_sided": r"zero up to rounding"}
 
 # Fault classes that every reader can express: (name, vertices, faces, status, stderr regex).
 REVERSED = [tuple(reversed(q)) for q in CUBE_Q]
@@ -176,6 +203,16 @@ def main():
             write(name, writer(v, f))
             out_re = r"volume" if status == 0 else None
             run(name, [name], status, err_re, out_re)
+    # Every fault again through assimp: its readers of the same formats (--reader assimp), and
+    # the formats only it reads.
+    for ext, writer in list(READERS.items()) + list(ASSIMP_READERS.items()):
+        own = ext in READERS
+        for fault, v, f, status, err_re in FAULTS:
+            err_re = ASSIMP_OVERRIDES.get(fault, err_re)
+            name = "assimp_%s_%s.%s" % (fault, ext.split(".")[0], ext.split(".")[-1])
+            write(name, writer(v, f))
+            run(name, [name] + (["--reader", "assimp"] if own else []), status, err_re,
+                r"volume" if status == 0 else None)
     for name, ext, content, status, err_re in TEXT_FAULTS:
         write(name + "." + ext, content)
         run(name, [name + "." + ext], status, err_re)
