@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 
+#include "dynamics/contact.h"
 #include "dynamics/forces.h"
 #include "dynamics/rigid_body.h"
 #include "dynamics/world.h"
@@ -382,6 +383,163 @@ void BindDynamics(py::module_& m) {
         return out;
       });
   m.def("integrators", &dynamics::IntegratorNames);
+
+  // Contact (dynamics/contact.h).
+  py::class_<dynamics::Material>(m, "Material", "Coulomb friction (static, kinetic) and restitution of a surface.")
+      .def(py::init([](double mu_s, double mu_k, double e) {
+             return dynamics::Material{mu_s, mu_k, e};
+           }),
+           py::arg("static_friction") = 0.6, py::arg("kinetic_friction") = 0.5, py::arg("restitution") = 0.0)
+      .def_readwrite("static_friction", &dynamics::Material::static_friction)
+      .def_readwrite("kinetic_friction", &dynamics::Material::kinetic_friction)
+      .def_readwrite("restitution", &dynamics::Material::restitution);
+  auto collider = [](dynamics::Shape shape, const py::handle& rotation, const py::handle& translation,
+                     const dynamics::Material& material) {
+    dynamics::Collider c;
+    c.shape = std::move(shape);
+    if (!rotation.is_none()) {
+      const auto a = py::cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(rotation);
+      if (a.size() != 9) throw py::value_error("rotation must be 3 x 3");
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) c.rotation(i, j) = a.data()[3 * i + j];
+    }
+    if (!translation.is_none()) c.translation = Vec(translation);
+    c.material = material;
+    return c;
+  };
+  py::class_<dynamics::Collider>(m, "Collider",
+                                 "A collision shape placed in a body's frame (x_B = R x_S + t), with its material. "
+                                 "Make one with sphere(), box(), capsule(), cylinder() or convex().")
+      .def_property_readonly("shape", [](const dynamics::Collider& c) { return dynamics::ShapeName(c.shape); });
+  const auto place = py::arg("rotation") = py::none();
+  m.def(
+      "sphere",
+      [collider](double r, const py::handle& R, const py::handle& t, const dynamics::Material& mat) {
+        return collider(dynamics::shape::Sphere{r}, R, t, mat);
+      },
+      py::arg("radius"), place, py::arg("translation") = py::none(), py::arg("material") = dynamics::Material{});
+  m.def(
+      "box",
+      [collider](const py::handle& half, const py::handle& R, const py::handle& t, const dynamics::Material& mat) {
+        return collider(dynamics::shape::Box{Vec(half)}, R, t, mat);
+      },
+      py::arg("half_extents"), place, py::arg("translation") = py::none(), py::arg("material") = dynamics::Material{});
+  m.def(
+      "capsule",
+      [collider](double r, double half, const py::handle& R, const py::handle& t, const dynamics::Material& mat) {
+        return collider(dynamics::shape::Capsule{r, half}, R, t, mat);
+      },
+      py::arg("radius"), py::arg("half_length"), place, py::arg("translation") = py::none(),
+      py::arg("material") = dynamics::Material{});
+  m.def(
+      "cylinder",
+      [collider](double r, double half, const py::handle& R, const py::handle& t, const dynamics::Material& mat) {
+        return collider(dynamics::shape::Cylinder{r, half}, R, t, mat);
+      },
+      py::arg("radius"), py::arg("half_length"), place, py::arg("translation") = py::none(),
+      py::arg("material") = dynamics::Material{});
+  m.def(
+      "convex",
+      [collider](py::array_t<double, py::array::c_style | py::array::forcecast> vertices,
+                 py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> triangles, const py::handle& R,
+                 const py::handle& t, const dynamics::Material& mat) {
+        if (vertices.ndim() != 2 || vertices.shape(1) != 3) throw py::value_error("vertices must have shape (n, 3)");
+        if (triangles.ndim() != 2 || triangles.shape(1) != 3) throw py::value_error("triangles must have shape (m, 3)");
+        dynamics::shape::Convex c;
+        for (py::ssize_t i = 0; i < vertices.shape(0); ++i) {
+          c.vertices.emplace_back(vertices.at(i, 0), vertices.at(i, 1), vertices.at(i, 2));
+        }
+        for (py::ssize_t i = 0; i < triangles.shape(0); ++i) {
+          std::array<int, 3> tri{};
+          for (int k = 0; k < 3; ++k) {
+            const std::int64_t v = triangles.at(i, k);
+            if (v < 0 || v >= vertices.shape(0)) throw py::value_error("a triangle index is out of range");
+            tri[static_cast<std::size_t>(k)] = static_cast<int>(v);
+          }
+          c.triangles.push_back(tri);
+        }
+        return collider(std::move(c), R, t, mat);
+      },
+      py::arg("vertices"), py::arg("triangles"), place, py::arg("translation") = py::none(),
+      py::arg("material") = dynamics::Material{});
+
+  py::class_<dynamics::ContactWorld>(m, "ContactWorld",
+                                     "A World with ground planes, static bodies and colliders: bodies rest, slide, "
+                                     "roll, bounce and stack (dynamics/contact.h).")
+      .def(py::init([](const std::string& integrator, bool sleeping) {
+             dynamics::ContactOptions o;
+             o.sleeping = sleeping;
+             return dynamics::ContactWorld(dynamics::World(dynamics::ParseIntegrator(integrator)), o);
+           }),
+           py::arg("integrator") = "implicit-midpoint", py::arg("sleeping") = false)
+      .def(
+          "add_body",
+          [](dynamics::ContactWorld& w, const RigidBody& b, const std::optional<dynamics::Collider>& c) {
+            try {
+              return c ? w.AddBody(b, *c) : w.AddBody(b);
+            } catch (const std::invalid_argument& e) {
+              throw py::value_error(e.what());
+            }
+          },
+          py::arg("body"), py::arg("collider") = py::none())
+      .def(
+          "add_static",
+          [](dynamics::ContactWorld& w, const dynamics::Collider& c, const py::handle& position,
+             const py::handle& rotation) {
+            Matrix3 R = Matrix3::Identity();
+            if (!rotation.is_none()) {
+              const auto a = py::cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(rotation);
+              if (a.size() != 9) throw py::value_error("rotation must be 3 x 3");
+              for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j) R(i, j) = a.data()[3 * i + j];
+            }
+            try {
+              w.AddStatic(c, R, position.is_none() ? Vector3::Zero() : Vec(position));
+            } catch (const std::invalid_argument& e) {
+              throw py::value_error(e.what());
+            }
+          },
+          py::arg("collider"), py::arg("position") = py::none(), py::arg("rotation") = py::none())
+      .def(
+          "add_ground",
+          [](dynamics::ContactWorld& w, const py::handle& normal, double offset, const dynamics::Material& mat) {
+            try {
+              w.AddGround({Vec(normal), offset, mat});
+            } catch (const std::invalid_argument& e) {
+              throw py::value_error(e.what());
+            }
+          },
+          py::arg("normal") = py::make_tuple(0.0, 0.0, 1.0), py::arg("offset") = 0.0,
+          py::arg("material") = dynamics::Material{})
+      .def(
+          "add_gravity", [](dynamics::ContactWorld& w, const py::handle& g) { w.AddForce(dynamics::Gravity(Vec(g))); },
+          py::arg("g"))
+      .def(
+          "step",
+          [](dynamics::ContactWorld& w, double h, int steps) {
+            dynamics::StepStatus s;
+            {
+              py::gil_scoped_release release;
+              for (int i = 0; i < steps && s.ok; ++i) s = w.Step(h);
+            }
+            if (!s.ok) throw py::value_error("step at t = " + std::to_string(w.world().time()) + ": " + s.message);
+          },
+          py::arg("h"), py::arg("steps") = 1, "Advances steps × h seconds; raises when a step fails or diverges")
+      .def_property_readonly("time", [](const dynamics::ContactWorld& w) { return w.world().time(); })
+      .def_property_readonly(
+          "bodies", [](const dynamics::ContactWorld& w) { return w.world().bodies(); }, "copies of the bodies' states")
+      .def("body",
+           [](const dynamics::ContactWorld& w, int i) { return w.world().bodies().at(static_cast<std::size_t>(i)); })
+      .def("stats", [](const dynamics::ContactWorld& w) {
+        const dynamics::ContactStats& s = w.stats();
+        py::dict out;
+        out["contacts"] = s.contacts;
+        out["iterations"] = s.iterations;
+        out["max_penetration"] = s.max_penetration;
+        out["dissipated"] = s.dissipated;
+        out["sleeping"] = s.sleeping;
+        return out;
+      });
 }
 
 }  // namespace

@@ -284,3 +284,47 @@ def test_fill_matches_the_command_and_writes_whole(tmp_path):
     links = {l["name"]: l for l in kept["links"]}
     assert links["upper_arm"]["mass"] == 1.5
     assert links["forearm"]["mass"] == pytest.approx(7.85 * {l["name"]: l for l in expected["links"]}["forearm"]["mass"])
+
+
+def test_contact_a_ball_rolls_down_an_incline_at_five_sevenths():
+    # Gravity tilted by 20 degrees over the ground z = 0: a = g sin(20°) / (1 + 2/5).
+    from math import sin, cos, radians, pi
+    d = massprops.dynamics
+    world = d.ContactWorld()
+    r, rho = 0.05, 1000.0
+    m = rho * 4 / 3 * pi * r ** 3
+    ball = d.RigidBody(mass=m, inertia=(0.4 * m * r * r,) * 3)
+    ball.position = (0, 0, r)
+    world.add_body(ball, d.sphere(r, material=d.Material(0.5, 0.5)))
+    world.add_ground(material=d.Material(0.5, 0.5))
+    theta = radians(20)
+    world.add_gravity((9.81 * sin(theta), 0, -9.81 * cos(theta)))
+    world.step(1e-3, steps=1000)
+    b = world.body(0)
+    assert b.velocity[0] == pytest.approx(9.81 * sin(theta) / 1.4, rel=1e-3)
+    assert abs(b.velocity[0] - b.angular_velocity[1] * r) < 1e-6  # rolling, not sliding
+    assert world.stats()["contacts"] == 1
+
+
+def test_contact_a_mesh_hull_rests_on_a_table():
+    # A bar's mass properties from its mesh, and the same mesh as its convex collider.
+    d = massprops.dynamics
+    world = d.ContactWorld(sleeping=True)
+    half = np.array([0.04, 0.01, 0.01])
+    v = np.array([[sx, sy, sz] for sz in (-1, 1) for sy in (-1, 1) for sx in (-1, 1)], dtype=float) * half
+    tri = np.array([[0, 2, 3], [0, 3, 1], [4, 5, 7], [4, 7, 6], [0, 1, 5], [0, 5, 4],
+                    [2, 6, 7], [2, 7, 3], [0, 4, 6], [0, 6, 2], [1, 3, 7], [1, 7, 5]])
+    r = massprops.mass_properties(v, tri, density=800)
+    body = massprops.body(r)
+    body.position = (0, 0, 0.2)
+    # The collider in the body's (principal) frame: x_B = R_MBᵀ (x_M − com).
+    world.add_body(body, d.convex(v - r.center_of_mass, tri, rotation=r.principal_axes.T))
+    world.add_static(d.box((0.3, 0.3, 0.02)), position=(0, 0, -0.02))
+    world.add_gravity((0, 0, -9.81))
+    world.step(1e-3, steps=2000)
+    b = world.body(0)
+    assert b.position[2] == pytest.approx(0.01, abs=1e-6)  # lying on its 0.02 m side
+    assert np.linalg.norm(b.velocity) < 1e-9
+    assert world.stats()["sleeping"] == 1
+    with pytest.raises(ValueError):
+        d.ContactWorld().add_body(d.RigidBody(), d.sphere(-1.0))
