@@ -189,9 +189,7 @@ CollisionSpec ReadCollision(Fields& f) {
   if (!v->is_object()) f.Fail("collision", "must be \"none\", \"hull\" or a primitive {\"type\": ...}");
   Fields o(*v, f.Path("collision"), f.file());
   c.primitive = ReadPrimitive(o);
-  namespace pr = massprops::primitive;
-  if (!std::holds_alternative<pr::Box>(*c.primitive) && !std::holds_alternative<pr::Sphere>(*c.primitive) &&
-      !std::holds_alternative<pr::Capsule>(*c.primitive) && !std::holds_alternative<pr::Cylinder>(*c.primitive)) {
+  if (!CollidesAsItself(*c.primitive)) {
     f.Fail("collision", "collides as a box, sphere, capsule or cylinder (or \"hull\"), not a " +
                             std::string(massprops::PrimitiveName(*c.primitive)));
   }
@@ -291,6 +289,12 @@ ForceSpec ReadForce(const json& j, const std::string& path, const std::string& f
 }
 
 }  // namespace
+
+bool CollidesAsItself(const massprops::Primitive& p) {
+  namespace pr = massprops::primitive;
+  return std::holds_alternative<pr::Box>(p) || std::holds_alternative<pr::Sphere>(p) ||
+         std::holds_alternative<pr::Capsule>(p) || std::holds_alternative<pr::Cylinder>(p);
+}
 
 const char* OutputName(OutputKind kind) {
   switch (kind) {

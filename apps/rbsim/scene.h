@@ -58,6 +58,9 @@ struct CollisionSpec {
   dynamics::Material material;
 };
 
+/// True for the solids that collide as themselves: box, sphere, capsule and cylinder.
+bool CollidesAsItself(const massprops::Primitive& p);
+
 /// A ground plane {x : normal·x ≤ offset}.
 struct GroundSpec {
   Vector3 normal = Vector3::UnitZ();

@@ -138,10 +138,7 @@ std::optional<dynamics::Collider> ColliderOf(const CollisionSpec& c, const Shape
   const massprops::Primitive* primitive = c.primitive ? &*c.primitive : nullptr;
   if (c.kind == CollisionSpec::Kind::kNone) return std::nullopt;
   if (c.kind == CollisionSpec::Kind::kAuto) {
-    const bool simple =
-        shape.solid &&
-        (std::holds_alternative<pr::Box>(*shape.solid) || std::holds_alternative<pr::Sphere>(*shape.solid) ||
-         std::holds_alternative<pr::Capsule>(*shape.solid) || std::holds_alternative<pr::Cylinder>(*shape.solid));
+    const bool simple = shape.solid && CollidesAsItself(*shape.solid);
     if (!simple) return std::nullopt;
     primitive = &*shape.solid;
   }

@@ -2,6 +2,7 @@
 
 #include <fnmatch.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -33,6 +34,15 @@ MassProperties AtDensity(const MassProperties& unit_density, double density) {
 const PartMass* MatchPart(const std::vector<PartMass>& map, const std::string& part) {
   for (const PartMass& entry : map) {
     if (entry.pattern == part || ::fnmatch(entry.pattern.c_str(), part.c_str(), 0) == 0) return &entry;
+  }
+  return nullptr;
+}
+
+const PartMass* FirstUnmatched(const std::vector<PartMass>& map, const std::vector<std::string>& names) {
+  for (const PartMass& entry : map) {
+    const bool used = std::any_of(names.begin(), names.end(),
+                                  [&](const std::string& name) { return MatchPart({entry}, name) != nullptr; });
+    if (!used) return &entry;
   }
   return nullptr;
 }

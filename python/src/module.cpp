@@ -286,6 +286,27 @@ Vector3 Vec(const py::handle& h) {
 }
 py::array_t<double> Arr(const Vector3& v) { return py::array_t<double>(3, v.data()); }
 
+// A 3 × 3 matrix from anything numpy reads as 9 numbers (row-major).
+Matrix3 Mat3(const py::handle& h, const char* what) {
+  const auto a = py::cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(h);
+  if (a.size() != 9) throw py::value_error(std::string(what) + " must be 3 x 3");
+  Matrix3 m;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) m(i, j) = a.data()[3 * i + j];
+  return m;
+}
+
+// steps × h seconds of a World or ContactWorld without the GIL; a failed step raises.
+template <typename W>
+void StepAll(W& w, double h, int steps, double (*time)(const W&)) {
+  dynamics::StepStatus s;
+  {
+    py::gil_scoped_release release;
+    for (int i = 0; i < steps && s.ok; ++i) s = w.Step(h);
+  }
+  if (!s.ok) throw py::value_error("step at t = " + std::to_string(time(w)) + ": " + s.message);
+}
+
 void BindDynamics(py::module_& m) {
   using dynamics::RigidBody;
   py::class_<RigidBody>(m, "RigidBody", "A free rigid body: mass, principal moments, state (SI units).")
@@ -334,13 +355,11 @@ void BindDynamics(py::module_& m) {
 
   m.def(
       "body_from_mass_properties",
-      [](double mass, const py::handle& com, py::array_t<double, py::array::c_style | py::array::forcecast> inertia) {
-        if (inertia.size() != 9) throw py::value_error("inertia_com must be 3 x 3");
+      [](double mass, const py::handle& com, const py::handle& inertia) {
         MassProperties mp;
         mp.mass = mass;
         mp.center_of_mass = Vec(com);
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) mp.inertia_com(i, j) = inertia.data()[3 * i + j];
+        mp.inertia_com = Mat3(inertia, "inertia_com");
         const dynamics::PlacedBody placed = dynamics::BodyFromMassProperties(mp);
         return placed.body;
       },
@@ -357,12 +376,7 @@ void BindDynamics(py::module_& m) {
       .def(
           "step",
           [](dynamics::World& w, double h, int steps) {
-            dynamics::StepStatus s;
-            {
-              py::gil_scoped_release release;
-              for (int i = 0; i < steps && s.ok; ++i) s = w.Step(h);
-            }
-            if (!s.ok) throw py::value_error("step at t = " + std::to_string(w.time()) + ": " + s.message);
+            StepAll<dynamics::World>(w, h, steps, [](const dynamics::World& x) { return x.time(); });
           },
           py::arg("h"), py::arg("steps") = 1, "Advances steps × h seconds; raises when a step fails or diverges")
       .def_property_readonly("time", &dynamics::World::time)
@@ -397,12 +411,7 @@ void BindDynamics(py::module_& m) {
                      const dynamics::Material& material) {
     dynamics::Collider c;
     c.shape = std::move(shape);
-    if (!rotation.is_none()) {
-      const auto a = py::cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(rotation);
-      if (a.size() != 9) throw py::value_error("rotation must be 3 x 3");
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) c.rotation(i, j) = a.data()[3 * i + j];
-    }
+    if (!rotation.is_none()) c.rotation = Mat3(rotation, "rotation");
     if (!translation.is_none()) c.translation = Vec(translation);
     c.material = material;
     return c;
@@ -475,39 +484,22 @@ void BindDynamics(py::module_& m) {
       .def(
           "add_body",
           [](dynamics::ContactWorld& w, const RigidBody& b, const std::optional<dynamics::Collider>& c) {
-            try {
-              return c ? w.AddBody(b, *c) : w.AddBody(b);
-            } catch (const std::invalid_argument& e) {
-              throw py::value_error(e.what());
-            }
+            return c ? w.AddBody(b, *c) : w.AddBody(b);
           },
           py::arg("body"), py::arg("collider") = py::none())
       .def(
           "add_static",
           [](dynamics::ContactWorld& w, const dynamics::Collider& c, const py::handle& position,
              const py::handle& rotation) {
-            Matrix3 R = Matrix3::Identity();
-            if (!rotation.is_none()) {
-              const auto a = py::cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(rotation);
-              if (a.size() != 9) throw py::value_error("rotation must be 3 x 3");
-              for (int i = 0; i < 3; ++i)
-                for (int j = 0; j < 3; ++j) R(i, j) = a.data()[3 * i + j];
-            }
-            try {
-              w.AddStatic(c, R, position.is_none() ? Vector3::Zero() : Vec(position));
-            } catch (const std::invalid_argument& e) {
-              throw py::value_error(e.what());
-            }
+            // std::invalid_argument from the library reaches Python as ValueError (pybind11).
+            w.AddStatic(c, rotation.is_none() ? Matrix3::Identity() : Mat3(rotation, "rotation"),
+                        position.is_none() ? Vector3::Zero() : Vec(position));
           },
           py::arg("collider"), py::arg("position") = py::none(), py::arg("rotation") = py::none())
       .def(
           "add_ground",
           [](dynamics::ContactWorld& w, const py::handle& normal, double offset, const dynamics::Material& mat) {
-            try {
-              w.AddGround({Vec(normal), offset, mat});
-            } catch (const std::invalid_argument& e) {
-              throw py::value_error(e.what());
-            }
+            w.AddGround({Vec(normal), offset, mat});
           },
           py::arg("normal") = py::make_tuple(0.0, 0.0, 1.0), py::arg("offset") = 0.0,
           py::arg("material") = dynamics::Material{})
@@ -517,12 +509,8 @@ void BindDynamics(py::module_& m) {
       .def(
           "step",
           [](dynamics::ContactWorld& w, double h, int steps) {
-            dynamics::StepStatus s;
-            {
-              py::gil_scoped_release release;
-              for (int i = 0; i < steps && s.ok; ++i) s = w.Step(h);
-            }
-            if (!s.ok) throw py::value_error("step at t = " + std::to_string(w.world().time()) + ": " + s.message);
+            StepAll<dynamics::ContactWorld>(w, h, steps,
+                                            [](const dynamics::ContactWorld& x) { return x.world().time(); });
           },
           py::arg("h"), py::arg("steps") = 1, "Advances steps × h seconds; raises when a step fails or diverges")
       .def_property_readonly("time", [](const dynamics::ContactWorld& w) { return w.world().time(); })

@@ -235,6 +235,26 @@ StepStatus ContactWorld::Step(double h) {
   }
   const double bounce_threshold =
       options_.restitution_threshold > 0 ? options_.restitution_threshold : 2 * kick_speed + 1e-12;
+  // The velocity of a contact point on a relative to b (the ground: at rest), and the kinetic
+  // energy, both of the velocities the solve works on.
+  auto relative = [&](const Row& r) {
+    const Velocities& va = m.vel[static_cast<std::size_t>(r.a)];
+    Vector3 v = va.v + va.w.cross(r.ra);
+    if (r.b >= 0) {
+      const Velocities& vb = m.vel[static_cast<std::size_t>(r.b)];
+      v -= vb.v + vb.w.cross(r.rb);
+    }
+    return v;
+  };
+  auto kinetic_energy = [&] {
+    double e = 0;
+    for (int i = 0; i < nb; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      const RigidBody& b = bodies[k];
+      e += 0.5 * b.mass * m.vel[k].v.squaredNorm() + 0.5 * m.vel[k].w.dot(b.WorldInertia() * m.vel[k].w);
+    }
+    return e;
+  };
   // 2. Contacts at the start-of-step positions, within each body's reach in this step.
   std::vector<double> reach(static_cast<std::size_t>(nb)), radius(static_cast<std::size_t>(nb));
   std::vector<contact::Posed> posed(static_cast<std::size_t>(nb));
@@ -265,10 +285,7 @@ StepStatus ContactWorld::Step(double h) {
       r.separation = p.separation;
       r.key = {a, key_b, p.feature};
       // Restitution at an impact faster than the resting threshold; else the gap may close.
-      const Velocities& va = m.vel[static_cast<std::size_t>(a)];
-      Vector3 rel = va.v + va.w.cross(r.ra);
-      if (b >= 0) rel -= m.vel[static_cast<std::size_t>(b)].v + m.vel[static_cast<std::size_t>(b)].w.cross(r.rb);
-      const double approach = -r.n.dot(rel);
+      const double approach = -r.n.dot(relative(r));
       if (mat.restitution > 0 && approach > bounce_threshold && p.separation < approach * h) {
         r.target = mat.restitution * approach;
       } else {
@@ -396,12 +413,6 @@ StepStatus ContactWorld::Step(double h) {
     return i >= 0 && !m.asleep[static_cast<std::size_t>(i)] ? 1.0 / bodies[static_cast<std::size_t>(i)].mass : 0.0;
   };
   auto inv_I = [&](int i) { return i >= 0 ? m.inv_inertia[static_cast<std::size_t>(i)] : Matrix3::Zero().eval(); };
-  auto relative_before = [&](const Row& r) {
-    const Velocities& va = m.vel[static_cast<std::size_t>(r.a)];
-    Vector3 v = va.v + va.w.cross(r.ra);
-    if (r.b >= 0) v -= m.vel[static_cast<std::size_t>(r.b)].v + m.vel[static_cast<std::size_t>(r.b)].w.cross(r.rb);
-    return v;
-  };
   for (Row& r : m.rows) {
     const Vector3 helper = std::abs(r.n.x()) < 0.6 ? Vector3::UnitX() : Vector3::UnitY();
     r.t1 = r.n.cross(helper).normalized();
@@ -420,7 +431,7 @@ StepStatus ContactWorld::Step(double h) {
       r.lambda_t = it->second.lambda_t;
       stuck = it->second.stuck;
     } else {
-      const Vector3 rel = relative_before(r);
+      const Vector3 rel = relative(r);
       stuck = (rel - r.n * r.n.dot(rel)).norm() <= bounce_threshold;
     }
     r.mu = stuck ? r.mu_s : r.mu_k;
@@ -428,7 +439,7 @@ StepStatus ContactWorld::Step(double h) {
       // Friction opposes the sliding: its direction at the start of the step, kept through the
       // iterations (the direction of the impulse that would stop the point is tilted by the
       // body's rotation, and following the changing velocity would not converge).
-      const Vector3 rel = relative_before(r);
+      const Vector3 rel = relative(r);
       const Eigen::Vector2d vt(r.t1.dot(rel), r.t2.dot(rel));
       r.sliding = vt.norm() > 0;
       if (r.sliding) r.slip_direction = vt / vt.norm();
@@ -447,21 +458,7 @@ StepStatus ContactWorld::Step(double h) {
       vb.w -= m.inv_inertia[static_cast<std::size_t>(r.b)] * r.rb.cross(impulse);
     }
   };
-  auto relative = [&](const Row& r) {
-    const Velocities& va = m.vel[static_cast<std::size_t>(r.a)];
-    Vector3 v = va.v + va.w.cross(r.ra);
-    if (r.b >= 0) {
-      const Velocities& vb = m.vel[static_cast<std::size_t>(r.b)];
-      v -= vb.v + vb.w.cross(r.rb);
-    }
-    return v;
-  };
-  double energy_before = 0;
-  for (int i = 0; i < nb; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    const RigidBody& b = bodies[k];
-    energy_before += 0.5 * b.mass * m.vel[k].v.squaredNorm() + 0.5 * m.vel[k].w.dot(b.WorldInertia() * m.vel[k].w);
-  }
+  const double energy_before = kinetic_energy();
   // The support graph: level 0 touches the ground or a static body, level k + 1 rests on level
   // k; bodies touching none of them come last. Rows are solved from the ground up.
   std::vector<int> body_level(static_cast<std::size_t>(nb), std::numeric_limits<int>::max());
@@ -569,13 +566,7 @@ StepStatus ContactWorld::Step(double h) {
     const bool stuck = r.lambda_t.norm() < r.mu * r.lambda_n * (1 - 1e-9) || r.lambda_n == 0;
     m.cache[r.key] = {r.lambda_n, r.lambda_t, stuck};
   }
-  double energy_after = 0;
-  for (int i = 0; i < nb; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    energy_after +=
-        0.5 * bodies[k].mass * m.vel[k].v.squaredNorm() + 0.5 * m.vel[k].w.dot(bodies[k].WorldInertia() * m.vel[k].w);
-  }
-  stats_.dissipated = energy_before - energy_after;
+  stats_.dissipated = energy_before - kinetic_energy();
   // 4. The drift: positions with the new velocities, the free rotation with the new L.
   StepStatus status;
   for (int i = 0; i < nb; ++i) {

@@ -38,6 +38,10 @@ struct PartMass {
 /// The first entry of `map` whose pattern matches `part`, or null.
 const PartMass* MatchPart(const std::vector<PartMass>& map, const std::string& part);
 
+/// The first entry of `map` that matches none of `names` (a misspelt name, which would silently
+/// take the default), or null.
+const PartMass* FirstUnmatched(const std::vector<PartMass>& map, const std::vector<std::string>& names);
+
 /// True when the spec fixes the total mass.
 inline bool FixesMass(const MassSpec& spec) { return std::holds_alternative<TotalMass>(spec); }
 

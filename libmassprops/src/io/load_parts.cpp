@@ -85,15 +85,11 @@ SolidResult SolveParts(SolidResult r, const LoadOptions& given, std::chrono::ste
     if (names[p].empty()) names[p] = "part " + std::to_string(p + 1);  // faces before the first name
   }
   // Every entry of the map must name a part: a misspelt name would silently take the default.
-  for (const PartMass& entry : opt.part_masses) {
-    bool used = false;
-    for (const std::string& name : names) used = used || MatchPart({entry}, name) != nullptr;
-    if (!used) {
-      std::string list;
-      for (const std::string& name : names) list += (list.empty() ? "'" : ", '") + name + "'";
-      throw std::invalid_argument("the density map's entry '" + entry.pattern + "' matches no part of " + r.source +
-                                  " (its parts: " + list + ")");
-    }
+  if (const PartMass* entry = FirstUnmatched(opt.part_masses, names)) {
+    std::string list;
+    for (const std::string& name : names) list += (list.empty() ? "'" : ", '") + name + "'";
+    throw std::invalid_argument("the density map's entry '" + entry->pattern + "' matches no part of " + r.source +
+                                " (its parts: " + list + ")");
   }
   // A total mass for the whole (not per part) is shared at one density: solve at 1 kg/m^3, scale.
   const bool shared_mass = FixesMass(opt.mass);

@@ -199,12 +199,10 @@ FillResult FillRobotDescription(const std::string& path, const FillOptions& opti
   std::vector<Link> links = result.format == RobotFormat::kUrdf  ? robot::UrdfLinks(doc, options)
                             : result.format == RobotFormat::kSdf ? robot::SdfLinks(doc, options)
                                                                  : robot::MjcfLinks(doc, options);
-  for (const PartMass& entry : options.link_masses) {
-    bool used = false;
-    for (const Link& l : links) used = used || MatchPart({entry}, l.name) != nullptr;
-    if (!used) {
-      throw std::invalid_argument("the density map's entry '" + entry.pattern + "' matches no link of " + path);
-    }
+  std::vector<std::string> names;
+  for (const Link& l : links) names.push_back(l.name);
+  if (const PartMass* entry = FirstUnmatched(options.link_masses, names)) {
+    throw std::invalid_argument("the density map's entry '" + entry->pattern + "' matches no link of " + path);
   }
   MeshCache meshes(options.load);
   for (Link& link : links) {
