@@ -146,6 +146,26 @@ OffsetResult OffsetInward(const PolygonMesh& mesh, Scalar t) {
     const Vector3 d = svd.solve(Vector3(-t * b[static_cast<std::size_t>(i)]));
     out.inner.V.row(i) = mesh.V.row(i) + d.transpose();
   }
+  // A large polygon in a plane of constant x, y or z stays exactly planar inside: its corners take
+  // the offset plane's coordinate, which the least squares meet only to rounding. (The inner
+  // surface's self-intersection check tests such a polygon as a whole, in linear time; split into
+  // triangles, a polygon of 10^6 corners takes seconds.)
+  for (std::int64_t f = 0; f < nf; ++f) {
+    const int k = mesh.face_size(f);
+    const Vector3& u = normals[static_cast<std::size_t>(f)];
+    int axis = -1;
+    for (int a = 0; a < 3; ++a) {
+      if (std::abs(u[a]) == 1.0) axis = a;
+    }
+    if (k <= 32 || axis < 0) continue;
+    const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
+    const double level = mesh.V(idx[0], axis);
+    bool flat = true;
+    for (int i = 1; i < k && flat; ++i) flat = mesh.V(idx[i], axis) == level;
+    if (!flat) continue;
+    const double inner = level - t * u[axis];
+    for (int i = 0; i < k; ++i) out.inner.V(idx[i], axis) = inner;
+  }
   for (std::int64_t f = 0; f < nf; ++f) {
     const Vector3 n = NewellNormal(out.inner, f);
     if (normals[static_cast<std::size_t>(f)].dot(n) <= 0) {

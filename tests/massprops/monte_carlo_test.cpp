@@ -230,6 +230,33 @@ TEST(WindingNumber, ValuesInsideOutsideAndAgainstTheExactSum) {
   EXPECT_EQ(disagreements, 0);
 }
 
+// A closed mesh's inside test counts the faces a ray crosses (exact), and takes the hierarchy where
+// the count is not certified: points on the mesh's own coordinates (rays along edges and faces).
+TEST(WindingNumber, CrossingCountsAgreeWithTheExactSum) {
+  const TriangleMesh prism = Triangulate(solids::RegularPrism(400, 1.0, 0.2));  // slivers on the side
+  const ImplicitPtr w = implicit::WindingNumberSolid(prism);
+  const ImplicitPtr exact = implicit::WindingNumberSolid(prism, 1e12);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.2, 1.2);
+  std::uniform_int_distribution<int> vertex(0, static_cast<int>(prism.V.rows()) - 1);
+  int disagreements = 0, checked = 0;
+  for (int i = 0; i < 4000; ++i) {
+    Vector3 x(u(rng), u(rng), 0.2 * u(rng));
+    if (i % 2 == 1) {  // two coordinates of a vertex: the ray runs along an edge or a side face
+      const Vector3 v = prism.V.row(vertex(rng)).transpose();
+      x[0] = v[0];
+      x[1] = v[1];
+      if (i % 4 == 3) x[2] = v[2];
+    }
+    const double we = implicit::WindingNumber(*exact, x);
+    if (std::abs(we - 0.5) < 1e-3) continue;
+    ++checked;
+    if (w->Inside(x) != (we >= 0.5)) ++disagreements;
+  }
+  EXPECT_GT(checked, 3000);
+  EXPECT_EQ(disagreements, 0);
+}
+
 TEST(WindingNumber, ClosedMeshWithHolesAndFarAwayAgreesWithTheExactResult) {
   const TriangleMesh torus = solids::Torus(1.0, 0.3, 32);
   const MassProperties polyhedral = ComputeMassProperties(torus, 1.0);

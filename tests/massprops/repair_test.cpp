@@ -143,5 +143,111 @@ TEST(SelfIntersections, SharedEdgesAndCornersFoldedOrNot) {
   EXPECT_EQ(CountSelfIntersections(outside), 0);
 }
 
+// The meshes side by side as one (their vertices renumbered).
+PolygonMesh Together(const PolygonMesh& a, const PolygonMesh& b) {
+  PolygonMesh out = a;
+  const auto n = static_cast<std::int32_t>(a.V.rows());
+  out.V.conservativeResize(n + b.V.rows(), 3);
+  out.V.bottomRows(b.V.rows()) = b.V;
+  for (std::int64_t f = 0; f < b.num_faces(); ++f) {
+    std::vector<std::int32_t> face;
+    for (int k = 0; k < b.face_size(f); ++k) face.push_back(b.indices[b.offsets[f] + k] + n);
+    out.AddFace(face);
+  }
+  return out;
+}
+
+// The mesh with every face split into triangles (SplitPolygon), as the check splits faces of up
+// to 32 corners: the second algorithm for the whole-polygon test of larger flat faces.
+PolygonMesh AsTriangles(const PolygonMesh& m) { return ToPolygonMesh(Triangulate(m)); }
+
+// A prism over a 64-gon has caps of more than 32 corners in planes of constant z, tested as whole
+// polygons; every verdict matches the test of the same faces as triangles.
+TEST(SelfIntersections, LargeFlatFacesAsAWholeAgreeWithTheirTriangles) {
+  const PolygonMesh prism = solids::RegularPrism(64, 1.0, 0.5);  // z in [-0.25, 0.25]
+  EXPECT_EQ(CountSelfIntersections(prism), 0);
+  EXPECT_EQ(CountSelfIntersections(AsTriangles(prism)), 0);
+  auto box_at = [](const Vector3& center, const Vector3& size) {
+    PolygonMesh b = solids::Box(size);
+    b.V.rowwise() += center.transpose();
+    return b;
+  };
+  // A box through the top cap, inside the polygon: intersections.
+  const PolygonMesh pierced = Together(prism, box_at(Vector3(0.2, 0.1, 0.25), Vector3(0.2, 0.2, 0.2)));
+  const std::int64_t whole = CountSelfIntersections(pierced), split = CountSelfIntersections(AsTriangles(pierced));
+  EXPECT_GT(whole, 0);
+  EXPECT_EQ(whole, split);
+  // A box across the cap's plane beside the prism: none.
+  const PolygonMesh beside = Together(prism, box_at(Vector3(2.0, 0.0, 0.25), Vector3(0.2, 0.2, 0.2)));
+  EXPECT_EQ(CountSelfIntersections(beside), 0);
+  EXPECT_EQ(CountSelfIntersections(AsTriangles(beside)), 0);
+  // A box resting on the cap (its bottom face in the cap's plane): they touch, which counts.
+  const PolygonMesh resting = Together(prism, box_at(Vector3(0.0, 0.0, 0.35), Vector3(0.2, 0.2, 0.2)));
+  EXPECT_GT(CountSelfIntersections(resting), 0);
+  EXPECT_EQ(CountSelfIntersections(resting), CountSelfIntersections(AsTriangles(resting)));
+  // A tetrahedron whose tip touches the cap inside the polygon, and one whose tip is a corner of
+  // the cap (the same vertex): the first touches, the second meets it only at the shared corner.
+  PolygonMesh tip = prism;
+  const auto n = static_cast<std::int32_t>(tip.V.rows());
+  tip.V.conservativeResize(n + 4, 3);
+  tip.V.row(n) << 0.1, 0.2, 0.25;  // on the cap, inside
+  tip.V.row(n + 1) << 0.0, 0.0, 0.6;
+  tip.V.row(n + 2) << 0.4, 0.0, 0.6;
+  tip.V.row(n + 3) << 0.0, 0.4, 0.6;
+  tip.AddFace(std::array<int, 3>{n, n + 2, n + 1});
+  tip.AddFace(std::array<int, 3>{n, n + 3, n + 2});
+  tip.AddFace(std::array<int, 3>{n, n + 1, n + 3});
+  tip.AddFace(std::array<int, 3>{n + 1, n + 2, n + 3});
+  EXPECT_GT(CountSelfIntersections(tip), 0);
+  EXPECT_EQ(CountSelfIntersections(tip), CountSelfIntersections(AsTriangles(tip)));
+  PolygonMesh corner = tip;
+  std::int32_t top_corner = -1;  // a corner of the top cap
+  for (std::int32_t v = 0; v < n && top_corner < 0; ++v) {
+    if (prism.V(v, 2) == 0.25) top_corner = v;
+  }
+  ASSERT_GE(top_corner, 0);
+  for (auto& c : corner.indices) {
+    if (c == n) c = top_corner;
+  }
+  corner.V.row(n + 1) = prism.V.row(top_corner) + Eigen::RowVector3d(-0.1, 0.0, 0.3);
+  corner.V.row(n + 2) = prism.V.row(top_corner) + Eigen::RowVector3d(0.3, 0.0, 0.3);
+  corner.V.row(n + 3) = prism.V.row(top_corner) + Eigen::RowVector3d(0.0, 0.3, 0.3);
+  EXPECT_EQ(CountSelfIntersections(corner), 0);
+  EXPECT_EQ(CountSelfIntersections(AsTriangles(corner)), 0);
+}
+
+// A mesh that bounds a volume once welded keeps its polygons (CGAL would split them), and its
+// numbers are those of the closed form.
+TEST(Repair, AClosedMeshKeepsItsPolygons) {
+  PolygonMesh prism = solids::RegularPrism(1000, 1.0, 0.1);
+  prism.V(5, 0) += 1e-13;  // a crack at one corner, which the weld closes
+  const PolygonMesh before = prism;
+  // The cracked corner, given again as a separate vertex used by one side face.
+  const auto n = static_cast<std::int32_t>(prism.V.rows());
+  prism.V.conservativeResize(n + 1, 3);
+  prism.V.row(n) = prism.V.row(5);
+  prism.V(n, 0) -= 1e-13;
+  bool replaced = false;
+  for (std::int64_t f = 0; f < prism.num_faces() && !replaced; ++f) {
+    if (prism.face_size(f) != 4) continue;
+    for (std::int64_t c = prism.offsets[f]; c < prism.offsets[f + 1]; ++c) {
+      if (prism.indices[static_cast<std::size_t>(c)] == 5) {
+        prism.indices[static_cast<std::size_t>(c)] = n;
+        replaced = true;
+      }
+    }
+  }
+  ASSERT_TRUE(replaced);
+  ASSERT_FALSE(AnalyzeTopology(prism).BoundsVolume());
+  const RepairedMesh out = RepairMesh(prism);
+  EXPECT_EQ(out.report.welded_vertices, 1);
+  EXPECT_EQ(out.mesh.num_faces(), before.num_faces());  // 1000 quads and two 1000-gons
+  EXPECT_TRUE(AnalyzeTopology(out.mesh).BoundsVolume());
+  const MassProperties mp = ComputeMassProperties(out.mesh, 1.0);
+  const MassProperties exact = solids::RegularPrismProperties(1000, 1.0, 0.1, 1.0);
+  EXPECT_NEAR(mp.mass, exact.mass, 1e-12 * exact.mass);
+  EXPECT_NEAR(mp.inertia_com(2, 2), exact.inertia_com(2, 2), 1e-12 * exact.inertia_com(2, 2));
+}
+
 }  // namespace
 }  // namespace massprops

@@ -32,14 +32,18 @@ struct RepairReport {
 };
 
 struct RepairedMesh {
-  PolygonMesh mesh;  ///< triangles (polygons are split into fans first)
+  /// Polygons as they came when the welded mesh already bounded a volume, or the shells were left
+  /// open; triangles (SplitPolygon's) when CGAL oriented closed shells.
+  PolygonMesh mesh;
   RepairReport report;
 };
 
-/// Tolerance weld, then CGAL: repair_polygon_soup (duplicate points and faces, degenerate faces),
-/// orient_polygon_soup (consistent orientation), polygon_soup_to_polygon_mesh, stitch_borders,
-/// and — when the result is closed — orient_to_bound_a_volume (every shell outward, nested
-/// cavities inward).
+/// Tolerance weld (linear: a hash grid) and removal of repeated polygons; when the mesh then bounds
+/// a volume as it is (closed, manifold edges, consistent, shells outward and cavities inward),
+/// that is the result. Otherwise CGAL, on the polygons: repair_polygon_soup (duplicate points and
+/// faces, degenerate faces), orient_polygon_soup (consistent orientation),
+/// polygon_soup_to_polygon_mesh, stitch_borders, and — when the result is closed —
+/// orient_to_bound_a_volume (every shell outward, nested cavities inward).
 RepairedMesh RepairMesh(const PolygonMesh& mesh, const RepairOptions& options = {});
 
 /// The union of a mesh's closed shells (CGAL corefinement), for shells that overlap: the outward

@@ -1,18 +1,19 @@
-// The only translation unit that includes CGAL (heavy headers: keep them here).
+// Mesh repair with CGAL's Polygon Mesh Processing (heavy headers: one of the few translation units
+// that include CGAL).
 
 #include "massprops/repair.h"
+
+#include "massprops/mesh_topology.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <iterator>
-#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_map>
 #include <vector>
 
-#include <CGAL/Box_intersection_d/Box_with_info_d.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
@@ -24,8 +25,8 @@
 #include <CGAL/Polygon_mesh_processing/stitch_borders.h>
 #include <CGAL/Surface_mesh.h>
 
-#include <CGAL/box_intersection_d.h>
 #include "from_surface_mesh.h"
+#include "tolerance_weld.h"
 
 namespace massprops {
 namespace {
@@ -57,50 +58,6 @@ std::vector<std::array<std::int32_t, 3>> Fans(const PolygonMesh& m) {
   return t;
 }
 
-// Merges vertices within `tol` (absolute) of an earlier one, through a hash grid of cell `tol`.
-std::vector<std::int32_t> WeldWithin(const VertexMatrix& V, double tol, std::int64_t& merged) {
-  std::vector<std::int32_t> rep(static_cast<std::size_t>(V.rows()));
-  merged = 0;
-  if (tol <= 0) {
-    for (std::size_t i = 0; i < rep.size(); ++i) rep[i] = static_cast<std::int32_t>(i);
-    return rep;
-  }
-  struct KeyHash {
-    std::size_t operator()(const std::array<std::int64_t, 3>& k) const {
-      return static_cast<std::size_t>(k[0] * 73856093LL ^ k[1] * 19349663LL ^ k[2] * 83492791LL);
-    }
-  };
-  std::unordered_map<std::array<std::int64_t, 3>, std::vector<std::int32_t>, KeyHash> grid;
-  for (Eigen::Index i = 0; i < V.rows(); ++i) {
-    const std::array<std::int64_t, 3> cell = {static_cast<std::int64_t>(std::floor(V(i, 0) / tol)),
-                                              static_cast<std::int64_t>(std::floor(V(i, 1) / tol)),
-                                              static_cast<std::int64_t>(std::floor(V(i, 2) / tol))};
-    std::int32_t found = -1;
-    for (int dx = -1; dx <= 1 && found < 0; ++dx) {
-      for (int dy = -1; dy <= 1 && found < 0; ++dy) {
-        for (int dz = -1; dz <= 1 && found < 0; ++dz) {
-          auto it = grid.find({cell[0] + dx, cell[1] + dy, cell[2] + dz});
-          if (it == grid.end()) continue;
-          for (std::int32_t j : it->second) {
-            if ((V.row(i) - V.row(j)).norm() <= tol) {
-              found = j;
-              break;
-            }
-          }
-        }
-      }
-    }
-    if (found >= 0) {
-      rep[static_cast<std::size_t>(i)] = found;
-      ++merged;
-    } else {
-      rep[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(i);
-      grid[cell].push_back(static_cast<std::int32_t>(i));
-    }
-  }
-  return rep;
-}
-
 Mesh ToCgal(const PolygonMesh& mesh) {
   std::vector<Point> points;
   for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) points.emplace_back(mesh.V(i, 0), mesh.V(i, 1), mesh.V(i, 2));
@@ -113,42 +70,134 @@ Mesh ToCgal(const PolygonMesh& mesh) {
 
 PolygonMesh FromCgal(Mesh& mesh) { return cgal_internal::FromSurfaceMesh(mesh); }
 
+// The mesh with its corners renumbered through `map` (the weld), polygons whose corners are those
+// of an earlier polygon of more than three corners dropped (counted in `dropped`; CGAL's soup
+// repair finds repeated triangles), and the vertices no face uses removed (the others keep their
+// order).
+PolygonMesh WeldedWithoutDuplicates(const PolygonMesh& input, const std::vector<std::int32_t>& map,
+                                    std::int64_t& dropped) {
+  const std::int64_t nf = input.num_faces();
+  // Each polygon's sorted corners, hashed; equal hashes are compared in full.
+  std::vector<std::int32_t> sorted(input.indices.size());
+  for (std::size_t c = 0; c < sorted.size(); ++c) sorted[c] = map[static_cast<std::size_t>(input.indices[c])];
+  std::vector<std::pair<std::uint64_t, std::int64_t>> keys;
+  for (std::int64_t f = 0; f < nf; ++f) {
+    if (input.face_size(f) <= 3) continue;
+    std::int32_t* b = sorted.data() + input.offsets[f];
+    std::int32_t* e = sorted.data() + input.offsets[f + 1];
+    std::sort(b, e);
+    std::uint64_t h = static_cast<std::uint64_t>(e - b) * 0x9E3779B97F4A7C15ull;
+    for (const std::int32_t* c = b; c != e; ++c) h = (h ^ static_cast<std::uint64_t>(*c)) * 0x100000001B3ull;
+    keys.emplace_back(h ^ (h >> 29), f);
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<char> drop(static_cast<std::size_t>(nf), 0);
+  auto same = [&](std::int64_t f, std::int64_t g) {
+    return input.face_size(f) == input.face_size(g) &&
+           std::equal(sorted.begin() + input.offsets[f], sorted.begin() + input.offsets[f + 1],
+                      sorted.begin() + input.offsets[g]);
+  };
+  for (std::size_t i = 0; i < keys.size();) {
+    std::size_t j = i;
+    while (j < keys.size() && keys[j].first == keys[i].first) ++j;
+    for (std::size_t a = i; a < j; ++a) {  // faces in increasing order: an earlier equal one wins
+      if (drop[static_cast<std::size_t>(keys[a].second)]) continue;
+      for (std::size_t b = a + 1; b < j; ++b) {
+        if (!drop[static_cast<std::size_t>(keys[b].second)] && same(keys[a].second, keys[b].second)) {
+          drop[static_cast<std::size_t>(keys[b].second)] = 1;
+          ++dropped;
+        }
+      }
+    }
+    i = j;
+  }
+  std::vector<std::int32_t> renumber(static_cast<std::size_t>(input.V.rows()), -1);
+  for (std::int64_t f = 0; f < nf; ++f) {
+    if (drop[static_cast<std::size_t>(f)]) continue;
+    for (std::int64_t c = input.offsets[f]; c < input.offsets[f + 1]; ++c) {
+      renumber[static_cast<std::size_t>(map[static_cast<std::size_t>(input.indices[static_cast<std::size_t>(c)])])] = 0;
+    }
+  }
+  std::int32_t kept = 0;
+  for (auto& r : renumber) r = r < 0 ? -1 : kept++;
+  PolygonMesh out;
+  out.V.resize(kept, 3);
+  for (std::size_t v = 0; v < renumber.size(); ++v) {
+    if (renumber[v] >= 0) out.V.row(renumber[v]) = input.V.row(static_cast<Eigen::Index>(v));
+  }
+  out.indices.reserve(input.indices.size());
+  out.offsets.reserve(static_cast<std::size_t>(nf) + 1);
+  for (std::int64_t f = 0; f < nf; ++f) {
+    if (drop[static_cast<std::size_t>(f)]) continue;
+    for (std::int64_t c = input.offsets[f]; c < input.offsets[f + 1]; ++c) {
+      out.indices.push_back(renumber[static_cast<std::size_t>(
+          map[static_cast<std::size_t>(input.indices[static_cast<std::size_t>(c)])])]);
+    }
+    out.offsets.push_back(static_cast<std::int64_t>(out.indices.size()));
+  }
+  return out;
+}
+
+// Whether the mesh bounds a volume as it is, the way orient_to_bound_a_volume leaves a mesh:
+// closed, every edge used by two faces in opposite directions, no repeated corner or face, and its
+// shells outward with cavities inward (the nesting test is per shell: up to 64 shells).
+bool BoundsVolumeAsItIs(const PolygonMesh& mesh) {
+  if (mesh.num_faces() == 0) return false;
+  const MeshTopology t = AnalyzeTopology(mesh);
+  if (!t.BoundsVolume() || t.non_manifold_edges > 0 || t.degenerate_faces > 0 || t.duplicate_faces > 0 ||
+      t.reversed_duplicate_faces > 0 || t.components > 64) {
+    return false;
+  }
+  if (t.components == 1) return SignedVolume(mesh.V, Fans(mesh)) > 0;
+  return AnalyzeShells(mesh).problem.empty();
+}
+
 }  // namespace
 
 RepairedMesh RepairMesh(const PolygonMesh& input, const RepairOptions& options) {
   RepairedMesh out;
   RepairReport& rep = out.report;
-  const auto input_tris = Fans(input);
-  rep.volume_before = SignedVolume(input.V, input_tris);
+  rep.volume_before = SignedVolume(input.V, Fans(input));
 
-  // 1. Tolerance weld.
+  // 1. Tolerance weld, and polygons with the corners of an earlier one (in either orientation)
+  // dropped while they are polygons: a quad and its reverse make different fans, which CGAL would
+  // not see as duplicates.
   const double diag = input.V.rows() > 0 ? (input.V.colwise().maxCoeff() - input.V.colwise().minCoeff()).norm() : 0.0;
-  const std::vector<std::int32_t> map = WeldWithin(input.V, options.weld_tolerance * diag, rep.welded_vertices);
-
-  // 2. Soup repair and orientation (CGAL).
-  std::vector<Point> points;
-  for (Eigen::Index i = 0; i < input.V.rows(); ++i) {
-    points.emplace_back(input.V(i, 0), input.V(i, 1), input.V(i, 2));
-  }
-  // Polygons with the corners of an earlier one (in either orientation) are dropped before they
-  // are split into fans: a quad and its reverse make different fans, which CGAL would not see as
-  // duplicates.
-  std::vector<Polygon> polys;
-  std::set<std::vector<std::int32_t>> seen;
+  const std::vector<std::int32_t> map =
+      internal::WeldWithinTolerance(input.V, options.weld_tolerance * diag, rep.welded_vertices);
   std::int64_t duplicate_polygons = 0;
-  for (std::int64_t f = 0; f < input.num_faces(); ++f) {
-    const std::int32_t* idx = input.indices.data() + input.offsets[f];
-    const int n = input.face_size(f);
-    std::vector<std::int32_t> mapped(static_cast<std::size_t>(n));  // corners after the weld
-    for (int k = 0; k < n; ++k) mapped[static_cast<std::size_t>(k)] = map[static_cast<std::size_t>(idx[k])];
-    std::vector<std::int32_t> key = mapped;
-    std::sort(key.begin(), key.end());
-    if (n > 3 && !seen.insert(std::move(key)).second) {
-      ++duplicate_polygons;
+  const PolygonMesh welded = WeldedWithoutDuplicates(input, map, duplicate_polygons);
+
+  // 2. When the welded mesh already bounds a volume — closed, manifold edges, consistent, every
+  // shell outward and cavities inward — CGAL would change nothing, and its polygons stay as they
+  // are (a polygon of a million corners split into triangles made CGAL's steps the whole cost).
+  if (BoundsVolumeAsItIs(welded)) {
+    rep.removed_faces = duplicate_polygons;
+    rep.oriented_to_bound_volume = true;
+    rep.volume_after = SignedVolume(welded.V, Fans(welded));
+    out.mesh = welded;
+    return out;
+  }
+
+  // 3. Soup repair and orientation (CGAL), on the polygons as they are, except that polygons of
+  // more than 32 corners are split (SplitPolygon): CGAL's soup orientation is quadratic in a
+  // polygon's corners (140 s for one of 10^6).
+  std::vector<Point> points;
+  points.reserve(static_cast<std::size_t>(welded.V.rows()));
+  for (Eigen::Index i = 0; i < welded.V.rows(); ++i)
+    points.emplace_back(welded.V(i, 0), welded.V(i, 1), welded.V(i, 2));
+  std::vector<Polygon> polys;
+  polys.reserve(static_cast<std::size_t>(welded.num_faces()));
+  std::vector<std::array<std::int32_t, 3>> split;
+  for (std::int64_t f = 0; f < welded.num_faces(); ++f) {
+    const int n = welded.face_size(f);
+    const std::int32_t* corners = welded.indices.data() + welded.offsets[f];
+    if (n <= 32) {
+      polys.emplace_back(corners, corners + n);
       continue;
     }
-    std::vector<std::array<std::int32_t, 3>> split;
-    SplitPolygon(mapped.data(), n, split);
+    split.clear();
+    SplitPolygon(corners, n, split);
     for (const auto& t : split) polys.push_back({std::size_t(t[0]), std::size_t(t[1]), std::size_t(t[2])});
   }
   const std::size_t faces_before = polys.size();
@@ -161,16 +210,18 @@ RepairedMesh RepairMesh(const PolygonMesh& input, const RepairOptions& options) 
   rep.split_vertices = static_cast<std::int64_t>(points.size() - points_before);
   rep.reoriented = before_orient != polys;
 
-  // 3. Mesh, stitching, and orientation of closed shells.
+  // 4. Mesh, stitching, and — when the result is closed — orientation of its shells, which CGAL
+  // does on triangles (SplitPolygon's).
   Mesh mesh;
   PMP::polygon_soup_to_polygon_mesh(points, polys, mesh);
   rep.stitched_edges = static_cast<std::int64_t>(PMP::stitch_borders(mesh));
   if (CGAL::is_closed(mesh) && !mesh.is_empty()) {
+    mesh = ToCgal(FromCgal(mesh));
     PMP::orient_to_bound_a_volume(mesh);
     rep.oriented_to_bound_volume = true;
   }
 
-  // 4. Back to our mesh.
+  // 5. Back to our mesh.
   out.mesh = FromCgal(mesh);
   rep.volume_after = SignedVolume(out.mesh.V, Fans(out.mesh));
   return out;
@@ -199,114 +250,6 @@ PolygonMesh UnionOfShells(const PolygonMesh& input, std::int64_t& merged) {
   for (const Mesh& cavity : inward) result += cavity;  // cavities facing inward stay as they are
   merged = static_cast<std::int64_t>(outward.size()) - 1;
   return FromCgal(result);
-}
-
-namespace {
-// The sign of orient3d(a, b, c, d) when double arithmetic certifies it (Shewchuk's first error
-// bound, "Adaptive precision floating-point arithmetic", 1997), else 0: not known.
-int CertainOrientation(const Point& a, const Point& b, const Point& c, const Point& d) {
-  const double adx = a.x() - d.x(), ady = a.y() - d.y(), adz = a.z() - d.z();
-  const double bdx = b.x() - d.x(), bdy = b.y() - d.y(), bdz = b.z() - d.z();
-  const double cdx = c.x() - d.x(), cdy = c.y() - d.y(), cdz = c.z() - d.z();
-  const double det = adx * (bdy * cdz - bdz * cdy) + bdx * (cdy * adz - cdz * ady) + cdx * (ady * bdz - adz * bdy);
-  const double permanent = std::abs(adx) * (std::abs(bdy * cdz) + std::abs(bdz * cdy)) +
-                           std::abs(bdx) * (std::abs(cdy * adz) + std::abs(cdz * ady)) +
-                           std::abs(cdx) * (std::abs(ady * bdz) + std::abs(adz * bdy));
-  if (!(permanent > 1e-250 && permanent < 1e250)) return 0;  // underflow or overflow: no bound
-  const double bound = 7.771561172376103e-16 * permanent;    // (7 + 56ε)ε, ε = 2^-53
-  return det > bound ? 1 : det < -bound ? -1 : 0;
-}
-
-// Whether two triangles meet other than along what they share. Triangles are index triples into
-// `p`; shared corners are shared indices (the mesh is welded). A shared edge: they meet elsewhere
-// only when folded onto each other (coplanar, opposite corners on the same side). A shared corner:
-// the set they share beyond it is a segment from that corner, which ends on the edge opposite it
-// in one of them — so it suffices to test each opposite edge against the other triangle.
-bool TrianglesIntersect(const std::vector<Point>& p, const std::array<std::int32_t, 3>& s,
-                        const std::array<std::int32_t, 3>& t) {
-  int shared = 0;
-  int s_at[3] = {-1, -1, -1};  // for each corner of s, its position in t (or -1)
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) {
-      if (s[i] == t[j]) {
-        s_at[i] = j;
-        ++shared;
-      }
-    }
-  }
-  auto P = [&](std::int32_t i) -> const Point& { return p[static_cast<std::size_t>(i)]; };
-  if (shared == 3) return true;  // the same triangle twice
-  if (shared == 2) {
-    int lone_s = 0;
-    while (s_at[lone_s] >= 0) ++lone_s;
-    const int a = (lone_s + 1) % 3, b = (lone_s + 2) % 3;
-    const int lone_t = 3 - s_at[a] - s_at[b];
-    const Point &pa = P(s[a]), &pb = P(s[b]), &ps = P(s[lone_s]), &pt = P(t[lone_t]);
-    return CGAL::orientation(pa, pb, ps, pt) == CGAL::COPLANAR &&
-           CGAL::coplanar_orientation(pa, pb, ps, pt) == CGAL::POSITIVE;
-  }
-  // Cheap rejection first: the corners one triangle does not share all certainly on one side of
-  // the other's plane. (Exact predicates decide corners that lie on a plane, at a high price; a big
-  // polygon's split meets the side faces of its rim exactly so, in millions of pairs.)
-  auto strictly_beside = [&](const std::array<std::int32_t, 3>& u, const std::array<std::int32_t, 3>& w) {
-    int side = 0;
-    for (int k = 0; k < 3; ++k) {
-      if (w[k] == u[0] || w[k] == u[1] || w[k] == u[2]) continue;
-      const int o = CertainOrientation(P(u[0]), P(u[1]), P(u[2]), P(w[k]));
-      if (o == 0 || (side != 0 && o != side)) return false;
-      side = o;
-    }
-    return true;
-  };
-  if (strictly_beside(s, t) || strictly_beside(t, s)) return false;
-  const Kernel::Triangle_3 ts(P(s[0]), P(s[1]), P(s[2])), tt(P(t[0]), P(t[1]), P(t[2]));
-  if (shared == 0) return CGAL::do_intersect(ts, tt);
-  int cs = 0;
-  while (s_at[cs] < 0) ++cs;
-  const int ct = s_at[cs];
-  const Kernel::Segment_3 opposite_s(P(s[(cs + 1) % 3]), P(s[(cs + 2) % 3]));
-  const Kernel::Segment_3 opposite_t(P(t[(ct + 1) % 3]), P(t[(ct + 2) % 3]));
-  return CGAL::do_intersect(opposite_s, tt) || CGAL::do_intersect(opposite_t, ts);
-}
-}  // namespace
-
-// Pairs of triangles from one polygon are not tested: they meet only if the polygon is folded in
-// its own plane, and testing them made a large polygon's split (all coplanar, all near each other)
-// the whole cost — and a non-convex polygon's split overlaps itself where the polygon does not.
-std::int64_t CountSelfIntersections(const PolygonMesh& polygons, std::int64_t limit) {
-  std::vector<Point> points;
-  points.reserve(static_cast<std::size_t>(polygons.V.rows()));
-  for (Eigen::Index i = 0; i < polygons.V.rows(); ++i) {
-    points.emplace_back(polygons.V(i, 0), polygons.V(i, 1), polygons.V(i, 2));
-  }
-  std::vector<std::array<std::int32_t, 3>> tris;
-  std::vector<std::int64_t> owner;  // the polygon each triangle comes from
-  for (std::int64_t f = 0; f < polygons.num_faces(); ++f) {
-    SplitPolygon(polygons.indices.data() + polygons.offsets[f], polygons.face_size(f), tris);
-    owner.resize(tris.size(), f);
-  }
-  using Box =
-      CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::int32_t, CGAL::Box_intersection_d::ID_FROM_BOX_ADDRESS>;
-  std::vector<Box> boxes;
-  boxes.reserve(tris.size());
-  for (std::size_t i = 0; i < tris.size(); ++i) {
-    const auto& t = tris[i];
-    const Point &a = points[std::size_t(t[0])], &b = points[std::size_t(t[1])], &c = points[std::size_t(t[2])];
-    if (CGAL::collinear(a, b, c)) continue;  // no area: nothing to intersect
-    boxes.emplace_back(a.bbox() + b.bbox() + c.bbox(), static_cast<std::int32_t>(i));
-  }
-  std::vector<const Box*> handles;
-  handles.reserve(boxes.size());
-  for (const Box& b : boxes) handles.push_back(&b);
-  std::int64_t count = 0;
-  auto test = [&](const Box* x, const Box* y) {
-    if (count >= limit) return;
-    const auto i = static_cast<std::size_t>(x->info()), j = static_cast<std::size_t>(y->info());
-    if (owner[i] == owner[j]) return;
-    if (TrianglesIntersect(points, tris[i], tris[j])) ++count;
-  };
-  CGAL::box_self_intersection_d(handles.begin(), handles.end(), test);
-  return count;
 }
 
 }  // namespace massprops
