@@ -71,6 +71,33 @@ def stl_ascii(v, tris):
     return s + "endsolid cube\n"
 
 
+def grid_cube_triangles(n):
+    """The unit cube's faces, each an n x n grid of squares split in two, outward: corner triples."""
+    tris = []
+    g = [i / n for i in range(n + 1)]
+    for axis in range(3):
+        for side in (0.0, 1.0):
+            for i in range(n):
+                for j in range(n):
+                    def p(a, b):
+                        c = [0.0, 0.0, 0.0]
+                        c[axis], c[(axis + 1) % 3], c[(axis + 2) % 3] = side, g[a], g[b]
+                        return tuple(c)
+                    q = [p(i, j), p(i + 1, j), p(i + 1, j + 1), p(i, j + 1)]
+                    if side == 0.0:
+                        q.reverse()
+                    tris.append((q[0], q[1], q[2]))
+                    tris.append((q[0], q[2], q[3]))
+    return tris
+
+
+def stl_records(tris):
+    """Binary STL of corner triples."""
+    head = b"binary stl".ljust(80, b" ") + struct.pack("<I", len(tris))
+    pack = struct.Struct("<12fH").pack
+    return head + b"".join(pack(0, 0, 0, *t[0], *t[1], *t[2], 0) for t in tris)
+
+
 def tris_of(f):
     return [t for q in f for t in ([(q[0], q[k], q[k + 1]) for k in range(1, len(q) - 1)])]
 
@@ -238,6 +265,16 @@ def main():
         r",m,1\.875,1875,")
     # Double-sided duplicates are dropped by --repair.
     run("double_sided_repaired", ["double_sided_obj.obj", "--repair"], 0, r"^$|warning", r"volume")
+    # Binary STLs big enough for the streamed path (2.3e5 triangles): a face added with its reverse
+    # (every edge still matched, the volume unchanged) and the whole surface twice (volume doubled)
+    # are refused as the full check refuses them; the clean one is computed.
+    grid = grid_cube_triangles(140)
+    write("big_clean.stl", stl_records(grid))
+    run("streamed_clean", ["big_clean.stl", "--format", "csv"], 0, r"streamed: every edge has its reverse and no face is there twice", r",m,1\.0*\d*,1000\.0*\d*,")
+    write("big_patch.stl", stl_records(grid + [grid[7], (grid[7][0], grid[7][2], grid[7][1])]))
+    run("streamed_double_sided_patch", ["big_patch.stl"], 1, r"2 faces repeat the corners of another face \(1 of them")
+    write("big_twice.stl", stl_records(grid + grid))
+    run("streamed_surface_twice", ["big_twice.stl"], 1, r"faces repeat the corners of another face")
     # Option combinations that make no sense: exit 2, nothing printed.
     for name, args in [("implicit_wall", ["--implicit", "sphere(r=1)", "--wall", "0.1"]),
                        ("implicit_shell", ["--implicit", "sphere(r=1)", "--shell", "--area-density", "1"]),

@@ -128,6 +128,32 @@ TEST(TriangleSoup, StreamingCheckFindsHolesAndFlippedFaces) {
   EXPECT_EQ(AnalyzeTopology(ReadMeshFile(path).mesh).non_manifold_edges, 1);  // welded view
 }
 
+// A face there twice is found by the face keys, in either orientation. A face added together with
+// its reverse (a double-sided patch) and a whole second copy keep every edge matched: the cycle
+// check alone passes them, with the volume unchanged or doubled.
+TEST(TriangleSoup, RepeatedFacesAreFound) {
+  const TriangleMesh m = OffsetTorus();
+  EXPECT_FALSE(Soup(StlBytes(m)).repeated_faces);
+  auto with_extra = [&](bool reversed_too) {
+    TriangleMesh out = m;
+    out.F.conservativeResize(m.F.rows() + (reversed_too ? 2 : 1), 3);
+    out.F.row(m.F.rows()) = m.F.row(321);
+    if (reversed_too) out.F.row(m.F.rows() + 1) << m.F(321, 0), m.F(321, 2), m.F(321, 1);
+    return Soup(StlBytes(out));
+  };
+  EXPECT_TRUE(with_extra(false).repeated_faces);
+  const SoupIntegrals patch = with_extra(true);
+  EXPECT_TRUE(patch.IsClosedCycle());
+  EXPECT_TRUE(patch.repeated_faces);
+  TriangleMesh copy;
+  copy.V = m.V;
+  copy.F.resize(2 * m.F.rows(), 3);
+  copy.F << m.F, m.F;
+  const SoupIntegrals c = Soup(StlBytes(copy), 2);
+  EXPECT_TRUE(c.IsClosedCycle());
+  EXPECT_TRUE(c.repeated_faces);
+}
+
 TEST(TriangleSoup, RejectsNonFiniteNamingTheTriangle) {
   std::string bytes = StlBytes(OffsetTorus());
   const float nan = std::numeric_limits<float>::quiet_NaN();

@@ -25,6 +25,11 @@ struct SoupIntegrals {
   /// non-zero value but for a chance of about 2⁻⁶⁰. Independent of the order of the triangles.
   std::uint64_t unmatched_edge_hash = 0;
 
+  /// Two triangles with the same three corners, in either orientation (a surface there twice,
+  /// or double-sided), found from a 64-bit key of each triangle's corner positions: a false alarm
+  /// has a chance of about n²·2⁻⁶⁵ (2·10⁻⁸ for 2·10⁶ triangles), and asks only for the full check.
+  bool repeated_faces = false;
+
   bool IsClosedCycle() const { return unmatched_edge_hash == 0; }
 };
 

@@ -147,15 +147,16 @@ bool TryStreamedStl(SolidResult& r, const std::string& file, const LoadOptions& 
   IntegrationOptions io;
   io.num_threads = opt.num_threads;
   const auto soup = IntegrateBinaryStlFile(file, io);
-  if (!soup || !soup->IsClosedCycle() || soup->triangles < kStreamingThreshold) return false;
+  // Open, inconsistent, or a face there twice: the full check says what is wrong.
+  if (!soup || !soup->IsClosedCycle() || soup->repeated_faces || soup->triangles < kStreamingThreshold) return false;
   r.loaded.format = "stl-binary";
   r.loaded.float32_coordinates = true;
   r.full_topology = false;
   r.topology.faces = soup->triangles;
   r.path_used = "triangles (signed tetrahedra), streamed from the file";
   Warn(r, FindingKind::kStreamedChecks,
-       "streamed: every edge has its reverse, so the volume is well defined, but shells were neither separated "
-       "nor checked for overlap ({full_check} does)");
+       "streamed: every edge has its reverse and no face is there twice, so the volume is well defined, but "
+       "shells were neither separated nor checked for overlap ({full_check} does)");
   Finish(r, soup->integrals, opt, (soup->upper - soup->lower).norm());
   return true;
 }
