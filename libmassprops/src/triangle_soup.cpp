@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -56,28 +57,39 @@ inline std::uint64_t FaceKey(const CornerHash& a, const CornerHash& b, const Cor
   return k ^ (k >> 29);
 }
 
-// Whether two keys are equal: permuted into 2^12 buckets by their top bits, in place, and each
-// bucket's keys put in a hash table that stays in cache. 8 bytes a triangle while it runs.
-bool AnyRepeated(std::vector<std::uint64_t>& keys, int num_threads) {
+// Whether two keys are equal: scattered into 2^12 buckets by their top bits (chunks of keys
+// counted and scattered side by side), and each bucket's keys put in a hash table that stays in
+// cache. 16 bytes a triangle while it runs.
+bool AnyRepeated(const std::uint64_t* keys, std::size_t n, int num_threads) {
   constexpr int kBits = 12;
   constexpr std::size_t kBuckets = std::size_t{1} << kBits;
+  const std::size_t chunks = std::max<std::size_t>(1, std::min<std::size_t>(16, n / 65536));
+  auto chunk_range = [&](std::size_t c) { return std::make_pair(c * n / chunks, (c + 1) * n / chunks); };
+  std::vector<std::size_t> count(chunks * kBuckets, 0);  // chunk-major
+  internal::ParallelForBlocks(static_cast<std::int64_t>(chunks), num_threads, [&](std::int64_t c) {
+    const auto [lo, hi] = chunk_range(static_cast<std::size_t>(c));
+    std::size_t* own = count.data() + static_cast<std::size_t>(c) * kBuckets;
+    for (std::size_t i = lo; i < hi; ++i) ++own[keys[i] >> (64 - kBits)];
+  });
   std::vector<std::size_t> begin(kBuckets + 1, 0);
-  for (std::uint64_t k : keys) ++begin[(k >> (64 - kBits)) + 1];
-  for (std::size_t b = 0; b < kBuckets; ++b) begin[b + 1] += begin[b];
-  // Permuted into their buckets in place (American flag sort's cycles): no second array.
-  std::vector<std::uint64_t>& scattered = keys;
-  std::vector<std::size_t> cursor(begin.begin(), begin.end() - 1);
-  for (std::size_t b = 0; b < kBuckets; ++b) {
-    while (cursor[b] < begin[b + 1]) {
-      std::uint64_t k = keys[cursor[b]];
-      std::size_t home = k >> (64 - kBits);
-      while (home != b) {  // carry k to its bucket, taking the key that was there
-        std::swap(k, keys[cursor[home]++]);
-        home = k >> (64 - kBits);
+  {
+    std::size_t at = 0;
+    for (std::size_t b = 0; b < kBuckets; ++b) {
+      begin[b] = at;
+      for (std::size_t c = 0; c < chunks; ++c) {
+        const std::size_t k = count[c * kBuckets + b];
+        count[c * kBuckets + b] = at;  // now each chunk's cursor in the bucket
+        at += k;
       }
-      keys[cursor[b]++] = k;
     }
+    begin[kBuckets] = at;
   }
+  const std::unique_ptr<std::uint64_t[]> scattered(new std::uint64_t[n]);  // not zeroed: all written
+  internal::ParallelForBlocks(static_cast<std::int64_t>(chunks), num_threads, [&](std::int64_t c) {
+    const auto [lo, hi] = chunk_range(static_cast<std::size_t>(c));
+    std::size_t* cursor = count.data() + static_cast<std::size_t>(c) * kBuckets;
+    for (std::size_t i = lo; i < hi; ++i) scattered[cursor[keys[i] >> (64 - kBits)]++] = keys[i];
+  });
   std::vector<char> repeated(kBuckets, 0);
   internal::ParallelForBlocks(static_cast<std::int64_t>(kBuckets), num_threads, [&](std::int64_t b) {
     // Each bucket's keys into a small open-addressing table (at most half full) by their low bits.
@@ -126,7 +138,8 @@ SoupIntegrals Integrate(const Fetch& fetch, std::int64_t count, std::size_t stri
   }
   const std::int64_t blocks = (count + kBlock - 1) / kBlock;
   std::vector<BlockResult> parts(static_cast<std::size_t>(blocks));
-  std::vector<std::uint64_t> face_keys(static_cast<std::size_t>(count));
+  // Not zeroed (every key is written by the pass): its pages are first touched by the threads.
+  const std::unique_ptr<std::uint64_t[]> face_keys(new std::uint64_t[static_cast<std::size_t>(count)]);
 
   internal::ParallelForBlocks(blocks, options.num_threads, [&](std::int64_t b) {
     BlockResult res;
@@ -186,7 +199,7 @@ SoupIntegrals Integrate(const Fetch& fetch, std::int64_t count, std::size_t stri
     out.upper = hi;
   }
   out.integrals = internal::ScaleTriangleSums(internal::PairwiseSum(moments)).ToIntegrals(ref);
-  out.repeated_faces = AnyRepeated(face_keys, options.num_threads);
+  out.repeated_faces = AnyRepeated(face_keys.get(), static_cast<std::size_t>(count), options.num_threads);
   return out;
 }
 
