@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include <CGAL/Box_intersection_d/Box_with_info_d.h>
@@ -37,6 +38,52 @@ int CertainOrientation(const Point& a, const Point& b, const Point& c, const Poi
   const double pa[3] = {a.x(), a.y(), a.z()}, pb[3] = {b.x(), b.y(), b.z()}, pc[3] = {c.x(), c.y(), c.z()},
                pd[3] = {d.x(), d.y(), d.z()};
   return internal::CertainOrient3d(pa, pb, pc, pd);
+}
+
+// Whether an axis certainly separates two triangles: among the separating-axis candidates (the two
+// normals and the nine cross products of edges), one along which their corners' projections,
+// computed in double relative to one corner with a bound on the rounding, do not overlap. Any
+// axis proves it, so the axes themselves need no exactness. Decides most pairs of near neighbours
+// without exact arithmetic (those whose corners lie within rounding of each other's planes).
+bool CertainlySeparated(const std::array<const Point*, 3>& s, const std::array<const Point*, 3>& t) {
+  const Point& o = *s[0];
+  std::array<Vector3, 3> ps, pt;
+  for (int k = 0; k < 3; ++k) {
+    ps[static_cast<std::size_t>(k)] = Vector3(s[k]->x() - o.x(), s[k]->y() - o.y(), s[k]->z() - o.z());
+    pt[static_cast<std::size_t>(k)] = Vector3(t[k]->x() - o.x(), t[k]->y() - o.y(), t[k]->z() - o.z());
+  }
+  double scale = 0;
+  for (std::size_t k = 0; k < 3; ++k)
+    scale = std::max({scale, ps[k].cwiseAbs().maxCoeff(), pt[k].cwiseAbs().maxCoeff()});
+  if (!(scale > 1e-80 && scale < 1e80)) return false;  // the products would leave normal doubles
+  std::array<Vector3, 3> es, et;
+  for (std::size_t k = 0; k < 3; ++k) {
+    es[k] = ps[(k + 1) % 3] - ps[k];
+    et[k] = pt[(k + 1) % 3] - pt[k];
+  }
+  auto separates = [&](const Vector3& d) {
+    // |fl(d·fl(p − o)) − d·(p − o)| ≤ 6e-16 Σ|d_k||fl(p − o)_k| (the subtraction and the dot).
+    auto range = [&](const std::array<Vector3, 3>& pts, double& lo, double& hi) {
+      lo = std::numeric_limits<double>::infinity();
+      hi = -lo;
+      for (const Vector3& p : pts) {
+        const double v = d.dot(p), e = 6e-16 * d.cwiseAbs().dot(p.cwiseAbs());
+        lo = std::min(lo, v - e);
+        hi = std::max(hi, v + e);
+      }
+    };
+    double slo, shi, tlo, thi;
+    range(ps, slo, shi);
+    range(pt, tlo, thi);
+    return shi < tlo || thi < slo;
+  };
+  if (separates(es[0].cross(es[1])) || separates(et[0].cross(et[1]))) return true;
+  for (const Vector3& a : es) {
+    for (const Vector3& b : et) {
+      if (separates(a.cross(b))) return true;
+    }
+  }
+  return false;
 }
 
 // Whether two triangles meet other than along what they share. Triangles are index triples into
@@ -81,6 +128,7 @@ bool TrianglesIntersect(const std::vector<Point>& p, const std::array<std::int32
     return true;
   };
   if (strictly_beside(s, t) || strictly_beside(t, s)) return false;
+  if (shared == 0 && CertainlySeparated({&P(s[0]), &P(s[1]), &P(s[2])}, {&P(t[0]), &P(t[1]), &P(t[2])})) return false;
   const Kernel::Triangle_3 ts(P(s[0]), P(s[1]), P(s[2])), tt(P(t[0]), P(t[1]), P(t[2]));
   if (shared == 0) return CGAL::do_intersect(ts, tt);
   int cs = 0;
