@@ -36,6 +36,10 @@ struct Material {
   double restitution = 0.0;       ///< e in [0, 1]: normal speed after an impact / before
 };
 
+namespace contact {
+struct MeshField;  // the signed distance field of a mesh collider (built once, shared)
+}
+
 /// Collision shapes, in their own frame (centred; axis of symmetry along z).
 namespace shape {
 struct Sphere {
@@ -57,10 +61,39 @@ struct Convex {
   std::vector<Vector3> vertices;
   std::vector<std::array<int, 3>> triangles;
 };
+/// A closed, consistently oriented triangle mesh collided as it is — a ring that goes around a
+/// peg, a cup that holds a ball, a bin — through a signed distance field: the surface samples of
+/// each shape against the other's signed distance (the mesh's from a grid of exact distances,
+/// the primitives' in closed form). Make it with MakeMesh, which builds the field once; copies of
+/// the shape share it (a pile of 50 copies of one part builds one field).
+struct Mesh {
+  std::vector<Vector3> vertices;
+  std::vector<std::array<int, 3>> triangles;  ///< outward
+  /// The field's cell (m); 0: automatic — 64 cells along the longest side of the mesh's box, or a
+  /// third of the thinnest wall if that is smaller (README, "Mesh contact").
+  double cell = 0;
+  std::shared_ptr<const contact::MeshField> field;  ///< built by MakeMesh (or when first added)
+};
 }  // namespace shape
-using Shape = std::variant<shape::Sphere, shape::Box, shape::Capsule, shape::Cylinder, shape::Convex>;
-/// "sphere", "box", "capsule", "cylinder", "convex".
+using Shape = std::variant<shape::Sphere, shape::Box, shape::Capsule, shape::Cylinder, shape::Convex, shape::Mesh>;
+/// "sphere", "box", "capsule", "cylinder", "convex", "mesh".
 const char* ShapeName(const Shape& s);
+
+/// A mesh collider with its field built. @throws std::invalid_argument for a mesh that is not
+/// closed and consistently oriented, a bad index, a non-finite vertex or a negative cell.
+shape::Mesh MakeMesh(std::vector<Vector3> vertices, std::vector<std::array<int, 3>> triangles, double cell = 0);
+
+/// What a mesh collider's field holds (for people and benchmarks).
+struct MeshFieldInfo {
+  std::array<int, 3> nodes{};  ///< grid nodes along x, y, z
+  double cell = 0;             ///< m
+  double thinnest_wall = 0;    ///< m, the wall the automatic cell resolves (infinite: none found)
+  std::size_t samples = 0;     ///< surface points tested against other shapes
+  std::size_t bytes = 0;       ///< memory of the field and its samples
+  double build_seconds = 0;
+};
+/// @throws std::invalid_argument when the shape's field is not built.
+MeshFieldInfo DescribeMeshField(const shape::Mesh& mesh);
 
 /// A shape attached to a body: placed in the body frame B by x_B = R x_S + t.
 struct Collider {

@@ -12,13 +12,14 @@
 
 #include "../integrators/integrator.h"
 #include "dynamics/contact.h"
+#include "mesh_field.h"
 #include "narrow_phase.h"
 #include "polytope.h"
 
 namespace dynamics {
 
 const char* ShapeName(const Shape& s) {
-  static const char* const kNames[] = {"sphere", "box", "capsule", "cylinder", "convex"};
+  static const char* const kNames[] = {"sphere", "box", "capsule", "cylinder", "convex", "mesh"};
   return kNames[s.index()];
 }
 
@@ -149,7 +150,17 @@ contact::Posed PoseOf(const Collider& c, const contact::Polytope* polytope, cons
 
 }  // namespace
 
+namespace {
+// A mesh collider's field, built here when the shape came without it.
+void BuildFieldIfMissing(Collider& c) {
+  if (auto* mesh = std::get_if<shape::Mesh>(&c.shape); mesh != nullptr && mesh->field == nullptr) {
+    mesh->field = contact::BuildMeshField(*mesh);
+  }
+}
+}  // namespace
+
 int ContactWorld::AddBody(const RigidBody& body, Collider collider) {
+  BuildFieldIfMissing(collider);
   contact::ValidateShape(collider.shape);
   ValidateMaterial(collider.material);
   auto polytope = PolytopeOf(collider.shape);
@@ -173,6 +184,7 @@ int ContactWorld::AddBody(const RigidBody& body) {
 }
 
 void ContactWorld::AddStatic(Collider collider, const Matrix3& rotation, const Vector3& translation) {
+  BuildFieldIfMissing(collider);
   contact::ValidateShape(collider.shape);
   ValidateMaterial(collider.material);
   if (!rotation.allFinite() || std::abs(rotation.determinant() - 1) > 1e-9 ||

@@ -113,7 +113,7 @@ double BoundingRadius(const Shape& s) {
         if constexpr (std::is_same_v<T, shape::Box>) return x.half_extents.norm();
         if constexpr (std::is_same_v<T, shape::Capsule>) return x.radius + x.half_length;
         if constexpr (std::is_same_v<T, shape::Cylinder>) return std::hypot(x.radius, x.half_length);
-        if constexpr (std::is_same_v<T, shape::Convex>) {
+        if constexpr (std::is_same_v<T, shape::Convex> || std::is_same_v<T, shape::Mesh>) {
           double r = 0;
           for (const Vector3& v : x.vertices) r = std::max(r, v.norm());
           return r;
@@ -138,6 +138,9 @@ void ValidateShape(const Shape& s) {
         if constexpr (std::is_same_v<T, shape::Convex>) {
           ok = x.vertices.size() >= 4 && x.triangles.size() >= 4;
           for (const Vector3& v : x.vertices) ok = ok && v.allFinite();
+        }
+        if constexpr (std::is_same_v<T, shape::Mesh>) {
+          if (x.field == nullptr) throw std::invalid_argument("a mesh collider needs its field (MakeMesh builds it)");
         }
         if (!ok) {
           throw std::invalid_argument(
@@ -181,6 +184,8 @@ void CollideGround(const Posed& a, const Vector3& n, double offset, double margi
         } else if constexpr (std::is_same_v<T, shape::Convex>) {
           for (std::size_t i = 0; i < x.vertices.size(); ++i)
             add(a.R * x.vertices[i] + a.t, static_cast<std::uint32_t>(i), 0);
+        } else if constexpr (std::is_same_v<T, shape::Mesh>) {
+          CollideMeshGround(a, n, offset, margin, out);
         }
       },
       *a.shape);
@@ -193,6 +198,10 @@ bool Collide(const Posed& a, const Posed& b, double margin, std::vector<ContactP
   };
   const Shape& sa = *a.shape;
   const Shape& sb = *b.shape;
+  if (std::holds_alternative<shape::Mesh>(sa) || std::holds_alternative<shape::Mesh>(sb)) {
+    CollideWithMesh(a, b, margin, out);
+    return true;
+  }
   auto segment = [](const Posed& p, double half) {
     return std::pair<Vector3, Vector3>{p.t - p.R.col(2) * half, p.t + p.R.col(2) * half};
   };

@@ -37,4 +37,9 @@ void CollideGround(const Posed& a, const Vector3& n, double offset, double margi
 /// Two shapes; false when this pair of kinds has no contact routine yet.
 bool Collide(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out);
 
+/// A mesh collider against the half-space (its vertices), and a pair of which at least one is a
+/// mesh (mesh_contact.cpp). At most 12 points a pair: the deepest, then the farthest apart.
+void CollideMeshGround(const Posed& a, const Vector3& n, double offset, double margin, std::vector<ContactPoint>& out);
+void CollideWithMesh(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out);
+
 }  // namespace dynamics::contact

@@ -1,0 +1,254 @@
+// Contact with mesh colliders (narrow_phase.h): each shape's surface samples against the other's
+// signed distance, both ways (Guendelman, Bridson & Fedkiw, "Nonconvex rigid bodies with
+// stacking", 2003). A mesh's distance comes from its field (mesh_field.h); the primitives' are in
+// closed form, a convex polytope's is its largest face-plane distance (exact inside and over the
+// faces, a bound from below near edges and corners outside).
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "mesh_field.h"
+#include "narrow_phase.h"
+#include "polytope.h"
+
+namespace dynamics::contact {
+namespace {
+
+constexpr std::size_t kMaxPoints = 12;  // per pair, after reduction
+constexpr std::uint32_t kSecond = 1u << 31;   // feature bit: a sample of the second shape
+constexpr std::uint32_t kCentre = 1u << 30;   // feature bit: a sphere's or capsule's axis point
+
+// φ of a shape in its own frame at q, and its outward gradient (unit).
+double LocalDistance(const Posed& s, const Vector3& q, Vector3& n) {
+  return std::visit(
+      [&](const auto& x) -> double {
+        using T = std::decay_t<decltype(x)>;
+        if constexpr (std::is_same_v<T, shape::Sphere>) {
+          const double len = q.norm();
+          n = len > 1e-300 ? Vector3(q / len) : Vector3::UnitZ();
+          return len - x.radius;
+        } else if constexpr (std::is_same_v<T, shape::Box>) {
+          const Vector3 e = q.cwiseAbs() - x.half_extents;
+          const Vector3 out = e.cwiseMax(0.0);
+          if (out.squaredNorm() > 0) {
+            const double len = out.norm();
+            n = Vector3(out[0] * (q[0] < 0 ? -1 : 1), out[1] * (q[1] < 0 ? -1 : 1), out[2] * (q[2] < 0 ? -1 : 1)) / len;
+            return len;
+          }
+          int axis;
+          const double d = e.maxCoeff(&axis);
+          n = Vector3::Zero();
+          n[axis] = q[axis] < 0 ? -1 : 1;
+          return d;
+        } else if constexpr (std::is_same_v<T, shape::Capsule>) {
+          const Vector3 axis_point(0, 0, std::clamp(q.z(), -x.half_length, x.half_length));
+          const Vector3 d = q - axis_point;
+          const double len = d.norm();
+          n = len > 1e-300 ? Vector3(d / len) : Vector3::UnitX();
+          return len - x.radius;
+        } else if constexpr (std::is_same_v<T, shape::Cylinder>) {
+          const double rq = std::hypot(q.x(), q.y());
+          const Vector3 radial = rq > 1e-300 ? Vector3(q.x() / rq, q.y() / rq, 0) : Vector3::UnitX();
+          const double dr = rq - x.radius, dz = std::abs(q.z()) - x.half_length;
+          const Vector3 up(0, 0, q.z() < 0 ? -1 : 1);
+          if (dr > 0 && dz > 0) {
+            const double len = std::hypot(dr, dz);
+            n = (radial * dr + up * dz) / len;
+            return len;
+          }
+          n = dr > dz ? radial : up;
+          return std::max(dr, dz);
+        } else if constexpr (std::is_same_v<T, shape::Convex>) {
+          const Polytope& p = *s.polytope;
+          double best = -std::numeric_limits<double>::infinity();
+          for (std::size_t f = 0; f < p.faces.size(); ++f) {
+            const double d = p.normals[f].dot(q - p.vertices[static_cast<std::size_t>(p.faces[f][0])]);
+            if (d > best) {
+              best = d;
+              n = p.normals[f];
+            }
+          }
+          return best;
+        } else {  // shape::Mesh
+          Vector3 g;
+          const double d = x.field->Distance(q, &g);
+          const double len = g.norm();
+          n = len > 1e-300 ? Vector3(g / len) : Vector3::UnitZ();
+          return d;
+        }
+      },
+      *s.shape);
+}
+
+// φ of a posed shape at a world point, and its outward normal in the world.
+double Distance(const Posed& s, const Vector3& x, Vector3& n) {
+  Vector3 local_n = Vector3::UnitZ();
+  const double d = LocalDistance(s, s.R.transpose() * (x - s.t), local_n);
+  n = s.R * local_n;
+  return d;
+}
+
+// Surface points of a shape for testing against a mesh's field (world), spaced about `spacing`;
+// spheres and capsules give axis points with their radius instead.
+struct Sample {
+  Vector3 p;
+  double radius = 0;
+};
+
+void EdgePoints(const Vector3& a, const Vector3& b, double spacing, std::vector<Sample>& out) {
+  const int k = std::max(1, static_cast<int>(std::ceil((b - a).norm() / spacing)));
+  for (int i = 1; i < k; ++i) out.push_back({a + (b - a) * (static_cast<double>(i) / k), 0});
+}
+
+void SamplesOf(const Posed& s, double spacing, std::vector<Sample>& out) {
+  auto world = [&](const Vector3& v) -> Vector3 { return s.R * v + s.t; };
+  std::visit(
+      [&](const auto& x) {
+        using T = std::decay_t<decltype(x)>;
+        if constexpr (std::is_same_v<T, shape::Sphere>) {
+          out.push_back({s.t, x.radius});
+        } else if constexpr (std::is_same_v<T, shape::Capsule>) {
+          const int k = std::max(1, static_cast<int>(std::ceil(2 * x.half_length / spacing)));
+          for (int i = 0; i <= k; ++i) {
+            out.push_back({world(Vector3(0, 0, -x.half_length + 2 * x.half_length * i / k)), x.radius});
+          }
+        } else if constexpr (std::is_same_v<T, shape::Mesh>) {
+          for (const Vector3& v : x.field->samples) out.push_back({world(v), 0});
+        } else {  // boxes, cylinders (their inscribed prism) and convex shapes: corners and edges
+          const Polytope& p = *s.polytope;
+          for (const Vector3& v : p.vertices) out.push_back({world(v), 0});
+          for (const auto& [i, j] : p.edges) {
+            EdgePoints(world(p.vertices[static_cast<std::size_t>(i)]), world(p.vertices[static_cast<std::size_t>(j)]),
+                       spacing, out);
+          }
+        }
+      },
+      *s.shape);
+}
+
+double Spacing(const Posed& s) {
+  if (const auto* m = std::get_if<shape::Mesh>(s.shape)) return m->field->cell;
+  return std::numeric_limits<double>::infinity();
+}
+
+// Keeps at most kMaxPoints of the points from `first` on: the deepest, then each time the point
+// farthest from those kept (a support polygon that does not rock, at a bounded solver cost).
+void Reduce(std::vector<ContactPoint>& out, std::size_t first) {
+  const std::size_t n = out.size() - first;
+  if (n <= kMaxPoints) return;
+  std::vector<ContactPoint> all(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
+  out.resize(first);
+  std::size_t deepest = 0;
+  for (std::size_t i = 1; i < n; ++i) {
+    if (all[i].separation < all[deepest].separation) deepest = i;
+  }
+  std::vector<double> gap(n, std::numeric_limits<double>::infinity());
+  std::size_t pick = deepest;
+  for (std::size_t kept = 0; kept < kMaxPoints; ++kept) {
+    out.push_back(all[pick]);
+    std::size_t next = pick;
+    double best = -1;
+    for (std::size_t i = 0; i < n; ++i) {
+      gap[i] = std::min(gap[i], (all[i].point - all[pick].point).squaredNorm());
+      if (gap[i] > best) {
+        best = gap[i];
+        next = i;
+      }
+    }
+    if (best <= 0) break;
+    pick = next;
+  }
+}
+
+using Box3 = Eigen::AlignedBox<double, 3>;
+
+// A box that holds the posed shape (world): a mesh's grid box turned, else its bounding sphere's.
+Box3 WorldBox(const Posed& s) {
+  Box3 box;
+  if (const auto* m = std::get_if<shape::Mesh>(s.shape)) {
+    const MeshField& f = *m->field;
+    const Box3 local(f.origin, f.origin + f.cell * Vector3(f.nodes[0] - 1, f.nodes[1] - 1, f.nodes[2] - 1));
+    for (int k = 0; k < 8; ++k) box.extend(s.R * local.corner(static_cast<Box3::CornerType>(k)) + s.t);
+    return box;
+  }
+  // The shape's half extents in its frame, turned: |R| h holds the turned box.
+  const Vector3 half = std::visit(
+      [](const auto& x) -> Vector3 {
+        using T = std::decay_t<decltype(x)>;
+        if constexpr (std::is_same_v<T, shape::Sphere>) return Vector3::Constant(x.radius);
+        if constexpr (std::is_same_v<T, shape::Box>) return x.half_extents;
+        if constexpr (std::is_same_v<T, shape::Capsule>) return Vector3(x.radius, x.radius, x.half_length + x.radius);
+        if constexpr (std::is_same_v<T, shape::Cylinder>) return Vector3(x.radius, x.radius, x.half_length);
+        if constexpr (std::is_same_v<T, shape::Convex> || std::is_same_v<T, shape::Mesh>) {
+          Vector3 h = Vector3::Zero();
+          for (const Vector3& v : x.vertices) h = h.cwiseMax(v.cwiseAbs());
+          return h;
+        }
+      },
+      *s.shape);
+  const Vector3 extent = s.R.cwiseAbs() * half;
+  return Box3(s.t - extent, s.t + extent);
+}
+
+// The samples of `from` against the distance of `to`; normals from `to` into `from`, flipped
+// when `from` is the second shape of the pair. Only samples in the overlap of the two shapes'
+// boxes (grown by the margin and the samples' radii) are tested: a mesh's are culled in its own
+// frame before they are moved.
+void SamplesAgainst(const Posed& from, const Posed& to, double spacing, double margin, bool from_is_second,
+                    std::vector<ContactPoint>& out) {
+  double grow = margin;
+  if (const auto* c = std::get_if<shape::Capsule>(from.shape)) grow += c->radius;
+  if (const auto* c = std::get_if<shape::Sphere>(from.shape)) grow += c->radius;
+  Box3 overlap = WorldBox(from).intersection(WorldBox(to));
+  if (overlap.isEmpty()) overlap = Box3(Vector3::Constant(1), Vector3::Constant(0));  // may still touch within grow
+  overlap.min() -= Vector3::Constant(grow);
+  overlap.max() += Vector3::Constant(grow);
+  if ((overlap.min().array() > overlap.max().array()).any()) return;
+  auto test = [&](const Vector3& p, double radius, std::size_t index) {
+    if (!overlap.contains(p)) return;
+    Vector3 n = Vector3::UnitZ();
+    const double sep = Distance(to, p, n) - radius;
+    if (!(sep < margin)) return;
+    const Vector3 surface = p - n * radius;  // the sample's own surface point
+    std::uint32_t feature = static_cast<std::uint32_t>(index) & (kCentre - 1);
+    if (radius > 0) feature |= kCentre;
+    if (from_is_second) feature |= kSecond;
+    out.push_back({surface - n * (0.5 * sep), from_is_second ? Vector3(-n) : n, sep, feature});
+  };
+  if (const auto* m = std::get_if<shape::Mesh>(from.shape)) {
+    Box3 local;  // the overlap in the mesh's frame
+    for (int k = 0; k < 8; ++k) local.extend(from.R.transpose() * (overlap.corner(static_cast<Box3::CornerType>(k)) - from.t));
+    const std::vector<Vector3>& samples = m->field->samples;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      if (local.contains(samples[i])) test(from.R * samples[i] + from.t, 0, i);
+    }
+    return;
+  }
+  std::vector<Sample> samples;
+  SamplesOf(from, spacing, samples);
+  for (std::size_t i = 0; i < samples.size(); ++i) test(samples[i].p, samples[i].radius, i);
+}
+
+}  // namespace
+
+void CollideMeshGround(const Posed& a, const Vector3& n, double offset, double margin, std::vector<ContactPoint>& out) {
+  const std::size_t first = out.size();
+  const auto& field = *std::get<shape::Mesh>(*a.shape).field;
+  for (std::size_t i = 0; i < field.vertices.size(); ++i) {
+    const Vector3 p = a.R * field.vertices[i] + a.t;
+    const double sep = n.dot(p) - offset;
+    if (sep < margin) out.push_back({p - n * (0.5 * sep), n, sep, static_cast<std::uint32_t>(i)});
+  }
+  Reduce(out, first);
+}
+
+void CollideWithMesh(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out) {
+  const std::size_t first = out.size();
+  const double spacing = std::min(Spacing(a), Spacing(b));
+  SamplesAgainst(a, b, spacing, margin, false, out);
+  SamplesAgainst(b, a, spacing, margin, true, out);
+  Reduce(out, first);
+}
+
+}  // namespace dynamics::contact

@@ -1,0 +1,377 @@
+#include "mesh_field.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include "massprops/implicit.h"
+#include "massprops/mesh.h"
+
+namespace dynamics::contact {
+namespace {
+
+constexpr int kLeaf = 4;
+constexpr int kMinCells = 64;             // along the longest side, at least
+constexpr double kMaxNodes = 8e6;         // 64 MB of values at most: the cell grows beyond
+constexpr int kPad = 3;                   // cells of grid beyond the mesh's box
+
+// The point of triangle abc closest to p (Ericson, Real-Time Collision Detection, 5.1.5).
+Vector3 ClosestOnTriangle(const Vector3& p, const Vector3& a, const Vector3& b, const Vector3& c) {
+  const Vector3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vector3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
+  const Vector3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  const double denom = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+// A bounding-box hierarchy of triangles: closest distances and ray hits.
+class TriangleTree {
+ public:
+  TriangleTree(const std::vector<Vector3>& v, const std::vector<std::array<int, 3>>& t) : v_(v), t_(t) {
+    order_.resize(t.size());
+    std::iota(order_.begin(), order_.end(), 0);
+    centroid_.resize(t.size());
+    for (std::size_t i = 0; i < t.size(); ++i) centroid_[i] = (v[t[i][0]] + v[t[i][1]] + v[t[i][2]]) / 3.0;
+    nodes_.reserve(2 * t.size() / kLeaf + 8);
+    Build(0, static_cast<int>(t.size()));
+  }
+
+  double Distance(const Vector3& p) const {
+    double best2 = std::numeric_limits<double>::infinity();
+    int stack[96];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& n = nodes_[static_cast<std::size_t>(stack[--top])];
+      if (n.box.squaredExteriorDistance(p) >= best2) continue;
+      if (n.left < 0) {
+        for (int i = n.first; i < n.first + n.count; ++i) {
+          const auto& tri = t_[static_cast<std::size_t>(order_[static_cast<std::size_t>(i)])];
+          best2 = std::min(best2, (ClosestOnTriangle(p, v_[tri[0]], v_[tri[1]], v_[tri[2]]) - p).squaredNorm());
+        }
+        continue;
+      }
+      const Node& l = nodes_[static_cast<std::size_t>(n.left)];
+      const Node& r = nodes_[static_cast<std::size_t>(n.right)];
+      const bool left_first = l.box.squaredExteriorDistance(p) < r.box.squaredExteriorDistance(p);
+      if (top + 2 > 96) throw std::logic_error("mesh field: hierarchy too deep");
+      stack[top++] = left_first ? n.right : n.left;  // the nearer child is visited first
+      stack[top++] = left_first ? n.left : n.right;
+    }
+    return std::sqrt(best2);
+  }
+
+  // The nearest hit along p + s d, s > skip (Möller–Trumbore), ignoring triangle `self`.
+  double Ray(const Vector3& p, const Vector3& d, int self) const {
+    double best = std::numeric_limits<double>::infinity();
+    int stack[96];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& n = nodes_[static_cast<std::size_t>(stack[--top])];
+      if (!HitsBox(n.box, p, d, best)) continue;
+      if (n.left < 0) {
+        for (int i = n.first; i < n.first + n.count; ++i) {
+          const int f = order_[static_cast<std::size_t>(i)];
+          if (f == self) continue;
+          const auto& tri = t_[static_cast<std::size_t>(f)];
+          const Vector3 e1 = v_[tri[1]] - v_[tri[0]], e2 = v_[tri[2]] - v_[tri[0]];
+          const Vector3 q = d.cross(e2);
+          const double det = e1.dot(q);
+          if (std::abs(det) < 1e-300) continue;
+          const Vector3 s = p - v_[tri[0]];
+          const double u = s.dot(q) / det;
+          if (u < 0 || u > 1) continue;
+          const Vector3 r = s.cross(e1);
+          const double w = d.dot(r) / det;
+          if (w < 0 || u + w > 1) continue;
+          const double dist = e2.dot(r) / det;
+          if (dist > 0 && dist < best) best = dist;
+        }
+        continue;
+      }
+      if (top + 2 > 96) throw std::logic_error("mesh field: hierarchy too deep");
+      stack[top++] = n.left;
+      stack[top++] = n.right;
+    }
+    return best;
+  }
+
+ private:
+  struct Node {
+    Eigen::AlignedBox<double, 3> box;
+    int first = 0, count = 0, left = -1, right = -1;
+  };
+
+  static bool HitsBox(const Eigen::AlignedBox<double, 3>& box, const Vector3& p, const Vector3& d, double limit) {
+    double lo = 0, hi = limit;
+    for (int k = 0; k < 3; ++k) {
+      if (std::abs(d[k]) < 1e-300) {
+        if (p[k] < box.min()[k] || p[k] > box.max()[k]) return false;
+        continue;
+      }
+      double a = (box.min()[k] - p[k]) / d[k], b = (box.max()[k] - p[k]) / d[k];
+      if (a > b) std::swap(a, b);
+      lo = std::max(lo, a);
+      hi = std::min(hi, b);
+      if (lo > hi) return false;
+    }
+    return true;
+  }
+
+  int Build(int first, int count) {
+    const int index = static_cast<int>(nodes_.size());
+    nodes_.emplace_back();
+    Node node;
+    node.first = first;
+    node.count = count;
+    Eigen::AlignedBox<double, 3> cbox;
+    for (int i = first; i < first + count; ++i) {
+      const auto f = static_cast<std::size_t>(order_[static_cast<std::size_t>(i)]);
+      for (int k = 0; k < 3; ++k) node.box.extend(v_[t_[f][k]]);
+      cbox.extend(centroid_[f]);
+    }
+    if (count > kLeaf) {
+      int axis;
+      cbox.sizes().maxCoeff(&axis);
+      const int mid = first + count / 2;
+      std::nth_element(order_.begin() + first, order_.begin() + mid, order_.begin() + first + count, [&](int a, int b) {
+        const double ca = centroid_[static_cast<std::size_t>(a)][axis], cb = centroid_[static_cast<std::size_t>(b)][axis];
+        return ca < cb || (ca == cb && a < b);
+      });
+      node.left = Build(first, mid - first);
+      node.right = Build(mid, first + count - mid);
+    }
+    nodes_[static_cast<std::size_t>(index)] = node;
+    return index;
+  }
+
+  const std::vector<Vector3>& v_;
+  const std::vector<std::array<int, 3>>& t_;
+  std::vector<int> order_;
+  std::vector<Vector3> centroid_;
+  std::vector<Node> nodes_;
+};
+
+void Validate(const shape::Mesh& mesh) {
+  if (mesh.triangles.size() < 4) throw std::invalid_argument("a mesh collider needs a closed mesh (4 triangles at least)");
+  for (const Vector3& v : mesh.vertices) {
+    if (!v.allFinite()) throw std::invalid_argument("a mesh collider has a non-finite vertex");
+  }
+  const auto nv = static_cast<int>(mesh.vertices.size());
+  std::vector<std::uint64_t> edges;
+  for (const auto& t : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      if (t[k] < 0 || t[k] >= nv) {
+        throw std::invalid_argument("a mesh collider's triangle refers to vertex " + std::to_string(t[k]) + " of " +
+                                    std::to_string(nv));
+      }
+      const auto a = static_cast<std::uint64_t>(t[k]), b = static_cast<std::uint64_t>(t[(k + 1) % 3]);
+      edges.push_back((std::min(a, b) << 32 | std::max(a, b)) << 1 | (a < b ? 1 : 0));
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i < edges.size();) {
+    long balance = 0;
+    std::size_t j = i;
+    for (; j < edges.size() && edges[j] >> 1 == edges[i] >> 1; ++j) balance += (edges[j] & 1) ? 1 : -1;
+    if (balance != 0) {
+      throw std::invalid_argument(
+          "a mesh collider must be closed and consistently oriented (an edge between vertices " +
+          std::to_string(edges[i] >> 33) + " and " + std::to_string((edges[i] >> 1) & 0xFFFFFFFFu) +
+          " is not matched by its reverse); repair the mesh (massprops --repair) or collide its hull");
+    }
+    i = j;
+  }
+  if (!(mesh.cell >= 0) || !std::isfinite(mesh.cell)) {
+    throw std::invalid_argument("a mesh collider's cell must be finite and >= 0 (0: automatic)");
+  }
+}
+
+// The thinnest wall: from each triangle's centroid, the distance inward (against its normal) to
+// the next surface, area-weighted; the 2nd percentile (single slivers at concave edges give
+// spuriously small values).
+double ThinnestWall(const TriangleTree& tree, const shape::Mesh& mesh) {
+  std::vector<std::pair<double, double>> walls;  // (thickness, area)
+  double total = 0;
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const auto& t = mesh.triangles[f];
+    const Vector3 a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
+    const Vector3 n = (b - a).cross(c - a);
+    const double area = 0.5 * n.norm();
+    if (!(area > 0)) continue;
+    const double d = tree.Ray((a + b + c) / 3.0, -n.normalized(), static_cast<int>(f));
+    if (!std::isfinite(d)) continue;
+    walls.emplace_back(d, area);
+    total += area;
+  }
+  if (walls.empty()) return std::numeric_limits<double>::infinity();
+  std::sort(walls.begin(), walls.end());
+  double acc = 0;
+  for (const auto& [d, area] : walls) {
+    acc += area;
+    if (acc >= 0.02 * total) return d;
+  }
+  return walls.back().first;
+}
+
+void AddSamples(const shape::Mesh& mesh, double cell, std::vector<Vector3>& out) {
+  out = mesh.vertices;
+  std::map<std::pair<int, int>, bool> edges;
+  for (const auto& t : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) edges[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}] = true;
+  }
+  for (const auto& [e, unused] : edges) {
+    const Vector3 a = mesh.vertices[static_cast<std::size_t>(e.first)], b = mesh.vertices[static_cast<std::size_t>(e.second)];
+    const int k = static_cast<int>(std::ceil((b - a).norm() / cell));
+    for (int i = 1; i < k; ++i) out.push_back(a + (b - a) * (static_cast<double>(i) / k));
+  }
+  for (const auto& t : mesh.triangles) {
+    const Vector3 a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    const int k = static_cast<int>(std::ceil(longest / cell));
+    for (int i = 1; i < k; ++i) {
+      for (int j = 1; i + j < k; ++j) out.push_back(a + (b - a) * (static_cast<double>(i) / k) + (c - a) * (static_cast<double>(j) / k));
+    }
+  }
+}
+
+}  // namespace
+
+double MeshField::Distance(const Vector3& x, Vector3* gradient) const {
+  // Clamp into the grid; outside it, add the distance to the grid (a bound from below).
+  const Vector3 top = origin + cell * Vector3(nodes[0] - 1, nodes[1] - 1, nodes[2] - 1);
+  const Vector3 inside = x.cwiseMax(origin).cwiseMin(top);
+  const double outside = (x - inside).norm();
+  const Vector3 g = (inside - origin) / cell;
+  int i[3];
+  double f[3];
+  for (int k = 0; k < 3; ++k) {
+    i[k] = std::clamp(static_cast<int>(std::floor(g[k])), 0, nodes[static_cast<std::size_t>(k)] - 2);
+    f[k] = g[k] - i[k];
+  }
+  auto at = [&](int a, int b, int c) {
+    return values[(static_cast<std::size_t>(i[2] + c) * static_cast<std::size_t>(nodes[1]) +
+                   static_cast<std::size_t>(i[1] + b)) *
+                      static_cast<std::size_t>(nodes[0]) +
+                  static_cast<std::size_t>(i[0] + a)];
+  };
+  const double c000 = at(0, 0, 0), c100 = at(1, 0, 0), c010 = at(0, 1, 0), c110 = at(1, 1, 0), c001 = at(0, 0, 1),
+               c101 = at(1, 0, 1), c011 = at(0, 1, 1), c111 = at(1, 1, 1);
+  const double c00 = c000 + (c100 - c000) * f[0], c10 = c010 + (c110 - c010) * f[0], c01 = c001 + (c101 - c001) * f[0],
+               c11 = c011 + (c111 - c011) * f[0];
+  const double c0 = c00 + (c10 - c00) * f[1], c1 = c01 + (c11 - c01) * f[1];
+  const double value = c0 + (c1 - c0) * f[2];
+  if (gradient != nullptr) {
+    if (outside > 0) {
+      *gradient = (x - inside) / outside;
+    } else {
+      const double dx = ((c100 - c000) * (1 - f[1]) + (c110 - c010) * f[1]) * (1 - f[2]) +
+                        ((c101 - c001) * (1 - f[1]) + (c111 - c011) * f[1]) * f[2];
+      const double dy = ((c010 - c000) * (1 - f[0]) + (c110 - c100) * f[0]) * (1 - f[2]) +
+                        ((c011 - c001) * (1 - f[0]) + (c111 - c101) * f[0]) * f[2];
+      *gradient = Vector3(dx, dy, c1 - c0) / cell;
+    }
+  }
+  return value + outside;
+}
+
+std::size_t MeshField::MemoryBytes() const {
+  return values.size() * sizeof(double) + (samples.size() + vertices.size()) * sizeof(Vector3);
+}
+
+std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Validate(mesh);
+  auto field = std::make_shared<MeshField>();
+  Eigen::AlignedBox<double, 3> box;
+  for (const Vector3& v : mesh.vertices) {
+    box.extend(v);
+    field->radius = std::max(field->radius, v.norm());
+  }
+  const double longest = box.sizes().maxCoeff();
+  if (!(longest > 0)) throw std::invalid_argument("a mesh collider has no extent");
+  const TriangleTree tree(mesh.vertices, mesh.triangles);
+  field->thinnest = ThinnestWall(tree, mesh);
+  double cell = mesh.cell > 0 ? mesh.cell : std::min(longest / kMinCells, field->thinnest / 3);
+  cell = std::max(cell, longest / 1024);
+  auto count_nodes = [&](double h) {
+    return ((box.sizes() / h).array().ceil() + 1 + 2 * kPad).prod();
+  };
+  while (count_nodes(cell) > kMaxNodes) cell *= 1.1;
+  field->cell = cell;
+  for (int k = 0; k < 3; ++k) field->nodes[static_cast<std::size_t>(k)] = static_cast<int>(std::ceil(box.sizes()[k] / cell)) + 1 + 2 * kPad;
+  field->origin = box.min() - Vector3::Constant(kPad * cell);
+  // The sign: the winding number of the closed mesh (exact: it counts ray crossings).
+  massprops::TriangleMesh tm;
+  tm.V.resize(static_cast<Eigen::Index>(mesh.vertices.size()), 3);
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) tm.V.row(static_cast<Eigen::Index>(i)) = mesh.vertices[i].transpose();
+  tm.F.resize(static_cast<Eigen::Index>(mesh.triangles.size()), 3);
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    tm.F.row(static_cast<Eigen::Index>(i)) << mesh.triangles[i][0], mesh.triangles[i][1], mesh.triangles[i][2];
+  }
+  const massprops::ImplicitPtr winding = massprops::implicit::WindingNumberSolid(tm);
+  const auto [nx, ny, nz] = field->nodes;
+  field->values.resize(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz));
+  // Slices of constant z side by side: each node is computed on its own, so the values are the
+  // same whatever the thread count.
+  const int threads = std::max(1, std::min<int>(static_cast<int>(std::thread::hardware_concurrency()), 8));
+  auto work = [&](int first) {
+    for (int z = first; z < nz; z += threads) {
+      for (int y = 0; y < ny; ++y) {
+        for (int x = 0; x < nx; ++x) {
+          const Vector3 p = field->origin + cell * Vector3(x, y, z);
+          const double d = tree.Distance(p);
+          const bool in = winding->Value(p) < 0;
+          field->values[(static_cast<std::size_t>(z) * static_cast<std::size_t>(ny) + static_cast<std::size_t>(y)) *
+                            static_cast<std::size_t>(nx) +
+                        static_cast<std::size_t>(x)] = in ? -d : d;
+        }
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
+  work(0);
+  for (auto& t : pool) t.join();
+  AddSamples(mesh, cell, field->samples);
+  field->vertices = mesh.vertices;
+  field->build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return field;
+}
+
+}  // namespace dynamics::contact
+
+namespace dynamics {
+
+shape::Mesh MakeMesh(std::vector<Vector3> vertices, std::vector<std::array<int, 3>> triangles, double cell) {
+  shape::Mesh mesh{std::move(vertices), std::move(triangles), cell, nullptr};
+  mesh.field = contact::BuildMeshField(mesh);
+  return mesh;
+}
+
+MeshFieldInfo DescribeMeshField(const shape::Mesh& mesh) {
+  if (mesh.field == nullptr) throw std::invalid_argument("the mesh collider's field is not built (MakeMesh)");
+  const contact::MeshField& f = *mesh.field;
+  return {f.nodes, f.cell, f.thinnest, f.samples.size(), f.MemoryBytes(), f.build_seconds};
+}
+
+}  // namespace dynamics
