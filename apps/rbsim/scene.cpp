@@ -167,8 +167,8 @@ dynamics::Material ReadMaterial(Fields& f) {
   return m;
 }
 
-// "collision": "none" | "hull" | a primitive {"type": "box", ...}; absent: the solid itself when
-// it is a box, sphere, capsule or cylinder.
+// "collision": "none" | "hull" | "mesh" | a primitive {"type": "box", ...}; absent: the solid
+// itself when it is a box, sphere, capsule or cylinder.
 CollisionSpec ReadCollision(Fields& f) {
   CollisionSpec c;
   c.material = ReadMaterial(f);
@@ -180,13 +180,15 @@ CollisionSpec ReadCollision(Fields& f) {
       c.kind = CollisionSpec::Kind::kNone;
     } else if (s == "hull") {
       c.kind = CollisionSpec::Kind::kHull;
+    } else if (s == "mesh") {
+      c.kind = CollisionSpec::Kind::kMesh;
     } else {
-      f.Fail("collision",
-             "'" + s + "' is not \"none\", \"hull\" or a primitive {\"type\": ...}" + Suggest(s, {"none", "hull"}));
+      f.Fail("collision", "'" + s + "' is not \"none\", \"hull\", \"mesh\" or a primitive {\"type\": ...}" +
+                              Suggest(s, {"none", "hull", "mesh"}));
     }
     return c;
   }
-  if (!v->is_object()) f.Fail("collision", "must be \"none\", \"hull\" or a primitive {\"type\": ...}");
+  if (!v->is_object()) f.Fail("collision", "must be \"none\", \"hull\", \"mesh\" or a primitive {\"type\": ...}");
   Fields o(*v, f.Path("collision"), f.file());
   c.primitive = ReadPrimitive(o);
   if (!CollidesAsItself(*c.primitive)) {

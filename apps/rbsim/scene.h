@@ -51,6 +51,7 @@ struct CollisionSpec {
     kAuto,       ///< a box, sphere, capsule or cylinder solid as itself; anything else: no contact
     kNone,       ///< passes through everything
     kHull,       ///< the convex hull of its mesh (or of its solid's or shape's tessellation)
+    kMesh,       ///< its closed mesh (or its solid's tessellation) as it is: a signed distance field
     kPrimitive,  ///< the primitive given, centred on the center of mass, in the mesh's axes
   };
   Kind kind = Kind::kAuto;

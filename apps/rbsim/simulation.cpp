@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <sstream>
 
 #include "dynamics/forces.h"
@@ -132,8 +133,32 @@ void LoadShape(const ShapeSpec& s, SimBody& body, const std::string& where, std:
   }
 }
 
+// Mesh colliders by their mesh: bodies of one part share one signed distance field.
+class MeshColliders {
+ public:
+  dynamics::shape::Mesh Of(const massprops::TriangleMesh& m) {
+    const std::string key(reinterpret_cast<const char*>(m.V.data()),
+                          sizeof(double) * static_cast<std::size_t>(m.V.size()));
+    const std::string faces(reinterpret_cast<const char*>(m.F.data()),
+                            sizeof(m.F(0, 0)) * static_cast<std::size_t>(m.F.size()));
+    auto& slot = made_[key + faces];
+    if (slot.field == nullptr) {
+      std::vector<Vector3> v;
+      for (Eigen::Index i = 0; i < m.V.rows(); ++i) v.push_back(m.V.row(i).transpose());
+      std::vector<std::array<int, 3>> t;
+      for (Eigen::Index f = 0; f < m.F.rows(); ++f) t.push_back({m.F(f, 0), m.F(f, 1), m.F(f, 2)});
+      slot = dynamics::MakeMesh(std::move(v), std::move(t));
+    }
+    return slot;
+  }
+
+ private:
+  std::map<std::string, dynamics::shape::Mesh> made_;
+};
+
 // The collider of a body (in its principal frame: x_B = R_MBᵀ (x_M − com)), or none.
-std::optional<dynamics::Collider> ColliderOf(const CollisionSpec& c, const ShapeSpec& shape, const SimBody& body) {
+std::optional<dynamics::Collider> ColliderOf(const CollisionSpec& c, const ShapeSpec& shape, const SimBody& body,
+                                             MeshColliders& meshes) {
   namespace pr = massprops::primitive;
   const massprops::Primitive* primitive = c.primitive ? &*c.primitive : nullptr;
   if (c.kind == CollisionSpec::Kind::kNone) return std::nullopt;
@@ -145,6 +170,10 @@ std::optional<dynamics::Collider> ColliderOf(const CollisionSpec& c, const Shape
   dynamics::Collider out;
   out.material = c.material;
   out.rotation = body.principal.axes.transpose();  // mesh axes → body axes
+  if (c.kind == CollisionSpec::Kind::kMesh) {
+    out.shape = meshes.Of(body.display);  // the display mesh: mesh axes, about the center of mass
+    return out;
+  }
   if (c.kind == CollisionSpec::Kind::kHull) {
     const massprops::PolygonMesh hull = massprops::ConvexHull(massprops::ToPolygonMesh(body.display));
     dynamics::shape::Convex convex;
@@ -175,6 +204,7 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
   sim.scene = scene;
   sim.physics = dynamics::ContactWorld(dynamics::World(scene.integrator), scene.contact);
   sim.world().set_num_threads(threads);
+  MeshColliders meshes;
   // Contact is on when the scene asks for it: a ground, a static body, or a body's "collision".
   // Then box, sphere, capsule and cylinder solids collide as themselves unless they say "none";
   // scenes without any of these run as before, bodies passing through each other.
@@ -209,7 +239,7 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     if (spec.angular_velocity_frame == VectorFrame::kPrincipal) omega = rb.orientation * omega;
     rb.SetAngularVelocity(omega);
     try {
-      const auto collider = wants_contact ? ColliderOf(spec.collision, spec.shape, body) : std::nullopt;
+      const auto collider = wants_contact ? ColliderOf(spec.collision, spec.shape, body, meshes) : std::nullopt;
       if (collider) {
         sim.physics.AddBody(rb, *collider);
       } else {
@@ -272,7 +302,7 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
       // mass with the mesh's axes.
       shape.principal.axes = Matrix3::Identity();
       CollisionSpec c = st.collision;
-      auto collider = ColliderOf(c, st.shape, shape);
+      auto collider = ColliderOf(c, st.shape, shape, meshes);
       if (!collider) throw SceneError(where + ": collides as nothing (give \"collision\": \"hull\" or a primitive)");
       const Matrix3 R = st.orientation.toRotationMatrix();
       const Vector3 at = st.position + R * shape.mp.center_of_mass;

@@ -66,14 +66,14 @@ TEST(MeshContact, FieldDistancesAreTheMeshsOwn) {
   const massprops::TriangleMesh m = massprops::solids::Sphere(r, 16);
   const MeshBody b = FromMesh(m, 1000, Vector3::Zero());
   const MeshFieldInfo info = DescribeMeshField(b.shape);
-  EXPECT_NEAR(info.cell, 2 * r / 64, 1e-3 * r);  // 64 cells along the longest side
+  EXPECT_NEAR(info.cell, 2 * r / 64, 1e-3 * r);      // 64 cells along the longest side
   const double sag = r * (1 - std::cos(M_PI / 16));  // how far the facets lie inside the sphere
   ContactWorld w;  // the field is reached through contacts: a small probe sphere at points
   int checked = 0;
   for (double d : {-0.03, -0.02, -0.01, -0.004}) {
     for (int k = 0; k < 20; ++k) {
-      const Vector3 dir = Vector3(std::cos(0.7 * k) * std::sin(0.3 + 0.13 * k), std::sin(0.7 * k) * std::sin(0.3 + 0.13 * k),
-                                  std::cos(0.3 + 0.13 * k))
+      const Vector3 dir = Vector3(std::cos(0.7 * k) * std::sin(0.3 + 0.13 * k),
+                                  std::sin(0.7 * k) * std::sin(0.3 + 0.13 * k), std::cos(0.3 + 0.13 * k))
                               .normalized();
       // The probe: a sphere of radius 1 mm at distance d from the sphere's surface.
       ContactWorld probe;
@@ -135,7 +135,8 @@ TEST(MeshContact, MeshSphereRollsAsTheSamePolyhedronDoes) {
 
 TEST(MeshContact, MeshBoxRestsOnATable) {
   const Vector3 half(0.05, 0.04, 0.03);
-  const MeshBody b = FromMesh(massprops::Triangulate(massprops::solids::Box(2 * half)), 700, Vector3(0.02, 0, 0.2 + half.z() + 0.02));
+  const MeshBody b =
+      FromMesh(massprops::Triangulate(massprops::solids::Box(2 * half)), 700, Vector3(0.02, 0, 0.2 + half.z() + 0.02));
   ContactWorld w;
   w.AddBody(b.body, Of(b.shape, Mat(0.6, 0.5)));
   w.AddStatic(Of(shape::Box{Vector3(0.3, 0.3, 0.1)}, Mat(0.6, 0.5)), Matrix3::Identity(), Vector3(0, 0, 0.1));
@@ -163,13 +164,15 @@ TEST(MeshContact, RingSlidesDownAPegThatItsHullCannotPass) {
     if (hull) {
       massprops::PolygonMesh pm;
       pm.V.resize(static_cast<Eigen::Index>(ring.shape.vertices.size()), 3);
-      for (std::size_t i = 0; i < ring.shape.vertices.size(); ++i) pm.V.row(static_cast<Eigen::Index>(i)) = ring.shape.vertices[i].transpose();
+      for (std::size_t i = 0; i < ring.shape.vertices.size(); ++i)
+        pm.V.row(static_cast<Eigen::Index>(i)) = ring.shape.vertices[i].transpose();
       for (const auto& t : ring.shape.triangles) pm.AddFace(t);
       const massprops::PolygonMesh h = massprops::ConvexHull(pm);
       shape::Convex cv;
       for (Eigen::Index i = 0; i < h.V.rows(); ++i) cv.vertices.push_back(h.V.row(i).transpose());
       for (std::int64_t f = 0; f < h.num_faces(); ++f) {
-        cv.triangles.push_back({h.indices[static_cast<std::size_t>(h.offsets[f])], h.indices[static_cast<std::size_t>(h.offsets[f] + 1)],
+        cv.triangles.push_back({h.indices[static_cast<std::size_t>(h.offsets[f])],
+                                h.indices[static_cast<std::size_t>(h.offsets[f] + 1)],
                                 h.indices[static_cast<std::size_t>(h.offsets[f] + 2)]});
       }
       c.shape = cv;

@@ -135,6 +135,10 @@ struct ContactStats {
   /// J: kinetic energy the contact impulses removed in this step (≥ 0 up to rounding).
   double dissipated = 0;
   int sleeping = 0;  ///< bodies asleep after the step
+  /// m: the largest distance a point of a body was moved to push a mesh contact's overlap back to
+  /// a quarter of a cell (kinetic energy unchanged; the potential energy may rise by the weight
+  /// times this much).
+  double pushed = 0;
 };
 
 /// A World with contact. The bodies, forces and integrator are the world's; each dynamic body has

@@ -2,12 +2,16 @@
 // static and kinetic friction and restitution, and the step around it.
 
 #include <algorithm>
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 #include <tuple>
 
 #include "../integrators/integrator.h"
@@ -84,7 +88,20 @@ struct Row {
   Eigen::Vector2d lambda_t = Eigen::Vector2d::Zero();
   std::tuple<int, int, std::uint32_t> key;  // (a, b or -1 - static index, feature): warm starting
   double separation = 0;
+  // Mesh contacts only: overlap beyond this is pushed out after the step (< 0: never).
+  double slop = -1;
+  double push = 0;  // its accumulated pseudo-impulse
 };
+
+// The overlap a mesh contact may keep (a quarter of the finer field's cell), or -1: not a mesh
+// contact.
+double MeshSlop(const Shape& a, const Shape* b) {
+  double cell = std::numeric_limits<double>::infinity();
+  for (const Shape* s : {&a, b}) {
+    if (const auto* m = s != nullptr ? std::get_if<shape::Mesh>(s) : nullptr) cell = std::min(cell, m->field->cell);
+  }
+  return std::isfinite(cell) ? 0.25 * cell : -1;
+}
 
 // The normal and tangential effective masses of a row for the response matrix K.
 void SetEffectiveMasses(Row& r, const Matrix3& K) {
@@ -284,9 +301,10 @@ StepStatus ContactWorld::Step(double h) {
     return Material{std::sqrt(ma.static_friction * mb.static_friction),
                     std::sqrt(ma.kinetic_friction * mb.kinetic_friction), std::max(ma.restitution, mb.restitution)};
   };
-  auto add_rows = [&](int a, int b, int key_b, const Material& mat) {
+  auto add_rows = [&](int a, int b, int key_b, const Material& mat, double slop) {
     for (const contact::ContactPoint& p : m.points) {
       Row r;
+      r.slop = slop;
       r.a = a;
       r.b = b;
       r.n = p.normal;
@@ -316,7 +334,8 @@ StepStatus ContactWorld::Step(double h) {
       if (g.normal.dot(posed[k].t) - g.offset - radius[k] >= reach_g) continue;
       m.points.clear();
       contact::CollideGround(posed[k], g.normal, g.offset, reach_g, m.points);
-      add_rows(i, -1, -1, material_of(i, -1, m.colliders[k].material, g.material));
+      add_rows(i, -1, -1, material_of(i, -1, m.colliders[k].material, g.material),
+               MeshSlop(m.colliders[k].shape, nullptr));
     }
   }
   // Broad phase: sweep and prune along x over bounding spheres grown by the reach.
@@ -337,6 +356,13 @@ StepStatus ContactWorld::Step(double h) {
   std::sort(intervals.begin(), intervals.end(),
             [](const Interval& x, const Interval& y) { return x.lo < y.lo || (x.lo == y.lo && x.id < y.id); });
   StepStatus failure;
+  struct Candidate {
+    int a, b;  // b < 0: static body -1 - b
+    contact::Posed pb;
+    const Material* mb;
+    double margin;
+  };
+  std::vector<Candidate> candidates;
   for (std::size_t i = 0; i < intervals.size(); ++i) {
     for (std::size_t j = i + 1; j < intervals.size() && intervals[j].lo <= intervals[i].hi; ++j) {
       int a = intervals[i].id, b = intervals[j].id;
@@ -360,18 +386,46 @@ StepStatus ContactWorld::Step(double h) {
       }
       const double margin = reach[ka] + reach_b;
       if ((posed[ka].t - pb.t).norm() - radius[ka] - rb >= margin) continue;
-      m.points.clear();
-      if (!contact::Collide(posed[ka], pb, margin, m.points)) {
-        failure.ok = false;
-        std::ostringstream msg;
-        msg << "contact between a " << ShapeName(*posed[ka].shape) << " (body " << a << ") and a "
-            << ShapeName(*pb.shape) << (b >= 0 ? " (body " + std::to_string(b) + ")" : std::string(" (static)"))
-            << " is not supported yet";
-        failure.message = msg.str();
-        return failure;
-      }
-      add_rows(a, b >= 0 ? b : -1, b, material_of(a, b >= 0 ? b : -1, m.colliders[ka].material, *mb));
+      candidates.push_back({a, b, pb, mb, margin});
     }
+  }
+  // The narrow phase: each pair on its own (on worker threads when there are many; mesh pairs
+  // test thousands of samples), then the rows in the pairs' order, so the step does not depend on
+  // the thread count.
+  std::vector<std::vector<contact::ContactPoint>> found(candidates.size());
+  std::vector<char> supported(candidates.size(), 1);
+  {
+    std::atomic<std::size_t> next{0};
+    auto worker = [&] {
+      for (std::size_t c = next.fetch_add(1); c < candidates.size(); c = next.fetch_add(1)) {
+        const Candidate& p = candidates[c];
+        supported[c] = contact::Collide(posed[static_cast<std::size_t>(p.a)], p.pb, p.margin, found[c]);
+      }
+    };
+    static const int kHardwareThreads = static_cast<int>(std::thread::hardware_concurrency());
+    const int threads = std::min<int>(world_.num_threads_ > 0 ? world_.num_threads_ : kHardwareThreads,
+                                      static_cast<int>(candidates.size() / 8));
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+    worker();
+    for (auto& t : pool) t.join();
+  }
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    const Candidate& p = candidates[c];
+    const int a = p.a, b = p.b;
+    const auto ka = static_cast<std::size_t>(a);
+    if (!supported[c]) {
+      failure.ok = false;
+      std::ostringstream msg;
+      msg << "contact between a " << ShapeName(*posed[ka].shape) << " (body " << a << ") and a "
+          << ShapeName(*p.pb.shape) << (b >= 0 ? " (body " + std::to_string(b) + ")" : std::string(" (static)"))
+          << " is not supported yet";
+      failure.message = msg.str();
+      return failure;
+    }
+    m.points.swap(found[c]);
+    add_rows(a, b >= 0 ? b : -1, b, material_of(a, b >= 0 ? b : -1, m.colliders[ka].material, *p.mb),
+             MeshSlop(*posed[ka].shape, p.pb.shape));
   }
   stats_.contacts = static_cast<int>(m.rows.size());
   if (m.rows.empty()) {  // free flight: the world's own integrator, bit for bit
@@ -579,6 +633,47 @@ StepStatus ContactWorld::Step(double h) {
     m.cache[r.key] = {r.lambda_n, r.lambda_t, stuck};
   }
   stats_.dissipated = energy_before - kinetic_energy();
+  // 3b. Mesh contacts: overlap beyond the slop (which the velocity solve only stops from growing)
+  // is pushed out by pseudo-velocities that move the bodies in this step's drift and are then
+  // dropped (split impulses): the velocities, and so the kinetic energy, are not changed; the
+  // potential energy may rise by the weight times the distance moved, reported in the stats.
+  std::vector<Velocities> pseudo;
+  bool pushes = false;
+  for (const Row& r : m.rows) pushes = pushes || (r.slop >= 0 && -r.separation > r.slop);
+  if (pushes) {
+    pseudo.assign(static_cast<std::size_t>(nb), {Vector3::Zero(), Vector3::Zero()});
+    auto pseudo_normal = [&](const Row& r) {
+      const Velocities& pa = pseudo[static_cast<std::size_t>(r.a)];
+      Vector3 v = pa.v + pa.w.cross(r.ra);
+      if (r.b >= 0) {
+        const Velocities& pb = pseudo[static_cast<std::size_t>(r.b)];
+        v -= pb.v + pb.w.cross(r.rb);
+      }
+      return r.n.dot(v);
+    };
+    constexpr double kPush = 0.5;  // of the excess overlap, per step
+    for (int sweep = 0; sweep < options_.max_iterations; ++sweep) {
+      double change = 0, scale = 0;
+      for (Row& r : m.rows) {
+        if (r.slop < 0) continue;
+        const double target = kPush * std::max(-r.separation - r.slop, 0.0) / h;
+        const double push = std::max(r.push + r.mass_n * (target - pseudo_normal(r)), 0.0);
+        const Vector3 impulse = r.n * (push - r.push);
+        change = std::max(change, std::abs(push - r.push));
+        scale = std::max(scale, push);
+        r.push = push;
+        Velocities& pa = pseudo[static_cast<std::size_t>(r.a)];
+        pa.v += inv_mass(r.a) * impulse;
+        pa.w += m.inv_inertia[static_cast<std::size_t>(r.a)] * r.ra.cross(impulse);
+        if (r.b >= 0) {
+          Velocities& pb = pseudo[static_cast<std::size_t>(r.b)];
+          pb.v -= inv_mass(r.b) * impulse;
+          pb.w -= m.inv_inertia[static_cast<std::size_t>(r.b)] * r.rb.cross(impulse);
+        }
+      }
+      if (change <= options_.tolerance * scale) break;
+    }
+  }
   // 4. The drift: positions with the new velocities, the free rotation with the new L.
   StepStatus status;
   for (int i = 0; i < nb; ++i) {
@@ -600,6 +695,18 @@ StepStatus ContactWorld::Step(double h) {
       status.message = "the free rotation of body " + std::to_string(i) +
                        " did not converge in a contact step (angular velocity too large for this step)";
       return status;
+    }
+    if (!pseudo.empty() && (pseudo[k].v.squaredNorm() > 0 || pseudo[k].w.squaredNorm() > 0)) {
+      const Vector3 moved = h * pseudo[k].v;
+      b.position += moved;
+      const Vector3 turn = h * pseudo[k].w;
+      const double angle = turn.norm();
+      if (angle > 0) {
+        const Vector3 L_world = b.angular_momentum;  // the momentum stays; the body turns under it
+        b.orientation = (Quaternion(Eigen::AngleAxisd(angle, turn / angle)) * b.orientation).normalized();
+        b.angular_momentum = L_world;
+      }
+      stats_.pushed = std::max(stats_.pushed, moved.norm() + angle * radius[k]);
     }
   }
   world_.time_ += h;

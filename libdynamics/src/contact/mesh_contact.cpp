@@ -15,9 +15,9 @@
 namespace dynamics::contact {
 namespace {
 
-constexpr std::size_t kMaxPoints = 12;  // per pair, after reduction
-constexpr std::uint32_t kSecond = 1u << 31;   // feature bit: a sample of the second shape
-constexpr std::uint32_t kCentre = 1u << 30;   // feature bit: a sphere's or capsule's axis point
+constexpr std::size_t kMaxPoints = 16;       // per pair, after reduction
+constexpr std::uint32_t kSecond = 1u << 31;  // feature bit: a sample of the second shape
+constexpr std::uint32_t kCentre = 1u << 30;  // feature bit: a sphere's or capsule's axis point
 
 // φ of a shape in its own frame at q, and its outward gradient (unit).
 double LocalDistance(const Posed& s, const Vector3& q, Vector3& n) {
@@ -133,7 +133,9 @@ double Spacing(const Posed& s) {
 }
 
 // Keeps at most kMaxPoints of the points from `first` on: the deepest, then each time the point
-// farthest from those kept (a support polygon that does not rock, at a bounded solver cost).
+// that is farthest from those kept less four times how much shallower than the deepest it is (a
+// support polygon that does not rock, without dropping a point about to close its gap, at a
+// bounded solver cost).
 void Reduce(std::vector<ContactPoint>& out, std::size_t first) {
   const std::size_t n = out.size() - first;
   if (n <= kMaxPoints) return;
@@ -143,27 +145,31 @@ void Reduce(std::vector<ContactPoint>& out, std::size_t first) {
   for (std::size_t i = 1; i < n; ++i) {
     if (all[i].separation < all[deepest].separation) deepest = i;
   }
+  const double floor = all[deepest].separation;
   std::vector<double> gap(n, std::numeric_limits<double>::infinity());
+  std::vector<char> kept(n, 0);
   std::size_t pick = deepest;
-  for (std::size_t kept = 0; kept < kMaxPoints; ++kept) {
+  for (std::size_t count = 0; count < kMaxPoints; ++count) {
     out.push_back(all[pick]);
-    std::size_t next = pick;
-    double best = -1;
+    kept[pick] = 1;
+    std::size_t next = n;
+    double best = -std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < n; ++i) {
-      gap[i] = std::min(gap[i], (all[i].point - all[pick].point).squaredNorm());
-      if (gap[i] > best) {
-        best = gap[i];
+      gap[i] = std::min(gap[i], (all[i].point - all[pick].point).norm());
+      const double score = gap[i] - 4 * (all[i].separation - floor);
+      if (!kept[i] && score > best) {
+        best = score;
         next = i;
       }
     }
-    if (best <= 0) break;
+    if (next == n) break;
     pick = next;
   }
 }
 
 using Box3 = Eigen::AlignedBox<double, 3>;
 
-// A box that holds the posed shape (world): a mesh's grid box turned, else its bounding sphere's.
+// A box that holds the posed shape (world): a mesh's grid box turned, else its own box turned.
 Box3 WorldBox(const Posed& s) {
   Box3 box;
   if (const auto* m = std::get_if<shape::Mesh>(s.shape)) {
@@ -218,10 +224,21 @@ void SamplesAgainst(const Posed& from, const Posed& to, double spacing, double m
   };
   if (const auto* m = std::get_if<shape::Mesh>(from.shape)) {
     Box3 local;  // the overlap in the mesh's frame
-    for (int k = 0; k < 8; ++k) local.extend(from.R.transpose() * (overlap.corner(static_cast<Box3::CornerType>(k)) - from.t));
+    for (int k = 0; k < 8; ++k)
+      local.extend(from.R.transpose() * (overlap.corner(static_cast<Box3::CornerType>(k)) - from.t));
+    // The other's distance is a bound from below (a convex shape's plane distance) or within a
+    // cell of the truth (a field): a cluster farther than its radius plus that is skipped whole.
+    const auto* other_mesh = std::get_if<shape::Mesh>(to.shape);
+    const double slack = margin + (other_mesh != nullptr ? other_mesh->field->cell : 0.0);
     const std::vector<Vector3>& samples = m->field->samples;
-    for (std::size_t i = 0; i < samples.size(); ++i) {
-      if (local.contains(samples[i])) test(from.R * samples[i] + from.t, 0, i);
+    for (const MeshField::Cluster& c : m->field->clusters) {
+      if (local.exteriorDistance(c.centre) > c.radius) continue;
+      Vector3 n;
+      if (Distance(to, from.R * c.centre + from.t, n) > c.radius + slack) continue;
+      for (int i = c.first; i < c.first + c.count; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        if (local.contains(samples[k])) test(from.R * samples[k] + from.t, 0, k);
+      }
     }
     return;
   }
@@ -243,7 +260,18 @@ void CollideMeshGround(const Posed& a, const Vector3& n, double offset, double m
   Reduce(out, first);
 }
 
+// Whether the shape's bounding sphere lies beyond `reach` of the mesh (the field at its centre,
+// less a cell for the interpolation's error): then nothing of it can touch the mesh.
+bool OutOfReach(const Posed& mesh, const Posed& other, double margin) {
+  const auto* m = std::get_if<shape::Mesh>(mesh.shape);
+  if (m == nullptr) return false;
+  Vector3 n;
+  const double d = Distance(mesh, other.t, n);
+  return d - m->field->cell > BoundingRadius(*other.shape) + margin;
+}
+
 void CollideWithMesh(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out) {
+  if (OutOfReach(a, b, margin) || OutOfReach(b, a, margin)) return;
   const std::size_t first = out.size();
   const double spacing = std::min(Spacing(a), Spacing(b));
   SamplesAgainst(a, b, spacing, margin, false, out);

@@ -17,9 +17,9 @@ namespace dynamics::contact {
 namespace {
 
 constexpr int kLeaf = 4;
-constexpr int kMinCells = 64;             // along the longest side, at least
-constexpr double kMaxNodes = 8e6;         // 64 MB of values at most: the cell grows beyond
-constexpr int kPad = 3;                   // cells of grid beyond the mesh's box
+constexpr int kMinCells = 64;      // along the longest side, at least
+constexpr double kMaxNodes = 8e6;  // 64 MB of values at most: the cell grows beyond
+constexpr int kPad = 3;            // cells of grid beyond the mesh's box
 
 // The point of triangle abc closest to p (Ericson, Real-Time Collision Detection, 5.1.5).
 Vector3 ClosestOnTriangle(const Vector3& p, const Vector3& a, const Vector3& b, const Vector3& c) {
@@ -154,7 +154,8 @@ class TriangleTree {
       cbox.sizes().maxCoeff(&axis);
       const int mid = first + count / 2;
       std::nth_element(order_.begin() + first, order_.begin() + mid, order_.begin() + first + count, [&](int a, int b) {
-        const double ca = centroid_[static_cast<std::size_t>(a)][axis], cb = centroid_[static_cast<std::size_t>(b)][axis];
+        const double ca = centroid_[static_cast<std::size_t>(a)][axis],
+                     cb = centroid_[static_cast<std::size_t>(b)][axis];
         return ca < cb || (ca == cb && a < b);
       });
       node.left = Build(first, mid - first);
@@ -172,7 +173,8 @@ class TriangleTree {
 };
 
 void Validate(const shape::Mesh& mesh) {
-  if (mesh.triangles.size() < 4) throw std::invalid_argument("a mesh collider needs a closed mesh (4 triangles at least)");
+  if (mesh.triangles.size() < 4)
+    throw std::invalid_argument("a mesh collider needs a closed mesh (4 triangles at least)");
   for (const Vector3& v : mesh.vertices) {
     if (!v.allFinite()) throw std::invalid_argument("a mesh collider has a non-finite vertex");
   }
@@ -240,24 +242,41 @@ void AddSamples(const shape::Mesh& mesh, double cell, std::vector<Vector3>& out)
     for (int k = 0; k < 3; ++k) edges[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}] = true;
   }
   for (const auto& [e, unused] : edges) {
-    const Vector3 a = mesh.vertices[static_cast<std::size_t>(e.first)], b = mesh.vertices[static_cast<std::size_t>(e.second)];
+    const Vector3 a = mesh.vertices[static_cast<std::size_t>(e.first)],
+                  b = mesh.vertices[static_cast<std::size_t>(e.second)];
     const int k = static_cast<int>(std::ceil((b - a).norm() / cell));
     for (int i = 1; i < k; ++i) out.push_back(a + (b - a) * (static_cast<double>(i) / k));
   }
-  for (const auto& t : mesh.triangles) {
-    const Vector3 a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
-    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-    const int k = static_cast<int>(std::ceil(longest / cell));
-    for (int i = 1; i < k; ++i) {
-      for (int j = 1; i + j < k; ++j) out.push_back(a + (b - a) * (static_cast<double>(i) / k) + (c - a) * (static_cast<double>(j) / k));
-    }
+}
+
+// Orders the samples into clusters of at most 32 by recursive median splits along the longest
+// side of their box.
+void Cluster(std::vector<Vector3>& samples, int first, int count, std::vector<MeshField::Cluster>& out) {
+  Eigen::AlignedBox<double, 3> box;
+  for (int i = first; i < first + count; ++i) box.extend(samples[static_cast<std::size_t>(i)]);
+  if (count > 32) {
+    int axis;
+    box.sizes().maxCoeff(&axis);
+    const int mid = first + count / 2;
+    std::nth_element(samples.begin() + first, samples.begin() + mid, samples.begin() + first + count,
+                     [axis](const Vector3& a, const Vector3& b) { return a[axis] < b[axis]; });
+    Cluster(samples, first, mid - first, out);
+    Cluster(samples, mid, first + count - mid, out);
+    return;
   }
+  MeshField::Cluster c;
+  c.centre = box.center();
+  for (int i = first; i < first + count; ++i)
+    c.radius = std::max(c.radius, (samples[static_cast<std::size_t>(i)] - c.centre).norm());
+  c.first = first;
+  c.count = count;
+  out.push_back(c);
 }
 
 }  // namespace
 
 double MeshField::Distance(const Vector3& x, Vector3* gradient) const {
-  // Clamp into the grid; outside it, add the distance to the grid (a bound from below).
+  // Clamp into the grid (beyond it, see the end).
   const Vector3 top = origin + cell * Vector3(nodes[0] - 1, nodes[1] - 1, nodes[2] - 1);
   const Vector3 inside = x.cwiseMax(origin).cwiseMin(top);
   const double outside = (x - inside).norm();
@@ -291,7 +310,10 @@ double MeshField::Distance(const Vector3& x, Vector3* gradient) const {
       *gradient = Vector3(dx, dy, c1 - c0) / cell;
     }
   }
-  return value + outside;
+  if (outside == 0) return value;
+  // Beyond the grid, a bound from below: the distance to the mesh's box (which holds the mesh),
+  // or the value at the nearest grid point less the way there, whichever is larger.
+  return std::max(mesh_box.exteriorDistance(x), value - outside);
 }
 
 std::size_t MeshField::MemoryBytes() const {
@@ -313,17 +335,18 @@ std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh) {
   field->thinnest = ThinnestWall(tree, mesh);
   double cell = mesh.cell > 0 ? mesh.cell : std::min(longest / kMinCells, field->thinnest / 3);
   cell = std::max(cell, longest / 1024);
-  auto count_nodes = [&](double h) {
-    return ((box.sizes() / h).array().ceil() + 1 + 2 * kPad).prod();
-  };
+  auto count_nodes = [&](double h) { return ((box.sizes() / h).array().ceil() + 1 + 2 * kPad).prod(); };
   while (count_nodes(cell) > kMaxNodes) cell *= 1.1;
   field->cell = cell;
-  for (int k = 0; k < 3; ++k) field->nodes[static_cast<std::size_t>(k)] = static_cast<int>(std::ceil(box.sizes()[k] / cell)) + 1 + 2 * kPad;
+  for (int k = 0; k < 3; ++k)
+    field->nodes[static_cast<std::size_t>(k)] = static_cast<int>(std::ceil(box.sizes()[k] / cell)) + 1 + 2 * kPad;
   field->origin = box.min() - Vector3::Constant(kPad * cell);
+  field->mesh_box = box;
   // The sign: the winding number of the closed mesh (exact: it counts ray crossings).
   massprops::TriangleMesh tm;
   tm.V.resize(static_cast<Eigen::Index>(mesh.vertices.size()), 3);
-  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) tm.V.row(static_cast<Eigen::Index>(i)) = mesh.vertices[i].transpose();
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
+    tm.V.row(static_cast<Eigen::Index>(i)) = mesh.vertices[i].transpose();
   tm.F.resize(static_cast<Eigen::Index>(mesh.triangles.size()), 3);
   for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
     tm.F.row(static_cast<Eigen::Index>(i)) << mesh.triangles[i][0], mesh.triangles[i][1], mesh.triangles[i][2];
@@ -353,6 +376,7 @@ std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh) {
   work(0);
   for (auto& t : pool) t.join();
   AddSamples(mesh, cell, field->samples);
+  Cluster(field->samples, 0, static_cast<int>(field->samples.size()), field->clusters);
   field->vertices = mesh.vertices;
   field->build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return field;

@@ -7,12 +7,13 @@
 // mesh gives exactly by counting ray crossings: massprops::implicit). Between nodes, trilinear
 // interpolation: its error is second order in the cell near flat parts of the surface and at most
 // about half a cell's diagonal near sharp edges. Beyond the grid (which reaches three cells past
-// the mesh's box), the distance to the grid plus the value at the nearest grid point, a bound from
-// below.
+// the mesh's box), a bound from below: the larger of the distance to the mesh's box and the value
+// at the nearest grid point less the way there.
 //
-// Samples: the points of the surface that are tested against other shapes — every vertex, points
-// along edges longer than two cells, and points inside triangles larger than two cells, about a
-// cell apart.
+// Samples: the points of the surface that are tested against other shapes — every vertex and
+// points along edges longer than a cell, about a cell apart. None inside faces: a face meets
+// another shape first at the other's vertices or along edges, which that shape's samples and the
+// field find.
 
 #include <array>
 #include <cstdint>
@@ -25,11 +26,18 @@ namespace dynamics::contact {
 struct MeshField {
   Vector3 origin = Vector3::Zero();  // node (0, 0, 0)
   double cell = 0;
-  std::array<int, 3> nodes{};  // along x, y, z
-  std::vector<double> values;  // x fastest
-  std::vector<Vector3> samples;
+  std::array<int, 3> nodes{};    // along x, y, z
+  std::vector<double> values;    // x fastest
+  std::vector<Vector3> samples;  // in clusters of nearby samples (consecutive)
+  struct Cluster {
+    Vector3 centre;
+    double radius = 0;
+    int first = 0, count = 0;
+  };
+  std::vector<Cluster> clusters;  // a whole cluster is skipped when the other shape is beyond its ball
   std::vector<Vector3> vertices;  // the mesh's (for ground contact: a plane meets a body at vertices first)
   double radius = 0;              // of the sphere about the mesh origin that holds it
+  Eigen::AlignedBox<double, 3> mesh_box;  // of the vertices
   double thinnest = 0;            // the thinnest wall found (m), which bounded the cell
   double build_seconds = 0;
 

@@ -4,6 +4,7 @@
 
 #include "narrow_phase.h"
 
+#include "mesh_field.h"
 #include "polytope.h"
 
 #include <algorithm>
@@ -113,6 +114,9 @@ double BoundingRadius(const Shape& s) {
         if constexpr (std::is_same_v<T, shape::Box>) return x.half_extents.norm();
         if constexpr (std::is_same_v<T, shape::Capsule>) return x.radius + x.half_length;
         if constexpr (std::is_same_v<T, shape::Cylinder>) return std::hypot(x.radius, x.half_length);
+        if constexpr (std::is_same_v<T, shape::Mesh>) {
+          if (x.field != nullptr) return x.field->radius;
+        }
         if constexpr (std::is_same_v<T, shape::Convex> || std::is_same_v<T, shape::Mesh>) {
           double r = 0;
           for (const Vector3& v : x.vertices) r = std::max(r, v.norm());

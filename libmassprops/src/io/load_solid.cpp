@@ -28,8 +28,8 @@ using internal::Warn;
 // Below this many triangles a binary STL is always welded and fully checked; at or above it the
 // records are integrated as they lie, with the streaming closed-cycle check. Chosen by measurement
 // (bench/end_to_end.py, README): the checked path costs about 190 ns a triangle on the 2-core
-// reference machine and the streamed one about 30 ns (45 with its face keys), so below 10^5 triangles the full check takes
-// under 20 ms, less than a person notices, and above it streaming saves 4–6× the time.
+// reference machine and the streamed one about 30 ns (45 with its face keys), so below 10^5 triangles the full check
+// takes under 20 ms, less than a person notices, and above it streaming saves 4–6× the time.
 constexpr std::int64_t kStreamingThreshold = 100000;
 
 double SignedVolumeOf(const PolygonMesh& mesh) {
