@@ -206,11 +206,11 @@ void SamplesAgainst(const Posed& from, const Posed& to, double spacing, double m
   double grow = margin;
   if (const auto* c = std::get_if<shape::Capsule>(from.shape)) grow += c->radius;
   if (const auto* c = std::get_if<shape::Sphere>(from.shape)) grow += c->radius;
-  Box3 overlap = WorldBox(from).intersection(WorldBox(to));
-  if (overlap.isEmpty()) overlap = Box3(Vector3::Constant(1), Vector3::Constant(0));  // may still touch within grow
-  overlap.min() -= Vector3::Constant(grow);
-  overlap.max() += Vector3::Constant(grow);
-  if ((overlap.min().array() > overlap.max().array()).any()) return;
+  Box3 reach = WorldBox(to);  // where a sample may touch `to` within the margin
+  reach.min() -= Vector3::Constant(grow);
+  reach.max() += Vector3::Constant(grow);
+  const Box3 overlap = WorldBox(from).intersection(reach);
+  if (overlap.isEmpty()) return;
   auto test = [&](const Vector3& p, double radius, std::size_t index) {
     if (!overlap.contains(p)) return;
     Vector3 n = Vector3::UnitZ();
