@@ -418,7 +418,7 @@ void BindDynamics(py::module_& m) {
   };
   py::class_<dynamics::Collider>(m, "Collider",
                                  "A collision shape placed in a body's frame (x_B = R x_S + t), with its material. "
-                                 "Make one with sphere(), box(), capsule(), cylinder() or convex().")
+                                 "Make one with sphere(), box(), capsule(), cylinder(), convex() or mesh().")
       .def_property_readonly("shape", [](const dynamics::Collider& c) { return dynamics::ShapeName(c.shape); });
   const auto place = py::arg("rotation") = py::none();
   m.def(
@@ -447,30 +447,47 @@ void BindDynamics(py::module_& m) {
       },
       py::arg("radius"), py::arg("half_length"), place, py::arg("translation") = py::none(),
       py::arg("material") = dynamics::Material{});
+  using Vertices = py::array_t<double, py::array::c_style | py::array::forcecast>;
+  using Triangles = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
+  // (n, 3) vertices and (m, 3) triangles as the shapes hold them.
+  auto surface = [](const Vertices& vertices, const Triangles& triangles) {
+    if (vertices.ndim() != 2 || vertices.shape(1) != 3) throw py::value_error("vertices must have shape (n, 3)");
+    if (triangles.ndim() != 2 || triangles.shape(1) != 3) throw py::value_error("triangles must have shape (m, 3)");
+    std::pair<std::vector<Vector3>, std::vector<std::array<int, 3>>> out;
+    for (py::ssize_t i = 0; i < vertices.shape(0); ++i) {
+      out.first.emplace_back(vertices.at(i, 0), vertices.at(i, 1), vertices.at(i, 2));
+    }
+    for (py::ssize_t i = 0; i < triangles.shape(0); ++i) {
+      std::array<int, 3> tri{};
+      for (int k = 0; k < 3; ++k) {
+        const std::int64_t v = triangles.at(i, k);
+        if (v < 0 || v >= vertices.shape(0)) throw py::value_error("a triangle index is out of range");
+        tri[static_cast<std::size_t>(k)] = static_cast<int>(v);
+      }
+      out.second.push_back(tri);
+    }
+    return out;
+  };
   m.def(
       "convex",
-      [collider](py::array_t<double, py::array::c_style | py::array::forcecast> vertices,
-                 py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> triangles, const py::handle& R,
-                 const py::handle& t, const dynamics::Material& mat) {
-        if (vertices.ndim() != 2 || vertices.shape(1) != 3) throw py::value_error("vertices must have shape (n, 3)");
-        if (triangles.ndim() != 2 || triangles.shape(1) != 3) throw py::value_error("triangles must have shape (m, 3)");
-        dynamics::shape::Convex c;
-        for (py::ssize_t i = 0; i < vertices.shape(0); ++i) {
-          c.vertices.emplace_back(vertices.at(i, 0), vertices.at(i, 1), vertices.at(i, 2));
-        }
-        for (py::ssize_t i = 0; i < triangles.shape(0); ++i) {
-          std::array<int, 3> tri{};
-          for (int k = 0; k < 3; ++k) {
-            const std::int64_t v = triangles.at(i, k);
-            if (v < 0 || v >= vertices.shape(0)) throw py::value_error("a triangle index is out of range");
-            tri[static_cast<std::size_t>(k)] = static_cast<int>(v);
-          }
-          c.triangles.push_back(tri);
-        }
-        return collider(std::move(c), R, t, mat);
+      [collider, surface](const Vertices& vertices, const Triangles& triangles, const py::handle& R,
+                          const py::handle& t, const dynamics::Material& mat) {
+        auto [v, tri] = surface(vertices, triangles);
+        return collider(dynamics::shape::Convex{std::move(v), std::move(tri)}, R, t, mat);
       },
       py::arg("vertices"), py::arg("triangles"), place, py::arg("translation") = py::none(),
       py::arg("material") = dynamics::Material{});
+  m.def(
+      "mesh",
+      [collider, surface](const Vertices& vertices, const Triangles& triangles, const py::handle& R,
+                          const py::handle& t, const dynamics::Material& mat, double cell) {
+        auto [v, tri] = surface(vertices, triangles);
+        return collider(dynamics::MakeMesh(std::move(v), std::move(tri), cell), R, t, mat);
+      },
+      py::arg("vertices"), py::arg("triangles"), place, py::arg("translation") = py::none(),
+      py::arg("material") = dynamics::Material{}, py::arg("cell") = 0.0,
+      "A closed mesh collided as itself (non-convex: a ring, a cup, a bin) through a signed distance field, built "
+      "here once; bodies given this same collider share it. cell: the field's cell in m (0: automatic).");
 
   py::class_<dynamics::ContactWorld>(m, "ContactWorld",
                                      "A World with ground planes, static bodies and colliders: bodies rest, slide, "

@@ -306,6 +306,42 @@ def test_contact_a_ball_rolls_down_an_incline_at_five_sevenths():
     assert world.stats()["contacts"] == 1
 
 
+def test_contact_a_cup_as_its_mesh_holds_a_ball():
+    # The cup of data/meshes (a 10 cm cube with an 8 cm pocket) collided as itself: a ball dropped
+    # into it stays in the pocket (as its hull, the ball would rest on the top).
+    d = massprops.dynamics
+    v, tri = [], []
+    with open(os.path.join(DATA, "meshes", "cube_cup_quad.obj")) as f:
+        for line in f:
+            t = line.split()
+            if t and t[0] == "v":
+                v.append([float(x) for x in t[1:4]])
+            elif t and t[0] == "f":
+                q = [int(x.split("/")[0]) - 1 for x in t[1:]]
+                tri += [[q[0], q[k], q[k + 1]] for k in range(1, len(q) - 1)]
+    v, tri = np.array(v), np.array(tri)
+    r = massprops.mass_properties(v, tri, density=1100)
+    cup = massprops.body(r)
+    com = np.asarray(r.center_of_mass)
+    cup.position = tuple(com)  # the mesh frame is the world frame
+    world = d.ContactWorld()
+    world.add_body(cup, d.mesh(v - com, tri, rotation=r.principal_axes.T))
+    ball = d.RigidBody()
+    ball.mass = 0.01
+    ball.inertia = (4e-7, 4e-7, 4e-7)
+    ball.position = (0.01, 0.0, 0.2)
+    world.add_body(ball, d.sphere(0.01))
+    world.add_ground()
+    world.add_gravity((0, 0, -9.81))
+    world.step(1e-3, steps=1500)
+    b = world.body(1)
+    assert abs(b.position[0]) < 0.04 and abs(b.position[1]) < 0.04
+    assert b.position[2] < 0.1  # below the rim (0.1): in the pocket, whose floor is at 0.01
+    assert b.position[2] > 0.0
+    with pytest.raises(ValueError):
+        d.mesh(v[:3], tri[:1])  # not closed
+
+
 def test_contact_a_mesh_hull_rests_on_a_table():
     # A bar's mass properties from its mesh, and the same mesh as its convex collider.
     d = massprops.dynamics
