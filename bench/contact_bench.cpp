@@ -19,6 +19,26 @@ namespace {
 
 using dynamics::Vector3;
 
+// The ground, gravity, the thread count, and 0.5 s of settling at 1 ms.
+void Settle(dynamics::ContactWorld& w, int threads) {
+  w.AddGround({Vector3::UnitZ(), 0, dynamics::Material{0.6, 0.5, 0.1}});
+  w.AddForce(dynamics::Gravity(Vector3(0, 0, -9.81)));
+  w.world().set_num_threads(threads);
+  for (int i = 0; i < 500; ++i) w.Step(1e-3);
+}
+
+// Steps of 1 ms: steps/s, contacts/s and contacts/step.
+void Measure(benchmark::State& state, dynamics::ContactWorld& w) {
+  std::int64_t contacts = 0;
+  for (auto _ : state) {
+    w.Step(1e-3);
+    contacts += w.stats().contacts;
+  }
+  state.counters["steps/s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["contacts/s"] = benchmark::Counter(static_cast<double>(contacts), benchmark::Counter::kIsRate);
+  state.counters["contacts/step"] = static_cast<double>(contacts) / static_cast<double>(state.iterations());
+}
+
 dynamics::ContactWorld Pile(int n, int threads) {
   dynamics::ContactWorld w;
   const Vector3 half(0.04, 0.03, 0.025);
@@ -35,23 +55,13 @@ dynamics::ContactWorld Pile(int n, int threads) {
     w.AddBody(b, dynamics::Collider{dynamics::shape::Box{half}, dynamics::Matrix3::Identity(), Vector3::Zero(),
                                     dynamics::Material{0.6, 0.5, 0.1}});
   }
-  w.AddGround({Vector3::UnitZ(), 0, dynamics::Material{0.6, 0.5, 0.1}});
-  w.AddForce(dynamics::Gravity(Vector3(0, 0, -9.81)));
-  w.world().set_num_threads(threads);
-  for (int i = 0; i < 500; ++i) w.Step(1e-3);
+  Settle(w, threads);
   return w;
 }
 
 void BM_BoxPile(benchmark::State& state) {
   dynamics::ContactWorld w = Pile(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
-  std::int64_t contacts = 0;
-  for (auto _ : state) {
-    w.Step(1e-3);
-    contacts += w.stats().contacts;
-  }
-  state.counters["steps/s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
-  state.counters["contacts/s"] = benchmark::Counter(static_cast<double>(contacts), benchmark::Counter::kIsRate);
-  state.counters["contacts/step"] = static_cast<double>(contacts) / static_cast<double>(state.iterations());
+  Measure(state, w);
 }
 BENCHMARK(BM_BoxPile)->Args({100, 1})->Args({100, 2})->Args({1000, 1})->Args({1000, 2})->Unit(benchmark::kMillisecond);
 
@@ -88,23 +98,13 @@ dynamics::ContactWorld MeshPile(int n, int threads) {
     w.AddBody(b, dynamics::Collider{p.shape, dynamics::Matrix3::Identity(), Vector3::Zero(),
                                     dynamics::Material{0.6, 0.5, 0.1}});
   }
-  w.AddGround({Vector3::UnitZ(), 0, dynamics::Material{0.6, 0.5, 0.1}});
-  w.AddForce(dynamics::Gravity(Vector3(0, 0, -9.81)));
-  w.world().set_num_threads(threads);
-  for (int i = 0; i < 500; ++i) w.Step(1e-3);
+  Settle(w, threads);
   return w;
 }
 
 void BM_MeshPile(benchmark::State& state) {
   dynamics::ContactWorld w = MeshPile(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
-  std::int64_t contacts = 0;
-  for (auto _ : state) {
-    w.Step(1e-3);
-    contacts += w.stats().contacts;
-  }
-  state.counters["steps/s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
-  state.counters["contacts/s"] = benchmark::Counter(static_cast<double>(contacts), benchmark::Counter::kIsRate);
-  state.counters["contacts/step"] = static_cast<double>(contacts) / static_cast<double>(state.iterations());
+  Measure(state, w);
 }
 BENCHMARK(BM_MeshPile)->Args({100, 1})->Args({100, 2})->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
