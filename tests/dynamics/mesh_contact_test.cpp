@@ -233,6 +233,30 @@ TEST(MeshContact, MeshCollisionsInFreeSpaceConserveMomentum) {
   EXPECT_LT(after.total_energy, before.total_energy);
 }
 
+// A polyhedral ball thrown with backspin: as its mesh and as the same polyhedron's convex collider
+// it slides, then rolls, at the same time and speed (within 2 %), and both near the sphere's closed
+// form t* = 2(v0 + rω0)/(7μg), v = (5v0 − 2rω0)/7 (within 5 %: the facets' bumping).
+TEST(MeshContact, MeshBallWithBackspinAsTheSamePolyhedron) {
+  const double r = 0.1, v0 = 3, w0 = 10, mu = 0.2;
+  const MeshBody b = FromMesh(massprops::solids::Sphere(r, 32), 1000, Vector3(0, 0, r));
+  const shape::Convex polyhedron{b.shape.vertices, b.shape.triangles};
+  std::vector<double> speeds;
+  for (const Shape& collider : {Shape(b.shape), Shape(polyhedron)}) {
+    ContactWorld w;
+    RigidBody body = b.body;
+    body.velocity = Vector3(v0, 0, 0);
+    body.SetAngularVelocity(Vector3(0, -w0, 0));
+    w.AddBody(body, Of(collider, Mat(mu, mu)));
+    w.AddGround({Vector3::UnitZ(), 0, Mat(mu, mu)});
+    w.AddForce(Gravity(Vector3(0, 0, -kG)));
+    Simulate(w, 1e-4, 8000);  // t* = 0.87 s
+    speeds.push_back(w.world().bodies()[0].velocity.x());
+  }
+  EXPECT_NEAR(speeds[0], speeds[1], 0.02 * speeds[1]);
+  const double v_final = (5 * v0 - 2 * r * w0) / 7;
+  EXPECT_NEAR(speeds[1], v_final, 0.05 * v_final);
+}
+
 TEST(MeshContact, MeshBoxRestsOnATable) {
   const Vector3 half(0.05, 0.04, 0.03);
   const MeshBody b =
