@@ -18,6 +18,9 @@ namespace {
 constexpr std::size_t kMaxPoints = 16;       // per pair, after reduction
 constexpr std::uint32_t kSecond = 1u << 31;  // feature bit: a sample of the second shape
 constexpr std::uint32_t kCentre = 1u << 30;  // feature bit: a sphere's or capsule's axis point
+// A field's trilinear value exceeds the true distance by at most the largest distance to the cell's
+// corners (the weights of a 1-Lipschitz function): √3 cells.
+constexpr double kDiagonal = 1.7320508075688772;
 
 // φ of a shape in its own frame at q, and its outward gradient (unit).
 double LocalDistance(const Posed& s, const Vector3& q, Vector3& n) {
@@ -226,10 +229,11 @@ void SamplesAgainst(const Posed& from, const Posed& to, double spacing, double m
     Box3 local;  // the overlap in the mesh's frame
     for (int k = 0; k < 8; ++k)
       local.extend(from.R.transpose() * (overlap.corner(static_cast<Box3::CornerType>(k)) - from.t));
-    // The other's distance is a bound from below (a convex shape's plane distance) or within a
-    // cell of the truth (a field): a cluster farther than its radius plus that is skipped whole.
+    // The other's distance is a bound from below (a convex shape's plane distance) or at most a
+    // cell's diagonal above the truth (a field: trilinear weights of a 1-Lipschitz function): a
+    // cluster farther than its radius plus that is skipped whole.
     const auto* other_mesh = std::get_if<shape::Mesh>(to.shape);
-    const double slack = margin + (other_mesh != nullptr ? other_mesh->field->cell : 0.0);
+    const double slack = margin + (other_mesh != nullptr ? kDiagonal * other_mesh->field->cell : 0.0);
     const std::vector<Vector3>& samples = m->field->samples;
     for (const MeshField::Cluster& c : m->field->clusters) {
       if (local.exteriorDistance(c.centre) > c.radius) continue;
@@ -261,13 +265,13 @@ void CollideMeshGround(const Posed& a, const Vector3& n, double offset, double m
 }
 
 // Whether the shape's bounding sphere lies beyond `reach` of the mesh (the field at its centre,
-// less a cell for the interpolation's error): then nothing of it can touch the mesh.
+// less a cell's diagonal for the interpolation's error): then nothing of it can touch the mesh.
 bool OutOfReach(const Posed& mesh, const Posed& other, double margin) {
   const auto* m = std::get_if<shape::Mesh>(mesh.shape);
   if (m == nullptr) return false;
   Vector3 n;
   const double d = Distance(mesh, other.t, n);
-  return d - m->field->cell > BoundingRadius(*other.shape) + margin;
+  return d - kDiagonal * m->field->cell > BoundingRadius(*other.shape) + margin;
 }
 
 void CollideWithMesh(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out) {
