@@ -416,7 +416,13 @@ def main():
                  r"bodies\[0\].solid: sphere: .*under- or overflows"),
                 ("scene_zero_quaternion", '{"bodies": [{"solid": {"type": "sphere", "radius": 1}, "orientation": [0, 0, 0, 0]}]}',
                  r"orientation: the quaternion is zero"),
-                ("scene_bad_integrator", '{"integrator": "verlet", "bodies": [%s]}' % box, r"integrator: 'verlet' is not one of")]:
+                ("scene_bad_integrator", '{"integrator": "verlet", "bodies": [%s]}' % box, r"integrator: 'verlet' is not one of"),
+                # A mesh collider needs a closed mesh (an open one simulated with "allow_open").
+                ("scene_open_mesh_collider", '{"ground": {"normal": [0, 0, 1], "offset": 0}, "bodies": [{"mesh": "%s", '
+                 '"allow_open": true, "collision": "mesh", "position": [0, 0, 2]}]}' % os.path.join(tmp, "open_obj.obj"),
+                 r"bodies\[0\]: a mesh collider must be closed and consistently oriented"),
+                ("scene_collision_typo", '{"bodies": [{"solid": {"type": "sphere", "radius": 1}, "collision": "mesj"}]}',
+                 r"collision: 'mesj' is not .*did you mean 'mesh'")]:
             write(name + ".json", text)
             out_dir = os.path.join(tmp, name + ".out")
             run(name, [name + ".json", "--out", out_dir, "--duration", "0.01"] if "duration" not in text else
