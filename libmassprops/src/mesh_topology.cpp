@@ -141,7 +141,9 @@ MeshTopology AnalyzeTopology(const PolygonMesh& mesh) {
   for (std::size_t a = 0; a < nv; ++a) {
     std::uint32_t* begin = other.data() + start[a];
     std::uint32_t* end = other.data() + start[a + 1];
-    if (end - begin <= 16) {  // insertion sort: groups are small
+    if (end - begin < 2) {
+      // nothing to sort (an empty group may sit at a null data(): no begin + 1)
+    } else if (end - begin <= 16) {  // insertion sort: groups are small
       for (std::uint32_t* i = begin + 1; i < end; ++i) {
         const std::uint32_t x = *i;
         std::uint32_t* j = i;

@@ -22,8 +22,9 @@ constexpr std::uint32_t kCentre = 1u << 30;  // feature bit: a sphere's or capsu
 // corners (the weights of a 1-Lipschitz function): √3 cells.
 constexpr double kDiagonal = 1.7320508075688772;
 
-// φ of a shape in its own frame at q, and its outward gradient (unit).
-double LocalDistance(const Posed& s, const Vector3& q, Vector3& n) {
+// φ of a shape in its own frame at q, and its outward gradient (unit; a field's only when
+// `want_normal`: most samples are only compared with the margin).
+double LocalDistance(const Posed& s, const Vector3& q, Vector3& n, bool want_normal) {
   return std::visit(
       [&](const auto& x) -> double {
         using T = std::decay_t<decltype(x)>;
@@ -74,6 +75,7 @@ double LocalDistance(const Posed& s, const Vector3& q, Vector3& n) {
           }
           return best;
         } else {  // shape::Mesh
+          if (!want_normal) return x.field->Distance(q, nullptr);
           Vector3 g;
           const double d = x.field->Distance(q, &g);
           const double len = g.norm();
@@ -87,9 +89,15 @@ double LocalDistance(const Posed& s, const Vector3& q, Vector3& n) {
 // φ of a posed shape at a world point, and its outward normal in the world.
 double Distance(const Posed& s, const Vector3& x, Vector3& n) {
   Vector3 local_n = Vector3::UnitZ();
-  const double d = LocalDistance(s, s.R.transpose() * (x - s.t), local_n);
+  const double d = LocalDistance(s, s.R.transpose() * (x - s.t), local_n, true);
   n = s.R * local_n;
   return d;
+}
+
+// φ alone.
+double DistanceOnly(const Posed& s, const Vector3& x) {
+  Vector3 unused = Vector3::UnitZ();
+  return LocalDistance(s, s.R.transpose() * (x - s.t), unused, false);
 }
 
 // Surface points of a shape for testing against a mesh's field (world), spaced about `spacing`;
@@ -216,9 +224,9 @@ void SamplesAgainst(const Posed& from, const Posed& to, double spacing, double m
   if (overlap.isEmpty()) return;
   auto test = [&](const Vector3& p, double radius, std::size_t index) {
     if (!overlap.contains(p)) return;
+    if (!(DistanceOnly(to, p) - radius < margin)) return;
     Vector3 n = Vector3::UnitZ();
     const double sep = Distance(to, p, n) - radius;
-    if (!(sep < margin)) return;
     const Vector3 surface = p - n * radius;  // the sample's own surface point
     std::uint32_t feature = static_cast<std::uint32_t>(index) & (kCentre - 1);
     if (radius > 0) feature |= kCentre;
@@ -237,8 +245,7 @@ void SamplesAgainst(const Posed& from, const Posed& to, double spacing, double m
     const std::vector<Vector3>& samples = m->field->samples;
     for (const MeshField::Cluster& c : m->field->clusters) {
       if (local.exteriorDistance(c.centre) > c.radius) continue;
-      Vector3 n;
-      if (Distance(to, from.R * c.centre + from.t, n) > c.radius + slack) continue;
+      if (DistanceOnly(to, from.R * c.centre + from.t) > c.radius + slack) continue;
       for (int i = c.first; i < c.first + c.count; ++i) {
         const auto k = static_cast<std::size_t>(i);
         if (local.contains(samples[k])) test(from.R * samples[k] + from.t, 0, k);
@@ -269,8 +276,7 @@ void CollideMeshGround(const Posed& a, const Vector3& n, double offset, double m
 bool OutOfReach(const Posed& mesh, const Posed& other, double margin) {
   const auto* m = std::get_if<shape::Mesh>(mesh.shape);
   if (m == nullptr) return false;
-  Vector3 n;
-  const double d = Distance(mesh, other.t, n);
+  const double d = DistanceOnly(mesh, other.t);
   return d - kDiagonal * m->field->cell > BoundingRadius(*other.shape) + margin;
 }
 
