@@ -352,7 +352,8 @@ std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh) {
     tm.F.row(static_cast<Eigen::Index>(i)) << mesh.triangles[i][0], mesh.triangles[i][1], mesh.triangles[i][2];
   }
   const massprops::ImplicitPtr winding = massprops::implicit::WindingNumberSolid(tm);
-  const int nx = field->nodes[0], ny = field->nodes[1], nz = field->nodes[2];  // (not a structured binding: lambdas below use them)
+  const int nx = field->nodes[0], ny = field->nodes[1],
+            nz = field->nodes[2];  // (not a structured binding: lambdas below use them)
   field->values.resize(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz));
   // Slices of constant z side by side: each node is computed on its own, so the values are the
   // same whatever the thread count.
