@@ -7,11 +7,8 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
-#include <iterator>
 #include <sstream>
 #include <stdexcept>
-#include <unordered_map>
 #include <vector>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -77,9 +74,11 @@ PolygonMesh FromCgal(Mesh& mesh) { return cgal_internal::FromSurfaceMesh(mesh); 
 PolygonMesh WeldedWithoutDuplicates(const PolygonMesh& input, const std::vector<std::int32_t>& map,
                                     std::int64_t& dropped) {
   const std::int64_t nf = input.num_faces();
-  // Each polygon's sorted corners, hashed; equal hashes are compared in full.
-  std::vector<std::int32_t> sorted(input.indices.size());
-  for (std::size_t c = 0; c < sorted.size(); ++c) sorted[c] = map[static_cast<std::size_t>(input.indices[c])];
+  // Each corner after the weld; and each polygon's sorted corners, hashed (equal hashes are
+  // compared in full).
+  std::vector<std::int32_t> mapped(input.indices.size());
+  for (std::size_t c = 0; c < mapped.size(); ++c) mapped[c] = map[static_cast<std::size_t>(input.indices[c])];
+  std::vector<std::int32_t> sorted = mapped;
   std::vector<std::pair<std::uint64_t, std::int64_t>> keys;
   for (std::int64_t f = 0; f < nf; ++f) {
     if (input.face_size(f) <= 3) continue;
@@ -115,7 +114,7 @@ PolygonMesh WeldedWithoutDuplicates(const PolygonMesh& input, const std::vector<
   for (std::int64_t f = 0; f < nf; ++f) {
     if (drop[static_cast<std::size_t>(f)]) continue;
     for (std::int64_t c = input.offsets[f]; c < input.offsets[f + 1]; ++c) {
-      renumber[static_cast<std::size_t>(map[static_cast<std::size_t>(input.indices[static_cast<std::size_t>(c)])])] = 0;
+      renumber[static_cast<std::size_t>(mapped[static_cast<std::size_t>(c)])] = 0;
     }
   }
   std::int32_t kept = 0;
@@ -130,25 +129,25 @@ PolygonMesh WeldedWithoutDuplicates(const PolygonMesh& input, const std::vector<
   for (std::int64_t f = 0; f < nf; ++f) {
     if (drop[static_cast<std::size_t>(f)]) continue;
     for (std::int64_t c = input.offsets[f]; c < input.offsets[f + 1]; ++c) {
-      out.indices.push_back(renumber[static_cast<std::size_t>(
-          map[static_cast<std::size_t>(input.indices[static_cast<std::size_t>(c)])])]);
+      out.indices.push_back(renumber[static_cast<std::size_t>(mapped[static_cast<std::size_t>(c)])]);
     }
     out.offsets.push_back(static_cast<std::int64_t>(out.indices.size()));
   }
   return out;
 }
 
-// Whether the mesh bounds a volume as it is, the way orient_to_bound_a_volume leaves a mesh:
-// closed, every edge used by two faces in opposite directions, no repeated corner or face, and its
-// shells outward with cavities inward (the nesting test is per shell: up to 64 shells).
-bool BoundsVolumeAsItIs(const PolygonMesh& mesh) {
+// Whether the mesh (of signed volume `volume`) bounds a volume as it is, the way
+// orient_to_bound_a_volume leaves a mesh: closed, every edge used by two faces in opposite
+// directions, no repeated corner or face, and its shells outward with cavities inward (the nesting
+// test is per shell: up to 64 shells).
+bool BoundsVolumeAsItIs(const PolygonMesh& mesh, double volume) {
   if (mesh.num_faces() == 0) return false;
   const MeshTopology t = AnalyzeTopology(mesh);
   if (!t.BoundsVolume() || t.non_manifold_edges > 0 || t.degenerate_faces > 0 || t.duplicate_faces > 0 ||
       t.reversed_duplicate_faces > 0 || t.components > 64) {
     return false;
   }
-  if (t.components == 1) return SignedVolume(mesh.V, Fans(mesh)) > 0;
+  if (t.components == 1) return volume > 0;
   return AnalyzeShells(mesh).problem.empty();
 }
 
@@ -166,16 +165,17 @@ RepairedMesh RepairMesh(const PolygonMesh& input, const RepairOptions& options) 
   const std::vector<std::int32_t> map =
       internal::WeldWithinTolerance(input.V, options.weld_tolerance * diag, rep.welded_vertices);
   std::int64_t duplicate_polygons = 0;
-  const PolygonMesh welded = WeldedWithoutDuplicates(input, map, duplicate_polygons);
+  PolygonMesh welded = WeldedWithoutDuplicates(input, map, duplicate_polygons);
+  const double welded_volume = SignedVolume(welded.V, Fans(welded));
 
   // 2. When the welded mesh already bounds a volume — closed, manifold edges, consistent, every
   // shell outward and cavities inward — CGAL would change nothing, and its polygons stay as they
   // are (a polygon of a million corners split into triangles made CGAL's steps the whole cost).
-  if (BoundsVolumeAsItIs(welded)) {
+  if (BoundsVolumeAsItIs(welded, welded_volume)) {
     rep.removed_faces = duplicate_polygons;
     rep.oriented_to_bound_volume = true;
-    rep.volume_after = SignedVolume(welded.V, Fans(welded));
-    out.mesh = welded;
+    rep.volume_after = welded_volume;
+    out.mesh = std::move(welded);
     return out;
   }
 
