@@ -182,7 +182,7 @@ class CornerIndex {
 };
 
 // Three corners of the polygon spanning its plane (the first, the farthest from it, the farthest
-// from their line), when every corner lies exactly in that plane and no corner repeats.
+// from their line), when every corner lies exactly in that plane.
 bool FindPlane(const std::vector<Point>& p, const std::int32_t* corners, int n, std::array<std::int32_t, 3>& plane) {
   auto P = [&](int k) -> const Point& { return p[static_cast<std::size_t>(corners[k])]; };
   int far = 0;
@@ -256,16 +256,20 @@ std::int64_t CountSelfIntersections(const PolygonMesh& polygons, std::int64_t li
   auto box_of = [&](const Triangle& t) {
     return points[std::size_t(t[0])].bbox() + points[std::size_t(t[1])].bbox() + points[std::size_t(t[2])].bbox();
   };
-  auto has_area = [&](const Triangle& t) {
-    return !CGAL::collinear(points[std::size_t(t[0])], points[std::size_t(t[1])], points[std::size_t(t[2])]);
+  // The boxes of the triangles with an area (nothing to intersect otherwise), by their index.
+  auto add_boxes = [&](const std::vector<Triangle>& ts, std::vector<Box>& out) {
+    for (std::size_t i = 0; i < ts.size(); ++i) {
+      const Triangle& t = ts[i];
+      if (!CGAL::collinear(points[std::size_t(t[0])], points[std::size_t(t[1])], points[std::size_t(t[2])])) {
+        out.emplace_back(box_of(t), static_cast<std::int32_t>(i));
+      }
+    }
   };
 
   // Boxes: triangles by index, flat polygons as -1 - their index.
   std::vector<Box> boxes;
   boxes.reserve(tris.size() + flat.size());
-  for (std::size_t i = 0; i < tris.size(); ++i) {
-    if (has_area(tris[i])) boxes.emplace_back(box_of(tris[i]), static_cast<std::int32_t>(i));
-  }
+  add_boxes(tris, boxes);
   for (std::size_t u = 0; u < flat.size(); ++u) {
     CGAL::Bbox_3 box = points[std::size_t(flat[u].triangles[0][0])].bbox();
     for (const Triangle& t : flat[u].triangles) box += box_of(t);
@@ -311,8 +315,7 @@ std::int64_t CountSelfIntersections(const PolygonMesh& polygons, std::int64_t li
     }
     if (i < 0 || j < 0) {
       if (i < 0) std::swap(i, j);
-      const std::int32_t u = -1 - j;
-      if (owner[static_cast<std::size_t>(i)] == flat[static_cast<std::size_t>(u)].face) return;
+      const std::int32_t u = -1 - j;  // (a flat polygon's own triangles are not among tris)
       if (!meets_only_at_shared(tris[static_cast<std::size_t>(i)], u)) triangle_vs_polygon.emplace_back(i, u);
       return;
     }
@@ -324,12 +327,8 @@ std::int64_t CountSelfIntersections(const PolygonMesh& polygons, std::int64_t li
   // What the whole-polygon test left open, triangle against triangle (in a fixed order).
   auto decide = [&](const std::vector<Triangle>& left, const std::vector<Triangle>& right) {
     std::vector<Box> lb, rb;
-    for (std::size_t i = 0; i < left.size(); ++i) {
-      if (has_area(left[i])) lb.emplace_back(box_of(left[i]), static_cast<std::int32_t>(i));
-    }
-    for (std::size_t i = 0; i < right.size(); ++i) {
-      if (has_area(right[i])) rb.emplace_back(box_of(right[i]), static_cast<std::int32_t>(i));
-    }
+    add_boxes(left, lb);
+    add_boxes(right, rb);
     CGAL::box_intersection_d(lb.begin(), lb.end(), rb.begin(), rb.end(), [&](const Box& x, const Box& y) {
       if (count < limit && TrianglesIntersect(points, left[std::size_t(x.info())], right[std::size_t(y.info())])) {
         ++count;
