@@ -21,6 +21,7 @@
 #include <string>
 
 #include "massprops/implicit.h"
+#include "massprops/mesh_topology.h"
 
 #include "certain_predicates.h"
 
@@ -158,28 +159,6 @@ class CrossingCounter {
   std::vector<Box2> nodes_;
 };
 
-// Whether every edge is traversed as often in one direction as in the other (closed and
-// consistently oriented: the winding number is then an integer).
-bool ClosedAndConsistent(const FaceMatrix& F) {
-  std::vector<std::uint64_t> edges;  // (smaller vertex, larger vertex, direction) in one word
-  edges.reserve(static_cast<std::size_t>(3 * F.rows()));
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    for (int k = 0; k < 3; ++k) {
-      const auto a = static_cast<std::uint64_t>(F(f, k)), b = static_cast<std::uint64_t>(F(f, (k + 1) % 3));
-      edges.push_back((std::min(a, b) << 32 | std::max(a, b)) << 1 | (a < b ? 1 : 0));
-    }
-  }
-  std::sort(edges.begin(), edges.end());
-  for (std::size_t i = 0; i < edges.size();) {
-    std::int64_t balance = 0;
-    std::size_t j = i;
-    for (; j < edges.size() && edges[j] >> 1 == edges[i] >> 1; ++j) balance += (edges[j] & 1) ? 1 : -1;
-    if (balance != 0) return false;
-    i = j;
-  }
-  return true;
-}
-
 class WindingSolid final : public ImplicitSolid {
  public:
   WindingSolid(const TriangleMesh& mesh, Scalar beta) : V_(mesh.V), F_(mesh.F), beta_(beta) {
@@ -198,7 +177,8 @@ class WindingSolid final : public ImplicitSolid {
       }
     }
     for (Eigen::Index i = 0; i < V_.rows(); ++i) bounds_.extend(Vector3(V_.row(i)));
-    if (ClosedAndConsistent(F_)) {
+    // Closed and consistently oriented: the winding number is an integer, counted exactly.
+    if (AnalyzeTopology(ToPolygonMesh(mesh)).BoundsVolume()) {
       crossing_ = std::make_unique<CrossingCounter>(V_, F_);  // the hierarchy waits until needed
     } else {
       BuildHierarchy();

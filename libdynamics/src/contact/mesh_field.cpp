@@ -12,6 +12,7 @@
 
 #include "massprops/implicit.h"
 #include "massprops/mesh.h"
+#include "massprops/mesh_topology.h"
 
 namespace dynamics::contact {
 namespace {
@@ -172,40 +173,38 @@ class TriangleTree {
   std::vector<Node> nodes_;
 };
 
-void Validate(const shape::Mesh& mesh) {
+// The mesh as massprops' triangle mesh, checked: enough triangles, a valid cell, finite vertices,
+// indices in range, closed and consistently oriented.
+massprops::TriangleMesh Validated(const shape::Mesh& mesh) {
   if (mesh.triangles.size() < 4)
     throw std::invalid_argument("a mesh collider needs a closed mesh (4 triangles at least)");
-  for (const Vector3& v : mesh.vertices) {
-    if (!v.allFinite()) throw std::invalid_argument("a mesh collider has a non-finite vertex");
-  }
-  const auto nv = static_cast<int>(mesh.vertices.size());
-  std::vector<std::uint64_t> edges;
-  for (const auto& t : mesh.triangles) {
-    for (int k = 0; k < 3; ++k) {
-      if (t[k] < 0 || t[k] >= nv) {
-        throw std::invalid_argument("a mesh collider's triangle refers to vertex " + std::to_string(t[k]) + " of " +
-                                    std::to_string(nv));
-      }
-      const auto a = static_cast<std::uint64_t>(t[k]), b = static_cast<std::uint64_t>(t[(k + 1) % 3]);
-      edges.push_back((std::min(a, b) << 32 | std::max(a, b)) << 1 | (a < b ? 1 : 0));
-    }
-  }
-  std::sort(edges.begin(), edges.end());
-  for (std::size_t i = 0; i < edges.size();) {
-    long balance = 0;
-    std::size_t j = i;
-    for (; j < edges.size() && edges[j] >> 1 == edges[i] >> 1; ++j) balance += (edges[j] & 1) ? 1 : -1;
-    if (balance != 0) {
-      throw std::invalid_argument(
-          "a mesh collider must be closed and consistently oriented (an edge between vertices " +
-          std::to_string(edges[i] >> 33) + " and " + std::to_string((edges[i] >> 1) & 0xFFFFFFFFu) +
-          " is not matched by its reverse); repair the mesh (massprops --repair) or collide its hull");
-    }
-    i = j;
-  }
   if (!(mesh.cell >= 0) || !std::isfinite(mesh.cell)) {
     throw std::invalid_argument("a mesh collider's cell must be finite and >= 0 (0: automatic)");
   }
+  massprops::TriangleMesh tm;
+  tm.V.resize(static_cast<Eigen::Index>(mesh.vertices.size()), 3);
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+    if (!mesh.vertices[i].allFinite()) throw std::invalid_argument("a mesh collider has a non-finite vertex");
+    tm.V.row(static_cast<Eigen::Index>(i)) = mesh.vertices[i].transpose();
+  }
+  const auto nv = static_cast<int>(mesh.vertices.size());
+  tm.F.resize(static_cast<Eigen::Index>(mesh.triangles.size()), 3);
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int v = mesh.triangles[f][static_cast<std::size_t>(k)];
+      if (v < 0 || v >= nv) {
+        throw std::invalid_argument("a mesh collider's triangle refers to vertex " + std::to_string(v) + " of " +
+                                    std::to_string(nv));
+      }
+      tm.F(static_cast<Eigen::Index>(f), k) = v;
+    }
+  }
+  const massprops::MeshTopology topology = massprops::AnalyzeTopology(massprops::ToPolygonMesh(tm));
+  if (!topology.BoundsVolume()) {
+    throw std::invalid_argument("a mesh collider must be closed and consistently oriented (" + topology.Problems() +
+                                "); repair the mesh (massprops --repair) or collide its hull");
+  }
+  return tm;
 }
 
 // The thinnest wall: from each triangle's centroid, the distance inward (against its normal) to
@@ -322,7 +321,7 @@ std::size_t MeshField::MemoryBytes() const {
 
 std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh) {
   const auto t0 = std::chrono::steady_clock::now();
-  Validate(mesh);
+  const massprops::TriangleMesh tm = Validated(mesh);
   auto field = std::make_shared<MeshField>();
   Eigen::AlignedBox<double, 3> box;
   for (const Vector3& v : mesh.vertices) {
@@ -343,14 +342,6 @@ std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh) {
   field->origin = box.min() - Vector3::Constant(kPad * cell);
   field->mesh_box = box;
   // The sign: the winding number of the closed mesh (exact: it counts ray crossings).
-  massprops::TriangleMesh tm;
-  tm.V.resize(static_cast<Eigen::Index>(mesh.vertices.size()), 3);
-  for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
-    tm.V.row(static_cast<Eigen::Index>(i)) = mesh.vertices[i].transpose();
-  tm.F.resize(static_cast<Eigen::Index>(mesh.triangles.size()), 3);
-  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
-    tm.F.row(static_cast<Eigen::Index>(i)) << mesh.triangles[i][0], mesh.triangles[i][1], mesh.triangles[i][2];
-  }
   const massprops::ImplicitPtr winding = massprops::implicit::WindingNumberSolid(tm);
   const int nx = field->nodes[0], ny = field->nodes[1],
             nz = field->nodes[2];  // (not a structured binding: lambdas below use them)
