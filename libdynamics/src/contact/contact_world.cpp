@@ -264,15 +264,16 @@ StepStatus ContactWorld::Step(double h) {
       options_.restitution_threshold > 0 ? options_.restitution_threshold : 2 * kick_speed + 1e-12;
   // The velocity of a contact point on a relative to b (the ground: at rest), and the kinetic
   // energy, both of the velocities the solve works on.
-  auto relative = [&](const Row& r) {
-    const Velocities& va = m.vel[static_cast<std::size_t>(r.a)];
+  auto relative_in = [&](const std::vector<Velocities>& vel, const Row& r) {
+    const Velocities& va = vel[static_cast<std::size_t>(r.a)];
     Vector3 v = va.v + va.w.cross(r.ra);
     if (r.b >= 0) {
-      const Velocities& vb = m.vel[static_cast<std::size_t>(r.b)];
+      const Velocities& vb = vel[static_cast<std::size_t>(r.b)];
       v -= vb.v + vb.w.cross(r.rb);
     }
     return v;
   };
+  auto relative = [&](const Row& r) { return relative_in(m.vel, r); };
   auto kinetic_energy = [&] {
     double e = 0;
     for (int i = 0; i < nb; ++i) {
@@ -510,18 +511,20 @@ StepStatus ContactWorld::Step(double h) {
     }
   }
   int frozen = -1;  // shock propagation: the body held still (the lower one of a row)
-  auto apply = [&](const Row& r, const Vector3& impulse) {
+  // An impulse at a row's point, on a (and its opposite on b), into the velocities `vel`.
+  auto apply_to = [&](std::vector<Velocities>& vel, const Row& r, const Vector3& impulse) {
     if (r.a != frozen) {
-      Velocities& va = m.vel[static_cast<std::size_t>(r.a)];
+      Velocities& va = vel[static_cast<std::size_t>(r.a)];
       va.v += inv_mass(r.a) * impulse;
       va.w += m.inv_inertia[static_cast<std::size_t>(r.a)] * r.ra.cross(impulse);
     }
     if (r.b >= 0 && r.b != frozen) {
-      Velocities& vb = m.vel[static_cast<std::size_t>(r.b)];
+      Velocities& vb = vel[static_cast<std::size_t>(r.b)];
       vb.v -= inv_mass(r.b) * impulse;
       vb.w -= m.inv_inertia[static_cast<std::size_t>(r.b)] * r.rb.cross(impulse);
     }
   };
+  auto apply = [&](const Row& r, const Vector3& impulse) { apply_to(m.vel, r, impulse); };
   const double energy_before = kinetic_energy();
   // The support graph: level 0 touches the ground or a static body, level k + 1 rests on level
   // k; bodies touching none of them come last. Rows are solved from the ground up.
@@ -640,34 +643,18 @@ StepStatus ContactWorld::Step(double h) {
   for (const Row& r : m.rows) pushes = pushes || (r.slop >= 0 && -r.separation > r.slop);
   if (pushes) {
     pseudo.assign(static_cast<std::size_t>(nb), {Vector3::Zero(), Vector3::Zero()});
-    auto pseudo_normal = [&](const Row& r) {
-      const Velocities& pa = pseudo[static_cast<std::size_t>(r.a)];
-      Vector3 v = pa.v + pa.w.cross(r.ra);
-      if (r.b >= 0) {
-        const Velocities& pb = pseudo[static_cast<std::size_t>(r.b)];
-        v -= pb.v + pb.w.cross(r.rb);
-      }
-      return r.n.dot(v);
-    };
     constexpr double kPush = 0.5;  // of the excess overlap, per step
     for (int sweep = 0; sweep < options_.max_iterations; ++sweep) {
       double change = 0, scale = 0;
       for (Row& r : m.rows) {
         if (r.slop < 0) continue;
         const double target = kPush * std::max(-r.separation - r.slop, 0.0) / h;
-        const double push = std::max(r.push + r.mass_n * (target - pseudo_normal(r)), 0.0);
+        const double push = std::max(r.push + r.mass_n * (target - r.n.dot(relative_in(pseudo, r))), 0.0);
         const Vector3 impulse = r.n * (push - r.push);
         change = std::max(change, std::abs(push - r.push));
         scale = std::max(scale, push);
         r.push = push;
-        Velocities& pa = pseudo[static_cast<std::size_t>(r.a)];
-        pa.v += inv_mass(r.a) * impulse;
-        pa.w += m.inv_inertia[static_cast<std::size_t>(r.a)] * r.ra.cross(impulse);
-        if (r.b >= 0) {
-          Velocities& pb = pseudo[static_cast<std::size_t>(r.b)];
-          pb.v -= inv_mass(r.b) * impulse;
-          pb.w -= m.inv_inertia[static_cast<std::size_t>(r.b)] * r.rb.cross(impulse);
-        }
+        apply_to(pseudo, r, impulse);
       }
       if (change <= options_.tolerance * scale) break;
     }
