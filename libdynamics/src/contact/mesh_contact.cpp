@@ -262,9 +262,10 @@ void SamplesAgainst(const Posed& from, const Posed& to, double spacing, double m
 
 void CollideMeshGround(const Posed& a, const Vector3& n, double offset, double margin, std::vector<ContactPoint>& out) {
   const std::size_t first = out.size();
-  const auto& field = *std::get<shape::Mesh>(*a.shape).field;
-  for (std::size_t i = 0; i < field.vertices.size(); ++i) {
-    const Vector3 p = a.R * field.vertices[i] + a.t;
+  const std::vector<Vector3>& vertices =
+      std::get<shape::Mesh>(*a.shape).vertices;  // a plane meets a body at vertices first
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const Vector3 p = a.R * vertices[i] + a.t;
     const double sep = n.dot(p) - offset;
     if (sep < margin) out.push_back({p - n * (0.5 * sep), n, sep, static_cast<std::uint32_t>(i)});
   }

@@ -315,9 +315,7 @@ double MeshField::Distance(const Vector3& x, Vector3* gradient) const {
   return std::max(mesh_box.exteriorDistance(x), value - outside);
 }
 
-std::size_t MeshField::MemoryBytes() const {
-  return values.size() * sizeof(double) + (samples.size() + vertices.size()) * sizeof(Vector3);
-}
+std::size_t MeshField::MemoryBytes() const { return values.size() * sizeof(double) + samples.size() * sizeof(Vector3); }
 
 std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -369,7 +367,6 @@ std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh) {
   for (auto& t : pool) t.join();
   AddSamples(mesh, cell, field->samples);
   Cluster(field->samples, 0, static_cast<int>(field->samples.size()), field->clusters);
-  field->vertices = mesh.vertices;
   field->build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return field;
 }

@@ -35,7 +35,6 @@ struct MeshField {
     int first = 0, count = 0;
   };
   std::vector<Cluster> clusters;          // a whole cluster is skipped when the other shape is beyond its ball
-  std::vector<Vector3> vertices;          // the mesh's (for ground contact: a plane meets a body at vertices first)
   double radius = 0;                      // of the sphere about the mesh origin that holds it
   Eigen::AlignedBox<double, 3> mesh_box;  // of the vertices
   double thinnest = 0;                    // the thinnest wall found (m), which bounded the cell
