@@ -2,6 +2,7 @@
 //
 //   rbsim SCENE.json [--dt S] [--duration S] [--integrator NAME] [--rate HZ] [--out DIR]
 //   rbsim --mesh part.stl --omega 0,10,0.01 [--omega-frame world|body|principal] [--duration S] ...
+//   rbsim poses PART [--drops N] ...   (resting-pose statistics: poses_cli.cpp)
 //
 // Nothing runs until the scene is valid; errors are one line naming the scene file and the field.
 // Exit status: 0 done, 1 invalid scene or failed output, 2 bad arguments, 130 interrupted.
@@ -26,6 +27,7 @@
 #include "cli.h"
 #include "massprops/version.h"
 #include "outputs.h"
+#include "poses_cli.h"
 #include "progress.h"
 #include "scene.h"
 #include "simulation.h"
@@ -46,6 +48,7 @@ bool ParseVec3(const std::string& text, massprops::Vector3& out) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "poses") return rbsim::PosesMain(argc - 1, argv + 1);
   CLI::App app{
       "rbsim: simulate rigid bodies made from mesh files, with trajectory, diagnostics, plot and an "
       "animated .glb.\nScene schema: see the README (section 'rbsim scenes')."};
@@ -93,7 +96,6 @@ int main(int argc, char** argv) {
       ->check(massprops::app::NonNegative());
   app.add_flag("-q,--quiet", quiet, "No progress bar");
   if (const int status = massprops::app::ParseArguments(app, argc, argv); status >= 0) return status;
-  if (massprops::app::RefuseReservedWord("rbsim", scene_file, {"poses"})) return massprops::app::kBadArguments;
   if (scene_file.empty() && mesh.empty()) {
     std::cerr << "error: give a scene file, or --mesh FILE for the quick path (see --help)\n";
     return massprops::app::kBadArguments;

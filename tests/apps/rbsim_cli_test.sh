@@ -108,8 +108,44 @@ printf '{"bodies": [{"solid": {"type": "sphere", "radius": 1}, "orientation": [2
 # Argument conventions: exit 2, --version, the reserved word.
 "$bin" --version >"$tmp/out" 2>&1
 [ $? -eq 0 ] && grep -Eq "^rbsim [0-9]+\.[0-9]+\.[0-9]+$" "$tmp/out"; check "rbsim --version" $?
+# rbsim poses: the estimates, the same bits on 1 and 2 threads, pictures, argument errors.
 "$bin" poses >/dev/null 2>"$tmp/err"
-[ $? -eq 2 ] && grep -q "given as ./poses" "$tmp/err"; check "reserved word poses" $?
+[ $? -eq 2 ]; check "poses without a part exits 2" $?
+"$bin" poses "$data/meshes/t_handle.obj" --drops 120 --format json --threads 1 >"$tmp/p1.json" 2>"$tmp/err"
+check "poses t_handle exits 0" $?
+"$bin" poses "$data/meshes/t_handle.obj" --drops 120 --format json --threads 2 --out "$tmp/poses" >"$tmp/p2.json" \
+  2>"$tmp/err"
+/usr/bin/python3 - "$tmp/p1.json" "$tmp/p2.json" <<'PY'
+import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:3])
+for p in b["poses"]:
+    p.pop("picture")
+sys.exit(0 if a == b else 1)
+PY
+check "poses: same table on 1 and 2 threads" $?
+/usr/bin/python3 - "$tmp/p1.json" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1]))
+poses = j["poses"]
+assert abs(sum(p["quasi_static"] for p in poses) - 1) < 1e-12
+d = j["drops"]
+assert sum(p["drop_count"] for p in poses) + d["not_settled"] + d["other_face"] == d["count"] == 120
+for p in poses:
+    lo, hi = p["drops_interval95"]
+    slo, shi = p["drops_simultaneous95"]
+    assert slo <= lo <= p["drops"] <= hi <= shi
+    n, t = p["normal"], p["transform"]
+    down = [sum(t[r][c] * n[c] for c in range(3)) for r in range(3)]
+    assert abs(down[2] + 1) < 1e-12, down  # the face's normal turned straight down
+PY
+check "poses: probabilities, intervals and rest transforms consistent" $?
+test -s "$tmp/poses/pose_1.svg" && test -s "$tmp/poses/poses.json" && grep -q "<polygon" "$tmp/poses/pose_1.svg"
+check "poses --out writes pictures and poses.json" $?
+"$bin" poses "$data/meshes/t_handle.obj" --ground 0.5,0.6,0 >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ] && grep -q "\-\-ground: the friction coefficients" "$tmp/err"; check "poses: bad --ground exits 2" $?
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n' >"$tmp/open.obj"
+"$bin" poses "$tmp/open.obj" >/dev/null 2>"$tmp/err"
+[ $? -eq 1 ] && grep -q "open.obj" "$tmp/err"; check "poses: open mesh refused naming the file" $?
 "$bin" "$data/scenes/t_handle.json" --dt -1 >/dev/null 2>"$tmp/err"
 [ $? -eq 2 ]; check "negative --dt exits 2" $?
 for opt in --duration --rate --dt; do

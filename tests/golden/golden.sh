@@ -68,5 +68,13 @@ for scene in data/scenes/*.json; do
   compare "rbsim $name diagnostics" "$tmp/run/diagnostics.csv" "$here/rbsim/$name.diagnostics.csv"
 done
 
+# Resting poses of the example parts: both estimates, the intervals and the rest transforms.
+for part in t_handle cube_cup_quad; do
+  "$rbsim" poses "data/meshes/$part.obj" --drops 200 --format json -q --threads 2 >"$tmp/poses.json" 2>"$tmp/err"
+  status=$?
+  { echo "-- stderr"; cat "$tmp/err"; echo "-- exit $status"; } >>"$tmp/poses.json"
+  compare "rbsim poses $part" "$tmp/poses.json" "$here/rbsim/poses_$part.json"
+done
+
 echo "golden: $passed passed, $failed failed$([ $skipped -gt 0 ] && echo ", $skipped long scenes left to the Release run")"
 [ $failed -eq 0 ]

@@ -431,6 +431,17 @@ def main():
             if os.path.isdir(out_dir) and os.listdir(out_dir):
                 failed += 1
                 print("FAIL: %s: files left in --out: %s" % (name, os.listdir(out_dir)))
+        # rbsim poses: a part that cannot rest (open, flat) exits 1 naming the file; bad numbers exit 2.
+        write("flat_part.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 3 2 4\nf 1 3 2\nf 3 4 2\n")
+        for name, args, status, err_re in [
+                ("poses_open_mesh", ["poses", "open_obj.obj"], 1, r"open_obj\.obj: .*open"),
+                ("poses_flat_part", ["poses", "flat_part.obj"], 1, r"flat_part\.obj: "),
+                ("poses_nan_height", ["poses", "clean_obj.obj", "--height", "nan"], 2, r"--height: .*finite"),
+                ("poses_negative_drops", ["poses", "clean_obj.obj", "--drops", "-5"], 2, r"--drops"),
+                ("poses_bad_material", ["poses", "clean_obj.obj", "--material", "0.5,0.4,2"], 2,
+                 r"--material: the restitution lies between 0 and 1"),
+                ("poses_zero_dt", ["poses", "clean_obj.obj", "--dt", "0"], 2, r"--dt")]:
+            run(name, args, status, err_re, program=rbsim)
         del mesh
 
     shutil.rmtree(tmp, ignore_errors=True)

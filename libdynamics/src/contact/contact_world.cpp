@@ -135,6 +135,7 @@ struct ContactWorld::Impl {
   std::vector<Row> rows;
   std::vector<contact::ContactPoint> points;
   std::vector<Velocities> vel;
+  std::vector<Velocities> before_kick;  // the velocities at the start of the step (for impacts)
   std::vector<Matrix3> inv_inertia;
 };
 
@@ -249,6 +250,7 @@ StepStatus ContactWorld::Step(double h) {
   context.ComputeWrenches(world_.time_);
   const std::vector<Wrench>& w = context.wrenches();
   m.vel.resize(static_cast<std::size_t>(nb));
+  m.before_kick.resize(static_cast<std::size_t>(nb));
   m.inv_inertia.resize(static_cast<std::size_t>(nb));
   double kick_speed = 0;  // the largest speed the forces give in one step
   for (int i = 0; i < nb; ++i) {
@@ -258,6 +260,7 @@ StepStatus ContactWorld::Step(double h) {
     const Vector3 dv = h / b.mass * w[static_cast<std::size_t>(i)].force;
     kick_speed = std::max(kick_speed, dv.norm());
     const Vector3 L = b.angular_momentum + h * w[static_cast<std::size_t>(i)].torque;
+    m.before_kick[static_cast<std::size_t>(i)] = {b.velocity, b.AngularVelocity()};
     m.vel[static_cast<std::size_t>(i)] = {b.velocity + dv, m.inv_inertia[static_cast<std::size_t>(i)] * L};
   }
   const double bounce_threshold =
@@ -313,12 +316,23 @@ StepStatus ContactWorld::Step(double h) {
       r.mu_k = mat.kinetic_friction;
       r.separation = p.separation;
       r.key = {a, key_b, p.feature};
-      // Restitution at an impact faster than the resting threshold; else the gap may close.
+      // Restitution at an impact faster than the resting threshold; else the gap may close. The
+      // impact is where the point meets the surface: it approaches at b now (before the step's
+      // kick), accelerated by a = kick / h over the gap s, so it hits at w = √(b² + 2as) and
+      // leaves at e w. The bounce is taken now, at the gap, and the step then moves the point by
+      // h u: u is the speed whose energy at the end of the step, ½u² + a (s + h u), is that of
+      // the real bounce, ½e²w². A bounce so gains no energy from the gap it did not fall (a point
+      // bouncing off a speculative contact would otherwise rise higher each time, or hover).
       const double approach = -r.n.dot(relative(r));
-      if (mat.restitution > 0 && approach > bounce_threshold && p.separation < approach * h) {
-        r.target = mat.restitution * approach;
+      const double closing = -r.n.dot(relative_in(m.before_kick, r));                                 // b
+      const double s = std::max(p.separation, 0.0), accel = std::max(0.0, (approach - closing) / h);  // a
+      const double e = mat.restitution, impact_squared = closing * std::abs(closing) + 2 * accel * s;
+      const double radicand = accel * accel * h * h + e * e * impact_squared - 2 * accel * s;
+      const double leave = radicand > 0 ? std::sqrt(radicand) - accel * h : 0.0;
+      if (e > 0 && impact_squared > bounce_threshold * bounce_threshold && p.separation < approach * h && leave > 0) {
+        r.target = leave;
       } else {
-        r.target = -std::max(p.separation, 0.0) / h;
+        r.target = -s / h;
       }
       stats_.max_penetration = std::max(stats_.max_penetration, -p.separation);
       m.rows.push_back(r);

@@ -1,0 +1,314 @@
+// rbsim poses: on which face a part comes to rest, and how often (dynamics/poses.h).
+//
+//   rbsim poses PART [--unit U] [--density D | --mass M] [--drops N] [--height H] [--seed S]
+//                    [--ground MU_S,MU_K,E] [--material MU_S,MU_K,E] [--collision hull|mesh]
+//                    [--threads N] [--format table|json] [--out DIR]
+
+#include "poses_cli.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "atomic_file.h"
+#include "cli.h"
+#include "dynamics/poses.h"
+#include "massprops/repair.h"
+#include "pose_picture.h"
+#include "simulation.h"
+
+namespace rbsim {
+namespace {
+
+namespace dp = dynamics::poses;
+
+// "0.6,0.5,0.2": static friction, kinetic friction, restitution.
+bool ParseMaterial(const std::string& text, dynamics::Material& m, std::string& why) {
+  double v[3];
+  char extra;
+  if (std::sscanf(text.c_str(), "%lf,%lf,%lf%c", &v[0], &v[1], &v[2], &extra) != 3 ||
+      !(std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]))) {
+    why = "expected three numbers MU_S,MU_K,E (static friction, kinetic friction, restitution), got '" + text + "'";
+    return false;
+  }
+  if (v[0] < 0 || v[1] < 0 || v[1] > v[0]) {
+    why = "the friction coefficients must be >= 0 with kinetic <= static, got '" + text + "'";
+    return false;
+  }
+  if (v[2] < 0 || v[2] > 1) {
+    why = "the restitution lies between 0 and 1, got '" + text + "'";
+    return false;
+  }
+  m = dynamics::Material{v[0], v[1], v[2]};
+  return true;
+}
+
+std::string Vec(const Vector3& v, const char* format = "%+.4f") {
+  char b[96];
+  std::snprintf(b, sizeof b, "(%s, %s, %s)", format, format, format);
+  char out[128];
+  std::snprintf(out, sizeof out, b, v.x() + 0.0, v.y() + 0.0, v.z() + 0.0);  // + 0.0: no "-0"
+  return out;
+}
+
+nlohmann::json Json(const Vector3& v) { return {v.x() + 0.0, v.y() + 0.0, v.z() + 0.0}; }
+
+nlohmann::json Transform(const dp::Pose& p) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int r = 0; r < 3; ++r)
+    rows.push_back({p.rotation(r, 0) + 0.0, p.rotation(r, 1) + 0.0, p.rotation(r, 2) + 0.0, p.translation(r) + 0.0});
+  rows.push_back({0.0, 0.0, 0.0, 1.0});
+  return rows;
+}
+
+// The corners of a pose's hull face, in order around it (the face is convex).
+std::vector<Vector3> FaceOutline(const dp::Part& part, const dp::Pose& pose) {
+  std::vector<Vector3> corners;
+  for (int t : pose.hull_faces)
+    for (int k : part.hull_triangles[static_cast<std::size_t>(t)]) {
+      const Vector3& x = part.hull_vertices[static_cast<std::size_t>(k)];
+      if (std::none_of(corners.begin(), corners.end(), [&](const Vector3& y) { return y == x; })) corners.push_back(x);
+    }
+  if (corners.empty()) return corners;
+  Vector3 centre = Vector3::Zero();
+  for (const Vector3& x : corners) centre += x;
+  centre /= static_cast<double>(corners.size());
+  const Vector3 u = (corners[0] - centre).normalized(), w = pose.normal.cross(u);
+  std::sort(corners.begin(), corners.end(), [&](const Vector3& a, const Vector3& b) {
+    return std::atan2((a - centre).dot(w), (a - centre).dot(u)) < std::atan2((b - centre).dot(w), (b - centre).dot(u));
+  });
+  return corners;
+}
+
+}  // namespace
+
+int PosesMain(int argc, char** argv) {
+  CLI::App app{
+      "rbsim poses: on which face of its convex hull a part comes to rest on a plane, and how often — the "
+      "quasi-static estimate (solid angles from the center of mass and the topple graph) and N simulated drops from "
+      "uniformly random orientations, with 95 % intervals (README: 'Resting poses')."};
+  std::string part_file, unit = "m", ground_text = "0.6,0.5,0", material_text = "0.6,0.5,0", collision = "hull",
+                         format = "table", out_dir;
+  double density = 1000, mass = 0, height = 0.1, dt = 1e-3, max_time = 20;
+  std::int64_t drops = 1000;
+  std::uint64_t seed = 1;
+  int threads = 0;
+  bool repair = false;
+  app.add_option("part", part_file, "The part: a closed mesh file")->required();
+  std::vector<std::string> units;
+  for (massprops::LengthUnit u : massprops::kAllLengthUnits) units.emplace_back(massprops::UnitName(u));
+  app.add_option("--unit", unit, "Unit of the file's coordinates")->check(CLI::IsMember(units));
+  auto* density_opt =
+      app.add_option("--density", density, "Density, kg/m^3 (default 1000)")->check(massprops::app::Positive());
+  app.add_option("--mass", mass, "Total mass, kg")->check(massprops::app::Positive())->excludes(density_opt);
+  app.add_flag("--repair", repair, "Repair the mesh first (as massprops --repair)");
+  app.add_option("--drops", drops, "Simulated drops (0: the quasi-static estimate only)")
+      ->check(CLI::Range(std::int64_t{0}, std::int64_t{100000000}));
+  app.add_option("--height", height, "Height of the part's lowest point above the plane at release, m")
+      ->check(massprops::app::NonNegative());
+  app.add_option("--seed", seed, "Seed of the drops' orientations (drop k is the same for any batch or thread)");
+  app.add_option("--ground", ground_text, "The plane's material MU_S,MU_K,E (default 0.6,0.5,0)");
+  app.add_option("--material", material_text, "The part's material MU_S,MU_K,E (default 0.6,0.5,0)");
+  app.add_option("--collision", collision, "What the part collides as: its convex hull, or its mesh as it is")
+      ->check(CLI::IsMember({"hull", "mesh"}));
+  app.add_option("--dt", dt, "Time step of the drops, s")->check(massprops::app::Positive());
+  app.add_option("--max-time", max_time, "Simulated seconds a drop may take to come to rest")
+      ->check(massprops::app::Positive());
+  app.add_option("--threads", threads, "Worker threads for the drops (0 = all cores; same results for any count)")
+      ->check(massprops::app::NonNegative());
+  app.add_option("--format", format, "table or json")->check(CLI::IsMember({"table", "json"}));
+  app.add_option("--out", out_dir, "Write a picture of each pose (pose_1.svg, ...) and poses.json into this folder");
+  bool quiet = false;
+  app.add_flag("-q,--quiet", quiet, "Print only the result (there is no progress display)");
+  if (const int status = massprops::app::ParseArguments(app, argc, argv); status >= 0) return status;
+  dynamics::Material ground, material;
+  std::string why;
+  if (!ParseMaterial(ground_text, ground, why)) {
+    std::cerr << "error: --ground: " << why << "\n";
+    return massprops::app::kBadArguments;
+  }
+  if (!ParseMaterial(material_text, material, why)) {
+    std::cerr << "error: --material: " << why << "\n";
+    return massprops::app::kBadArguments;
+  }
+
+  // The part through the scene loader: the same checks, units and mass rules as a scene body.
+  std::vector<std::string> warnings;
+  dp::Part part;
+  massprops::TriangleMesh file_mesh;  // the part in its file's axes, metres
+  std::string name = std::filesystem::path(part_file).filename().string();
+  try {
+    nlohmann::json body = {{"name", name},
+                           {"mesh", std::filesystem::absolute(part_file).string()},
+                           {"repair", repair},
+                           {"unit", unit},
+                           {"collision", "none"}};
+    if (mass > 0)
+      body["mass"] = mass;
+    else
+      body["density"] = density;
+    const Scene scene = ParseScene({{"dt", dt}, {"duration", dt}, {"bodies", {body}}}, "<command line>", ".", warnings);
+    const Simulation sim = BuildSimulation(scene, warnings, threads);
+    const SimBody& b = sim.bodies.front();
+    part.mass_properties = b.mp;
+    file_mesh = b.display;
+    file_mesh.V.rowwise() += b.mp.center_of_mass.transpose();
+    const massprops::PolygonMesh hull = massprops::ConvexHull(massprops::ToPolygonMesh(file_mesh));
+    for (Eigen::Index v = 0; v < hull.V.rows(); ++v) part.hull_vertices.push_back(hull.V.row(v).transpose());
+    for (std::int64_t f = 0; f < hull.num_faces(); ++f) {
+      const std::int32_t* idx = hull.indices.data() + hull.offsets[f];
+      for (int k = 1; k + 1 < hull.face_size(f); ++k) part.hull_triangles.push_back({idx[0], idx[k], idx[k + 1]});
+    }
+    part.material = material;
+    if (collision == "mesh") {
+      dynamics::shape::Mesh shape;
+      for (Eigen::Index v = 0; v < file_mesh.V.rows(); ++v) shape.vertices.push_back(file_mesh.V.row(v).transpose());
+      for (Eigen::Index f = 0; f < file_mesh.F.rows(); ++f)
+        shape.triangles.push_back({file_mesh.F(f, 0), file_mesh.F(f, 1), file_mesh.F(f, 2)});
+      part.collider = dynamics::Collider{std::move(shape), Matrix3::Identity(), Vector3::Zero(), material};
+    }
+  } catch (const std::exception& e) {
+    for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
+    std::cerr << "error: " << part_file << ": " << e.what() << "\n";
+    return 1;
+  }
+  for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
+
+  dp::Estimate estimate;
+  dp::DropOptions options;
+  options.height = height;
+  options.seed = seed;
+  options.ground = ground;
+  options.dt = dt;
+  options.max_time = max_time;
+  options.threads = threads;
+  dp::Tally tally;
+  double seconds = 0;
+  try {
+    estimate = dp::QuasiStatic(part);
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<dp::DropOutcome> outcomes = dp::Drop(part, estimate, options, 0, drops);
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    tally = dp::Count(outcomes, estimate.poses.size());
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << part_file << ": " << e.what() << "\n";
+    return 1;
+  }
+
+  const bool have_drops = drops > 0;
+  auto drop_share = [&](std::size_t p) {
+    return have_drops ? static_cast<double>(tally.counts[p]) / static_cast<double>(tally.drops) : 0.0;
+  };
+  nlohmann::json j;
+  j["part"] = part_file;
+  j["mass"] = part.mass_properties.mass;
+  j["center_of_mass"] = Json(part.mass_properties.center_of_mass);
+  j["hull_faces"] = estimate.faces.normals.size();
+  nlohmann::json jd = {{"count", drops},
+                       {"height", height},
+                       {"seed", seed},
+                       {"dt", dt},
+                       {"collision", collision},
+                       {"ground",
+                        {{"static_friction", ground.static_friction},
+                         {"kinetic_friction", ground.kinetic_friction},
+                         {"restitution", ground.restitution}}},
+                       {"material",
+                        {{"static_friction", material.static_friction},
+                         {"kinetic_friction", material.kinetic_friction},
+                         {"restitution", material.restitution}}},
+                       {"not_settled", tally.not_settled},
+                       {"other_face", tally.other_face},
+                       {"mean_time_to_rest", tally.mean_time}};
+  j["drops"] = jd;
+  j["poses"] = nlohmann::json::array();
+  for (std::size_t p = 0; p < estimate.poses.size(); ++p) {
+    const dp::Pose& pose = estimate.poses[p];
+    nlohmann::json jp = {{"normal", Json(pose.normal)},
+                         {"quasi_static", pose.quasi_static},
+                         {"height", pose.height},
+                         {"transform", Transform(pose)}};
+    if (have_drops) {
+      jp["drops"] = drop_share(p);
+      jp["drop_count"] = tally.counts[p];
+      jp["drops_interval95"] = {tally.binomial[p].low, tally.binomial[p].high};
+      jp["drops_simultaneous95"] = {tally.simultaneous[p].low, tally.simultaneous[p].high};
+    }
+    if (!out_dir.empty()) jp["picture"] = "pose_" + std::to_string(p + 1) + ".svg";
+    j["poses"].push_back(jp);
+  }
+
+  if (!out_dir.empty()) {
+    try {
+      std::filesystem::create_directories(out_dir);
+      for (std::size_t p = 0; p < estimate.poses.size(); ++p) {
+        std::ostringstream title;
+        title << name << ": pose " << p + 1 << ", resting on the face with normal "
+              << Vec(estimate.poses[p].normal, "%+.3f");
+        WritePosePicture(out_dir + "/pose_" + std::to_string(p + 1) + ".svg", file_mesh, estimate.poses[p],
+                         FaceOutline(part, estimate.poses[p]), title.str());
+      }
+      massprops::app::WriteFileAtomically(out_dir + "/poses.json", j.dump(2) + "\n");
+    } catch (const std::exception& e) {
+      std::cerr << "error: --out " << out_dir << ": " << e.what() << "\n";
+      return 1;
+    }
+  }
+
+  if (format == "json") {
+    std::cout << j.dump(2) << "\n";
+    return 0;
+  }
+  std::printf("%s: %.6g kg, center of mass %s m; convex hull of %zu faces, %zu stable\n", name.c_str(),
+              part.mass_properties.mass, Vec(part.mass_properties.center_of_mass, "%.6g").c_str(),
+              estimate.faces.normals.size(), estimate.poses.size());
+  if (have_drops) {
+    std::printf(
+        "drops: %lld from %g m (seed %llu, dt %g s, %s), ground %g/%g/%g, part %g/%g/%g (mu_s/mu_k/e); "
+        "%lld not settled in %g s, %lld at rest on no stable face; mean time to rest %.2f s; %.1f s wall\n",
+        static_cast<long long>(drops), height, static_cast<unsigned long long>(seed), dt, collision.c_str(),
+        ground.static_friction, ground.kinetic_friction, ground.restitution, material.static_friction,
+        material.kinetic_friction, material.restitution, static_cast<long long>(tally.not_settled), max_time,
+        static_cast<long long>(tally.other_face), tally.mean_time, seconds);
+  }
+  std::printf("%-5s %-29s %12s %8s %17s %17s %10s\n", "pose", "normal (part axes)", "quasi-static", "drops",
+              "95% interval", "joint 95%", "height m");
+  // Faceted parts have many tiny stable faces: the table shows the likely ones, JSON has all.
+  std::size_t hidden = 0;
+  double hidden_quasi_static = 0;
+  for (std::size_t p = 0; p < estimate.poses.size(); ++p) {
+    const dp::Pose& pose = estimate.poses[p];
+    if (p >= 12 && pose.quasi_static < 0.005 && (!have_drops || tally.counts[p] == 0)) {
+      ++hidden;
+      hidden_quasi_static += pose.quasi_static;
+      continue;
+    }
+    if (have_drops) {
+      char a[40], b[40];
+      std::snprintf(a, sizeof a, "[%.4f, %.4f]", tally.binomial[p].low, tally.binomial[p].high);
+      std::snprintf(b, sizeof b, "[%.4f, %.4f]", tally.simultaneous[p].low, tally.simultaneous[p].high);
+      std::printf("%-5zu %-29s %12.4f %8.4f %17s %17s %10.4g\n", p + 1, Vec(pose.normal).c_str(), pose.quasi_static,
+                  drop_share(p), a, b, pose.height);
+    } else {
+      std::printf("%-5zu %-29s %12.4f %8s %17s %17s %10.4g\n", p + 1, Vec(pose.normal).c_str(), pose.quasi_static, "-",
+                  "-", "-", pose.height);
+    }
+  }
+  if (hidden > 0) {
+    std::printf("  ... %zu more stable faces, quasi-static %.4f together, no drop rested on them\n", hidden,
+                hidden_quasi_static);
+  }
+  std::printf("(rest transforms: --format json; pictures of each pose: --out DIR)\n");
+  if (!out_dir.empty())
+    std::printf("  wrote %s/pose_1.svg ... pose_%zu.svg, poses.json\n", out_dir.c_str(), estimate.poses.size());
+  return 0;
+}
+
+}  // namespace rbsim
