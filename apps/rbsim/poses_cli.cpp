@@ -20,14 +20,15 @@
 #include "atomic_file.h"
 #include "cli.h"
 #include "dynamics/poses.h"
-#include "massprops/repair.h"
+#include "massprops/load.h"
 #include "pose_picture.h"
-#include "simulation.h"
+#include "poses_report.h"
 
 namespace rbsim {
 namespace {
 
 namespace dp = dynamics::poses;
+using massprops::Vector3;
 
 // "0.6,0.5,0.2": static friction, kinetic friction, restitution.
 bool ParseMaterial(const std::string& text, dynamics::Material& m, std::string& why) {
@@ -56,16 +57,6 @@ std::string Vec(const Vector3& v, const char* format = "%+.4f") {
   char out[128];
   std::snprintf(out, sizeof out, b, v.x() + 0.0, v.y() + 0.0, v.z() + 0.0);  // + 0.0: no "-0"
   return out;
-}
-
-nlohmann::json Json(const Vector3& v) { return {v.x() + 0.0, v.y() + 0.0, v.z() + 0.0}; }
-
-nlohmann::json Transform(const dp::Pose& p) {
-  nlohmann::json rows = nlohmann::json::array();
-  for (int r = 0; r < 3; ++r)
-    rows.push_back({p.rotation(r, 0) + 0.0, p.rotation(r, 1) + 0.0, p.rotation(r, 2) + 0.0, p.translation(r) + 0.0});
-  rows.push_back({0.0, 0.0, 0.0, 1.0});
-  return rows;
 }
 
 // The corners of a pose's hull face, in order around it (the face is convex).
@@ -139,110 +130,72 @@ int PosesMain(int argc, char** argv) {
     return massprops::app::kBadArguments;
   }
 
-  // The part through the scene loader: the same checks, units and mass rules as a scene body.
-  std::vector<std::string> warnings;
-  dp::Part part;
+  // The part through the pipeline (the same checks as massprops), whole (full_check: the hull and
+  // the pictures need the mesh).
+  massprops::LoadOptions load;
+  if (app.count("--unit") > 0) {
+    load.unit = massprops::ParseLengthUnit(unit);
+    load.unit_stated = true;
+  }
+  if (mass > 0)
+    load.mass = massprops::TotalMass{mass};
+  else
+    load.mass = massprops::Density{density};
+  load.repair = repair;
+  load.full_check = true;
+  load.num_threads = threads;
+  PosesReport report;
+  report.part = part_file;
+  report.collision = collision == "mesh" ? PoseCollision::kMesh : PoseCollision::kHull;
+  report.drops = drops;
   massprops::TriangleMesh file_mesh;  // the part in its file's axes, metres
-  std::string name = std::filesystem::path(part_file).filename().string();
+  const std::string name = std::filesystem::path(part_file).filename().string();
   try {
-    nlohmann::json body = {{"name", name},
-                           {"mesh", std::filesystem::absolute(part_file).string()},
-                           {"repair", repair},
-                           {"unit", unit},
-                           {"collision", "none"}};
-    if (mass > 0)
-      body["mass"] = mass;
-    else
-      body["density"] = density;
-    const Scene scene = ParseScene({{"dt", dt}, {"duration", dt}, {"bodies", {body}}}, "<command line>", ".", warnings);
-    const Simulation sim = BuildSimulation(scene, warnings, threads);
-    const SimBody& b = sim.bodies.front();
-    part.mass_properties = b.mp;
-    file_mesh = b.display;
-    file_mesh.V.rowwise() += b.mp.center_of_mass.transpose();
-    const massprops::PolygonMesh hull = massprops::ConvexHull(massprops::ToPolygonMesh(file_mesh));
-    for (Eigen::Index v = 0; v < hull.V.rows(); ++v) part.hull_vertices.push_back(hull.V.row(v).transpose());
-    for (std::int64_t f = 0; f < hull.num_faces(); ++f) {
-      const std::int32_t* idx = hull.indices.data() + hull.offsets[f];
-      for (int k = 1; k + 1 < hull.face_size(f); ++k) part.hull_triangles.push_back({idx[0], idx[k], idx[k + 1]});
+    const massprops::SolidResult solid = massprops::LoadSolid(part_file, load);
+    for (const auto& f : solid.findings) std::cerr << "warning: " << part_file << ": " << f.message << "\n";
+    if (!solid.validity.valid) {
+      throw std::invalid_argument("the inertia is not that of a real body (" + solid.validity.reason + ")");
     }
-    part.material = material;
-    if (collision == "mesh") {
-      dynamics::shape::Mesh shape;
-      for (Eigen::Index v = 0; v < file_mesh.V.rows(); ++v) shape.vertices.push_back(file_mesh.V.row(v).transpose());
-      for (Eigen::Index f = 0; f < file_mesh.F.rows(); ++f)
-        shape.triangles.push_back({file_mesh.F(f, 0), file_mesh.F(f, 1), file_mesh.F(f, 2)});
-      part.collider = dynamics::Collider{std::move(shape), Matrix3::Identity(), Vector3::Zero(), material};
-    }
+    report.pose_part = PosePart(solid, report.collision, material, &file_mesh);
+  } catch (const massprops::FileAccessError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
   } catch (const std::exception& e) {
-    for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
-    std::cerr << "error: " << part_file << ": " << e.what() << "\n";
+    const std::string what = e.what();
+    std::cerr << "error: " << (what.find(part_file) == std::string::npos ? part_file + ": " : "") << what << "\n";
     return 1;
   }
-  for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
+  const dp::Part& part = report.pose_part;
 
-  dp::Estimate estimate;
-  dp::DropOptions options;
+  dp::DropOptions& options = report.options;
   options.height = height;
   options.seed = seed;
   options.ground = ground;
   options.dt = dt;
   options.max_time = max_time;
   options.threads = threads;
-  dp::Tally tally;
   double seconds = 0;
   try {
-    estimate = dp::QuasiStatic(part);
+    report.estimate = dp::QuasiStatic(part);
     const auto start = std::chrono::steady_clock::now();
-    const std::vector<dp::DropOutcome> outcomes = dp::Drop(part, estimate, options, 0, drops);
+    const std::vector<dp::DropOutcome> outcomes = dp::Drop(part, report.estimate, options, 0, drops);
     seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    tally = dp::Count(outcomes, estimate.poses.size());
+    report.tally = dp::Count(outcomes, report.estimate.poses.size());
   } catch (const std::exception& e) {
     std::cerr << "error: " << part_file << ": " << e.what() << "\n";
     return 1;
   }
+  const dp::Estimate& estimate = report.estimate;
+  const dp::Tally& tally = report.tally;
 
   const bool have_drops = drops > 0;
   auto drop_share = [&](std::size_t p) {
     return have_drops ? static_cast<double>(tally.counts[p]) / static_cast<double>(tally.drops) : 0.0;
   };
-  nlohmann::json j;
-  j["part"] = part_file;
-  j["mass"] = part.mass_properties.mass;
-  j["center_of_mass"] = Json(part.mass_properties.center_of_mass);
-  j["hull_faces"] = estimate.faces.normals.size();
-  nlohmann::json jd = {{"count", drops},
-                       {"height", height},
-                       {"seed", seed},
-                       {"dt", dt},
-                       {"collision", collision},
-                       {"ground",
-                        {{"static_friction", ground.static_friction},
-                         {"kinetic_friction", ground.kinetic_friction},
-                         {"restitution", ground.restitution}}},
-                       {"material",
-                        {{"static_friction", material.static_friction},
-                         {"kinetic_friction", material.kinetic_friction},
-                         {"restitution", material.restitution}}},
-                       {"not_settled", tally.not_settled},
-                       {"other_face", tally.other_face},
-                       {"mean_time_to_rest", tally.mean_time}};
-  j["drops"] = jd;
-  j["poses"] = nlohmann::json::array();
-  for (std::size_t p = 0; p < estimate.poses.size(); ++p) {
-    const dp::Pose& pose = estimate.poses[p];
-    nlohmann::json jp = {{"normal", Json(pose.normal)},
-                         {"quasi_static", pose.quasi_static},
-                         {"height", pose.height},
-                         {"transform", Transform(pose)}};
-    if (have_drops) {
-      jp["drops"] = drop_share(p);
-      jp["drop_count"] = tally.counts[p];
-      jp["drops_interval95"] = {tally.binomial[p].low, tally.binomial[p].high};
-      jp["drops_simultaneous95"] = {tally.simultaneous[p].low, tally.simultaneous[p].high};
-    }
-    if (!out_dir.empty()) jp["picture"] = "pose_" + std::to_string(p + 1) + ".svg";
-    j["poses"].push_back(jp);
+  nlohmann::json j = PosesJson(report);
+  if (!out_dir.empty()) {
+    for (std::size_t p = 0; p < estimate.poses.size(); ++p)
+      j["poses"][p]["picture"] = "pose_" + std::to_string(p + 1) + ".svg";
   }
 
   if (!out_dir.empty()) {

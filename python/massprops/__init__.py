@@ -35,7 +35,7 @@ from . import _core
 from ._core import dynamics  # noqa: F401  (massprops.dynamics: RigidBody, World)
 
 __version__ = _core.__version__
-__all__ = ["load", "mass_properties", "fill", "Result", "dynamics", "body"]
+__all__ = ["load", "mass_properties", "fill", "Result", "dynamics", "body", "resting_poses", "drop_batch"]
 
 
 class Result:
@@ -186,3 +186,41 @@ def body(result):
     """A dynamics.RigidBody from a Result: its center of mass where the mesh's is, its frame the
     principal axes (so the mesh frame is the world frame at the start)."""
     return dynamics.body_from_mass_properties(result.mass, result.center_of_mass, result.inertia_com)
+
+
+def drop_batch(path, first, count, **options):
+    """The outcomes of drops first .. first+count-1 of a part (`resting_poses` takes the same
+    keywords): a list of (pose, seconds to rest), the pose an index into the report's "poses", -1
+    for a drop that did not come to rest, -2 for one at rest on no stable face. Drop k depends only on (seed, k), so batches run
+    anywhere (threads, processes, a Dask cluster) add up to the same drops."""
+    return [tuple(o) for o in _core.resting_poses(str(path), int(first), int(count), None, **options)[1]]
+
+
+def resting_poses(path, drops=1000, *, client=None, drops_per_task=250, **options):
+    """On which face of its convex hull a part comes to rest, and how often: the quasi-static
+    estimate and `drops` simulated drops, as ``rbsim poses --format json`` reports them (a dict:
+    "poses" with "normal", "quasi_static", "drops", "drops_interval95", "drops_simultaneous95",
+    "transform", ...).
+
+    Keywords: ``height`` (m, default 0.1), ``seed``, ``ground`` and ``material`` (static friction,
+    kinetic friction, restitution; default (0.6, 0.5, 0)), ``collision`` ('hull' or 'mesh'),
+    ``dt``, ``max_time``, ``threads`` (0: every core), ``merge_degrees``, and those of
+    :func:`load` (``unit``, ``density``, ``mass``, ``repair``, ...).
+
+    With a Dask ``client``, the drops run on the cluster in tasks of ``drops_per_task``
+    (massprops.dask.map_tasks); the result is the same as on one machine, to the bit."""
+    drops = int(drops)
+    if client is None:
+        report, _ = _core.resting_poses(str(path), 0, drops, None, **options)
+        return _json.loads(report)
+    from .dask import map_tasks
+
+    step = max(1, int(drops_per_task))
+    items = [(path, first, min(step, drops - first), options) for first in range(0, drops, step)]
+    outcomes = [pose for batch in map_tasks(_drop_task, items, client=client) for pose in batch]
+    report, _ = _core.resting_poses(str(path), 0, drops, outcomes, **options)
+    return _json.loads(report)
+
+
+def _drop_task(path, first, count, options):
+    return drop_batch(path, first, count, **options)

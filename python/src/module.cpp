@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 
+#include "bindings.h"
 #include "dynamics/contact.h"
 #include "dynamics/forces.h"
 #include "dynamics/rigid_body.h"
@@ -549,6 +550,11 @@ void BindDynamics(py::module_& m) {
 
 }  // namespace
 
+namespace massprops_python {
+LoadOptions LoadOptionsFrom(const py::kwargs& kw) { return ToLoadOptions(kw); }
+const Vocabulary& PythonWords() { return PythonVocabulary(); }
+}  // namespace massprops_python
+
 PYBIND11_MODULE(_core, m) {
   m.doc() = "massprops' compiled core: the library pipeline, results as the command's JSON";
   m.attr("__version__") = kVersion;
@@ -595,4 +601,5 @@ PYBIND11_MODULE(_core, m) {
       "The `massprops batch` records (JSON lines) of some files, each one's crash or hang isolated");
   py::module_ dyn = m.def_submodule("dynamics", "Rigid bodies and worlds (libdynamics)");
   BindDynamics(dyn);
+  massprops_python::BindPoses(m);
 }

@@ -87,12 +87,12 @@ struct DropOptions {
 
 /// Where one drop ended.
 struct DropOutcome {
-  static constexpr int kNotSettled = -1;  ///< still moving after max_time
-  static constexpr int kOtherFace = -2;   ///< at rest, but not on a stable face of the estimate
-  int pose = kNotSettled;                 ///< index into Estimate::poses, or one of the above
-  double time = 0;                        ///< s simulated until at rest
-  Quaternion orientation;                 ///< part axes → world at the end
-  Vector3 position;                       ///< where the part's origin ended, world
+  static constexpr int kNotSettled = -1;            ///< still moving after max_time
+  static constexpr int kOtherFace = -2;             ///< at rest, but not on a stable face of the estimate
+  int pose = kNotSettled;                           ///< index into Estimate::poses, or one of the above
+  double time = 0;                                  ///< s simulated until at rest
+  Quaternion orientation = Quaternion::Identity();  ///< part axes → world at the end
+  Vector3 position = Vector3::Zero();               ///< where the part's origin ended, world
 };
 
 /// The drops first, first + 1, …, first + count − 1 of options.seed.

@@ -1,0 +1,92 @@
+// Resting poses of a part file: the part, and the report as JSON (poses_report.h).
+
+#include "poses_report.h"
+
+#include <stdexcept>
+
+#include "massprops/repair.h"
+
+namespace rbsim {
+namespace {
+
+namespace dp = dynamics::poses;
+using massprops::Vector3;
+
+nlohmann::json Json(const Vector3& v) { return {v.x() + 0.0, v.y() + 0.0, v.z() + 0.0}; }  // + 0.0: no "-0"
+
+nlohmann::json Transform(const dp::Pose& p) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int r = 0; r < 3; ++r)
+    rows.push_back({p.rotation(r, 0) + 0.0, p.rotation(r, 1) + 0.0, p.rotation(r, 2) + 0.0, p.translation(r) + 0.0});
+  rows.push_back({0.0, 0.0, 0.0, 1.0});
+  return rows;
+}
+
+}  // namespace
+
+dp::Part PosePart(const massprops::SolidResult& solid, PoseCollision collision, const dynamics::Material& material,
+                  massprops::TriangleMesh* mesh_out) {
+  if (solid.loaded.mesh.num_faces() == 0) throw std::invalid_argument("resting poses need the part's mesh");
+  massprops::TriangleMesh mesh = massprops::Triangulate(solid.loaded.mesh);
+  mesh.V *= massprops::MetresPerUnit(solid.unit);
+  dp::Part part;
+  part.mass_properties = solid.mp;
+  part.material = material;
+  const massprops::PolygonMesh hull = massprops::ConvexHull(massprops::ToPolygonMesh(mesh));
+  for (Eigen::Index v = 0; v < hull.V.rows(); ++v) part.hull_vertices.push_back(hull.V.row(v).transpose());
+  for (std::int64_t f = 0; f < hull.num_faces(); ++f) {
+    const std::int32_t* idx = hull.indices.data() + hull.offsets[f];
+    for (int k = 1; k + 1 < hull.face_size(f); ++k) part.hull_triangles.push_back({idx[0], idx[k], idx[k + 1]});
+  }
+  if (collision == PoseCollision::kMesh) {
+    dynamics::shape::Mesh shape;
+    for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) shape.vertices.push_back(mesh.V.row(v).transpose());
+    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+      shape.triangles.push_back({mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)});
+    part.collider = dynamics::Collider{std::move(shape), massprops::Matrix3::Identity(), Vector3::Zero(), material};
+  }
+  if (mesh_out != nullptr) *mesh_out = std::move(mesh);
+  return part;
+}
+
+nlohmann::json MaterialJson(const dynamics::Material& m) {
+  return {
+      {"static_friction", m.static_friction}, {"kinetic_friction", m.kinetic_friction}, {"restitution", m.restitution}};
+}
+
+nlohmann::json PosesJson(const PosesReport& r) {
+  const dp::Tally& t = r.tally;
+  nlohmann::json j;
+  j["part"] = r.part;
+  j["mass"] = r.pose_part.mass_properties.mass;
+  j["center_of_mass"] = Json(r.pose_part.mass_properties.center_of_mass);
+  j["hull_faces"] = r.estimate.faces.normals.size();
+  j["drops"] = {{"count", r.drops},
+                {"height", r.options.height},
+                {"seed", r.options.seed},
+                {"dt", r.options.dt},
+                {"collision", r.collision == PoseCollision::kMesh ? "mesh" : "hull"},
+                {"ground", MaterialJson(r.options.ground)},
+                {"material", MaterialJson(r.pose_part.material)},
+                {"not_settled", t.not_settled},
+                {"other_face", t.other_face},
+                {"mean_time_to_rest", t.mean_time}};
+  j["poses"] = nlohmann::json::array();
+  for (std::size_t p = 0; p < r.estimate.poses.size(); ++p) {
+    const dp::Pose& pose = r.estimate.poses[p];
+    nlohmann::json jp = {{"normal", Json(pose.normal)},
+                         {"quasi_static", pose.quasi_static},
+                         {"height", pose.height},
+                         {"transform", Transform(pose)}};
+    if (r.drops > 0) {
+      jp["drops"] = static_cast<double>(t.counts[p]) / static_cast<double>(t.drops);
+      jp["drop_count"] = t.counts[p];
+      jp["drops_interval95"] = {t.binomial[p].low, t.binomial[p].high};
+      jp["drops_simultaneous95"] = {t.simultaneous[p].low, t.simultaneous[p].high};
+    }
+    j["poses"].push_back(jp);
+  }
+  return j;
+}
+
+}  // namespace rbsim

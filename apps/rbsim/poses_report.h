@@ -1,0 +1,43 @@
+#pragma once
+// Resting poses of a part file, shared by `rbsim poses` and the Python module: the part made from
+// the pipeline's result (its mesh in metres, its convex hull, its collider) and the report of both
+// estimates as JSON (one home for the schema, README "Resting poses").
+
+#include <cstdint>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "dynamics/poses.h"
+#include "massprops/load.h"
+
+namespace rbsim {
+
+enum class PoseCollision { kHull, kMesh };
+
+/// The part of a loaded solid: SI mass properties, the convex hull of its mesh (CGAL), and its
+/// collider (the hull, or the mesh as it is). `mesh` receives the mesh in metres, file axes.
+/// @throws std::invalid_argument for a result without a mesh (an implicit solid).
+dynamics::poses::Part PosePart(const massprops::SolidResult& solid, PoseCollision collision,
+                               const dynamics::Material& material, massprops::TriangleMesh* mesh = nullptr);
+
+/// What a run of both estimates found.
+struct PosesReport {
+  std::string part;  ///< the file, as given
+  dynamics::poses::Part pose_part;
+  dynamics::poses::Estimate estimate;
+  dynamics::poses::DropOptions options;
+  PoseCollision collision = PoseCollision::kHull;
+  std::int64_t drops = 0;
+  dynamics::poses::Tally tally;  ///< of the drops 0 … drops − 1
+};
+
+/// {"part", "mass", "center_of_mass", "hull_faces", "drops": {...}, "poses": [{"normal",
+/// "quasi_static", "height", "transform", and with drops "drops", "drop_count",
+/// "drops_interval95", "drops_simultaneous95"}]}.
+nlohmann::json PosesJson(const PosesReport& report);
+
+/// The report's material as JSON ({"static_friction", "kinetic_friction", "restitution"}).
+nlohmann::json MaterialJson(const dynamics::Material& m);
+
+}  // namespace rbsim
