@@ -1,0 +1,139 @@
+// The rbsim scenes a peer engine can run (peer_scene.h).
+
+#include "peer_scene.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <iostream>
+#include <stdexcept>
+
+#include "atomic_file.h"
+#include "outputs.h"
+#include "simulation.h"
+
+namespace peers {
+
+PeerScene LoadPeerScene(const std::string& path, double dt) {
+  std::vector<std::string> warnings;
+  rbsim::Scene scene = rbsim::LoadScene(path, warnings);
+  if (dt > 0) scene.dt = dt;
+  auto refuse = [&](const std::string& what) {
+    return std::runtime_error(path + ": " + what +
+                              ": a peer engine runs "
+                              "box, sphere, capsule and cylinder solids, "
+                              "ground planes and gravity");
+  };
+  if (!scene.statics.empty()) throw refuse("static bodies");
+  if (!scene.pairs.empty()) throw refuse("pair materials");
+  PeerScene out;
+  out.file = path;
+  out.dt = scene.dt;
+  out.duration = scene.duration;
+  out.output_rate = scene.output_rate;
+  out.grounds = scene.grounds;
+  out.steps = rbsim::StepCount(scene);
+  out.sample_every = rbsim::SampleEvery(scene);
+  for (const rbsim::ForceSpec& f : scene.forces) {
+    if (f.type != "gravity" || !f.bodies.empty()) throw refuse(f.field + " (" + f.type + ")");
+    out.gravity += f.vector;
+  }
+  const rbsim::Simulation sim = rbsim::BuildSimulation(scene, warnings, 1);
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const rbsim::BodySpec& spec = scene.bodies[i];
+    namespace pr = massprops::primitive;
+    const massprops::Primitive* solid = spec.shape.solid ? &*spec.shape.solid : nullptr;
+    if (solid == nullptr) throw refuse(spec.field + " (a mesh or implicit shape)");
+    if (spec.collision.kind != rbsim::CollisionSpec::Kind::kAuto) throw refuse(spec.field + ".collision");
+    PeerBody b;
+    b.name = spec.name;
+    const double scale = massprops::MetresPerUnit(spec.shape.unit);
+    if (const auto* box = std::get_if<pr::Box>(solid)) {
+      b.kind = PeerBody::Kind::kBox;
+      b.half_extents = scale * box->size / 2;
+    } else if (const auto* sphere = std::get_if<pr::Sphere>(solid)) {
+      b.kind = PeerBody::Kind::kSphere;
+      b.radius = scale * sphere->radius;
+    } else if (const auto* capsule = std::get_if<pr::Capsule>(solid)) {
+      b.kind = PeerBody::Kind::kCapsule;
+      b.radius = scale * capsule->radius;
+      b.half_length = scale * capsule->length / 2;
+    } else if (const auto* cylinder = std::get_if<pr::Cylinder>(solid)) {
+      b.kind = PeerBody::Kind::kCylinder;
+      b.radius = scale * cylinder->radius;
+      b.half_length = scale * cylinder->height / 2;
+    } else {
+      throw refuse(spec.field + ".solid (" + std::string(massprops::PrimitiveName(*solid)) + ")");
+    }
+    const rbsim::SimBody& sb = sim.bodies[i];
+    const rbsim::BodyState s = rbsim::StateOf(sb, sim.world().bodies()[i]);
+    b.mass = sb.mp.mass;
+    b.inertia = sb.mp.inertia_com.diagonal();
+    b.position = s.position;
+    b.orientation = s.orientation;
+    b.velocity = s.velocity;
+    b.omega = s.omega_world;
+    b.material = spec.collision.material;
+    b.principal_axes = sb.principal.axes;
+    out.bodies.push_back(b);
+  }
+  return out;
+}
+
+dynamics::Material Combine(const dynamics::Material& a, const dynamics::Material& b) {
+  return dynamics::Material{std::sqrt(a.static_friction * b.static_friction),
+                            std::sqrt(a.kinetic_friction * b.kinetic_friction), std::max(a.restitution, b.restitution)};
+}
+
+void TrajectoryCsv::Add(double time, const PeerBody& body, const Vector3& x, const Quaternion& q, const Vector3& v,
+                        const Vector3& w) {
+  if (text_.empty()) text_ = std::string(rbsim::kTrajectoryCsvHeader) + "\n";
+  const Vector3 wp = body.principal_axes.transpose() * (q.conjugate() * w);  // principal axes
+  char line[640];
+  std::snprintf(line, sizeof line,
+                "%.17g,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
+                "%.17g\n",
+                time, body.name.c_str(), x.x(), x.y(), x.z(), q.w(), q.x(), q.y(), q.z(), v.x(), v.y(), v.z(), w.x(),
+                w.y(), w.z(), wp.x(), wp.y(), wp.z());
+  text_ += line;
+}
+
+void TrajectoryCsv::Write(const std::string& path) const { massprops::app::WriteFileAtomically(path, text_); }
+
+bool ParsePeerArgs(int argc, char** argv, const char* program, PeerArgs& args) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if ((a == "--dt" || a == "--out") && i + 1 < argc) {
+      if (a == "--out") {
+        args.out = argv[++i];
+      } else {
+        char* end = nullptr;
+        args.dt = std::strtod(argv[++i], &end);
+        if (*end != '\0' || !(args.dt > 0) || !std::isfinite(args.dt)) {
+          std::cerr << "error: --dt: expected a positive number of seconds\n";
+          return false;
+        }
+      }
+    } else if (!a.empty() && a[0] != '-' && args.scene.empty()) {
+      args.scene = a;
+    } else {
+      std::cerr << "usage: " << program << " SCENE.json [--dt S] [--out trajectory.csv]\n";
+      return false;
+    }
+  }
+  if (args.scene.empty()) {
+    std::cerr << "usage: " << program << " SCENE.json [--dt S] [--out trajectory.csv]\n";
+    return false;
+  }
+  return true;
+}
+
+void PrintTiming(const char* engine, const char* version, const PeerScene& scene, double seconds) {
+  std::printf(
+      "{\"engine\": \"%s\", \"version\": \"%s\", \"dt\": %.17g, \"steps\": %lld, \"bodies\": %zu, "
+      "\"wall_seconds\": %.6g, \"steps_per_second\": %.6g}\n",
+      engine, version, scene.dt, static_cast<long long>(scene.steps), scene.bodies.size(), seconds,
+      seconds > 0 ? static_cast<double>(scene.steps) / seconds : 0.0);
+}
+
+}  // namespace peers

@@ -1,0 +1,73 @@
+#pragma once
+// The rbsim scenes a peer engine (MuJoCo, Bullet) can run: bodies that are box, sphere, capsule or
+// cylinder solids, ground planes, gravity, materials. Read through rbsim's own scene loader (one
+// home for the schema and its checks), handed to a peer as plain numbers, and written back as
+// rbsim's trajectory CSV, so that the same scene's three trajectories compare column for column.
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "dynamics/contact.h"
+#include "scene.h"
+
+namespace peers {
+
+using massprops::Matrix3;
+using massprops::Vector3;
+using Quaternion = Eigen::Quaterniond;
+
+struct PeerBody {
+  std::string name;
+  enum class Kind { kBox, kSphere, kCapsule, kCylinder } kind = Kind::kBox;
+  Vector3 half_extents = Vector3::Zero();  ///< box
+  double radius = 0, half_length = 0;      ///< sphere, capsule (cylinder part), cylinder; axis z
+  double mass = 0;
+  Vector3 inertia = Vector3::Zero();                ///< about the center of mass, in the solid's own axes (diagonal)
+  Vector3 position = Vector3::Zero();               ///< center of mass, world
+  Quaternion orientation = Quaternion::Identity();  ///< the solid's axes → world
+  Vector3 velocity = Vector3::Zero(), omega = Vector3::Zero();  ///< world
+  dynamics::Material material;
+  Matrix3 principal_axes = Matrix3::Identity();  ///< R_MB: for the CSV's w1, w2, w3 (moments ascending)
+};
+
+struct PeerScene {
+  std::string file;
+  double dt = 1e-3, duration = 1, output_rate = 60;
+  Vector3 gravity = Vector3::Zero();
+  std::vector<rbsim::GroundSpec> grounds;
+  std::vector<PeerBody> bodies;
+  std::int64_t steps = 0, sample_every = 1;  ///< as rbsim takes them (StepCount, SampleEvery)
+};
+
+/// Reads a scene; `dt` > 0 overrides the scene's step. @throws std::runtime_error naming the
+/// scene's file and what a peer cannot run (a mesh body, a spring, a static body, pair materials).
+PeerScene LoadPeerScene(const std::string& path, double dt = 0);
+
+/// The material of a body–body (or body–ground) contact as ContactWorld combines it: geometric
+/// mean of each friction coefficient, the larger restitution.
+dynamics::Material Combine(const dynamics::Material& a, const dynamics::Material& b);
+
+/// rbsim's trajectory.csv, kept in memory and written whole at the end.
+class TrajectoryCsv {
+ public:
+  void Add(double time, const PeerBody& body, const Vector3& x, const Quaternion& q, const Vector3& v,
+           const Vector3& omega_world);
+  void Write(const std::string& path) const;
+
+ private:
+  std::string text_;
+};
+
+/// The command line every peer program takes: SCENE [--dt S] [--out FILE.csv]. Returns false
+/// (after a message) on bad arguments.
+struct PeerArgs {
+  std::string scene, out;
+  double dt = 0;
+};
+bool ParsePeerArgs(int argc, char** argv, const char* program, PeerArgs& args);
+
+/// One line of JSON on stdout: the engine, steps, wall seconds of stepping, steps per second.
+void PrintTiming(const char* engine, const char* version, const PeerScene& scene, double seconds);
+
+}  // namespace peers
