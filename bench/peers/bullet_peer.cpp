@@ -53,14 +53,8 @@ std::unique_ptr<btCollisionShape> ShapeOf(const PeerBody& b) {
 
 int main(int argc, char** argv) {
   peers::PeerArgs args;
-  if (!peers::ParsePeerArgs(argc, argv, "bullet_peer", args)) return 2;
   peers::PeerScene scene;
-  try {
-    scene = peers::LoadPeerScene(args.scene, args.dt);
-  } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return 1;
-  }
+  if (const int status = peers::StartPeer(argc, argv, "bullet_peer", args, scene); status >= 0) return status;
   gContactAddedCallback = CombineAsRbsim;
   btDefaultCollisionConfiguration configuration;
   btCollisionDispatcher dispatcher(&configuration);
@@ -110,15 +104,14 @@ int main(int argc, char** argv) {
               Ei(moving[i]->getLinearVelocity()), Ei(moving[i]->getAngularVelocity()));
     }
   };
-  if (!args.out.empty()) sample();
-  double seconds = 0;
-  for (std::int64_t s = 1; s <= scene.steps; ++s) {
-    const auto start = std::chrono::steady_clock::now();
-    world.stepSimulation(scene.dt, 0);  // one step of exactly dt
-    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    time = static_cast<double>(s) * scene.dt;
-    if (!args.out.empty() && (s % scene.sample_every == 0 || s == scene.steps)) sample();
-  }
+  std::int64_t steps = 0;
+  const double seconds = peers::RunPeer(
+      scene, args,
+      [&] {
+        world.stepSimulation(scene.dt, 0);  // one step of exactly dt
+        time = static_cast<double>(++steps) * scene.dt;
+      },
+      sample);
   peers::PrintTiming("bullet", "3.24 (double)", scene, seconds);
   for (auto& b : bodies) world.removeRigidBody(b.get());
   if (!args.out.empty()) csv.Write(args.out);

@@ -81,14 +81,8 @@ std::string Mjcf(const peers::PeerScene& s) {
 
 int main(int argc, char** argv) {
   peers::PeerArgs args;
-  if (!peers::ParsePeerArgs(argc, argv, "mujoco_peer", args)) return 2;
   peers::PeerScene scene;
-  try {
-    scene = peers::LoadPeerScene(args.scene, args.dt);
-  } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return 1;
-  }
+  if (const int status = peers::StartPeer(argc, argv, "mujoco_peer", args, scene); status >= 0) return status;
   const std::string xml_path =
       (std::filesystem::temp_directory_path() / ("mujoco_peer_" + std::to_string(::getpid()) + ".xml")).string();
   std::ofstream(xml_path) << Mjcf(scene);
@@ -121,14 +115,8 @@ int main(int argc, char** argv) {
               Vector3(d->qvel[dof], d->qvel[dof + 1], d->qvel[dof + 2]), orientation * w_body);
     }
   };
-  if (!args.out.empty()) sample();
-  double seconds = 0;
-  for (std::int64_t s = 1; s <= scene.steps; ++s) {
-    const auto start = std::chrono::steady_clock::now();
-    mj_step(m, d);
-    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!args.out.empty() && (s % scene.sample_every == 0 || s == scene.steps)) sample();
-  }
+  const double seconds = peers::RunPeer(
+      scene, args, [&] { mj_step(m, d); }, sample);
   if (d->warning[mjWARN_CONTACTFULL].number > 0 || d->warning[mjWARN_CNSTRFULL].number > 0) {
     std::cerr << "warning: MuJoCo ran out of contact or constraint rows (nconmax, njmax): contacts were dropped\n";
   }

@@ -128,6 +128,30 @@ bool ParsePeerArgs(int argc, char** argv, const char* program, PeerArgs& args) {
   return true;
 }
 
+int StartPeer(int argc, char** argv, const char* program, PeerArgs& args, PeerScene& scene) {
+  if (!ParsePeerArgs(argc, argv, program, args)) return 2;
+  try {
+    scene = LoadPeerScene(args.scene, args.dt);
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
+  return -1;
+}
+
+double RunPeer(const PeerScene& scene, const PeerArgs& args, const std::function<void()>& step,
+               const std::function<void()>& sample) {
+  if (!args.out.empty()) sample();
+  double seconds = 0;
+  for (std::int64_t s = 1; s <= scene.steps; ++s) {
+    const auto start = std::chrono::steady_clock::now();
+    step();
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!args.out.empty() && (s % scene.sample_every == 0 || s == scene.steps)) sample();
+  }
+  return seconds;
+}
+
 void PrintTiming(const char* engine, const char* version, const PeerScene& scene, double seconds) {
   std::printf(
       "{\"engine\": \"%s\", \"version\": \"%s\", \"dt\": %.17g, \"steps\": %lld, \"bodies\": %zu, "

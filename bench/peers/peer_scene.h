@@ -5,6 +5,7 @@
 // rbsim's trajectory CSV, so that the same scene's three trajectories compare column for column.
 
 #include <chrono>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -66,6 +67,15 @@ struct PeerArgs {
   double dt = 0;
 };
 bool ParsePeerArgs(int argc, char** argv, const char* program, PeerArgs& args);
+
+/// Parses the command line and loads the scene (messages on stderr). Returns -1 to go on, else
+/// the exit status to stop with (2 bad arguments, 1 a scene a peer cannot run).
+int StartPeer(int argc, char** argv, const char* program, PeerArgs& args, PeerScene& scene);
+
+/// The run every peer makes: `step` scene.steps times, timing the steps alone; `sample` at t = 0,
+/// every sample_every steps and after the last, when there is an output. Returns the seconds.
+double RunPeer(const PeerScene& scene, const PeerArgs& args, const std::function<void()>& step,
+               const std::function<void()>& sample);
 
 /// One line of JSON on stdout: the engine, steps, wall seconds of stepping, steps per second.
 void PrintTiming(const char* engine, const char* version, const PeerScene& scene, double seconds);

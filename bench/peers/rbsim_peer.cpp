@@ -11,18 +11,11 @@
 
 int main(int argc, char** argv) {
   peers::PeerArgs args;
-  if (!peers::ParsePeerArgs(argc, argv, "rbsim_peer", args)) return 2;
-  peers::PeerScene scene;
-  rbsim::Scene full;
+  peers::PeerScene scene;  // the same subset as the peers run
+  if (const int status = peers::StartPeer(argc, argv, "rbsim_peer", args, scene); status >= 0) return status;
   std::vector<std::string> warnings;
-  try {
-    scene = peers::LoadPeerScene(args.scene, args.dt);  // the same subset as the peers run
-    full = rbsim::LoadScene(args.scene, warnings);
-    if (args.dt > 0) full.dt = args.dt;
-  } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return 1;
-  }
+  rbsim::Scene full = rbsim::LoadScene(args.scene, warnings);
+  if (args.dt > 0) full.dt = args.dt;
   rbsim::Simulation sim = rbsim::BuildSimulation(full, warnings, 1);
   peers::TrajectoryCsv csv;
   auto sample = [&] {
@@ -31,17 +24,17 @@ int main(int argc, char** argv) {
       csv.Add(sim.world().time(), scene.bodies[i], s.position, s.orientation, s.velocity, s.omega_world);
     }
   };
-  if (!args.out.empty()) sample();
-  double seconds = 0;
-  for (std::int64_t s = 1; s <= scene.steps; ++s) {
-    const auto start = std::chrono::steady_clock::now();
-    const dynamics::StepStatus status = sim.physics.Step(scene.dt);
-    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!status.ok) {
-      std::cerr << "error: " << args.scene << ": " << status.message << "\n";
-      return 1;
-    }
-    if (!args.out.empty() && (s % scene.sample_every == 0 || s == scene.steps)) sample();
+  std::string failure;
+  const double seconds = peers::RunPeer(
+      scene, args,
+      [&] {
+        const dynamics::StepStatus status = sim.physics.Step(scene.dt);
+        if (!status.ok && failure.empty()) failure = status.message;
+      },
+      sample);
+  if (!failure.empty()) {
+    std::cerr << "error: " << args.scene << ": " << failure << "\n";
+    return 1;
   }
   peers::PrintTiming("rbsim", massprops::kVersion, scene, seconds);
   if (!args.out.empty()) csv.Write(args.out);
