@@ -84,7 +84,8 @@ int PosesMain(int argc, char** argv) {
   CLI::App app{
       "rbsim poses: on which face of its convex hull a part comes to rest on a plane, and how often — the "
       "quasi-static estimate (solid angles from the center of mass and the topple graph) and N simulated drops from "
-      "uniformly random orientations, with 95 % intervals (README: 'Resting poses')."};
+      "uniformly random orientations, with 95 % intervals (README: 'Resting poses').",
+      "rbsim poses"};
   std::string part_file, unit = "m", ground_text = "0.6,0.5,0", material_text = "0.6,0.5,0", collision = "hull",
                          format = "table", out_dir;
   double density = 1000, mass = 0, height = 0.1, dt = 1e-3, max_time = 20;

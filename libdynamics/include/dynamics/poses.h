@@ -51,8 +51,8 @@ struct Pose {
   std::vector<int> hull_faces;  ///< the triangles of the face (indices into Part::hull_triangles)
 };
 
-/// Every face of the hull, the stable ones first: face f of the hull tipping onto face topples_to[f]
-/// (itself when stable).
+/// Every face of the hull (coplanar triangles merged), in the hull's order: where a part put down
+/// on face f ends after toppling (topples_to[f], f itself when stable) and which pose that is.
 struct HullFaces {
   std::vector<Vector3> normals;
   std::vector<double> solid_angles;
