@@ -202,12 +202,25 @@ int PosesMain(int argc, char** argv) {
   if (!out_dir.empty()) {
     try {
       std::filesystem::create_directories(out_dir);
+      // A picture is one SVG polygon a triangle: a large mesh is drawn as its convex hull.
+      constexpr Eigen::Index kMostTriangles = 100000;
+      const bool as_hull = file_mesh.F.rows() > kMostTriangles;
+      massprops::TriangleMesh drawn;
+      if (as_hull) {
+        drawn.V.resize(static_cast<Eigen::Index>(part.hull_vertices.size()), 3);
+        drawn.F.resize(static_cast<Eigen::Index>(part.hull_triangles.size()), 3);
+        for (std::size_t v = 0; v < part.hull_vertices.size(); ++v)
+          drawn.V.row(static_cast<Eigen::Index>(v)) = part.hull_vertices[v].transpose();
+        for (std::size_t t = 0; t < part.hull_triangles.size(); ++t)
+          for (int k = 0; k < 3; ++k) drawn.F(static_cast<Eigen::Index>(t), k) = part.hull_triangles[t][k];
+      }
       for (std::size_t p = 0; p < estimate.poses.size(); ++p) {
         std::ostringstream title;
         title << name << ": pose " << p + 1 << ", resting on the face with normal "
               << Vec(estimate.poses[p].normal, "%+.3f");
-        WritePosePicture(out_dir + "/pose_" + std::to_string(p + 1) + ".svg", file_mesh, estimate.poses[p],
-                         FaceOutline(part, estimate.poses[p]), title.str());
+        if (as_hull) title << " (its convex hull drawn: the mesh has " << file_mesh.F.rows() << " triangles)";
+        WritePosePicture(out_dir + "/pose_" + std::to_string(p + 1) + ".svg", as_hull ? drawn : file_mesh,
+                         estimate.poses[p], FaceOutline(part, estimate.poses[p]), title.str());
       }
       massprops::app::WriteFileAtomically(out_dir + "/poses.json", j.dump(2) + "\n");
     } catch (const std::exception& e) {

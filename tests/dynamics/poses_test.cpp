@@ -228,6 +228,63 @@ TEST(QuasiStatic, TruncatedConeFacesHaveTheirSolidAngles) {
   EXPECT_NEAR(e.poses[0].normal.z(), -1.0, 1e-15);  // the big end is the most likely
 }
 
+// Each triangle split into four at its edges' midpoints (shared, so the surface stays closed):
+// faces become many coplanar triangles and edges chains of collinear pieces.
+Solid Subdivided(const Solid& s) {
+  Solid out{s.v, {}};
+  std::map<std::pair<int, int>, int> middle;
+  auto mid = [&](int a, int b) {
+    const auto key = std::pair{std::min(a, b), std::max(a, b)};
+    auto it = middle.find(key);
+    if (it != middle.end()) return it->second;
+    out.v.push_back((s.v[static_cast<std::size_t>(a)] + s.v[static_cast<std::size_t>(b)]) / 2);
+    return middle[key] = static_cast<int>(out.v.size()) - 1;
+  };
+  for (const auto& t : s.t) {
+    const int ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
+    out.t.push_back({t[0], ab, ca});
+    out.t.push_back({ab, t[1], bc});
+    out.t.push_back({ca, bc, t[2]});
+    out.t.push_back({ab, bc, ca});
+  }
+  return out;
+}
+
+TEST(QuasiStatic, TessellatedFacesAndEdgesChangeNothing) {
+  // A hull as a mesh tool writes it: faces in many triangles, edges with corners along them. The
+  // obtuse prism still topples over its tessellated edge onto the same face.
+  const Eigen::Vector2d A(0, 0), B(3, 0), C(0.5, 0.3);
+  for (const Solid& s : {Box(0.1, 0.2, 0.3), Prism(A, B, C, 2.0)}) {
+    const Estimate plain = QuasiStatic(PartOf(s));
+    const Solid fine = Subdivided(Subdivided(s));
+    const Estimate tessellated = QuasiStatic(PartOf(fine));
+    ASSERT_EQ(tessellated.poses.size(), plain.poses.size());
+    for (std::size_t p = 0; p < plain.poses.size(); ++p) {
+      EXPECT_NEAR((tessellated.poses[p].normal - plain.poses[p].normal).norm(), 0, 1e-12);
+      EXPECT_NEAR(tessellated.poses[p].quasi_static, plain.poses[p].quasi_static, 1e-12);
+      EXPECT_EQ(tessellated.poses[p].hull_faces.size(), 16 * plain.poses[p].hull_faces.size());
+    }
+    EXPECT_EQ(tessellated.faces.normals.size(), plain.faces.normals.size());
+  }
+}
+
+TEST(QuasiStatic, FinelyFacetedConeMatchesTheDiskSolidAngle) {
+  // 6000 sides: neighbouring side faces turn by 0.06°, and each one's corners lie within 10⁻⁶ of
+  // the next one's plane (a construction that took every corner near a plane as the face's came
+  // apart here). The ends are disks to 5·10⁻⁷: Ω = 2π (1 − d/√(d² + r²)) from the center of mass.
+  const double r0 = 1.0, r1 = 0.6, h = 0.8;
+  const Part part = PartOf(Frustum(r0, r1, h, 6000));
+  const Estimate e = QuasiStatic(part);
+  const double zc = part.mass_properties.center_of_mass.z();
+  auto disk = [](double d, double r) { return 2 * kPi * (1 - d / std::sqrt(d * d + r * r)) / (4 * kPi); };
+  EXPECT_NEAR(PoseAlong(e, -Vector3::UnitZ())->quasi_static, disk(zc, r0), 1e-6);
+  EXPECT_NEAR(PoseAlong(e, Vector3::UnitZ())->quasi_static, disk(h - zc, r1), 1e-6);
+  double total = 0;
+  for (const Pose& p : e.poses) total += p.quasi_static;
+  EXPECT_NEAR(total, 1.0, 1e-12);
+  EXPECT_EQ(e.faces.normals.size(), 6002u);
+}
+
 TEST(QuasiStatic, RefusesACenterOfMassOutsideTheHull) {
   Part part = PartOf(Box(1, 1, 1));
   part.mass_properties.center_of_mass = Vector3(2, 0, 0);

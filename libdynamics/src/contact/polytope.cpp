@@ -11,33 +11,6 @@
 namespace dynamics::contact {
 namespace {
 
-// The 2D convex hull (Andrew's monotone chain) of points given in a plane basis, as indices in
-// counter-clockwise order.
-std::vector<int> Hull2D(const std::vector<Eigen::Vector2d>& p, const std::vector<int>& ids) {
-  std::vector<int> order(ids.size());
-  for (std::size_t i = 0; i < ids.size(); ++i) order[i] = static_cast<int>(i);
-  std::sort(order.begin(), order.end(),
-            [&](int x, int y) { return p[x].x() < p[y].x() || (p[x].x() == p[y].x() && p[x].y() < p[y].y()); });
-  auto cross = [&](int o, int a, int b) {
-    return (p[a] - p[o]).x() * (p[b] - p[o]).y() - (p[a] - p[o]).y() * (p[b] - p[o]).x();
-  };
-  std::vector<int> h(2 * order.size());
-  std::size_t k = 0;
-  for (int i : order) {
-    while (k >= 2 && cross(h[k - 2], h[k - 1], i) <= 0) --k;
-    h[k++] = i;
-  }
-  for (std::size_t i = order.size() - 1, t = k + 1; i-- > 0;) {
-    const int j = order[i];
-    while (k >= t && cross(h[k - 2], h[k - 1], j) <= 0) --k;
-    h[k++] = j;
-  }
-  h.resize(k > 1 ? k - 1 : k);
-  std::vector<int> out;
-  for (int i : h) out.push_back(ids[static_cast<std::size_t>(i)]);
-  return out;
-}
-
 // A posed polytope's vertices and face planes in the world.
 struct World {
   std::vector<Vector3> v;
@@ -73,57 +46,170 @@ Polytope MakePolytope(const std::vector<Vector3>& vertices, const std::vector<st
   Polytope p;
   p.vertices = vertices;
   if (vertices.size() < 4 || triangles.size() < 4) throw std::invalid_argument("a convex shape needs a closed hull");
-  for (const Vector3& v : vertices) p.centroid += v;
-  p.centroid /= static_cast<double>(vertices.size());
-  double size = 0;
-  for (const Vector3& v : vertices) size = std::max(size, (v - p.centroid).norm());
-  const double eps = 1e-9 * size;
-  // One face per distinct plane of the triangles: the hull of the vertices on it.
-  std::vector<std::pair<Vector3, double>> planes;
   for (const auto& t : triangles) {
     for (int i : t) {
       if (i < 0 || static_cast<std::size_t>(i) >= vertices.size())
         throw std::invalid_argument("a hull index out of range");
     }
-    const Vector3 a = vertices[static_cast<std::size_t>(t[0])], b = vertices[static_cast<std::size_t>(t[1])],
-                  c = vertices[static_cast<std::size_t>(t[2])];
-    const Vector3 cr = (b - a).cross(c - a);
-    if (cr.norm() <= eps * size) continue;  // a sliver: its plane comes from the others
-    const Vector3 n = cr.normalized();
-    const double d = n.dot(a);
-    bool seen = false;
-    for (const auto& [m, e] : planes) seen = seen || ((m - n).norm() < 1e-9 && std::abs(e - d) < eps);
-    if (!seen) planes.emplace_back(n, d);
   }
-  for (const auto& [n, d] : planes) {
-    std::vector<int> on;
-    for (std::size_t i = 0; i < vertices.size(); ++i) {
-      const double s = n.dot(vertices[i]) - d;
-      if (s > 1e3 * eps) throw std::invalid_argument("the convex shape's triangles do not bound a convex solid");
-      if (std::abs(s) <= 1e3 * eps) on.push_back(static_cast<int>(i));
+  for (const Vector3& v : vertices) p.centroid += v;
+  p.centroid /= static_cast<double>(vertices.size());
+  double size = 0;
+  for (const Vector3& v : vertices) size = std::max(size, (v - p.centroid).norm());
+  const double eps = 1e-9 * size;
+  const std::size_t nt = triangles.size();
+  auto corner = [&](std::size_t t, int k) { return vertices[static_cast<std::size_t>(triangles[t][k])]; };
+
+  // Each directed edge once, its twin present: a closed, consistently oriented surface.
+  std::map<std::pair<int, int>, std::size_t> owner;  // directed edge → its triangle
+  for (std::size_t t = 0; t < nt; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      if (!owner.emplace(std::pair{triangles[t][k], triangles[t][(k + 1) % 3]}, t).second)
+        throw std::invalid_argument("the convex shape's hull is not closed");
     }
-    const Vector3 u = (std::abs(n.x()) < 0.6 ? Vector3::UnitX() : Vector3::UnitY()).cross(n).normalized();
-    const Vector3 w = n.cross(u);  // (u, w, n) right-handed: counter-clockwise seen from outside
-    std::vector<Eigen::Vector2d> pts;
-    for (int i : on)
-      pts.emplace_back(u.dot(vertices[static_cast<std::size_t>(i)]), w.dot(vertices[static_cast<std::size_t>(i)]));
-    std::vector<int> face = Hull2D(pts, on);
-    if (face.size() < 3) continue;
-    p.faces.push_back(face);
-    p.normals.push_back(n);
   }
-  std::map<std::pair<int, int>, std::vector<int>> edges;  // edge → the faces it bounds
-  for (std::size_t fi = 0; fi < p.faces.size(); ++fi) {
-    const auto& f = p.faces[fi];
-    for (std::size_t i = 0; i < f.size(); ++i) {
-      const int a = f[i], b = f[(i + 1) % f.size()];
-      edges[{std::min(a, b), std::max(a, b)}].push_back(static_cast<int>(fi));
+  for (const auto& [e, t] : owner) {
+    if (owner.count({e.second, e.first}) == 0) throw std::invalid_argument("the convex shape's hull is not closed");
+  }
+
+  // Faces: triangles joined across edges while they share a plane (a face of a convex solid is
+  // one connected region); a sliver (no plane of its own) joins a neighbour.
+  std::vector<Vector3> normal(nt, Vector3::Zero());
+  std::vector<double> offset(nt, 0.0);
+  std::vector<bool> sliver(nt, false);
+  for (std::size_t t = 0; t < nt; ++t) {
+    const Vector3 cr = (corner(t, 1) - corner(t, 0)).cross(corner(t, 2) - corner(t, 0));
+    sliver[t] = cr.norm() <= eps * size;
+    if (!sliver[t]) {
+      normal[t] = cr.normalized();
+      offset[t] = normal[t].dot(corner(t, 0));
+    }
+  }
+  std::vector<std::size_t> parent(nt);
+  for (std::size_t t = 0; t < nt; ++t) parent[t] = t;
+  auto find = [&](std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  auto join = [&](std::size_t a, std::size_t b) {
+    a = find(a), b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the first triangle names the face
+  };
+  auto twin = [&](std::size_t t, int k) { return owner.at({triangles[t][(k + 1) % 3], triangles[t][k]}); };
+  for (std::size_t t = 0; t < nt; ++t) {
+    if (sliver[t]) continue;
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t u = twin(t, k);
+      if (!sliver[u] && (normal[u] - normal[t]).norm() < 1e-9 && std::abs(offset[u] - offset[t]) < eps) join(t, u);
+    }
+  }
+  std::vector<bool> placed(nt);
+  for (std::size_t t = 0; t < nt; ++t) placed[t] = !sliver[t];
+  for (bool changed = true; changed;) {  // a sliver takes the face of the neighbour whose plane holds it
+    changed = false;
+    for (std::size_t t = 0; t < nt; ++t) {
+      if (placed[t]) continue;
+      std::size_t best = nt;
+      double best_off = std::numeric_limits<double>::infinity();
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t u = twin(t, k);
+        if (!placed[u]) continue;
+        double off = 0;
+        for (int m = 0; m < 3; ++m) off = std::max(off, std::abs(normal[u].dot(corner(t, m)) - offset[u]));
+        if (off < best_off) best_off = off, best = u;
+      }
+      if (best == nt) continue;
+      join(t, best);
+      normal[t] = normal[best];
+      offset[t] = offset[best];
+      placed[t] = changed = true;
+    }
+  }
+  // Faces numbered, and their planes taken, in the order of their first triangle with a plane.
+  std::vector<int> face_of(nt, -1), id(nt, -1);
+  for (std::size_t t = 0; t < nt; ++t) {
+    if (sliver[t] || id[find(t)] >= 0) continue;
+    id[find(t)] = static_cast<int>(p.normals.size());
+    p.normals.push_back(normal[t]);
+  }
+  for (std::size_t t = 0; t < nt; ++t) {
+    face_of[t] = id[find(t)];
+    if (face_of[t] < 0) throw std::invalid_argument("the convex shape's triangles do not bound a convex solid");
+  }
+
+  // Convex: across every edge between faces, the neighbour's far corner lies under this plane.
+  for (std::size_t t = 0; t < nt; ++t) {
+    for (int k = 0; k < 3 && !sliver[t]; ++k) {
+      const std::size_t u = twin(t, k);
+      if (face_of[u] == face_of[t]) continue;
+      for (int m = 0; m < 3; ++m) {
+        if (normal[t].dot(corner(u, m)) - offset[t] > 1e3 * eps)
+          throw std::invalid_argument("the convex shape's triangles do not bound a convex solid");
+      }
+    }
+  }
+
+  // Each face's outline: its boundary edges chained, counter-clockwise seen from outside, starting
+  // at its lowest corner in the face's (u, w) basis, corners where it does not turn dropped.
+  std::vector<std::map<int, int>> next(p.normals.size());
+  for (std::size_t t = 0; t < nt; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      if (face_of[twin(t, k)] != face_of[t])
+        next[static_cast<std::size_t>(face_of[t])][triangles[t][k]] = triangles[t][(k + 1) % 3];
+    }
+  }
+  p.faces.resize(p.normals.size());
+  for (std::size_t f = 0; f < p.normals.size(); ++f) {
+    const Vector3& n = p.normals[f];
+    const Vector3 u = (std::abs(n.x()) < 0.6 ? Vector3::UnitX() : Vector3::UnitY()).cross(n).normalized();
+    const Vector3 w = n.cross(u);  // (u, w, n) right-handed
+    auto at = [&](int i) {
+      const Vector3& x = vertices[static_cast<std::size_t>(i)];
+      return Eigen::Vector2d(u.dot(x), w.dot(x));
+    };
+    std::vector<int> loop;
+    int start = next[f].begin()->first;
+    for (const auto& [a, b] : next[f]) {
+      (void)b;
+      const Eigen::Vector2d pa = at(a), ps = at(start);
+      if (pa.x() < ps.x() || (pa.x() == ps.x() && pa.y() < ps.y())) start = a;
+    }
+    for (int v = start;;) {
+      loop.push_back(v);
+      v = next[f].at(v);
+      if (v == start) break;
+      if (loop.size() > next[f].size()) throw std::invalid_argument("the convex shape's hull is not closed");
+    }
+    if (loop.size() != next[f].size()) throw std::invalid_argument("the convex shape's hull is not closed");
+    std::vector<int> corners;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const Eigen::Vector2d a = at(corners.empty() ? loop[(k + loop.size() - 1) % loop.size()] : corners.back());
+      const Eigen::Vector2d b = at(loop[k]), c = at(loop[(k + 1) % loop.size()]);
+      if ((b - a).x() * (c - b).y() - (b - a).y() * (c - b).x() > 0 || k == 0) corners.push_back(loop[k]);
+    }
+    p.faces[f] = corners.size() >= 3 ? corners : loop;
+  }
+
+  // Edges: the triangle edges between two faces (a long edge of a tessellated hull may come as
+  // several collinear pieces: each is an edge, which the separating-axis test takes alike).
+  std::map<std::pair<int, int>, std::pair<int, int>> edges;
+  for (std::size_t t = 0; t < nt; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = triangles[t][k], b = triangles[t][(k + 1) % 3], fa = face_of[t], fb = face_of[twin(t, k)];
+      if (fa != fb) edges[{std::min(a, b), std::max(a, b)}] = {std::min(fa, fb), std::max(fa, fb)};
     }
   }
   for (const auto& [e, faces] : edges) {
-    if (faces.size() != 2) throw std::invalid_argument("the convex shape's hull is not closed");
     p.edges.push_back(e);
-    p.edge_faces.emplace_back(faces[0], faces[1]);
+    p.edge_faces.push_back(faces);
+  }
+  p.triangle_faces = face_of;
+  p.vertex_faces.resize(vertices.size());
+  for (std::size_t t = 0; t < nt; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      auto& list = p.vertex_faces[static_cast<std::size_t>(triangles[t][k])];
+      if (std::find(list.begin(), list.end(), face_of[t]) == list.end()) list.push_back(face_of[t]);
+    }
   }
   return p;
 }

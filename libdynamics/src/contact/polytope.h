@@ -16,11 +16,14 @@ struct Polytope {
   std::vector<Vector3> normals;                 ///< unit, outward, per face
   std::vector<std::pair<int, int>> edges;       ///< each once
   std::vector<std::pair<int, int>> edge_faces;  ///< the two faces that meet at each edge
+  std::vector<std::vector<int>> vertex_faces;   ///< the faces each vertex touches
+  std::vector<int> triangle_faces;              ///< the face of each triangle given
   Vector3 centroid = Vector3::Zero();
 };
 
 /// The polytope of a convex hull given as triangles (outward); coplanar triangles become one face.
-/// @throws std::invalid_argument when the triangles do not bound a convex solid.
+/// O(n log n) in the triangles. @throws std::invalid_argument when the triangles do not bound a
+/// closed convex solid.
 Polytope MakePolytope(const std::vector<Vector3>& vertices, const std::vector<std::array<int, 3>>& triangles);
 Polytope BoxPolytope(const Vector3& half_extents);
 

@@ -3,7 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
+#include <limits>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
@@ -53,11 +53,24 @@ Estimate QuasiStatic(const Part& part, double merge_degrees) {
   faces.solid_angles.assign(n_faces, 0.0);
   std::vector<double> height(n_faces);
   std::vector<int> next(n_faces);  // the face it topples onto (itself when stable)
-  std::map<std::pair<int, int>, std::size_t> edge_index;
-  for (std::size_t e = 0; e < hull.edges.size(); ++e) {
-    const auto [a, b] = hull.edges[e];
-    edge_index[{std::min(a, b), std::max(a, b)}] = e;
-  }
+  // The face across face f's edge (a, b): of the faces touching a or b, the other one whose plane
+  // holds both (two faces of a convex solid share a whole edge; a tessellated edge's inner corners
+  // are no face's corners, so the plane decides, not the outlines).
+  auto across = [&](std::size_t f, int a, int b) {
+    const Vector3 &pa = hull.vertices[static_cast<std::size_t>(a)], &pb = hull.vertices[static_cast<std::size_t>(b)];
+    int best = -1;
+    double best_off = std::numeric_limits<double>::infinity();
+    for (int v : {a, b}) {
+      for (int g : hull.vertex_faces[static_cast<std::size_t>(v)]) {
+        if (g == static_cast<int>(f)) continue;
+        const auto ug = static_cast<std::size_t>(g);
+        const Vector3& q = hull.vertices[static_cast<std::size_t>(hull.faces[ug][0])];
+        const double off = std::max(std::abs(hull.normals[ug].dot(pa - q)), std::abs(hull.normals[ug].dot(pb - q)));
+        if (off < best_off || (off == best_off && g < best)) best_off = off, best = g;
+      }
+    }
+    return best;
+  };
 
   for (std::size_t f = 0; f < n_faces; ++f) {
     const std::vector<int>& poly = hull.faces[f];
@@ -71,7 +84,7 @@ Estimate QuasiStatic(const Part& part, double merge_degrees) {
     const Vector3 p = c + height[f] * n;  // the center of mass projected onto the face's plane
     bool inside = true;
     double nearest = std::numeric_limits<double>::infinity(), beyond = -1;
-    std::pair<int, int> pivot{-1, -1};
+    std::pair<int, int> pivot{-1, -1};  // the edge it topples over
     for (std::size_t k = 0; k < poly.size(); ++k) {
       const int ia = poly[k], ib = poly[(k + 1) % poly.size()];
       const Vector3& a = hull.vertices[static_cast<std::size_t>(ia)];
@@ -90,10 +103,7 @@ Estimate QuasiStatic(const Part& part, double merge_degrees) {
       }
     }
     next[f] = static_cast<int>(f);
-    if (!inside) {
-      const auto [fa, fb] = hull.edge_faces[edge_index.at(pivot)];
-      next[f] = fa == static_cast<int>(f) ? fb : fa;
-    }
+    if (!inside) next[f] = across(f, pivot.first, pivot.second);
   }
 
   // Follow the topple graph to a stable face. Toppling over an edge lowers the center of mass, so
@@ -157,18 +167,10 @@ Estimate QuasiStatic(const Part& part, double merge_degrees) {
   out.poses = std::move(sorted);
   for (int& p : faces.pose_of)
     if (p >= 0) p = rank[static_cast<std::size_t>(p)];
-  // The hull triangles of each pose's face (the polytope merged coplanar triangles into faces).
+  // The hull triangles of each pose's face.
   for (std::size_t t = 0; t < part.hull_triangles.size(); ++t) {
-    const auto& tri = part.hull_triangles[t];
-    const Vector3& a = part.hull_vertices[static_cast<std::size_t>(tri[0])];
-    const Vector3 normal = (part.hull_vertices[static_cast<std::size_t>(tri[1])] - a)
-                               .cross(part.hull_vertices[static_cast<std::size_t>(tri[2])] - a);
-    if (!(normal.norm() > 0)) continue;
-    std::size_t best = 0;
-    for (std::size_t f = 1; f < n_faces; ++f)
-      if (hull.normals[f].dot(normal) > hull.normals[best].dot(normal)) best = f;
-    if (faces.pose_of[best] >= 0)
-      out.poses[static_cast<std::size_t>(faces.pose_of[best])].hull_faces.push_back(static_cast<int>(t));
+    const int pose = faces.pose_of[static_cast<std::size_t>(hull.triangle_faces[t])];
+    if (pose >= 0) out.poses[static_cast<std::size_t>(pose)].hull_faces.push_back(static_cast<int>(t));
   }
   return out;
 }
