@@ -120,6 +120,7 @@ struct ContactWorld::Impl {
   std::vector<bool> collides;       // false: the body has no collider
   std::vector<bool> asleep;         // sleeping (ContactOptions::sleeping)
   std::vector<double> still_for;    // s the body has been slow
+  std::vector<double> radii;        // each collider's bounding radius (a hull's: a pass over it)
   std::vector<std::shared_ptr<const contact::Polytope>> polytopes;
   std::vector<StaticBody> statics;
   std::vector<Ground> grounds;
@@ -181,6 +182,7 @@ int ContactWorld::AddBody(const RigidBody& body, Collider collider) {
   ValidateMaterial(collider.material);
   auto polytope = PolytopeOf(collider.shape);
   const int index = world_.AddBody(body);
+  impl_->radii.push_back(contact::BoundingRadius(collider.shape));
   impl_->colliders.push_back(std::move(collider));
   impl_->polytopes.push_back(std::move(polytope));
   impl_->collides.push_back(true);
@@ -192,6 +194,7 @@ int ContactWorld::AddBody(const RigidBody& body, Collider collider) {
 int ContactWorld::AddBody(const RigidBody& body) {
   const int index = world_.AddBody(body);
   impl_->colliders.push_back(Collider{shape::Sphere{1}, Matrix3::Identity(), Vector3::Zero(), Material{}});
+  impl_->radii.push_back(1.0);
   impl_->polytopes.push_back(nullptr);
   impl_->collides.push_back(false);
   impl_->asleep.push_back(false);
@@ -292,7 +295,7 @@ StepStatus ContactWorld::Step(double h) {
   for (int i = 0; i < nb; ++i) {
     const auto k = static_cast<std::size_t>(i);
     posed[k] = PoseOf(m.colliders[k], m.polytopes[k].get(), bodies[k]);
-    radius[k] = contact::BoundingRadius(m.colliders[k].shape);
+    radius[k] = m.radii[k];
     const Vector3 c = posed[k].t - bodies[k].position;
     reach[k] = h * (m.vel[k].v.norm() + m.vel[k].w.norm() * (radius[k] + c.norm())) + 1e-9 * radius[k];
   }

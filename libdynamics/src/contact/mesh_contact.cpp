@@ -15,7 +15,6 @@
 namespace dynamics::contact {
 namespace {
 
-constexpr std::size_t kMaxPoints = 16;       // per pair, after reduction
 constexpr std::uint32_t kSecond = 1u << 31;  // feature bit: a sample of the second shape
 constexpr std::uint32_t kCentre = 1u << 30;  // feature bit: a sphere's or capsule's axis point
 // A field's trilinear value exceeds the true distance by at most the largest distance to the cell's
@@ -143,41 +142,6 @@ double Spacing(const Posed& s) {
   return std::numeric_limits<double>::infinity();
 }
 
-// Keeps at most kMaxPoints of the points from `first` on: the deepest, then each time the point
-// that is farthest from those kept less four times how much shallower than the deepest it is (a
-// support polygon that does not rock, without dropping a point about to close its gap, at a
-// bounded solver cost).
-void Reduce(std::vector<ContactPoint>& out, std::size_t first) {
-  const std::size_t n = out.size() - first;
-  if (n <= kMaxPoints) return;
-  std::vector<ContactPoint> all(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
-  out.resize(first);
-  std::size_t deepest = 0;
-  for (std::size_t i = 1; i < n; ++i) {
-    if (all[i].separation < all[deepest].separation) deepest = i;
-  }
-  const double floor = all[deepest].separation;
-  std::vector<double> gap(n, std::numeric_limits<double>::infinity());
-  std::vector<char> kept(n, 0);
-  std::size_t pick = deepest;
-  for (std::size_t count = 0; count < kMaxPoints; ++count) {
-    out.push_back(all[pick]);
-    kept[pick] = 1;
-    std::size_t next = n;
-    double best = -std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < n; ++i) {
-      gap[i] = std::min(gap[i], (all[i].point - all[pick].point).norm());
-      const double score = gap[i] - 4 * (all[i].separation - floor);
-      if (!kept[i] && score > best) {
-        best = score;
-        next = i;
-      }
-    }
-    if (next == n) break;
-    pick = next;
-  }
-}
-
 using Box3 = Eigen::AlignedBox<double, 3>;
 
 // A box that holds the posed shape (world): a mesh's grid box turned, else its own box turned.
@@ -269,7 +233,7 @@ void CollideMeshGround(const Posed& a, const Vector3& n, double offset, double m
     const double sep = n.dot(p) - offset;
     if (sep < margin) out.push_back({p - n * (0.5 * sep), n, sep, static_cast<std::uint32_t>(i)});
   }
-  Reduce(out, first);
+  ReduceContacts(out, first);
 }
 
 // Whether the shape's bounding sphere lies beyond `reach` of the mesh (the field at its centre,
@@ -287,7 +251,7 @@ void CollideWithMesh(const Posed& a, const Posed& b, double margin, std::vector<
   const double spacing = std::min(Spacing(a), Spacing(b));
   SamplesAgainst(a, b, spacing, margin, false, out);
   SamplesAgainst(b, a, spacing, margin, true, out);
-  Reduce(out, first);
+  ReduceContacts(out, first);
 }
 
 }  // namespace dynamics::contact

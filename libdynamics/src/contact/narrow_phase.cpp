@@ -154,6 +154,38 @@ void ValidateShape(const Shape& s) {
       s);
 }
 
+// Greedy farthest-point selection from the deepest (narrow_phase.h).
+void ReduceContacts(std::vector<ContactPoint>& out, std::size_t first) {
+  const std::size_t n = out.size() - first;
+  if (n <= kMaxContactPoints) return;
+  std::vector<ContactPoint> all(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
+  out.resize(first);
+  std::size_t deepest = 0;
+  for (std::size_t i = 1; i < n; ++i) {
+    if (all[i].separation < all[deepest].separation) deepest = i;
+  }
+  const double floor = all[deepest].separation;
+  std::vector<double> gap(n, std::numeric_limits<double>::infinity());
+  std::vector<char> kept(n, 0);
+  std::size_t pick = deepest;
+  for (std::size_t count = 0; count < kMaxContactPoints; ++count) {
+    out.push_back(all[pick]);
+    kept[pick] = 1;
+    std::size_t next = n;
+    double best = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < n; ++i) {
+      gap[i] = std::min(gap[i], (all[i].point - all[pick].point).norm());
+      const double score = gap[i] - 4 * (all[i].separation - floor);
+      if (!kept[i] && score > best) {
+        best = score;
+        next = i;
+      }
+    }
+    if (next == n) break;
+    pick = next;
+  }
+}
+
 void CollideGround(const Posed& a, const Vector3& n, double offset, double margin, std::vector<ContactPoint>& out) {
   auto add = [&](const Vector3& p, std::uint32_t feature, double radius) {
     const double sep = n.dot(p) - offset - radius;
@@ -186,8 +218,10 @@ void CollideGround(const Posed& a, const Vector3& n, double offset, double margi
             }
           }
         } else if constexpr (std::is_same_v<T, shape::Convex>) {
+          const std::size_t first = out.size();
           for (std::size_t i = 0; i < x.vertices.size(); ++i)
             add(a.R * x.vertices[i] + a.t, static_cast<std::uint32_t>(i), 0);
+          ReduceContacts(out, first);  // a finely tessellated hull lying flat: thousands of corners
         } else if constexpr (std::is_same_v<T, shape::Mesh>) {
           CollideMeshGround(a, n, offset, margin, out);
         }

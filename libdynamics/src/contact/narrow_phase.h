@@ -32,6 +32,13 @@ double BoundingRadius(const Shape& shape);
 /// Throws std::invalid_argument for a size that is not finite and positive.
 void ValidateShape(const Shape& shape);
 
+/// Keeps at most kMaxContactPoints of out[first ...]: the deepest, then each time the point
+/// farthest from those kept less four times how much shallower than the deepest it is (a support
+/// polygon that does not rock, without dropping a point about to close its gap, at a bounded
+/// solver cost). Fewer points are left as they are.
+inline constexpr std::size_t kMaxContactPoints = 16;
+void ReduceContacts(std::vector<ContactPoint>& out, std::size_t first);
+
 /// The shape against the half-space {x : n·x ≤ offset}.
 void CollideGround(const Posed& a, const Vector3& n, double offset, double margin, std::vector<ContactPoint>& out);
 /// Two shapes; false when this pair of kinds has no contact routine yet.
