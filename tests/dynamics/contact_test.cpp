@@ -234,6 +234,43 @@ TEST(Contact, DroppedBoxComesToRest) {
   EXPECT_LT(deepest, 1e-4 * 0.1);
 }
 
+TEST(Contact, FinelyFacetedHullRestsFlatOnAtMostSixteenPoints) {
+  // A 3000-sided prism (a cylinder's hull as a mesh tool writes it) standing on its end: 3000
+  // corners touch the ground; 16 of them hold it, and it stands still.
+  const int n = 3000;
+  const double r = 0.05, half = 0.02;
+  shape::Convex prism;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * M_PI * i / n;
+    prism.vertices.emplace_back(r * std::cos(a), r * std::sin(a), -half);
+    prism.vertices.emplace_back(r * std::cos(a), r * std::sin(a), half);
+  }
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    prism.triangles.push_back({2 * i, 2 * j, 2 * j + 1});
+    prism.triangles.push_back({2 * i, 2 * j + 1, 2 * i + 1});
+    if (i >= 1 && i + 1 < n) {
+      prism.triangles.push_back({0, 2 * j, 2 * i});
+      prism.triangles.push_back({1, 2 * i + 1, 2 * j + 1});
+    }
+  }
+  RigidBody b;
+  b.mass = 1000 * M_PI * r * r * 2 * half;
+  b.inertia = b.mass * Vector3(r * r / 4 + half * half / 3, r * r / 4 + half * half / 3, r * r / 2);
+  b.position = Vector3(0, 0, half);
+  ContactWorld w;
+  w.AddBody(b, Collider{prism, Matrix3::Identity(), Vector3::Zero(), Mat(0.6, 0.5)});
+  w.AddGround({Vector3::UnitZ(), 0, Mat(0.6, 0.5)});
+  w.AddForce(Gravity(Vector3(0, 0, -kG)));
+  int most = 0;
+  Simulate(w, 1e-3, 500, [&](int) { most = std::max(most, w.stats().contacts); });
+  EXPECT_LE(most, 16);
+  EXPECT_GE(most, 3);
+  const RigidBody& end = w.world().bodies()[0];
+  EXPECT_NEAR((end.position - b.position).norm(), 0, 1e-9);
+  EXPECT_LT(end.velocity.norm() + end.AngularVelocity().norm() * r, 1e-9);
+}
+
 TEST(Contact, StackOfTenBoxesStands) {
   const Vector3 half(0.05, 0.05, 0.05);
   ContactWorld w;
