@@ -8,6 +8,7 @@ engine's default time step (rbsim's scenes: 1 ms; MuJoCo: 2 ms; Bullet: 1/60 s) 
 1 ms, then read back from the trajectory CSV they all write:
 
   slide     box on a 30° incline, mu = 0.3: a = g (sin θ − mu cos θ)         error of the distance
+  hull slide  the same box as the convex hull of a mesh file                 error of the distance
   stick     box on a 20° incline, mu = 0.6 > tan θ: stays                     drift
   roll      ball on a 20° incline, rolling: a = 5/7 g sin θ                  error of the distance
   bounce    ball dropped 0.5 m, e = 0.8: first apex e² h0                     error of the apex
@@ -52,8 +53,28 @@ def incline(theta, mu, body, duration):
             "forces": [{"type": "gravity", "g": [0, 0, -G]}]}, n
 
 
-def cases(quick):
+BOX_OBJ = """v -0.05 -0.05 -0.05
+v 0.05 -0.05 -0.05
+v 0.05 0.05 -0.05
+v -0.05 0.05 -0.05
+v -0.05 -0.05 0.05
+v 0.05 -0.05 0.05
+v 0.05 0.05 0.05
+v -0.05 0.05 0.05
+f 1 4 3 2
+f 5 6 7 8
+f 1 2 6 5
+f 2 3 7 6
+f 3 4 8 7
+f 4 1 5 8
+"""
+
+
+def cases(quick, tmp):
     out = []
+    box_mesh = os.path.join(tmp, "box.obj")
+    with open(box_mesh, "w") as f:
+        f.write(BOX_OBJ)
     # slide and stick: a 10 cm box on an incline, its bottom face on the plane.
     for name, theta, mu in (("slide", math.radians(30), 0.3), ("stick", math.radians(20), 0.6)):
         n = [-math.sin(theta), 0.0, math.cos(theta)]
@@ -63,6 +84,16 @@ def cases(quick):
         down = [-math.cos(theta), 0.0, -math.sin(theta)]
         a = G * (math.sin(theta) - mu * math.cos(theta)) if name == "slide" else 0.0
         out.append((name, scene, {"kind": "distance", "down": down, "a": a, "shape": ("box", 0.05), "n": n}))
+    # The same slide with the box as a convex hull of a mesh file (MuJoCo: a mesh geom; Bullet:
+    # btConvexHullShape; rbsim: shape::Convex).
+    theta, mu = math.radians(30), 0.3
+    n = [-math.sin(theta), 0.0, math.cos(theta)]
+    hull_box = {"name": "hull", "mesh": box_mesh, "unit": "m", "collision": "hull", "density": 500,
+                "position": [0.05 * c for c in n], "orientation": quat_about_y(-theta), "material": {"friction": mu}}
+    scene, n = incline(theta, mu, hull_box, 1.0)
+    out.append(("hull slide", scene, {"kind": "distance", "down": [-math.cos(theta), 0.0, -math.sin(theta)],
+                                      "a": G * (math.sin(theta) - mu * math.cos(theta)), "shape": ("box", 0.05),
+                                      "n": n}))
     theta = math.radians(20)
     n = [-math.sin(theta), 0.0, math.cos(theta)]
     ball = {"name": "ball", "solid": {"type": "sphere", "radius": 0.05}, "density": 1000,
@@ -196,9 +227,9 @@ def check(rows):
     inexact parts of each are given their room: MuJoCo's soft contacts bounce low, Bullet's
     friction is a pyramid), and what rbsim promises on top (README, "Contact")."""
     limits = {  # case: (relative error, drift m) for every engine at 1 ms
-        "slide": (0.05, None), "roll": (0.01, None), "backspin": (0.01, None), "stick": (None, 0.005),
+        "slide": (0.05, None), "hull slide": (0.05, None), "roll": (0.01, None), "backspin": (0.01, None), "stick": (None, 0.005),
         "rest": (None, 0.001)}
-    rbsim = {"slide": (0.002, None), "roll": (0.002, None), "backspin": (1e-9, None), "bounce": (1e-4, None),
+    rbsim = {"slide": (0.002, None), "hull slide": (0.002, None), "roll": (0.002, None), "backspin": (1e-9, None), "bounce": (1e-4, None),
              "stick": (None, 1e-9), "rest": (None, 1e-9), "stack": (None, 1e-6)}
     failures = []
     for name, engine, dt, error, drift, pen, wall, sps, bodies in rows:
@@ -233,11 +264,11 @@ def main():
     rows = []
     versions = {}
     with tempfile.TemporaryDirectory() as tmp:
-        for name, scene, spec in cases(args.quick):
+        for name, scene, spec in cases(args.quick, tmp):
             if isinstance(scene, str):
                 scene_path = os.path.join(root, scene)
             else:
-                scene_path = os.path.join(tmp, "%s%s.json" % (name, spec.get("bodies", "")))
+                scene_path = os.path.join(tmp, "%s%s.json" % (name.replace(" ", "_"), spec.get("bodies", "")))
                 with open(scene_path, "w") as f:
                     json.dump(scene, f)
             for engine in ENGINES:
@@ -245,7 +276,7 @@ def main():
                 if DEFAULT_DT[engine] != 1e-3:
                     steps.append(("matched", 1e-3))
                 for label, dt in steps:
-                    out = os.path.join(tmp, "%s_%s_%s.csv" % (name, engine, label))
+                    out = os.path.join(tmp, "%s_%s_%s.csv" % (name.replace(" ", "_"), engine, label))
                     try:
                         timing = run(binaries[engine], scene_path, dt, out)
                     except RuntimeError as e:

@@ -50,7 +50,15 @@ std::size_t Rows(std::size_t bodies) { return bodies <= 256 ? 40 * bodies + 64 :
 std::string Mjcf(const peers::PeerScene& s) {
   std::ostringstream x;
   x.precision(17);
-  x << "<mujoco model='rbsim'>\n  <option timestep='" << s.dt << "' gravity='" << V(s.gravity) << "'/>\n"
+  x << "<mujoco model='rbsim'>\n  <option timestep='" << s.dt << "' gravity='" << V(s.gravity) << "'/>\n";
+  x << "  <asset>\n";  // hulls as meshes (MuJoCo collides a mesh as its convex hull)
+  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+    if (s.bodies[i].kind != PeerBody::Kind::kHull) continue;
+    x << "    <mesh name='hull" << i << "' vertex='";
+    for (const Vector3& v : s.bodies[i].hull) x << V(v) << " ";
+    x << "'/>\n";
+  }
+  x << "  </asset>\n"
     << "  <size njmax='" << Rows(s.bodies.size()) << "' nconmax='" << Rows(s.bodies.size()) / 4 << "'/>\n"
     << "  <worldbody>\n";
   const dynamics::Material ground = s.grounds.empty() ? dynamics::Material{} : s.grounds[0].material;
@@ -58,7 +66,8 @@ std::string Mjcf(const peers::PeerScene& s) {
     x << "    <geom type='plane' size='0 0 1' pos='" << V(g.normal * g.offset) << "' zaxis='" << V(g.normal)
       << "' friction='0 0.005 0.0001' solref='0.02 " << DampingRatio(g.material.restitution) << "'/>\n";
   }
-  for (const PeerBody& b : s.bodies) {
+  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+    const PeerBody& b = s.bodies[i];
     const Eigen::Quaterniond& q = b.orientation;
     const dynamics::Material m = peers::Combine(b.material, ground);
     x << "    <body name='" << b.name << "' pos='" << V(b.position) << "' quat='" << q.w() << " " << q.x() << " "
@@ -69,6 +78,7 @@ std::string Mjcf(const peers::PeerScene& s) {
       case PeerBody::Kind::kSphere: x << "type='sphere' size='" << b.radius << "'"; break;
       case PeerBody::Kind::kCapsule: x << "type='capsule' size='" << b.radius << " " << b.half_length << "'"; break;
       case PeerBody::Kind::kCylinder: x << "type='cylinder' size='" << b.radius << " " << b.half_length << "'"; break;
+      case PeerBody::Kind::kHull: x << "type='mesh' mesh='hull" << i << "'"; break;
     }
     x << " friction='" << m.kinetic_friction << " 0.005 0.0001' solref='0.02 " << DampingRatio(m.restitution)
       << "'/>\n    </body>\n";

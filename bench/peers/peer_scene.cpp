@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "atomic_file.h"
+#include "massprops/repair.h"
 #include "outputs.h"
 #include "simulation.h"
 
@@ -21,8 +22,7 @@ PeerScene LoadPeerScene(const std::string& path, double dt) {
   auto refuse = [&](const std::string& what) {
     return std::runtime_error(path + ": " + what +
                               ": a peer engine runs "
-                              "box, sphere, capsule and cylinder solids, "
-                              "ground planes and gravity");
+                              "box, sphere, capsule and cylinder solids, convex hulls, ground planes and gravity");
   };
   if (!scene.statics.empty()) throw refuse("static bodies");
   if (!scene.pairs.empty()) throw refuse("pair materials");
@@ -42,11 +42,32 @@ PeerScene LoadPeerScene(const std::string& path, double dt) {
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const rbsim::BodySpec& spec = scene.bodies[i];
     namespace pr = massprops::primitive;
-    const massprops::Primitive* solid = spec.shape.solid ? &*spec.shape.solid : nullptr;
-    if (solid == nullptr) throw refuse(spec.field + " (a mesh or implicit shape)");
-    if (spec.collision.kind != rbsim::CollisionSpec::Kind::kAuto) throw refuse(spec.field + ".collision");
+    const rbsim::SimBody& sb = sim.bodies[i];
+    const rbsim::BodyState s = rbsim::StateOf(sb, sim.world().bodies()[i]);
     PeerBody b;
     b.name = spec.name;
+    b.mass = sb.mp.mass;
+    b.position = s.position;
+    b.velocity = s.velocity;
+    b.omega = s.omega_world;
+    b.material = spec.collision.material;
+    b.principal_axes = sb.principal.axes;
+    if (spec.collision.kind == rbsim::CollisionSpec::Kind::kHull) {
+      // The hull in the principal frame, where the inertia is diagonal: x_B = R_MBᵀ (x_M − com).
+      b.kind = PeerBody::Kind::kHull;
+      b.frame = sb.principal.axes;
+      b.inertia = sb.principal.moments;
+      b.orientation = sim.world().bodies()[i].orientation;
+      const massprops::PolygonMesh hull = massprops::ConvexHull(massprops::ToPolygonMesh(sb.display));
+      for (Eigen::Index v = 0; v < hull.V.rows(); ++v)
+        b.hull.push_back(b.frame.transpose() * hull.V.row(v).transpose());
+      out.bodies.push_back(b);
+      continue;
+    }
+    const massprops::Primitive* solid = spec.shape.solid ? &*spec.shape.solid : nullptr;
+    if (solid == nullptr) throw refuse(spec.field + " (a mesh or implicit shape colliding as other than its hull)");
+    if (spec.collision.kind != rbsim::CollisionSpec::Kind::kAuto) throw refuse(spec.field + ".collision");
+    namespace pr = massprops::primitive;
     const double scale = massprops::MetresPerUnit(spec.shape.unit);
     if (const auto* box = std::get_if<pr::Box>(solid)) {
       b.kind = PeerBody::Kind::kBox;
@@ -65,16 +86,8 @@ PeerScene LoadPeerScene(const std::string& path, double dt) {
     } else {
       throw refuse(spec.field + ".solid (" + std::string(massprops::PrimitiveName(*solid)) + ")");
     }
-    const rbsim::SimBody& sb = sim.bodies[i];
-    const rbsim::BodyState s = rbsim::StateOf(sb, sim.world().bodies()[i]);
-    b.mass = sb.mp.mass;
-    b.inertia = sb.mp.inertia_com.diagonal();
-    b.position = s.position;
+    b.inertia = sb.mp.inertia_com.diagonal();  // a primitive's own axes are principal
     b.orientation = s.orientation;
-    b.velocity = s.velocity;
-    b.omega = s.omega_world;
-    b.material = spec.collision.material;
-    b.principal_axes = sb.principal.axes;
     out.bodies.push_back(b);
   }
   return out;
@@ -85,10 +98,11 @@ dynamics::Material Combine(const dynamics::Material& a, const dynamics::Material
                             std::sqrt(a.kinetic_friction * b.kinetic_friction), std::max(a.restitution, b.restitution)};
 }
 
-void TrajectoryCsv::Add(double time, const PeerBody& body, const Vector3& x, const Quaternion& q, const Vector3& v,
-                        const Vector3& w) {
+void TrajectoryCsv::Add(double time, const PeerBody& body, const Vector3& x, const Quaternion& q_frame,
+                        const Vector3& v, const Vector3& w) {
   if (text_.empty()) text_ = std::string(rbsim::kTrajectoryCsvHeader) + "\n";
-  const Vector3 wp = body.principal_axes.transpose() * (q.conjugate() * w);  // principal axes
+  const Quaternion q = (q_frame * Quaternion(body.frame.transpose())).normalized();  // the mesh's: q_WF R_FM
+  const Vector3 wp = body.principal_axes.transpose() * (q.conjugate() * w);          // principal axes
   char line[640];
   std::snprintf(line, sizeof line,
                 "%.17g,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"

@@ -20,13 +20,17 @@ using Quaternion = Eigen::Quaterniond;
 
 struct PeerBody {
   std::string name;
-  enum class Kind { kBox, kSphere, kCapsule, kCylinder } kind = Kind::kBox;
+  enum class Kind { kBox, kSphere, kCapsule, kCylinder, kHull } kind = Kind::kBox;
   Vector3 half_extents = Vector3::Zero();  ///< box
   double radius = 0, half_length = 0;      ///< sphere, capsule (cylinder part), cylinder; axis z
+  std::vector<Vector3> hull;               ///< kHull: the convex hull's corners, frame F
   double mass = 0;
-  Vector3 inertia = Vector3::Zero();                ///< about the center of mass, in the solid's own axes (diagonal)
-  Vector3 position = Vector3::Zero();               ///< center of mass, world
-  Quaternion orientation = Quaternion::Identity();  ///< the solid's axes → world
+  /// The body's frame F, in which its inertia is diagonal: a solid's own axes (F = M) for the
+  /// primitives, the principal axes (F = B) for a hull. R_MF: F's axes in the mesh's.
+  Matrix3 frame = Matrix3::Identity();
+  Vector3 inertia = Vector3::Zero();                            ///< about the center of mass, axes of F
+  Vector3 position = Vector3::Zero();                           ///< center of mass, world
+  Quaternion orientation = Quaternion::Identity();              ///< F's axes → world
   Vector3 velocity = Vector3::Zero(), omega = Vector3::Zero();  ///< world
   dynamics::Material material;
   Matrix3 principal_axes = Matrix3::Identity();  ///< R_MB: for the CSV's w1, w2, w3 (moments ascending)
@@ -52,6 +56,7 @@ dynamics::Material Combine(const dynamics::Material& a, const dynamics::Material
 /// rbsim's trajectory.csv, kept in memory and written whole at the end.
 class TrajectoryCsv {
  public:
+  /// `q`: the peer body's frame F → world; written as the mesh's orientation, as rbsim writes it.
   void Add(double time, const PeerBody& body, const Vector3& x, const Quaternion& q, const Vector3& v,
            const Vector3& omega_world);
   void Write(const std::string& path) const;
