@@ -272,7 +272,16 @@ int PosesMain(int argc, char** argv) {
     std::printf("  ... %zu more stable faces, quasi-static %.4f together, no drop rested on them\n", hidden,
                 hidden_quasi_static);
   }
-  std::printf("(rest transforms: --format json; pictures of each pose: --out DIR)\n");
+  // The rest transforms of the poses shown: part coordinates → world, the plane z = 0.
+  std::printf("rest transforms, x_world = R x_part + t (R as a quaternion w, x, y, z; the plane z = 0):\n");
+  for (std::size_t p = 0; p < estimate.poses.size(); ++p) {
+    const dp::Pose& pose = estimate.poses[p];
+    if (p >= 12 && pose.quasi_static < 0.005 && (!have_drops || tally.counts[p] == 0)) continue;
+    const Eigen::Quaterniond q(pose.rotation);
+    std::printf("  pose %-3zu R (%+.6f, %+.6f, %+.6f, %+.6f)  t %s m\n", p + 1, q.w() + 0.0, q.x() + 0.0, q.y() + 0.0,
+                q.z() + 0.0, Vec(pose.translation, "%.6g").c_str());
+  }
+  if (out_dir.empty()) std::printf("(a picture of each pose: --out DIR)\n");
   if (!out_dir.empty())
     std::printf("  wrote %s/pose_1.svg ... pose_%zu.svg, poses.json\n", out_dir.c_str(), estimate.poses.size());
   return 0;
