@@ -96,7 +96,8 @@ struct DropOutcome {
 };
 
 /// The drops first, first + 1, …, first + count − 1 of options.seed.
-/// @throws std::invalid_argument for bad options or a part QuasiStatic refuses.
+/// @throws std::invalid_argument for bad options or a part QuasiStatic refuses;
+///         std::runtime_error naming the drop when a step fails (a rotation too fast for dt).
 std::vector<DropOutcome> Drop(const Part& part, const Estimate& estimate, const DropOptions& options,
                               std::int64_t first, std::int64_t count);
 

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <thread>
 
 #include "dynamics/forces.h"
@@ -39,8 +40,8 @@ void CheckOptions(const DropOptions& o) {
   if (o.threads < 0) throw std::invalid_argument("drops: threads must be >= 0");
 }
 
-// One drop, start to rest. `body` is the part's body at rest at the origin (frame B: principal
-// axes at the center of mass), `collider` in frame B, R_MB the principal axes in part axes.
+// One drop, start to rest. `placed`: the part's body (frame B: principal axes at the center of
+// mass; its orientation R_MB, the principal axes in part axes); `collider` in frame B.
 DropOutcome RunOne(const Part& part, const Estimate& estimate, const DropOptions& o, const PlacedBody& placed,
                    const Collider& collider, std::int64_t k) {
   const Matrix3 R_MB = placed.body.orientation.toRotationMatrix();
@@ -66,7 +67,8 @@ DropOutcome RunOne(const Part& part, const Estimate& estimate, const DropOptions
   const auto steps = static_cast<std::int64_t>(std::ceil(o.max_time / o.dt));
   bool rested = false;
   for (std::int64_t s = 0; s < steps && !rested; ++s) {
-    world.Step(o.dt);
+    const StepStatus status = world.Step(o.dt);
+    if (!status.ok) throw std::runtime_error("drop " + std::to_string(k) + ": " + status.message);
     rested = world.stats().sleeping == 1;
   }
   const RigidBody& end = world.world().bodies()[0];
