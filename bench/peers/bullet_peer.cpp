@@ -34,8 +34,10 @@ bool CombineAsRbsim(btManifoldPoint& cp, const btCollisionObjectWrapper* a, int,
                     int, int) {
   const btCollisionObject* oa = a->getCollisionObject();
   const btCollisionObject* ob = b->getCollisionObject();
-  cp.m_combinedFriction = std::sqrt(oa->getFriction() * ob->getFriction());
-  cp.m_combinedRestitution = std::max(oa->getRestitution(), ob->getRestitution());
+  const dynamics::Material m = dynamics::CombineMaterials({oa->getFriction(), oa->getFriction(), oa->getRestitution()},
+                                                          {ob->getFriction(), ob->getFriction(), ob->getRestitution()});
+  cp.m_combinedFriction = m.kinetic_friction;
+  cp.m_combinedRestitution = m.restitution;
   return true;
 }
 

@@ -69,7 +69,7 @@ std::string Mjcf(const peers::PeerScene& s) {
   for (std::size_t i = 0; i < s.bodies.size(); ++i) {
     const PeerBody& b = s.bodies[i];
     const Eigen::Quaterniond& q = b.orientation;
-    const dynamics::Material m = peers::Combine(b.material, ground);
+    const dynamics::Material m = dynamics::CombineMaterials(b.material, ground);
     x << "    <body name='" << b.name << "' pos='" << V(b.position) << "' quat='" << q.w() << " " << q.x() << " "
       << q.y() << " " << q.z() << "'>\n      <freejoint/>\n      <inertial pos='0 0 0' mass='" << b.mass
       << "' diaginertia='" << V(b.inertia) << "'/>\n      <geom ";

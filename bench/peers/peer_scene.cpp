@@ -93,11 +93,6 @@ PeerScene LoadPeerScene(const std::string& path, double dt) {
   return out;
 }
 
-dynamics::Material Combine(const dynamics::Material& a, const dynamics::Material& b) {
-  return dynamics::Material{std::sqrt(a.static_friction * b.static_friction),
-                            std::sqrt(a.kinetic_friction * b.kinetic_friction), std::max(a.restitution, b.restitution)};
-}
-
 void TrajectoryCsv::Add(double time, const PeerBody& body, const Vector3& x, const Quaternion& q_frame,
                         const Vector3& v, const Vector3& w) {
   if (text_.empty()) text_ = std::string(rbsim::kTrajectoryCsvHeader) + "\n";

@@ -49,10 +49,6 @@ struct PeerScene {
 /// scene's file and what a peer cannot run (a mesh body, a spring, a static body, pair materials).
 PeerScene LoadPeerScene(const std::string& path, double dt = 0);
 
-/// The material of a body–body (or body–ground) contact as ContactWorld combines it: geometric
-/// mean of each friction coefficient, the larger restitution.
-dynamics::Material Combine(const dynamics::Material& a, const dynamics::Material& b);
-
 /// rbsim's trajectory.csv, kept in memory and written whole at the end.
 class TrajectoryCsv {
  public:

@@ -207,7 +207,8 @@ TEST(MeshContact, MeshBallBouncesAsTheSamePolyhedronDoes) {
   }
   for (std::size_t k = 0; k < 3; ++k) {
     EXPECT_NEAR(apexes[0][k], apexes[1][k], 0.01 * apexes[1][k]) << "bounce " << k;
-    EXPECT_NEAR(apexes[1][k], drop * std::pow(e, 2.0 * (k + 1)), 0.05 * apexes[1][k]) << "bounce " << k;
+    EXPECT_NEAR(apexes[1][k], drop * std::pow(e, 2.0 * static_cast<double>(k + 1)), 0.05 * apexes[1][k])
+        << "bounce " << k;
   }
 }
 

@@ -35,6 +35,9 @@ struct Material {
   double kinetic_friction = 0.5;  ///< μk ≤ μs: sliding friction
   double restitution = 0.0;       ///< e in [0, 1]: normal speed after an impact / before
 };
+/// The material of a contact between surfaces a and b: the geometric mean of each friction
+/// coefficient and the larger restitution.
+Material CombineMaterials(const Material& a, const Material& b);
 
 namespace contact {
 struct MeshField;  // the signed distance field of a mesh collider (built once, shared)

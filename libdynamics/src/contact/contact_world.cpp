@@ -150,6 +150,11 @@ ContactWorld::~ContactWorld() = default;
 ContactWorld::ContactWorld(ContactWorld&&) noexcept = default;
 ContactWorld& ContactWorld::operator=(ContactWorld&&) noexcept = default;
 
+Material CombineMaterials(const Material& a, const Material& b) {
+  return Material{std::sqrt(a.static_friction * b.static_friction), std::sqrt(a.kinetic_friction * b.kinetic_friction),
+                  std::max(a.restitution, b.restitution)};
+}
+
 namespace {
 
 void ValidateMaterial(const Material& m) {
@@ -290,12 +295,12 @@ StepStatus ContactWorld::Step(double h) {
     return e;
   };
   // 2. Contacts at the start-of-step positions, within each body's reach in this step.
-  std::vector<double> reach(static_cast<std::size_t>(nb)), radius(static_cast<std::size_t>(nb));
+  std::vector<double> reach(static_cast<std::size_t>(nb));
+  const std::vector<double>& radius = m.radii;
   std::vector<contact::Posed> posed(static_cast<std::size_t>(nb));
   for (int i = 0; i < nb; ++i) {
     const auto k = static_cast<std::size_t>(i);
     posed[k] = PoseOf(m.colliders[k], m.polytopes[k].get(), bodies[k]);
-    radius[k] = m.radii[k];
     const Vector3 c = posed[k].t - bodies[k].position;
     reach[k] = h * (m.vel[k].v.norm() + m.vel[k].w.norm() * (radius[k] + c.norm())) + 1e-9 * radius[k];
   }
@@ -303,8 +308,7 @@ StepStatus ContactWorld::Step(double h) {
   auto material_of = [&](int a, int b, const Material& ma, const Material& mb) {
     const auto it = m.pair_materials.find({std::min(a, b), std::max(a, b)});
     if (it != m.pair_materials.end()) return it->second;
-    return Material{std::sqrt(ma.static_friction * mb.static_friction),
-                    std::sqrt(ma.kinetic_friction * mb.kinetic_friction), std::max(ma.restitution, mb.restitution)};
+    return CombineMaterials(ma, mb);
   };
   auto add_rows = [&](int a, int b, int key_b, const Material& mat, double slop) {
     for (const contact::ContactPoint& p : m.points) {
