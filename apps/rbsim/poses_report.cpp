@@ -32,18 +32,12 @@ dp::Part PosePart(const massprops::SolidResult& solid, PoseCollision collision, 
   dp::Part part;
   part.mass_properties = solid.mp;
   part.material = material;
-  const massprops::PolygonMesh hull = massprops::ConvexHull(massprops::ToPolygonMesh(mesh));
-  for (Eigen::Index v = 0; v < hull.V.rows(); ++v) part.hull_vertices.push_back(hull.V.row(v).transpose());
-  for (std::int64_t f = 0; f < hull.num_faces(); ++f) {
-    const std::int32_t* idx = hull.indices.data() + hull.offsets[f];
-    for (int k = 1; k + 1 < hull.face_size(f); ++k) part.hull_triangles.push_back({idx[0], idx[k], idx[k + 1]});
-  }
+  dynamics::shape::Convex hull = dynamics::ConvexOf(massprops::ConvexHull(massprops::ToPolygonMesh(mesh)));
+  part.hull_vertices = std::move(hull.vertices);
+  part.hull_triangles = std::move(hull.triangles);
   if (collision == PoseCollision::kMesh) {
-    dynamics::shape::Mesh shape;
-    for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) shape.vertices.push_back(mesh.V.row(v).transpose());
-    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
-      shape.triangles.push_back({mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)});
-    part.collider = dynamics::Collider{std::move(shape), massprops::Matrix3::Identity(), Vector3::Zero(), material};
+    part.collider =
+        dynamics::Collider{dynamics::MeshOf(mesh), massprops::Matrix3::Identity(), Vector3::Zero(), material};
   }
   if (mesh_out != nullptr) *mesh_out = std::move(mesh);
   return part;

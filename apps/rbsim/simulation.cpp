@@ -143,11 +143,8 @@ class MeshColliders {
                             sizeof(m.F(0, 0)) * static_cast<std::size_t>(m.F.size()));
     auto& slot = made_[key + faces];
     if (slot.field == nullptr) {
-      std::vector<Vector3> v;
-      for (Eigen::Index i = 0; i < m.V.rows(); ++i) v.push_back(m.V.row(i).transpose());
-      std::vector<std::array<int, 3>> t;
-      for (Eigen::Index f = 0; f < m.F.rows(); ++f) t.push_back({m.F(f, 0), m.F(f, 1), m.F(f, 2)});
-      slot = dynamics::MakeMesh(std::move(v), std::move(t));
+      dynamics::shape::Mesh mesh = dynamics::MeshOf(m);
+      slot = dynamics::MakeMesh(std::move(mesh.vertices), std::move(mesh.triangles));
     }
     return slot;
   }
@@ -175,14 +172,7 @@ std::optional<dynamics::Collider> ColliderOf(const CollisionSpec& c, const Shape
     return out;
   }
   if (c.kind == CollisionSpec::Kind::kHull) {
-    const massprops::PolygonMesh hull = massprops::ConvexHull(massprops::ToPolygonMesh(body.display));
-    dynamics::shape::Convex convex;
-    for (Eigen::Index v = 0; v < hull.V.rows(); ++v) convex.vertices.push_back(hull.V.row(v).transpose());
-    for (std::int64_t f = 0; f < hull.num_faces(); ++f) {
-      const std::int32_t* idx = hull.indices.data() + hull.offsets[f];
-      for (int k = 1; k + 1 < hull.face_size(f); ++k) convex.triangles.push_back({idx[0], idx[k], idx[k + 1]});
-    }
-    out.shape = std::move(convex);
+    out.shape = dynamics::ConvexOf(massprops::ConvexHull(massprops::ToPolygonMesh(body.display)));
     return out;
   }
   const massprops::Primitive& p = *primitive;

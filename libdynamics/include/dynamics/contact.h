@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "dynamics/world.h"
+#include "massprops/mesh.h"
 
 namespace dynamics {
 
@@ -81,6 +82,13 @@ struct Mesh {
 using Shape = std::variant<shape::Sphere, shape::Box, shape::Capsule, shape::Cylinder, shape::Convex, shape::Mesh>;
 /// "sphere", "box", "capsule", "cylinder", "convex", "mesh".
 const char* ShapeName(const Shape& s);
+
+/// A convex collider from a hull as massprops gives it (massprops::ConvexHull: outward polygons,
+/// fanned into triangles here).
+shape::Convex ConvexOf(const massprops::PolygonMesh& hull);
+/// A mesh collider's corners and triangles from a massprops mesh; its field is not built yet
+/// (MakeMesh, or the first AddBody, builds it).
+shape::Mesh MeshOf(const massprops::TriangleMesh& mesh, double cell = 0);
 
 /// A mesh collider with its field built. @throws std::invalid_argument for a mesh that is not
 /// closed and consistently oriented, a bad index, a non-finite vertex or a negative cell.

@@ -155,6 +155,24 @@ Material CombineMaterials(const Material& a, const Material& b) {
                   std::max(a.restitution, b.restitution)};
 }
 
+shape::Convex ConvexOf(const massprops::PolygonMesh& hull) {
+  shape::Convex out;
+  for (Eigen::Index v = 0; v < hull.V.rows(); ++v) out.vertices.push_back(hull.V.row(v).transpose());
+  for (std::int64_t f = 0; f < hull.num_faces(); ++f) {
+    const std::int32_t* idx = hull.indices.data() + hull.offsets[static_cast<std::size_t>(f)];
+    for (int k = 1; k + 1 < hull.face_size(f); ++k) out.triangles.push_back({idx[0], idx[k], idx[k + 1]});
+  }
+  return out;
+}
+
+shape::Mesh MeshOf(const massprops::TriangleMesh& mesh, double cell) {
+  shape::Mesh out;
+  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) out.vertices.push_back(mesh.V.row(v).transpose());
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) out.triangles.push_back({mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)});
+  out.cell = cell;
+  return out;
+}
+
 namespace {
 
 void ValidateMaterial(const Material& m) {
