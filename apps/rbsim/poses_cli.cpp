@@ -59,25 +59,6 @@ std::string Vec(const Vector3& v, const char* format = "%+.4f") {
   return out;
 }
 
-// The corners of a pose's hull face, in order around it (the face is convex).
-std::vector<Vector3> FaceOutline(const dp::Part& part, const dp::Pose& pose) {
-  std::vector<Vector3> corners;
-  for (int t : pose.hull_faces)
-    for (int k : part.hull_triangles[static_cast<std::size_t>(t)]) {
-      const Vector3& x = part.hull_vertices[static_cast<std::size_t>(k)];
-      if (std::none_of(corners.begin(), corners.end(), [&](const Vector3& y) { return y == x; })) corners.push_back(x);
-    }
-  if (corners.empty()) return corners;
-  Vector3 centre = Vector3::Zero();
-  for (const Vector3& x : corners) centre += x;
-  centre /= static_cast<double>(corners.size());
-  const Vector3 u = (corners[0] - centre).normalized(), w = pose.normal.cross(u);
-  std::sort(corners.begin(), corners.end(), [&](const Vector3& a, const Vector3& b) {
-    return std::atan2((a - centre).dot(w), (a - centre).dot(u)) < std::atan2((b - centre).dot(w), (b - centre).dot(u));
-  });
-  return corners;
-}
-
 }  // namespace
 
 int PosesMain(int argc, char** argv) {
@@ -219,8 +200,10 @@ int PosesMain(int argc, char** argv) {
         title << name << ": pose " << p + 1 << ", resting on the face with normal "
               << Vec(estimate.poses[p].normal, "%+.3f");
         if (as_hull) title << " (its convex hull drawn: the mesh has " << file_mesh.F.rows() << " triangles)";
+        std::vector<Vector3> outline;
+        for (int v : estimate.poses[p].outline) outline.push_back(part.hull_vertices[static_cast<std::size_t>(v)]);
         WritePosePicture(out_dir + "/pose_" + std::to_string(p + 1) + ".svg", as_hull ? drawn : file_mesh,
-                         estimate.poses[p], FaceOutline(part, estimate.poses[p]), title.str());
+                         estimate.poses[p], outline, title.str());
       }
       massprops::app::WriteFileAtomically(out_dir + "/poses.json", j.dump(2) + "\n");
     } catch (const std::exception& e) {
@@ -248,11 +231,14 @@ int PosesMain(int argc, char** argv) {
   std::printf("%-5s %-29s %12s %8s %17s %17s %10s\n", "pose", "normal (part axes)", "quasi-static", "drops",
               "95% interval", "joint 95%", "height m");
   // Faceted parts have many tiny stable faces: the table shows the likely ones, JSON has all.
+  auto shown = [&](std::size_t p) {
+    return p < 12 || estimate.poses[p].quasi_static >= 0.005 || (have_drops && tally.counts[p] > 0);
+  };
   std::size_t hidden = 0;
   double hidden_quasi_static = 0;
   for (std::size_t p = 0; p < estimate.poses.size(); ++p) {
     const dp::Pose& pose = estimate.poses[p];
-    if (p >= 12 && pose.quasi_static < 0.005 && (!have_drops || tally.counts[p] == 0)) {
+    if (!shown(p)) {
       ++hidden;
       hidden_quasi_static += pose.quasi_static;
       continue;
@@ -276,7 +262,7 @@ int PosesMain(int argc, char** argv) {
   std::printf("rest transforms, x_world = R x_part + t (R as a quaternion w, x, y, z; the plane z = 0):\n");
   for (std::size_t p = 0; p < estimate.poses.size(); ++p) {
     const dp::Pose& pose = estimate.poses[p];
-    if (p >= 12 && pose.quasi_static < 0.005 && (!have_drops || tally.counts[p] == 0)) continue;
+    if (!shown(p)) continue;
     const Eigen::Quaterniond q(pose.rotation);
     std::printf("  pose %-3zu R (%+.6f, %+.6f, %+.6f, %+.6f)  t %s m\n", p + 1, q.w() + 0.0, q.x() + 0.0, q.y() + 0.0,
                 q.z() + 0.0, Vec(pose.translation, "%.6g").c_str());

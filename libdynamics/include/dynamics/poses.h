@@ -49,6 +49,7 @@ struct Pose {
   double solid_angle = 0;       ///< sr, of the face itself from the center of mass
   double quasi_static = 0;      ///< probability: solid angles of the faces that end here, / 4π
   std::vector<int> hull_faces;  ///< the triangles of the face (indices into Part::hull_triangles)
+  std::vector<int> outline;     ///< its corners (into Part::hull_vertices), counter-clockwise from outside
 };
 
 /// Every face of the hull (coplanar triangles merged), in the hull's order: where a part put down

@@ -149,6 +149,7 @@ Estimate QuasiStatic(const Part& part, double merge_degrees) {
     pose.translation = Vector3(0, 0, pose.height) - pose.rotation * c;
     pose.solid_angle = faces.solid_angles[uf];
     pose.quasi_static = captured[uf] / (4 * kPi);
+    pose.outline = hull.faces[uf];
     faces.pose_of[uf] = static_cast<int>(out.poses.size());
     out.poses.push_back(std::move(pose));
   }
