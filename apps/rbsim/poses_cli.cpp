@@ -21,6 +21,7 @@
 #include "cli.h"
 #include "dynamics/poses.h"
 #include "massprops/load.h"
+#include "massprops/wording.h"
 #include "pose_picture.h"
 #include "poses_report.h"
 
@@ -49,6 +50,22 @@ bool ParseMaterial(const std::string& text, dynamics::Material& m, std::string& 
   }
   m = dynamics::Material{v[0], v[1], v[2]};
   return true;
+}
+
+// The pipeline's advice in this command's words.
+const massprops::Vocabulary& PosesVocabulary() {
+  static const massprops::Vocabulary v = [](massprops::Option option, std::string_view value) -> std::string {
+    switch (option) {
+      case massprops::Option::kRepair: return "--repair";
+      case massprops::Option::kAllowOpen:
+        return "massprops --allow-open (mass properties only: rbsim poses needs a solid)";
+      case massprops::Option::kUnit: return value.empty() ? "--unit" : "--unit " + std::string(value);
+      case massprops::Option::kFullCheck: return "(always done by rbsim poses)";
+      case massprops::Option::kWall: return "(not in rbsim poses)";
+    }
+    return "?";
+  };
+  return v;
 }
 
 std::string Vec(const Vector3& v, const char* format = "%+.4f") {
@@ -124,7 +141,6 @@ int PosesMain(int argc, char** argv) {
   else
     load.mass = massprops::Density{density};
   load.repair = repair;
-  load.full_check = true;
   load.num_threads = threads;
   PosesReport report;
   report.part = part_file;
@@ -132,21 +148,16 @@ int PosesMain(int argc, char** argv) {
   report.drops = drops;
   massprops::TriangleMesh file_mesh;  // the part in its file's axes, metres
   const std::string name = std::filesystem::path(part_file).filename().string();
+  std::vector<std::string> warnings;
   try {
-    const massprops::SolidResult solid = massprops::LoadSolid(part_file, load);
-    for (const auto& f : solid.findings) std::cerr << "warning: " << part_file << ": " << f.message << "\n";
-    if (!solid.validity.valid) {
-      throw std::invalid_argument("the inertia is not that of a real body (" + solid.validity.reason + ")");
-    }
-    report.pose_part = PosePart(solid, report.collision, material, &file_mesh);
-  } catch (const massprops::FileAccessError& e) {
+    report.pose_part =
+        LoadPosePart(part_file, load, report.collision, material, PosesVocabulary(), warnings, &file_mesh);
+  } catch (const std::exception& e) {
+    for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
     std::cerr << "error: " << e.what() << "\n";
     return 1;
-  } catch (const std::exception& e) {
-    const std::string what = e.what();
-    std::cerr << "error: " << (what.find(part_file) == std::string::npos ? part_file + ": " : "") << what << "\n";
-    return 1;
   }
+  for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
   const dp::Part& part = report.pose_part;
 
   dp::DropOptions& options = report.options;

@@ -4,7 +4,9 @@
 
 #include <stdexcept>
 
+#include "massprops/io.h"
 #include "massprops/repair.h"
+#include "massprops/wording.h"
 
 namespace rbsim {
 namespace {
@@ -24,9 +26,24 @@ nlohmann::json Transform(const dp::Pose& p) {
 
 }  // namespace
 
-dp::Part PosePart(const massprops::SolidResult& solid, PoseCollision collision, const dynamics::Material& material,
-                  massprops::TriangleMesh* mesh_out) {
-  if (solid.loaded.mesh.num_faces() == 0) throw std::invalid_argument("resting poses need the part's mesh");
+dp::Part LoadPosePart(const std::string& path, massprops::LoadOptions load, PoseCollision collision,
+                      const dynamics::Material& material, const massprops::Vocabulary& words,
+                      std::vector<std::string>& warnings, massprops::TriangleMesh* mesh_out) {
+  load.full_check = true;  // the mesh whole: the hull and the pictures need it
+  massprops::SolidResult solid;
+  try {
+    solid = massprops::LoadSolid(path, load);
+  } catch (const massprops::FileAccessError&) {
+    throw;
+  } catch (const std::exception& e) {
+    const std::string what = massprops::WordedError(e, words);
+    throw std::invalid_argument(what.find(path) == std::string::npos ? path + ": " + what : what);
+  }
+  for (const auto& f : solid.findings) warnings.push_back(path + ": " + massprops::Worded(f.message, words));
+  if (!solid.validity.valid) {
+    throw std::invalid_argument(path + ": the inertia is not that of a real body (" + solid.validity.reason + ")");
+  }
+  if (solid.loaded.mesh.num_faces() == 0) throw std::invalid_argument(path + ": resting poses need the part's mesh");
   massprops::TriangleMesh mesh = massprops::Triangulate(solid.loaded.mesh);
   mesh.V *= massprops::MetresPerUnit(solid.unit);
   dp::Part part;

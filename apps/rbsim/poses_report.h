@@ -15,11 +15,15 @@ namespace rbsim {
 
 enum class PoseCollision { kHull, kMesh };
 
-/// The part of a loaded solid: SI mass properties, the convex hull of its mesh (CGAL), and its
-/// collider (the hull, or the mesh as it is). `mesh` receives the mesh in metres, file axes.
-/// @throws std::invalid_argument for a result without a mesh (an implicit solid).
-dynamics::poses::Part PosePart(const massprops::SolidResult& solid, PoseCollision collision,
-                               const dynamics::Material& material, massprops::TriangleMesh* mesh = nullptr);
+/// A part file through the pipeline (LoadSolid with `load`, whole: the hull needs the mesh) as a
+/// part to drop: SI mass properties, the convex hull of its mesh (CGAL), and its collider (the
+/// hull, or the mesh as it is). The pipeline's findings are appended to `warnings` and its errors
+/// rethrown, both worded in `words` (the caller's option names). `mesh` receives the mesh in
+/// metres, file axes. @throws massprops::FileAccessError for a file that cannot be read,
+/// std::invalid_argument naming the file for a part that cannot be dropped.
+dynamics::poses::Part LoadPosePart(const std::string& path, massprops::LoadOptions load, PoseCollision collision,
+                                   const dynamics::Material& material, const massprops::Vocabulary& words,
+                                   std::vector<std::string>& warnings, massprops::TriangleMesh* mesh = nullptr);
 
 /// What a run of both estimates found.
 struct PosesReport {

@@ -33,8 +33,7 @@ py::tuple RestingPoses(const std::string& path, std::int64_t first, std::int64_t
                        const std::vector<double>& ground, const std::vector<double>& material,
                        const std::string& collision, double dt, double max_time, int threads, double merge_degrees,
                        const py::kwargs& kw) {
-  massprops::LoadOptions load = LoadOptionsFrom(kw);
-  load.full_check = true;  // the hull needs the mesh
+  const massprops::LoadOptions load = LoadOptionsFrom(kw);
   if (collision != "hull" && collision != "mesh") throw py::value_error("collision must be 'hull' or 'mesh'");
   if (first < 0 || count < 0) throw py::value_error("first and count must be >= 0");
   rbsim::PosesReport report;
@@ -55,11 +54,8 @@ py::tuple RestingPoses(const std::string& path, std::int64_t first, std::int64_t
   {
     py::gil_scoped_release release;
     try {
-      const massprops::SolidResult solid = massprops::LoadSolid(path, load);
-      if (!solid.validity.valid) {
-        throw std::invalid_argument(path + ": the inertia is not that of a real body (" + solid.validity.reason + ")");
-      }
-      report.pose_part = rbsim::PosePart(solid, report.collision, part_material);
+      std::vector<std::string> findings;  // not returned: the report is the command's JSON, which has none
+      report.pose_part = rbsim::LoadPosePart(path, load, report.collision, part_material, PythonWords(), findings);
       report.estimate = dp::QuasiStatic(report.pose_part, merge_degrees);
       if (outcomes) {
         if (static_cast<std::int64_t>(outcomes->size()) != count) {
@@ -80,7 +76,7 @@ py::tuple RestingPoses(const std::string& path, std::int64_t first, std::int64_t
       access = true;
       message = e.what();
     } catch (const std::exception& e) {
-      message = massprops::WordedError(e, PythonWords());
+      message = e.what();  // worded already, or a plain fault of the drops
     }
   }
   if (access) {

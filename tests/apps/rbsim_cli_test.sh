@@ -145,7 +145,8 @@ check "poses --out writes pictures and poses.json" $?
 [ $? -eq 2 ] && grep -q "\-\-ground: the friction coefficients" "$tmp/err"; check "poses: bad --ground exits 2" $?
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n' >"$tmp/open.obj"
 "$bin" poses "$tmp/open.obj" >/dev/null 2>"$tmp/err"
-[ $? -eq 1 ] && grep -q "open.obj" "$tmp/err"; check "poses: open mesh refused naming the file" $?
+[ $? -eq 1 ] && grep -q "open.obj" "$tmp/err" && grep -q -- "try --repair" "$tmp/err" && ! grep -q "LoadOptions" "$tmp/err"
+check "poses: open mesh refused naming the file, advice in the command's words" $?
 "$bin" "$data/scenes/t_handle.json" --dt -1 >/dev/null 2>"$tmp/err"
 [ $? -eq 2 ]; check "negative --dt exits 2" $?
 for opt in --duration --rate --dt; do
