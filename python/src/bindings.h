@@ -4,6 +4,9 @@
 
 #include <pybind11/pybind11.h>
 
+#include <string>
+
+#include "massprops/io.h"
 #include "massprops/load.h"
 
 namespace massprops_python {
@@ -11,6 +14,31 @@ namespace massprops_python {
 /// Every keyword checked (a misspelt one is a TypeError, a bad value a ValueError naming it).
 massprops::LoadOptions LoadOptionsFrom(const pybind11::kwargs& kw);
 const massprops::Vocabulary& PythonWords();
+
+/// Runs `work` without the GIL; a file that cannot be read becomes OSError, any other error
+/// ValueError, both with the error's message worded in Python's vocabulary.
+template <typename Work>
+void RunWithoutGil(const Work& work) {
+  std::string message;
+  enum { kNone, kAccess, kValue } kind = kNone;
+  {
+    pybind11::gil_scoped_release release;
+    try {
+      work();
+    } catch (const massprops::FileAccessError& e) {
+      kind = kAccess;
+      message = e.what();
+    } catch (const std::exception& e) {  // LoadError, MeshFileError, invalid_argument, ...
+      kind = kValue;
+      message = massprops::WordedError(e, PythonWords());
+    }
+  }
+  if (kind == kAccess) {
+    PyErr_SetString(PyExc_OSError, message.c_str());
+    throw pybind11::error_already_set();
+  }
+  if (kind == kValue) throw pybind11::value_error(message);
+}
 
 /// massprops._core.resting_poses (poses.cpp).
 void BindPoses(pybind11::module_& m);

@@ -168,30 +168,11 @@ std::string ToJson(const SolidResult& r) {
   return cli::FormatJson({r}, f);
 }
 
-// Runs `solve` without the GIL; errors become the exceptions Python users expect, worded in
-// Python's vocabulary.
+// Runs `solve` without the GIL (errors become OSError or ValueError) and returns its JSON.
 template <typename Solve>
 std::string Run(const Solve& solve) {
   std::optional<SolidResult> r;
-  std::string message;
-  enum { kNone, kAccess, kValue } kind = kNone;
-  {
-    py::gil_scoped_release release;
-    try {
-      r = solve();
-    } catch (const FileAccessError& e) {
-      kind = kAccess;
-      message = e.what();
-    } catch (const std::exception& e) {  // LoadError, MeshFileError, invalid_argument
-      kind = kValue;
-      message = WordedError(e, PythonVocabulary());
-    }
-  }
-  if (kind == kAccess) {
-    PyErr_SetString(PyExc_OSError, message.c_str());
-    throw py::error_already_set();
-  }
-  if (kind == kValue) throw py::value_error(message);
+  massprops_python::RunWithoutGil([&] { r = solve(); });
   return ToJson(*r);
 }
 

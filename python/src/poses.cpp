@@ -49,41 +49,26 @@ py::tuple RestingPoses(const std::string& path, std::int64_t first, std::int64_t
   o.threads = threads;
   const dynamics::Material part_material = MaterialOf(material, "material");
   std::vector<dp::DropOutcome> drops;
-  std::string message;
-  bool access = false;
-  {
-    py::gil_scoped_release release;
-    try {
-      std::vector<std::string> findings;  // not returned: the report is the command's JSON, which has none
-      report.pose_part = rbsim::LoadPosePart(path, load, report.collision, part_material, PythonWords(), findings);
-      report.estimate = dp::QuasiStatic(report.pose_part, merge_degrees);
-      if (outcomes) {
-        if (static_cast<std::int64_t>(outcomes->size()) != count) {
-          throw std::invalid_argument("outcomes: " + std::to_string(outcomes->size()) + " given for " +
-                                      std::to_string(count) + " drops");
-        }
-        for (const auto& [pose, time] : *outcomes) {
-          dp::DropOutcome d;
-          d.pose = pose;
-          d.time = time;
-          drops.push_back(d);
-        }
-      } else {
-        drops = dp::Drop(report.pose_part, report.estimate, o, first, count);
+  RunWithoutGil([&] {
+    std::vector<std::string> findings;  // not returned: the report is the command's JSON, which has none
+    report.pose_part = rbsim::LoadPosePart(path, load, report.collision, part_material, PythonWords(), findings);
+    report.estimate = dp::QuasiStatic(report.pose_part, merge_degrees);
+    if (outcomes) {
+      if (static_cast<std::int64_t>(outcomes->size()) != count) {
+        throw std::invalid_argument("outcomes: " + std::to_string(outcomes->size()) + " given for " +
+                                    std::to_string(count) + " drops");
       }
-      report.tally = dp::Count(drops, report.estimate.poses.size());
-    } catch (const massprops::FileAccessError& e) {
-      access = true;
-      message = e.what();
-    } catch (const std::exception& e) {
-      message = e.what();  // worded already, or a plain fault of the drops
+      for (const auto& [pose, time] : *outcomes) {
+        dp::DropOutcome d;
+        d.pose = pose;
+        d.time = time;
+        drops.push_back(d);
+      }
+    } else {
+      drops = dp::Drop(report.pose_part, report.estimate, o, first, count);
     }
-  }
-  if (access) {
-    PyErr_SetString(PyExc_OSError, message.c_str());
-    throw py::error_already_set();
-  }
-  if (!message.empty()) throw py::value_error(message);
+    report.tally = dp::Count(drops, report.estimate.poses.size());
+  });
   std::vector<std::pair<int, double>> poses;
   for (const dp::DropOutcome& d : drops) poses.emplace_back(d.pose, d.time);
   return py::make_tuple(rbsim::PosesJson(report).dump(), poses);
