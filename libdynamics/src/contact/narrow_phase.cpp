@@ -9,9 +9,11 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 namespace dynamics::contact {
 namespace {
@@ -299,6 +301,24 @@ bool Collide(const Posed& a, const Posed& b, double margin, std::vector<ContactP
     return ok;
   }
   return false;
+}
+
+void CollidePairs(const std::vector<PairQuery>& pairs, int threads, std::vector<std::vector<ContactPoint>>& found,
+                  std::vector<char>& supported) {
+  found.assign(pairs.size(), {});
+  supported.assign(pairs.size(), 1);
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t c = next.fetch_add(1); c < pairs.size(); c = next.fetch_add(1)) {
+      supported[c] = Collide(*pairs[c].a, *pairs[c].b, pairs[c].margin, found[c]);
+    }
+  };
+  static const int kHardwareThreads = static_cast<int>(std::thread::hardware_concurrency());
+  const int n = std::min<int>(threads > 0 ? threads : kHardwareThreads, static_cast<int>(pairs.size() / 8));
+  std::vector<std::thread> pool;
+  for (int t = 1; t < n; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
 }
 
 }  // namespace dynamics::contact

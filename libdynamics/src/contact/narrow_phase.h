@@ -49,4 +49,16 @@ bool Collide(const Posed& a, const Posed& b, double margin, std::vector<ContactP
 void CollideMeshGround(const Posed& a, const Vector3& n, double offset, double margin, std::vector<ContactPoint>& out);
 void CollideWithMesh(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out);
 
+/// A pair for the narrow phase: two posed shapes and the margin.
+struct PairQuery {
+  const Posed* a = nullptr;
+  const Posed* b = nullptr;
+  double margin = 0;
+};
+/// Collide on each pair: found[c] gets pair c's points, supported[c] whether its kinds have a
+/// routine. Pairs run on up to `threads` workers (0: the hardware's; never more than one per 8
+/// pairs), each on its own, so the result does not depend on the thread count.
+void CollidePairs(const std::vector<PairQuery>& pairs, int threads, std::vector<std::vector<ContactPoint>>& found,
+                  std::vector<char>& supported);
+
 }  // namespace dynamics::contact
