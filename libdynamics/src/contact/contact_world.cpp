@@ -267,6 +267,7 @@ void AppendRows(const RowContext& c, const std::vector<contact::ContactPoint>& p
     r.n = p.normal;
     r.ra = p.point - c.bodies[static_cast<std::size_t>(a)].position;
     r.rb = b >= 0 ? Vector3(p.point - c.bodies[static_cast<std::size_t>(b)].position) : Vector3::Zero();
+    r.point = p.point;
     r.mu_s = mat.static_friction;
     r.mu_k = mat.kinetic_friction;
     r.separation = p.separation;
@@ -435,7 +436,7 @@ StepStatus ContactWorld::Step(double h) {
   }
   stats_.contacts = static_cast<int>(m.rows.size());
   if (m.rows.empty()) {  // free flight: the world's own integrator, bit for bit
-    m.cache.clear();
+    m.cache = {};
     std::fill(m.sleep.asleep.begin(), m.sleep.asleep.end(), false);
     std::fill(m.sleep.still_for.begin(), m.sleep.still_for.end(), 0.0);
     return world_.Step(h);
@@ -458,19 +459,22 @@ StepStatus ContactWorld::Step(double h) {
                                 const bool still = m.sleep.asleep[static_cast<std::size_t>(r.a)] &&
                                                    (r.b < 0 || m.sleep.asleep[static_cast<std::size_t>(r.b)]);
                                 if (still) {
-                                  const auto it = m.cache.find(r.key);
-                                  if (it != m.cache.end()) kept.insert(*it);
+                                  const auto it = m.cache.rows.find(r.key);
+                                  if (it != m.cache.rows.end()) kept.rows.insert(*it);
+                                  const std::pair<int, int> pair{std::get<0>(r.key), std::get<1>(r.key)};
+                                  const auto patches = m.cache.patches.find(pair);
+                                  if (patches != m.cache.patches.end()) kept.patches.insert(*patches);
                                 }
                                 return still;
                               }),
                m.rows.end());
   // 4. The impulses.
-  contact::PrepareRows(m.rows, m.cache, m.vel, m.response, bounce_threshold);
+  std::vector<contact::Patch> patches = contact::PreparePatches(m.rows, m.cache, m.vel, m.response, bounce_threshold);
   const double energy_before = KineticEnergy(bodies, m.vel);
-  stats_.iterations = contact::SolveImpulses(m.rows, m.vel, m.response, contact::SupportLevels(nb, m.rows),
+  stats_.iterations = contact::SolveImpulses(m.rows, patches, m.vel, m.response, contact::SupportLevels(nb, m.rows),
                                              options_.max_iterations, options_.tolerance);
   m.cache = std::move(kept);
-  contact::StoreImpulses(m.rows, m.cache);
+  contact::StoreImpulses(m.rows, patches, m.cache);
   stats_.dissipated = energy_before - KineticEnergy(bodies, m.vel);
   // 5. Position correction of mesh contacts' overlap, then 6. the drift.
   const std::vector<contact::Velocities> pseudo =

@@ -186,11 +186,26 @@ void SamplesAgainst(const Posed& from, const Posed& to, double spacing, double m
   reach.max() += Vector3::Constant(grow);
   const Box3 overlap = WorldBox(from).intersection(reach);
   if (overlap.isEmpty()) return;
+  const MeshField* from_field = nullptr;
+  if (const auto* m = std::get_if<shape::Mesh>(from.shape)) from_field = m->field.get();
   auto test = [&](const Vector3& p, double radius, std::size_t index) {
     if (!overlap.contains(p)) return;
     if (!(DistanceOnly(to, p) - radius < margin)) return;
     Vector3 n = Vector3::UnitZ();
     const double sep = Distance(to, p, n) - radius;
+    if (from_field != nullptr) {
+      // A sample on an inactive feature (a flat seam or a crease) pushes along the face normal
+      // nearest the other shape's: the face, not the seam (mesh_field.h).
+      const MeshField::SampleFaces& faces = from_field->sample_faces[index];
+      double best = -std::numeric_limits<double>::infinity();
+      for (std::uint32_t k = faces.first; k < faces.first + faces.count; ++k) {
+        const Vector3 face = from.R * from_field->normals[k];
+        if (-face.dot(n) > best) {
+          best = -face.dot(n);
+          n = -face;
+        }
+      }
+    }
     const Vector3 surface = p - n * radius;  // the sample's own surface point
     std::uint32_t feature = static_cast<std::uint32_t>(index) & (kCentre - 1);
     if (radius > 0) feature |= kCentre;

@@ -234,42 +234,109 @@ double ThinnestWall(const TriangleTree& tree, const shape::Mesh& mesh) {
   return walls.back().first;
 }
 
-void AddSamples(const shape::Mesh& mesh, double cell, std::vector<Vector3>& out) {
-  out = mesh.vertices;
-  std::map<std::pair<int, int>, bool> edges;
-  for (const auto& t : mesh.triangles) {
-    for (int k = 0; k < 3; ++k) edges[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}] = true;
-  }
-  for (const auto& [e, unused] : edges) {
-    const Vector3 a = mesh.vertices[static_cast<std::size_t>(e.first)],
-                  b = mesh.vertices[static_cast<std::size_t>(e.second)];
-    const int k = static_cast<int>(std::ceil((b - a).norm() / cell));
-    for (int i = 1; i < k; ++i) out.push_back(a + (b - a) * (static_cast<double>(i) / k));
-  }
-}
-
-// Orders the samples into clusters of at most 32 by recursive median splits along the longest
-// side of their box.
-void Cluster(std::vector<Vector3>& samples, int first, int count, std::vector<MeshField::Cluster>& out) {
+// Orders `order` (indices of samples) into clusters of at most 32 by recursive median splits
+// along the longest side of their box.
+void Cluster(const std::vector<Vector3>& samples, std::vector<int>& order, int first, int count,
+             std::vector<MeshField::Cluster>& out) {
+  auto at = [&](int i) -> const Vector3& {
+    return samples[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])];
+  };
   Eigen::AlignedBox<double, 3> box;
-  for (int i = first; i < first + count; ++i) box.extend(samples[static_cast<std::size_t>(i)]);
+  for (int i = first; i < first + count; ++i) box.extend(at(i));
   if (count > 32) {
     int axis;
     box.sizes().maxCoeff(&axis);
     const int mid = first + count / 2;
-    std::nth_element(samples.begin() + first, samples.begin() + mid, samples.begin() + first + count,
-                     [axis](const Vector3& a, const Vector3& b) { return a[axis] < b[axis]; });
-    Cluster(samples, first, mid - first, out);
-    Cluster(samples, mid, first + count - mid, out);
+    std::nth_element(order.begin() + first, order.begin() + mid, order.begin() + first + count, [&](int x, int y) {
+      return samples[static_cast<std::size_t>(x)][axis] < samples[static_cast<std::size_t>(y)][axis];
+    });
+    Cluster(samples, order, first, mid - first, out);
+    Cluster(samples, order, mid, first + count - mid, out);
     return;
   }
   MeshField::Cluster c;
   c.centre = box.center();
-  for (int i = first; i < first + count; ++i)
-    c.radius = std::max(c.radius, (samples[static_cast<std::size_t>(i)] - c.centre).norm());
+  for (int i = first; i < first + count; ++i) c.radius = std::max(c.radius, (at(i) - c.centre).norm());
   c.first = first;
   c.count = count;
   out.push_back(c);
+}
+
+// The samples (every vertex, and points about a cell apart along longer edges) with their faces
+// (mesh_field.h: inactive features), clustered.
+void AddSamples(const shape::Mesh& mesh, double cell, MeshField& field) {
+  const std::size_t nv = mesh.vertices.size();
+  std::vector<Vector3> face_normal;
+  for (const auto& t : mesh.triangles) {
+    const Vector3 a = mesh.vertices[static_cast<std::size_t>(t[0])], b = mesh.vertices[static_cast<std::size_t>(t[1])],
+                  c = mesh.vertices[static_cast<std::size_t>(t[2])];
+    const Vector3 n = (b - a).cross(c - a);
+    face_normal.push_back(n.norm() > 0 ? Vector3(n.normalized()) : Vector3::Zero());
+  }
+  // Each edge's faces (a closed mesh: two).
+  std::map<std::pair<int, int>, std::vector<int>> edges;
+  std::vector<std::vector<int>> vertex_faces(nv);
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const auto& t = mesh.triangles[f];
+    for (int k = 0; k < 3; ++k) {
+      edges[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}].push_back(static_cast<int>(f));
+      vertex_faces[static_cast<std::size_t>(t[k])].push_back(static_cast<int>(f));
+    }
+  }
+  const double flat = std::cos(kFlatEdge);
+  // Whether an edge is active: convex, with a real angle.
+  auto active = [&](const std::pair<int, int>& e, const std::vector<int>& faces) {
+    if (faces.size() != 2) return true;
+    const Vector3& n1 = face_normal[static_cast<std::size_t>(faces[0])];
+    const Vector3& n2 = face_normal[static_cast<std::size_t>(faces[1])];
+    if (n1.dot(n2) >= flat) return false;
+    // Convex when the second face's far corner lies below the first face's plane.
+    int far = e.first;
+    for (const int v : mesh.triangles[static_cast<std::size_t>(faces[1])]) {
+      if (v != e.first && v != e.second) far = v;
+    }
+    return n1.dot(mesh.vertices[static_cast<std::size_t>(far)] - mesh.vertices[static_cast<std::size_t>(e.first)]) < 0;
+  };
+  // The distinct normals of a set of faces.
+  auto add_normals = [&](const std::vector<int>& faces) {
+    MeshField::SampleFaces out{static_cast<std::uint32_t>(field.normals.size()), 0};
+    for (const int f : faces) {
+      const Vector3& n = face_normal[static_cast<std::size_t>(f)];
+      bool seen = n.squaredNorm() == 0;
+      for (std::uint32_t k = out.first; k < out.first + out.count && !seen; ++k) seen = field.normals[k].dot(n) >= flat;
+      if (!seen) {
+        field.normals.push_back(n);
+        ++out.count;
+      }
+    }
+    return out;
+  };
+  std::vector<Vector3> samples = mesh.vertices;
+  std::vector<MeshField::SampleFaces> faces_of(nv);
+  std::vector<char> vertex_active(nv, 0);
+  for (const auto& [e, faces] : edges) {
+    const bool is_active = active(e, faces);
+    if (is_active)
+      vertex_active[static_cast<std::size_t>(e.first)] = vertex_active[static_cast<std::size_t>(e.second)] = 1;
+    const MeshField::SampleFaces edge_faces = is_active ? MeshField::SampleFaces{} : add_normals(faces);
+    const Vector3 a = mesh.vertices[static_cast<std::size_t>(e.first)],
+                  b = mesh.vertices[static_cast<std::size_t>(e.second)];
+    const int k = static_cast<int>(std::ceil((b - a).norm() / cell));
+    for (int i = 1; i < k; ++i) {
+      samples.push_back(a + (b - a) * (static_cast<double>(i) / k));
+      faces_of.push_back(edge_faces);
+    }
+  }
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (!vertex_active[v] && !vertex_faces[v].empty()) faces_of[v] = add_normals(vertex_faces[v]);
+  }
+  std::vector<int> order(samples.size());
+  std::iota(order.begin(), order.end(), 0);
+  Cluster(samples, order, 0, static_cast<int>(order.size()), field.clusters);
+  for (const int i : order) {
+    field.samples.push_back(samples[static_cast<std::size_t>(i)]);
+    field.sample_faces.push_back(faces_of[static_cast<std::size_t>(i)]);
+  }
 }
 
 }  // namespace
@@ -315,7 +382,10 @@ double MeshField::Distance(const Vector3& x, Vector3* gradient) const {
   return std::max(mesh_box.exteriorDistance(x), value - outside);
 }
 
-std::size_t MeshField::MemoryBytes() const { return values.size() * sizeof(double) + samples.size() * sizeof(Vector3); }
+std::size_t MeshField::MemoryBytes() const {
+  return values.size() * sizeof(double) + samples.size() * (sizeof(Vector3) + sizeof(SampleFaces)) +
+         normals.size() * sizeof(Vector3);
+}
 
 std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -365,8 +435,7 @@ std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh) {
   for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
   work(0);
   for (auto& t : pool) t.join();
-  AddSamples(mesh, cell, field->samples);
-  Cluster(field->samples, 0, static_cast<int>(field->samples.size()), field->clusters);
+  AddSamples(mesh, cell, *field);
   field->build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return field;
 }

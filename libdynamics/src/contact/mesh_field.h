@@ -14,6 +14,14 @@
 // points along edges longer than a cell, about a cell apart. None inside faces: a face meets
 // another shape first at the other's vertices or along edges, which that shape's samples and the
 // field find.
+//
+// Inactive features (Jolt's "inactive edges"): an edge whose faces are coplanar (within
+// kFlatEdge) or meet in a concave crease, and a vertex all of whose edges are so, is no corner a
+// shape can catch on: a contact there can only push along one of its faces' normals. Their samples
+// carry those normals; a contact found at such a sample takes the face normal nearest the other
+// shape's, so that a body sliding over a flat tessellation or into a crease feels the faces, not
+// the seams between them. Convex edges and corners keep the other shape's normal (a ball still
+// rolls off a table's edge).
 
 #include <array>
 #include <cstdint>
@@ -23,12 +31,22 @@
 
 namespace dynamics::contact {
 
+/// Edges whose faces' normals differ by less than this (rad) are flat.
+inline constexpr double kFlatEdge = 0.035;  // 2°
+
 struct MeshField {
   Vector3 origin = Vector3::Zero();  // node (0, 0, 0)
   double cell = 0;
   std::array<int, 3> nodes{};    // along x, y, z
   std::vector<double> values;    // x fastest
   std::vector<Vector3> samples;  // in clusters of nearby samples (consecutive)
+  // Each sample's faces: count 0 for an active feature (a convex edge or corner), else the normals
+  // normals[first, first + count) of the faces a contact there may push along.
+  struct SampleFaces {
+    std::uint32_t first = 0, count = 0;
+  };
+  std::vector<SampleFaces> sample_faces;  // parallel to samples
+  std::vector<Vector3> normals;
   struct Cluster {
     Vector3 centre;
     double radius = 0;

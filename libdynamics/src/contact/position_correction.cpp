@@ -25,7 +25,7 @@ std::vector<Velocities> PushOutVelocities(std::vector<Row>& rows, const BodyResp
       change = std::max(change, std::abs(push - r.push));
       scale = std::max(scale, push);
       r.push = push;
-      ApplyImpulse(pseudo, bodies, r, impulse);
+      ApplyImpulse(pseudo, bodies, r.a, r.b, r.ra, r.rb, impulse, Vector3::Zero());
     }
     if (change <= tolerance * scale) break;
   }

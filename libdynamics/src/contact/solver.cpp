@@ -5,19 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include "../integrators/integrator.h"
 
 namespace dynamics::contact {
 namespace {
-
-// The normal and tangential effective masses of a row for the response matrix K.
-void SetEffectiveMasses(Row& r, const Matrix3& K) {
-  r.mass_n = 1.0 / r.n.dot(K * r.n);
-  Eigen::Matrix2d Kt;
-  Kt << r.t1.dot(K * r.t1), r.t1.dot(K * r.t2), r.t2.dot(K * r.t1), r.t2.dot(K * r.t2);
-  r.mass_t = Kt.inverse();
-}
 
 double InvMass(const BodyResponse& bodies, int i) {
   return i >= 0 ? bodies.inv_mass[static_cast<std::size_t>(i)] : 0.0;
@@ -26,118 +19,367 @@ Matrix3 InvInertia(const BodyResponse& bodies, int i) {
   return i >= 0 ? bodies.inv_inertia[static_cast<std::size_t>(i)] : Matrix3::Zero().eval();
 }
 
-// One Gauss–Seidel update of a row: the normal impulse, then the friction.
-void Update(Row& r, std::vector<Velocities>& vel, const BodyResponse& bodies, int frozen, double& change,
-            double& scale) {
-  // Normal: the least impulse that keeps the normal velocity at its target.
+// K = (1/m) E − [r]× I⁻¹ [r]×: a body's share of a point's response to an impulse at r.
+Matrix3 PointResponse(const BodyResponse& bodies, int i, const Vector3& r) {
+  const Matrix3 S = internal::Skew(r);
+  return InvMass(bodies, i) * Matrix3::Identity() - S * InvInertia(bodies, i) * S;
+}
+
+// A body's share of a patch's friction response: generalized directions (t1, t2 at r; ρ n as
+// a turn), K_ij = (1/m) d_i·d_j + a_i·I⁻¹ a_j.
+Matrix3 PatchResponse(const BodyResponse& bodies, int i, const Patch& p, const Vector3& r) {
+  Matrix3 A;
+  A.col(0) = r.cross(p.t1);
+  A.col(1) = r.cross(p.t2);
+  A.col(2) = p.rho * p.n;
+  Matrix3 K = A.transpose() * InvInertia(bodies, i) * A;
+  K(0, 0) += InvMass(bodies, i);
+  K(1, 1) += InvMass(bodies, i);
+  return K;
+}
+
+// The effective mass of a patch's friction, block by block: the tangential 2 × 2 block's inverse
+// and the torsion's 1 / K₃₃ (when the patch has a torsion radius). The blocks are coupled through
+// the sweeps rather than one 3 × 3 inverse, which turns ill-conditioned when ρ is small beside
+// the anchor's lever arms.
+Matrix3 PatchMass(const Matrix3& K, double rho) {
+  Matrix3 m = Matrix3::Zero();
+  m.topLeftCorner<2, 2>() = K.topLeftCorner<2, 2>().inverse();
+  if (rho > 0 && K(2, 2) > 0) m(2, 2) = 1 / K(2, 2);
+  return m;
+}
+
+// The patch's generalized sliding velocity: (v·t1, v·t2, ρ ω·n) at its anchor.
+Vector3 PatchVelocity(const std::vector<Velocities>& vel, const Patch& p) {
+  const Vector3 v = RelativeVelocity(vel, p.a, p.b, p.ra, p.rb);
+  Vector3 w = vel[static_cast<std::size_t>(p.a)].w;
+  if (p.b >= 0) w -= vel[static_cast<std::size_t>(p.b)].w;
+  return {p.t1.dot(v), p.t2.dot(v), p.rho * p.n.dot(w)};
+}
+
+void ApplyPatch(std::vector<Velocities>& vel, const BodyResponse& bodies, const Patch& p, const Vector3& d,
+                int frozen) {
+  ApplyImpulse(vel, bodies, p.a, p.b, p.ra, p.rb, p.t1 * d[0] + p.t2 * d[1], p.n * (p.rho * d[2]), frozen);
+}
+
+// The tangent directions of a normal.
+void Tangents(const Vector3& n, Vector3& t1, Vector3& t2) {
+  const Vector3 helper = std::abs(n.x()) < 0.6 ? Vector3::UnitX() : Vector3::UnitY();
+  t1 = n.cross(helper).normalized();
+  t2 = n.cross(t1);
+}
+
+// ∫|x| over the triangle (0, P, Q) in the plane, signed by its orientation (so that a fan about
+// any point sums to the polygon's): in polar form ∫ρ(φ)³/3 dφ with ρ = d / cos φ, d the distance
+// of the edge's line.
+double EdgeMoment(const Eigen::Vector2d& P, const Eigen::Vector2d& Q) {
+  const Eigen::Vector2d e = Q - P;
+  const double len = e.norm();
+  if (!(len > 0)) return 0;
+  const Eigen::Vector2d u = e / len;
+  const double cross = u.y() * P.x() - u.x() * P.y();  // > 0: (0, P, Q) counter-clockwise
+  const double d = std::abs(cross);
+  if (!(d > 1e-15 * len)) return 0;
+  auto F = [d](double s) { return d / 6 * (s * std::hypot(d, s) + d * d * std::asinh(s / d)); };
+  return std::copysign(F(Q.dot(u)) - F(P.dot(u)), cross);
+}
+
+// The anchor (world) and torsion radius of a patch's points (rows warm-started).
+void Outline(const std::vector<Row>& rows, const Patch& p, Vector3& anchor, double& rho) {
+  std::vector<Eigen::Vector2d> q;
+  double height = 0, extent = 0, load = 0;
+  Eigen::Vector2d pressure = Eigen::Vector2d::Zero();  // Σ λn q
+  for (int i = p.first; i < p.first + p.count; ++i) {
+    const Row& r = rows[static_cast<std::size_t>(i)];
+    q.emplace_back(p.t1.dot(r.point), p.t2.dot(r.point));
+    height += p.n.dot(r.point);
+    pressure += r.lambda_n * q.back();
+    load += r.lambda_n;
+  }
+  height /= p.count;
+  // The convex outline (Andrew's monotone chain), counter-clockwise.
+  std::sort(q.begin(), q.end(),
+            [](const auto& x, const auto& y) { return x.x() < y.x() || (x.x() == y.x() && x.y() < y.y()); });
+  for (const auto& x : q) extent = std::max(extent, (x - q.front()).norm());
+  auto turn = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+  };
+  std::vector<Eigen::Vector2d> hull;
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::size_t start = hull.size();
+    for (std::size_t k = 0; k < q.size(); ++k) {
+      const Eigen::Vector2d& x = pass == 0 ? q[k] : q[q.size() - 1 - k];
+      while (hull.size() >= start + 2 && turn(hull[hull.size() - 2], hull.back(), x) <= 0) hull.pop_back();
+      hull.push_back(x);
+    }
+    hull.pop_back();
+  }
+  double area = 0;
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+  for (std::size_t k = 0; k < hull.size(); ++k) {
+    const Eigen::Vector2d& x = hull[k];
+    const Eigen::Vector2d& y = hull[(k + 1) % hull.size()];
+    const double c = x.x() * y.y() - x.y() * y.x();
+    area += c / 2;
+    centroid += (x + y) * (c / 6);
+  }
+  Eigen::Vector2d c2;
+  if (hull.size() >= 3 && area > 1e-4 * extent * extent) {
+    c2 = centroid / area;
+    double moment = 0, farthest = 0;
+    for (std::size_t k = 0; k < hull.size(); ++k) {
+      moment += EdgeMoment(hull[k] - c2, hull[(k + 1) % hull.size()] - c2);
+      farthest = std::max(farthest, (hull[k] - c2).norm());
+    }
+    rho = std::clamp(moment / area, 0.0, farthest);
+  } else if (extent > 0) {  // the points lie on a segment: its farthest pair
+    Eigen::Vector2d x = q.front(), y = q.front();
+    double best = -1;
+    for (const auto& s : q) {
+      for (const auto& t : q) {
+        if ((s - t).squaredNorm() > best) {
+          best = (s - t).squaredNorm();
+          x = s;
+          y = t;
+        }
+      }
+    }
+    c2 = (x + y) / 2;
+    rho = std::sqrt(best) / 4;
+  } else {
+    c2 = q.front();
+    rho = 0;
+  }
+  // The anchor: the centre of pressure of the last step's normal impulses (which the moments
+  // about the tangent axes determine, however the load is shared among the points), else the
+  // outline's centroid. The torsion radius is the uniform-pressure one about the centroid.
+  if (load > 0) c2 = pressure / load;
+  anchor = p.t1 * c2.x() + p.t2 * c2.y() + p.n * height;
+}
+
+// One Gauss–Seidel update of a row's normal impulse: the least that keeps its normal velocity
+// at its target.
+void UpdateNormal(Row& r, std::vector<Velocities>& vel, const BodyResponse& bodies, int frozen, double mass_n,
+                  double& change, double& scale) {
   const double vn = r.n.dot(RelativeVelocity(vel, r));
-  const double ln = std::max(r.lambda_n + r.mass_n * (r.target - vn), 0.0);
+  const double ln = std::max(r.lambda_n + mass_n * (r.target - vn), 0.0);
   const double dn = ln - r.lambda_n;
   r.lambda_n = ln;
-  ApplyImpulse(vel, bodies, r, r.n * dn, frozen);
-  // Friction: the impulse that stops the point's sliding, within the cone μ λn. Within the
-  // cone it holds (or comes to rest in this step); beyond it, a sliding contact takes μk λn
-  // against its sliding, a holding one breaks away at the cone's edge.
-  const Vector3 rel = RelativeVelocity(vel, r);
-  const Eigen::Vector2d vt(r.t1.dot(rel), r.t2.dot(rel));
-  const Eigen::Vector2d stop = r.lambda_t - r.mass_t * vt;
-  const double bound = r.mu * r.lambda_n;
-  Eigen::Vector2d lt = stop;
-  if (stop.norm() > bound) {
-    lt = r.sliding ? Eigen::Vector2d(-bound * r.slip_direction) : Eigen::Vector2d(stop * (bound / stop.norm()));
+  ApplyImpulse(vel, bodies, r.a, r.b, r.ra, r.rb, r.n * dn, Vector3::Zero(), frozen);
+  change = std::max(change, std::abs(dn));
+  scale = std::max(scale, ln);
+}
+
+// Moves a sliding patch's anchor to the centre of pressure of its rows' present normal impulses
+// (kinetic friction so acts where the load is, as friction distributed over the points would: a
+// sliding box does not yaw because its points are unevenly spread), carrying the friction impulse
+// already applied along: off where it was, on where it now is. (A holding patch with three or
+// more points holds the body whatever its anchor.)
+void FollowPressure(Patch& p, const std::vector<Row>& rows, std::vector<Velocities>& vel, const BodyResponse& bodies,
+                    int frozen, double N) {
+  if (!(N > 0)) return;
+  Vector3 centre = Vector3::Zero();
+  for (int i = p.first; i < p.first + p.count; ++i) {
+    const Row& r = rows[static_cast<std::size_t>(i)];
+    centre += r.lambda_n * r.point;
   }
-  const Eigen::Vector2d dt = lt - r.lambda_t;
-  r.lambda_t = lt;
-  ApplyImpulse(vel, bodies, r, r.t1 * dt[0] + r.t2 * dt[1], frozen);
-  change = std::max({change, std::abs(dn), dt.norm()});
-  scale = std::max({scale, r.lambda_n, lt.norm()});
+  centre /= N;
+  centre += p.n * p.n.dot(p.anchor - centre);  // in the patch's plane
+  if ((centre - p.anchor).squaredNorm() <= 1e-24 * (1 + p.rho * p.rho)) return;
+  ApplyPatch(vel, bodies, p, -p.lambda, frozen);
+  p.ra += centre - p.anchor;
+  if (p.b >= 0) p.rb += centre - p.anchor;
+  p.anchor = centre;
+  p.Ka = PatchResponse(bodies, p.a, p, p.ra);
+  p.Kb = PatchResponse(bodies, p.b, p, p.rb);
+  p.mass = PatchMass(p.Ka + p.Kb, p.rho);
+  ApplyPatch(vel, bodies, p, p.lambda, frozen);
+}
+
+// One update of a patch's friction: the impulse that stops its sliding and turning, within the
+// limit μ N. Within it the patch holds (or comes to rest in this step); beyond it, a sliding
+// patch takes μk N against its sliding, a holding one breaks away at the limit. With a body held
+// still (shock propagation), only the other's response counts.
+void UpdateFriction(Patch& p, const std::vector<Row>& rows, std::vector<Velocities>& vel, const BodyResponse& bodies,
+                    int frozen, double& change, double& scale) {
+  double N = 0;
+  for (int i = p.first; i < p.first + p.count; ++i) N += rows[static_cast<std::size_t>(i)].lambda_n;
+  if (p.sliding) FollowPressure(p, rows, vel, bodies, frozen, N);
+  const Matrix3 mass = frozen < 0 ? p.mass : PatchMass(frozen == p.a ? p.Kb : p.Ka, p.rho);
+  const Vector3 stop = p.lambda - mass * PatchVelocity(vel, p);
+  const double bound = p.mu * N;
+  Vector3 lt = stop;
+  if (stop.norm() > bound) lt = p.sliding ? Vector3(-bound * p.slip_direction) : Vector3(stop * (bound / stop.norm()));
+  const Vector3 d = lt - p.lambda;
+  p.lambda = lt;
+  ApplyPatch(vel, bodies, p, d, frozen);
+  change = std::max(change, d.norm());
+  scale = std::max(scale, lt.norm());
+}
+
+// A sweep over the patches in `order` (forward or backward): each patch's normals, then its
+// friction.
+void Sweep(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order, bool forward,
+           std::vector<Velocities>& vel, const BodyResponse& bodies, double& change, double& scale) {
+  const int n = static_cast<int>(order.size());
+  for (int k = 0; k < n; ++k) {
+    Patch& p = patches[static_cast<std::size_t>(order[static_cast<std::size_t>(forward ? k : n - 1 - k)])];
+    for (int j = 0; j < p.count; ++j) {
+      Row& r = rows[static_cast<std::size_t>(forward ? p.first + j : p.first + p.count - 1 - j)];
+      UpdateNormal(r, vel, bodies, -1, r.mass_n, change, scale);
+    }
+    UpdateFriction(p, rows, vel, bodies, -1, change, scale);
+  }
 }
 
 }  // namespace
 
-Vector3 RelativeVelocity(const std::vector<Velocities>& vel, const Row& r) {
-  const Velocities& va = vel[static_cast<std::size_t>(r.a)];
-  Vector3 v = va.v + va.w.cross(r.ra);
-  if (r.b >= 0) {
-    const Velocities& vb = vel[static_cast<std::size_t>(r.b)];
-    v -= vb.v + vb.w.cross(r.rb);
+Vector3 RelativeVelocity(const std::vector<Velocities>& vel, int a, int b, const Vector3& ra, const Vector3& rb) {
+  const Velocities& va = vel[static_cast<std::size_t>(a)];
+  Vector3 v = va.v + va.w.cross(ra);
+  if (b >= 0) {
+    const Velocities& vb = vel[static_cast<std::size_t>(b)];
+    v -= vb.v + vb.w.cross(rb);
   }
   return v;
 }
 
-void ApplyImpulse(std::vector<Velocities>& vel, const BodyResponse& bodies, const Row& r, const Vector3& impulse,
-                  int frozen) {
-  if (r.a != frozen) {
-    Velocities& va = vel[static_cast<std::size_t>(r.a)];
-    va.v += InvMass(bodies, r.a) * impulse;
-    va.w += bodies.inv_inertia[static_cast<std::size_t>(r.a)] * r.ra.cross(impulse);
+void ApplyImpulse(std::vector<Velocities>& vel, const BodyResponse& bodies, int a, int b, const Vector3& ra,
+                  const Vector3& rb, const Vector3& impulse, const Vector3& moment, int frozen) {
+  if (a != frozen) {
+    Velocities& va = vel[static_cast<std::size_t>(a)];
+    va.v += InvMass(bodies, a) * impulse;
+    va.w += bodies.inv_inertia[static_cast<std::size_t>(a)] * (ra.cross(impulse) + moment);
   }
-  if (r.b >= 0 && r.b != frozen) {
-    Velocities& vb = vel[static_cast<std::size_t>(r.b)];
-    vb.v -= InvMass(bodies, r.b) * impulse;
-    vb.w -= bodies.inv_inertia[static_cast<std::size_t>(r.b)] * r.rb.cross(impulse);
+  if (b >= 0 && b != frozen) {
+    Velocities& vb = vel[static_cast<std::size_t>(b)];
+    vb.v -= InvMass(bodies, b) * impulse;
+    vb.w -= bodies.inv_inertia[static_cast<std::size_t>(b)] * (rb.cross(impulse) + moment);
   }
 }
 
-void PrepareRows(std::vector<Row>& rows, const ContactCache& cache, const std::vector<Velocities>& vel,
-                 const BodyResponse& bodies, double slow) {
+std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& cache, const std::vector<Velocities>& vel,
+                                  const BodyResponse& bodies, double slow) {
+  const double same = std::cos(kPatchAngle);
+  // Each row's normal effective mass and warm start.
   for (Row& r : rows) {
-    const Vector3 helper = std::abs(r.n.x()) < 0.6 ? Vector3::UnitX() : Vector3::UnitY();
-    r.t1 = r.n.cross(helper).normalized();
-    r.t2 = r.n.cross(r.t1);
-    // K = (1/ma + 1/mb) E − [ra]× Ia⁻¹ [ra]× − [rb]× Ib⁻¹ [rb]×: the point's response to an impulse.
-    const Matrix3 Sa = internal::Skew(r.ra), Sb = internal::Skew(r.rb);
-    r.Ka = InvMass(bodies, r.a) * Matrix3::Identity() - Sa * InvInertia(bodies, r.a) * Sa;
-    r.Kb = InvMass(bodies, r.b) * Matrix3::Identity() - Sb * InvInertia(bodies, r.b) * Sb;
-    SetEffectiveMasses(r, r.Ka + r.Kb);
-    // Static or kinetic: a contact that held last step (or a new one whose points barely slide)
-    // holds while its friction stays within μs; one that slid slides at μk until it stops.
-    const auto it = cache.find(r.key);
-    bool stuck;
-    if (it != cache.end()) {
-      r.lambda_n = it->second.lambda_n;
-      r.lambda_t = it->second.lambda_t;
-      stuck = it->second.stuck;
-    } else {
-      const Vector3 rel = RelativeVelocity(vel, r);
-      stuck = (rel - r.n * r.n.dot(rel)).norm() <= slow;
-    }
-    r.mu = stuck ? r.mu_s : r.mu_k;
-    if (!stuck) {
-      // Friction opposes the sliding: its direction at the start of the step, kept through the
-      // iterations (the direction of the impulse that would stop the point is tilted by the
-      // body's rotation, and following the changing velocity would not converge).
-      const Vector3 rel = RelativeVelocity(vel, r);
-      const Eigen::Vector2d vt(r.t1.dot(rel), r.t2.dot(rel));
-      r.sliding = vt.norm() > 0;
-      if (r.sliding) r.slip_direction = vt / vt.norm();
-    }
+    r.Ka = PointResponse(bodies, r.a, r.ra);
+    r.Kb = PointResponse(bodies, r.b, r.rb);
+    r.mass_n = 1.0 / r.n.dot((r.Ka + r.Kb) * r.n);
+    const auto it = cache.rows.find(r.key);
+    if (it != cache.rows.end()) r.lambda_n = it->second;
   }
+  std::vector<Patch> patches;
+  std::vector<Row> sorted;
+  for (std::size_t first = 0; first < rows.size();) {
+    // The pair's rows: [first, last).
+    const auto pair = std::pair{std::get<0>(rows[first].key), std::get<1>(rows[first].key)};
+    std::size_t last = first;
+    while (last < rows.size() && std::pair{std::get<0>(rows[last].key), std::get<1>(rows[last].key)} == pair) ++last;
+    // Its patches: each row joins the first patch whose first normal agrees with its own; the
+    // rows are reordered patch by patch.
+    std::vector<Vector3> normals;
+    std::vector<int> patch_of;
+    for (std::size_t i = first; i < last; ++i) {
+      std::size_t k = 0;
+      while (k < normals.size() && normals[k].dot(rows[i].n) < same) ++k;
+      if (k == normals.size()) normals.push_back(rows[i].n);
+      patch_of.push_back(static_cast<int>(k));
+    }
+    sorted.clear();
+    const auto found = cache.patches.find(pair);
+    std::vector<char> used(found != cache.patches.end() ? found->second.size() : 0, 0);
+    for (std::size_t k = 0; k < normals.size(); ++k) {
+      Patch p;
+      p.first = static_cast<int>(first + sorted.size());
+      Vector3 sum = Vector3::Zero();
+      for (std::size_t i = first; i < last; ++i) {
+        if (patch_of[i - first] != static_cast<int>(k)) continue;
+        sorted.push_back(rows[i]);
+        sum += rows[i].n;
+      }
+      p.count = static_cast<int>(first + sorted.size()) - p.first;
+      const Row& r0 = sorted[static_cast<std::size_t>(p.first) - first];
+      p.a = r0.a;
+      p.b = r0.b;
+      p.mu_s = r0.mu_s;
+      p.mu_k = r0.mu_k;
+      p.n = sum.normalized();
+      Tangents(p.n, p.t1, p.t2);
+      patches.push_back(p);
+    }
+    std::copy(sorted.begin(), sorted.end(), rows.begin() + static_cast<std::ptrdiff_t>(first));
+    // Each patch's anchor, effective masses, warm start and friction state.
+    for (std::size_t k = patches.size() - normals.size(); k < patches.size(); ++k) {
+      Patch& p = patches[k];
+      Vector3& anchor = p.anchor;
+      Outline(rows, p, anchor, p.rho);
+      const Row& r0 = rows[static_cast<std::size_t>(p.first)];
+      p.ra = anchor - (r0.point - r0.ra);
+      p.rb = p.b >= 0 ? Vector3(anchor - (r0.point - r0.rb)) : Vector3::Zero();
+      p.Ka = PatchResponse(bodies, p.a, p, p.ra);
+      p.Kb = PatchResponse(bodies, p.b, p, p.rb);
+      p.mass = PatchMass(p.Ka + p.Kb, p.rho);
+      // The cached patch of this pair whose normal is nearest (and close enough).
+      std::size_t best = used.size();
+      for (std::size_t c = 0; c < used.size(); ++c) {
+        const double dot = found->second[c].n.dot(p.n);
+        if (!used[c] && dot >= same && (best == used.size() || dot > found->second[best].n.dot(p.n))) best = c;
+      }
+      const Vector3 g = PatchVelocity(vel, p);
+      bool stuck;
+      if (best < used.size()) {
+        used[best] = 1;
+        const CachedPatch& c = found->second[best];
+        p.lambda = Vector3(p.t1.dot(c.force), p.t2.dot(c.force), p.rho > 0 ? c.torque / p.rho : 0.0);
+        stuck = c.stuck;
+      } else {
+        stuck = g.norm() <= slow;
+      }
+      p.mu = stuck ? p.mu_s : p.mu_k;
+      // Friction opposes the sliding: its direction at the start of the step, kept through the
+      // iterations (the direction of the impulse that would stop the patch is tilted by the
+      // body's rotation, and following the changing velocity would not converge).
+      if (!stuck && g.norm() > 0) {
+        p.sliding = true;
+        p.slip_direction = g / g.norm();
+      }
+    }
+    first = last;
+  }
+  return patches;
 }
 
-int SolveImpulses(std::vector<Row>& rows, std::vector<Velocities>& vel, const BodyResponse& bodies,
-                  const std::vector<int>& body_level, int max_iterations, double tolerance) {
+int SolveImpulses(std::vector<Row>& rows, std::vector<Patch>& patches, std::vector<Velocities>& vel,
+                  const BodyResponse& bodies, const std::vector<int>& body_level, int max_iterations,
+                  double tolerance) {
   constexpr int kNone = std::numeric_limits<int>::max();
   int max_level = -1;
-  for (Row& r : rows) {
-    const int la = body_level[static_cast<std::size_t>(r.a)];
-    r.level = r.b < 0 ? la : std::min(la, body_level[static_cast<std::size_t>(r.b)]);
-    if (r.level != kNone) max_level = std::max(max_level, r.level);
+  for (Patch& p : patches) {
+    const int la = body_level[static_cast<std::size_t>(p.a)];
+    p.level = p.b < 0 ? la : std::min(la, body_level[static_cast<std::size_t>(p.b)]);
+    if (p.level != kNone) max_level = std::max(max_level, p.level);
   }
-  std::stable_sort(rows.begin(), rows.end(), [](const Row& x, const Row& y) { return x.level < y.level; });
+  std::vector<int> order(patches.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int x, int y) {
+    return patches[static_cast<std::size_t>(x)].level < patches[static_cast<std::size_t>(y)].level;
+  });
   // Warm start, then iterate until no impulse changes.
-  for (const Row& r : rows)
-    ApplyImpulse(vel, bodies, r, r.n * r.lambda_n + r.t1 * r.lambda_t[0] + r.t2 * r.lambda_t[1]);
+  for (const int k : order) {
+    const Patch& p = patches[static_cast<std::size_t>(k)];
+    for (int i = p.first; i < p.first + p.count; ++i) {
+      const Row& r = rows[static_cast<std::size_t>(i)];
+      ApplyImpulse(vel, bodies, r.a, r.b, r.ra, r.rb, r.n * r.lambda_n, Vector3::Zero());
+    }
+    ApplyPatch(vel, bodies, p, p.lambda, -1);
+  }
   // Sweeps from the ground up, then back down (symmetric Gauss-Seidel carries a load through a
   // stack in both directions), until no impulse changes.
   int iteration = 0;
   for (; iteration < max_iterations; ++iteration) {
     double change = 0, scale = 0;
-    if (iteration % 2 == 0) {
-      for (Row& r : rows) Update(r, vel, bodies, -1, change, scale);
-    } else {
-      for (auto it = rows.rbegin(); it != rows.rend(); ++it) Update(*it, vel, bodies, -1, change, scale);
-    }
+    Sweep(rows, patches, order, iteration % 2 == 0, vel, bodies, change, scale);
     if (change <= tolerance * scale) {
       ++iteration;
       break;
@@ -150,17 +392,19 @@ int SolveImpulses(std::vector<Row>& rows, std::vector<Velocities>& vel, const Bo
   for (int level = 0; level <= max_level; ++level) {
     for (int pass = 0; pass < max_iterations; ++pass) {
       double change = 0, scale = 0;
-      for (Row& r : rows) {
-        if (r.level != level) continue;
-        const int la = body_level[static_cast<std::size_t>(r.a)];
-        const int lb = r.b >= 0 ? body_level[static_cast<std::size_t>(r.b)] : -1;
+      for (const int k : order) {
+        Patch& p = patches[static_cast<std::size_t>(k)];
+        if (p.level != level) continue;
+        const int la = body_level[static_cast<std::size_t>(p.a)];
+        const int lb = p.b >= 0 ? body_level[static_cast<std::size_t>(p.b)] : -1;
         if (la == lb) continue;
-        const int frozen = la < lb ? r.a : r.b;
-        const Row saved = r;
-        SetEffectiveMasses(r, frozen == r.a ? r.Kb : r.Ka);
-        Update(r, vel, bodies, frozen, change, scale);
-        r.mass_n = saved.mass_n;
-        r.mass_t = saved.mass_t;
+        const int frozen = la < lb ? p.a : p.b;
+        for (int i = p.first; i < p.first + p.count; ++i) {
+          Row& r = rows[static_cast<std::size_t>(i)];
+          const Matrix3& K = frozen == r.a ? r.Kb : r.Ka;
+          UpdateNormal(r, vel, bodies, frozen, 1.0 / r.n.dot(K * r.n), change, scale);
+        }
+        UpdateFriction(p, rows, vel, bodies, frozen, change, scale);
       }
       if (change <= tolerance * scale) break;
     }
@@ -168,11 +412,19 @@ int SolveImpulses(std::vector<Row>& rows, std::vector<Velocities>& vel, const Bo
   return iteration;
 }
 
-void StoreImpulses(const std::vector<Row>& rows, ContactCache& cache) {
-  for (const Row& r : rows) {
-    // On the cone's surface: it slides (or just broke away); inside: it holds.
-    const bool stuck = r.lambda_t.norm() < r.mu * r.lambda_n * (1 - 1e-9) || r.lambda_n == 0;
-    cache[r.key] = {r.lambda_n, r.lambda_t, stuck};
+void StoreImpulses(const std::vector<Row>& rows, const std::vector<Patch>& patches, ContactCache& cache) {
+  for (const Row& r : rows) cache.rows[r.key] = r.lambda_n;
+  for (const Patch& p : patches) {
+    double N = 0;
+    for (int i = p.first; i < p.first + p.count; ++i) N += rows[static_cast<std::size_t>(i)].lambda_n;
+    // Not touching yet (a speculative contact): whether it holds is decided when it touches, by
+    // how fast it slides then.
+    if (N == 0) continue;
+    // On the limit: it slides (or just broke away); inside: it holds.
+    const bool stuck = p.lambda.norm() < p.mu * N * (1 - 1e-9);
+    const RowKey& key = rows[static_cast<std::size_t>(p.first)].key;
+    cache.patches[{std::get<0>(key), std::get<1>(key)}].push_back(
+        {p.n, p.t1 * p.lambda[0] + p.t2 * p.lambda[1], p.rho * p.lambda[2], stuck});
   }
 }
 

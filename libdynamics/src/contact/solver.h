@@ -1,11 +1,12 @@
 #pragma once
-// The velocity solve of a contact step (internal to ContactWorld): the contact rows, their
-// effective masses, and the sequential impulses with static and kinetic friction, iterated from
-// the ground up with shock propagation.
+// The velocity solve of a contact step (internal to ContactWorld): the contact rows and their
+// friction patches, their effective masses, and the sequential impulses with static and kinetic
+// friction, iterated from the ground up with shock propagation.
 
 #include <cstdint>
 #include <map>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "dynamics/contact.h"
@@ -21,22 +22,16 @@ struct Velocities {
 /// step after step.
 using RowKey = std::tuple<int, int, std::uint32_t>;
 
-/// One contact point in the solve. Body b = -1: the ground or a static body.
+/// One contact point in the solve: its normal impulse. Body b = -1: the ground or a static body.
 struct Row {
   int a = -1, b = -1;
-  Vector3 ra = Vector3::Zero(), rb = Vector3::Zero(), n = Vector3::UnitZ(), t1 = Vector3::UnitX(),
-          t2 = Vector3::UnitY();
+  Vector3 ra = Vector3::Zero(), rb = Vector3::Zero(), n = Vector3::UnitZ();
+  Vector3 point = Vector3::Zero();                     // world
   Matrix3 Ka = Matrix3::Zero(), Kb = Matrix3::Zero();  // each body's share of K (below)
-  int level = 0;                                       // of its lower body in the support graph
   double mass_n = 0;                                   // 1 / (n·K n)
-  Eigen::Matrix2d mass_t = Eigen::Matrix2d::Zero();    // (T K Tᵀ)⁻¹
   double target = 0;                                   // the least normal velocity after the step
   double mu_s = 0, mu_k = 0;
-  double mu = 0;         // the bound of this step: μs for a contact that holds, μk for one that slides
-  bool sliding = false;  // slid last step, and slides now
-  Eigen::Vector2d slip_direction = Eigen::Vector2d::Zero();  // unit, of the sliding at the start
   double lambda_n = 0;
-  Eigen::Vector2d lambda_t = Eigen::Vector2d::Zero();
   RowKey key;
   double separation = 0;
   // Mesh contacts only: overlap beyond this is pushed out after the step (< 0: never).
@@ -44,14 +39,47 @@ struct Row {
   double push = 0;  // its accumulated pseudo-impulse
 };
 
-/// What the solve remembers of a contact between steps: its impulses (the warm start) and
-/// whether its friction held.
-struct CachedRow {
-  double lambda_n;
-  Eigen::Vector2d lambda_t;
-  bool stuck;  // its friction was inside the cone: it holds with μs next step
+/// The friction of a contact patch: the rows of one pair of bodies whose normals agree (within
+/// kPatchAngle). Friction acts on the patch as a whole, at its anchor (the centre of pressure of
+/// the last step's normal impulses — of the present ones, followed through the iterations, while
+/// it slides — or the centroid of its points' outline before any load): a force in the tangent
+/// plane and a torque about the normal, bounded together
+/// by μ times the patch's total normal impulse N — an elliptic limit surface, |f|² + (τ/ρ)² ≤
+/// (μN)², with ρ the mean distance of the outline's area from the anchor (uniform pressure; a
+/// segment's quarter length; 0 for one point). Whether a body at rest on a face stays at rest so
+/// depends on the resultant only, not on how the solve happens to share the load among points.
+struct Patch {
+  int a = -1, b = -1;
+  int first = 0, count = 0;  // its rows, consecutive
+  int level = 0;             // of its lower body in the support graph
+  Vector3 n = Vector3::UnitZ(), t1 = Vector3::UnitX(), t2 = Vector3::UnitY();
+  Vector3 anchor = Vector3::Zero();                    // world
+  Vector3 ra = Vector3::Zero(), rb = Vector3::Zero();  // the anchor from each body's centre
+  double rho = 0;                                      // m, the torsion radius (0: no torsion)
+  Matrix3 Ka = Matrix3::Zero(), Kb = Matrix3::Zero();  // each body's share of the friction's K
+  Matrix3 mass = Matrix3::Zero();                      // K⁻¹ (2 × 2 block alone when rho = 0)
+  double mu_s = 0, mu_k = 0;
+  double mu = 0;         // the bound of this step: μs for a patch that holds, μk for one that slides
+  bool sliding = false;  // slid last step, and slides now
+  Vector3 slip_direction = Vector3::Zero();  // unit, of (v·t1, v·t2, ρ ω·n) at the start
+  Vector3 lambda = Vector3::Zero();          // impulses (f·t1, f·t2, τ/ρ)
 };
-using ContactCache = std::map<RowKey, CachedRow>;
+
+/// Normals within this angle (rad) of a patch's first belong to it.
+inline constexpr double kPatchAngle = 0.15;
+
+/// What the solve remembers of a patch between steps.
+struct CachedPatch {
+  Vector3 n = Vector3::UnitZ();
+  Vector3 force = Vector3::Zero();  // the friction impulse (world)
+  double torque = 0;                // its moment about n
+  bool stuck = false;               // its friction was inside the cone: it holds with μs next step
+};
+/// The last step's impulses: each row's normal impulse, each pair's patches (a, b or -1 - static).
+struct ContactCache {
+  std::map<RowKey, double> rows;
+  std::map<std::pair<int, int>, std::vector<CachedPatch>> patches;
+};
 
 /// Each body's response to impulses: 0 inverse mass and inertia for a body held still (asleep).
 struct BodyResponse {
@@ -59,29 +87,34 @@ struct BodyResponse {
   std::vector<Matrix3> inv_inertia;
 };
 
-/// The velocity of row r's point on a relative to b (a ground or static body: at rest).
-Vector3 RelativeVelocity(const std::vector<Velocities>& vel, const Row& r);
+/// The velocity of a point (ra from a's centre, rb from b's) on a relative to b (b < 0: at rest).
+Vector3 RelativeVelocity(const std::vector<Velocities>& vel, int a, int b, const Vector3& ra, const Vector3& rb);
+inline Vector3 RelativeVelocity(const std::vector<Velocities>& vel, const Row& r) {
+  return RelativeVelocity(vel, r.a, r.b, r.ra, r.rb);
+}
 
-/// An impulse at row r's point on a and its opposite on b, into `vel`; the body `frozen` (shock
-/// propagation) is not moved.
-void ApplyImpulse(std::vector<Velocities>& vel, const BodyResponse& bodies, const Row& r, const Vector3& impulse,
-                  int frozen = -1);
+/// An impulse at a point (ra, rb) on a, and its opposite on b, with an angular impulse `moment`
+/// on a (and its opposite on b), into `vel`; the body `frozen` (shock propagation) is not moved.
+void ApplyImpulse(std::vector<Velocities>& vel, const BodyResponse& bodies, int a, int b, const Vector3& ra,
+                  const Vector3& rb, const Vector3& impulse, const Vector3& moment, int frozen = -1);
 
-/// Sets every row's effective masses, warm-starts it from the cache, and chooses static or
-/// kinetic friction: a contact that held last step (or a new one whose point barely slides,
-/// within `slow`) holds while its friction stays within μs; one that slid slides at μk until it
-/// stops.
-void PrepareRows(std::vector<Row>& rows, const ContactCache& cache, const std::vector<Velocities>& vel,
-                 const BodyResponse& bodies, double slow);
+/// Groups the rows (consecutive by pair) into patches, reordering a pair's rows so that each
+/// patch's are consecutive; sets every row's and patch's effective masses; warm-starts them
+/// from the cache and chooses static or kinetic friction: a patch that held last step (or a new
+/// one whose anchor barely slides, within `slow`) holds while its friction stays within μs; one
+/// that slid slides at μk against its sliding until it stops.
+std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& cache, const std::vector<Velocities>& vel,
+                                  const BodyResponse& bodies, double slow);
 
-/// Solves the impulses into `vel`: rows sorted by support level (body_level: 0 on the ground or
-/// a static body, k + 1 on level k), warm start, then symmetric Gauss–Seidel sweeps until no
-/// impulse changes by more than `tolerance` times the largest, and shock propagation level by
-/// level when the sweeps run out. Returns the sweeps used.
-int SolveImpulses(std::vector<Row>& rows, std::vector<Velocities>& vel, const BodyResponse& bodies,
-                  const std::vector<int>& body_level, int max_iterations, double tolerance);
+/// Solves the impulses into `vel`: patches ordered by support level (body_level: 0 on the
+/// ground or a static body, k + 1 on level k), warm start, then symmetric Gauss–Seidel sweeps
+/// (each patch's normals, then its friction) until no impulse changes by more than `tolerance`
+/// times the largest, and shock propagation level by level when the sweeps run out. Returns the
+/// sweeps used.
+int SolveImpulses(std::vector<Row>& rows, std::vector<Patch>& patches, std::vector<Velocities>& vel,
+                  const BodyResponse& bodies, const std::vector<int>& body_level, int max_iterations, double tolerance);
 
-/// The cache for the next step: the solved rows, and `kept` (contacts of bodies held still).
-void StoreImpulses(const std::vector<Row>& rows, ContactCache& cache);
+/// Adds the solved rows and patches to the cache for the next step.
+void StoreImpulses(const std::vector<Row>& rows, const std::vector<Patch>& patches, ContactCache& cache);
 
 }  // namespace dynamics::contact
