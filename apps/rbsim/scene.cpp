@@ -416,6 +416,7 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
     }
   }
   if (const json* c = f.Get("contact")) {
+    scene.contact_given = true;
     Fields o(*c, "contact", file);
     scene.contact.max_iterations =
         static_cast<int>(o.Number("max_iterations", scene.contact.max_iterations, "positive"));

@@ -125,6 +125,7 @@ struct Scene {
   std::vector<GroundSpec> grounds;
   std::vector<StaticSpec> statics;
   dynamics::ContactOptions contact;
+  bool contact_given = false;  ///< the scene has a "contact" section
   /// Materials of particular pairs: body indices, -1 for the ground and static bodies.
   struct PairMaterial {
     int a = -1, b = -1;

@@ -2,6 +2,7 @@
 
 #include "massprops/repair.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -202,6 +203,7 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
   for (const BodySpec& b : scene.bodies)
     wants_contact = wants_contact || b.collision.kind != CollisionSpec::Kind::kAuto;
   sim.contact = wants_contact;
+  std::vector<bool> collides;  // each body has a collider
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodySpec& spec = scene.bodies[i];
     const std::string where = scene.file + ": " + spec.field;
@@ -230,6 +232,7 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     rb.SetAngularVelocity(omega);
     try {
       const auto collider = wants_contact ? ColliderOf(spec.collision, spec.shape, body, meshes) : std::nullopt;
+      collides.push_back(collider.has_value());
       if (collider) {
         sim.physics.AddBody(rb, *collider);
       } else {
@@ -309,6 +312,26 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     }
   }
 
+  // Fields that the scene's own content makes inert are errors, not silently ignored.
+  const bool anything_collides = std::find(collides.begin(), collides.end(), true) != collides.end();
+  if (scene.contact_given && !anything_collides) {
+    throw SceneError(scene.file +
+                     ": contact: no body collides with anything (give bodies \"collision\"), so these "
+                     "options would never apply");
+  }
+  for (std::size_t i = 0; i < scene.pairs.size(); ++i) {
+    const Scene::PairMaterial& p = scene.pairs[i];
+    for (const int end : {p.a, p.b}) {
+      const std::string where = scene.file + ": pairs[" + std::to_string(i) + "]: ";
+      if (end >= 0 && !collides[static_cast<std::size_t>(end)]) {
+        throw SceneError(where + "body '" + scene.bodies[static_cast<std::size_t>(end)].name +
+                         "' collides with nothing (give it \"collision\"), so this pair's material would never apply");
+      }
+      if (end < 0 && scene.grounds.empty() && scene.statics.empty()) {
+        throw SceneError(where + "the scene has no ground or static body, so this pair's material would never apply");
+      }
+    }
+  }
   for (const Scene::PairMaterial& p : scene.pairs) sim.physics.SetPairMaterial(p.a, p.b, p.material);
   if (!scene.pairs.empty()) sim.contact = true;
 

@@ -422,7 +422,21 @@ def main():
                  '"allow_open": true, "collision": "mesh", "position": [0, 0, 2]}]}' % os.path.join(tmp, "open_obj.obj"),
                  r"bodies\[0\]: a mesh collider must be closed and consistently oriented"),
                 ("scene_collision_typo", '{"bodies": [{"solid": {"type": "sphere", "radius": 1}, "collision": "mesj"}]}',
-                 r"collision: 'mesj' is not .*did you mean 'mesh'")]:
+                 r"collision: 'mesj' is not .*did you mean 'mesh'"),
+                # Fields the scene makes inert are errors: a pair of bodies that collide with nothing (two
+                # spheres passed through each other while the summary said "up to 0 points"), a pair with
+                # the ground in a scene without one, contact options where nothing collides.
+                ("scene_pair_without_collision",
+                 '{"bodies": [{"name": "a", "solid": {"type": "sphere", "radius": 0.1}, "velocity": [1, 0, 0]}, '
+                 '{"name": "b", "solid": {"type": "sphere", "radius": 0.1}, "position": [0.5, 0, 0]}], '
+                 '"pairs": [{"bodies": ["a", "b"], "material": {"restitution": 1}}]}',
+                 r"pairs\[0\]: body 'a' collides with nothing \(give it \"collision\"\)"),
+                ("scene_pair_without_ground",
+                 '{"bodies": [{"name": "a", "solid": {"type": "sphere", "radius": 0.1}, "collision": "hull"}], '
+                 '"pairs": [{"bodies": ["a", "ground"], "material": {"restitution": 1}}]}',
+                 r"pairs\[0\]: the scene has no ground or static body"),
+                ("scene_inert_contact", '{"contact": {"sleeping": true}, "bodies": [%s]}' % box,
+                 r"contact: no body collides with anything")]:
             write(name + ".json", text)
             out_dir = os.path.join(tmp, name + ".out")
             run(name, [name + ".json", "--out", out_dir, "--duration", "0.01"] if "duration" not in text else

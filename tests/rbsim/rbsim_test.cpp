@@ -397,8 +397,10 @@ TEST(Outputs, GlbHeaderChunksAndOneKeyPerSample) {
 // and boxes — each collided as its own mesh, poured into an open-topped bin that is a static mesh.
 // After settling every part is inside the bin, no overlap ever exceeds half the finest field's
 // cell (Spot's, 1.0 mm), the contact impulses never add kinetic energy, and the total energy rises
-// in no step by more than the weight times the distance overlaps were pushed out. A long
-// simulation: the Release run only.
+// in no step by more than the weight times the distance overlaps were pushed out, plus 5e-8 of it:
+// a contact that turns a settling part upward lifts it in this step while gravity takes the
+// kinetic energy back over the next ones (the semi-implicit step's lag; measured at most 1.7e-8
+// with patch friction). A long simulation: the Release run only.
 TEST(Scene, PileInABinSettlesInsideIt) {
 #if defined(__SANITIZE_ADDRESS__)
   GTEST_SKIP() << "a long simulation: run in the Release build";
@@ -420,7 +422,8 @@ TEST(Scene, PileInABinSettlesInsideIt) {
     deepest = std::max(deepest, st.max_penetration);
     ASSERT_GE(st.dissipated, -1e-9 * std::abs(energy)) << "step " << i;
     const double now = sim.world().Diagnose().total_energy;
-    ASSERT_LE(now, energy + total_mass * 9.81 * st.pushed + 1e-9 * std::abs(energy)) << "step " << i;
+    ASSERT_LE(now, energy + total_mass * 9.81 * st.pushed + 5e-8 * std::abs(energy))
+        << "step " << i << ": rose by " << now - energy << " J, pushed " << st.pushed << " m";
     energy = now;
   }
   EXPECT_LT(deepest, 0.5e-3);

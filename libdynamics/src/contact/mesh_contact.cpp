@@ -125,7 +125,7 @@ void SamplesOf(const Posed& s, double spacing, std::vector<Sample>& out) {
           }
         } else if constexpr (std::is_same_v<T, shape::Mesh>) {
           for (const Vector3& v : x.field->samples) out.push_back({world(v), 0});
-        } else {  // boxes, cylinders (their inscribed prism) and convex shapes: corners and edges
+        } else {  // boxes and convex shapes (cylinders: rings, in SamplesAgainst): corners and edges
           const Polytope& p = *s.polytope;
           for (const Vector3& v : p.vertices) out.push_back({world(v), 0});
           for (const auto& [i, j] : p.edges) {
@@ -222,12 +222,47 @@ void SamplesAgainst(const Posed& from, const Posed& to, double spacing, double m
     const auto* other_mesh = std::get_if<shape::Mesh>(to.shape);
     const double slack = margin + (other_mesh != nullptr ? kDiagonal * other_mesh->field->cell : 0.0);
     const std::vector<Vector3>& samples = m->field->samples;
+    // Against a sphere, capsule or cylinder, whose own samples (centres and rings) meet a face
+    // exactly, the samples of inactive features are left out: on a seam they could only push
+    // along the face, and a curved surface approaching the face would seem, along the face's
+    // normal, to close the gap twice as fast as it does.
+    const bool smooth = std::holds_alternative<shape::Sphere>(*to.shape) ||
+                        std::holds_alternative<shape::Capsule>(*to.shape) ||
+                        std::holds_alternative<shape::Cylinder>(*to.shape);
     for (const MeshField::Cluster& c : m->field->clusters) {
       if (local.exteriorDistance(c.centre) > c.radius) continue;
       if (DistanceOnly(to, from.R * c.centre + from.t) > c.radius + slack) continue;
       for (int i = c.first; i < c.first + c.count; ++i) {
         const auto k = static_cast<std::size_t>(i);
+        if (smooth && m->field->sample_faces[k].count > 0) continue;
         if (local.contains(samples[k])) test(from.R * samples[k] + from.t, 0, k);
+      }
+    }
+    return;
+  }
+  if (const auto* c = std::get_if<shape::Cylinder>(from.shape)) {
+    // Rings across the axis about a cell apart, the caps' rims included: each meets the other
+    // shape first at its point farthest along −∇φ at its centre (exact against a flat face: a
+    // cylinder rolls on a mesh as on a plane), a cap's rim at four points when ∇φ lies along the
+    // axis (it stands on its cap). φ is 1-Lipschitz: a ring whose centre is farther than its
+    // radius plus the margin is skipped.
+    const Vector3 axis = from.R.col(2);
+    const int k = std::max(1, static_cast<int>(std::ceil(2 * c->half_length / spacing)));
+    for (int i = 0; i <= k; ++i) {
+      const Vector3 centre = from.t + axis * (-c->half_length + 2 * c->half_length * i / k);
+      if (!overlap.contains(centre) && overlap.exteriorDistance(centre) > c->radius) continue;
+      if (!(DistanceOnly(to, centre) - c->radius < margin)) continue;
+      Vector3 g = Vector3::UnitZ();
+      Distance(to, centre, g);
+      const Vector3 radial = -g - axis * axis.dot(-g);
+      const std::size_t id = static_cast<std::size_t>(i) * 4;
+      if (radial.norm() > 1e-3) {
+        test(centre + c->radius * radial.normalized(), 0, id);
+      } else if (i == 0 || i == k) {
+        for (int q = 0; q < 4; ++q) {
+          test(centre + c->radius * (std::cos(q * M_PI / 2) * from.R.col(0) + std::sin(q * M_PI / 2) * from.R.col(1)),
+               0, id + static_cast<std::size_t>(q));
+        }
       }
     }
     return;

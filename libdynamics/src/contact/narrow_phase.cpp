@@ -106,6 +106,57 @@ std::array<Vector3, 8> Corners(const Posed& box) {
   return c;
 }
 
+// Whether world point x lies on face f of a posed polytope (within `slack` of its outline).
+bool OnFace(const Polytope& p, const Posed& posed, std::size_t f, const Vector3& x, double slack) {
+  const Vector3 n = posed.R * p.normals[f];
+  const std::vector<int>& face = p.faces[f];
+  for (std::size_t k = 0; k < face.size(); ++k) {
+    const Vector3 u = posed.R * p.vertices[static_cast<std::size_t>(face[k])] + posed.t;
+    const Vector3 v = posed.R * p.vertices[static_cast<std::size_t>(face[(k + 1) % face.size()])] + posed.t;
+    const Vector3 inward = n.cross(v - u).normalized();  // counter-clockwise from outside: inward
+    if (inward.dot(x - u) < -slack) return false;
+  }
+  return true;
+}
+
+// A cylinder against a polytope (normals from the polytope into the cylinder): the manifold of
+// the cylinder's inscribed 32-sided prism, except where that contact is with one of the
+// polytope's faces (the cylinder lies, rolls or stands on it: the manifold's normal within 8° of
+// the face's, more than the prism's 5.6° facets tilt it): then the cylinder's own points against
+// the face's plane, as against a ground plane, where they fall on the face. A cylinder so rolls
+// on boxes and hulls as on the ground.
+void CylinderPolytope(const Posed& cylinder, const Polytope& p, const Posed& posed, double margin,
+                      std::vector<ContactPoint>& out) {
+  const std::size_t first = out.size();
+  PolytopePolytope(*cylinder.polytope, cylinder, p, posed, margin, out);
+  if (out.size() == first) return;
+  const Vector3 n = out[first].normal;
+  std::size_t face = 0;
+  double best = -2;
+  for (std::size_t f = 0; f < p.faces.size(); ++f) {
+    const double d = (posed.R * p.normals[f]).dot(n);
+    if (d > best) {
+      best = d;
+      face = f;
+    }
+  }
+  if (best < std::cos(8 * M_PI / 180)) return;
+  const Vector3 nf = posed.R * p.normals[face];
+  const double offset = nf.dot(posed.R * p.vertices[static_cast<std::size_t>(p.faces[face][0])] + posed.t);
+  std::vector<ContactPoint> exact;
+  CollideGround(cylinder, nf, offset, margin, exact);
+  const double slack = 1e-9 * BoundingRadius(*cylinder.shape);
+  exact.erase(std::remove_if(exact.begin(), exact.end(),
+                             [&](const ContactPoint& c) { return !OnFace(p, posed, face, c.point, slack); }),
+              exact.end());
+  if (exact.empty()) return;  // over the face's edge: the prism's manifold
+  out.resize(first);
+  for (ContactPoint& c : exact) {
+    c.feature |= 1u << 20;  // not the prism's features
+    out.push_back(c);
+  }
+}
+
 }  // namespace
 
 double BoundingRadius(const Shape& s) {
@@ -291,6 +342,17 @@ bool Collide(const Posed& a, const Posed& b, double margin, std::vector<ContactP
     }
   }
   const bool poly_a = a.polytope != nullptr, poly_b = b.polytope != nullptr;
+  const bool cylinder_a = std::holds_alternative<shape::Cylinder>(sa),
+             cylinder_b = std::holds_alternative<shape::Cylinder>(sb);
+  if (poly_a && poly_b && cylinder_a != cylinder_b) {
+    if (cylinder_a) {
+      CylinderPolytope(a, *b.polytope, b, margin, out);
+    } else {
+      CylinderPolytope(b, *a.polytope, a, margin, out);
+      flip();
+    }
+    return true;
+  }
   if (poly_a && poly_b) {
     PolytopePolytope(*a.polytope, a, *b.polytope, b, margin, out);
     return true;

@@ -2,6 +2,7 @@
 
 #include "solver.h"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -38,14 +39,12 @@ Matrix3 PatchResponse(const BodyResponse& bodies, int i, const Patch& p, const V
   return K;
 }
 
-// The effective mass of a patch's friction, block by block: the tangential 2 × 2 block's inverse
-// and the torsion's 1 / K₃₃ (when the patch has a torsion radius). The blocks are coupled through
-// the sweeps rather than one 3 × 3 inverse, which turns ill-conditioned when ρ is small beside
-// the anchor's lever arms.
+// The effective mass of a patch's friction, K⁻¹ (the tangential 2 × 2 block's alone when the patch
+// has no torsion radius).
 Matrix3 PatchMass(const Matrix3& K, double rho) {
+  if (rho > 0) return K.inverse();
   Matrix3 m = Matrix3::Zero();
   m.topLeftCorner<2, 2>() = K.topLeftCorner<2, 2>().inverse();
-  if (rho > 0 && K(2, 2) > 0) m(2, 2) = 1 / K(2, 2);
   return m;
 }
 
@@ -170,6 +169,50 @@ void UpdateNormal(Row& r, std::vector<Velocities>& vel, const BodyResponse& bodi
   scale = std::max(scale, ln);
 }
 
+// The impulse nearest `target` in the metric of the response K (the one that leaves the least
+// kinetic energy) within the ball |λ| ≤ bound, over the first `dim` components: Coulomb's
+// maximal dissipation, the friction then opposing the patch's sliding at the end of the update.
+// On the ball's surface λ(ν) = (K + ν E)⁻¹ K target with ν ≥ 0 such that |λ| = bound (a
+// trust-region step: Newton on 1/|λ(ν)| − 1/bound, which is nearly linear in ν).
+Vector3 ProjectOntoBall(const Matrix3& K, const Vector3& target, double bound, int dim) {
+  if (!(bound > 0)) return Vector3::Zero();
+  Eigen::SelfAdjointEigenSolver<Matrix3> eig;
+  Matrix3 Kd = K;
+  if (dim == 2) {
+    Kd.row(2).setZero();
+    Kd.col(2).setZero();
+    Kd(2, 2) = 1;
+  }
+  eig.computeDirect(Kd);
+  const Vector3 values = eig.eigenvalues().cwiseMax(0.0);
+  const Vector3 c = eig.eigenvectors().transpose() * target;
+  auto at = [&](double nu, Vector3& x, double& length, double& slope) {
+    x.setZero();
+    double sum = 0, derivative = 0;
+    for (int i = 0; i < 3; ++i) {
+      const double w = values[i] / (values[i] + nu), xi = w * c[i];
+      x += eig.eigenvectors().col(i) * xi;
+      sum += xi * xi;
+      derivative += -2 * xi * xi / (values[i] + nu);  // d|x|²/dν
+    }
+    length = std::sqrt(sum);
+    slope = derivative;
+  };
+  double nu = 0, length = 0, slope = 0;
+  Vector3 x;
+  at(nu, x, length, slope);
+  for (int k = 0; k < 50 && length > bound * (1 + 1e-12); ++k) {
+    // φ(ν) = 1/|x| − 1/bound; φ' = −½ |x|⁻³ d|x|²/dν.
+    const double phi = 1 / length - 1 / bound, dphi = -0.5 * slope / (length * length * length);
+    if (!(dphi > 0)) break;
+    nu = std::max(nu - phi / dphi, nu * 1e-3 + 1e-300);
+    at(nu, x, length, slope);
+  }
+  if (length > bound) x *= bound / length;  // the last rounding
+  if (dim == 2) x[2] = 0;
+  return x;
+}
+
 // Moves a sliding patch's anchor to the centre of pressure of its rows' present normal impulses
 // (kinetic friction so acts where the load is, as friction distributed over the points would: a
 // sliding box does not yaw because its points are unevenly spread), carrying the friction impulse
@@ -204,12 +247,16 @@ void UpdateFriction(Patch& p, const std::vector<Row>& rows, std::vector<Velociti
                     int frozen, double& change, double& scale) {
   double N = 0;
   for (int i = p.first; i < p.first + p.count; ++i) N += rows[static_cast<std::size_t>(i)].lambda_n;
-  if (p.sliding) FollowPressure(p, rows, vel, bodies, frozen, N);
+  if (p.sliding && frozen < 0) FollowPressure(p, rows, vel, bodies, frozen, N);
   const Matrix3 mass = frozen < 0 ? p.mass : PatchMass(frozen == p.a ? p.Kb : p.Ka, p.rho);
-  const Vector3 stop = p.lambda - mass * PatchVelocity(vel, p);
+  const Vector3 g = PatchVelocity(vel, p);
+  const Vector3 stop = p.lambda - mass * g;
   const double bound = p.mu * N;
   Vector3 lt = stop;
-  if (stop.norm() > bound) lt = p.sliding ? Vector3(-bound * p.slip_direction) : Vector3(stop * (bound / stop.norm()));
+  if (stop.norm() > bound) {
+    const Matrix3 K = frozen < 0 ? Matrix3(p.Ka + p.Kb) : (frozen == p.a ? p.Kb : p.Ka);
+    lt = ProjectOntoBall(K, stop, bound, p.rho > 0 ? 3 : 2);
+  }
   const Vector3 d = lt - p.lambda;
   p.lambda = lt;
   ApplyPatch(vel, bodies, p, d, frozen);
@@ -267,7 +314,7 @@ std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& ca
     r.Kb = PointResponse(bodies, r.b, r.rb);
     r.mass_n = 1.0 / r.n.dot((r.Ka + r.Kb) * r.n);
     const auto it = cache.rows.find(r.key);
-    if (it != cache.rows.end()) r.lambda_n = it->second;
+    if (it != cache.rows.end()) r.lambda_n = it->second.lambda_n;
   }
   std::vector<Patch> patches;
   std::vector<Row> sorted;
@@ -320,11 +367,22 @@ std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& ca
       p.Ka = PatchResponse(bodies, p.a, p, p.ra);
       p.Kb = PatchResponse(bodies, p.b, p, p.rb);
       p.mass = PatchMass(p.Ka + p.Kb, p.rho);
-      // The cached patch of this pair whose normal is nearest (and close enough).
+      // The patch it was last step: the cached patch of one of its rows (by the rows' feature
+      // keys, as a contact is known step after step); none: a new patch.
       std::size_t best = used.size();
-      for (std::size_t c = 0; c < used.size(); ++c) {
-        const double dot = found->second[c].n.dot(p.n);
-        if (!used[c] && dot >= same && (best == used.size() || dot > found->second[best].n.dot(p.n))) best = c;
+      for (int i = p.first; i < p.first + p.count && best == used.size(); ++i) {
+        const auto it = cache.rows.find(rows[static_cast<std::size_t>(i)].key);
+        if (it != cache.rows.end() && it->second.patch >= 0 && !used[static_cast<std::size_t>(it->second.patch)]) {
+          best = static_cast<std::size_t>(it->second.patch);
+        }
+      }
+      // Else (its points all new: a clipped manifold's corners move along the edges) the pair's
+      // unmatched cached patch whose normal is nearest, within kPatchAngle.
+      if (best == used.size()) {
+        for (std::size_t c = 0; c < used.size(); ++c) {
+          const double dot = found->second[c].n.dot(p.n);
+          if (!used[c] && dot >= same && (best == used.size() || dot > found->second[best].n.dot(p.n))) best = c;
+        }
       }
       const Vector3 g = PatchVelocity(vel, p);
       bool stuck;
@@ -337,13 +395,8 @@ std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& ca
         stuck = g.norm() <= slow;
       }
       p.mu = stuck ? p.mu_s : p.mu_k;
-      // Friction opposes the sliding: its direction at the start of the step, kept through the
-      // iterations (the direction of the impulse that would stop the patch is tilted by the
-      // body's rotation, and following the changing velocity would not converge).
-      if (!stuck && g.norm() > 0) {
-        p.sliding = true;
-        p.slip_direction = g / g.norm();
-      }
+      // Sliding: its anchor follows the centre of pressure through the iterations.
+      p.sliding = !stuck && g.norm() > 0;
     }
     first = last;
   }
@@ -413,18 +466,24 @@ int SolveImpulses(std::vector<Row>& rows, std::vector<Patch>& patches, std::vect
 }
 
 void StoreImpulses(const std::vector<Row>& rows, const std::vector<Patch>& patches, ContactCache& cache) {
-  for (const Row& r : rows) cache.rows[r.key] = r.lambda_n;
   for (const Patch& p : patches) {
     double N = 0;
     for (int i = p.first; i < p.first + p.count; ++i) N += rows[static_cast<std::size_t>(i)].lambda_n;
+    const RowKey& key = rows[static_cast<std::size_t>(p.first)].key;
+    std::vector<CachedPatch>& pair = cache.patches[{std::get<0>(key), std::get<1>(key)}];
     // Not touching yet (a speculative contact): whether it holds is decided when it touches, by
     // how fast it slides then.
-    if (N == 0) continue;
-    // On the limit: it slides (or just broke away); inside: it holds.
-    const bool stuck = p.lambda.norm() < p.mu * N * (1 - 1e-9);
-    const RowKey& key = rows[static_cast<std::size_t>(p.first)].key;
-    cache.patches[{std::get<0>(key), std::get<1>(key)}].push_back(
-        {p.n, p.t1 * p.lambda[0] + p.t2 * p.lambda[1], p.rho * p.lambda[2], stuck});
+    int index = -1;
+    if (N > 0) {
+      // On the limit: it slides (or just broke away); inside: it holds.
+      const bool stuck = p.lambda.norm() < p.mu * N * (1 - 1e-9);
+      index = static_cast<int>(pair.size());
+      pair.push_back({p.n, p.t1 * p.lambda[0] + p.t2 * p.lambda[1], p.rho * p.lambda[2], stuck});
+    }
+    for (int i = p.first; i < p.first + p.count; ++i) {
+      const Row& r = rows[static_cast<std::size_t>(i)];
+      cache.rows[r.key] = {r.lambda_n, index};
+    }
   }
 }
 

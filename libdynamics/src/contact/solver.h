@@ -59,14 +59,13 @@ struct Patch {
   Matrix3 Ka = Matrix3::Zero(), Kb = Matrix3::Zero();  // each body's share of the friction's K
   Matrix3 mass = Matrix3::Zero();                      // K⁻¹ (2 × 2 block alone when rho = 0)
   double mu_s = 0, mu_k = 0;
-  double mu = 0;         // the bound of this step: μs for a patch that holds, μk for one that slides
-  bool sliding = false;  // slid last step, and slides now
-  Vector3 slip_direction = Vector3::Zero();  // unit, of (v·t1, v·t2, ρ ω·n) at the start
-  Vector3 lambda = Vector3::Zero();          // impulses (f·t1, f·t2, τ/ρ)
+  double mu = 0;                     // the bound of this step: μs for a patch that holds, μk for one that slides
+  bool sliding = false;              // did not hold last step, and slides at the start of this one
+  Vector3 lambda = Vector3::Zero();  // impulses (f·t1, f·t2, τ/ρ)
 };
 
 /// Normals within this angle (rad) of a patch's first belong to it.
-inline constexpr double kPatchAngle = 0.15;
+inline constexpr double kPatchAngle = 0.01;
 
 /// What the solve remembers of a patch between steps.
 struct CachedPatch {
@@ -75,9 +74,15 @@ struct CachedPatch {
   double torque = 0;                // its moment about n
   bool stuck = false;               // its friction was inside the cone: it holds with μs next step
 };
-/// The last step's impulses: each row's normal impulse, each pair's patches (a, b or -1 - static).
+/// What the solve remembers of a row: its normal impulse and its patch (an index into its
+/// pair's cached patches; -1: its patch was not touching).
+struct CachedRow {
+  double lambda_n = 0;
+  int patch = -1;
+};
+/// The last step's impulses: each row's, each pair's patches (a, b or -1 - static).
 struct ContactCache {
-  std::map<RowKey, double> rows;
+  std::map<RowKey, CachedRow> rows;
   std::map<std::pair<int, int>, std::vector<CachedPatch>> patches;
 };
 
