@@ -385,3 +385,58 @@ TEST(Friction, CylinderRollsDownStaticRampsAtTwoThirdsGSinTheta) {
 
 }  // namespace
 }  // namespace dynamics
+
+namespace dynamics {
+namespace {
+
+// A capsule lying across a box's edge between its ends rests on the edge: lying along x with its
+// centre of mass over the box and one end beyond the edge, it stays level, at its radius above
+// the top (the end spheres alone would let it tip through the edge).
+TEST(Contact, CapsuleLyingAcrossABoxEdgeRestsOnIt) {
+  const Material m = Mat(0.6, 0.5);
+  const double r = 0.01, half_length = 0.1;
+  ContactWorld w;
+  w.AddStatic(Collider{shape::Box{Vector3(0.25, 0.25, 0.05)}, Matrix3::Identity(), Vector3::Zero(), m},
+              Matrix3::Identity(), Vector3(0, 0, -0.05));  // top at z = 0, edge at x = 0.25
+  RigidBody b;
+  b.mass = 0.1;
+  b.inertia = Vector3(b.mass * half_length * half_length / 3, b.mass * half_length * half_length / 3, 1e-6);
+  b.position = Vector3(0.2, 0, r);
+  b.orientation = Quaternion(Eigen::AngleAxisd(M_PI / 2, Vector3::UnitY()));  // axis along x
+  w.AddBody(b, Collider{shape::Capsule{r, half_length}, Matrix3::Identity(), Vector3::Zero(), m});
+  w.AddForce(Gravity(Vector3(0, 0, -kG)));
+  Simulate(w, 1000);
+  const RigidBody& now = w.world().bodies()[0];
+  EXPECT_NEAR(now.position.z(), r, 1e-6);
+  EXPECT_LT(now.orientation.angularDistance(b.orientation), 1e-5);
+}
+
+// Overlaps of primitive bodies are pushed out: a box sunk 2 mm into the ground rises to within
+// its slop (half a percent of its bounding radius) in 0.2 s, its velocity untouched by the
+// push, and the energy rises in no step by more than its weight times the distance pushed.
+TEST(Contact, OverlapsOfPrimitivesArePushedOutPayingOnlyThePotentialEnergy) {
+  const Material m = Mat(0.6, 0.5);
+  const Vector3 half(0.03, 0.02, 0.01);
+  ContactWorld w;
+  w.AddGround({Vector3::UnitZ(), 0, m});
+  RigidBody b = BoxBody(half, 500);
+  b.position = Vector3(0, 0, half.z() - 0.002);
+  w.AddBody(b, Collider{shape::Box{half}, Matrix3::Identity(), Vector3::Zero(), m});
+  w.AddForce(Gravity(Vector3(0, 0, -kG)));
+  double energy = w.world().Diagnose().total_energy, pushed = 0;
+  for (int i = 0; i < 200; ++i) {
+    ASSERT_TRUE(w.Step(kH).ok);
+    const double now = w.world().Diagnose().total_energy;
+    EXPECT_LE(now, energy + b.mass * kG * w.stats().pushed + 1e-12) << "step " << i;
+    pushed += w.stats().pushed;
+    energy = now;
+  }
+  const double slop = 0.005 * half.norm();
+  const RigidBody& now = w.world().bodies()[0];
+  EXPECT_GT(pushed, 0.002 - slop - 1e-9);
+  EXPECT_NEAR(now.position.z(), half.z() - slop, 1e-6);
+  EXPECT_LT(now.velocity.norm(), 1e-9);
+}
+
+}  // namespace
+}  // namespace dynamics

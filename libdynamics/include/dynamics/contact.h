@@ -10,12 +10,22 @@
 ///   3. impulses (sequential, warm-started from the previous step's contacts, iterated to
 ///      convergence) such that every contact's normal velocity after the step is at least
 ///      −(gap)/h (a gap closes exactly, never overshoots) or, at an impact faster than the
-///      resting threshold, e times the approach speed; friction keeps a contact stuck while the
-///      impulse it needs stays within μs times the normal impulse, and otherwise slides at μk;
-///   4. drift: x += h v⁺ and the free rotation of the world's integrator with L⁺.
+///      resting threshold, e times the approach speed. Friction acts per patch — the points of a
+///      pair whose normals agree — as a force at the patch's centre of pressure and a torque
+///      about its normal, bounded together by μ times the patch's total normal impulse (an
+///      elliptic limit; the torque's reach is the mean distance of the points' outline from its
+///      centroid, as under uniform pressure): a patch that held last step holds while the impulse
+///      it needs stays within μs N, and otherwise slides at μk N, opposing its sliding (the
+///      impulse of least kinetic energy within the limit: Coulomb's maximal dissipation). Whether
+///      a body at rest on a face stays so depends on the resultant only, never on how the load is
+///      shared among the points;
+///   4. drift: x += h v⁺ and the free rotation of the world's integrator with L⁺; overlap beyond
+///      a small slop (a quarter of a mesh field's cell; half a percent of a primitive's size) is
+///      pushed out by split impulses that move the bodies without changing their velocities
+///      (ContactStats::pushed).
 /// With no contact in the world the step is the world's own integrator, bit for bit: free flight
-/// is unchanged. Contact steps are first order (semi-implicit Euler) and dissipative: they never
-/// add energy (no position projection pushes bodies apart).
+/// is unchanged. Contact steps are first order (semi-implicit Euler) and dissipative: the
+/// impulses never add kinetic energy; only the push-out may lift a body (by ContactStats::pushed).
 
 #include <array>
 #include <cstdint>
@@ -146,9 +156,9 @@ struct ContactStats {
   /// J: kinetic energy the contact impulses removed in this step (≥ 0 up to rounding).
   double dissipated = 0;
   int sleeping = 0;  ///< bodies asleep after the step
-  /// m: the largest distance a point of a body was moved to push a mesh contact's overlap back to
-  /// a quarter of a cell (kinetic energy unchanged; the potential energy may rise by the weight
-  /// times this much).
+  /// m: the largest distance a point of a body was moved to push an overlap back to its slop (a
+  /// quarter of a mesh field's cell; half a percent of a primitive's bounding radius): kinetic
+  /// energy unchanged; the potential energy may rise by the weight times this much.
   double pushed = 0;
 };
 

@@ -70,14 +70,17 @@ struct StaticBody {
   contact::BroadStatic broad;  // posed in the world, with its bounds
 };
 
-// The overlap a mesh contact may keep (a quarter of the finer field's cell), or -1: not a mesh
-// contact.
-double MeshSlop(const Shape& a, const Shape* b) {
+// The overlap a contact may keep before the position correction pushes it out: a quarter of the
+// finer mesh field's cell for a mesh contact, else half a percent of the smaller shape's bounding
+// radius (ra, rb; rb < 0: a ground plane). Speculative contacts keep overlaps from forming; the
+// ones that do form (bodies turning into each other within a step) are pushed out.
+double Slop(const Shape& a, double ra, const Shape* b, double rb) {
   double cell = std::numeric_limits<double>::infinity();
   for (const Shape* s : {&a, b}) {
     if (const auto* m = s != nullptr ? std::get_if<shape::Mesh>(s) : nullptr) cell = std::min(cell, m->field->cell);
   }
-  return std::isfinite(cell) ? 0.25 * cell : -1;
+  if (std::isfinite(cell)) return 0.25 * cell;
+  return 0.005 * (rb > 0 ? std::min(ra, rb) : ra);
 }
 
 }  // namespace
@@ -392,7 +395,7 @@ StepStatus ContactWorld::Step(double h) {
       contact::CollideGround(posed[k], g.normal, g.offset, broad[k].reach, points);
       const int i = static_cast<int>(k);
       AppendRows(row_context, points, i, -1, -1, material_of(i, -1, m.colliders[k].material, g.material),
-                 MeshSlop(m.colliders[k].shape, nullptr), m.rows, stats_);
+                 Slop(m.colliders[k].shape, radius[k], nullptr, -1), m.rows, stats_);
     }
   }
   std::vector<contact::BroadStatic> statics;
@@ -432,7 +435,9 @@ StepStatus ContactWorld::Step(double h) {
                                 : m.statics[static_cast<std::size_t>(-1 - b)].collider.material;
     AppendRows(row_context, found[c], a, b >= 0 ? b : -1, b,
                material_of(a, b >= 0 ? b : -1, m.colliders[ka].material, mb),
-               MeshSlop(*posed[ka].shape, queries[c].b->shape), m.rows, stats_);
+               Slop(*posed[ka].shape, radius[ka], queries[c].b->shape,
+                    b >= 0 ? radius[static_cast<std::size_t>(b)] : statics[static_cast<std::size_t>(-1 - b)].radius),
+               m.rows, stats_);
   }
   stats_.contacts = static_cast<int>(m.rows.size());
   if (m.rows.empty()) {  // free flight: the world's own integrator, bit for bit

@@ -333,11 +333,25 @@ bool Collide(const Posed& a, const Posed& b, double margin, std::vector<ContactP
       return ok;
     }
     if (b.polytope != nullptr) {
-      // The two end spheres against the polytope (a capsule lying across an edge between its
-      // ends is not seen: a limit of this first contact model).
+      // The two end spheres against the polytope, and a sphere wherever the axis passes closest
+      // to one of the polytope's edges between its ends (a capsule lying across an edge).
       const auto [p0, p1] = segment(a, x->half_length);
       SpherePolytope(p0, x->radius, *b.polytope, b, margin, true, 0, out);
       SpherePolytope(p1, x->radius, *b.polytope, b, margin, true, 1, out);
+      const Polytope& poly = *b.polytope;
+      std::vector<double> taken = {0.0, 1.0};
+      for (std::size_t e = 0; e < poly.edges.size(); ++e) {
+        const Vector3 q0 = b.R * poly.vertices[static_cast<std::size_t>(poly.edges[e].first)] + b.t;
+        const Vector3 q1 = b.R * poly.vertices[static_cast<std::size_t>(poly.edges[e].second)] + b.t;
+        double s, t;
+        ClosestSegmentPoints(p0, p1, q0, q1, s, t);
+        const Vector3 on_axis = p0 + (p1 - p0) * s;
+        if ((on_axis - (q0 + (q1 - q0) * t)).norm() - x->radius >= margin) continue;
+        // Points within a hundredth of the length of one taken already add nothing.
+        if (std::any_of(taken.begin(), taken.end(), [&](double u) { return std::abs(u - s) < 1e-2; })) continue;
+        taken.push_back(s);
+        SpherePolytope(on_axis, x->radius, poly, b, margin, true, 2 + static_cast<std::uint32_t>(e), out);
+      }
       return true;
     }
   }

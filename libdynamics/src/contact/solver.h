@@ -34,7 +34,7 @@ struct Row {
   double lambda_n = 0;
   RowKey key;
   double separation = 0;
-  // Mesh contacts only: overlap beyond this is pushed out after the step (< 0: never).
+  // Overlap beyond this is pushed out after the step (< 0: never).
   double slop = -1;
   double push = 0;  // its accumulated pseudo-impulse
 };
