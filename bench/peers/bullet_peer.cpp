@@ -1,6 +1,7 @@
 // An rbsim scene in Bullet (Debian's libbullet-dev 3.24, its double-precision build): the bodies
 // as btRigidBody with their own mass and principal moments, their solids as Bullet's box, sphere,
-// capsule and cylinder shapes, ground planes as btStaticPlaneShape, gravity; Bullet's defaults
+// capsule and cylinder shapes, ground planes as btStaticPlaneShape, static boxes and hulls as
+// static btBoxShape and btConvexHullShape, gravity; Bullet's defaults
 // otherwise (btDiscreteDynamicsWorld, sequential impulses, 10 iterations, split impulse). Writes
 // rbsim's trajectory CSV and one line of timing. A comparison tool: never a dependency of the
 // libraries.
@@ -98,6 +99,25 @@ int main(int argc, char** argv) {
     btTransform identity;
     identity.setIdentity();
     add(std::make_unique<btStaticPlaneShape>(Bt(g.normal), g.offset), 0, btVector3(0, 0, 0), identity, g.material);
+  }
+  for (const peers::PeerStatic& st : scene.statics) {
+    btTransform pose;
+    pose.setIdentity();
+    std::unique_ptr<btCollisionShape> shape;
+    if (st.box) {
+      const Eigen::Quaterniond& q = st.orientation;
+      pose = btTransform(btQuaternion(q.x(), q.y(), q.z(), q.w()), Bt(st.position));
+      shape = std::make_unique<btBoxShape>(Bt(st.half_extents));
+    } else {  // its corners (world) about their centroid, which places it
+      Vector3 centre = Vector3::Zero();
+      for (const Vector3& v : st.hull) centre += v / static_cast<double>(st.hull.size());
+      PeerBody as_hull;
+      as_hull.kind = PeerBody::Kind::kHull;
+      for (const Vector3& v : st.hull) as_hull.hull.push_back(v - centre);
+      shape = ShapeOf(as_hull);
+      pose.setOrigin(Bt(centre));
+    }
+    add(std::move(shape), 0, btVector3(0, 0, 0), pose, st.material);
   }
   std::vector<btRigidBody*> moving;
   for (const PeerBody& b : scene.bodies) {

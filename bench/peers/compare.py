@@ -13,6 +13,9 @@ engine's default time step (rbsim's scenes: 1 ms; MuJoCo: 2 ms; Bullet: 1/60 s) 
   roll      ball on a 20° incline, rolling: a = 5/7 g sin θ                  error of the distance
   bounce    ball dropped 0.5 m, e = 0.8: first apex e² h0                     error of the apex
   backspin  ball at 2 m/s with backspin r ω = −1 m/s: rolls on at (5 v0 + 2 r ω0)/7   error of the speed
+  ramp slide, ramp stick, ramp roll   the same on a static box ramp (a tilted box, not a ground plane)
+  slide 50°   box sliding at 2 m/s at 50° to the x axis, mu = 0.3: stops after v²/(2 mu g)   error of the distance
+  backspin 30°   the backspin case along 30° to the x axis                  error of the speed
   rest      box resting on the ground 5 s                                     drift
   stack     ten boxes stacked (data/scenes/box_stack.json)                    drift of the top box
   pile      216 and 1000 boxes dropped in a heap (throughput only)            steps/s
@@ -94,6 +97,48 @@ def cases(quick, tmp):
     out.append(("hull slide", scene, {"kind": "distance", "down": [-math.cos(theta), 0.0, -math.sin(theta)],
                                       "a": G * (math.sin(theta) - mu * math.cos(theta)), "shape": ("box", 0.05),
                                       "n": n}))
+    # The same on a static box ramp (4 m x 1 m x 10 cm, its top face through the origin), starting
+    # 1 m up it.
+    for name, theta, mu, body in (("ramp slide", math.radians(30), 0.3, "box"), ("ramp stick", math.radians(20), 0.6, "box"),
+                                  ("ramp roll", math.radians(20), 0.5, "ball")):
+        n = [-math.sin(theta), 0.0, math.cos(theta)]
+        up = [math.cos(theta), 0.0, math.sin(theta)]
+        start = [u + 0.05 * c for u, c in zip(up, n)]
+        if body == "box":
+            b = {"name": "box", "solid": {"type": "box", "size": [0.1, 0.1, 0.1]}, "density": 500,
+                 "position": start, "orientation": quat_about_y(-theta), "material": {"friction": mu}}
+            a = G * (math.sin(theta) - mu * math.cos(theta)) if name == "ramp slide" else 0.0
+        else:
+            b = {"name": "ball", "solid": {"type": "sphere", "radius": 0.05}, "density": 1000,
+                 "position": start, "material": {"friction": mu}}
+            a = 5.0 / 7 * G * math.sin(theta)
+        ramp = {"name": "ramp", "solid": {"type": "box", "size": [4, 1, 0.1]}, "position": [-0.05 * c for c in n],
+                "orientation": quat_about_y(-theta), "material": {"friction": mu}}
+        scene = {"dt": 1e-3, "duration": 1.0, "output_rate": 1000, "static": [ramp], "bodies": [b],
+                 "forces": [{"type": "gravity", "g": [0, 0, -G]}]}
+        out.append((name, scene, {"kind": "distance", "down": [-math.cos(theta), 0.0, -math.sin(theta)], "a": a,
+                                  "shape": ("box", 0.05) if body == "box" else ("sphere", 0.05), "n": n}))
+    # Off the axes: sliding to a stop at 50° to x, and backspin along 30° (a friction cone that
+    # depends on the direction shows here: MuJoCo's default is a pyramid).
+    flat = {"normal": [0, 0, 1], "offset": 0}
+    phi = math.radians(50)
+    d = [math.cos(phi), math.sin(phi), 0.0]
+    box = {"name": "box", "solid": {"type": "box", "size": [0.1, 0.1, 0.1]}, "density": 500, "position": [0, 0, 0.05],
+           "velocity": [2 * c for c in d], "material": {"friction": 0.3}}
+    out.append(("slide 50°", {"dt": 1e-3, "duration": 1.0, "output_rate": 1000,
+                              "ground": dict(flat, material={"friction": 0.3}), "bodies": [box],
+                              "forces": [{"type": "gravity", "g": [0, 0, -G]}]},
+                {"kind": "stop", "dir": d, "d": 2.0 ** 2 / (2 * 0.3 * G), "shape": ("box", 0.05), "n": [0, 0, 1]}))
+    phi = math.radians(30)
+    d = [math.cos(phi), math.sin(phi), 0.0]
+    axis = [-d[1], d[0], 0.0]  # v along d rolls about z × d; backspin turns the other way
+    ball = {"name": "ball", "solid": {"type": "sphere", "radius": 0.05}, "density": 1000, "position": [0, 0, 0.05],
+            "velocity": [2 * c for c in d], "angular_velocity": [-20 * c for c in axis], "material": {"friction": 0.3}}
+    out.append(("backspin 30°", {"dt": 1e-3, "duration": 1.0, "output_rate": 1000,
+                                 "ground": dict(flat, material={"friction": 0.3}), "bodies": [ball],
+                                 "forces": [{"type": "gravity", "g": [0, 0, -G]}]},
+                {"kind": "speed", "dir": d, "v": (5 * 2.0 + 2 * 0.05 * -20) / 7, "shape": ("sphere", 0.05),
+                 "n": [0, 0, 1]}))
     theta = math.radians(20)
     n = [-math.sin(theta), 0.0, math.cos(theta)]
     ball = {"name": "ball", "solid": {"type": "sphere", "radius": 0.05}, "density": 1000,
@@ -189,7 +234,12 @@ def measure(kind, spec, rows):
         expected = spec["e"] ** 2 * spec["h0"]
         return abs(apex - expected) / expected, None
     if kind == "speed":
-        return abs(last["vx"] - spec["v"]) / spec["v"], None
+        d = spec.get("dir", [1.0, 0.0, 0.0])
+        v = sum(d[k] * last[a] for k, a in enumerate(("vx", "vy", "vz")))
+        return abs(v - spec["v"]) / spec["v"], None
+    if kind == "stop":
+        d = sum(spec["dir"][k] * (last[a] - first[a]) for k, a in enumerate("xyz"))
+        return abs(d - spec["d"]) / spec["d"], None
     if kind == "drift":
         top = max(rows, key=lambda b: rows[b][0]["z"])
         s = rows[top]
@@ -228,9 +278,10 @@ def check(rows):
     friction is a pyramid), and what rbsim promises on top (README, "Contact")."""
     limits = {  # case: (relative error, drift m) for every engine at 1 ms
         "slide": (0.05, None), "hull slide": (0.05, None), "roll": (0.01, None), "backspin": (0.01, None), "stick": (None, 0.005),
-        "rest": (None, 0.001)}
+        "rest": (None, 0.001), "ramp slide": (0.05, None), "ramp roll": (0.01, None), "ramp stick": (None, 0.005)}
     rbsim = {"slide": (0.002, None), "hull slide": (0.002, None), "roll": (0.002, None), "backspin": (1e-9, None), "bounce": (1e-4, None),
-             "stick": (None, 1e-9), "rest": (None, 1e-9), "stack": (None, 1e-6)}
+             "stick": (None, 1e-9), "rest": (None, 1e-9), "stack": (None, 1e-6), "ramp slide": (0.002, None),
+             "ramp roll": (0.002, None), "ramp stick": (None, 1e-9), "slide 50°": (0.005, None), "backspin 30°": (1e-6, None)}
     failures = []
     for name, engine, dt, error, drift, pen, wall, sps, bodies in rows:
         if abs(dt - 1e-3) > 1e-12 or name == "pile":

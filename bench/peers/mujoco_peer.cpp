@@ -6,11 +6,17 @@
 //   mujoco_peer SCENE.json [--dt S] [--out trajectory.csv]
 //
 // Materials (README "Peers"): MuJoCo has one friction coefficient per geom and takes the larger of
-// the two geoms'; a body's geom gets the kinetic coefficient of its contact with the ground as
-// rbsim combines it (bodies of one material meet each other with their own), the plane 0.
+// the two geoms'; a body's geom gets the kinetic coefficient of its contact with the ground (or
+// the first static body) as rbsim combines it (bodies of one material meet each other with their
+// own), the planes and static geoms 0.
 // MuJoCo has no restitution coefficient: a contact is a damped spring whose damping ratio ζ gives
 // a bounce e = exp(−πζ/√(1−ζ²)), so ζ = −ln e / √(π² + ln² e) (e = 0: ζ = 1, critical), with
-// MuJoCo's default time constant 0.02 s (solref="0.02 ζ").
+// MuJoCo's default time constant 0.02 s (solref="0.02 ζ"). e = 1 (ζ = 0) has no time constant
+// (MuJoCo 2.2 refuses "0.02 0" at every step and substitutes critical damping): it is given in
+// solref's direct form, "−stiffness −damping", an undamped spring of natural frequency π/(10 h)
+// (a contact lasting ten steps) with a damping of 10⁻¹² (the form needs both numbers negative).
+// MuJoCo's warnings go to stderr, not to a MUJOCO_LOG.TXT in the working directory.
+// Static bodies: boxes as box geoms, hulls as mesh geoms, of the world body.
 
 #include <cmath>
 #include <cstdio>
@@ -36,6 +42,22 @@ double DampingRatio(double e) {
   return -l / std::sqrt(M_PI * M_PI + l * l);
 }
 
+// solref for a restitution e at step h (above).
+std::string Solref(double e, double h) {
+  const double zeta = DampingRatio(e);
+  std::ostringstream x;
+  x.precision(17);
+  if (zeta > 0) {
+    x << "0.02 " << zeta;
+  } else {
+    const double omega = M_PI / (10 * h);
+    x << -omega * omega << " -1e-12";
+  }
+  return x.str();
+}
+
+void WarnOnStderr(const char* message) { std::cerr << "MuJoCo warning: " << message << "\n"; }
+
 std::string V(const Vector3& v) {
   char b[128];
   std::snprintf(b, sizeof b, "%.17g %.17g %.17g", v.x(), v.y(), v.z());
@@ -58,13 +80,34 @@ std::string Mjcf(const peers::PeerScene& s) {
     for (const Vector3& v : s.bodies[i].hull) x << V(v) << " ";
     x << "'/>\n";
   }
+  for (std::size_t i = 0; i < s.statics.size(); ++i) {
+    if (s.statics[i].box) continue;
+    x << "    <mesh name='static" << i << "' vertex='";
+    for (const Vector3& v : s.statics[i].hull) x << V(v) << " ";
+    x << "'/>\n";
+  }
   x << "  </asset>\n"
     << "  <size njmax='" << Rows(s.bodies.size()) << "' nconmax='" << Rows(s.bodies.size()) / 4 << "'/>\n"
     << "  <worldbody>\n";
-  const dynamics::Material ground = s.grounds.empty() ? dynamics::Material{} : s.grounds[0].material;
+  const dynamics::Material ground = !s.grounds.empty()   ? s.grounds[0].material
+                                    : !s.statics.empty() ? s.statics[0].material
+                                                         : dynamics::Material{};
   for (const rbsim::GroundSpec& g : s.grounds) {
     x << "    <geom type='plane' size='0 0 1' pos='" << V(g.normal * g.offset) << "' zaxis='" << V(g.normal)
-      << "' friction='0 0.005 0.0001' solref='0.02 " << DampingRatio(g.material.restitution) << "'/>\n";
+      << "' friction='0 0.005 0.0001' solref='" << Solref(g.material.restitution, s.dt) << "'/>\n";
+  }
+  // Static bodies carry no friction of their own either (the moving geom's is the pair's).
+  for (std::size_t i = 0; i < s.statics.size(); ++i) {
+    const peers::PeerStatic& st = s.statics[i];
+    const Eigen::Quaterniond& q = st.orientation;
+    x << "    <geom ";
+    if (st.box) {
+      x << "type='box' size='" << V(st.half_extents) << "' pos='" << V(st.position) << "' quat='" << q.w() << " "
+        << q.x() << " " << q.y() << " " << q.z() << "'";
+    } else {
+      x << "type='mesh' mesh='static" << i << "'";
+    }
+    x << " friction='0 0.005 0.0001' solref='" << Solref(st.material.restitution, s.dt) << "'/>\n";
   }
   for (std::size_t i = 0; i < s.bodies.size(); ++i) {
     const PeerBody& b = s.bodies[i];
@@ -80,7 +123,7 @@ std::string Mjcf(const peers::PeerScene& s) {
       case PeerBody::Kind::kCylinder: x << "type='cylinder' size='" << b.radius << " " << b.half_length << "'"; break;
       case PeerBody::Kind::kHull: x << "type='mesh' mesh='hull" << i << "'"; break;
     }
-    x << " friction='" << m.kinetic_friction << " 0.005 0.0001' solref='0.02 " << DampingRatio(m.restitution)
+    x << " friction='" << m.kinetic_friction << " 0.005 0.0001' solref='" << Solref(m.restitution, s.dt)
       << "'/>\n    </body>\n";
   }
   x << "  </worldbody>\n</mujoco>\n";
@@ -93,6 +136,7 @@ int main(int argc, char** argv) {
   peers::PeerArgs args;
   peers::PeerScene scene;
   if (const int status = peers::StartPeer(argc, argv, "mujoco_peer", args, scene); status >= 0) return status;
+  mju_user_warning = WarnOnStderr;
   const std::string xml_path =
       (std::filesystem::temp_directory_path() / ("mujoco_peer_" + std::to_string(::getpid()) + ".xml")).string();
   std::ofstream(xml_path) << Mjcf(scene);

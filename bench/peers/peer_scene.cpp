@@ -22,9 +22,9 @@ PeerScene LoadPeerScene(const std::string& path, double dt) {
   auto refuse = [&](const std::string& what) {
     return std::runtime_error(path + ": " + what +
                               ": a peer engine runs "
-                              "box, sphere, capsule and cylinder solids, convex hulls, ground planes and gravity");
+                              "box, sphere, capsule and cylinder solids, convex hulls, static boxes and hulls, ground "
+                              "planes and gravity");
   };
-  if (!scene.statics.empty()) throw refuse("static bodies");
   if (!scene.pairs.empty()) throw refuse("pair materials");
   PeerScene out;
   out.file = path;
@@ -39,6 +39,31 @@ PeerScene LoadPeerScene(const std::string& path, double dt) {
     out.gravity += f.vector;
   }
   const rbsim::Simulation sim = rbsim::BuildSimulation(scene, warnings, 1);
+  // Static bodies: drawn in the world after the ground planes' two shades each.
+  for (std::size_t k = 0; k < scene.statics.size(); ++k) {
+    const rbsim::StaticSpec& spec = scene.statics[k];
+    const massprops::TriangleMesh& drawn = sim.statics[2 * scene.grounds.size() + k].display;
+    PeerStatic st;
+    st.name = spec.name;
+    st.material = spec.collision.material;
+    const bool box_solid = spec.shape.solid && std::holds_alternative<massprops::primitive::Box>(*spec.shape.solid);
+    if (spec.collision.kind == rbsim::CollisionSpec::Kind::kHull) {
+      st.box = false;
+      const massprops::PolygonMesh hull = massprops::ConvexHull(massprops::ToPolygonMesh(drawn));
+      for (Eigen::Index v = 0; v < hull.V.rows(); ++v) st.hull.push_back(hull.V.row(v).transpose());
+    } else if (box_solid && spec.collision.kind == rbsim::CollisionSpec::Kind::kAuto) {
+      // Its box in its own axes, from the drawn corners (world) turned back.
+      const Matrix3 R = spec.orientation.toRotationMatrix();
+      Eigen::AlignedBox<double, 3> local;
+      for (Eigen::Index v = 0; v < drawn.V.rows(); ++v) local.extend(R.transpose() * drawn.V.row(v).transpose());
+      st.half_extents = local.sizes() / 2;
+      st.position = R * local.center();
+      st.orientation = spec.orientation;
+    } else {
+      throw refuse(spec.field + " (a static body other than a box solid or a hull)");
+    }
+    out.statics.push_back(st);
+  }
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const rbsim::BodySpec& spec = scene.bodies[i];
     namespace pr = massprops::primitive;

@@ -1,8 +1,8 @@
 #pragma once
 // The rbsim scenes a peer engine (MuJoCo, Bullet) can run: bodies that are box, sphere, capsule or
-// cylinder solids, ground planes, gravity, materials. Read through rbsim's own scene loader (one
-// home for the schema and its checks), handed to a peer as plain numbers, and written back as
-// rbsim's trajectory CSV, so that the same scene's three trajectories compare column for column.
+// cylinder solids or convex hulls, static boxes and hulls, ground planes, gravity, materials. Read through rbsim's own
+// scene loader (one home for the schema and its checks), handed to a peer as plain numbers, and written back as rbsim's
+// trajectory CSV, so that the same scene's three trajectories compare column for column.
 
 #include <chrono>
 #include <functional>
@@ -36,17 +36,29 @@ struct PeerBody {
   Matrix3 principal_axes = Matrix3::Identity();  ///< R_MB: for the CSV's w1, w2, w3 (moments ascending)
 };
 
+/// A static body: a box (its centre and axes in the world) or a convex hull (its corners in the
+/// world).
+struct PeerStatic {
+  std::string name;
+  bool box = true;
+  Vector3 half_extents = Vector3::Zero(), position = Vector3::Zero();
+  Quaternion orientation = Quaternion::Identity();
+  std::vector<Vector3> hull;
+  dynamics::Material material;
+};
+
 struct PeerScene {
   std::string file;
   double dt = 1e-3, duration = 1, output_rate = 60;
   Vector3 gravity = Vector3::Zero();
   std::vector<rbsim::GroundSpec> grounds;
+  std::vector<PeerStatic> statics;
   std::vector<PeerBody> bodies;
   std::int64_t steps = 0, sample_every = 1;  ///< as rbsim takes them (StepCount, SampleEvery)
 };
 
 /// Reads a scene; `dt` > 0 overrides the scene's step. @throws std::runtime_error naming the
-/// scene's file and what a peer cannot run (a mesh body, a spring, a static body, pair materials).
+/// scene's file and what a peer cannot run (a mesh collider, a spring, pair materials).
 PeerScene LoadPeerScene(const std::string& path, double dt = 0);
 
 /// rbsim's trajectory.csv, kept in memory and written whole at the end.
