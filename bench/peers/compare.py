@@ -12,6 +12,7 @@ engine's default time step (rbsim's scenes: 1 ms; MuJoCo: 2 ms; Bullet: 1/60 s) 
   stick     box on a 20° incline, mu = 0.6 > tan θ: stays                     drift
   roll      ball on a 20° incline, rolling: a = 5/7 g sin θ                  error of the distance
   bounce    ball dropped 0.5 m, e = 0.8: first apex e² h0                     error of the apex
+  bounce e=1  the same, elastic: apex h0                                     error of the apex
   backspin  ball at 2 m/s with backspin r ω = −1 m/s: rolls on at (5 v0 + 2 r ω0)/7   error of the speed
   ramp slide, ramp stick, ramp roll   the same on a static box ramp (a tilted box, not a ground plane)
   slide 50°   box sliding at 2 m/s at 50° to the x axis, mu = 0.3: stops after v²/(2 mu g)   error of the distance
@@ -153,6 +154,12 @@ def cases(quick, tmp):
                            "ground": dict(flat, material={"friction": 0.5, "restitution": 0.8}), "bodies": [ball],
                            "forces": [{"type": "gravity", "g": [0, 0, -G]}]},
                 {"kind": "apex", "h0": 0.5, "e": 0.8, "shape": ("sphere", 0.05), "n": [0, 0, 1]}))
+    ball = {"name": "ball", "solid": {"type": "sphere", "radius": 0.05}, "density": 1000,
+            "position": [0, 0, 0.55], "material": {"friction": 0.5, "restitution": 1.0}}
+    out.append(("bounce e=1", {"dt": 1e-3, "duration": 1.2, "output_rate": 1000,
+                               "ground": dict(flat, material={"friction": 0.5, "restitution": 1.0}), "bodies": [ball],
+                               "forces": [{"type": "gravity", "g": [0, 0, -G]}]},
+                {"kind": "apex", "h0": 0.5, "e": 1.0, "shape": ("sphere", 0.05), "n": [0, 0, 1]}))
     ball = {"name": "ball", "solid": {"type": "sphere", "radius": 0.05}, "density": 1000, "position": [0, 0, 0.05],
             "velocity": [2, 0, 0], "angular_velocity": [0, -20, 0], "material": {"friction": 0.3}}
     out.append(("backspin", {"dt": 1e-3, "duration": 1.0, "output_rate": 1000,
@@ -280,7 +287,8 @@ def check(rows):
         "slide": (0.05, None), "hull slide": (0.05, None), "roll": (0.01, None), "backspin": (0.01, None), "stick": (None, 0.005),
         "rest": (None, 0.001), "ramp slide": (0.05, None), "ramp roll": (0.01, None), "ramp stick": (None, 0.005)}
     rbsim = {"slide": (0.002, None), "hull slide": (0.002, None), "roll": (0.002, None), "backspin": (1e-9, None), "bounce": (1e-4, None),
-             "stick": (None, 1e-9), "rest": (None, 1e-9), "stack": (None, 1e-6), "ramp slide": (0.002, None),
+             "bounce e=1": (1e-4, None), "stick": (None, 1e-9), "rest": (None, 1e-9), "stack": (None, 1e-6),
+             "ramp slide": (0.002, None),
              "ramp roll": (0.002, None), "ramp stick": (None, 1e-9), "slide 50°": (0.005, None), "backspin 30°": (1e-6, None)}
     failures = []
     for name, engine, dt, error, drift, pen, wall, sps, bodies in rows:
