@@ -250,6 +250,9 @@ double Kick(const std::vector<RigidBody>& bodies, const std::vector<Wrench>& w, 
   return kick_speed;
 }
 
+int KeyOfStatic(int s) { return -2 - s; }
+int KeyOfGround(int g) { return std::numeric_limits<int>::min() + g; }
+
 // What the rows of a step are built from.
 struct RowContext {
   const std::vector<RigidBody>& bodies;
@@ -258,8 +261,9 @@ struct RowContext {
   double h = 0, bounce_threshold = 0;
 };
 
-// A row for each contact point between body a and b (-1: a ground or static body; key_b: b, or
-// -1 - the static's index, or -1 for a ground).
+// A row for each contact point between body a and b (-1: a ground or static body); key_b names b
+// in the rows' keys: KeyOfBody, KeyOfStatic or KeyOfGround (distinct, so that the warm start and
+// the friction state of a body on a ground never pass to the same body on a static body).
 void AppendRows(const RowContext& c, const std::vector<contact::ContactPoint>& points, int a, int b, int key_b,
                 const Material& mat, double slop, std::vector<contact::Row>& rows, ContactStats& stats) {
   for (const contact::ContactPoint& p : points) {
@@ -394,7 +398,8 @@ StepStatus ContactWorld::Step(double h) {
       points.clear();
       contact::CollideGround(posed[k], g.normal, g.offset, broad[k].reach, points);
       const int i = static_cast<int>(k);
-      AppendRows(row_context, points, i, -1, -1, material_of(i, -1, m.colliders[k].material, g.material),
+      AppendRows(row_context, points, i, -1, KeyOfGround(static_cast<int>(&g - m.grounds.data())),
+                 material_of(i, -1, m.colliders[k].material, g.material),
                  Slop(m.colliders[k].shape, radius[k], nullptr, -1), m.rows, stats_);
     }
   }
@@ -433,7 +438,7 @@ StepStatus ContactWorld::Step(double h) {
     }
     const Material& mb = b >= 0 ? m.colliders[static_cast<std::size_t>(b)].material
                                 : m.statics[static_cast<std::size_t>(-1 - b)].collider.material;
-    AppendRows(row_context, found[c], a, b >= 0 ? b : -1, b,
+    AppendRows(row_context, found[c], a, b >= 0 ? b : -1, b >= 0 ? b : KeyOfStatic(-1 - b),
                material_of(a, b >= 0 ? b : -1, m.colliders[ka].material, mb),
                Slop(*posed[ka].shape, radius[ka], queries[c].b->shape,
                     b >= 0 ? radius[static_cast<std::size_t>(b)] : statics[static_cast<std::size_t>(-1 - b)].radius),

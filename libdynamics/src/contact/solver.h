@@ -18,8 +18,8 @@ struct Velocities {
   Vector3 v, w;  // linear, angular
 };
 
-/// (body a, body b or -1 - static index (-1 for a ground), feature): which contact a row is,
-/// step after step.
+/// (body a, the other: a body's index, -2 - a static body's, INT_MIN + a ground's, feature):
+/// which contact a row is, step after step.
 using RowKey = std::tuple<int, int, std::uint32_t>;
 
 /// One contact point in the solve: its normal impulse. Body b = -1: the ground or a static body.
@@ -80,7 +80,7 @@ struct CachedRow {
   double lambda_n = 0;
   int patch = -1;
 };
-/// The last step's impulses: each row's, each pair's patches (a, b or -1 - static).
+/// The last step's impulses: each row's, each pair's patches (the first two parts of a RowKey).
 struct ContactCache {
   std::map<RowKey, CachedRow> rows;
   std::map<std::pair<int, int>, std::vector<CachedPatch>> patches;
