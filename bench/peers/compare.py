@@ -147,19 +147,13 @@ def cases(quick, tmp):
     scene, n = incline(theta, 0.5, ball, 1.0)
     out.append(("roll", scene, {"kind": "distance", "down": [-math.cos(theta), 0.0, -math.sin(theta)],
                                 "a": 5.0 / 7 * G * math.sin(theta), "shape": ("sphere", 0.05), "n": n}))
-    flat = {"normal": [0, 0, 1], "offset": 0}
-    ball = {"name": "ball", "solid": {"type": "sphere", "radius": 0.05}, "density": 1000,
-            "position": [0, 0, 0.55], "material": {"friction": 0.5, "restitution": 0.8}}
-    out.append(("bounce", {"dt": 1e-3, "duration": 1.2, "output_rate": 1000,
-                           "ground": dict(flat, material={"friction": 0.5, "restitution": 0.8}), "bodies": [ball],
+    for name, e in (("bounce", 0.8), ("bounce e=1", 1.0)):
+        ball = {"name": "ball", "solid": {"type": "sphere", "radius": 0.05}, "density": 1000,
+                "position": [0, 0, 0.55], "material": {"friction": 0.5, "restitution": e}}
+        out.append((name, {"dt": 1e-3, "duration": 1.2, "output_rate": 1000,
+                           "ground": dict(flat, material={"friction": 0.5, "restitution": e}), "bodies": [ball],
                            "forces": [{"type": "gravity", "g": [0, 0, -G]}]},
-                {"kind": "apex", "h0": 0.5, "e": 0.8, "shape": ("sphere", 0.05), "n": [0, 0, 1]}))
-    ball = {"name": "ball", "solid": {"type": "sphere", "radius": 0.05}, "density": 1000,
-            "position": [0, 0, 0.55], "material": {"friction": 0.5, "restitution": 1.0}}
-    out.append(("bounce e=1", {"dt": 1e-3, "duration": 1.2, "output_rate": 1000,
-                               "ground": dict(flat, material={"friction": 0.5, "restitution": 1.0}), "bodies": [ball],
-                               "forces": [{"type": "gravity", "g": [0, 0, -G]}]},
-                {"kind": "apex", "h0": 0.5, "e": 1.0, "shape": ("sphere", 0.05), "n": [0, 0, 1]}))
+                    {"kind": "apex", "h0": 0.5, "e": e, "shape": ("sphere", 0.05), "n": [0, 0, 1]}))
     ball = {"name": "ball", "solid": {"type": "sphere", "radius": 0.05}, "density": 1000, "position": [0, 0, 0.05],
             "velocity": [2, 0, 0], "angular_velocity": [0, -20, 0], "material": {"friction": 0.3}}
     out.append(("backspin", {"dt": 1e-3, "duration": 1.0, "output_rate": 1000,

@@ -118,62 +118,52 @@ const BoxCase kBoxes[] = {{"cube", {1, 1, 1}},
                           {"tall 1x1x2", {1, 1, 2}}};
 const Material kMaterials[] = {Mat(0.4, 0.3), Mat(0.8, 0.5)};
 
-// A box at rest on the incline, touching, its centre `up` metres up the slope from the origin.
-int PlaceBox(ContactWorld& w, const Vector3& half, double theta, double up, const Material& m) {
-  const Matrix3 R = InclineRotation(theta);
-  RigidBody b = BoxBody(half, 500);
-  b.position = R * Vector3(up, 0, half.z());
-  b.orientation = Quaternion(R);
-  return w.AddBody(b, Collider{shape::Box{half}, Matrix3::Identity(), Vector3::Zero(), m});
+// Every box of kBoxes in every material of kMaterials at rest, touching, on each kind of incline
+// of angle atan(ratio μs), its centre `up` metres up the slope, gravity on: `check` gets the body
+// after `steps` steps, as it started, the angle and the material. Boxes that would tip (tan θ beyond their
+// width over height) are another test.
+void ForEachBoxOnAnIncline(
+    double ratio, double up, int steps,
+    const std::function<void(const RigidBody&, const RigidBody&, double, const Material&)>& check) {
+  for (const Support s : {Support::kGround, Support::kStaticBox, Support::kStaticMesh}) {
+    for (const Material& m : kMaterials) {
+      for (const BoxCase& box : kBoxes) {
+        const double theta = std::atan(ratio * m.static_friction);
+        const Vector3 half = box.size * (kU / 2);
+        if (std::tan(theta) >= half.x() / half.z()) continue;
+        ContactWorld w;
+        AddIncline(w, s, theta, m);
+        const Matrix3 R = InclineRotation(theta);
+        RigidBody b = BoxBody(half, 500);
+        b.position = R * Vector3(up, 0, half.z());
+        b.orientation = Quaternion(R);
+        w.AddBody(b, Collider{shape::Box{half}, Matrix3::Identity(), Vector3::Zero(), m});
+        w.AddForce(Gravity(Vector3(0, 0, -kG)));
+        SCOPED_TRACE(std::string(Name(s)) + ", " + box.name + ", μs " + std::to_string(m.static_friction));
+        Simulate(w, steps);
+        check(w.world().bodies()[0], b, theta, m);
+      }
+    }
+  }
 }
 
 // Within static friction (tan θ = 0.9 μs) every box stays put: less than 1 µm in 5 s.
 TEST(Friction, BoxesAtRestOnInclinesBelowStaticFrictionStayPut) {
-  for (const Support s : {Support::kGround, Support::kStaticBox, Support::kStaticMesh}) {
-    for (const Material& m : kMaterials) {
-      for (const BoxCase& box : kBoxes) {
-        const double theta = std::atan(0.9 * m.static_friction);
-        const Vector3 half = box.size * (kU / 2);
-        if (std::tan(theta) >= half.x() / half.z()) continue;  // it would tip: another test
-        ContactWorld w;
-        AddIncline(w, s, theta, m);
-        PlaceBox(w, half, theta, 0.5, m);
-        w.AddForce(Gravity(Vector3(0, 0, -kG)));
-        const Vector3 start = w.world().bodies()[0].position;
-        const Quaternion q0 = w.world().bodies()[0].orientation;
-        Simulate(w, 5000);
-        const RigidBody& b = w.world().bodies()[0];
-        SCOPED_TRACE(std::string(Name(s)) + ", " + box.name + ", μs " + std::to_string(m.static_friction));
-        EXPECT_LT((b.position - start).norm(), 1e-6) << (b.position - start).transpose();
-        EXPECT_LT(b.orientation.angularDistance(q0), 1e-6);
-      }
-    }
-  }
+  ForEachBoxOnAnIncline(0.9, 0.5, 5000, [](const RigidBody& b, const RigidBody& start, double, const Material&) {
+    EXPECT_LT((b.position - start.position).norm(), 1e-6) << (b.position - start.position).transpose();
+    EXPECT_LT(b.orientation.angularDistance(start.orientation), 1e-6);
+  });
 }
 
 // Beyond static friction (tan θ = 1.05 μs) every box slides at a = g (sin θ − μk cos θ) from the
 // first step: its speed at 1 s within a h of a t.
 TEST(Friction, BoxesOnInclinesBeyondStaticFrictionSlideAtTheKineticRateAtOnce) {
-  for (const Support s : {Support::kGround, Support::kStaticBox, Support::kStaticMesh}) {
-    for (const Material& m : kMaterials) {
-      for (const BoxCase& box : kBoxes) {
-        const double theta = std::atan(1.05 * m.static_friction);
-        const Vector3 half = box.size * (kU / 2);
-        if (std::tan(theta) >= half.x() / half.z()) continue;
-        ContactWorld w;
-        AddIncline(w, s, theta, m);
-        PlaceBox(w, half, theta, 0.8, m);
-        w.AddForce(Gravity(Vector3(0, 0, -kG)));
-        Simulate(w, 1000);
-        const RigidBody& b = w.world().bodies()[0];
-        const Vector3 downhill = -(InclineRotation(theta) * Vector3::UnitX());
-        const double a = kG * (std::sin(theta) - m.kinetic_friction * std::cos(theta));
-        SCOPED_TRACE(std::string(Name(s)) + ", " + box.name + ", μs " + std::to_string(m.static_friction));
-        EXPECT_NEAR(b.velocity.dot(downhill), a * 1.0, a * kH);
-        EXPECT_LT(b.AngularVelocity().norm(), 1e-6);
-      }
-    }
-  }
+  ForEachBoxOnAnIncline(1.05, 0.8, 1000, [](const RigidBody& b, const RigidBody&, double theta, const Material& m) {
+    const Vector3 downhill = -(InclineRotation(theta) * Vector3::UnitX());
+    const double a = kG * (std::sin(theta) - m.kinetic_friction * std::cos(theta));
+    EXPECT_NEAR(b.velocity.dot(downhill), a * 1.0, a * kH);
+    EXPECT_LT(b.AngularVelocity().norm(), 1e-6);
+  });
 }
 
 // Pushed on flat ground, at the centre of mass or at a point below it, by a force of fixed
