@@ -269,20 +269,22 @@ TEST(Friction, SpinningSquareStopsAtTheUniformPressureTorque) {
   EXPECT_LT(w.world().bodies()[0].position.head<2>().norm(), 1e-9);  // it turned in place
 }
 
-// Internal edges: bodies sliding down a static mesh ramp whose flat top is split along random
-// diagonals travel as on a flat face: distance ½ a t² within 1 %, orientation within 1°.
-TEST(Friction, SlidingOverAStaticMeshsInternalEdgesIsSlidingOnItsFace) {
-  const Material m = Mat(0.4, 0.3);
-  const double theta = std::atan(0.5);
-  const Matrix3 R = InclineRotation(theta);
-  const double a = kG * (std::sin(theta) - m.kinetic_friction * std::cos(theta));
-  std::vector<std::pair<const char*, Collider>> bodies;
+// Bodies that slide along their x axis: a 6 × 4 × 2 cm box, an octagonal hull prism 2 cm high,
+// a capsule with its axis along x (across it, it would roll); each with the height of its centre
+// above the surface it lies on.
+struct Slider {
+  const char* name;
+  Collider collider;
+  double lift;
+};
+std::vector<Slider> Sliders(const Material& m) {
   const Vector3 half(0.03, 0.02, 0.01);
-  bodies.emplace_back("box", Collider{shape::Box{half}, Matrix3::Identity(), Vector3::Zero(), m});
-  shape::Convex hull;  // an octagonal prism 2 cm high
+  shape::Convex hull;
   for (const double z : {-0.01, 0.01}) {
-    for (int k = 0; k < 8; ++k)
-      hull.vertices.emplace_back(0.03 * std::cos(k * M_PI / 4 + M_PI / 8), 0.03 * std::sin(k * M_PI / 4 + M_PI / 8), z);
+    for (int k = 0; k < 8; ++k) {
+      const double phi = k * M_PI / 4 + M_PI / 8;
+      hull.vertices.emplace_back(0.03 * std::cos(phi), 0.03 * std::sin(phi), z);
+    }
   }
   for (int k = 1; k + 1 < 8; ++k) {
     hull.triangles.push_back({8, 8 + k, 8 + k + 1});  // top
@@ -293,59 +295,67 @@ TEST(Friction, SlidingOverAStaticMeshsInternalEdgesIsSlidingOnItsFace) {
     hull.triangles.push_back({k, j, 8 + j});
     hull.triangles.push_back({k, 8 + j, 8 + k});
   }
-  for (auto& t : hull.triangles) {  // orient every triangle outward
+  for (auto& t : hull.triangles) {  // every triangle outward
     const Vector3 c = (hull.vertices[t[0]] + hull.vertices[t[1]] + hull.vertices[t[2]]) / 3;
     if ((hull.vertices[t[1]] - hull.vertices[t[0]]).cross(hull.vertices[t[2]] - hull.vertices[t[0]]).dot(c) < 0)
       std::swap(t[1], t[2]);
   }
-  bodies.emplace_back("hull", Collider{hull, Matrix3::Identity(), Vector3::Zero(), m});
-  // A capsule with its axis along the slope (it slides; across the slope it would roll).
-  bodies.emplace_back(
-      "capsule", Collider{shape::Capsule{0.01, 0.03}, Eigen::AngleAxisd(M_PI / 2, Vector3::UnitY()).toRotationMatrix(),
-                          Vector3::Zero(), m});
+  const Matrix3 along_x = Eigen::AngleAxisd(M_PI / 2, Vector3::UnitY()).toRotationMatrix();
+  return {{"box", Collider{shape::Box{half}, Matrix3::Identity(), Vector3::Zero(), m}, half.z()},
+          {"hull", Collider{hull, Matrix3::Identity(), Vector3::Zero(), m}, 0.01},
+          {"capsule", Collider{shape::Capsule{0.01, 0.03}, along_x, Vector3::Zero(), m}, 0.01}};
+}
+
+// Internal edges: bodies sliding down a static mesh ramp whose flat top is split along random
+// diagonals travel as on a flat face: distance ½ a t² within 1 %, orientation within 1°.
+TEST(Friction, SlidingOverAStaticMeshsInternalEdgesIsSlidingOnItsFace) {
+  const Material m = Mat(0.4, 0.3);
+  const double theta = std::atan(0.5);
+  const Matrix3 R = InclineRotation(theta);
+  const double a = kG * (std::sin(theta) - m.kinetic_friction * std::cos(theta));
   for (const unsigned seed : {1u, 2u, 3u}) {
     const shape::Mesh slab = Slab(1, 0.3, 0.1, 40, 12, seed);
-    for (const auto& [name, collider] : bodies) {
+    for (const Slider& slider : Sliders(m)) {
       ContactWorld w;
       w.AddStatic(Collider{slab, Matrix3::Identity(), Vector3::Zero(), m}, R, Vector3::Zero());
-      RigidBody b = BoxBody(half, 500);  // the inertia matters little: it slides
-      const double lift = std::holds_alternative<shape::Box>(collider.shape) ? half.z() : 0.01;
-      b.position = R * Vector3(0.8, 0, lift);
+      RigidBody b = BoxBody(Vector3(0.03, 0.02, 0.01), 500);  // the inertia matters little: it slides
+      b.position = R * Vector3(0.8, 0, slider.lift);
       b.orientation = Quaternion(R);
-      w.AddBody(b, collider);
+      w.AddBody(b, slider.collider);
       w.AddForce(Gravity(Vector3(0, 0, -kG)));
-      const Quaternion q0 = b.orientation;
       Simulate(w, 1000);
       const RigidBody& now = w.world().bodies()[0];
       const double travelled = (now.position - b.position).dot(-(R * Vector3::UnitX()));
-      SCOPED_TRACE(std::string(name) + ", diagonals seeded " + std::to_string(seed));
+      SCOPED_TRACE(std::string(slider.name) + ", diagonals seeded " + std::to_string(seed));
       EXPECT_NEAR(travelled, 0.5 * a, 0.01 * 0.5 * a);
-      EXPECT_LT(now.orientation.angularDistance(q0), M_PI / 180);
+      EXPECT_LT(now.orientation.angularDistance(b.orientation), M_PI / 180);
     }
   }
 }
 
-// The same across a flat static floor tessellated as a 20 × 20 grid of triangle pairs: a box
-// sliding at 2 m/s at 30° to the grid stops after v²/(2 μk g) (1 %), still facing the same way.
+// The same across a flat static floor tessellated as a 20 × 20 grid of triangle pairs: each
+// body sliding at 2 m/s at 30° to the grid stops after v²/(2 μk g) (1 %), still facing the same way.
 TEST(Friction, SlidingAcrossATessellatedFloorStopsAtTheClosedFormDistance) {
   const Material m = Mat(0.4, 0.3);
   const shape::Mesh floor = Slab(0.6, 0.6, 0.1, 20, 20, 11);
-  const Vector3 half(0.03, 0.02, 0.01);
   const Vector3 direction(std::cos(M_PI / 6), std::sin(M_PI / 6), 0);
-  const double v0 = 2;
-  ContactWorld w;
-  w.AddStatic(Collider{floor, Matrix3::Identity(), Vector3::Zero(), m});
-  RigidBody b = BoxBody(half, 500);
-  b.position = Vector3(-0.4, -0.25, half.z());
-  b.velocity = v0 * direction;
-  w.AddBody(b, Collider{shape::Box{half}, Matrix3::Identity(), Vector3::Zero(), m});
-  w.AddForce(Gravity(Vector3(0, 0, -kG)));
-  Simulate(w, 1000);
-  const RigidBody& now = w.world().bodies()[0];
-  const double d = v0 * v0 / (2 * m.kinetic_friction * kG);
-  EXPECT_NEAR((now.position - b.position).dot(direction), d, 0.01 * d);
-  EXPECT_LT(now.orientation.angularDistance(b.orientation), M_PI / 180);
-  EXPECT_LT(now.velocity.norm(), 1e-9);
+  const double v0 = 2, d = v0 * v0 / (2 * m.kinetic_friction * kG);
+  for (const Slider& slider : Sliders(m)) {
+    ContactWorld w;
+    w.AddStatic(Collider{floor, Matrix3::Identity(), Vector3::Zero(), m});
+    RigidBody b = BoxBody(Vector3(0.03, 0.02, 0.01), 500);
+    b.position = Vector3(-0.4, -0.25, slider.lift);
+    b.orientation = Quaternion(Eigen::AngleAxisd(M_PI / 6, Vector3::UnitZ()));  // x along the sliding
+    b.velocity = v0 * direction;
+    w.AddBody(b, slider.collider);
+    w.AddForce(Gravity(Vector3(0, 0, -kG)));
+    Simulate(w, 1000);
+    const RigidBody& now = w.world().bodies()[0];
+    SCOPED_TRACE(slider.name);
+    EXPECT_NEAR((now.position - b.position).dot(direction), d, 0.01 * d);
+    EXPECT_LT(now.orientation.angularDistance(b.orientation), M_PI / 180);
+    EXPECT_LT(now.velocity.norm(), 1e-9);
+  }
 }
 
 // A cylinder rolls down a static box ramp and a static mesh ramp at a = (2/3) g sin θ (1 %).
