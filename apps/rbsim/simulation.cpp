@@ -403,7 +403,11 @@ std::int64_t StepCount(const Scene& scene) {
 }
 
 std::int64_t SampleEvery(const Scene& scene) {
-  return std::max<std::int64_t>(1, std::llround(1.0 / (scene.output_rate * scene.dt)));
+  // A rate so low that the steps between samples overflow an integer (output_rate 1e-30): the
+  // first and the last state only, not every step (llround would overflow).
+  const double every = 1.0 / (scene.output_rate * scene.dt);
+  if (!(every < 4e18)) return std::numeric_limits<std::int64_t>::max();
+  return std::max<std::int64_t>(1, std::llround(every));
 }
 
 RunStats Run(Simulation& sim,

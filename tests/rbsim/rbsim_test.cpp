@@ -155,6 +155,19 @@ TEST(Scene, InvalidJsonNamesTheLine) {
   }
 }
 
+// A rate so low that the steps between samples overflow an integer samples the first and last
+// states only (it sampled every step: llround overflowed).
+TEST(Scene, AVanishingOutputRateSamplesTheFirstAndLastStatesOnly) {
+  std::vector<std::string> w;
+  rbsim::Scene s = Parse(OneBody(kBox), &w);
+  s.output_rate = 1e-30;
+  s.duration = 0.01;
+  rbsim::Simulation sim = rbsim::BuildSimulation(s, w, 1);
+  int samples = 0;
+  rbsim::Run(sim, [&](const dynamics::World&, const dynamics::Diagnostics&) { ++samples; });
+  EXPECT_EQ(samples, 2);
+}
+
 TEST(Scene, NonUnitQuaternionIsNormalizedWithAWarning) {
   std::vector<std::string> w;
   const rbsim::Scene s = Parse(OneBody(std::string(kBox) + R"(, "orientation": [2, 0, 0, 2])"), &w);
