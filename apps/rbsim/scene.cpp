@@ -32,14 +32,18 @@ Quaternion ReadOrientation(Fields& f, const std::string& key, std::vector<std::s
     if (v->size() != 4) f.Fail(key, "a quaternion is 4 numbers [w, x, y, z], not " + std::to_string(v->size()));
     double c[4];
     for (std::size_t i = 0; i < 4; ++i) c[i] = f.CheckNumber(key + "[" + std::to_string(i) + "]", (*v)[i], nullptr);
-    Quaternion q(c[0], c[1], c[2], c[3]);
-    const double n = q.norm();
+    // Its norm without overflow or underflow: scaled by its largest component first (the norm of
+    // [1e300, 1e300, 0, 0] overflowed, and was called zero).
+    const double largest = std::max({std::abs(c[0]), std::abs(c[1]), std::abs(c[2]), std::abs(c[3])});
+    if (!(largest > 0)) f.Fail(key, "the quaternion is zero: it names no rotation");
+    const Quaternion scaled(c[0] / largest, c[1] / largest, c[2] / largest, c[3] / largest);
+    const double n = largest * scaled.norm();  // may be infinite: only reported
     if (!(n > 1e-12)) f.Fail(key, "the quaternion is zero: it names no rotation");
     if (std::abs(n - 1.0) > 1e-12) {
       warnings.push_back(f.file() + ": " + f.Path(key) + ": the quaternion has norm " + Num(n) +
                          "; normalized to unit length");
     }
-    return q.normalized();
+    return scaled.normalized();
   }
   if (v->is_object()) {
     Fields o(*v, f.Path(key), f.file());
@@ -47,7 +51,9 @@ Quaternion ReadOrientation(Fields& f, const std::string& key, std::vector<std::s
     if (!o.Has("axis")) o.Fail("axis", "is required (with angle_deg or angle)");
     if (!(axis.norm() > 0)) o.Fail("axis", "must not be the zero vector");
     if (o.Has("angle_deg") == o.Has("angle")) o.Fail("give exactly one of angle_deg and angle (radians)");
-    const double angle = o.Has("angle") ? o.Number("angle", 0) : o.Number("angle_deg", 0) * M_PI / 180.0;
+    // Whole turns dropped first, so that an angle of 1e308 degrees is a rotation, not an overflow.
+    const double angle = o.Has("angle") ? std::fmod(o.Number("angle", 0), 2 * M_PI)
+                                        : std::fmod(o.Number("angle_deg", 0), 360.0) * M_PI / 180.0;
     o.Get(o.Has("angle") ? "angle_deg" : "angle");  // both are known keys
     o.Done();
     return Quaternion(Eigen::AngleAxisd(angle, axis.normalized()));

@@ -168,6 +168,24 @@ TEST(Scene, AVanishingOutputRateSamplesTheFirstAndLastStatesOnly) {
   EXPECT_EQ(samples, 2);
 }
 
+// Orientations at the edge of double precision are rotations, not errors: a quaternion whose
+// norm overflows is normalized (it was called "zero"), an angle of 1e308 degrees turns by its
+// remainder of whole turns (the state was "not finite").
+TEST(Scene, OrientationsBeyondDoublePrecisionAreStillRotations) {
+  std::vector<std::string> w;
+  const rbsim::Scene s = Parse(OneBody(std::string(kBox) + R"(, "orientation": [1e300, 1e300, 0, 0])"), &w);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_THAT(w[0], HasSubstr("norm 1.41421e+300; normalized"));
+  EXPECT_NEAR(s.bodies[0].orientation.w(), std::sqrt(0.5), 1e-15);
+  EXPECT_NEAR(s.bodies[0].orientation.x(), std::sqrt(0.5), 1e-15);
+  const rbsim::Scene t =
+      Parse(OneBody(std::string(kBox) + R"(, "orientation": {"axis": [0, 0, 1], "angle_deg": 1e308})"), &w);
+  const double turn = std::fmod(1e308, 360.0) * M_PI / 180;
+  EXPECT_NEAR(
+      t.bodies[0].orientation.angularDistance(Eigen::Quaterniond(Eigen::AngleAxisd(turn, Eigen::Vector3d::UnitZ()))), 0,
+      1e-12);
+}
+
 TEST(Scene, NonUnitQuaternionIsNormalizedWithAWarning) {
   std::vector<std::string> w;
   const rbsim::Scene s = Parse(OneBody(std::string(kBox) + R"(, "orientation": [2, 0, 0, 2])"), &w);
