@@ -190,10 +190,11 @@ Vector3 ProjectOntoBall(const Matrix3& K, const Vector3& target, double bound, i
     x.setZero();
     double sum = 0, derivative = 0;
     for (int i = 0; i < 3; ++i) {
-      const double w = values[i] / (values[i] + nu), xi = w * c[i];
+      const double d = values[i] + nu;  // 0 only for a direction with no response at ν = 0
+      const double xi = d > 0 ? values[i] / d * c[i] : c[i];
       x += eig.eigenvectors().col(i) * xi;
       sum += xi * xi;
-      derivative += -2 * xi * xi / (values[i] + nu);  // d|x|²/dν
+      if (d > 0) derivative += -2 * xi * xi / d;  // d|x|²/dν
     }
     length = std::sqrt(sum);
     slope = derivative;
