@@ -2,7 +2,6 @@
 
 #include "solver.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -174,42 +173,37 @@ void UpdateNormal(Row& r, std::vector<Velocities>& vel, const BodyResponse& bodi
 // maximal dissipation, the friction then opposing the patch's sliding at the end of the update.
 // On the ball's surface λ(ν) = (K + ν E)⁻¹ K target with ν ≥ 0 such that |λ| = bound (a
 // trust-region step: Newton on 1/|λ(ν)| − 1/bound, which is nearly linear in ν).
-Vector3 ProjectOntoBall(const Matrix3& K, const Vector3& target, double bound, int dim) {
+Vector3 ProjectOntoBall(const Matrix3& K, const Vector3& target, double bound, int dim, double& nu_guess) {
   if (!(bound > 0)) return Vector3::Zero();
-  Eigen::SelfAdjointEigenSolver<Matrix3> eig;
   Matrix3 Kd = K;
   if (dim == 2) {
     Kd.row(2).setZero();
     Kd.col(2).setZero();
     Kd(2, 2) = 1;
   }
-  eig.computeDirect(Kd);
-  const Vector3 values = eig.eigenvalues().cwiseMax(0.0);
-  const Vector3 c = eig.eigenvectors().transpose() * target;
+  const Vector3 Kt = Kd * target;
+  // x(ν) = (K + ν E)⁻¹ K t, d|x|²/dν = −2 xᵀ (K + ν E)⁻¹ x: a 3 × 3 inverse an iteration.
   auto at = [&](double nu, Vector3& x, double& length, double& slope) {
-    x.setZero();
-    double sum = 0, derivative = 0;
-    for (int i = 0; i < 3; ++i) {
-      const double d = values[i] + nu;  // 0 only for a direction with no response at ν = 0
-      const double xi = d > 0 ? values[i] / d * c[i] : c[i];
-      x += eig.eigenvectors().col(i) * xi;
-      sum += xi * xi;
-      if (d > 0) derivative += -2 * xi * xi / d;  // d|x|²/dν
-    }
-    length = std::sqrt(sum);
-    slope = derivative;
+    const Matrix3 inverse = (Kd + nu * Matrix3::Identity()).inverse();
+    x = inverse * Kt;
+    length = x.norm();
+    slope = -2 * x.dot(inverse * x);
   };
-  double nu = 0, length = 0, slope = 0;
+  // Newton on φ(ν) = 1/|x| − 1/bound, φ' = −½ |x|⁻³ d|x|²/dν: nearly linear and concave, so from
+  // below the root it approaches monotonically, and from above it lands below it. Started from
+  // the ν of the patch's last projection (the sweeps change it little), else from 0 (x = t).
+  double nu = nu_guess > 0 && std::isfinite(nu_guess) ? nu_guess : 0.0, length = 0, slope = 0;
   Vector3 x;
   at(nu, x, length, slope);
-  for (int k = 0; k < 50 && length > bound * (1 + 1e-12); ++k) {
-    // φ(ν) = 1/|x| − 1/bound; φ' = −½ |x|⁻³ d|x|²/dν.
+  for (int k = 0; k < 50; ++k) {
     const double phi = 1 / length - 1 / bound, dphi = -0.5 * slope / (length * length * length);
-    if (!(dphi > 0)) break;
-    nu = std::max(nu - phi / dphi, nu * 1e-3 + 1e-300);
+    if (std::abs(phi) * bound <= 1e-12 || !(dphi > 0) || !std::isfinite(dphi)) break;
+    const double next = nu - phi / dphi;
+    nu = next > 0 ? next : nu * 1e-3;  // (ν ≥ 0: below 0 the ball holds x(0) = t already)
     at(nu, x, length, slope);
   }
-  if (length > bound) x *= bound / length;  // the last rounding
+  nu_guess = nu;
+  if (!(length <= bound)) x *= bound / length;  // the last rounding (or a direction without response)
   if (dim == 2) x[2] = 0;
   return x;
 }
@@ -228,8 +222,8 @@ void FollowPressure(Patch& p, const std::vector<Row>& rows, std::vector<Velociti
     centre += r.lambda_n * r.point;
   }
   centre /= N;
-  centre += p.n * p.n.dot(p.anchor - centre);  // in the patch's plane
-  if ((centre - p.anchor).squaredNorm() <= 1e-24 * (1 + p.rho * p.rho)) return;
+  centre += p.n * p.n.dot(p.anchor - centre);                                               // in the patch's plane
+  if ((centre - p.anchor).squaredNorm() <= std::max(1e-24, 1e-16 * p.rho * p.rho)) return;  // within 10⁻⁸ ρ
   ApplyPatch(vel, bodies, p, -p.lambda, frozen);
   p.ra += centre - p.anchor;
   if (p.b >= 0) p.rb += centre - p.anchor;
@@ -256,7 +250,7 @@ void UpdateFriction(Patch& p, const std::vector<Row>& rows, std::vector<Velociti
   Vector3 lt = stop;
   if (stop.norm() > bound) {
     const Matrix3 K = frozen < 0 ? Matrix3(p.Ka + p.Kb) : (frozen == p.a ? p.Kb : p.Ka);
-    lt = ProjectOntoBall(K, stop, bound, p.rho > 0 ? 3 : 2);
+    lt = ProjectOntoBall(K, stop, bound, p.rho > 0 ? 3 : 2, p.nu);
   }
   const Vector3 d = lt - p.lambda;
   p.lambda = lt;

@@ -62,6 +62,7 @@ struct Patch {
   double mu = 0;                     // the bound of this step: μs for a patch that holds, μk for one that slides
   bool sliding = false;              // did not hold last step, and slides at the start of this one
   Vector3 lambda = Vector3::Zero();  // impulses (f·t1, f·t2, τ/ρ)
+  double nu = 0;                     // the multiplier of its last projection onto the limit
 };
 
 /// Normals within this angle (rad) of a patch's first belong to it.
