@@ -43,11 +43,11 @@ struct Row {
 /// kPatchAngle). Friction acts on the patch as a whole, at its anchor (the centre of pressure of
 /// the last step's normal impulses — of the present ones, followed through the iterations, while
 /// it slides — or the centroid of its points' outline before any load): a force in the tangent
-/// plane and a torque about the normal, bounded together
-/// by μ times the patch's total normal impulse N — an elliptic limit surface, |f|² + (τ/ρ)² ≤
-/// (μN)², with ρ the mean distance of the outline's area from the anchor (uniform pressure; a
-/// segment's quarter length; 0 for one point). Whether a body at rest on a face stays at rest so
-/// depends on the resultant only, not on how the solve happens to share the load among points.
+/// plane and a torque about the normal, bounded together by μ times the patch's total normal
+/// impulse N — an elliptic limit surface, |f|² + (τ/ρ)² ≤ (μN)², with ρ the mean distance of the
+/// outline's area from its centroid (uniform pressure; a segment's quarter length; 0 for one
+/// point). Whether a body at rest on a face stays at rest so depends on the resultant only, not on
+/// how the solve happens to share the load among points.
 struct Patch {
   int a = -1, b = -1;
   int first = 0, count = 0;  // its rows, consecutive
@@ -65,7 +65,9 @@ struct Patch {
   double nu = 0;                     // the multiplier of its last projection onto the limit
 };
 
-/// Normals within this angle (rad) of a patch's first belong to it.
+/// Normals within this angle (rad) of a patch's first belong to it: a flat face's points (a
+/// mesh's seams give their faces' normals exactly), not the points of a curved surface, whose
+/// shared friction in an averaged tangent plane would push along their own normals.
 inline constexpr double kPatchAngle = 0.01;
 
 /// What the solve remembers of a patch between steps.
