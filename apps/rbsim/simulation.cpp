@@ -321,8 +321,8 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
   }
   for (std::size_t i = 0; i < scene.pairs.size(); ++i) {
     const Scene::PairMaterial& p = scene.pairs[i];
+    const std::string where = scene.file + ": pairs[" + std::to_string(i) + "]: ";
     for (const int end : {p.a, p.b}) {
-      const std::string where = scene.file + ": pairs[" + std::to_string(i) + "]: ";
       if (end >= 0 && !collides[static_cast<std::size_t>(end)]) {
         throw SceneError(where + "body '" + scene.bodies[static_cast<std::size_t>(end)].name +
                          "' collides with nothing (give it \"collision\"), so this pair's material would never apply");

@@ -67,7 +67,6 @@ std::shared_ptr<const contact::Polytope> PolytopeOf(const Shape& s) {
 struct StaticBody {
   Collider collider;
   std::shared_ptr<const contact::Polytope> polytope;
-  contact::BroadStatic broad;  // posed in the world, with its bounds
 };
 
 // The overlap a contact may keep before the position correction pushes it out: a quarter of the
@@ -92,6 +91,7 @@ struct ContactWorld::Impl {
   std::vector<double> radii;        // each collider's bounding radius (a hull's: a pass over it)
   std::vector<std::shared_ptr<const contact::Polytope>> polytopes;
   std::vector<StaticBody> statics;
+  std::vector<contact::BroadStatic> static_broad;  // each static body posed in the world, with its bounds
   std::vector<Ground> grounds;
   std::map<std::pair<int, int>, Material> pair_materials;
   contact::ContactCache cache;  // the last step's impulses: the warm start of the next
@@ -198,12 +198,18 @@ void ContactWorld::AddStatic(Collider collider, const Matrix3& rotation, const V
   StaticBody s;
   s.collider = std::move(collider);
   s.polytope = PolytopeOf(s.collider.shape);
-  s.broad.posed = {nullptr, s.polytope.get(), rotation * s.collider.rotation,
-                   translation + rotation * s.collider.translation};
-  s.broad.radius = contact::BoundingRadius(s.collider.shape);
-  s.broad.lower = s.broad.posed.t - Vector3::Constant(s.broad.radius);
-  s.broad.upper = s.broad.posed.t + Vector3::Constant(s.broad.radius);
+  contact::BroadStatic broad;
+  broad.posed = {nullptr, s.polytope.get(), rotation * s.collider.rotation,
+                 translation + rotation * s.collider.translation};
+  broad.radius = contact::BoundingRadius(s.collider.shape);
+  broad.lower = broad.posed.t - Vector3::Constant(broad.radius);
+  broad.upper = broad.posed.t + Vector3::Constant(broad.radius);
   impl_->statics.push_back(std::move(s));
+  impl_->static_broad.push_back(broad);
+  // The shapes may have moved with the vector: every posed shape points at its collider again.
+  for (std::size_t k = 0; k < impl_->statics.size(); ++k) {
+    impl_->static_broad[k].posed.shape = &impl_->statics[k].collider.shape;
+  }
 }
 
 void ContactWorld::AddGround(Ground ground) {
@@ -262,7 +268,7 @@ struct RowContext {
 };
 
 // A row for each contact point between body a and b (-1: a ground or static body); key_b names b
-// in the rows' keys: KeyOfBody, KeyOfStatic or KeyOfGround (distinct, so that the warm start and
+// in the rows' keys: b itself, KeyOfStatic or KeyOfGround (distinct, so that the warm start and
 // the friction state of a body on a ground never pass to the same body on a static body).
 void AppendRows(const RowContext& c, const std::vector<contact::ContactPoint>& points, int a, int b, int key_b,
                 const Material& mat, double slop, std::vector<contact::Row>& rows, ContactStats& stats) {
@@ -403,12 +409,7 @@ StepStatus ContactWorld::Step(double h) {
                  Slop(m.colliders[k].shape, radius[k], nullptr, -1), m.rows, stats_);
     }
   }
-  std::vector<contact::BroadStatic> statics;
-  statics.reserve(m.statics.size());
-  for (const StaticBody& s : m.statics) {
-    statics.push_back(s.broad);
-    statics.back().posed.shape = &s.collider.shape;
-  }
+  const std::vector<contact::BroadStatic>& statics = m.static_broad;
   const std::vector<contact::Candidate> candidates = contact::FindCandidates(broad, statics);
   std::vector<contact::PairQuery> queries;
   queries.reserve(candidates.size());
@@ -486,7 +487,7 @@ StepStatus ContactWorld::Step(double h) {
   m.cache = std::move(kept);
   contact::StoreImpulses(m.rows, patches, m.cache);
   stats_.dissipated = energy_before - KineticEnergy(bodies, m.vel);
-  // 5. Position correction of mesh contacts' overlap, then 6. the drift.
+  // 5. Position correction of overlap beyond each contact's slop, then 6. the drift.
   const std::vector<contact::Velocities> pseudo =
       contact::PushOutVelocities(m.rows, m.response, nb, h, options_.max_iterations, options_.tolerance);
   StepStatus status = DriftBodies(bodies, m.vel, pseudo, m.sleep.asleep, radius, h, stats_);

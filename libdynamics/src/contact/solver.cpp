@@ -208,20 +208,26 @@ Vector3 ProjectOntoBall(const Matrix3& K, const Vector3& target, double bound, i
   return x;
 }
 
+// A patch's total normal impulse N, and (when `centre` is given) its centre of pressure
+// Σ λn x / N (left as it is when N = 0).
+double Load(const Patch& p, const std::vector<Row>& rows, Vector3* centre = nullptr) {
+  double N = 0;
+  Vector3 weighted = Vector3::Zero();
+  for (int i = p.first; i < p.first + p.count; ++i) {
+    const Row& r = rows[static_cast<std::size_t>(i)];
+    N += r.lambda_n;
+    if (centre != nullptr) weighted += r.lambda_n * r.point;
+  }
+  if (centre != nullptr && N > 0) *centre = weighted / N;
+  return N;
+}
+
 // Moves a sliding patch's anchor to the centre of pressure of its rows' present normal impulses
 // (kinetic friction so acts where the load is, as friction distributed over the points would: a
 // sliding box does not yaw because its points are unevenly spread), carrying the friction impulse
 // already applied along: off where it was, on where it now is. (A holding patch with three or
 // more points holds the body whatever its anchor.)
-void FollowPressure(Patch& p, const std::vector<Row>& rows, std::vector<Velocities>& vel, const BodyResponse& bodies,
-                    int frozen, double N) {
-  if (!(N > 0)) return;
-  Vector3 centre = Vector3::Zero();
-  for (int i = p.first; i < p.first + p.count; ++i) {
-    const Row& r = rows[static_cast<std::size_t>(i)];
-    centre += r.lambda_n * r.point;
-  }
-  centre /= N;
+void FollowPressure(Patch& p, std::vector<Velocities>& vel, const BodyResponse& bodies, int frozen, Vector3 centre) {
   centre += p.n * p.n.dot(p.anchor - centre);                                               // in the patch's plane
   if ((centre - p.anchor).squaredNorm() <= std::max(1e-24, 1e-16 * p.rho * p.rho)) return;  // within 10⁻⁸ ρ
   ApplyPatch(vel, bodies, p, -p.lambda, frozen);
@@ -234,15 +240,17 @@ void FollowPressure(Patch& p, const std::vector<Row>& rows, std::vector<Velociti
   ApplyPatch(vel, bodies, p, p.lambda, frozen);
 }
 
-// One update of a patch's friction: the impulse that stops its sliding and turning, within the
-// limit μ N. Within it the patch holds (or comes to rest in this step); beyond it, a sliding
-// patch takes μk N against its sliding, a holding one breaks away at the limit. With a body held
-// still (shock propagation), only the other's response counts.
+// One update of a patch's friction: the impulse that stops its sliding and turning, if it lies
+// within the limit μ N (the patch holds, or comes to rest in this step); else the impulse of
+// least kinetic energy on the limit (μs: a holding patch breaks away; μk: a sliding one slides,
+// opposing its sliding). With a body held still (shock propagation), only the other's response
+// counts.
 void UpdateFriction(Patch& p, const std::vector<Row>& rows, std::vector<Velocities>& vel, const BodyResponse& bodies,
                     int frozen, double& change, double& scale) {
-  double N = 0;
-  for (int i = p.first; i < p.first + p.count; ++i) N += rows[static_cast<std::size_t>(i)].lambda_n;
-  if (p.sliding && frozen < 0) FollowPressure(p, rows, vel, bodies, frozen, N);
+  const bool follow = p.sliding && frozen < 0;
+  Vector3 centre = p.anchor;
+  const double N = Load(p, rows, follow ? &centre : nullptr);
+  if (follow && N > 0) FollowPressure(p, vel, bodies, frozen, centre);
   const Matrix3 mass = frozen < 0 ? p.mass : PatchMass(frozen == p.a ? p.Kb : p.Ka, p.rho);
   const Vector3 g = PatchVelocity(vel, p);
   const Vector3 stop = p.lambda - mass * g;
@@ -462,8 +470,7 @@ int SolveImpulses(std::vector<Row>& rows, std::vector<Patch>& patches, std::vect
 
 void StoreImpulses(const std::vector<Row>& rows, const std::vector<Patch>& patches, ContactCache& cache) {
   for (const Patch& p : patches) {
-    double N = 0;
-    for (int i = p.first; i < p.first + p.count; ++i) N += rows[static_cast<std::size_t>(i)].lambda_n;
+    const double N = Load(p, rows);
     const RowKey& key = rows[static_cast<std::size_t>(p.first)].key;
     std::vector<CachedPatch>& pair = cache.patches[{std::get<0>(key), std::get<1>(key)}];
     // Not touching yet (a speculative contact): whether it holds is decided when it touches, by
