@@ -17,14 +17,15 @@
 
 #include <nlohmann/json.hpp>
 
-#include "atomic_file.h"
+#include "massprops/report/atomic_file.h"
 #include "cli.h"
-#include "format.h"
+#include "massprops/report/format.h"
 #include "massprops/io.h"
 #include "massprops/isolation.h"
-#include "record.h"
+#include "massprops/report/record.h"
 
 namespace massprops::cli {
+using namespace massprops::report;  // the formats this command prints
 namespace {
 
 using Json = nlohmann::ordered_json;
@@ -190,7 +191,7 @@ int RunBatch(const BatchOptions& b) {
   std::vector<std::string> all;
   try {
     all = ListFiles(b.input);
-    app::CheckOutputPath(b.output, {b.input});
+    report::CheckOutputPath(b.output, {b.input});
   } catch (const std::exception& e) {
     return Bad(e.what());
   }
@@ -280,7 +281,7 @@ int RunBatch(const BatchOptions& b) {
 int RunMerge(const std::string& output, const std::vector<std::string>& shards) {
   if (shards.empty()) return Bad("merge needs OUT and at least one SHARD file");
   try {
-    app::CheckOutputPath(output, shards);
+    report::CheckOutputPath(output, shards);
   } catch (const std::exception& e) {
     return Bad(std::string("merge: ") + e.what());
   }
@@ -329,7 +330,7 @@ int RunMerge(const std::string& output, const std::vector<std::string>& shards) 
   std::string text;
   for (const auto& [i, rec] : by_index) text += rec.dump() + "\n";
   try {
-    app::WriteFileAtomically(output, text);
+    report::WriteFileAtomically(output, text);
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 1;

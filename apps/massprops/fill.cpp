@@ -7,14 +7,15 @@
 
 #include <CLI/CLI.hpp>
 
-#include "atomic_file.h"
+#include "massprops/report/atomic_file.h"
 #include "cli.h"
-#include "density_map.h"
-#include "format.h"
+#include "massprops/report/density_map.h"
+#include "massprops/report/format.h"
 #include "massprops/robot.h"
 #include "massprops/text.h"
 
 namespace massprops::cli {
+using namespace massprops::report;  // the formats this command prints
 namespace {
 
 std::string Table(const std::string& file, const FillResult& r) {
@@ -90,7 +91,7 @@ int FillMain(int argc, char** argv) {
     o.packages.emplace_back(p.substr(0, eq), p.substr(eq + 1));
   }
   try {
-    app::CheckOutputPath(output, {input});
+    report::CheckOutputPath(output, {input});
     if (!density_map.empty()) o.link_masses = ReadDensityMap(density_map);
   } catch (const std::exception& e) {
     return bad(e.what());
@@ -105,7 +106,7 @@ int FillMain(int argc, char** argv) {
     return 1;
   }
   try {
-    app::WriteFileAtomically(output, r.document);
+    report::WriteFileAtomically(output, r.document);
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 1;

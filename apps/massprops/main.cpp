@@ -21,12 +21,12 @@
 
 #include <CLI/CLI.hpp>
 
-#include "atomic_file.h"
+#include "massprops/report/atomic_file.h"
 #include "batch.h"
 #include "cli.h"
-#include "density_map.h"
+#include "massprops/report/density_map.h"
 #include "fill.h"
-#include "format.h"
+#include "massprops/report/format.h"
 #include "massprops/implicit.h"
 #include "massprops/io.h"
 #include "massprops/load.h"
@@ -312,7 +312,7 @@ int main(int argc, char** argv) {
 
   if (!a.output.empty()) {
     try {
-      app::CheckOutputPath(a.output, a.files);
+      report::CheckOutputPath(a.output, a.files);
     } catch (const std::exception& e) {
       return bad(std::string("-o ") + e.what());
     }
@@ -340,7 +340,7 @@ int main(int argc, char** argv) {
     b.load.unit_stated = app.count("--unit") > 0;
     if (!a.density_map.empty()) {
       try {
-        b.load.part_masses = cli::ReadDensityMap(a.density_map);
+        b.load.part_masses = report::ReadDensityMap(a.density_map);
       } catch (const std::exception& e) {
         return bad(e.what());
       }
@@ -348,21 +348,21 @@ int main(int argc, char** argv) {
     return cli::RunBatch(b);
   }
 
-  cli::FormatOptions format;
-  format.format = FromName<cli::Format>({{"table", cli::Format::kTable},
-                                         {"json", cli::Format::kJson},
-                                         {"csv", cli::Format::kCsv},
-                                         {"urdf", cli::Format::kUrdf},
-                                         {"sdf", cli::Format::kSdf},
-                                         {"mjcf", cli::Format::kMjcf}},
+  report::FormatOptions format;
+  format.format = FromName<report::Format>({{"table", report::Format::kTable},
+                                         {"json", report::Format::kJson},
+                                         {"csv", report::Format::kCsv},
+                                         {"urdf", report::Format::kUrdf},
+                                         {"sdf", report::Format::kSdf},
+                                         {"mjcf", report::Format::kMjcf}},
                                         a.format);
-  format.frame = a.frame == "origin" ? cli::Frame::kOrigin : cli::Frame::kCenterOfMass;
+  format.frame = a.frame == "origin" ? report::Frame::kOrigin : report::Frame::kCenterOfMass;
   format.json_array = a.files.size() + (a.implicit.empty() ? 0 : 1) > 1;
   LoadOptions options = ToLoadOptions(a);
   options.unit_stated = app.count("--unit") > 0;
   if (!a.density_map.empty()) {
     try {
-      options.part_masses = cli::ReadDensityMap(a.density_map);
+      options.part_masses = report::ReadDensityMap(a.density_map);
     } catch (const std::exception& e) {
       return bad(e.what());
     }
@@ -403,7 +403,7 @@ int main(int argc, char** argv) {
     format.reference = f;
   }
   const bool robot =
-      format.format == cli::Format::kUrdf || format.format == cli::Format::kSdf || format.format == cli::Format::kMjcf;
+      format.format == report::Format::kUrdf || format.format == report::Format::kSdf || format.format == report::Format::kMjcf;
   if (robot && (!a.output_units.empty() || format.reference)) {
     return bad(
         "URDF, SDF and MJCF give the inertia about the center of mass in SI; --output-units, --about and "
@@ -424,7 +424,7 @@ int main(int argc, char** argv) {
       app::Progress progress("massprops", name, show_progress);
       out.result = solve([&progress](const char* stage) { progress.Stage(stage); });
     } catch (const MeshFileError& e) {  // already names the file
-      out.error = WordedError(e, cli::CliVocabulary());
+      out.error = WordedError(e, report::CliVocabulary());
     } catch (const std::exception& e) {
       out.error = name + ": " + e.what();
     }
@@ -439,9 +439,9 @@ int main(int argc, char** argv) {
     }
     const SolidResult& r = *o.result;
     for (const Finding& f : r.findings) {
-      std::cerr << "warning: " << name << ": " << Worded(f.message, cli::CliVocabulary()) << "\n";
+      std::cerr << "warning: " << name << ": " << Worded(f.message, report::CliVocabulary()) << "\n";
     }
-    if (format.format == cli::Format::kTable) text += (text.empty() ? "" : "\n") + FormatTable(r, format);
+    if (format.format == report::Format::kTable) text += (text.empty() ? "" : "\n") + FormatTable(r, format);
     if (robot) text += FormatRobot(r, format.format);
     results.push_back(std::move(*o.result));
   };
@@ -484,15 +484,15 @@ int main(int argc, char** argv) {
            return EstimateImplicit(*implicit::ParseShape(a.implicit, ReadSdfGridFile), o);
          }));
   }
-  if (format.format == cli::Format::kJson && (!results.empty() || format.json_array)) {
+  if (format.format == report::Format::kJson && (!results.empty() || format.json_array)) {
     text = FormatJson(results, format);  // several inputs: an array, even if some (or all) failed
   }
   if (!results.empty()) {
-    if (format.format == cli::Format::kCsv) text = FormatCsv(results, format);
+    if (format.format == report::Format::kCsv) text = FormatCsv(results, format);
   }
   if (!a.output.empty()) {
     try {
-      if (!text.empty()) app::WriteFileAtomically(a.output, text);
+      if (!text.empty()) report::WriteFileAtomically(a.output, text);
     } catch (const std::exception& e) {
       std::cerr << "error: " << e.what() << "\n";
       return 1;

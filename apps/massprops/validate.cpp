@@ -9,12 +9,13 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "atomic_file.h"
+#include "massprops/report/atomic_file.h"
 #include "cli.h"
 #include "massprops/text.h"
 #include "massprops/validation.h"
 
 namespace massprops::cli {
+using namespace massprops::report;  // the formats this command prints
 namespace {
 
 std::string Err(double e) { return FormatDouble(e, "%9.2e"); }
@@ -117,8 +118,8 @@ int ValidateMain(int argc, char** argv) {
   app.add_option("-o,--output", output, "Write the output to this file (whole or not at all)");
   if (const int status = app::ParseArguments(app, argc, argv); status >= 0) return status;
   try {
-    if (!output.empty()) app::CheckOutputPath(output, {});
-    if (!plot.empty()) app::CheckOutputPath(plot, {});
+    if (!output.empty()) report::CheckOutputPath(output, {});
+    if (!plot.empty()) report::CheckOutputPath(plot, {});
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
     return app::kBadArguments;
@@ -139,7 +140,7 @@ int ValidateMain(int argc, char** argv) {
     if (output.empty()) {
       std::cout << text;
     } else {
-      app::WriteFileAtomically(output, text);
+      report::WriteFileAtomically(output, text);
     }
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";

@@ -176,7 +176,7 @@ void WriteGlb(const std::string& path, const Simulation& sim, const Recording& r
   doc["scenes"] = json::array({{{"name", "rbsim"}, {"nodes", {0}}}});
   doc["scene"] = 0;
   doc["animations"] = json::array({{{"name", "simulation"}, {"samplers", samplers}, {"channels", channels}}});
-  massprops::app::WriteFileAtomically(path, b.Finish(doc));
+  massprops::report::WriteFileAtomically(path, b.Finish(doc));
 }
 
 }  // namespace rbsim

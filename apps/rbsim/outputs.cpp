@@ -69,7 +69,7 @@ void Recording::Add(const Simulation& sim, const dynamics::World& world, const d
 
 TrajectoryWriter::TrajectoryWriter(const std::string& dir, const std::vector<OutputKind>& outputs) {
   auto want = [&](OutputKind k) { return std::find(outputs.begin(), outputs.end(), k) != outputs.end(); };
-  using massprops::app::AtomicFile;
+  using massprops::report::AtomicFile;
   if (want(OutputKind::kCsv)) {
     csv_ = std::make_unique<AtomicFile>(dir + "/trajectory.csv");
     csv_->stream() << kTrajectoryCsvHeader << "\n";

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "atomic_file.h"
+#include "massprops/report/atomic_file.h"
 #include "simulation.h"
 
 namespace rbsim {
@@ -36,7 +36,7 @@ class TrajectoryWriter {
   std::vector<std::string> Commit();
 
  private:
-  std::unique_ptr<massprops::app::AtomicFile> csv_, jsonl_, diagnostics_;
+  std::unique_ptr<massprops::report::AtomicFile> csv_, jsonl_, diagnostics_;
   dynamics::Diagnostics start_;
   bool started_ = false;
   std::string line_;

@@ -8,7 +8,7 @@
 #include <numeric>
 #include <sstream>
 
-#include "atomic_file.h"
+#include "massprops/report/atomic_file.h"
 
 namespace rbsim {
 namespace {
@@ -136,7 +136,7 @@ void WritePosePicture(const std::string& path, const massprops::TriangleMesh& me
   const double elevation = std::clamp(std::asin(std::clamp(n.z(), -1.0, 1.0)) * 180 / M_PI + 15, -89.0, 89.0);
   Draw(svg, mesh, file, marked, Camera(azimuth, elevation), Panel{w, w, h}, false, face);
   svg << "</svg>\n";
-  massprops::app::WriteFileAtomically(path, svg.str());
+  massprops::report::WriteFileAtomically(path, svg.str());
 }
 
 }  // namespace rbsim

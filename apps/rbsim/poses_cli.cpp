@@ -17,13 +17,14 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "atomic_file.h"
+#include "massprops/report/atomic_file.h"
 #include "cli.h"
+#include "dynamics/pose_part.h"
 #include "dynamics/poses.h"
 #include "massprops/load.h"
+#include "massprops/report/words.h"
 #include "massprops/wording.h"
 #include "pose_picture.h"
-#include "poses_report.h"
 
 namespace rbsim {
 namespace {
@@ -50,22 +51,6 @@ bool ParseMaterial(const std::string& text, dynamics::Material& m, std::string& 
   }
   m = dynamics::Material{v[0], v[1], v[2]};
   return true;
-}
-
-// The pipeline's advice in this command's words.
-const massprops::Vocabulary& PosesVocabulary() {
-  static const massprops::Vocabulary v = [](massprops::Option option, std::string_view value) -> std::string {
-    switch (option) {
-      case massprops::Option::kRepair: return "--repair";
-      case massprops::Option::kAllowOpen:
-        return "massprops --allow-open (mass properties only: rbsim poses needs a solid)";
-      case massprops::Option::kUnit: return value.empty() ? "--unit" : "--unit " + std::string(value);
-      case massprops::Option::kFullCheck: return "(always done by rbsim poses)";
-      case massprops::Option::kWall: return "(not in rbsim poses)";
-    }
-    return "?";
-  };
-  return v;
 }
 
 std::string Vec(const Vector3& v, const char* format = "%+.4f") {
@@ -142,16 +127,16 @@ int PosesMain(int argc, char** argv) {
     load.mass = massprops::Density{density};
   load.repair = repair;
   load.num_threads = threads;
-  PosesReport report;
+  dynamics::PosesReport report;
   report.part = part_file;
-  report.collision = collision == "mesh" ? PoseCollision::kMesh : PoseCollision::kHull;
+  report.collision = collision == "mesh" ? dynamics::PoseCollision::kMesh : dynamics::PoseCollision::kHull;
   report.drops = drops;
   massprops::TriangleMesh file_mesh;  // the part in its file's axes, metres
   const std::string name = std::filesystem::path(part_file).filename().string();
   std::vector<std::string> warnings;
   try {
     report.pose_part =
-        LoadPosePart(part_file, load, report.collision, material, PosesVocabulary(), warnings, &file_mesh);
+        dynamics::LoadPosePart(part_file, load, report.collision, material, massprops::report::WordsFor(massprops::report::FrontEnd::kPoses), warnings, &file_mesh);
   } catch (const std::exception& e) {
     for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
     std::cerr << "error: " << e.what() << "\n";
@@ -185,7 +170,7 @@ int PosesMain(int argc, char** argv) {
   auto drop_share = [&](std::size_t p) {
     return have_drops ? static_cast<double>(tally.counts[p]) / static_cast<double>(tally.drops) : 0.0;
   };
-  nlohmann::json j = PosesJson(report);
+  nlohmann::json j = dynamics::PosesJson(report);
   if (!out_dir.empty()) {
     for (std::size_t p = 0; p < estimate.poses.size(); ++p)
       j["poses"][p]["picture"] = "pose_" + std::to_string(p + 1) + ".svg";
@@ -216,7 +201,7 @@ int PosesMain(int argc, char** argv) {
         WritePosePicture(out_dir + "/pose_" + std::to_string(p + 1) + ".svg", as_hull ? drawn : file_mesh,
                          estimate.poses[p], outline, title.str());
       }
-      massprops::app::WriteFileAtomically(out_dir + "/poses.json", j.dump(2) + "\n");
+      massprops::report::WriteFileAtomically(out_dir + "/poses.json", j.dump(2) + "\n");
     } catch (const std::exception& e) {
       std::cerr << "error: --out " << out_dir << ": " << e.what() << "\n";
       return 1;

@@ -122,12 +122,14 @@ ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {
   s.mass =
       mass > 0 ? massprops::MassSpec(massprops::TotalMass{mass}) : massprops::MassSpec(massprops::Density{density});
   if (has_implicit) {
-    s.implicit = f.String("implicit", "");
+    dynamics::ImplicitSource implicit;
+    implicit.text = f.String("implicit", "");
     try {
-      massprops::implicit::ParseShape(s.implicit, massprops::ReadSdfGridFile);
+      implicit.shape = massprops::implicit::ParseShape(implicit.text, massprops::ReadSdfGridFile);
     } catch (const std::exception& e) {
       f.Fail("implicit", e.what());
     }
+    s.source = std::move(implicit);
     s.unit_stated = f.Has("unit");
     s.unit = ReadUnit(f);
   } else if (has_mesh) {
@@ -140,14 +142,16 @@ ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {
     if (!fs::is_regular_file(p, ec)) {
       f.Fail("mesh", "'" + file + "' not found" + (file == p.string() ? "" : " (looked for " + p.string() + ")"));
     }
-    s.mesh_file = p.lexically_normal().string();
+    dynamics::MeshSource mesh;
+    mesh.path = p.lexically_normal().string();
     s.unit_stated = f.Has("unit");
     s.unit = ReadUnit(f);
-    s.repair = f.Bool("repair", false);
-    s.allow_open = f.Bool("allow_open", false);
+    mesh.repair = f.Bool("repair", false);
+    mesh.allow_open = f.Bool("allow_open", false);
+    s.source = std::move(mesh);
   } else {
     Fields o(*f.Get("solid"), f.Path("solid"), f.file());
-    s.solid = ReadPrimitive(o);
+    s.source = ReadPrimitive(o);
   }
   return s;
 }
@@ -183,11 +187,11 @@ CollisionSpec ReadCollision(Fields& f) {
   if (v->is_string()) {
     const std::string s = v->get<std::string>();
     if (s == "none") {
-      c.kind = CollisionSpec::Kind::kNone;
+      c.kind = CollisionKind::kNone;
     } else if (s == "hull") {
-      c.kind = CollisionSpec::Kind::kHull;
+      c.kind = CollisionKind::kHull;
     } else if (s == "mesh") {
-      c.kind = CollisionSpec::Kind::kMesh;
+      c.kind = CollisionKind::kMesh;
     } else {
       f.Fail("collision", "'" + s + "' is not \"none\", \"hull\", \"mesh\" or a primitive {\"type\": ...}" +
                               Suggest(s, {"none", "hull", "mesh"}));
@@ -201,7 +205,7 @@ CollisionSpec ReadCollision(Fields& f) {
     f.Fail("collision", "collides as a box, sphere, capsule or cylinder (or \"hull\"), not a " +
                             std::string(massprops::PrimitiveName(*c.primitive)));
   }
-  c.kind = CollisionSpec::Kind::kPrimitive;
+  c.kind = CollisionKind::kPrimitive;
   return c;
 }
 
@@ -297,12 +301,6 @@ ForceSpec ReadForce(const json& j, const std::string& path, const std::string& f
 }
 
 }  // namespace
-
-bool CollidesAsItself(const massprops::Primitive& p) {
-  namespace pr = massprops::primitive;
-  return std::holds_alternative<pr::Box>(p) || std::holds_alternative<pr::Sphere>(p) ||
-         std::holds_alternative<pr::Capsule>(p) || std::holds_alternative<pr::Cylinder>(p);
-}
 
 const char* OutputName(OutputKind kind) {
   switch (kind) {
@@ -414,7 +412,7 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
       s.position = b.Vec3("position", Vector3::Zero());
       s.orientation = ReadOrientation(b, "orientation", warnings);
       s.collision = ReadCollision(b);
-      if (s.collision.kind == CollisionSpec::Kind::kNone)
+      if (s.collision.kind == CollisionKind::kNone)
         b.Fail("collision", "a static body that collides with nothing does nothing");
       b.Get("color");
       b.Done();

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "dynamics/bodies.h"
 #include "dynamics/contact.h"
 #include "dynamics/world.h"
 #include "massprops/mass_properties.h"
@@ -30,37 +31,14 @@ class SceneError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Where the mass properties of a body come from.
-struct ShapeSpec {
-  // Exactly one of mesh_file / implicit / solid is set.
-  std::string mesh_file;  ///< resolved path (relative paths are taken from the scene's folder)
-  bool repair = false;
-  bool allow_open = false;
-  std::string implicit;                       ///< a shape in massprops' shape syntax (Monte-Carlo mass properties)
-  std::optional<massprops::Primitive> solid;  ///< a closed-form solid
-  massprops::LengthUnit unit = massprops::LengthUnit::kMetre;  ///< of the mesh or the shape
-  bool unit_stated = false;  ///< the scene gives "unit" (else implausible sizes draw a warning)
-  massprops::MassSpec mass = massprops::Density{1000.0};
-};
+/// Where the mass properties of a body come from, and what it collides as (the body builder's
+/// types, dynamics/bodies.h).
+using ShapeSpec = dynamics::BodyShape;
+using CollisionSpec = dynamics::CollisionSpec;
+using dynamics::CollidesAsItself;
+using dynamics::CollisionKind;
 
 enum class VectorFrame { kWorld, kBody, kPrincipal };
-
-/// What a body collides as (dynamics/contact.h).
-struct CollisionSpec {
-  enum class Kind {
-    kAuto,       ///< a box, sphere, capsule or cylinder solid as itself; anything else: no contact
-    kNone,       ///< passes through everything
-    kHull,       ///< the convex hull of its mesh (or of its solid's or shape's tessellation)
-    kMesh,       ///< its closed mesh (or its solid's tessellation) as it is: a signed distance field
-    kPrimitive,  ///< the primitive given, centred on the center of mass, in the mesh's axes
-  };
-  Kind kind = Kind::kAuto;
-  std::optional<massprops::Primitive> primitive;
-  dynamics::Material material;
-};
-
-/// True for the solids that collide as themselves: box, sphere, capsule and cylinder.
-bool CollidesAsItself(const massprops::Primitive& p);
 
 /// A ground plane {x : normal·x ≤ offset}.
 struct GroundSpec {

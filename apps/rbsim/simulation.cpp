@@ -1,7 +1,5 @@
 #include "simulation.h"
 
-#include "massprops/repair.h"
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -10,7 +8,9 @@
 #include <map>
 #include <sstream>
 
+#include "dynamics/bodies.h"
 #include "dynamics/forces.h"
+#include "massprops/report/words.h"
 #include "massprops/implicit.h"
 #include "massprops/load.h"
 #include "massprops/primitive.h"
@@ -21,6 +21,7 @@ namespace {
 
 using massprops::MassProperties;
 using massprops::TriangleMesh;
+using dynamics::BuiltShape;
 
 std::string Num(double v, const char* fmt = "%.6g") { return massprops::FormatDouble(v, fmt); }
 
@@ -32,160 +33,20 @@ Vector3 DefaultColor(std::size_t i) {
   return Vector3(c[0], c[1], c[2]);
 }
 
-// A solid from its closed form (exact mass properties) and a tessellation to look at.
-void LoadPrimitive(const massprops::Primitive& p, const massprops::MassSpec& mass, SimBody& body) {
-  const MassProperties unit = massprops::ClosedForm(p, 1.0);  // at density 1
-  body.display = massprops::Tessellate(p, 24);
-  body.mp = massprops::AtDensity(unit, massprops::ResolveDensity(mass, unit.volume));
-  body.principal = massprops::ComputePrincipalInertia(body.mp.inertia_com);
-  body.source = massprops::Describe(p);
-}
-
-// A scene names the options the library's messages advise by its keys.
-const massprops::Vocabulary& SceneVocabulary() {
-  static const massprops::Vocabulary v = [](massprops::Option option, std::string_view value) -> std::string {
-    switch (option) {
-      case massprops::Option::kRepair: return "\"repair\": true";
-      case massprops::Option::kAllowOpen: return "\"allow_open\": true";
-      case massprops::Option::kUnit: return value.empty() ? "\"unit\"" : "\"unit\": \"" + std::string(value) + "\"";
-      case massprops::Option::kFullCheck: return "(always done in scenes)";
-      case massprops::Option::kWall: return "wall";
-    }
-    return "?";
-  };
-  return v;
-}
-
-void LoadMesh(const ShapeSpec& s, SimBody& body, const std::string& where, std::vector<std::string>& warnings,
-              int threads) {
-  massprops::LoadOptions opt;
-  opt.unit = s.unit;
-  opt.unit_stated = s.unit_stated;
-  opt.mass = s.mass;
-  opt.repair = s.repair;
-  opt.allow_open = s.allow_open;
-  opt.full_check = true;  // load the mesh whole: the .glb needs it
-  opt.num_threads = threads;
-  massprops::SolidResult r;
+// Loads a body's shape, its findings and faults named by the scene file and field ("where" and
+// the part of the shape: ".mesh", ".implicit", ".solid").
+BuiltShape LoadShape(const dynamics::BodyBuilder& builder, const ShapeSpec& shape, const std::string& where,
+                     std::vector<std::string>& warnings, bool solid_errors_name_field) {
+  std::vector<dynamics::BodyWarning> found;
   try {
-    r = massprops::LoadSolid(s.mesh_file, opt);
-  } catch (const std::exception& e) {
-    throw SceneError(where + ".mesh: " + massprops::WordedError(e, SceneVocabulary()));
+    BuiltShape built = builder.Load(shape, found);
+    for (const auto& w : found) warnings.push_back(where + "." + w.field + ": " + w.text);
+    return built;
+  } catch (const dynamics::BodyError& e) {
+    for (const auto& w : found) warnings.push_back(where + "." + w.field + ": " + w.text);
+    const bool named = !e.field().empty() && (e.field() != "solid" || solid_errors_name_field);
+    throw SceneError(where + (named ? "." + e.field() : std::string()) + ": " + e.what());
   }
-  for (const auto& f : r.findings) {
-    warnings.push_back(where + ".mesh: " + s.mesh_file + ": " + massprops::Worded(f.message, SceneVocabulary()));
-  }
-  if (!r.validity.valid) {
-    throw SceneError(where + ".mesh: " + s.mesh_file + ": the inertia is not that of a real body (" +
-                     r.validity.reason + ")");
-  }
-  body.mp = r.mp;
-  body.principal = r.principal;
-  const double scale = massprops::MetresPerUnit(s.unit);
-  body.display = massprops::Triangulate(r.loaded.mesh);
-  for (Eigen::Index i = 0; i < body.display.V.rows(); ++i) {
-    body.display.V.row(i) = (scale * body.display.V.row(i).transpose() - r.mp.center_of_mass).transpose();
-  }
-  body.source = s.mesh_file + " (unit " + massprops::UnitName(s.unit) + ", " + std::to_string(body.display.F.rows()) +
-                " triangles)";
-}
-
-// An implicit solid: mass properties by quasi-Monte Carlo to a relative standard error of 1e-4,
-// and a marching-tetrahedra surface to look at.
-void LoadImplicit(const ShapeSpec& s, SimBody& body, const std::string& where, std::vector<std::string>& warnings,
-                  int threads) {
-  using namespace massprops;
-  const ImplicitPtr shape = implicit::ParseShape(s.implicit, ReadSdfGridFile);
-  ImplicitOptions opt;
-  opt.unit = s.unit;
-  opt.unit_stated = s.unit_stated;
-  opt.mass = s.mass;
-  opt.sampling.tolerance = 1e-4;
-  opt.sampling.max_samples = std::int64_t{1} << 27;
-  opt.num_threads = threads;
-  SolidResult r;
-  try {
-    r = EstimateImplicit(*shape, opt);
-  } catch (const std::exception& ex) {
-    throw SceneError(where + ".implicit: " + ex.what());
-  }
-  const MassPropertiesEstimate& e = *r.estimate;
-  if (!e.tolerance_met) {
-    warnings.push_back(where + ".implicit: mass properties known to a relative standard error of " +
-                       Num(e.MaxRelativeError(), "%.2g") + " only (" + std::to_string(e.samples) + " points)");
-  }
-  body.mp = r.mp;
-  body.principal = r.principal;
-  body.display = implicit::Polygonize(*implicit::Scaled(shape, MetresPerUnit(s.unit)), 64);
-  body.display.V.rowwise() -= body.mp.center_of_mass.transpose();
-  body.source = s.implicit + " (unit " + UnitName(s.unit) + "; QMC, relative standard error " +
-                Num(e.MaxRelativeError(), "%.1g") + ")";
-}
-
-// A body's mass properties and display mesh, from its mesh file, implicit shape or solid.
-void LoadShape(const ShapeSpec& s, SimBody& body, const std::string& where, std::vector<std::string>& warnings,
-               int threads) {
-  if (!s.mesh_file.empty()) {
-    LoadMesh(s, body, where, warnings, threads);
-  } else if (!s.implicit.empty()) {
-    LoadImplicit(s, body, where, warnings, threads);
-  } else {
-    LoadPrimitive(*s.solid, s.mass, body);
-  }
-}
-
-// Mesh colliders by their mesh: bodies of one part share one signed distance field.
-class MeshColliders {
- public:
-  dynamics::shape::Mesh Of(const massprops::TriangleMesh& m) {
-    const std::string key(reinterpret_cast<const char*>(m.V.data()),
-                          sizeof(double) * static_cast<std::size_t>(m.V.size()));
-    const std::string faces(reinterpret_cast<const char*>(m.F.data()),
-                            sizeof(m.F(0, 0)) * static_cast<std::size_t>(m.F.size()));
-    auto& slot = made_[key + faces];
-    if (slot.field == nullptr) {
-      dynamics::shape::Mesh mesh = dynamics::MeshOf(m);
-      slot = dynamics::MakeMesh(std::move(mesh.vertices), std::move(mesh.triangles));
-    }
-    return slot;
-  }
-
- private:
-  std::map<std::string, dynamics::shape::Mesh> made_;
-};
-
-// The collider of a body (in its principal frame: x_B = R_MBᵀ (x_M − com)), or none.
-std::optional<dynamics::Collider> ColliderOf(const CollisionSpec& c, const ShapeSpec& shape, const SimBody& body,
-                                             MeshColliders& meshes) {
-  namespace pr = massprops::primitive;
-  const massprops::Primitive* primitive = c.primitive ? &*c.primitive : nullptr;
-  if (c.kind == CollisionSpec::Kind::kNone) return std::nullopt;
-  if (c.kind == CollisionSpec::Kind::kAuto) {
-    const bool simple = shape.solid && CollidesAsItself(*shape.solid);
-    if (!simple) return std::nullopt;
-    primitive = &*shape.solid;
-  }
-  dynamics::Collider out;
-  out.material = c.material;
-  out.rotation = body.principal.axes.transpose();  // mesh axes → body axes
-  if (c.kind == CollisionSpec::Kind::kMesh) {
-    out.shape = meshes.Of(body.display);  // the display mesh: mesh axes, about the center of mass
-    return out;
-  }
-  if (c.kind == CollisionSpec::Kind::kHull) {
-    out.shape = dynamics::ConvexOf(massprops::ConvexHull(massprops::ToPolygonMesh(body.display)));
-    return out;
-  }
-  const massprops::Primitive& p = *primitive;
-  if (const auto* box = std::get_if<pr::Box>(&p)) out.shape = dynamics::shape::Box{box->size / 2};
-  if (const auto* sphere = std::get_if<pr::Sphere>(&p)) out.shape = dynamics::shape::Sphere{sphere->radius};
-  if (const auto* capsule = std::get_if<pr::Capsule>(&p)) {
-    out.shape = dynamics::shape::Capsule{capsule->radius, capsule->length / 2};
-  }
-  if (const auto* cylinder = std::get_if<pr::Cylinder>(&p)) {
-    out.shape = dynamics::shape::Cylinder{cylinder->radius, cylinder->height / 2};
-  }
-  return out;
 }
 
 }  // namespace
@@ -195,13 +56,13 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
   sim.scene = scene;
   sim.physics = dynamics::ContactWorld(dynamics::World(scene.integrator), scene.contact);
   sim.world().set_num_threads(threads);
-  MeshColliders meshes;
+  dynamics::BodyBuilder builder(massprops::report::WordsFor(massprops::report::FrontEnd::kScene), threads);
   // Contact is on when the scene asks for it: a ground, a static body, or a body's "collision".
   // Then box, sphere, capsule and cylinder solids collide as themselves unless they say "none";
   // scenes without any of these run as before, bodies passing through each other.
   bool wants_contact = !scene.grounds.empty() || !scene.statics.empty();
   for (const BodySpec& b : scene.bodies)
-    wants_contact = wants_contact || b.collision.kind != CollisionSpec::Kind::kAuto;
+    wants_contact = wants_contact || b.collision.kind != CollisionKind::kAuto;
   sim.contact = wants_contact;
   std::vector<bool> collides;  // each body has a collider
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
@@ -210,13 +71,11 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     SimBody body;
     body.name = spec.name;
     body.color = spec.color.value_or(DefaultColor(i));
-    try {
-      LoadShape(spec.shape, body, where, warnings, threads);
-    } catch (const SceneError&) {
-      throw;
-    } catch (const std::exception& e) {  // every error names the file and the field
-      throw SceneError(where + (spec.shape.solid ? ".solid: " : ": ") + e.what());
-    }
+    const BuiltShape built = LoadShape(builder, spec.shape, where, warnings, true);
+    body.mp = built.mp;
+    body.principal = built.principal;
+    body.display = built.display;
+    body.source = built.source;
     dynamics::RigidBody rb;
     try {
       rb = dynamics::BodyFromMassProperties(body.mp, body.principal).body;
@@ -231,7 +90,7 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     if (spec.angular_velocity_frame == VectorFrame::kPrincipal) omega = rb.orientation * omega;
     rb.SetAngularVelocity(omega);
     try {
-      const auto collider = wants_contact ? ColliderOf(spec.collision, spec.shape, body, meshes) : std::nullopt;
+      const auto collider = wants_contact ? builder.ColliderOf(spec.collision, spec.shape, built) : std::nullopt;
       collides.push_back(collider.has_value());
       if (collider) {
         sim.physics.AddBody(rb, *collider);
@@ -288,14 +147,13 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
   }
   for (const StaticSpec& st : scene.statics) {
     const std::string where = scene.file + ": " + st.field;
-    SimBody shape;  // its mass properties only place the solid; statics do not move
     try {
-      LoadShape(st.shape, shape, where, warnings, threads);
+      // Its mass properties only place the solid; statics do not move.
+      BuiltShape shape = LoadShape(builder, st.shape, where, warnings, false);
       // In the static's own frame (its mesh or solid frame): the collider sits at the center of
       // mass with the mesh's axes.
       shape.principal.axes = Matrix3::Identity();
-      CollisionSpec c = st.collision;
-      auto collider = ColliderOf(c, st.shape, shape, meshes);
+      auto collider = builder.ColliderOf(st.collision, st.shape, shape);
       if (!collider) throw SceneError(where + ": collides as nothing (give \"collision\": \"hull\" or a primitive)");
       const Matrix3 R = st.orientation.toRotationMatrix();
       const Vector3 at = st.position + R * shape.mp.center_of_mass;

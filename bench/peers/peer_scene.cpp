@@ -8,7 +8,7 @@
 #include <iostream>
 #include <stdexcept>
 
-#include "atomic_file.h"
+#include "massprops/report/atomic_file.h"
 #include "massprops/repair.h"
 #include "outputs.h"
 #include "simulation.h"
@@ -46,12 +46,12 @@ PeerScene LoadPeerScene(const std::string& path, double dt) {
     PeerStatic st;
     st.name = spec.name;
     st.material = spec.collision.material;
-    const bool box_solid = spec.shape.solid && std::holds_alternative<massprops::primitive::Box>(*spec.shape.solid);
-    if (spec.collision.kind == rbsim::CollisionSpec::Kind::kHull) {
+    const bool box_solid = spec.shape.solid() && std::holds_alternative<massprops::primitive::Box>(*spec.shape.solid());
+    if (spec.collision.kind == rbsim::CollisionKind::kHull) {
       st.box = false;
       const massprops::PolygonMesh hull = massprops::ConvexHull(massprops::ToPolygonMesh(drawn));
       for (Eigen::Index v = 0; v < hull.V.rows(); ++v) st.hull.push_back(hull.V.row(v).transpose());
-    } else if (box_solid && spec.collision.kind == rbsim::CollisionSpec::Kind::kAuto) {
+    } else if (box_solid && spec.collision.kind == rbsim::CollisionKind::kAuto) {
       // Its box in its own axes, from the drawn corners (world) turned back.
       const Matrix3 R = spec.orientation.toRotationMatrix();
       Eigen::AlignedBox<double, 3> local;
@@ -77,7 +77,7 @@ PeerScene LoadPeerScene(const std::string& path, double dt) {
     b.omega = s.omega_world;
     b.material = spec.collision.material;
     b.principal_axes = sb.principal.axes;
-    if (spec.collision.kind == rbsim::CollisionSpec::Kind::kHull) {
+    if (spec.collision.kind == rbsim::CollisionKind::kHull) {
       // The hull in the principal frame, where the inertia is diagonal: x_B = R_MBᵀ (x_M − com).
       b.kind = PeerBody::Kind::kHull;
       b.frame = sb.principal.axes;
@@ -89,9 +89,9 @@ PeerScene LoadPeerScene(const std::string& path, double dt) {
       out.bodies.push_back(b);
       continue;
     }
-    const massprops::Primitive* solid = spec.shape.solid ? &*spec.shape.solid : nullptr;
+    const massprops::Primitive* solid = spec.shape.solid();
     if (solid == nullptr) throw refuse(spec.field + " (a mesh or implicit shape colliding as other than its hull)");
-    if (spec.collision.kind != rbsim::CollisionSpec::Kind::kAuto) throw refuse(spec.field + ".collision");
+    if (spec.collision.kind != rbsim::CollisionKind::kAuto) throw refuse(spec.field + ".collision");
     namespace pr = massprops::primitive;
     const double scale = massprops::MetresPerUnit(spec.shape.unit);
     if (const auto* box = std::get_if<pr::Box>(solid)) {
@@ -132,7 +132,7 @@ void TrajectoryCsv::Add(double time, const PeerBody& body, const Vector3& x, con
   text_ += line;
 }
 
-void TrajectoryCsv::Write(const std::string& path) const { massprops::app::WriteFileAtomically(path, text_); }
+void TrajectoryCsv::Write(const std::string& path) const { massprops::report::WriteFileAtomically(path, text_); }
 
 bool ParsePeerArgs(int argc, char** argv, const char* program, PeerArgs& args) {
   for (int i = 1; i < argc; ++i) {

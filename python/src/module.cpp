@@ -16,13 +16,13 @@
 #include "dynamics/forces.h"
 #include "dynamics/rigid_body.h"
 #include "dynamics/world.h"
-#include "format.h"
+#include "massprops/report/format.h"
 #include "massprops/io.h"
 #include "massprops/isolation.h"
 #include "massprops/load.h"
 #include "massprops/robot.h"
 #include "massprops/version.h"
-#include "record.h"
+#include "massprops/report/record.h"
 
 namespace py = pybind11;
 using namespace massprops;
@@ -30,19 +30,6 @@ using namespace massprops;
 namespace {
 
 // Python's words for the options that messages advise.
-const Vocabulary& PythonVocabulary() {
-  static const Vocabulary v = [](Option option, std::string_view value) -> std::string {
-    switch (option) {
-      case Option::kRepair: return "repair=True";
-      case Option::kAllowOpen: return "allow_open=True";
-      case Option::kUnit: return value.empty() ? "unit=..." : "unit='" + std::string(value) + "'";
-      case Option::kFullCheck: return "full_check=True";
-      case Option::kWall: return "wall=...";
-    }
-    return "?";
-  };
-  return v;
-}
 
 // {"name or glob": density, or {"density": kg/m^3} or {"mass": kg}} in the dict's order.
 std::vector<PartMass> PartMasses(const py::handle& value, const std::string& key) {
@@ -162,10 +149,10 @@ LoadOptions ToLoadOptions(const py::kwargs& kw) {
 }
 
 std::string ToJson(const SolidResult& r) {
-  cli::FormatOptions f;
-  f.format = cli::Format::kJson;
-  f.vocabulary = &PythonVocabulary();
-  return cli::FormatJson({r}, f);
+  report::FormatOptions f;
+  f.format = report::Format::kJson;
+  f.vocabulary = &massprops_python::PythonWords();
+  return report::FormatJson({r}, f);
 }
 
 // Runs `solve` without the GIL (errors become OSError or ValueError) and returns its JSON.
@@ -216,7 +203,7 @@ py::tuple Fill(const std::string& path, double density, const py::object& densit
     throw py::error_already_set();
   }
   if (!message.empty()) throw py::value_error(message);
-  return py::make_tuple(cli::FormatFillJson(path, "", r, PythonVocabulary()), r.document);
+  return py::make_tuple(report::FormatFillJson(path, "", r, massprops_python::PythonWords()), r.document);
 }
 
 // vertices (n, 3) float64; indices and offsets as PolygonMesh keeps them (face f has the corners
@@ -533,7 +520,7 @@ void BindDynamics(py::module_& m) {
 
 namespace massprops_python {
 LoadOptions LoadOptionsFrom(const py::kwargs& kw) { return ToLoadOptions(kw); }
-const Vocabulary& PythonWords() { return PythonVocabulary(); }
+const Vocabulary& PythonWords() { return report::WordsFor(report::FrontEnd::kPython); }
 }  // namespace massprops_python
 
 PYBIND11_MODULE(_core, m) {
@@ -565,7 +552,7 @@ PYBIND11_MODULE(_core, m) {
               1, 1, timeout,
               [&](std::size_t, const IsolatedSend& send) {
                 for (std::size_t k = first; k < paths.size(); ++k) {
-                  send(cli::ComputeRecord(paths[k], indices[k], of, o) + "\n");
+                  send(report::ComputeRecord(paths[k], indices[k], of, o) + "\n");
                 }
               },
               [&](std::size_t, IsolatedOutcome&& out) { outcome = std::move(out); });
@@ -574,7 +561,7 @@ PYBIND11_MODULE(_core, m) {
           }
           if (outcome.end == IsolatedEnd::kFinished || lines.size() == paths.size()) continue;
           const std::size_t k = lines.size();  // the file the child was computing when it ended
-          lines.push_back(cli::IsolatedRecord(paths[k], indices[k], of, o, timeout));
+          lines.push_back(report::IsolatedRecord(paths[k], indices[k], of, o, timeout));
         }
         return lines;
       },

@@ -9,7 +9,7 @@
 
 #include "bindings.h"
 #include "dynamics/poses.h"
-#include "poses_report.h"
+#include "dynamics/pose_part.h"
 
 namespace py = pybind11;
 namespace dp = dynamics::poses;
@@ -36,9 +36,9 @@ py::tuple RestingPoses(const std::string& path, std::int64_t first, std::int64_t
   const massprops::LoadOptions load = LoadOptionsFrom(kw);
   if (collision != "hull" && collision != "mesh") throw py::value_error("collision must be 'hull' or 'mesh'");
   if (first < 0 || count < 0) throw py::value_error("first and count must be >= 0");
-  rbsim::PosesReport report;
+  dynamics::PosesReport report;
   report.part = path;
-  report.collision = collision == "mesh" ? rbsim::PoseCollision::kMesh : rbsim::PoseCollision::kHull;
+  report.collision = collision == "mesh" ? dynamics::PoseCollision::kMesh : dynamics::PoseCollision::kHull;
   report.drops = count;
   dp::DropOptions& o = report.options;
   o.height = height;
@@ -51,7 +51,7 @@ py::tuple RestingPoses(const std::string& path, std::int64_t first, std::int64_t
   std::vector<dp::DropOutcome> drops;
   RunWithoutGil([&] {
     std::vector<std::string> findings;  // not returned: the report is the command's JSON, which has none
-    report.pose_part = rbsim::LoadPosePart(path, load, report.collision, part_material, PythonWords(), findings);
+    report.pose_part = dynamics::LoadPosePart(path, load, report.collision, part_material, PythonWords(), findings);
     report.estimate = dp::QuasiStatic(report.pose_part, merge_degrees);
     if (outcomes) {
       if (static_cast<std::int64_t>(outcomes->size()) != count) {
@@ -71,7 +71,7 @@ py::tuple RestingPoses(const std::string& path, std::int64_t first, std::int64_t
   });
   std::vector<std::pair<int, double>> poses;
   for (const dp::DropOutcome& d : drops) poses.emplace_back(d.pose, d.time);
-  return py::make_tuple(rbsim::PosesJson(report).dump(), poses);
+  return py::make_tuple(dynamics::PosesJson(report).dump(), poses);
 }
 
 }  // namespace

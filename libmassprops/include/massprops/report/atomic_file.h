@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace massprops::app {
+namespace massprops::report {
 
 class AtomicFile {
  public:
@@ -41,4 +41,4 @@ void CheckOutputPath(const std::string& output, const std::vector<std::string>& 
 /// Writes TEXT to PATH whole or not at all. @throws std::runtime_error naming the path.
 void WriteFileAtomically(const std::string& path, const std::string& text);
 
-}  // namespace massprops::app
+}  // namespace massprops::report

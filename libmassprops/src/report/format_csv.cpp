@@ -1,9 +1,9 @@
 #include <sstream>
 
-#include "format.h"
+#include "massprops/report/format.h"
 #include "massprops/text.h"
 
-namespace massprops::cli {
+namespace massprops::report {
 namespace {
 
 std::string Quoted(const std::string& s) {  // RFC 4180
@@ -126,4 +126,4 @@ std::string FormatCsv(const std::vector<SolidResult>& given, const FormatOptions
   return out.str();
 }
 
-}  // namespace massprops::cli
+}  // namespace massprops::report

@@ -14,9 +14,9 @@
 
 #include "massprops/mass_spec.h"
 
-namespace massprops::cli {
+namespace massprops::report {
 
 /// @throws std::runtime_error naming the file, the place and the fault.
 std::vector<PartMass> ReadDensityMap(const std::string& path);
 
-}  // namespace massprops::cli
+}  // namespace massprops::report

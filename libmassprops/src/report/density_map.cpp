@@ -1,4 +1,4 @@
-#include "density_map.h"
+#include "massprops/report/density_map.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace massprops::cli {
+namespace massprops::report {
 namespace {
 
 using Json = nlohmann::ordered_json;
@@ -131,4 +131,4 @@ std::vector<PartMass> ReadDensityMap(const std::string& path) {
   return text[first] == '{' ? FromJson(path, text) : FromCsv(path, text);
 }
 
-}  // namespace massprops::cli
+}  // namespace massprops::report

@@ -1,4 +1,4 @@
-#include "record.h"
+#include "massprops/report/record.h"
 
 #include <algorithm>
 #include <csignal>
@@ -9,9 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "format.h"
+#include "massprops/report/format.h"
 
-namespace massprops::cli {
+namespace massprops::report {
 
 using Json = nlohmann::ordered_json;
 
@@ -78,4 +78,4 @@ std::string IsolatedRecord(const std::string& file, std::size_t index, std::size
   return line;
 }
 
-}  // namespace massprops::cli
+}  // namespace massprops::report

@@ -9,10 +9,11 @@
 
 #include "massprops/load.h"
 #include "massprops/principal_axes.h"
+#include "massprops/report/words.h"
 #include "massprops/robot.h"
 #include "massprops/units.h"
 
-namespace massprops::cli {
+namespace massprops::report {
 
 enum class Format { kTable, kJson, kCsv, kUrdf, kSdf, kMjcf };
 /// Which frames the inertia is reported in besides the center of mass.
@@ -54,11 +55,9 @@ std::string FormatRobot(const SolidResult& r, Format format);
 std::string FormatFillJson(const std::string& file, const std::string& output, const FillResult& r,
                            const Vocabulary& words);
 
-/// The command line's words for the options the library's messages advise (wording.h).
-const Vocabulary& CliVocabulary();
 /// options.vocabulary, or the command line's.
 inline const Vocabulary& WordsOf(const FormatOptions& options) {
   return options.vocabulary ? *options.vocabulary : CliVocabulary();
 }
 
-}  // namespace massprops::cli
+}  // namespace massprops::report

@@ -2,10 +2,10 @@
 #include <cmath>
 #include <sstream>
 
-#include "format.h"
+#include "massprops/report/format.h"
 #include "massprops/text.h"
 
-namespace massprops::cli {
+namespace massprops::report {
 namespace {
 
 std::string Num(double v) { return FormatDouble(v, "% .10e"); }
@@ -193,4 +193,4 @@ std::string FormatOne(const SolidResult& r, const FormatOptions& opt) {
 
 }  // namespace
 
-}  // namespace massprops::cli
+}  // namespace massprops::report

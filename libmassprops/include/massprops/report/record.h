@@ -9,7 +9,7 @@
 #include "massprops/isolation.h"
 #include "massprops/load.h"
 
-namespace massprops::cli {
+namespace massprops::report {
 
 /// The child's work: the record of `file` (number `index` of `of` in sorted order). Refusals and
 /// read errors are records, not exceptions.
@@ -24,4 +24,4 @@ std::string RecordOf(const std::string& file, std::size_t index, std::size_t of,
 std::string IsolatedRecord(const std::string& file, std::size_t index, std::size_t of, const LoadOptions& options,
                            double timeout_seconds);
 
-}  // namespace massprops::cli
+}  // namespace massprops::report

@@ -1,4 +1,4 @@
-#include "atomic_file.h"
+#include "massprops/report/atomic_file.h"
 
 #include <cerrno>
 #include <cstdio>
@@ -8,7 +8,7 @@
 
 #include <unistd.h>
 
-namespace massprops::app {
+namespace massprops::report {
 
 namespace {
 
@@ -82,4 +82,4 @@ void WriteFileAtomically(const std::string& path, const std::string& text) {
   file.Commit();
 }
 
-}  // namespace massprops::app
+}  // namespace massprops::report

@@ -1,6 +1,6 @@
-// Resting poses of a part file: the part, and the report as JSON (poses_report.h).
+// Resting poses of a part file: the part, and the report as JSON (dynamics/pose_part.h).
 
-#include "poses_report.h"
+#include "dynamics/pose_part.h"
 
 #include <stdexcept>
 
@@ -8,7 +8,7 @@
 #include "massprops/repair.h"
 #include "massprops/wording.h"
 
-namespace rbsim {
+namespace dynamics {
 namespace {
 
 namespace dp = dynamics::poses;
@@ -100,4 +100,4 @@ nlohmann::json PosesJson(const PosesReport& r) {
   return j;
 }
 
-}  // namespace rbsim
+}  // namespace dynamics

@@ -11,7 +11,7 @@
 #include "dynamics/poses.h"
 #include "massprops/load.h"
 
-namespace rbsim {
+namespace dynamics {
 
 enum class PoseCollision { kHull, kMesh };
 
@@ -44,4 +44,4 @@ nlohmann::json PosesJson(const PosesReport& report);
 /// The report's material as JSON ({"static_friction", "kinetic_friction", "restitution"}).
 nlohmann::json MaterialJson(const dynamics::Material& m);
 
-}  // namespace rbsim
+}  // namespace dynamics

@@ -1,8 +1,8 @@
 #include <nlohmann/json.hpp>
 
-#include "format.h"
+#include "massprops/report/format.h"
 
-namespace massprops::cli {
+namespace massprops::report {
 namespace {
 
 using Json = nlohmann::ordered_json;
@@ -38,4 +38,4 @@ std::string FormatFillJson(const std::string& file, const std::string& output, c
   return report.dump(2) + "\n";
 }
 
-}  // namespace massprops::cli
+}  // namespace massprops::report

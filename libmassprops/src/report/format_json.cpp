@@ -2,9 +2,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "format.h"
+#include "massprops/report/format.h"
 
-namespace massprops::cli {
+namespace massprops::report {
 namespace {
 
 using Json = nlohmann::ordered_json;
@@ -147,4 +147,4 @@ std::string FormatJson(const std::vector<SolidResult>& results, const FormatOpti
   return all.dump(2) + "\n";
 }
 
-}  // namespace massprops::cli
+}  // namespace massprops::report

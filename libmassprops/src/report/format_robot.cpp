@@ -1,7 +1,7 @@
-#include "format.h"
+#include "massprops/report/format.h"
 #include "massprops/export.h"
 
-namespace massprops::cli {
+namespace massprops::report {
 
 std::string FormatRobot(const SolidResult& r, Format format) {
   std::string parts;  // an assembly: each part's inertial, then the whole's
@@ -23,4 +23,4 @@ std::string FormatRobot(const SolidResult& r, Format format) {
   return note + warnings + MjcfInertial(r.mp, r.principal);
 }
 
-}  // namespace massprops::cli
+}  // namespace massprops::report

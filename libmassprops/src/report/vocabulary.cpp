@@ -1,0 +1,67 @@
+#include "massprops/report/words.h"
+
+#include <string>
+
+namespace massprops::report {
+namespace {
+
+std::string CommandLine(Option option, std::string_view value) {
+  const std::string suffix = value.empty() ? "" : " " + std::string(value);
+  switch (option) {
+    case Option::kRepair: return "--repair";
+    case Option::kAllowOpen: return "--allow-open";
+    case Option::kUnit: return "--unit" + suffix;
+    case Option::kFullCheck: return "--full-check";
+    case Option::kWall: return "--wall";
+  }
+  return "?";
+}
+
+// A scene names the options by its keys.
+std::string Scene(Option option, std::string_view value) {
+  switch (option) {
+    case Option::kRepair: return "\"repair\": true";
+    case Option::kAllowOpen: return "\"allow_open\": true";
+    case Option::kUnit: return value.empty() ? "\"unit\"" : "\"unit\": \"" + std::string(value) + "\"";
+    case Option::kFullCheck: return "(always done in scenes)";
+    case Option::kWall: return "wall";
+  }
+  return "?";
+}
+
+std::string Poses(Option option, std::string_view value) {
+  switch (option) {
+    case Option::kRepair: return "--repair";
+    case Option::kAllowOpen: return "massprops --allow-open (mass properties only: rbsim poses needs a solid)";
+    case Option::kUnit: return value.empty() ? "--unit" : "--unit " + std::string(value);
+    case Option::kFullCheck: return "(always done by rbsim poses)";
+    case Option::kWall: return "(not in rbsim poses)";
+  }
+  return "?";
+}
+
+std::string Python(Option option, std::string_view value) {
+  switch (option) {
+    case Option::kRepair: return "repair=True";
+    case Option::kAllowOpen: return "allow_open=True";
+    case Option::kUnit: return value.empty() ? "unit=..." : "unit='" + std::string(value) + "'";
+    case Option::kFullCheck: return "full_check=True";
+    case Option::kWall: return "wall=...";
+  }
+  return "?";
+}
+
+}  // namespace
+
+const Vocabulary& WordsFor(FrontEnd front_end) {
+  static const Vocabulary kCommandLine = CommandLine, kScene = Scene, kPoses = Poses, kPython = Python;
+  switch (front_end) {
+    case FrontEnd::kScene: return kScene;
+    case FrontEnd::kPoses: return kPoses;
+    case FrontEnd::kPython: return kPython;
+    case FrontEnd::kCommandLine: break;
+  }
+  return kCommandLine;
+}
+
+}  // namespace massprops::report
