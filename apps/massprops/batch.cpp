@@ -17,11 +17,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "massprops/report/atomic_file.h"
 #include "cli.h"
-#include "massprops/report/format.h"
 #include "massprops/io.h"
 #include "massprops/isolation.h"
+#include "massprops/report/atomic_file.h"
+#include "massprops/report/format.h"
 #include "massprops/report/record.h"
 
 namespace massprops::cli {

@@ -7,8 +7,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "massprops/report/atomic_file.h"
 #include "cli.h"
+#include "massprops/report/atomic_file.h"
 #include "massprops/report/density_map.h"
 #include "massprops/report/format.h"
 #include "massprops/robot.h"

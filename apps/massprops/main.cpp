@@ -21,16 +21,16 @@
 
 #include <CLI/CLI.hpp>
 
-#include "massprops/report/atomic_file.h"
 #include "batch.h"
 #include "cli.h"
-#include "massprops/report/density_map.h"
 #include "fill.h"
-#include "massprops/report/format.h"
 #include "massprops/implicit.h"
 #include "massprops/io.h"
 #include "massprops/load.h"
 #include "massprops/principal_axes.h"
+#include "massprops/report/atomic_file.h"
+#include "massprops/report/density_map.h"
+#include "massprops/report/format.h"
 #include "massprops/units.h"
 #include "massprops/version.h"
 #include "progress.h"
@@ -350,12 +350,12 @@ int main(int argc, char** argv) {
 
   report::FormatOptions format;
   format.format = FromName<report::Format>({{"table", report::Format::kTable},
-                                         {"json", report::Format::kJson},
-                                         {"csv", report::Format::kCsv},
-                                         {"urdf", report::Format::kUrdf},
-                                         {"sdf", report::Format::kSdf},
-                                         {"mjcf", report::Format::kMjcf}},
-                                        a.format);
+                                            {"json", report::Format::kJson},
+                                            {"csv", report::Format::kCsv},
+                                            {"urdf", report::Format::kUrdf},
+                                            {"sdf", report::Format::kSdf},
+                                            {"mjcf", report::Format::kMjcf}},
+                                           a.format);
   format.frame = a.frame == "origin" ? report::Frame::kOrigin : report::Frame::kCenterOfMass;
   format.json_array = a.files.size() + (a.implicit.empty() ? 0 : 1) > 1;
   LoadOptions options = ToLoadOptions(a);
@@ -402,8 +402,8 @@ int main(int argc, char** argv) {
     }
     format.reference = f;
   }
-  const bool robot =
-      format.format == report::Format::kUrdf || format.format == report::Format::kSdf || format.format == report::Format::kMjcf;
+  const bool robot = format.format == report::Format::kUrdf || format.format == report::Format::kSdf ||
+                     format.format == report::Format::kMjcf;
   if (robot && (!a.output_units.empty() || format.reference)) {
     return bad(
         "URDF, SDF and MJCF give the inertia about the center of mass in SI; --output-units, --about and "

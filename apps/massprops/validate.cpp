@@ -9,8 +9,8 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "massprops/report/atomic_file.h"
 #include "cli.h"
+#include "massprops/report/atomic_file.h"
 #include "massprops/text.h"
 #include "massprops/validation.h"
 

@@ -17,11 +17,11 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "massprops/report/atomic_file.h"
 #include "cli.h"
 #include "dynamics/pose_part.h"
 #include "dynamics/poses.h"
 #include "massprops/load.h"
+#include "massprops/report/atomic_file.h"
 #include "massprops/report/words.h"
 #include "massprops/wording.h"
 #include "pose_picture.h"
@@ -136,7 +136,8 @@ int PosesMain(int argc, char** argv) {
   std::vector<std::string> warnings;
   try {
     report.pose_part =
-        dynamics::LoadPosePart(part_file, load, report.collision, material, massprops::report::WordsFor(massprops::report::FrontEnd::kPoses), warnings, &file_mesh);
+        dynamics::LoadPosePart(part_file, load, report.collision, material,
+                               massprops::report::WordsFor(massprops::report::FrontEnd::kPoses), warnings, &file_mesh);
   } catch (const std::exception& e) {
     for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
     std::cerr << "error: " << e.what() << "\n";

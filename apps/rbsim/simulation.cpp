@@ -10,18 +10,18 @@
 
 #include "dynamics/bodies.h"
 #include "dynamics/forces.h"
-#include "massprops/report/words.h"
 #include "massprops/implicit.h"
 #include "massprops/load.h"
 #include "massprops/primitive.h"
+#include "massprops/report/words.h"
 #include "massprops/text.h"
 
 namespace rbsim {
 namespace {
 
+using dynamics::BuiltShape;
 using massprops::MassProperties;
 using massprops::TriangleMesh;
-using dynamics::BuiltShape;
 
 std::string Num(double v, const char* fmt = "%.6g") { return massprops::FormatDouble(v, fmt); }
 
@@ -61,8 +61,7 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
   // Then box, sphere, capsule and cylinder solids collide as themselves unless they say "none";
   // scenes without any of these run as before, bodies passing through each other.
   bool wants_contact = !scene.grounds.empty() || !scene.statics.empty();
-  for (const BodySpec& b : scene.bodies)
-    wants_contact = wants_contact || b.collision.kind != CollisionKind::kAuto;
+  for (const BodySpec& b : scene.bodies) wants_contact = wants_contact || b.collision.kind != CollisionKind::kAuto;
   sim.contact = wants_contact;
   std::vector<bool> collides;  // each body has a collider
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {

@@ -8,8 +8,8 @@
 #include <iostream>
 #include <stdexcept>
 
-#include "massprops/report/atomic_file.h"
 #include "massprops/repair.h"
+#include "massprops/report/atomic_file.h"
 #include "outputs.h"
 #include "simulation.h"
 

@@ -16,13 +16,13 @@
 #include "dynamics/forces.h"
 #include "dynamics/rigid_body.h"
 #include "dynamics/world.h"
-#include "massprops/report/format.h"
 #include "massprops/io.h"
 #include "massprops/isolation.h"
 #include "massprops/load.h"
+#include "massprops/report/format.h"
+#include "massprops/report/record.h"
 #include "massprops/robot.h"
 #include "massprops/version.h"
-#include "massprops/report/record.h"
 
 namespace py = pybind11;
 using namespace massprops;

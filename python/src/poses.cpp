@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "bindings.h"
-#include "dynamics/poses.h"
 #include "dynamics/pose_part.h"
+#include "dynamics/poses.h"
 
 namespace py = pybind11;
 namespace dp = dynamics::poses;

@@ -24,7 +24,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     rbsim::Scene scene = rbsim::ParseScene(j, "fuzz.json", "/nonexistent", warnings);
     if (scene.bodies.size() > 8) return 0;
     for (const auto& b : scene.bodies) {
-      if (std::holds_alternative<dynamics::ImplicitSource>(b.shape.source)) return 0;  // Monte Carlo to 1e-4: too slow for a fuzzer
+      if (std::holds_alternative<dynamics::ImplicitSource>(b.shape.source))
+        return 0;  // Monte Carlo to 1e-4: too slow for a fuzzer
     }
     rbsim::Simulation sim = rbsim::BuildSimulation(scene, warnings, 1);
     for (int i = 0; i < 20; ++i) {

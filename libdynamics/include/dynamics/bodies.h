@@ -35,7 +35,7 @@ struct MeshSource {
 
 /// A shape in massprops' shape syntax, parsed once; mass properties by quasi-Monte Carlo.
 struct ImplicitSource {
-  std::string text;           ///< as written, for descriptions
+  std::string text;  ///< as written, for descriptions
   massprops::ImplicitPtr shape;
 };
 

@@ -59,8 +59,8 @@ BuiltShape LoadMesh(const MeshSource& m, const BodyShape& s, const massprops::Vo
   for (Eigen::Index i = 0; i < out.display.V.rows(); ++i) {
     out.display.V.row(i) = (scale * out.display.V.row(i).transpose() - r.mp.center_of_mass).transpose();
   }
-  out.source = m.path + " (unit " + massprops::UnitName(s.unit) + ", " + std::to_string(out.display.F.rows()) +
-               " triangles)";
+  out.source =
+      m.path + " (unit " + massprops::UnitName(s.unit) + ", " + std::to_string(out.display.F.rows()) + " triangles)";
   return out;
 }
 
@@ -154,7 +154,8 @@ std::optional<Collider> BodyBuilder::ColliderOf(const CollisionSpec& c, const Bo
   const massprops::Primitive& p = *primitive;
   if (const auto* box = std::get_if<pr::Box>(&p)) out.shape = shape::Box{box->size / 2};
   if (const auto* sphere = std::get_if<pr::Sphere>(&p)) out.shape = shape::Sphere{sphere->radius};
-  if (const auto* capsule = std::get_if<pr::Capsule>(&p)) out.shape = shape::Capsule{capsule->radius, capsule->length / 2};
+  if (const auto* capsule = std::get_if<pr::Capsule>(&p))
+    out.shape = shape::Capsule{capsule->radius, capsule->length / 2};
   if (const auto* cylinder = std::get_if<pr::Cylinder>(&p)) {
     out.shape = shape::Cylinder{cylinder->radius, cylinder->height / 2};
   }

@@ -1,5 +1,5 @@
-#include "massprops/report/format.h"
 #include "massprops/export.h"
+#include "massprops/report/format.h"
 
 namespace massprops::report {
 
