@@ -13,6 +13,7 @@ cmake --install "$build" --prefix "$prefix" >/dev/null
 cmake -S "$root/tests/consumer" -B "$work" -G Ninja -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$work" >/dev/null
 "$work/consumer" "$root/data"
+bash "$root/tests/consumer/reader_only_test.sh" "$work/reader_only" "$(echo "$prefix"/lib*/libmassprops_io.so)" "$root/data/meshes"
 # The installed command, away from the build tree, reads glTF as the build tree does.
 env -u MASSPROPS_ASSIMP_PLUGIN "$prefix/bin/massprops" "$root/data/meshes/box_0.1x0.2x0.3.gltf" --format csv -q \
   | tail -n 1 | grep -q '^"[^"]*box_0.1x0.2x0.3.gltf",m,0.0060000017' \

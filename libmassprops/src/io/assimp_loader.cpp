@@ -21,6 +21,7 @@
 
 #include "io_internal.h"
 #include "massprops/isolation.h"
+#include "plugins.h"
 
 namespace massprops {
 namespace {
@@ -38,21 +39,6 @@ struct Plugin {
   std::string error;  // why it could not be loaded
 };
 
-// The folder of the file this code was loaded from: the shared library, or the program a
-// static library is linked into (its realpath, so a symlink in /usr/local/bin still leads home).
-std::string HomeDir() {
-  Dl_info info{};
-  std::string file;
-  if (::dladdr(reinterpret_cast<void*>(&HomeDir), &info) != 0 && info.dli_fname != nullptr) {
-    file = info.dli_fname;
-  }
-  if (file.empty() || file.find('/') == std::string::npos) file = "/proc/self/exe";
-  std::vector<char> buf(4096);
-  if (char* real = ::realpath(file.c_str(), buf.data())) file = real;
-  const auto slash = file.find_last_of('/');
-  return slash == std::string::npos ? "." : file.substr(0, slash);
-}
-
 const Plugin& LoadPlugin() {
   static Plugin plugin;
   static std::once_flag once;
@@ -68,7 +54,7 @@ const Plugin& LoadPlugin() {
     // The environment overrides; then beside the library (a shared libmassprops_io in lib/ has
     // the plugin in lib/massprops/), the install layout seen from bin/, and this build tree.
     if (const char* env = std::getenv("MASSPROPS_ASSIMP_PLUGIN")) candidates.emplace_back(env);
-    const std::string dir = HomeDir();
+    const std::string dir = plugins::HomeDir();
     candidates.push_back(dir + "/massprops/" + name);
     candidates.push_back(dir + "/" + MASSPROPS_PLUGIN_FROM_BINDIR + "/" + name);
     candidates.push_back(dir + "/" + name);
@@ -80,13 +66,9 @@ const Plugin& LoadPlugin() {
 #endif
     candidates.emplace_back(name);  // the library search path
     std::string tried;
-    for (const std::string& c : candidates) {
-      plugin.handle = ::dlopen(c.c_str(), RTLD_NOW | RTLD_LOCAL);
-      if (plugin.handle != nullptr) break;
-      tried += (tried.empty() ? "" : ", ") + c;
-    }
+    plugin.handle = plugins::Open(candidates, tried);
     if (plugin.handle == nullptr) {
-      plugin.error = "the assimp plugin (" + std::string(name) + ") was not found (tried " + tried +
+      plugin.error = "the assimp plugin (" + std::string(name) + ") was not found (" + tried +
                      "; set MASSPROPS_ASSIMP_PLUGIN to its path)";
       return;
     }

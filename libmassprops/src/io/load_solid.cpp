@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "geometry_steps_internal.h"
 #include "io_internal.h"
 #include "load_internal.h"
 #include "massprops/composition.h"
@@ -226,7 +227,7 @@ void IntegrateWall(SolidResult& r, const WallModel& wall, const LoadOptions& opt
     const OffsetResult inner = OffsetInward(mesh, wall.thickness);
     if (inner.flipped_faces == 0 && inner.inner_volume > 0) {
       Stage(opt, "checking the inner surface for self-intersections (CGAL)");
-      if (CountSelfIntersections(inner.inner, 1) > 0) {
+      if (RequireGeometrySteps("the wall's self-intersection check").count_self_intersections(inner.inner, 1) > 0) {
         throw std::invalid_argument("a wall of " + Fixed(wall.thickness, "%g") + " " + UnitName(opt.unit) +
                                     " is thicker than the part allows: the inner surface passes through itself "
                                     "(the part is thinner than twice the wall somewhere); use a thinner wall");
@@ -283,7 +284,8 @@ void Certify(SolidResult& r, const LoadOptions& opt) {
   Stage(opt, "integrating in exact arithmetic (GMP)");
   ExactMassProperties e;
   try {
-    e = ExactMassPropertiesOf(r.loaded.mesh, MetresPerUnit(opt.unit), opt.mass, opt.num_threads);
+    e = RequireGeometrySteps("exact integration")
+            .exact(r.loaded.mesh, MetresPerUnit(opt.unit), opt.mass, opt.num_threads);
   } catch (const std::invalid_argument& error) {
     throw LoadError(r.source + ": exact integration: " + error.what());
   }
@@ -307,7 +309,7 @@ void AddHull(SolidResult& r, const PolygonMesh& surface, const LoadOptions& opt)
   HullReport h;
   PolygonMesh hull;
   try {
-    hull = ConvexHull(surface);
+    hull = RequireGeometrySteps("the convex hull").convex_hull(surface);
   } catch (const std::invalid_argument& e) {
     throw LoadError(r.source + ": " + e.what());
   }
@@ -448,7 +450,7 @@ SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_c
   const LoadOptions opt = ResolveUnit(r, given);  // the unit the file declares, unless one is stated
   if (opt.repair) {
     Stage(opt, "repairing (CGAL)");
-    RepairedMesh repaired = RepairMesh(r.loaded.mesh);
+    RepairedMesh repaired = RequireGeometrySteps("the repair").repair(r.loaded.mesh, RepairOptions{});
     r.loaded.mesh = std::move(repaired.mesh);
     r.repair = repaired.report;
   }
@@ -457,7 +459,7 @@ SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_c
   r.topology = AnalyzeTopology(mesh);
   if (opt.check_self_intersections) {
     Stage(opt, "checking self-intersections (CGAL)");
-    r.self_intersections = CountSelfIntersections(mesh);
+    r.self_intersections = RequireGeometrySteps("the self-intersection check").count_self_intersections(mesh, 1000000);
   }
   if (r.topology.duplicate_faces + r.topology.reversed_duplicate_faces > 0) RefuseDuplicates(r);
   if (r.self_intersections > 0) {
@@ -506,7 +508,7 @@ SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_c
       // Overlapping shells: their union is the solid they describe together.
       Stage(opt, "uniting the overlapping shells (CGAL)");
       std::int64_t united = 0;
-      r.loaded.mesh = UnionOfShells(r.loaded.mesh, united);
+      r.loaded.mesh = RequireGeometrySteps("the union of overlapping shells").union_of_shells(r.loaded.mesh, united);
       r.repair->united_shells = united;
       r.repair->volume_after = SignedVolumeOf(r.loaded.mesh);
       r.topology = AnalyzeTopology(r.loaded.mesh);
