@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Configures and builds the project into a build folder (default: build; build-asan with
 # MASSPROPS_SANITIZE=ON). Installs missing dependencies first. Used by run.sh, test.sh and CI.
+# MASSPROPS_BUILD_TARGETS="t1 t2" builds only those targets.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 # ccache: paths relative to the checkout, so that another clone (CI's) reuses the cache.
@@ -15,5 +16,8 @@ if [ "$sanitize" = "ON" ]; then build_type=RelWithDebInfo; fi
 
 cmake -S "$root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE="$build_type" \
   -DMASSPROPS_SANITIZE="$sanitize" >/dev/null
-cmake --build "$build_dir" -j "$(nproc)"
+# MASSPROPS_BUILD_TARGETS: only these targets (and what they need), e.g. the quick start's massprops_cli.
+targets=()
+for t in ${MASSPROPS_BUILD_TARGETS:-}; do targets+=(--target "$t"); done
+cmake --build "$build_dir" -j "$(nproc)" "${targets[@]}"
 echo "$build_dir"
