@@ -35,7 +35,7 @@ from . import _core
 from ._core import dynamics  # noqa: F401  (massprops.dynamics: RigidBody, World)
 
 __version__ = _core.__version__
-__all__ = ["load", "mass_properties", "fill", "Result", "dynamics", "body", "resting_poses", "drop_batch"]
+__all__ = ["load", "mass_properties", "fill", "Result", "dynamics", "body", "resting_poses", "drop_batch", "main"]
 
 
 class Result:
@@ -224,3 +224,32 @@ def resting_poses(path, drops=1000, *, client=None, drops_per_task=250, **option
 
 def _drop_task(path, first, count, options):
     return drop_batch(path, first, count, **options)
+
+
+def _command():
+    """The ``massprops`` program this module was built with: the one installed beside it (pip),
+    else the build tree's, else the first on PATH."""
+    import os
+    import shutil
+
+    here = os.path.dirname(os.path.abspath(__file__))
+    for candidate in (os.path.join(here, "_bin", "massprops"),):
+        if os.access(candidate, os.X_OK):
+            return candidate
+    found = shutil.which("massprops")
+    if found is None:
+        raise FileNotFoundError("the massprops command was not found beside the module (_bin/) or on PATH")
+    return found
+
+
+def main(argv=None):
+    """``python -m massprops FILE... [options]``: runs the ``massprops`` command with these arguments
+    (the same options, outputs and exit status) and returns its exit status."""
+    import subprocess
+    import sys
+
+    args = list(sys.argv[1:] if argv is None else argv)
+    try:
+        return subprocess.call([_command()] + args)
+    except KeyboardInterrupt:
+        return 130

@@ -29,6 +29,9 @@ using namespace massprops;
 
 namespace {
 
+// Classes with Python's own metaclass rather than pybind11's: what the type stubs declare.
+py::metaclass PlainType() { return py::metaclass(reinterpret_cast<PyObject*>(&PyType_Type)); }
+
 // Python's words for the options that messages advise.
 
 // {"name or glob": density, or {"density": kg/m^3} or {"mass": kg}} in the dict's order.
@@ -278,7 +281,7 @@ void StepAll(W& w, double h, int steps, double (*time)(const W&)) {
 
 void BindDynamics(py::module_& m) {
   using dynamics::RigidBody;
-  py::class_<RigidBody>(m, "RigidBody", "A free rigid body: mass, principal moments, state (SI units).")
+  py::class_<RigidBody>(m, "RigidBody", PlainType(), "A free rigid body: mass, principal moments, state (SI units).")
       .def(py::init([](double mass, const py::handle& inertia) {
              RigidBody b;
              b.mass = mass;
@@ -286,7 +289,7 @@ void BindDynamics(py::module_& m) {
              return b;
            }),
            py::arg("mass") = 1.0, py::arg("inertia") = py::make_tuple(1.0, 1.0, 1.0))
-      .def_readwrite("mass", &RigidBody::mass)
+      .def_readwrite("mass", &RigidBody::mass, "mass, kg")
       .def_property(
           "inertia", [](const RigidBody& b) { return Arr(b.inertia); },
           [](RigidBody& b, const py::handle& v) { b.inertia = Vec(v); }, "principal moments in the body frame")
@@ -295,7 +298,7 @@ void BindDynamics(py::module_& m) {
           [](RigidBody& b, const py::handle& v) { b.position = Vec(v); }, "center of mass in the world, m")
       .def_property(
           "velocity", [](const RigidBody& b) { return Arr(b.velocity); },
-          [](RigidBody& b, const py::handle& v) { b.velocity = Vec(v); })
+          [](RigidBody& b, const py::handle& v) { b.velocity = Vec(v); }, "velocity of the center of mass, world, m/s")
       .def_property(
           "orientation",
           [](const RigidBody& b) {
@@ -314,13 +317,16 @@ void BindDynamics(py::module_& m) {
       .def_property(
           "angular_velocity", [](const RigidBody& b) { return Arr(b.AngularVelocity()); },
           [](RigidBody& b, const py::handle& v) { b.SetAngularVelocity(Vec(v)); }, "world axes, rad/s")
-      .def("rotation", [](const RigidBody& b) {
-        const Matrix3 r = b.Rotation();
-        py::array_t<double> out({3, 3});
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) out.mutable_at(i, j) = r(i, j);
-        return out;
-      });
+      .def(
+          "rotation",
+          [](const RigidBody& b) {
+            const Matrix3 r = b.Rotation();
+            py::array_t<double> out({3, 3});
+            for (int i = 0; i < 3; ++i)
+              for (int j = 0; j < 3; ++j) out.mutable_at(i, j) = r(i, j);
+            return out;
+          },
+          "body → world rotation matrix (3 × 3)");
 
   m.def(
       "body_from_mass_properties",
@@ -332,50 +338,59 @@ void BindDynamics(py::module_& m) {
         const dynamics::PlacedBody placed = dynamics::BodyFromMassProperties(mp);
         return placed.body;
       },
-      py::arg("mass"), py::arg("center_of_mass"), py::arg("inertia_com"));
+      py::arg("mass"), py::arg("center_of_mass"), py::arg("inertia_com"),
+      "A RigidBody from mass properties: its center of mass where given, its frame the principal axes");
 
-  py::class_<dynamics::World>(m, "World", "Free rigid bodies under forces, stepped by an integrator.")
+  py::class_<dynamics::World>(m, "World", PlainType(), "Free rigid bodies under forces, stepped by an integrator.")
       .def(py::init(
                [](const std::string& integrator) { return dynamics::World(dynamics::ParseIntegrator(integrator)); }),
            py::arg("integrator") = "implicit-midpoint")
-      .def("add_body", &dynamics::World::AddBody, py::arg("body"))
+      .def("add_body", &dynamics::World::AddBody, py::arg("body"), "Adds a body; returns its index")
       .def(
           "add_gravity", [](dynamics::World& w, const py::handle& g) { w.AddForce(dynamics::Gravity(Vec(g))); },
-          py::arg("g"))
+          py::arg("g"), "Adds uniform gravity g (m/s², world) on every body")
       .def(
           "step",
           [](dynamics::World& w, double h, int steps) {
             StepAll<dynamics::World>(w, h, steps, [](const dynamics::World& x) { return x.time(); });
           },
           py::arg("h"), py::arg("steps") = 1, "Advances steps × h seconds; raises when a step fails or diverges")
-      .def_property_readonly("time", &dynamics::World::time)
+      .def_property_readonly("time", &dynamics::World::time, "simulated time, s")
       .def_property_readonly(
           "bodies", [](dynamics::World& w) { return w.bodies(); }, "copies of the bodies' current states")
-      .def("body", [](const dynamics::World& w, int i) { return w.bodies().at(static_cast<std::size_t>(i)); })
-      .def("set_body",
-           [](dynamics::World& w, int i, const RigidBody& b) { w.bodies().at(static_cast<std::size_t>(i)) = b; })
-      .def("diagnose", [](const dynamics::World& w) {
-        const dynamics::Diagnostics d = w.Diagnose();
-        py::dict out;
-        out["time"] = d.time;
-        out["kinetic_energy"] = d.kinetic_energy;
-        out["potential_energy"] = d.potential_energy;
-        out["total_energy"] = d.total_energy;
-        out["linear_momentum"] = Arr(d.linear_momentum);
-        out["angular_momentum"] = Arr(d.angular_momentum);
-        return out;
-      });
-  m.def("integrators", &dynamics::IntegratorNames);
+      .def(
+          "body", [](const dynamics::World& w, int i) { return w.bodies().at(static_cast<std::size_t>(i)); },
+          "A copy of body i's current state")
+      .def(
+          "set_body",
+          [](dynamics::World& w, int i, const RigidBody& b) { w.bodies().at(static_cast<std::size_t>(i)) = b; },
+          "Replaces body i's state")
+      .def(
+          "diagnose",
+          [](const dynamics::World& w) {
+            const dynamics::Diagnostics d = w.Diagnose();
+            py::dict out;
+            out["time"] = d.time;
+            out["kinetic_energy"] = d.kinetic_energy;
+            out["potential_energy"] = d.potential_energy;
+            out["total_energy"] = d.total_energy;
+            out["linear_momentum"] = Arr(d.linear_momentum);
+            out["angular_momentum"] = Arr(d.angular_momentum);
+            return out;
+          },
+          "Energy (kinetic, potential, total) and momenta now, as a dict");
+  m.def("integrators", &dynamics::IntegratorNames, "The integrators' names, for World(integrator=...)");
 
   // Contact (dynamics/contact.h).
-  py::class_<dynamics::Material>(m, "Material", "Coulomb friction (static, kinetic) and restitution of a surface.")
+  py::class_<dynamics::Material>(m, "Material", PlainType(),
+                                 "Coulomb friction (static, kinetic) and restitution of a surface.")
       .def(py::init([](double mu_s, double mu_k, double e) {
              return dynamics::Material{mu_s, mu_k, e};
            }),
            py::arg("static_friction") = 0.6, py::arg("kinetic_friction") = 0.5, py::arg("restitution") = 0.0)
-      .def_readwrite("static_friction", &dynamics::Material::static_friction)
-      .def_readwrite("kinetic_friction", &dynamics::Material::kinetic_friction)
-      .def_readwrite("restitution", &dynamics::Material::restitution);
+      .def_readwrite("static_friction", &dynamics::Material::static_friction, "μs, the limit before sliding")
+      .def_readwrite("kinetic_friction", &dynamics::Material::kinetic_friction, "μk, while sliding (≤ μs)")
+      .def_readwrite("restitution", &dynamics::Material::restitution, "e in [0, 1]: bounce");
   auto collider = [](dynamics::Shape shape, const py::handle& rotation, const py::handle& translation,
                      const dynamics::Material& material) {
     dynamics::Collider c;
@@ -385,37 +400,41 @@ void BindDynamics(py::module_& m) {
     c.material = material;
     return c;
   };
-  py::class_<dynamics::Collider>(m, "Collider",
+  py::class_<dynamics::Collider>(m, "Collider", PlainType(),
                                  "A collision shape placed in a body's frame (x_B = R x_S + t), with its material. "
                                  "Make one with sphere(), box(), capsule(), cylinder(), convex() or mesh().")
-      .def_property_readonly("shape", [](const dynamics::Collider& c) { return dynamics::ShapeName(c.shape); });
+      .def_property_readonly(
+          "shape", [](const dynamics::Collider& c) { return dynamics::ShapeName(c.shape); },
+          "the shape's kind: sphere, box, capsule, cylinder, convex or mesh");
   const auto place = py::arg("rotation") = py::none();
   m.def(
       "sphere",
       [collider](double r, const py::handle& R, const py::handle& t, const dynamics::Material& mat) {
         return collider(dynamics::shape::Sphere{r}, R, t, mat);
       },
-      py::arg("radius"), place, py::arg("translation") = py::none(), py::arg("material") = dynamics::Material{});
+      py::arg("radius"), place, py::arg("translation") = py::none(), py::arg("material") = dynamics::Material{},
+      "A sphere of this radius (m) about the placed origin");
   m.def(
       "box",
       [collider](const py::handle& half, const py::handle& R, const py::handle& t, const dynamics::Material& mat) {
         return collider(dynamics::shape::Box{Vec(half)}, R, t, mat);
       },
-      py::arg("half_extents"), place, py::arg("translation") = py::none(), py::arg("material") = dynamics::Material{});
+      py::arg("half_extents"), place, py::arg("translation") = py::none(), py::arg("material") = dynamics::Material{},
+      "A box of these half extents (m) along the placed axes");
   m.def(
       "capsule",
       [collider](double r, double half, const py::handle& R, const py::handle& t, const dynamics::Material& mat) {
         return collider(dynamics::shape::Capsule{r, half}, R, t, mat);
       },
       py::arg("radius"), py::arg("half_length"), place, py::arg("translation") = py::none(),
-      py::arg("material") = dynamics::Material{});
+      py::arg("material") = dynamics::Material{}, "A capsule: a segment of ±half_length along z, swept by a sphere");
   m.def(
       "cylinder",
       [collider](double r, double half, const py::handle& R, const py::handle& t, const dynamics::Material& mat) {
         return collider(dynamics::shape::Cylinder{r, half}, R, t, mat);
       },
       py::arg("radius"), py::arg("half_length"), place, py::arg("translation") = py::none(),
-      py::arg("material") = dynamics::Material{});
+      py::arg("material") = dynamics::Material{}, "A cylinder along z: radius, ±half_length");
   using Vertices = py::array_t<double, py::array::c_style | py::array::forcecast>;
   using Triangles = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
   // (n, 3) vertices and (m, 3) triangles as the shapes hold them.
@@ -445,7 +464,8 @@ void BindDynamics(py::module_& m) {
         return collider(dynamics::shape::Convex{std::move(v), std::move(tri)}, R, t, mat);
       },
       py::arg("vertices"), py::arg("triangles"), place, py::arg("translation") = py::none(),
-      py::arg("material") = dynamics::Material{});
+      py::arg("material") = dynamics::Material{},
+      "A convex polytope from its hull's (n, 3) vertices and (m, 3) outward triangles");
   m.def(
       "mesh",
       [collider, surface](const Vertices& vertices, const Triangles& triangles, const py::handle& R,
@@ -458,7 +478,7 @@ void BindDynamics(py::module_& m) {
       "A closed mesh collided as itself (non-convex: a ring, a cup, a bin) through a signed distance field, built "
       "here once; bodies given this same collider share it. cell: the field's cell in m (0: automatic).");
 
-  py::class_<dynamics::ContactWorld>(m, "ContactWorld",
+  py::class_<dynamics::ContactWorld>(m, "ContactWorld", PlainType(),
                                      "A World with ground planes, static bodies and colliders: bodies rest, slide, "
                                      "roll, bounce and stack (dynamics/contact.h).")
       .def(py::init([](const std::string& integrator, bool sleeping) {
@@ -472,7 +492,8 @@ void BindDynamics(py::module_& m) {
           [](dynamics::ContactWorld& w, const RigidBody& b, const std::optional<dynamics::Collider>& c) {
             return c ? w.AddBody(b, *c) : w.AddBody(b);
           },
-          py::arg("body"), py::arg("collider") = py::none())
+          py::arg("body"), py::arg("collider") = py::none(),
+          "Adds a body, colliding as `collider` (in its principal frame) or as nothing; returns its index")
       .def(
           "add_static",
           [](dynamics::ContactWorld& w, const dynamics::Collider& c, const py::handle& position,
@@ -481,17 +502,18 @@ void BindDynamics(py::module_& m) {
             w.AddStatic(c, rotation.is_none() ? Matrix3::Identity() : Mat3(rotation, "rotation"),
                         position.is_none() ? Vector3::Zero() : Vec(position));
           },
-          py::arg("collider"), py::arg("position") = py::none(), py::arg("rotation") = py::none())
+          py::arg("collider"), py::arg("position") = py::none(), py::arg("rotation") = py::none(),
+          "Adds a body fixed in the world: the collider placed by x_W = R x + position")
       .def(
           "add_ground",
           [](dynamics::ContactWorld& w, const py::handle& normal, double offset, const dynamics::Material& mat) {
             w.AddGround({Vec(normal), offset, mat});
           },
           py::arg("normal") = py::make_tuple(0.0, 0.0, 1.0), py::arg("offset") = 0.0,
-          py::arg("material") = dynamics::Material{})
+          py::arg("material") = dynamics::Material{}, "Adds the ground plane {x : normal·x ≤ offset}")
       .def(
           "add_gravity", [](dynamics::ContactWorld& w, const py::handle& g) { w.AddForce(dynamics::Gravity(Vec(g))); },
-          py::arg("g"))
+          py::arg("g"), "Adds uniform gravity g (m/s², world) on every body")
       .def(
           "step",
           [](dynamics::ContactWorld& w, double h, int steps) {
@@ -499,21 +521,27 @@ void BindDynamics(py::module_& m) {
                                             [](const dynamics::ContactWorld& x) { return x.world().time(); });
           },
           py::arg("h"), py::arg("steps") = 1, "Advances steps × h seconds; raises when a step fails or diverges")
-      .def_property_readonly("time", [](const dynamics::ContactWorld& w) { return w.world().time(); })
+      .def_property_readonly(
+          "time", [](const dynamics::ContactWorld& w) { return w.world().time(); }, "simulated time, s")
       .def_property_readonly(
           "bodies", [](const dynamics::ContactWorld& w) { return w.world().bodies(); }, "copies of the bodies' states")
-      .def("body",
-           [](const dynamics::ContactWorld& w, int i) { return w.world().bodies().at(static_cast<std::size_t>(i)); })
-      .def("stats", [](const dynamics::ContactWorld& w) {
-        const dynamics::ContactStats& s = w.stats();
-        py::dict out;
-        out["contacts"] = s.contacts;
-        out["iterations"] = s.iterations;
-        out["max_penetration"] = s.max_penetration;
-        out["dissipated"] = s.dissipated;
-        out["sleeping"] = s.sleeping;
-        return out;
-      });
+      .def(
+          "body",
+          [](const dynamics::ContactWorld& w, int i) { return w.world().bodies().at(static_cast<std::size_t>(i)); },
+          "A copy of body i's current state")
+      .def(
+          "stats",
+          [](const dynamics::ContactWorld& w) {
+            const dynamics::ContactStats& s = w.stats();
+            py::dict out;
+            out["contacts"] = s.contacts;
+            out["iterations"] = s.iterations;
+            out["max_penetration"] = s.max_penetration;
+            out["dissipated"] = s.dissipated;
+            out["sleeping"] = s.sleeping;
+            return out;
+          },
+          "The last step's contact statistics: contacts, iterations, max_penetration, dissipated, sleeping");
 }
 
 }  // namespace
@@ -568,6 +596,8 @@ PYBIND11_MODULE(_core, m) {
       py::arg("paths"), py::arg("indices"), py::arg("of"), py::arg("timeout"),
       "The `massprops batch` records (JSON lines) of some files, each one's crash or hang isolated");
   py::module_ dyn = m.def_submodule("dynamics", "Rigid bodies and worlds (libdynamics)");
+  // Importable by its name too (import massprops._core.dynamics), as type checkers expect.
+  py::module_::import("sys").attr("modules")["massprops._core.dynamics"] = dyn;
   BindDynamics(dyn);
   massprops_python::BindPoses(m);
 }
