@@ -22,7 +22,6 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include "cli.h"
 #include "massprops/version.h"
@@ -111,16 +110,6 @@ int main(int argc, char** argv) {
     if (!scene_file.empty()) {
       scene = rbsim::LoadScene(scene_file, warnings);
     } else {
-      nlohmann::json body = {{"name", std::filesystem::path(mesh).stem().string()},
-                             {"mesh", std::filesystem::absolute(mesh).string()},
-                             {"repair", repair},
-                             {"allow_open", allow_open},
-                             {"angular_velocity_frame", omega_frame}};
-      if (mass > 0)
-        body["mass"] = mass;
-      else
-        body["density"] = density;
-      if (app.count("--unit") > 0) body["unit"] = unit;
       massprops::Vector3 omega = massprops::Vector3::Zero(), velocity = massprops::Vector3::Zero();
       if (!omega_text.empty() && !ParseVec3(omega_text, omega)) {
         std::cerr << "error: --omega: expected three finite numbers wx,wy,wz, got '" << omega_text << "'\n";
@@ -130,13 +119,32 @@ int main(int argc, char** argv) {
         std::cerr << "error: --velocity: expected three finite numbers vx,vy,vz, got '" << velocity_text << "'\n";
         return massprops::app::kBadArguments;
       }
-      body["angular_velocity"] = {omega.x(), omega.y(), omega.z()};
-      body["velocity"] = {velocity.x(), velocity.y(), velocity.z()};
+      // The typed scene of one body, as a scene file with these fields would give.
+      scene.file = "<command line>";
+      scene.duration = 10.0;
       // Default step: at most 1 ms and at most 0.01 rad of turn per step.
-      const double spin = omega.norm();
-      const double auto_dt = spin > 0 ? std::min(1e-3, 0.01 / spin) : 1e-3;
-      nlohmann::json j = {{"dt", auto_dt}, {"duration", 10.0}, {"bodies", {body}}};
-      scene = rbsim::ParseScene(j, "<command line>", ".", warnings);
+      scene.dt = omega.norm() > 0 ? std::min(1e-3, 0.01 / omega.norm()) : 1e-3;
+      scene.outputs = rbsim::DefaultOutputs();
+      const std::filesystem::path path = std::filesystem::absolute(mesh).lexically_normal();
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(path, ec)) {
+        throw rbsim::SceneError(scene.file + ": bodies[0].mesh: '" + path.string() + "' not found");
+      }
+      rbsim::BodySpec body;
+      body.name = std::filesystem::path(mesh).stem().string();
+      body.field = "bodies[0]";
+      body.shape.source = dynamics::MeshSource{path.string(), repair, allow_open};
+      body.shape.unit = massprops::ParseLengthUnit(unit);
+      body.shape.unit_stated = app.count("--unit") > 0;
+      body.shape.mass =
+          mass > 0 ? massprops::MassSpec(massprops::TotalMass{mass}) : massprops::MassSpec(massprops::Density{density});
+      body.velocity = velocity;
+      body.angular_velocity = omega;
+      body.angular_velocity_frame = omega_frame == "world"  ? rbsim::VectorFrame::kWorld
+                                    : omega_frame == "body" ? rbsim::VectorFrame::kBody
+                                                            : rbsim::VectorFrame::kPrincipal;
+      scene.bodies.push_back(std::move(body));
+      rbsim::CheckTiming(scene, warnings);
     }
     // Overrides, validated like the scene's own fields.
     if (dt) scene.dt = *dt;

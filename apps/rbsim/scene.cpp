@@ -247,8 +247,13 @@ ForceSpec ReadForce(const json& j, const std::string& path, const std::string& f
   Fields f(j, path, file);
   ForceSpec s;
   s.field = path;
-  s.type = f.String("type", "", {"gravity", "linear_damping", "angular_damping", "force", "torque", "spring"});
-  if (s.type.empty()) f.Fail("type", "is required (gravity, linear_damping, angular_damping, force, torque, spring)");
+  const std::string type =
+      f.String("type", "", {"gravity", "linear_damping", "angular_damping", "force", "torque", "spring"});
+  if (type.empty()) f.Fail("type", "is required (gravity, linear_damping, angular_damping, force, torque, spring)");
+  for (const ForceKind k : {ForceKind::kGravity, ForceKind::kLinearDamping, ForceKind::kAngularDamping,
+                            ForceKind::kForce, ForceKind::kTorque, ForceKind::kSpring}) {
+    if (type == ForceName(k)) s.kind = k;
+  }
   auto one_body = [&](bool required) {
     const json* b = f.Get("body");
     if (!b) {
@@ -257,19 +262,19 @@ ForceSpec ReadForce(const json& j, const std::string& path, const std::string& f
     }
     s.bodies.push_back(BodyIndex(f, "body", *b, bodies));
   };
-  if (s.type == "gravity") {
+  if (s.kind == ForceKind::kGravity) {
     s.vector = f.Vec3("g", Vector3(0, 0, -9.80665));
-  } else if (s.type == "linear_damping" || s.type == "angular_damping") {
+  } else if (s.kind == ForceKind::kLinearDamping || s.kind == ForceKind::kAngularDamping) {
     one_body(false);
     s.coefficient = f.RequiredNumber("c", "non-negative");
-  } else if (s.type == "force" || s.type == "torque") {
+  } else if (s.kind == ForceKind::kForce || s.kind == ForceKind::kTorque) {
     one_body(true);
-    const std::string key = s.type;
+    const std::string key = type;
     if (!f.Has(key)) f.Fail(key, "is required: a vector [x, y, z]");
     s.vector = f.Vec3(key, Vector3::Zero());
     s.body_frame = f.String("frame", "world", {"world", "body"}) == "body";
-    if (s.type == "force" && f.Has("point")) s.point = f.Vec3("point", Vector3::Zero());
-    if (s.type == "force") f.Get("point");
+    if (s.kind == ForceKind::kForce && f.Has("point")) s.point = f.Vec3("point", Vector3::Zero());
+    if (s.kind == ForceKind::kForce) f.Get("point");
   } else {  // spring
     s.coefficient = f.RequiredNumber("k", "non-negative");
     s.rest_length = f.Number("rest_length", 0.0, "non-negative");
@@ -301,6 +306,18 @@ ForceSpec ReadForce(const json& j, const std::string& path, const std::string& f
 }
 
 }  // namespace
+
+const char* ForceName(ForceKind kind) {
+  switch (kind) {
+    case ForceKind::kGravity: return "gravity";
+    case ForceKind::kLinearDamping: return "linear_damping";
+    case ForceKind::kAngularDamping: return "angular_damping";
+    case ForceKind::kForce: return "force";
+    case ForceKind::kTorque: return "torque";
+    case ForceKind::kSpring: return "spring";
+  }
+  return "?";
+}
 
 const char* OutputName(OutputKind kind) {
   switch (kind) {

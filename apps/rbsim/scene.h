@@ -70,8 +70,13 @@ struct StaticSpec {
   CollisionSpec collision;
 };
 
+enum class ForceKind { kGravity, kLinearDamping, kAngularDamping, kForce, kTorque, kSpring };
+
+/// The scene's name of a force kind ("gravity", "linear_damping", ...).
+const char* ForceName(ForceKind kind);
+
 struct ForceSpec {
-  std::string type;                  ///< gravity, linear_damping, angular_damping, force, torque, spring
+  ForceKind kind = ForceKind::kGravity;
   std::string field;                 ///< "forces[1]"
   std::vector<int> bodies;           ///< body indices it acts on (empty: every body)
   Vector3 vector = Vector3::Zero();  ///< g, force or torque

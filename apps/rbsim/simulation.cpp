@@ -200,33 +200,35 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
   for (const ForceSpec& f : scene.forces) {
     const int body = f.bodies.empty() ? -1 : f.bodies[0];
     const auto principal_axes = [&](int b) { return sim.bodies[static_cast<std::size_t>(b)].principal.axes; };
-    if (f.type == "gravity") {
-      sim.world().AddForce(dynamics::Gravity(f.vector));
-    } else if (f.type == "linear_damping") {
-      sim.world().AddForce(dynamics::LinearDamping(f.coefficient, body));
-    } else if (f.type == "angular_damping") {
-      sim.world().AddForce(dynamics::AngularDamping(f.coefficient, body));
-    } else if (f.type == "force") {
-      const Vector3 point = f.point ? to_body(body, *f.point) : Vector3::Zero();
-      const Vector3 vec = f.body_frame ? Vector3(principal_axes(body).transpose() * f.vector) : f.vector;
-      sim.world().AddForce(dynamics::PointForce(body, point, vec, f.body_frame));
-    } else if (f.type == "torque") {
-      if (f.body_frame) {
-        sim.world().AddForce(dynamics::BodyFrameTorque(body, principal_axes(body).transpose() * f.vector));
-      } else {
-        sim.world().AddForce(dynamics::ConstantTorque(body, f.vector));
+    switch (f.kind) {
+      case ForceKind::kGravity: sim.world().AddForce(dynamics::Gravity(f.vector)); break;
+      case ForceKind::kLinearDamping: sim.world().AddForce(dynamics::LinearDamping(f.coefficient, body)); break;
+      case ForceKind::kAngularDamping: sim.world().AddForce(dynamics::AngularDamping(f.coefficient, body)); break;
+      case ForceKind::kForce: {
+        const Vector3 point = f.point ? to_body(body, *f.point) : Vector3::Zero();
+        const Vector3 vec = f.body_frame ? Vector3(principal_axes(body).transpose() * f.vector) : f.vector;
+        sim.world().AddForce(dynamics::PointForce(body, point, vec, f.body_frame));
+        break;
       }
-    } else if (f.type == "spring") {
-      // Unless the scene names points, springs hold the centers of mass (body point 0).
-      if (f.bodies.size() == 2) {
-        const Vector3 pa = f.points.empty() ? Vector3::Zero() : to_body(f.bodies[0], f.points[0]);
-        const Vector3 pb = f.points.empty() ? Vector3::Zero() : to_body(f.bodies[1], f.points[1]);
-        sim.world().AddForce(
-            dynamics::SpringBetween(f.bodies[0], pa, f.bodies[1], pb, f.coefficient, f.rest_length, f.damping));
-      } else {
-        const Vector3 p = f.point ? to_body(body, *f.point) : Vector3::Zero();
-        sim.world().AddForce(dynamics::SpringToWorld(body, p, f.anchor, f.coefficient, f.rest_length, f.damping));
-      }
+      case ForceKind::kTorque:
+        if (f.body_frame) {
+          sim.world().AddForce(dynamics::BodyFrameTorque(body, principal_axes(body).transpose() * f.vector));
+        } else {
+          sim.world().AddForce(dynamics::ConstantTorque(body, f.vector));
+        }
+        break;
+      case ForceKind::kSpring:
+        // Unless the scene names points, springs hold the centers of mass (body point 0).
+        if (f.bodies.size() == 2) {
+          const Vector3 pa = f.points.empty() ? Vector3::Zero() : to_body(f.bodies[0], f.points[0]);
+          const Vector3 pb = f.points.empty() ? Vector3::Zero() : to_body(f.bodies[1], f.points[1]);
+          sim.world().AddForce(
+              dynamics::SpringBetween(f.bodies[0], pa, f.bodies[1], pb, f.coefficient, f.rest_length, f.damping));
+        } else {
+          const Vector3 p = f.point ? to_body(body, *f.point) : Vector3::Zero();
+          sim.world().AddForce(dynamics::SpringToWorld(body, p, f.anchor, f.coefficient, f.rest_length, f.damping));
+        }
+        break;
     }
   }
   sim.conservation = sim.world().Conserves();

@@ -35,7 +35,9 @@ PeerScene LoadPeerScene(const std::string& path, double dt) {
   out.steps = rbsim::StepCount(scene);
   out.sample_every = rbsim::SampleEvery(scene);
   for (const rbsim::ForceSpec& f : scene.forces) {
-    if (f.type != "gravity" || !f.bodies.empty()) throw refuse(f.field + " (" + f.type + ")");
+    if (f.kind != rbsim::ForceKind::kGravity || !f.bodies.empty()) {
+      throw refuse(f.field + " (" + rbsim::ForceName(f.kind) + ")");
+    }
     out.gravity += f.vector;
   }
   const rbsim::Simulation sim = rbsim::BuildSimulation(scene, warnings, 1);
