@@ -1,4 +1,4 @@
-#include "fill.h"
+#include "commands.h"
 
 #include <iostream>
 #include <sstream>

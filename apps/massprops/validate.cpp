@@ -1,4 +1,4 @@
-#include "validate.h"
+#include "commands.h"
 
 #include <cmath>
 #include <cstdio>

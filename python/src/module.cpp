@@ -148,6 +148,10 @@ LoadOptions ToLoadOptions(const py::kwargs& kw) {
   if (shell) o.model = ShellModel{*shell};
   if (wall) o.model = WallModel{*wall};
   if (winding_number) o.model = WindingNumberModel{sampling};
+  // The library's rules on which options go together (the command line checks the same ones).
+  if (const auto conflict = FindOptionConflict(o)) {
+    throw py::value_error(report::WordedConflict(*conflict, report::FrontEnd::kPython));
+  }
   return o;
 }
 

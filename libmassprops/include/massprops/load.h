@@ -202,6 +202,25 @@ std::string WordedError(const std::exception& error, const Vocabulary& vocabular
 ///         std::invalid_argument for an invalid option value.
 SolidResult LoadSolid(const std::string& path, const LoadOptions& options = {});
 
+/// A combination of options that cannot be computed — the one home of these rules: LoadSolid
+/// refuses them, and the command line and the Python module check them (FindOptionConflict)
+/// before any file is read, each wording them in its own terms (massprops/report/words.h).
+enum class OptionConflict {
+  kShellNeedsDensity,    ///< a shell without a finite, positive area density or a total mass
+  kWallNeedsThickness,   ///< a wall without a finite, positive thickness
+  kExactNeedsSolid,      ///< exact integration with a shell, a wall or a winding-number estimate
+  kHullNeedsSolid,       ///< the convex hull with a shell or a winding-number estimate
+  kPartMassesNeedParts,  ///< densities per part without computing the parts
+  kPartsNeedSolid,       ///< parts with a shell or a winding-number estimate
+  kPartsNotExact,        ///< parts with exact integration
+};
+
+/// The first conflict among `options`, in the order of the enum, or none.
+std::optional<OptionConflict> FindOptionConflict(const LoadOptions& options);
+
+/// The library's own words for a conflict (what LoadSolid's std::invalid_argument says).
+std::string DescribeConflict(OptionConflict conflict);
+
 /// The same checks and integration for a mesh already in memory (arrays from Python, a mesh built
 /// in code): `name` stands for the file in messages and in SolidResult::source. Corners at
 /// bit-identical positions are welded first, as every reader does. Options about reading

@@ -379,36 +379,7 @@ LoadOptions ResolveUnit(SolidResult& r, const LoadOptions& given) {
 namespace {
 
 void RequireValidModel(const LoadOptions& given) {
-  if (given.exact && !std::holds_alternative<SolidModel>(given.model)) {
-    throw std::invalid_argument("exact integration is for solids: not a shell, a wall or a winding-number estimate");
-  }
-  if (given.hull && !std::holds_alternative<SolidModel>(given.model) &&
-      !std::holds_alternative<WallModel>(given.model)) {
-    throw std::invalid_argument(
-        "the convex hull is a solid: it goes with the solid and wall models, not a shell or a "
-        "winding-number estimate");
-  }
-  if (const auto* shell = std::get_if<ShellModel>(&given.model);
-      shell && !FixesMass(given.mass) && !(std::isfinite(shell->area_density) && shell->area_density > 0)) {
-    throw std::invalid_argument("a shell needs a finite, positive area density (kg/m^2) or a total mass");
-  }
-  if (const auto* wall = std::get_if<WallModel>(&given.model);
-      wall && !(std::isfinite(wall->thickness) && wall->thickness > 0)) {
-    throw std::invalid_argument("a wall needs a finite, positive thickness");
-  }
-  if (!given.part_masses.empty() && !given.parts) {
-    throw std::invalid_argument("densities per part need the parts to be computed (LoadOptions::parts)");
-  }
-  if (given.parts) {
-    if (!std::holds_alternative<SolidModel>(given.model) && !std::holds_alternative<WallModel>(given.model)) {
-      throw std::invalid_argument("parts are computed as solids or walls, not as shells or winding-number estimates");
-    }
-    if (given.exact) {
-      throw std::invalid_argument(
-          "certified results are for one solid: the composition of parts is not certified (run the exact "
-          "integration without parts)");
-    }
-  }
+  if (const auto conflict = FindOptionConflict(given)) throw std::invalid_argument(DescribeConflict(*conflict));
 }
 
 // A result for `source`, the options checked.
@@ -442,6 +413,44 @@ SolidResult SolveMesh(LoadedMesh mesh, const std::string& name, const LoadOption
   // The readers' contract: corners at bit-identical positions are one vertex.
   r.loaded.welded += MergeCoincidentVertices(r.loaded.mesh);
   return given.parts ? internal::SolveParts(std::move(r), given, t0) : internal::Solve(std::move(r), given, t0);
+}
+
+std::optional<OptionConflict> FindOptionConflict(const LoadOptions& o) {
+  const bool solid = std::holds_alternative<SolidModel>(o.model), wall = std::holds_alternative<WallModel>(o.model);
+  if (const auto* shell = std::get_if<ShellModel>(&o.model);
+      shell && !FixesMass(o.mass) && !(std::isfinite(shell->area_density) && shell->area_density > 0)) {
+    return OptionConflict::kShellNeedsDensity;
+  }
+  if (const auto* w = std::get_if<WallModel>(&o.model); w && !(std::isfinite(w->thickness) && w->thickness > 0)) {
+    return OptionConflict::kWallNeedsThickness;
+  }
+  if (o.exact && !solid) return OptionConflict::kExactNeedsSolid;
+  if (o.hull && !solid && !wall) return OptionConflict::kHullNeedsSolid;
+  if (!o.part_masses.empty() && !o.parts) return OptionConflict::kPartMassesNeedParts;
+  if (o.parts && !solid && !wall) return OptionConflict::kPartsNeedSolid;
+  if (o.parts && o.exact) return OptionConflict::kPartsNotExact;
+  return std::nullopt;
+}
+
+std::string DescribeConflict(OptionConflict conflict) {
+  switch (conflict) {
+    case OptionConflict::kShellNeedsDensity:
+      return "a shell needs a finite, positive area density (kg/m^2) or a total mass";
+    case OptionConflict::kWallNeedsThickness: return "a wall needs a finite, positive thickness";
+    case OptionConflict::kExactNeedsSolid:
+      return "exact integration is for solids: not a shell, a wall or a winding-number estimate";
+    case OptionConflict::kHullNeedsSolid:
+      return "the convex hull is a solid: it goes with the solid and wall models, not a shell or a winding-number "
+             "estimate";
+    case OptionConflict::kPartMassesNeedParts:
+      return "densities per part need the parts to be computed (LoadOptions::parts)";
+    case OptionConflict::kPartsNeedSolid:
+      return "parts are computed as solids or walls, not as shells or winding-number estimates";
+    case OptionConflict::kPartsNotExact:
+      return "certified results are for one solid: the composition of parts is not certified (run the exact "
+             "integration without parts)";
+  }
+  return "?";
 }
 
 namespace internal {

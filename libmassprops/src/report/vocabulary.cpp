@@ -64,4 +64,21 @@ const Vocabulary& WordsFor(FrontEnd front_end) {
   return kCommandLine;
 }
 
+std::string WordedConflict(OptionConflict conflict, FrontEnd front_end) {
+  if (front_end != FrontEnd::kCommandLine) return DescribeConflict(conflict);
+  switch (conflict) {
+    case OptionConflict::kShellNeedsDensity: return "--shell needs --area-density (kg/m^2) or --mass (kg)";
+    case OptionConflict::kWallNeedsThickness: return "--wall needs a finite, positive thickness";
+    case OptionConflict::kExactNeedsSolid:
+      return "--exact certifies a solid's integrals: not with --shell, --wall or --winding-number";
+    case OptionConflict::kHullNeedsSolid:
+      return "--hull is the convex hull as a solid: it goes with solids and --wall, not --shell or --winding-number";
+    case OptionConflict::kPartMassesNeedParts: return "--density-map needs --parts";
+    case OptionConflict::kPartsNeedSolid:
+    case OptionConflict::kPartsNotExact:
+      return "--parts and --density-map compute solids (or --wall): not --shell, --winding-number or --exact";
+  }
+  return DescribeConflict(conflict);
+}
+
 }  // namespace massprops::report

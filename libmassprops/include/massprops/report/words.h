@@ -4,6 +4,9 @@
 // true" in a scene, "repair=True" in Python. Every front end words findings through one of these,
 // so none can print an unworded marker.
 
+#include <string>
+
+#include "massprops/load.h"
 #include "massprops/wording.h"
 
 namespace massprops::report {
@@ -16,6 +19,10 @@ enum class FrontEnd {
 };
 
 const Vocabulary& WordsFor(FrontEnd front_end);
+
+/// A conflict among the load options (massprops::FindOptionConflict) in the front end's words:
+/// the command line names its flags; the others say the library's DescribeConflict.
+std::string WordedConflict(OptionConflict conflict, FrontEnd front_end);
 
 /// The command line's words (WordsFor(FrontEnd::kCommandLine)).
 inline const Vocabulary& CliVocabulary() { return WordsFor(FrontEnd::kCommandLine); }

@@ -1,0 +1,188 @@
+#include "arguments.h"
+
+#include <cmath>
+#include <map>
+
+#include "cli.h"
+#include "massprops/report/words.h"
+#include "massprops/units.h"
+
+namespace massprops::cli {
+
+void AddArguments(CLI::App& app, Arguments& a) {
+  app.add_option("files", a.files, "Mesh files");
+  app.add_option("--implicit", a.implicit,
+                 "Estimate a solid given in the shape syntax, e.g. 'torus(R=1, r=0.25)' "
+                 "(Monte Carlo / QMC, with error bars; see the README)");
+  app.add_flag("--winding-number", a.winding_number,
+               "Files: the solid where the generalized winding number is >= 1/2, estimated by "
+               "Monte Carlo / QMC with error bars (meshes with holes get a sensible answer)");
+  auto* mc = app.add_flag("--mc", a.mc, "Plain Monte Carlo (with --implicit or --winding-number)");
+  app.add_flag("--qmc", "Randomized quasi-Monte Carlo, scrambled Sobol (the default)")->excludes(mc);
+  app.add_option("--samples", a.samples, "Monte-Carlo points in all (e.g. 1e7)")->check(app::InRange(2, 1e13));
+  app.add_option("--randomizations", a.randomizations, "QMC: independent scramblings (error bars from their spread)")
+      ->check(app::InRange(2, 1000));
+  app.add_option("--seed", a.seed, "Random seed (same seed, same bits, any thread count)");
+  app.add_option("--tolerance", a.tolerance,
+                 "Sample until the relative standard error of the mass and of each principal moment "
+                 "is below this")
+      ->check(app::InRange(1e-12, 1));
+  auto* density = app.add_option("--density", a.density, "Uniform density in kg/m^3")
+                      ->check(app::Positive())
+                      ->capture_default_str();
+  app.add_option("--mass", a.mass, "Total mass in kg (sets the density; excludes --density)")
+      ->check(app::Positive())
+      ->excludes(density);
+  auto* shell = app.add_flag("--shell", a.shell,
+                             "Thin shell: the surface itself carries the mass, at --area-density "
+                             "(or --mass); open meshes are fine");
+  app.add_option("--area-density", a.area_density, "Area density of a --shell, kg/m^2")
+      ->check(app::Positive())
+      ->needs(shell);
+  app.add_option("--wall", a.wall,
+                 "Hollow part: the solid between the closed surface and its inward offset by this "
+                 "wall thickness (in the file's unit, --unit)")
+      ->check(app::Positive())
+      ->excludes(shell);
+  std::vector<std::string> units;
+  for (LengthUnit u : kAllLengthUnits) units.emplace_back(UnitName(u));
+  app.add_option("--unit", a.unit, "Unit of the file's coordinates")
+      ->check(CLI::IsMember(units))
+      ->capture_default_str();
+  app.add_option("--format", a.format, "Output format")
+      ->check(CLI::IsMember({"table", "json", "csv", "urdf", "sdf", "mjcf"}))
+      ->capture_default_str();
+  app.add_option("--frame", a.frame,
+                 "Also report the inertia about the file's origin (origin), or only about the "
+                 "center of mass (com)")
+      ->check(CLI::IsMember({"com", "origin"}))
+      ->capture_default_str();
+  app.add_option("--path", a.path,
+                 "Integration path: auto (triangles; Mirtich for quads and n-gons), triangles, "
+                 "polygons")
+      ->check(CLI::IsMember({"auto", "triangles", "polygons"}))
+      ->capture_default_str();
+  app.add_option("--threads", a.threads, "Worker threads (0 = all cores); same bits for any count")
+      ->check(app::NonNegative());
+  app.add_flag("--allow-open", a.allow_open,
+               "Compute even when the mesh is open or inconsistently oriented (with a warning)");
+  app.add_flag("--repair", a.repair,
+               "Repair with CGAL first: merge near-coincident vertices (1e-9 of the size), drop "
+               "degenerate and duplicate faces, orient faces consistently, stitch borders, orient "
+               "shells outward and cavities inward; what changed is reported");
+  app.add_flag("--check-self-intersections", a.check_self_intersections,
+               "Count pairs of faces that intersect (CGAL); a warning when there are any");
+  app.add_flag("--hull", a.hull,
+               "Also the mass properties of the convex hull (CGAL), as collision engines see the body, at the "
+               "same density (or --mass), printed beside the exact ones");
+  app.add_flag("--exact", a.exact,
+               "Certified results: exact rational integration of the stored coordinates (GMP); every number "
+               "correctly rounded, principal moments as enclosures, the default path's difference shown");
+  app.add_flag("--full-check", a.full_check,
+               "Binary STL: weld the corners and count vertices, components and bad edges even "
+               "when the streaming check finds the surface closed (slower)");
+  app.add_option("--reader", a.reader,
+                 "auto: our own readers for OBJ/STL/PLY/OFF, assimp for the rest; assimp: assimp "
+                 "for every format (32-bit coordinates; for comparison)")
+      ->check(CLI::IsMember({"auto", "assimp"}))
+      ->capture_default_str();
+  app.add_option("--about", a.about,
+                 "Also report the inertia tensor about this point X,Y,Z (in the file's unit and axes)")
+      ->delimiter(',')
+      ->expected(3);
+  auto* axes = app.add_option("--axes", a.axes,
+                              "Report that tensor in these axes: a rotation as 9 numbers, row by row, whose "
+                              "columns are the axes in the file's axes")
+                   ->delimiter(',')
+                   ->expected(9);
+  app.add_option("--axes-euler", a.axes_euler,
+                 "The axes as yaw,pitch,roll in degrees (intrinsic z, y', x'': R = Rz Ry Rx)")
+      ->delimiter(',')
+      ->expected(3)
+      ->excludes(axes);
+  app.add_option("--output-units", a.output_units,
+                 "Units of the table, JSON and CSV: si (default), mmgs (g, mm, g*mm^2), cgs, ips (lb, in, "
+                 "lb*in^2), or MASS,LENGTH,INERTIA such as kg,mm,kg*mm^2");
+  app.add_flag("--parts", a.parts,
+               "Each part the file names (OBJ objects or groups; glTF, 3MF, COLLADA, FBX nodes) on its own, "
+               "and the whole as their composition");
+  app.add_option("--density-map", a.density_map,
+                 "JSON or CSV: part name or glob pattern -> density (kg/m^3) or mass (kg); first match wins; "
+                 "implies --parts");
+  app.add_flag("-q,--quiet", a.quiet, "No progress line on stderr");
+  app.add_option("-o,--output", a.output, "Write the output to this file (whole or not at all)");
+}
+
+MonteCarloOptions Sampling(const Arguments& a) {
+  MonteCarloOptions mc;
+  mc.method = a.mc ? SamplingMethod::kMonteCarlo : SamplingMethod::kQuasiMonteCarlo;
+  mc.samples = static_cast<std::int64_t>(a.samples);
+  mc.randomizations = a.randomizations;
+  mc.seed = a.seed;
+  mc.tolerance = a.tolerance;
+  return mc;
+}
+
+LoadOptions ToLoadOptions(const Arguments& a, const CLI::App& app) {
+  LoadOptions o;
+  o.unit = ParseLengthUnit(a.unit);
+  o.mass = a.mass > 0 ? MassSpec(TotalMass{a.mass}) : MassSpec(Density{a.density});
+  if (a.shell) {
+    o.model = ShellModel{a.area_density};
+  } else if (a.wall > 0) {
+    o.model = WallModel{a.wall};
+  } else if (a.winding_number) {
+    o.model = WindingNumberModel{Sampling(a)};
+  }
+  o.path = FromName<IntegrationPath>({{"auto", IntegrationPath::kAuto},
+                                      {"triangles", IntegrationPath::kTriangles},
+                                      {"polygons", IntegrationPath::kPolygons}},
+                                     a.path);
+  o.reader = a.reader == "assimp" ? Reader::kAssimp : Reader::kAuto;
+  o.repair = a.repair;
+  o.allow_open = a.allow_open;
+  o.full_check = a.full_check;
+  o.check_self_intersections = a.check_self_intersections;
+  o.hull = a.hull;
+  o.exact = a.exact;
+  o.parts = a.parts || !a.density_map.empty();
+  o.num_threads = a.threads;
+  o.unit_stated = app.count("--unit") > 0;
+  return o;
+}
+
+std::optional<std::string> CheckArguments(const Arguments& a, const CLI::App& app) {
+  if (!std::isfinite(a.density) || !std::isfinite(a.mass) || !std::isfinite(a.area_density) || !std::isfinite(a.wall)) {
+    return "--density, --mass, --area-density and --wall must be finite";
+  }
+  // The library's rules (FindOptionConflict), in the command line's words; a shell without its
+  // density is said first, as the other flags' rules assume one.
+  const auto conflict = FindOptionConflict(ToLoadOptions(a, app));
+  const auto worded = [](OptionConflict c) { return report::WordedConflict(c, report::FrontEnd::kCommandLine); };
+  if (conflict == OptionConflict::kShellNeedsDensity) return worded(*conflict);
+  if (a.shell && app.count("--density") > 0) return "--shell takes --area-density (kg/m^2), not --density";
+  if (a.files.empty() && a.implicit.empty()) return "give mesh files, or --implicit SHAPE (see --help)";
+  const bool sampling_flags = app.count("--mc") + app.count("--qmc") + app.count("--samples") +
+                                  app.count("--randomizations") + app.count("--seed") + app.count("--tolerance") >
+                              0;
+  if (sampling_flags && a.implicit.empty() && !a.winding_number) {
+    return "--mc/--qmc/--samples/--randomizations/--seed/--tolerance belong to --implicit or "
+           "--winding-number (exact integration needs none)";
+  }
+  if (a.winding_number && (a.shell || a.wall > 0)) return "--winding-number does not combine with --shell or --wall";
+  if (!a.implicit.empty() && (a.shell || a.wall > 0)) {
+    return "--shell and --wall describe a mesh's surface; an --implicit shape is a solid and takes neither";
+  }
+  if (conflict) return worded(*conflict);
+  if (a.files.empty()) {  // only --implicit: the options about mesh files would be ignored
+    for (const char* flag :
+         {"--parts", "--density-map", "--repair", "--allow-open", "--full-check", "--check-self-intersections",
+          "--path", "--reader", "--winding-number", "--hull", "--exact"}) {
+      if (app.count(flag) > 0)
+        return std::string(flag) + " applies to mesh files; --implicit shapes take no such option";
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace massprops::cli

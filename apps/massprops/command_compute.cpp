@@ -1,0 +1,208 @@
+// massprops FILE... [options]: the mass properties of each file (and of an --implicit shape),
+// printed as a table, JSON, CSV or a robot file's <inertial>. This file only maps the command line
+// onto the library's options and prints what massprops::report makes of the results.
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "arguments.h"
+#include "cli.h"
+#include "commands.h"
+#include "massprops/implicit.h"
+#include "massprops/io.h"
+#include "massprops/report/atomic_file.h"
+#include "massprops/report/density_map.h"
+#include "massprops/report/format.h"
+#include "massprops/version.h"
+#include "progress.h"
+
+namespace massprops::cli {
+using namespace massprops::report;  // the formats this command prints
+
+int ComputeMain(int argc, char** argv) {
+  CLI::App app{
+      "massprops: exact mass properties of the solids that mesh files bound.\n"
+      "Reads OBJ, STL, PLY, OFF (own parsers) and other formats through assimp.\n"
+      "Subcommands: massprops batch (DIR | MANIFEST) -o OUT.jsonl; massprops merge OUT SHARD...; "
+      "massprops validate; massprops fill ROBOT -o OUT"};
+  app.set_version_flag("--version", std::string("massprops ") + kVersion);
+  Arguments a;
+  AddArguments(app, a);
+  if (const int status = app::ParseArguments(app, argc, argv); status >= 0) return status;
+  auto bad = [](const std::string& what) {
+    std::cerr << "error: " << what << "\n";
+    return app::kBadArguments;
+  };
+  if (const auto error = CheckArguments(a, app)) return bad(*error);
+  if (!a.output.empty()) {
+    try {
+      report::CheckOutputPath(a.output, a.files);
+    } catch (const std::exception& e) {
+      return bad(std::string("-o ") + e.what());
+    }
+  }
+
+  report::FormatOptions format;
+  format.format = FromName<report::Format>({{"table", report::Format::kTable},
+                                            {"json", report::Format::kJson},
+                                            {"csv", report::Format::kCsv},
+                                            {"urdf", report::Format::kUrdf},
+                                            {"sdf", report::Format::kSdf},
+                                            {"mjcf", report::Format::kMjcf}},
+                                           a.format);
+  format.frame = a.frame == "origin" ? report::Frame::kOrigin : report::Frame::kCenterOfMass;
+  format.json_array = a.files.size() + (a.implicit.empty() ? 0 : 1) > 1;
+  LoadOptions options = ToLoadOptions(a, app);
+  if (!a.density_map.empty()) {
+    try {
+      options.part_masses = report::ReadDensityMap(a.density_map);
+    } catch (const std::exception& e) {
+      return bad(e.what());
+    }
+  }
+  if (!a.output_units.empty()) {
+    try {
+      format.units = ParseReportUnits(a.output_units);
+    } catch (const std::exception& e) {
+      return bad(std::string("--output-units: ") + e.what());
+    }
+  }
+  if (!a.about.empty() || !a.axes.empty() || !a.axes_euler.empty()) {
+    ReferenceFrame f;
+    for (double v : a.about) {
+      if (!std::isfinite(v)) return bad("--about needs three finite numbers");
+    }
+    for (double v : a.axes) {
+      if (!std::isfinite(v)) return bad("--axes needs nine finite numbers");
+    }
+    for (double v : a.axes_euler) {
+      if (!std::isfinite(v)) return bad("--axes-euler needs three finite angles");
+    }
+    // In each file's unit (the one stated, or the one the file declares): scaled per result.
+    if (!a.about.empty()) f.point = Vector3(a.about[0], a.about[1], a.about[2]);
+    try {
+      if (!a.axes.empty()) {
+        Matrix3 r;
+        r << a.axes[0], a.axes[1], a.axes[2], a.axes[3], a.axes[4], a.axes[5], a.axes[6], a.axes[7], a.axes[8];
+        f.axes = RequireRotation(r);
+      }
+      if (!a.axes_euler.empty()) {
+        const double deg = 3.14159265358979323846 / 180;
+        f.axes = RotationFromEulerZYX(a.axes_euler[0] * deg, a.axes_euler[1] * deg, a.axes_euler[2] * deg);
+      }
+    } catch (const std::exception& e) {
+      return bad(std::string("--axes: ") + e.what());
+    }
+    format.reference = f;
+  }
+  const bool robot = format.format == report::Format::kUrdf || format.format == report::Format::kSdf ||
+                     format.format == report::Format::kMjcf;
+  if (robot && (!a.output_units.empty() || format.reference)) {
+    return bad(
+        "URDF, SDF and MJCF give the inertia about the center of mass in SI; --output-units, --about and "
+        "--axes are for the table, JSON and CSV");
+  }
+
+  int failures = 0;
+  std::vector<SolidResult> results;
+  std::string text;
+  // One input's outcome: its result, or its error (one line, worded for the command line).
+  struct Outcome {
+    std::optional<SolidResult> result;
+    std::string error;
+  };
+  auto compute = [&](const std::string& name, bool show_progress, const auto& solve) {
+    Outcome out;
+    try {
+      app::Progress progress("massprops", name, show_progress);
+      out.result = solve([&progress](const char* stage) { progress.Stage(stage); });
+    } catch (const MeshFileError& e) {  // already names the file
+      out.error = WordedError(e, report::CliVocabulary());
+    } catch (const std::exception& e) {
+      out.error = name + ": " + e.what();
+    }
+    return out;
+  };
+  // Messages and results in the order of the inputs, whatever order they were computed in.
+  auto emit = [&](const std::string& name, Outcome&& o) {
+    if (!o.result) {
+      ++failures;
+      std::cerr << "error: " << o.error << "\n";
+      return;
+    }
+    const SolidResult& r = *o.result;
+    for (const Finding& f : r.findings) {
+      std::cerr << "warning: " << name << ": " << Worded(f.message, report::CliVocabulary()) << "\n";
+    }
+    if (format.format == report::Format::kTable) text += (text.empty() ? "" : "\n") + FormatTable(r, format);
+    if (robot) text += FormatRobot(r, format.format);
+    results.push_back(std::move(*o.result));
+  };
+  auto load = [&](const std::string& file, bool show_progress) {
+    return compute(file, show_progress, [&](const ProgressCallback& progress) {
+      LoadOptions o = options;
+      o.progress = progress;
+      return LoadSolid(file, o);
+    });
+  };
+  // Several files read by our own readers are computed side by side, one per thread (a dataset's
+  // small files gain the cores a single file's stages would use); assimp's formats run in a child
+  // process, forked from one thread at a time. No progress line then: the lines would interleave.
+  const bool side_by_side = a.files.size() > 1 && options.reader == Reader::kAuto &&
+                            std::all_of(a.files.begin(), a.files.end(), HasOwnReader);
+  if (side_by_side) {
+    std::vector<Outcome> outcomes(a.files.size());
+    std::atomic<std::size_t> next{0};
+    auto worker = [&] {
+      for (std::size_t i = next++; i < a.files.size(); i = next++) outcomes[i] = load(a.files[i], false);
+    };
+    const unsigned cores = a.threads > 0 ? static_cast<unsigned>(a.threads) : std::thread::hardware_concurrency();
+    std::vector<std::thread> pool;
+    for (unsigned t = 1; t < std::min<std::size_t>(std::max(cores, 1u), a.files.size()); ++t) pool.emplace_back(worker);
+    worker();
+    for (std::thread& t : pool) t.join();
+    for (std::size_t i = 0; i < a.files.size(); ++i) emit(a.files[i], std::move(outcomes[i]));
+  } else {
+    for (const std::string& file : a.files) emit(file, load(file, !a.quiet));
+  }
+  if (!a.implicit.empty()) {
+    emit("--implicit", compute("--implicit", !a.quiet, [&](const ProgressCallback& progress) {
+           ImplicitOptions o;
+           o.unit = options.unit;
+           o.unit_stated = options.unit_stated;
+           o.mass = options.mass;
+           o.sampling = Sampling(a);
+           o.num_threads = a.threads;
+           o.progress = progress;
+           return EstimateImplicit(*implicit::ParseShape(a.implicit, ReadSdfGridFile), o);
+         }));
+  }
+  if (format.format == report::Format::kJson && (!results.empty() || format.json_array)) {
+    text = FormatJson(results, format);  // several inputs: an array, even if some (or all) failed
+  }
+  if (!results.empty()) {
+    if (format.format == report::Format::kCsv) text = FormatCsv(results, format);
+  }
+  if (!a.output.empty()) {
+    try {
+      if (!text.empty()) report::WriteFileAtomically(a.output, text);
+    } catch (const std::exception& e) {
+      std::cerr << "error: " << e.what() << "\n";
+      return 1;
+    }
+  } else {
+    std::cout << text;
+  }
+  return failures > 0 ? 1 : 0;
+}
+
+}  // namespace massprops::cli
