@@ -45,7 +45,7 @@ std::string Table(const std::string& file, const FillResult& r) {
           << "]  [" << FormatDouble(m[0], "%.4e") << " " << FormatDouble(m[1], "%.4e") << " "
           << FormatDouble(m[2], "%.4e") << "]\n";
     }
-    for (const std::string& n : l.notes)
+    for (const Advice& n : l.notes)
       out << std::string(width + 2, ' ') << "note: " << Worded(n, CliVocabulary()) << "\n";
   }
   for (const std::string& n : r.notes) out << "note: " << n << "\n";

@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
   Check("t_handle com y", r.mp.center_of_mass.y(), y, 1e-13);
   Check("t_handle Izz", r.mp.inertia_com(2, 2), izz, 1e-13);
   if (!r.findings.empty()) {
-    std::printf("FAIL unexpected finding: %s\n", r.findings[0].message.c_str());
+    std::printf("FAIL unexpected finding: %s\n", r.findings[0].message.marked().c_str());
     ++failures;
   }
 

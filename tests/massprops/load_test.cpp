@@ -297,13 +297,13 @@ TEST(LoadSolid, TypedFindingsAndErrorsWordedPerFrontEnd) {
   const SolidResult r = LoadSolid(open, allow);
   ASSERT_EQ(r.findings.size(), 1u);
   EXPECT_EQ(r.findings[0].kind, FindingKind::kOpenSurface);
-  EXPECT_THAT(r.findings[0].message, HasSubstr("computed anyway ({allow_open})"));
+  EXPECT_THAT(r.findings[0].message.marked(), HasSubstr("computed anyway ({allow_open})"));
   // A shell does not care that the surface is open: it says so, as a finding.
   LoadOptions shell;
   shell.model = ShellModel{1.0};
   const SolidResult s = LoadSolid(open, shell);
   ASSERT_EQ(s.findings.size(), 1u);
-  EXPECT_THAT(s.findings[0].message, HasSubstr("fine for a thin shell"));
+  EXPECT_THAT(s.findings[0].message.marked(), HasSubstr("fine for a thin shell"));
   EXPECT_TRUE(NearRel(s.mp.mass, 1.5, 1e-15));  // three right triangles of area 1/2
 }
 

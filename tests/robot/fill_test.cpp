@@ -101,7 +101,7 @@ const LinkFill& Find(const FillResult& r, const std::string& name) {
 
 void Expect(const FillResult& r, const std::string& name, const Body& want, double tol = 1e-12) {
   const LinkFill& l = Find(r, name);
-  ASSERT_EQ(l.status, LinkStatus::kFilled) << name << ": " << l.message;
+  ASSERT_EQ(l.status, LinkStatus::kFilled) << name << ": " << l.message.marked();
   EXPECT_NEAR(l.mp.mass, want.m, tol * want.m) << name;
   EXPECT_LT((l.mp.center_of_mass - want.c).norm(), tol * std::max(1e-2, want.c.norm())) << name;
   EXPECT_LT((l.mp.inertia_com - want.I).norm(), tol * want.I.norm()) << name << "\n"
@@ -224,10 +224,10 @@ TEST(Fill, FailedLinksAreLeftAsTheyWere) {
   EXPECT_FALSE(r.AllFilled());
   Expect(r, "ok", Sphere(1000, 0.1, Vector3::Zero()));
   EXPECT_EQ(Find(r, "missing").status, LinkStatus::kFailed);
-  EXPECT_THAT(Find(r, "missing").message, HasSubstr("nowhere.stl"));
-  EXPECT_THAT(Find(r, "open").message, HasSubstr("open"));
-  EXPECT_THAT(Find(r, "bad").message, HasSubstr("expected 3 numbers"));
-  EXPECT_THAT(Find(r, "pkg").message, HasSubstr("package 'nopkg' is not found"));
+  EXPECT_THAT(Find(r, "missing").message.marked(), HasSubstr("nowhere.stl"));
+  EXPECT_THAT(Find(r, "open").message.marked(), HasSubstr("open"));
+  EXPECT_THAT(Find(r, "bad").message.marked(), HasSubstr("expected 3 numbers"));
+  EXPECT_THAT(Find(r, "pkg").message.marked(), HasSubstr("package 'nopkg' is not found"));
   EXPECT_THAT(r.document, HasSubstr("<link name=\"missing\"><inertial><mass value=\"2\"/></inertial>"));
   // A package mapped by hand resolves.
   std::filesystem::create_directories(dir + "/pkgroot");

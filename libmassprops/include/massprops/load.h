@@ -125,7 +125,7 @@ enum class FindingKind {
 
 struct Finding {
   FindingKind kind;
-  std::string message;  ///< with option markers (wording.h)
+  Advice message;  ///< naming options as markers: Worded(message, vocabulary) for people
 };
 
 /// Where the unit of the coordinates came from.

@@ -63,11 +63,11 @@ enum class LinkStatus {
 struct LinkFill {
   std::string name;
   LinkStatus status = LinkStatus::kNoGeometry;
-  std::string message;  ///< why it failed (with option markers, wording.h); empty otherwise
-  MassProperties mp;    ///< SI, in the link frame
+  Advice message;     ///< why it failed (naming options as markers, wording.h); empty otherwise
+  MassProperties mp;  ///< SI, in the link frame
   PrincipalInertia principal;
-  int geometries = 0;              ///< how many were composed
-  std::vector<std::string> notes;  ///< the mesh pipeline's findings (option markers), choices made
+  int geometries = 0;         ///< how many were composed
+  std::vector<Advice> notes;  ///< the mesh pipeline's findings (option markers), choices made
 };
 
 struct FillResult {

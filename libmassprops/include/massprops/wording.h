@@ -22,4 +22,24 @@ const Vocabulary& ApiVocabulary();
 /// `text` with every marker replaced by `vocabulary`'s words; unknown braces are kept as they are.
 std::string Worded(std::string_view text, const Vocabulary& vocabulary);
 
+/// A message that may name options as markers (a finding, a link's note). It has no conversion to
+/// text: its only way out is Worded(vocabulary), so no front end can print a marker as it is.
+class Advice {
+ public:
+  Advice() = default;
+  explicit Advice(std::string marked) : marked_(std::move(marked)) {}
+  /// The text in a front end's words.
+  std::string Worded(const Vocabulary& vocabulary) const { return massprops::Worded(marked_, vocabulary); }
+  /// This advice after `prefix` (plain text, without markers): "part 'lid': " + advice.
+  Advice After(const std::string& prefix) const { return Advice(prefix + marked_); }
+  /// The text with its markers as they are: for tests and for composing advice, not for people.
+  const std::string& marked() const { return marked_; }
+  bool empty() const { return marked_.empty(); }
+
+ private:
+  std::string marked_;
+};
+
+inline std::string Worded(const Advice& advice, const Vocabulary& vocabulary) { return advice.Worded(vocabulary); }
+
 }  // namespace massprops

@@ -149,7 +149,8 @@ SolidResult SolveParts(SolidResult r, const LoadOptions& given, std::chrono::ste
     AddTopology(r.topology, part.topology);
     fixed = fixed || part.mass_fixed;
     if (paths.find(part.path_used) == std::string::npos) paths += (paths.empty() ? "" : "; ") + part.path_used;
-    for (const Finding& f : part.findings) r.findings.push_back({f.kind, "part '" + part.part + "': " + f.message});
+    for (const Finding& f : part.findings)
+      r.findings.push_back({f.kind, f.message.After("part '" + part.part + "': ")});
     if (part.repair) {
       if (!r.repair) r.repair = RepairReport{};
       RepairReport& sum = *r.repair;

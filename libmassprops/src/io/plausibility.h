@@ -22,7 +22,7 @@ inline std::string Fixed(double v, const char* fmt = "%.4g") { return FormatDoub
 
 /// A finding, added to the result.
 inline void Warn(SolidResult& r, FindingKind kind, std::string message) {
-  r.findings.push_back({kind, std::move(message)});
+  r.findings.push_back({kind, Advice(std::move(message))});
 }
 
 /// Adds kUnitSuspicion findings to `r` (whose size_m, unit, model and mass properties are set).

@@ -29,7 +29,7 @@ std::string FormatFillJson(const std::string& file, const std::string& output, c
     }
     if (l.status == LinkStatus::kFailed) j["message"] = Worded(l.message, words);
     Json notes = Json::array();
-    for (const std::string& n : l.notes) notes.push_back(Worded(n, words));
+    for (const Advice& n : l.notes) notes.push_back(Worded(n, words));
     j["notes"] = notes;
     links.push_back(j);
   }

@@ -90,7 +90,7 @@ class MeshCache {
 };
 
 // The geometry at unit density, in the link frame; findings go to `notes`.
-MassProperties UnitDensity(const Geometry& g, MeshCache& meshes, std::vector<std::string>& notes) {
+MassProperties UnitDensity(const Geometry& g, MeshCache& meshes, std::vector<Advice>& notes) {
   MassProperties mp;
   if (const auto* p = std::get_if<Primitive>(&g.shape)) {
     mp = ClosedForm(*p, 1.0);
@@ -100,7 +100,7 @@ MassProperties UnitDensity(const Geometry& g, MeshCache& meshes, std::vector<std
     for (const Finding& f : r.findings) {
       // The size the scale gives it is the one that matters: unit guesses about the raw file
       // do not apply.
-      if (f.kind != FindingKind::kUnitSuspicion) notes.push_back(g.where + ": " + f.message);
+      if (f.kind != FindingKind::kUnitSuspicion) notes.push_back(f.message.After(g.where + ": "));
     }
     mp = mesh.scale == Vector3::Ones() ? r.mp : Scaled(r.mp, mesh.scale);
   }
@@ -123,10 +123,10 @@ MassProperties WithMass(MassProperties mp, double mass) {
 LinkFill Compute(const Link& link, const FillOptions& options, MeshCache& meshes) {
   LinkFill out;
   out.name = link.name;
-  out.notes = link.notes;
+  for (const std::string& n : link.notes) out.notes.emplace_back(n);
   if (!link.error.empty()) {
     out.status = LinkStatus::kFailed;
-    out.message = link.error;
+    out.message = Advice(link.error);
     return out;
   }
   if (link.geometries.empty()) {
@@ -154,24 +154,24 @@ LinkFill Compute(const Link& link, const FillOptions& options, MeshCache& meshes
     } else if (options.keep_mass && link.stated_mass) {
       if (!(*link.stated_mass > 0)) throw std::runtime_error("its stated mass is not positive");
       out.mp = WithMass(out.mp, *link.stated_mass);
-      out.notes.push_back("mass kept: " + ExactDecimal(*link.stated_mass) + " kg");
+      out.notes.emplace_back("mass kept: " + ExactDecimal(*link.stated_mass) + " kg");
     } else if (options.keep_mass) {
-      out.notes.push_back("no mass to keep: computed at the density");
+      out.notes.emplace_back("no mass to keep: computed at the density");
     }
   } catch (const LoadError& e) {
     out.status = LinkStatus::kFailed;
-    out.message = e.text();
+    out.message = Advice(e.text());
     return out;
   } catch (const std::exception& e) {
     out.status = LinkStatus::kFailed;
-    out.message = e.what();
+    out.message = Advice(e.what());
     return out;
   }
   if (!(std::isfinite(out.mp.mass) && out.mp.mass > 0 && out.mp.center_of_mass.allFinite() &&
         out.mp.inertia_com.allFinite())) {
     out.status = LinkStatus::kFailed;
-    out.message =
-        "its mass properties are not finite (mass " + ExactDecimal(out.mp.mass) + " kg): a scale or size out of range";
+    out.message = Advice("its mass properties are not finite (mass " + ExactDecimal(out.mp.mass) +
+                         " kg): a scale or size out of range");
     return out;
   }
   out.principal = ComputePrincipalInertia(out.mp.inertia_com);
