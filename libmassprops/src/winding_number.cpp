@@ -24,6 +24,7 @@
 #include "massprops/mesh_topology.h"
 
 #include "certain_predicates.h"
+#include "massprops/box_tree.h"
 
 namespace massprops::implicit {
 namespace {
@@ -31,14 +32,11 @@ namespace {
 constexpr int kLeafSize = 8;
 constexpr double kFourPi = 4.0 * M_PI;
 
-struct Node {
-  AlignedBox3 box;
+// What the far field of a node's triangles is: their dipole (Barill et al.), about `center`.
+struct Dipole {
   Vector3 center = Vector3::Zero();       // area-weighted centroid of its triangles
   Vector3 vector_area = Vector3::Zero();  // Σ ½ (b−a)×(c−a)
   double radius = 0;                      // of the ball about center that holds its triangles
-  int first = 0, count = 0;               // its triangles: order[first, first+count)
-  int own = 0;                            // the first `own` of them are held here, not below
-  int left = -1, right = -1;
 };
 
 // The signed number of faces a ray from x crosses, along the coordinate axis across which the
@@ -64,11 +62,19 @@ class CrossingCounter {
     axes_ = {(along + 1) % 3, (along + 2) % 3, along};  // (u, v, w): across the ray, and along it
     P_.resize(V.rows(), 3);
     for (Eigen::Index i = 0; i < V.rows(); ++i) P_.row(i) << V(i, axes_[0]), V(i, axes_[1]), V(i, axes_[2]);
-    const auto nf = static_cast<int>(F.rows());
-    order_.resize(static_cast<std::size_t>(nf));
-    std::iota(order_.begin(), order_.end(), 0);
-    nodes_.reserve(static_cast<std::size_t>(2 * nf / kLeafSize + 8));
-    Build(0, nf);
+    // Faces sorted by the sum of their corners across the ray (their centroid, three times).
+    tree_ = BuildBoxTree<2>(
+        static_cast<int>(F.rows()), kLeafSize,
+        [this](int f) {
+          Eigen::AlignedBox2d b;
+          for (int k = 0; k < 3; ++k) b.extend(Eigen::Vector2d(P_(F_(f, k), 0), P_(F_(f, k), 1)));
+          return b;
+        },
+        [this](int f) {
+          Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+          for (int k = 0; k < 3; ++k) sum += Eigen::Vector2d(P_(F_(f, k), 0), P_(F_(f, k), 1));
+          return sum;
+        });
   }
 
   // The crossing count, or false when a test along the way is not certified.
@@ -80,15 +86,15 @@ class CrossingCounter {
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
-      const Box2& n = nodes_[static_cast<std::size_t>(stack[--top])];
-      if (q[0] < n.lo[0] || q[0] > n.hi[0] || q[1] < n.lo[1] || q[1] > n.hi[1]) continue;
-      if (n.left >= 0) {
+      const BoxTree<2>::Node& n = tree_.nodes[static_cast<std::size_t>(stack[--top])];
+      if (q[0] < n.box.min()[0] || q[0] > n.box.max()[0] || q[1] < n.box.min()[1] || q[1] > n.box.max()[1]) continue;
+      if (!n.leaf()) {
         if (top + 2 > 128) return false;
         stack[top++] = n.left;
         stack[top++] = n.right;
       }
       for (int i = n.first; i < n.first + n.own; ++i) {
-        const int f = order_[static_cast<std::size_t>(i)];
+        const int f = tree_.order[static_cast<std::size_t>(i)];
         const double* a = &P_(F_(f, 0), 0);
         const double* b = &P_(F_(f, 1), 0);
         const double* c = &P_(F_(f, 2), 0);
@@ -107,56 +113,10 @@ class CrossingCounter {
   }
 
  private:
-  struct Box2 {
-    double lo[2], hi[2];
-    int first = 0, own = 0;  // a leaf's faces: order[first, first+own)
-    int left = -1, right = -1;
-  };
-
-  int Build(int first, int count) {
-    const int index = static_cast<int>(nodes_.size());
-    nodes_.emplace_back();
-    Box2 node;
-    node.first = first;
-    node.own = count;
-    node.lo[0] = node.lo[1] = std::numeric_limits<double>::infinity();
-    node.hi[0] = node.hi[1] = -std::numeric_limits<double>::infinity();
-    double clo[2] = {node.lo[0], node.lo[1]}, chi[2] = {node.hi[0], node.hi[1]};
-    for (int i = first; i < first + count; ++i) {
-      const int f = order_[static_cast<std::size_t>(i)];
-      for (int d = 0; d < 2; ++d) {
-        double sum = 0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
-        for (int k = 0; k < 3; ++k) {
-          const double p = P_(F_(f, k), d);
-          lo = std::min(lo, p);
-          hi = std::max(hi, p);
-          sum += p;
-        }
-        node.lo[d] = std::min(node.lo[d], lo);
-        node.hi[d] = std::max(node.hi[d], hi);
-        clo[d] = std::min(clo[d], sum);
-        chi[d] = std::max(chi[d], sum);
-      }
-    }
-    if (count > kLeafSize) {
-      const int axis = chi[1] - clo[1] > chi[0] - clo[0] ? 1 : 0;
-      const int mid = first + count / 2;
-      auto key = [&](int f) { return P_(F_(f, 0), axis) + P_(F_(f, 1), axis) + P_(F_(f, 2), axis); };
-      std::nth_element(order_.begin() + first, order_.begin() + mid, order_.begin() + first + count,
-                       [&](int p, int q) { return key(p) < key(q) || (key(p) == key(q) && p < q); });
-      node.own = 0;
-      node.left = Build(first, mid - first);
-      node.right = Build(mid, first + count - mid);
-    }
-    nodes_[static_cast<std::size_t>(index)] = node;
-    return index;
-  }
-
   Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> P_;
   const FaceMatrix& F_;
   std::array<int, 3> axes_{};
-  std::vector<int> order_;
-  std::vector<Box2> nodes_;
+  BoxTree<2> tree_;
 };
 
 class WindingSolid final : public ImplicitSolid {
@@ -208,15 +168,18 @@ class WindingSolid final : public ImplicitSolid {
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
-      const Node& n = nodes_[static_cast<std::size_t>(stack[--top])];
-      const Vector3 d = n.center - x;
+      const int k = stack[--top];
+      const BoxTree<3>::Node& n = tree_.nodes[static_cast<std::size_t>(k)];
+      const Dipole& dipole = dipoles_[static_cast<std::size_t>(k)];
+      const Vector3 d = dipole.center - x;
       const double dist = d.norm();
-      if (dist > beta * n.radius) {
-        omega += n.vector_area.dot(d) / (dist * dist * dist);
-      } else if (n.left < 0) {
-        for (int i = n.first; i < n.first + n.count; ++i) omega += SolidAngle(order_[static_cast<std::size_t>(i)], x);
+      if (dist > beta * dipole.radius) {
+        omega += dipole.vector_area.dot(d) / (dist * dist * dist);
       } else {
-        for (int i = n.first; i < n.first + n.own; ++i) omega += SolidAngle(order_[static_cast<std::size_t>(i)], x);
+        // A leaf's triangles, or those too large to go below.
+        for (int i = n.first; i < n.first + n.own; ++i)
+          omega += SolidAngle(tree_.order[static_cast<std::size_t>(i)], x);
+        if (n.leaf()) continue;
         if (top + 2 > 128) throw std::logic_error("winding number: hierarchy too deep");
         stack[top++] = n.left;
         stack[top++] = n.right;
@@ -238,85 +201,51 @@ class WindingSolid final : public ImplicitSolid {
 
   void BuildHierarchy() {
     const auto nf = static_cast<int>(F_.rows());
-    order_.resize(static_cast<std::size_t>(nf));
-    std::iota(order_.begin(), order_.end(), 0);
-    centroids_.resize(static_cast<std::size_t>(nf));
+    std::vector<Vector3> centroids(static_cast<std::size_t>(nf));
     for (int f = 0; f < nf; ++f)
-      centroids_[static_cast<std::size_t>(f)] = (Corner(f, 0) + Corner(f, 1) + Corner(f, 2)) / 3.0;
-    nodes_.reserve(static_cast<std::size_t>(2 * nf / kLeafSize + 8));
-    Build(0, nf);
-  }
-
-  int Build(int first, int count) {
-    const int index = static_cast<int>(nodes_.size());
-    nodes_.emplace_back();
-    Node node;
-    node.first = first;
-    node.count = count;
-    double area = 0;
-    Vector3 weighted = Vector3::Zero();
-    AlignedBox3 cbox;
-    for (int i = first; i < first + count; ++i) {
-      const int f = order_[static_cast<std::size_t>(i)];
-      const Vector3 a = Corner(f, 0), b = Corner(f, 1), c = Corner(f, 2);
-      const Vector3 va = 0.5 * (b - a).cross(c - a);
-      node.vector_area += va;
-      const double A = va.norm();
-      area += A;
-      weighted += A * centroids_[static_cast<std::size_t>(f)];
-      node.box.extend(a);
-      node.box.extend(b);
-      node.box.extend(c);
-      cbox.extend(centroids_[static_cast<std::size_t>(f)]);
-    }
-    node.center = area > 0 ? Vector3(weighted / area) : node.box.center();
-    for (int k = 0; k < 8; ++k) {
-      node.radius =
-          std::max(node.radius, (node.box.corner(static_cast<AlignedBox3::CornerType>(k)) - node.center).norm());
-    }
-    if (count > kLeafSize) {
-      // Triangles larger than the spread of the node's centroids stay here, evaluated exactly
-      // whenever the node is near: pushed down, each would widen every node on its way to a leaf,
-      // and the triangles there would all be evaluated exactly too (a balanced split of a polygon of
-      // 10^6 corners has such triangles at every scale; sampling inside took 0.5 ms per point).
-      const double spread = cbox.sizes().maxCoeff();
-      const auto large = [&](int f) {
-        AlignedBox3 b;
-        for (int k = 0; k < 3; ++k) b.extend(Corner(f, k));
-        return b.sizes().maxCoeff() > spread;
-      };
-      node.own = static_cast<int>(std::stable_partition(order_.begin() + first, order_.begin() + first + count, large) -
-                                  (order_.begin() + first));
-      const int below = count - node.own, start = first + node.own;
-      if (below > kLeafSize) {
-        AlignedBox3 rest;
-        for (int i = start; i < first + count; ++i)
-          rest.extend(centroids_[static_cast<std::size_t>(order_[static_cast<std::size_t>(i)])]);
-        int axis;
-        rest.sizes().maxCoeff(&axis);
-        const int mid = start + below / 2;
-        std::nth_element(order_.begin() + start, order_.begin() + mid, order_.begin() + first + count,
-                         [&](int p, int q) {
-                           const double cp = centroids_[static_cast<std::size_t>(p)][axis],
-                                        cq = centroids_[static_cast<std::size_t>(q)][axis];
-                           return cp < cq || (cp == cq && p < q);
-                         });
-        node.left = Build(start, mid - start);
-        node.right = Build(mid, first + count - mid);
-      } else {
-        node.own = 0;  // a leaf after all: all its triangles evaluated exactly when near
+      centroids[static_cast<std::size_t>(f)] = (Corner(f, 0) + Corner(f, 1) + Corner(f, 2)) / 3.0;
+    const auto box_of = [this](int f) {
+      AlignedBox3 b;
+      for (int k = 0; k < 3; ++k) b.extend(Corner(f, k));
+      return b;
+    };
+    const auto centroid_of = [&centroids](int f) -> const Vector3& { return centroids[static_cast<std::size_t>(f)]; };
+    // Each node's dipole, summed over its triangles in the order they have when it is made.
+    const auto dipole = [&](const BoxTree<3>& tree, int index, int first, int count) {
+      if (dipoles_.size() <= static_cast<std::size_t>(index)) dipoles_.resize(static_cast<std::size_t>(index) + 1);
+      Dipole& d = dipoles_[static_cast<std::size_t>(index)];
+      double area = 0;
+      Vector3 weighted = Vector3::Zero();
+      for (int i = first; i < first + count; ++i) {
+        const int f = tree.order[static_cast<std::size_t>(i)];
+        const Vector3 a = Corner(f, 0), b = Corner(f, 1), c = Corner(f, 2);
+        const Vector3 va = 0.5 * (b - a).cross(c - a);
+        d.vector_area += va;
+        const double A = va.norm();
+        area += A;
+        weighted += A * centroids[static_cast<std::size_t>(f)];
       }
-    }
-    nodes_[static_cast<std::size_t>(index)] = node;
-    return index;
+      const AlignedBox3& box = tree.nodes[static_cast<std::size_t>(index)].box;
+      d.center = area > 0 ? Vector3(weighted / area) : box.center();
+      for (int k = 0; k < 8; ++k) {
+        d.radius = std::max(d.radius, (box.corner(static_cast<AlignedBox3::CornerType>(k)) - d.center).norm());
+      }
+    };
+    // Triangles larger than the spread of the node's centroids stay at the node, evaluated exactly
+    // whenever the node is near: pushed down, each would widen every node on its way to a leaf, and
+    // the triangles there would all be evaluated exactly too (a balanced split of a polygon of 10^6
+    // corners has such triangles at every scale; sampling inside took 0.5 ms per point).
+    const auto large = [&box_of](int f, const AlignedBox3& centroid_box) {
+      return box_of(f).sizes().maxCoeff() > centroid_box.sizes().maxCoeff();
+    };
+    tree_ = BuildBoxTree<3>(nf, kLeafSize, box_of, centroid_of, dipole, large);
   }
 
   VertexMatrix V_;
   FaceMatrix F_;
   Scalar beta_;
-  std::vector<int> order_;
-  std::vector<Vector3> centroids_;
-  std::vector<Node> nodes_;
+  BoxTree<3> tree_;
+  std::vector<Dipole> dipoles_;  // per node of tree_
   AlignedBox3 bounds_;
   std::unique_ptr<CrossingCounter> crossing_;  // closed, consistent meshes
   mutable std::once_flag built_;               // the hierarchy: at once for other meshes

@@ -1,5 +1,7 @@
 #include "mesh_field.h"
 
+#include "massprops/box_tree.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -47,12 +49,16 @@ Vector3 ClosestOnTriangle(const Vector3& p, const Vector3& a, const Vector3& b, 
 class TriangleTree {
  public:
   TriangleTree(const std::vector<Vector3>& v, const std::vector<std::array<int, 3>>& t) : v_(v), t_(t) {
-    order_.resize(t.size());
-    std::iota(order_.begin(), order_.end(), 0);
-    centroid_.resize(t.size());
-    for (std::size_t i = 0; i < t.size(); ++i) centroid_[i] = (v[t[i][0]] + v[t[i][1]] + v[t[i][2]]) / 3.0;
-    nodes_.reserve(2 * t.size() / kLeaf + 8);
-    Build(0, static_cast<int>(t.size()));
+    std::vector<Vector3> centroid(t.size());
+    for (std::size_t i = 0; i < t.size(); ++i) centroid[i] = (v[t[i][0]] + v[t[i][1]] + v[t[i][2]]) / 3.0;
+    tree_ = massprops::BuildBoxTree<3>(
+        static_cast<int>(t.size()), kLeaf,
+        [&](int f) {
+          Eigen::AlignedBox<double, 3> b;
+          for (int k = 0; k < 3; ++k) b.extend(v[t[static_cast<std::size_t>(f)][k]]);
+          return b;
+        },
+        [&](int f) -> const Vector3& { return centroid[static_cast<std::size_t>(f)]; });
   }
 
   double Distance(const Vector3& p) const {
@@ -61,17 +67,17 @@ class TriangleTree {
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
-      const Node& n = nodes_[static_cast<std::size_t>(stack[--top])];
+      const Node& n = tree_.nodes[static_cast<std::size_t>(stack[--top])];
       if (n.box.squaredExteriorDistance(p) >= best2) continue;
-      if (n.left < 0) {
+      if (n.leaf()) {
         for (int i = n.first; i < n.first + n.count; ++i) {
-          const auto& tri = t_[static_cast<std::size_t>(order_[static_cast<std::size_t>(i)])];
+          const auto& tri = t_[static_cast<std::size_t>(tree_.order[static_cast<std::size_t>(i)])];
           best2 = std::min(best2, (ClosestOnTriangle(p, v_[tri[0]], v_[tri[1]], v_[tri[2]]) - p).squaredNorm());
         }
         continue;
       }
-      const Node& l = nodes_[static_cast<std::size_t>(n.left)];
-      const Node& r = nodes_[static_cast<std::size_t>(n.right)];
+      const Node& l = tree_.nodes[static_cast<std::size_t>(n.left)];
+      const Node& r = tree_.nodes[static_cast<std::size_t>(n.right)];
       const bool left_first = l.box.squaredExteriorDistance(p) < r.box.squaredExteriorDistance(p);
       if (top + 2 > 96) throw std::logic_error("mesh field: hierarchy too deep");
       stack[top++] = left_first ? n.right : n.left;  // the nearer child is visited first
@@ -87,11 +93,11 @@ class TriangleTree {
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
-      const Node& n = nodes_[static_cast<std::size_t>(stack[--top])];
+      const Node& n = tree_.nodes[static_cast<std::size_t>(stack[--top])];
       if (!HitsBox(n.box, p, d, best)) continue;
-      if (n.left < 0) {
+      if (n.leaf()) {
         for (int i = n.first; i < n.first + n.count; ++i) {
-          const int f = order_[static_cast<std::size_t>(i)];
+          const int f = tree_.order[static_cast<std::size_t>(i)];
           if (f == self) continue;
           const auto& tri = t_[static_cast<std::size_t>(f)];
           const Vector3 e1 = v_[tri[1]] - v_[tri[0]], e2 = v_[tri[2]] - v_[tri[0]];
@@ -117,10 +123,7 @@ class TriangleTree {
   }
 
  private:
-  struct Node {
-    Eigen::AlignedBox<double, 3> box;
-    int first = 0, count = 0, left = -1, right = -1;
-  };
+  using Node = massprops::BoxTree<3>::Node;
 
   static bool HitsBox(const Eigen::AlignedBox<double, 3>& box, const Vector3& p, const Vector3& d, double limit) {
     double lo = 0, hi = limit;
@@ -138,39 +141,9 @@ class TriangleTree {
     return true;
   }
 
-  int Build(int first, int count) {
-    const int index = static_cast<int>(nodes_.size());
-    nodes_.emplace_back();
-    Node node;
-    node.first = first;
-    node.count = count;
-    Eigen::AlignedBox<double, 3> cbox;
-    for (int i = first; i < first + count; ++i) {
-      const auto f = static_cast<std::size_t>(order_[static_cast<std::size_t>(i)]);
-      for (int k = 0; k < 3; ++k) node.box.extend(v_[t_[f][k]]);
-      cbox.extend(centroid_[f]);
-    }
-    if (count > kLeaf) {
-      int axis;
-      cbox.sizes().maxCoeff(&axis);
-      const int mid = first + count / 2;
-      std::nth_element(order_.begin() + first, order_.begin() + mid, order_.begin() + first + count, [&](int a, int b) {
-        const double ca = centroid_[static_cast<std::size_t>(a)][axis],
-                     cb = centroid_[static_cast<std::size_t>(b)][axis];
-        return ca < cb || (ca == cb && a < b);
-      });
-      node.left = Build(first, mid - first);
-      node.right = Build(mid, first + count - mid);
-    }
-    nodes_[static_cast<std::size_t>(index)] = node;
-    return index;
-  }
-
   const std::vector<Vector3>& v_;
   const std::vector<std::array<int, 3>>& t_;
-  std::vector<int> order_;
-  std::vector<Vector3> centroid_;
-  std::vector<Node> nodes_;
+  massprops::BoxTree<3> tree_;
 };
 
 // The mesh as massprops' triangle mesh, checked: enough triangles, a valid cell, finite vertices,
