@@ -154,11 +154,10 @@ int ComputeMain(int argc, char** argv) {
       return LoadSolid(file, o);
     });
   };
-  // Several files read by our own readers are computed side by side, one per thread (a dataset's
-  // small files gain the cores a single file's stages would use); assimp's formats run in a child
-  // process, forked from one thread at a time. No progress line then: the lines would interleave.
-  const bool side_by_side = a.files.size() > 1 && options.reader == Reader::kAuto &&
-                            std::all_of(a.files.begin(), a.files.end(), HasOwnReader);
+  // Several files are computed side by side, one per thread, when the library says they may be (a
+  // dataset's small files gain the cores a single file's stages would use). No progress line then:
+  // the lines would interleave.
+  const bool side_by_side = a.files.size() > 1 && LoadsSideBySide(a.files, options);
   if (side_by_side) {
     std::vector<Outcome> outcomes(a.files.size());
     std::atomic<std::size_t> next{0};

@@ -202,6 +202,11 @@ std::string WordedError(const std::exception& error, const Vocabulary& vocabular
 ///         std::invalid_argument for an invalid option value.
 SolidResult LoadSolid(const std::string& path, const LoadOptions& options = {});
 
+/// Whether LoadSolid may run on all of `paths` at once, one file per thread: every file is read by
+/// this library's own readers in this process (assimp's formats are read in a child process, forked
+/// from one thread at a time). Front ends that load several files ask this rather than knowing it.
+bool LoadsSideBySide(const std::vector<std::string>& paths, const LoadOptions& options);
+
 /// A combination of options that cannot be computed — the one home of these rules: LoadSolid
 /// refuses them, and the command line and the Python module check them (FindOptionConflict)
 /// before any file is read, each wording them in its own terms (massprops/report/words.h).

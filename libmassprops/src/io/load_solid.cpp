@@ -415,6 +415,10 @@ SolidResult SolveMesh(LoadedMesh mesh, const std::string& name, const LoadOption
   return given.parts ? internal::SolveParts(std::move(r), given, t0) : internal::Solve(std::move(r), given, t0);
 }
 
+bool LoadsSideBySide(const std::vector<std::string>& paths, const LoadOptions& options) {
+  return options.reader == Reader::kAuto && std::all_of(paths.begin(), paths.end(), HasOwnReader);
+}
+
 std::optional<OptionConflict> FindOptionConflict(const LoadOptions& o) {
   const bool solid = std::holds_alternative<SolidModel>(o.model), wall = std::holds_alternative<WallModel>(o.model);
   if (const auto* shell = std::get_if<ShellModel>(&o.model);
