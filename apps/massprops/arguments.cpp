@@ -4,6 +4,7 @@
 #include <map>
 
 #include "cli.h"
+#include "massprops/report/atomic_file.h"
 #include "massprops/report/words.h"
 #include "massprops/units.h"
 
@@ -180,6 +181,13 @@ std::optional<std::string> CheckArguments(const Arguments& a, const CLI::App& ap
           "--path", "--reader", "--winding-number", "--hull", "--exact"}) {
       if (app.count(flag) > 0)
         return std::string(flag) + " applies to mesh files; --implicit shapes take no such option";
+    }
+  }
+  if (!a.output.empty()) {
+    try {
+      report::CheckOutputPath(a.output, a.files);
+    } catch (const std::exception& e) {
+      return std::string("-o ") + e.what();
     }
   }
   return std::nullopt;

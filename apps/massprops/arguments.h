@@ -69,7 +69,8 @@ MonteCarloOptions Sampling(const Arguments& a);
 /// The typed options (without part masses, which need the density map read).
 LoadOptions ToLoadOptions(const Arguments& a, const CLI::App& app);
 
-/// The first argument error (a message for stderr, exit 2), or none.
+/// The first argument error (a message for stderr, exit 2), or none; -o is checked too (a
+/// regular file, not one of the inputs).
 std::optional<std::string> CheckArguments(const Arguments& a, const CLI::App& app);
 
 }  // namespace massprops::cli

@@ -39,13 +39,6 @@ int BatchMain(int argc, char** argv) {
     return app::kBadArguments;
   };
   if (const auto error = CheckArguments(a, app)) return bad(*error);
-  if (!a.output.empty()) {
-    try {
-      report::CheckOutputPath(a.output, a.files);
-    } catch (const std::exception& e) {
-      return bad(std::string("-o ") + e.what());
-    }
-  }
   if (a.files.size() != 1) return bad("batch takes one folder or manifest (a text file with one path a line)");
   if (a.output.empty()) return bad("batch needs -o FILE.jsonl (records are appended to it, one line each)");
   if (!a.implicit.empty()) return bad("batch computes mesh files; --implicit has no place in it");

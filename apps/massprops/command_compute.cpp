@@ -43,13 +43,6 @@ int ComputeMain(int argc, char** argv) {
     return app::kBadArguments;
   };
   if (const auto error = CheckArguments(a, app)) return bad(*error);
-  if (!a.output.empty()) {
-    try {
-      report::CheckOutputPath(a.output, a.files);
-    } catch (const std::exception& e) {
-      return bad(std::string("-o ") + e.what());
-    }
-  }
 
   report::FormatOptions format;
   format.format = FromName<report::Format>({{"table", report::Format::kTable},
