@@ -3,7 +3,8 @@
 The module, the libraries it loads, the assimp plugin and the ``massprops`` command (for
 ``python -m massprops``) are installed into the package, found relative to one another:
 massprops/_core*.so, massprops/_libs/, massprops/_libs/massprops/, massprops/_bin/. The CMake build
-is kept in build/pip (ccache makes a rebuild quick).
+is kept in build-pip/, beside build/ (at the same depth, so that ccache, with paths relative to the
+checkout, reuses build/'s compilations).
 """
 
 import os
@@ -22,7 +23,7 @@ class CMakeBuild(build_ext):
     """Runs CMake instead of compiling the (placeholder) extension itself."""
 
     def build_extension(self, ext):
-        build = ROOT / "build" / "pip"
+        build = ROOT / "build-pip"  # beside build/, at the same depth: ccache finds the same compilations
         stage = build / "stage"
         env = dict(os.environ)
         env.setdefault("CCACHE_BASEDIR", str(ROOT))
@@ -49,5 +50,5 @@ class CMakeBuild(build_ext):
 setup(
     ext_modules=[Extension("massprops._core", sources=[])],
     cmdclass={"build_ext": CMakeBuild},
-    options={"build": {"build_base": str(Path("build") / "pip-setuptools")}},
+    options={"build": {"build_base": str(Path("build-pip") / "setuptools")}},
 )

@@ -2,7 +2,7 @@
 # `pip install --no-build-isolation --no-index .` in a fresh venv made by Debian's interpreter
 # (with its site packages: numpy, setuptools, wheel, mypy), then the installed module: numbers
 # against the closed form, `python -m massprops` against the build's command, stubtest, pytest's
-# packaging tests. A third build (CMake under build/pip; ccache keeps reruns quick).
+# packaging tests. A third build (CMake under build-pip/, mostly ccache hits of build/).
 #   pip_install_test.sh [BUILD_DIR]   (the build whose massprops the module is compared with)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
