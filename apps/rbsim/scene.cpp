@@ -69,40 +69,27 @@ std::vector<std::string> UnitNames() {
 
 massprops::LengthUnit ReadUnit(Fields& f) { return massprops::ParseLengthUnit(f.String("unit", "m", UnitNames())); }
 
-// A closed-form solid: {"type": NAME, sizes...}, the names and sizes of massprops::Primitive.
+// A closed-form solid: {"type": NAME, sizes...}, the names and sizes of massprops::Primitive as
+// scenes spell them (massprops::SizeKeys).
 massprops::Primitive ReadPrimitive(Fields& o) {
-  namespace pr = massprops::primitive;
   const std::vector<std::string> names(std::begin(massprops::kPrimitiveNames), std::end(massprops::kPrimitiveNames));
   const std::string t = o.String("type", "", names);
   if (t.empty()) o.Fail("type", "is required");
-  massprops::Primitive p;
-  if (t == "box") {
-    if (!o.Has("size")) o.Fail("size", "is required: edge lengths [x, y, z]");
-    p = pr::Box{o.Vec3("size", Vector3::Zero(), "positive")};
-  } else if (t == "ellipsoid") {
-    if (!o.Has("semi_axes")) o.Fail("semi_axes", "is required: [a, b, c]");
-    p = pr::Ellipsoid{o.Vec3("semi_axes", Vector3::Zero(), "positive")};
-  } else if (t == "torus") {
-    const double major = o.RequiredNumber("major_radius", "positive");
-    const double minor = o.RequiredNumber("minor_radius", "positive");
-    if (!(minor < major)) {
-      o.Fail("minor_radius", "must be smaller than major_radius (a self-intersecting torus is not a solid)");
+  std::vector<double> sizes;
+  for (const massprops::SizeKey& k : massprops::SizeKeys(t, massprops::SizeSyntax::kScene)) {
+    if (k.components == 3) {
+      if (!o.Has(k.key)) o.Fail(k.key, std::string("is required: ") + k.what);
+      const Vector3 v = o.Vec3(k.key, Vector3::Zero(), "positive");
+      sizes.insert(sizes.end(), {v.x(), v.y(), v.z()});
+    } else {
+      sizes.push_back(o.RequiredNumber(k.key, "positive"));
     }
-    p = pr::Torus{major, minor};
-  } else if (t == "sphere") {
-    p = pr::Sphere{o.RequiredNumber("radius", "positive")};
-  } else if (t == "cylinder") {
-    const double r = o.RequiredNumber("radius", "positive");
-    p = pr::Cylinder{r, o.RequiredNumber("height", "positive")};
-  } else if (t == "cone") {
-    const double r = o.RequiredNumber("radius", "positive");
-    p = pr::Cone{r, o.RequiredNumber("height", "positive")};
-  } else {  // capsule
-    const double r = o.RequiredNumber("radius", "positive");
-    p = pr::Capsule{r, o.RequiredNumber("length", "positive")};
+  }
+  if (t == "torus" && !(sizes[1] < sizes[0])) {
+    o.Fail("minor_radius", "must be smaller than major_radius (a self-intersecting torus is not a solid)");
   }
   o.Done();
-  return p;
+  return massprops::MakePrimitive(t, sizes);
 }
 
 ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "massprops/solids.h"
 #include "massprops/text.h"
@@ -28,6 +30,95 @@ std::string G(double v) { return FormatDouble(v, "%.6g"); }
 }  // namespace
 
 const char* PrimitiveName(const Primitive& p) { return kPrimitiveNames[p.index()]; }
+
+namespace {
+
+struct SizeRow {
+  const char* name;
+  std::vector<SizeKey> shape_syntax, scene, robot;
+};
+
+const std::vector<SizeRow>& SizeTable() {
+  static const std::vector<SizeRow> rows = {
+      {"box",
+       {{"x", 1, "edge length along x"}, {"y", 1, "edge length along y"}, {"z", 1, "edge length along z"}},
+       {{"size", 3, "edge lengths [x, y, z]"}},
+       {{"size", 3, "edge lengths"}}},
+      {"sphere", {{"r", 1, "radius"}}, {{"radius", 1, "radius"}}, {{"radius", 1, "radius"}}},
+      {"ellipsoid",
+       {{"a", 1, "semi-axis along x"}, {"b", 1, "semi-axis along y"}, {"c", 1, "semi-axis along z"}},
+       {{"semi_axes", 3, "[a, b, c]"}},
+       {{"radii", 3, "semi-axes"}}},
+      {"cylinder",
+       {{"r", 1, "radius"}, {"h", 1, "height"}},
+       {{"radius", 1, "radius"}, {"height", 1, "height"}},
+       {{"radius", 1, "radius"}, {"length", 1, "height"}}},
+      {"cone", {{"r", 1, "radius"}, {"h", 1, "height"}}, {{"radius", 1, "radius"}, {"height", 1, "height"}}, {}},
+      {"torus",
+       {{"R", 1, "major radius"}, {"r", 1, "minor radius"}},
+       {{"major_radius", 1, "major radius"}, {"minor_radius", 1, "minor radius"}},
+       {}},
+      {"capsule",
+       {{"r", 1, "radius"}, {"h", 1, "length of the cylinder part"}},
+       {{"radius", 1, "radius"}, {"length", 1, "length of the cylinder part"}},
+       {{"radius", 1, "radius"}, {"length", 1, "length of the cylinder part"}}},
+  };
+  return rows;
+}
+
+}  // namespace
+
+const std::vector<SizeKey>& SizeKeys(std::string_view name, SizeSyntax syntax) {
+  static const std::vector<SizeKey> none;
+  for (const SizeRow& row : SizeTable()) {
+    if (name != row.name) continue;
+    switch (syntax) {
+      case SizeSyntax::kShapeSyntax: return row.shape_syntax;
+      case SizeSyntax::kScene: return row.scene;
+      case SizeSyntax::kRobot: return row.robot;
+    }
+  }
+  return none;
+}
+
+Primitive MakePrimitive(std::string_view name, const std::vector<double>& s) {
+  namespace pr = primitive;
+  const auto need = [&](std::size_t n) {
+    if (s.size() != n) {
+      throw std::invalid_argument(std::string(name) + ": " + std::to_string(n) + " sizes expected, got " +
+                                  std::to_string(s.size()));
+    }
+  };
+  if (name == "box") {
+    need(3);
+    return pr::Box{Vector3(s[0], s[1], s[2])};
+  }
+  if (name == "sphere") {
+    need(1);
+    return pr::Sphere{s[0]};
+  }
+  if (name == "ellipsoid") {
+    need(3);
+    return pr::Ellipsoid{Vector3(s[0], s[1], s[2])};
+  }
+  if (name == "cylinder") {
+    need(2);
+    return pr::Cylinder{s[0], s[1]};
+  }
+  if (name == "cone") {
+    need(2);
+    return pr::Cone{s[0], s[1]};
+  }
+  if (name == "torus") {
+    need(2);
+    return pr::Torus{s[0], s[1]};
+  }
+  if (name == "capsule") {
+    need(2);
+    return pr::Capsule{s[0], s[1]};
+  }
+  throw std::invalid_argument("'" + std::string(name) + "' is not a primitive");
+}
 
 void Validate(const Primitive& p) {
   namespace pr = primitive;

@@ -157,28 +157,11 @@ class Parser {
     };
     ImplicitPtr out;
     try {
-      namespace pr = primitive;
-      if (name == "sphere") {
+      if (const auto& keys = SizeKeys(name, SizeSyntax::kShapeSyntax); !keys.empty()) {
         shapes_exactly(0);
-        out = ToImplicit(pr::Sphere{num("r")});
-      } else if (name == "ellipsoid") {
-        shapes_exactly(0);
-        const Scalar a = num("a"), b = num("b"), c = num("c");
-        out = ToImplicit(pr::Ellipsoid{Vector3(a, b, c)});
-      } else if (name == "box") {
-        shapes_exactly(0);
-        const Scalar x = num("x"), y = num("y"), z = num("z");
-        out = ToImplicit(pr::Box{Vector3(x, y, z)});
-      } else if (name == "cylinder" || name == "cone" || name == "capsule") {
-        shapes_exactly(0);
-        const Scalar r = num("r"), h = num("h");
-        out = name == "cylinder" ? ToImplicit(pr::Cylinder{r, h})
-              : name == "cone"   ? ToImplicit(pr::Cone{r, h})
-                                 : ToImplicit(pr::Capsule{r, h});
-      } else if (name == "torus") {
-        shapes_exactly(0);
-        const Scalar R = num("R"), r = num("r");
-        out = ToImplicit(pr::Torus{R, r});
+        std::vector<Scalar> sizes;  // the primitive's sizes by their names here (primitive.h)
+        for (const SizeKey& k : keys) sizes.push_back(num(k.key));
+        out = ToImplicit(MakePrimitive(name, sizes));
       } else if (name == "grid") {
         shapes_exactly(0);
         auto it = named.find("file");

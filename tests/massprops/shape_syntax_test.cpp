@@ -9,6 +9,7 @@
 #include <string>
 
 #include "massprops/implicit.h"
+#include "massprops/primitive.h"
 
 namespace massprops {
 namespace {
@@ -69,6 +70,34 @@ TEST(ShapeSyntax, DescribeParsesBackToTheSameSolid) {
       EXPECT_EQ(a->Inside(x), b->Inside(x)) << text << " vs " << a->Describe();
     }
   }
+}
+
+// The one table of primitives' names and sizes (primitive.h): every primitive has its keys in the
+// shape syntax and in scenes, and the sizes they give make the primitive named, with the closed
+// form of those sizes.
+TEST(ShapeSyntax, OneTableOfPrimitiveSizes) {
+  for (const char* name : kPrimitiveNames) {
+    for (const SizeSyntax syntax : {SizeSyntax::kShapeSyntax, SizeSyntax::kScene}) {
+      const std::vector<SizeKey>& keys = SizeKeys(name, syntax);
+      ASSERT_FALSE(keys.empty()) << name;
+      std::vector<double> sizes;
+      for (const SizeKey& k : keys) sizes.insert(sizes.end(), static_cast<std::size_t>(k.components), 0.0);
+      // Sizes 1, 0.5, 0.25, ... in order: a valid torus (minor below major) and positive elsewhere.
+      for (std::size_t i = 0; i < sizes.size(); ++i) sizes[i] = std::ldexp(1.0, -static_cast<int>(i));
+      const Primitive p = MakePrimitive(name, sizes);
+      EXPECT_STREQ(PrimitiveName(p), name);
+      EXPECT_GT(ClosedForm(p, 1.0).volume, 0) << name;
+    }
+  }
+  EXPECT_TRUE(SizeKeys("torus", SizeSyntax::kRobot).empty());  // URDF and SDFormat have none
+  EXPECT_EQ(SizeKeys("cylinder", SizeSyntax::kRobot)[1].key, std::string("length"));
+  EXPECT_EQ(SizeKeys("cylinder", SizeSyntax::kScene)[1].key, std::string("height"));
+  EXPECT_THROW(MakePrimitive("prism", {1.0}), std::invalid_argument);
+  EXPECT_THROW(MakePrimitive("box", {1.0, 2.0}), std::invalid_argument);
+  // The same solid by each syntax: a 1 × 2 × 3 box from the shape syntax and from the table.
+  const MassProperties a = ClosedForm(MakePrimitive("box", {1, 2, 3}), 1.0);
+  EXPECT_DOUBLE_EQ(a.volume, 6.0);
+  EXPECT_TRUE(implicit::ParseShape("box(x=1, y=2, z=3)")->Inside(Vector3(0.49, 0.99, 1.49)));
 }
 
 TEST(ShapeSyntax, FaultsNameThePlace) {

@@ -6,7 +6,9 @@
 /// mass with its axis of symmetry along z (as solids.h and implicit.h).
 
 #include <string>
+#include <string_view>
 #include <variant>
+#include <vector>
 
 #include "massprops/implicit.h"
 #include "massprops/mass_properties.h"
@@ -46,6 +48,32 @@ using Primitive = std::variant<primitive::Box, primitive::Sphere, primitive::Ell
 const char* PrimitiveName(const Primitive& p);
 /// The names above, in the variant's order.
 inline constexpr const char* kPrimitiveNames[] = {"box", "sphere", "ellipsoid", "cylinder", "cone", "torus", "capsule"};
+
+/// The syntaxes that name primitives and their sizes.
+enum class SizeSyntax {
+  kShapeSyntax,  ///< implicit::ParseShape: box(x=1, y=2, z=3), torus(R=1, r=0.25)
+  kScene,        ///< rbsim scenes: {"type": "box", "size": [1, 2, 3]}, {"type": "torus", "major_radius": 1, ...}
+  kRobot,        ///< URDF and SDFormat geometries: <box size>, <cylinder radius length>, <ellipsoid radii>
+};
+
+/// One size of a primitive as a syntax names it.
+struct SizeKey {
+  const char* key;   ///< "radius", "size", "r"
+  int components;    ///< 1, or 3 for a vector
+  const char* what;  ///< for messages: "edge lengths [x, y, z]"
+};
+
+/// The one place that maps primitives' names and sizes: the keys of primitive `name` in
+/// `syntax`, in the order MakePrimitive takes their numbers, each meaning this library's size
+/// (full edge lengths, heights and lengths; radii). Empty when the syntax has no such primitive or
+/// the name is not a primitive's. (MJCF gives half sizes by position, and `fromto`: its reader
+/// converts to these.)
+const std::vector<SizeKey>& SizeKeys(std::string_view name, SizeSyntax syntax);
+
+/// The primitive `name` (kPrimitiveNames) from its sizes in SizeKeys' order (a vector's three
+/// components in a row). Sizes are not checked here (Validate, ClosedForm and ToImplicit do).
+/// @throws std::invalid_argument for an unknown name or a wrong number of sizes.
+Primitive MakePrimitive(std::string_view name, const std::vector<double>& sizes);
 
 /// Checks the sizes: finite and positive, and a torus's tube thinner than its ring.
 /// @throws std::invalid_argument naming the primitive and the size.

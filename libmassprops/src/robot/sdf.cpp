@@ -54,26 +54,20 @@ Geometry ReadGeometry(pugi::xml_node element, const std::string& link, const std
   if (!shape) throw ElementError(what + ": an empty <geometry>");
   const std::string kind = shape.name();
   const std::string in = what + " <" + kind + ">";
-  if (kind == "box") {
-    const auto s = Numbers(Text(shape, "size", in), 3, in + " <size>");
-    for (double v : s) {
-      if (!(v > 0)) throw ElementError(in + " <size> must be positive");
+  if (kind == "box" || kind == "sphere" || kind == "cylinder" || kind == "capsule" || kind == "ellipsoid") {
+    std::vector<double> sizes;  // as SDFormat names them (massprops::SizeKeys)
+    for (const SizeKey& k : SizeKeys(kind, SizeSyntax::kRobot)) {
+      const std::string label = in + " <" + k.key + ">";
+      if (k.components == 3) {
+        for (double v : Numbers(Text(shape, k.key, in), 3, label)) {
+          if (!(v > 0)) throw ElementError(label + " must be positive");
+          sizes.push_back(v);
+        }
+      } else {
+        sizes.push_back(Positive(Text(shape, k.key, in), label));
+      }
     }
-    g.shape = Primitive(primitive::Box{Vector3(s[0], s[1], s[2])});
-  } else if (kind == "sphere") {
-    g.shape = Primitive(primitive::Sphere{Positive(Text(shape, "radius", in), in + " <radius>")});
-  } else if (kind == "cylinder") {
-    g.shape = Primitive(primitive::Cylinder{Positive(Text(shape, "radius", in), in + " <radius>"),
-                                            Positive(Text(shape, "length", in), in + " <length>")});
-  } else if (kind == "capsule") {
-    g.shape = Primitive(primitive::Capsule{Positive(Text(shape, "radius", in), in + " <radius>"),
-                                           Positive(Text(shape, "length", in), in + " <length>")});
-  } else if (kind == "ellipsoid") {
-    const auto r = Numbers(Text(shape, "radii", in), 3, in + " <radii>");
-    for (double v : r) {
-      if (!(v > 0)) throw ElementError(in + " <radii> must be positive");
-    }
-    g.shape = Primitive(primitive::Ellipsoid{Vector3(r[0], r[1], r[2])});
+    g.shape = MakePrimitive(kind, sizes);
   } else if (kind == "mesh") {
     if (shape.child("submesh")) throw ElementError(in + ": <submesh> (one piece of a mesh file) is not followed");
     MeshRef mesh;

@@ -37,20 +37,20 @@ Geometry ReadGeometry(pugi::xml_node element, const std::string& what, const Doc
     if (!a) throw ElementError(what + ": <" + kind + "> has no " + name);
     return std::string(a.value());
   };
-  if (kind == "box") {
-    const auto s = Numbers(attr("size"), 3, what + " <box size>");
-    for (double v : s) {
-      if (!(v > 0)) throw ElementError(what + ": <box size> must be positive");
+  if (kind == "box" || kind == "sphere" || kind == "cylinder" || kind == "capsule") {
+    std::vector<double> sizes;  // as URDF names them (massprops::SizeKeys)
+    for (const SizeKey& k : SizeKeys(kind, SizeSyntax::kRobot)) {
+      const std::string label = "<" + kind + " " + k.key + ">";
+      if (k.components == 3) {
+        for (double v : Numbers(attr(k.key), 3, what + " " + label)) {
+          if (!(v > 0)) throw ElementError(what + ": " + label + " must be positive");
+          sizes.push_back(v);
+        }
+      } else {
+        sizes.push_back(Positive(attr(k.key), what + " " + label));
+      }
     }
-    g.shape = Primitive(primitive::Box{Vector3(s[0], s[1], s[2])});
-  } else if (kind == "sphere") {
-    g.shape = Primitive(primitive::Sphere{Positive(attr("radius"), what + " <sphere radius>")});
-  } else if (kind == "cylinder") {
-    g.shape = Primitive(primitive::Cylinder{Positive(attr("radius"), what + " <cylinder radius>"),
-                                            Positive(attr("length"), what + " <cylinder length>")});
-  } else if (kind == "capsule") {
-    g.shape = Primitive(primitive::Capsule{Positive(attr("radius"), what + " <capsule radius>"),
-                                           Positive(attr("length"), what + " <capsule length>")});
+    g.shape = MakePrimitive(kind, sizes);
   } else if (kind == "mesh") {
     MeshRef mesh;
     mesh.path = ResolveUri(attr("filename"), doc, options);
