@@ -142,7 +142,7 @@ class GeomReader {
     };
     if (type == "sphere") {
       need(1);
-      g.shape = Primitive(primitive::Sphere{size[0]});
+      g.shape = MakePrimitive("sphere", {size[0]});
     } else if (type == "capsule" || type == "cylinder") {
       double half = 0;
       if (fromto) {
@@ -157,17 +157,13 @@ class GeomReader {
         need(2);
         half = size[1];
       }
-      if (type == "capsule") {
-        g.shape = Primitive(primitive::Capsule{size[0], 2 * half});
-      } else {
-        g.shape = Primitive(primitive::Cylinder{size[0], 2 * half});
-      }
+      g.shape = MakePrimitive(type, {size[0], 2 * half});  // MJCF's half length: the library's full one
     } else if (type == "box") {
       need(3);
-      g.shape = Primitive(primitive::Box{2 * Vector3(size[0], size[1], size[2])});
+      g.shape = MakePrimitive("box", {2 * size[0], 2 * size[1], 2 * size[2]});  // half sizes: full ones
     } else if (type == "ellipsoid") {
       need(3);
-      g.shape = Primitive(primitive::Ellipsoid{Vector3(size[0], size[1], size[2])});
+      g.shape = MakePrimitive("ellipsoid", {size[0], size[1], size[2]});
     } else if (type == "mesh") {
       g.shape = Mesh(attr("mesh").value(), what);
     } else {
