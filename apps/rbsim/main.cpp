@@ -140,9 +140,7 @@ int main(int argc, char** argv) {
           mass > 0 ? massprops::MassSpec(massprops::TotalMass{mass}) : massprops::MassSpec(massprops::Density{density});
       body.velocity = velocity;
       body.angular_velocity = omega;
-      body.angular_velocity_frame = omega_frame == "world"  ? rbsim::VectorFrame::kWorld
-                                    : omega_frame == "body" ? rbsim::VectorFrame::kBody
-                                                            : rbsim::VectorFrame::kPrincipal;
+      body.angular_velocity_frame = rbsim::ParseVectorFrame(omega_frame);
       scene.bodies.push_back(std::move(body));
       rbsim::CheckTiming(scene, warnings);
     }

@@ -294,6 +294,10 @@ ForceSpec ReadForce(const json& j, const std::string& path, const std::string& f
 
 }  // namespace
 
+VectorFrame ParseVectorFrame(const std::string& name) {
+  return name == "world" ? VectorFrame::kWorld : name == "body" ? VectorFrame::kBody : VectorFrame::kPrincipal;
+}
+
 const char* ForceName(ForceKind kind) {
   switch (kind) {
     case ForceKind::kGravity: return "gravity";
@@ -383,9 +387,7 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
     body.velocity = b.Vec3("velocity", Vector3::Zero());
     body.angular_velocity = b.Vec3("angular_velocity", Vector3::Zero());
     const std::string frame = b.String("angular_velocity_frame", "world", {"world", "body", "principal"});
-    body.angular_velocity_frame = frame == "world"  ? VectorFrame::kWorld
-                                  : frame == "body" ? VectorFrame::kBody
-                                                    : VectorFrame::kPrincipal;
+    body.angular_velocity_frame = ParseVectorFrame(frame);
     if (b.Has("color")) {
       body.color = b.Vec3("color", Vector3::Zero(), "non-negative");
       if (body.color->maxCoeff() > 1) b.Fail("color", "components are between 0 and 1");

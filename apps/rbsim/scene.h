@@ -40,6 +40,9 @@ using dynamics::CollisionKind;
 
 enum class VectorFrame { kWorld, kBody, kPrincipal };
 
+/// "world", "body" or "principal" (the scene's and the command line's names; checked by the caller).
+VectorFrame ParseVectorFrame(const std::string& name);
+
 /// A ground plane {x : normal·x ≤ offset}.
 struct GroundSpec {
   Vector3 normal = Vector3::UnitZ();

@@ -38,12 +38,15 @@ Vector3 DefaultColor(std::size_t i) {
 BuiltShape LoadShape(const dynamics::BodyBuilder& builder, const ShapeSpec& shape, const std::string& where,
                      std::vector<std::string>& warnings, bool solid_errors_name_field) {
   std::vector<dynamics::BodyWarning> found;
+  const auto report = [&] {
+    for (const auto& w : found) warnings.push_back(where + "." + w.field + ": " + w.text);
+  };
   try {
     BuiltShape built = builder.Load(shape, found);
-    for (const auto& w : found) warnings.push_back(where + "." + w.field + ": " + w.text);
+    report();
     return built;
   } catch (const dynamics::BodyError& e) {
-    for (const auto& w : found) warnings.push_back(where + "." + w.field + ": " + w.text);
+    report();  // what was found before the fault
     const bool named = !e.field().empty() && (e.field() != "solid" || solid_errors_name_field);
     throw SceneError(where + (named ? "." + e.field() : std::string()) + ": " + e.what());
   }
@@ -70,10 +73,9 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     SimBody body;
     body.name = spec.name;
     body.color = spec.color.value_or(DefaultColor(i));
-    const BuiltShape built = LoadShape(builder, spec.shape, where, warnings, true);
+    BuiltShape built = LoadShape(builder, spec.shape, where, warnings, true);
     body.mp = built.mp;
     body.principal = built.principal;
-    body.display = built.display;
     body.source = built.source;
     dynamics::RigidBody rb;
     try {
@@ -96,11 +98,10 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
       } else {
         sim.physics.AddBody(rb);
       }
-    } catch (const SceneError&) {
-      throw;
     } catch (const std::exception& e) {
       throw SceneError(where + ": " + e.what());
     }
+    body.display = std::move(built.display);  // the collider is made: the outputs keep the mesh
     sim.bodies.push_back(std::move(body));
   }
 

@@ -227,15 +227,14 @@ def _drop_task(path, first, count, options):
 
 
 def _command():
-    """The ``massprops`` program this module was built with: the one installed beside it (pip),
-    else the build tree's, else the first on PATH."""
+    """The ``massprops`` program this module was built with: the one beside it in ``_bin/`` (pip puts
+    it there; in the build tree it links to the build's), else the first on PATH."""
     import os
     import shutil
 
-    here = os.path.dirname(os.path.abspath(__file__))
-    for candidate in (os.path.join(here, "_bin", "massprops"),):
-        if os.access(candidate, os.X_OK):
-            return candidate
+    beside = os.path.join(os.path.dirname(os.path.abspath(__file__)), "_bin", "massprops")
+    if os.access(beside, os.X_OK):
+        return beside
     found = shutil.which("massprops")
     if found is None:
         raise FileNotFoundError("the massprops command was not found beside the module (_bin/) or on PATH")

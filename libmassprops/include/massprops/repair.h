@@ -61,6 +61,7 @@ PolygonMesh ConvexHull(const PolygonMesh& mesh);
 /// to `limit`: polygons are split into triangles (SplitPolygon), candidate pairs come from CGAL's
 /// box intersection, and each pair is decided with exact predicates. Triangles of the same polygon
 /// are not tested against each other.
-std::int64_t CountSelfIntersections(const PolygonMesh& mesh, std::int64_t limit = 1000000);
+inline constexpr std::int64_t kSelfIntersectionLimit = 1000000;
+std::int64_t CountSelfIntersections(const PolygonMesh& mesh, std::int64_t limit = kSelfIntersectionLimit);
 
 }  // namespace massprops

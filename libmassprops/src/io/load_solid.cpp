@@ -472,7 +472,8 @@ SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_c
   r.topology = AnalyzeTopology(mesh);
   if (opt.check_self_intersections) {
     Stage(opt, "checking self-intersections (CGAL)");
-    r.self_intersections = RequireGeometrySteps("the self-intersection check").count_self_intersections(mesh, 1000000);
+    r.self_intersections =
+        RequireGeometrySteps("the self-intersection check").count_self_intersections(mesh, kSelfIntersectionLimit);
   }
   if (r.topology.duplicate_faces + r.topology.reversed_duplicate_faces > 0) RefuseDuplicates(r);
   if (r.self_intersections > 0) {
