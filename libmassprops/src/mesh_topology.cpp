@@ -349,8 +349,10 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
   // Crossing shells: a shell partly inside and partly outside another (their surfaces cross) is
   // found from the winding numbers of samples spread over it — points just behind face centroids,
   // so that shells that merely touch (shared corners, edges or faces) are not taken for crossing. Found
-  // whatever the order of the faces.
-  constexpr std::size_t kSamples = 16;
+  // whatever the order of the faces. The faces sampled are spread by the golden ratio's sequence, not
+  // at a fixed stride: a stride that is a multiple of a regular mesh's row length samples one row
+  // only (16 evenly spaced faces of a 120 × 240 torus all lie on its outer equator).
+  constexpr std::size_t kSamples = 32;
   for (std::size_t s = 0; s < ns && report.crossing.first < 0; ++s) {
     const std::vector<std::int64_t>& faces = report.shells[s].faces;
     const std::size_t count = std::min(kSamples, faces.size());
@@ -358,7 +360,9 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
       if (t == s || !report.shells[t].closed) continue;
       bool in = false, out = false;
       for (std::size_t k = 0; k < count; ++k) {
-        const double w = std::fabs(winding(t, behind_face(faces[k * faces.size() / count])));
+        const double spread = std::fmod(0.6180339887498949 * static_cast<double>(k), 1.0);
+        const auto at = std::min(faces.size() - 1, static_cast<std::size_t>(spread * static_cast<double>(faces.size())));
+        const double w = std::fabs(winding(t, behind_face(faces[at])));
         in = in || w > 0.75;
         out = out || w < 0.25;
       }

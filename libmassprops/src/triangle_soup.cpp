@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "parallel.h"
+#include "soup_shells.h"
 #include "triangle_kernel.h"
 
 namespace massprops {
@@ -19,6 +20,7 @@ using internal::LaneSums;
 using internal::Moments;
 
 constexpr std::int64_t kBlock = 4096;
+constexpr std::int64_t kShellBlocks = 8;
 constexpr std::size_t kPrefetchBytes = 2048;
 
 struct CornerHash {
@@ -138,43 +140,61 @@ SoupIntegrals Integrate(const Fetch& fetch, std::int64_t count, std::size_t stri
   }
   const std::int64_t blocks = (count + kBlock - 1) / kBlock;
   std::vector<BlockResult> parts(static_cast<std::size_t>(blocks));
+  internal::ShellCounter shells;
   // Not zeroed (every key is written by the pass): its pages are first touched by the threads.
   const std::unique_ptr<std::uint64_t[]> face_keys(new std::uint64_t[static_cast<std::size_t>(count)]);
 
-  internal::ParallelForBlocks(blocks, options.num_threads, [&](std::int64_t b) {
-    BlockResult res;
-    Batch batch;
-    LaneSums sums;
-    const std::int64_t begin = b * kBlock, end = std::min(count, begin + kBlock);
-    const unsigned char* data = fetch(begin, end - begin);
-    for (std::int64_t t0 = begin; t0 < end; t0 += internal::kBatch) {
-      const int n = static_cast<int>(std::min<std::int64_t>(internal::kBatch, end - t0));
-      for (int j = 0; j < n; ++j) {
-        const unsigned char* rec = data + static_cast<std::size_t>(t0 - begin + j) * stride + offset;
-        // Records in memory (a mapped file) may sit in scattered 4 KiB pages that the hardware
-        // prefetcher does not cross: ask for bytes ahead (a hint; past the end is no access).
-        __builtin_prefetch(rec + kPrefetchBytes);
-        float c[9];
-        std::memcpy(c, rec, sizeof c);
-        bool finite = true;
-        for (int k = 0; k < 9; ++k) {
-          finite = finite && Finite(c[k]);
-          res.lo[k % 3] = std::min(res.lo[k % 3], c[k]);
-          res.hi[k % 3] = std::max(res.hi[k % 3], c[k]);
+  // Blocks are integrated kShellBlocks at a time by one thread, and their corners joined together
+  // (fewer corners left open at the edges of a group than of each block); each block's moments
+  // are its own, so the bits do not depend on the grouping.
+  const std::int64_t groups = (blocks + kShellBlocks - 1) / kShellBlocks;
+  internal::ParallelForBlocks(groups, options.num_threads, [&](std::int64_t group) {
+    thread_local std::vector<std::uint64_t> corner_hash;
+    corner_hash.resize(static_cast<std::size_t>(3 * kBlock * kShellBlocks));
+    const std::int64_t group_begin = group * kShellBlocks * kBlock;
+    for (std::int64_t b = group * kShellBlocks; b < std::min(blocks, (group + 1) * kShellBlocks); ++b) {
+      BlockResult res;
+      Batch batch;
+      LaneSums sums;
+      const std::int64_t begin = b * kBlock, end = std::min(count, begin + kBlock);
+      const unsigned char* data = fetch(begin, end - begin);
+      for (std::int64_t t0 = begin; t0 < end; t0 += internal::kBatch) {
+        const int n = static_cast<int>(std::min<std::int64_t>(internal::kBatch, end - t0));
+        for (int j = 0; j < n; ++j) {
+          const unsigned char* rec = data + static_cast<std::size_t>(t0 - begin + j) * stride + offset;
+          // Records in memory (a mapped file) may sit in scattered 4 KiB pages that the hardware
+          // prefetcher does not cross: ask for bytes ahead (a hint; past the end is no access).
+          __builtin_prefetch(rec + kPrefetchBytes);
+          float c[9];
+          std::memcpy(c, rec, sizeof c);
+          bool finite = true;
+          for (int k = 0; k < 9; ++k) {
+            finite = finite && Finite(c[k]);
+            res.lo[k % 3] = std::min(res.lo[k % 3], c[k]);
+            res.hi[k % 3] = std::max(res.hi[k % 3], c[k]);
+          }
+          if (!finite && res.first_bad < 0) res.first_bad = t0 + j;
+          // Directed edges a→b, b→c, c→a.
+          const CornerHash ha = HashCorner(c), hb = HashCorner(c + 3), hc = HashCorner(c + 6);
+          res.edge_hash += ha.h * hb.g - hb.h * ha.g;
+          res.edge_hash += hb.h * hc.g - hc.h * hb.g;
+          res.edge_hash += hc.h * ha.g - ha.h * hc.g;
+          face_keys[static_cast<std::size_t>(t0 + j)] = FaceKey(ha, hb, hc);
+          std::uint64_t* corner = corner_hash.data() + 3 * (t0 + j - group_begin);
+          corner[0] = ha.h;
+          corner[1] = hb.h;
+          corner[2] = hc.h;
+          internal::SetTriangle(batch, j, c, c + 3, c + 6, ref.data());
         }
-        if (!finite && res.first_bad < 0) res.first_bad = t0 + j;
-        // Directed edges a→b, b→c, c→a.
-        const CornerHash ha = HashCorner(c), hb = HashCorner(c + 3), hc = HashCorner(c + 6);
-        res.edge_hash += ha.h * hb.g - hb.h * ha.g;
-        res.edge_hash += hb.h * hc.g - hc.h * hb.g;
-        res.edge_hash += hc.h * ha.g - ha.h * hc.g;
-        face_keys[static_cast<std::size_t>(t0 + j)] = FaceKey(ha, hb, hc);
-        internal::SetTriangle(batch, j, c, c + 3, c + 6, ref.data());
+        internal::AccumulateBatch(batch, internal::PadBatch(batch, n), sums);
       }
-      internal::AccumulateBatch(batch, internal::PadBatch(batch, n), sums);
+      sums.Into(res.moments);
+      parts[static_cast<std::size_t>(b)] = res;
     }
-    sums.Into(res.moments);
-    parts[static_cast<std::size_t>(b)] = res;
+    internal::BlockPieces pieces;
+    internal::JoinBlock(corner_hash.data(),
+                        static_cast<int>(std::min(count, (group + 1) * kShellBlocks * kBlock) - group_begin), pieces);
+    shells.Add(group, std::move(pieces));
   });
 
   std::vector<Moments> moments(parts.size());
@@ -200,6 +220,7 @@ SoupIntegrals Integrate(const Fetch& fetch, std::int64_t count, std::size_t stri
   }
   out.integrals = internal::ScaleTriangleSums(internal::PairwiseSum(moments)).ToIntegrals(ref);
   out.repeated_faces = AnyRepeated(face_keys.get(), static_cast<std::size_t>(count), options.num_threads);
+  out.shells = shells.Shells();
   return out;
 }
 

@@ -166,9 +166,8 @@ TEST(LoadSolid, TheTHandleAgainstItsClosedForm) {
   EXPECT_TRUE(NearRel(small.mp.volume, kVolume * 1e-9, 1e-14));
 }
 
-// A binary STL of a torus of 4n² triangles, in float32 as STL stores them.
-std::string WriteTorusStl(int n, const std::string& name) {
-  const TriangleMesh m = solids::Torus(2.0, 0.5, n);
+// A binary STL of the mesh, in float32 as STL stores them.
+std::string WriteStl(const TriangleMesh& m, const std::string& name) {
   const std::string path = ::testing::TempDir() + "/" + name;
   std::ofstream out(path, std::ios::binary);
   const std::string header(80, ' ');
@@ -185,6 +184,9 @@ std::string WriteTorusStl(int n, const std::string& name) {
   }
   return path;
 }
+
+// A binary STL of a torus of 4n² triangles.
+std::string WriteTorusStl(int n, const std::string& name) { return WriteStl(solids::Torus(2.0, 0.5, n), name); }
 
 // Big binary STLs are integrated as they lie; the checked path (--full-check) welds them. Both
 // must give the same numbers for the same float coordinates, and the streamed one says what it
@@ -215,6 +217,48 @@ TEST(LoadSolid, StreamedAndCheckedPathsAgree) {
   // Just below the threshold, the default path is the checked one.
   const SolidResult small = LoadSolid(WriteTorusStl(150, "torus_90000.stl"), LoadOptions{});
   EXPECT_TRUE(small.full_topology);
+}
+
+// Two shells in a file big enough to stream: the per-triangle checks all pass (every edge matched,
+// no face twice), so only counting shells can tell them from one. They go to the full check, which
+// refuses a torus inside another when both face outward (their volumes would be summed: 1.97 for
+// these) and computes the hollow one when the inner faces inward — the same numbers as the two
+// tori integrated apart.
+TEST(LoadSolid, NestedShellsInABigStlGoToTheFullCheck) {
+  const TriangleMesh outer = solids::Torus(2.0, 0.5, 160);  // 102 400 triangles
+  const TriangleMesh inner = solids::Torus(2.0, 0.25, 120);
+  auto both = [&](bool reverse_inner) {
+    TriangleMesh m;
+    m.V.resize(outer.V.rows() + inner.V.rows(), 3);
+    m.V << outer.V, inner.V;
+    Eigen::MatrixXi fi = inner.F.array() + static_cast<int>(outer.V.rows());
+    if (reverse_inner) fi.col(1).swap(fi.col(2));
+    m.F.resize(outer.F.rows() + inner.F.rows(), 3);
+    m.F << outer.F, fi;
+    return m;
+  };
+  LoadOptions o;
+  o.unit_stated = true;
+  try {
+    LoadSolid(WriteStl(both(false), "nested_outward.stl"), o);
+    ADD_FAILURE() << "two nested outward tori computed";
+  } catch (const LoadError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("nested_outward.stl"));
+    EXPECT_THAT(e.what(), HasSubstr("inside"));
+  }
+  const SolidResult hollow = LoadSolid(WriteStl(both(true), "nested_hollow.stl"), o);
+  EXPECT_TRUE(hollow.full_topology);
+  EXPECT_THAT(hollow.path_used, Not(HasSubstr("streamed")));
+  EXPECT_EQ(hollow.topology.components, 2);
+  const double v_outer = LoadSolid(WriteStl(outer, "outer.stl"), o).mp.volume;
+  const double v_inner = LoadSolid(WriteStl(inner, "inner.stl"), o).mp.volume;
+  EXPECT_TRUE(NearRel(hollow.mp.volume, v_outer - v_inner, 1e-12));
+  // Overlapping (the inner one moved to cross the outer's surface): refused as well.
+  TriangleMesh moved = inner;
+  moved.V.col(2).array() += 0.5;
+  TriangleMesh crossing = both(false);
+  crossing.V.bottomRows(inner.V.rows()) = moved.V;
+  EXPECT_THROW(LoadSolid(WriteStl(crossing, "crossing.stl"), o), LoadError);
 }
 
 // The convex hull, as collision engines see a body: a convex part is its own hull; the T-handle's

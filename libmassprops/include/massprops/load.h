@@ -119,7 +119,7 @@ enum class FindingKind {
   kUndeterminedAxes,   ///< an estimate's principal moments are equal within their error bars
   kToleranceNotMet,    ///< an adaptive estimate stopped at its sample limit
   kNonPlanarFaces,     ///< polygons off their plane: integrated as fans from their first corner
-  kStreamedChecks,     ///< the streamed binary-STL path: shells neither separated nor checked for overlap
+  kStreamedChecks,     ///< the streamed binary-STL path (one shell): edges used by more than two faces not counted
   kUnitOverridden,     ///< the file declares another unit than the one stated
 };
 

@@ -30,6 +30,13 @@ struct SoupIntegrals {
   /// has a chance of about n²·2⁻⁶⁵ (2·10⁻⁸ for 2·10⁶ triangles), and asks only for the full check.
   bool repeated_faces = false;
 
+  /// Connected shells (triangles joined through shared corner positions), counted by a union–find
+  /// over each block of triangles and then over the blocks' pieces: two shells — nested, apart or
+  /// overlapping — which the edge balance above cannot tell from one. −1 when not counted (more
+  /// than 2³² pieces). A 64-bit hash collision of two corners could join two shells (a chance of
+  /// about V²·2⁻⁶⁵ for V corners).
+  std::int64_t shells = 0;
+
   bool IsClosedCycle() const { return unmatched_edge_hash == 0; }
 };
 

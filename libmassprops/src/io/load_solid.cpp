@@ -148,16 +148,20 @@ bool TryStreamedStl(SolidResult& r, const std::string& file, const LoadOptions& 
   IntegrationOptions io;
   io.num_threads = opt.num_threads;
   const auto soup = IntegrateBinaryStlFile(file, io);
-  // Open, inconsistent, or a face there twice: the full check says what is wrong.
-  if (!soup || !soup->IsClosedCycle() || soup->repeated_faces || soup->triangles < kStreamingThreshold) return false;
+  // Open, inconsistent, a face there twice, or more than one shell (which may nest or overlap):
+  // the full check says what is wrong, or separates the shells.
+  if (!soup || !soup->IsClosedCycle() || soup->repeated_faces || soup->shells != 1 ||
+      soup->triangles < kStreamingThreshold) {
+    return false;
+  }
   r.loaded.format = "stl-binary";
   r.loaded.float32_coordinates = true;
   r.full_topology = false;
   r.topology.faces = soup->triangles;
   r.path_used = "triangles (signed tetrahedra), streamed from the file";
   Warn(r, FindingKind::kStreamedChecks,
-       "streamed: every edge has its reverse and no face is there twice, so the volume is well defined, but "
-       "shells were neither separated nor checked for overlap ({full_check} does)");
+       "streamed: every edge has its reverse, no face is there twice and the triangles form one connected shell, "
+       "so the volume is well defined; edges shared by more than two faces were not counted ({full_check} does)");
   Finish(r, soup->integrals, opt, (soup->upper - soup->lower).norm());
   return true;
 }
