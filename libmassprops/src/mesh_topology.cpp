@@ -361,7 +361,8 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
       bool in = false, out = false;
       for (std::size_t k = 0; k < count; ++k) {
         const double spread = std::fmod(0.6180339887498949 * static_cast<double>(k), 1.0);
-        const auto at = std::min(faces.size() - 1, static_cast<std::size_t>(spread * static_cast<double>(faces.size())));
+        const auto at =
+            std::min(faces.size() - 1, static_cast<std::size_t>(spread * static_cast<double>(faces.size())));
         const double w = std::fabs(winding(t, behind_face(faces[at])));
         in = in || w > 0.75;
         out = out || w < 0.25;
