@@ -1,5 +1,6 @@
 #include "cli.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -31,6 +32,45 @@ CLI::Validator NumberCheck(std::function<bool(double)> ok, const std::string& ru
 
 }  // namespace
 
+std::string OneLine(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    const auto b = static_cast<unsigned char>(c);
+    if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (b < 0x20 || b == 0x7f) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", b);
+      out += hex;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+// CLI11's messages put the option first ("--density: must be > 0") or inside a sentence
+// ("--omega requires --mesh", "The following argument was not expected: --frob"): the option
+// found in it becomes the subject, as in every other error line.
+std::string ArgumentError(const std::string& what) {
+  if (!what.empty() && what[0] == '-' && what.find(": ") != std::string::npos) return what;
+  const std::size_t at = what.find("--") != std::string::npos ? what.find("--") : what.find(" -");
+  if (at != std::string::npos) {
+    std::size_t begin = what[at] == ' ' ? at + 1 : at, end = begin;
+    while (end < what.size() &&
+           (std::isalnum(static_cast<unsigned char>(what[end])) || what[end] == '-' || what[end] == '_')) {
+      ++end;
+    }
+    if (end > begin + 1) return what.substr(begin, end - begin) + ": " + what;
+  }
+  return "arguments: " + what;
+}
+
 CLI::Validator Positive() {
   return NumberCheck([](double v) { return v > 0; }, "> 0");
 }
@@ -49,7 +89,8 @@ int ParseArguments(CLI::App& app, int argc, char** argv) {
   } catch (const CLI::Success& e) {  // --help, --version
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);
+    std::cerr << "error: " << OneLine(ArgumentError(e.what())) << "\n"
+              << "Run with --help for more information.\n";
     return kBadArguments;
   }
   return -1;

@@ -4,6 +4,7 @@
 
 #include <initializer_list>
 #include <string>
+#include <string_view>
 
 #include <CLI/CLI.hpp>
 
@@ -17,6 +18,10 @@ inline constexpr int kBadArguments = 2;
 CLI::Validator Positive();
 CLI::Validator NonNegative();
 CLI::Validator InRange(double lo, double hi);
+
+/// `text` on one line: control characters (a newline in a file name, say) written as escapes
+/// (\\n, \\r, \\t, \\xHH), so that every message stays one line of stderr.
+std::string OneLine(std::string_view text);
 
 /// Parses argv into `app`. Returns -1 when the program should go on, or the exit status
 /// (0 after --help or --version, kBadArguments after a message on stderr).

@@ -32,7 +32,7 @@ using Json = nlohmann::ordered_json;
 namespace fs = std::filesystem;
 
 int Bad(const std::string& what) {
-  std::cerr << "error: " << what << "\n";
+  std::cerr << "error: " << massprops::app::OneLine(what) << "\n";
   return app::kBadArguments;
 }
 
@@ -231,7 +231,8 @@ int RunBatch(const BatchOptions& b) {
   }
   const int fd = ::open(b.output.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
   if (fd < 0) {
-    std::cerr << "error: " << b.output << ": cannot open for appending (" << std::strerror(errno) << ")\n";
+    std::cerr << "error: " << massprops::app::OneLine(b.output) << ": cannot open for appending ("
+              << std::strerror(errno) << ")\n";
     return 1;
   }
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
@@ -263,7 +264,7 @@ int RunBatch(const BatchOptions& b) {
         });
   } catch (const std::exception& e) {
     ::close(fd);
-    std::cerr << (tty ? "\n" : "") << "error: batch: " << e.what() << "\n";
+    std::cerr << (tty ? "\n" : "") << "error: batch: " << massprops::app::OneLine(e.what()) << "\n";
     return 1;
   }
   if (::close(fd) != 0) write_failed = true;
@@ -272,7 +273,8 @@ int RunBatch(const BatchOptions& b) {
   if (!b.quiet) std::cerr << summary.ToText(seconds) << "\n";
   if (b.summary_json) std::cout << summary.ToJson(seconds).dump(2) << "\n";
   if (write_failed) {
-    std::cerr << "error: " << b.output << ": a record could not be written (disk full?); --resume goes on\n";
+    std::cerr << "error: " << massprops::app::OneLine(b.output)
+              << ": a record could not be written (disk full?); --resume goes on\n";
     return 1;
   }
   return 0;
@@ -295,18 +297,19 @@ int RunMerge(const std::string& output, const std::vector<std::string>& shards) 
       if (!fs::is_regular_file(shard)) throw std::runtime_error(shard + ": no such file");
       records = ReadRecords(shard, complete);
     } catch (const std::exception& e) {
-      std::cerr << "error: merge: " << e.what() << "\n";
+      std::cerr << "error: merge: " << massprops::app::OneLine(e.what()) << "\n";
       return 1;
     }
     for (Json& rec : records) {
       if (!rec.contains("index") || !rec.contains("of")) {
-        std::cerr << "error: merge: " << shard << ": a record without index and of (not from massprops batch)\n";
+        std::cerr << "error: merge: " << massprops::app::OneLine(shard)
+                  << ": a record without index and of (not from massprops batch)\n";
         return 1;
       }
       const std::size_t n = rec["of"], i = rec["index"];
       if (of != 0 && n != of) {
-        std::cerr << "error: merge: " << shard << " comes from a run over " << n << " files, another shard from " << of
-                  << ": not the same input\n";
+        std::cerr << "error: merge: " << massprops::app::OneLine(shard) << " comes from a run over " << n
+                  << " files, another shard from " << of << ": not the same input\n";
         return 1;
       }
       of = n;
@@ -315,7 +318,8 @@ int RunMerge(const std::string& output, const std::vector<std::string>& shards) 
     }
   }
   if (!repeated.empty()) {
-    std::cerr << "error: merge: " << repeated.size() << " files have more than one record (the first: " << repeated[0]
+    std::cerr << "error: merge: " << repeated.size()
+              << " files have more than one record (the first: " << massprops::app::OneLine(repeated[0])
               << "); were shards given twice, or overlapping --shard values used?\n";
     return 1;
   }
@@ -332,7 +336,7 @@ int RunMerge(const std::string& output, const std::vector<std::string>& shards) 
   try {
     report::WriteFileAtomically(output, text);
   } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
     return 1;
   }
   return 0;

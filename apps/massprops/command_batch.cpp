@@ -35,7 +35,7 @@ int BatchMain(int argc, char** argv) {
   AddArguments(app, a);
   if (const int status = app::ParseArguments(app, argc, argv); status >= 0) return status;
   auto bad = [](const std::string& what) {
-    std::cerr << "error: " << what << "\n";
+    std::cerr << "error: " << massprops::app::OneLine(what) << "\n";
     return app::kBadArguments;
   };
   if (const auto error = CheckArguments(a, app)) return bad(*error);

@@ -39,7 +39,7 @@ int ComputeMain(int argc, char** argv) {
   AddArguments(app, a);
   if (const int status = app::ParseArguments(app, argc, argv); status >= 0) return status;
   auto bad = [](const std::string& what) {
-    std::cerr << "error: " << what << "\n";
+    std::cerr << "error: " << massprops::app::OneLine(what) << "\n";
     return app::kBadArguments;
   };
   if (const auto error = CheckArguments(a, app)) return bad(*error);
@@ -129,12 +129,13 @@ int ComputeMain(int argc, char** argv) {
   auto emit = [&](const std::string& name, Outcome&& o) {
     if (!o.result) {
       ++failures;
-      std::cerr << "error: " << o.error << "\n";
+      std::cerr << "error: " << massprops::app::OneLine(o.error) << "\n";
       return;
     }
     const SolidResult& r = *o.result;
     for (const Finding& f : r.findings) {
-      std::cerr << "warning: " << name << ": " << Worded(f.message, report::CliVocabulary()) << "\n";
+      std::cerr << "warning: " << massprops::app::OneLine(name) << ": " << Worded(f.message, report::CliVocabulary())
+                << "\n";
     }
     if (format.format == report::Format::kTable) text += (text.empty() ? "" : "\n") + FormatTable(r, format);
     if (robot) text += FormatRobot(r, format.format);
@@ -188,7 +189,7 @@ int ComputeMain(int argc, char** argv) {
     try {
       if (!text.empty()) report::WriteFileAtomically(a.output, text);
     } catch (const std::exception& e) {
-      std::cerr << "error: " << e.what() << "\n";
+      std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
       return 1;
     }
   } else {

@@ -80,7 +80,7 @@ int FillMain(int argc, char** argv) {
   app.add_flag("-q,--quiet", quiet, "No report on stdout");
   if (const int status = app::ParseArguments(app, argc, argv); status >= 0) return status;
   auto bad = [](const std::string& what) {
-    std::cerr << "error: " << what << "\n";
+    std::cerr << "error: " << massprops::app::OneLine(what) << "\n";
     return app::kBadArguments;
   };
   o.from = from == "visual" ? GeometrySource::kVisual : GeometrySource::kCollision;
@@ -102,20 +102,20 @@ int FillMain(int argc, char** argv) {
   } catch (const std::invalid_argument& e) {
     return bad(e.what());
   } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
     return 1;
   }
   try {
     report::WriteFileAtomically(output, r.document);
   } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
     return 1;
   }
   if (!quiet) std::cout << (report == "json" ? FormatFillJson(input, output, r, CliVocabulary()) : Table(input, r));
   for (const LinkFill& l : r.links) {
     if (l.status == LinkStatus::kFailed) {
-      std::cerr << "error: " << input << ": link '" << l.name << "': " << Worded(l.message, CliVocabulary())
-                << " (left as it was)\n";
+      std::cerr << "error: " << massprops::app::OneLine(input) << ": link '" << l.name
+                << "': " << Worded(l.message, CliVocabulary()) << " (left as it was)\n";
     }
   }
   return r.AllFilled() ? 0 : 1;

@@ -121,7 +121,7 @@ int ValidateMain(int argc, char** argv) {
     if (!output.empty()) report::CheckOutputPath(output, {});
     if (!plot.empty()) report::CheckOutputPath(plot, {});
   } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
     return app::kBadArguments;
   }
   ValidationOptions options;
@@ -131,7 +131,7 @@ int ValidateMain(int argc, char** argv) {
   try {
     rows = ValidateClosedForms(options);
   } catch (const std::invalid_argument& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
     return app::kBadArguments;
   }
   const std::string text = format == "json" ? Json(rows) : Table(rows);
@@ -143,7 +143,7 @@ int ValidateMain(int argc, char** argv) {
       report::WriteFileAtomically(output, text);
     }
   } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
     return 1;
   }
   return 0;

@@ -96,13 +96,13 @@ int main(int argc, char** argv) {
   app.add_flag("-q,--quiet", quiet, "No progress bar");
   if (const int status = massprops::app::ParseArguments(app, argc, argv); status >= 0) return status;
   if (scene_file.empty() && mesh.empty()) {
-    std::cerr << "error: give a scene file, or --mesh FILE for the quick path (see --help)\n";
+    std::cerr << "error: arguments: give a scene file, or --mesh FILE for the quick path (see --help)\n";
     return massprops::app::kBadArguments;
   }
 
   std::vector<std::string> warnings;
   auto flush_warnings = [&warnings] {
-    for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
+    for (const auto& w : warnings) std::cerr << "warning: " << massprops::app::OneLine(w) << "\n";
     warnings.clear();
   };
   rbsim::Scene scene;
@@ -112,23 +112,39 @@ int main(int argc, char** argv) {
     } else {
       massprops::Vector3 omega = massprops::Vector3::Zero(), velocity = massprops::Vector3::Zero();
       if (!omega_text.empty() && !ParseVec3(omega_text, omega)) {
-        std::cerr << "error: --omega: expected three finite numbers wx,wy,wz, got '" << omega_text << "'\n";
+        std::cerr << "error: --omega: expected three finite numbers wx,wy,wz, got '"
+                  << massprops::app::OneLine(omega_text) << "'\n";
         return massprops::app::kBadArguments;
       }
       if (!velocity_text.empty() && !ParseVec3(velocity_text, velocity)) {
-        std::cerr << "error: --velocity: expected three finite numbers vx,vy,vz, got '" << velocity_text << "'\n";
+        std::cerr << "error: --velocity: expected three finite numbers vx,vy,vz, got '"
+                  << massprops::app::OneLine(velocity_text) << "'\n";
         return massprops::app::kBadArguments;
       }
       // The typed scene of one body, as a scene file with these fields would give.
       scene.file = "<command line>";
-      scene.duration = 10.0;
+      scene.duration = duration ? *duration : 10.0;
       // Default step: at most 1 ms and at most 0.01 rad of turn per step.
-      scene.dt = omega.norm() > 0 ? std::min(1e-3, 0.01 / omega.norm()) : 1e-3;
+      scene.dt = omega.stableNorm() > 0 ? std::min(1e-3, 0.01 / omega.stableNorm()) : 1e-3;
+      if (dt) scene.dt = *dt;
+      if (!dt && !(scene.duration / scene.dt <= 1e9)) {
+        std::cerr << "error: --omega: |omega| = " << omega.stableNorm() << " rad/s asks for steps of " << scene.dt
+                  << " s (0.01 rad of turn each), " << scene.duration / scene.dt << " of them for " << scene.duration
+                  << " s, more than 10^9; give a smaller --omega, or --dt and --duration\n";
+        return massprops::app::kBadArguments;
+      }
       scene.outputs = rbsim::DefaultOutputs();
       const std::filesystem::path path = std::filesystem::absolute(mesh).lexically_normal();
       std::error_code ec;
       if (!std::filesystem::is_regular_file(path, ec)) {
-        throw rbsim::SceneError(scene.file + ": bodies[0].mesh: '" + path.string() + "' not found");
+        const auto type = std::filesystem::status(path, ec).type();
+        std::cerr << "error: --mesh: '" << massprops::app::OneLine(mesh) << "' "
+                  << (type == std::filesystem::file_type::directory ? "is a directory, not a mesh file"
+                      : type == std::filesystem::file_type::not_found || type == std::filesystem::file_type::none
+                          ? "not found"
+                          : "is not a regular file (a device, FIFO or socket): meshes are read from files")
+                  << "\n";
+        return 1;
       }
       rbsim::BodySpec body;
       body.name = std::filesystem::path(mesh).stem().string();
@@ -152,7 +168,7 @@ int main(int argc, char** argv) {
       try {
         scene.integrator = dynamics::ParseIntegrator(integrator);
       } catch (const std::invalid_argument& e) {
-        std::cerr << "error: --integrator: " << e.what() << "\n";
+        std::cerr << "error: --integrator: " << massprops::app::OneLine(e.what()) << "\n";
         return massprops::app::kBadArguments;
       }
     }
@@ -164,7 +180,7 @@ int main(int argc, char** argv) {
         try {
           scene.outputs.push_back(rbsim::ParseOutputName(name));
         } catch (const std::invalid_argument& e) {
-          std::cerr << "error: --outputs: " << e.what() << "\n";
+          std::cerr << "error: --outputs: " << massprops::app::OneLine(e.what()) << "\n";
           return massprops::app::kBadArguments;
         }
       }
@@ -172,7 +188,7 @@ int main(int argc, char** argv) {
     if (dt || duration || rate) rbsim::CheckTiming(scene, warnings);
   } catch (const std::exception& e) {
     flush_warnings();
-    std::cerr << "error: " << e.what() << "\n";
+    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
     return 1;
   }
   flush_warnings();
@@ -182,8 +198,9 @@ int main(int argc, char** argv) {
   };
   const bool plot = !out_dir.empty() && (wants(rbsim::OutputKind::kPlotSvg) || wants(rbsim::OutputKind::kPlotPng));
   if (plot && !rbsim::HaveGnuplot()) {
-    std::cerr << "error: the plot needs gnuplot, which is not on the PATH (apt-get install gnuplot-nox), or leave "
-                 "svg and png out of the outputs\n";
+    std::cerr
+        << "error: --outputs: the plot needs gnuplot, which is not on the PATH (apt-get install gnuplot-nox), or leave "
+           "svg and png out of the outputs\n";
     return 1;
   }
 
@@ -192,7 +209,7 @@ int main(int argc, char** argv) {
     sim.emplace(rbsim::BuildSimulation(scene, warnings, threads));
   } catch (const std::exception& e) {
     flush_warnings();
-    std::cerr << "error: " << e.what() << "\n";
+    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
     return 1;
   }
   flush_warnings();
@@ -216,7 +233,8 @@ int main(int argc, char** argv) {
       writer = std::make_unique<rbsim::TrajectoryWriter>(out_dir, scene.outputs);
     }
   } catch (const std::exception& e) {
-    std::cerr << "error: --out " << out_dir << ": " << e.what() << "\n";
+    std::cerr << "error: --out " << massprops::app::OneLine(out_dir) << ": " << massprops::app::OneLine(e.what())
+              << "\n";
     return 1;
   }
 
@@ -233,7 +251,8 @@ int main(int argc, char** argv) {
         },
         [&progress](double f) { progress.Fraction(f); }, &g_stop);
   } catch (const std::exception& e) {
-    std::cerr << "error: " << scene.file << ": " << e.what() << "; no output files were written\n";
+    std::cerr << "error: " << massprops::app::OneLine(scene.file) << ": " << e.what()
+              << "; no output files were written\n";
     return 1;
   }
   if (stats.interrupted) {
@@ -265,7 +284,7 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     std::error_code ec;
     std::filesystem::remove_all(staging, ec);
-    std::cerr << "error: " << e.what() << "; no output files were written\n";
+    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "; no output files were written\n";
     return 1;
   }
   if (!out_dir.empty()) {

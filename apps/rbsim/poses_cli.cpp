@@ -106,11 +106,11 @@ int PosesMain(int argc, char** argv) {
   dynamics::Material ground, material;
   std::string why;
   if (!ParseMaterial(ground_text, ground, why)) {
-    std::cerr << "error: --ground: " << why << "\n";
+    std::cerr << "error: --ground: " << massprops::app::OneLine(why) << "\n";
     return massprops::app::kBadArguments;
   }
   if (!ParseMaterial(material_text, material, why)) {
-    std::cerr << "error: --material: " << why << "\n";
+    std::cerr << "error: --material: " << massprops::app::OneLine(why) << "\n";
     return massprops::app::kBadArguments;
   }
 
@@ -139,11 +139,11 @@ int PosesMain(int argc, char** argv) {
         dynamics::LoadPosePart(part_file, load, report.collision, material,
                                massprops::report::WordsFor(massprops::report::FrontEnd::kPoses), warnings, &file_mesh);
   } catch (const std::exception& e) {
-    for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
-    std::cerr << "error: " << e.what() << "\n";
+    for (const auto& w : warnings) std::cerr << "warning: " << massprops::app::OneLine(w) << "\n";
+    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
     return 1;
   }
-  for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
+  for (const auto& w : warnings) std::cerr << "warning: " << massprops::app::OneLine(w) << "\n";
   const dp::Part& part = report.pose_part;
 
   dp::DropOptions& options = report.options;
@@ -161,7 +161,7 @@ int PosesMain(int argc, char** argv) {
     seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     report.tally = dp::Count(outcomes, report.estimate.poses.size());
   } catch (const std::exception& e) {
-    std::cerr << "error: " << part_file << ": " << e.what() << "\n";
+    std::cerr << "error: " << massprops::app::OneLine(part_file) << ": " << e.what() << "\n";
     return 1;
   }
   const dp::Estimate& estimate = report.estimate;
@@ -204,7 +204,8 @@ int PosesMain(int argc, char** argv) {
       }
       massprops::report::WriteFileAtomically(out_dir + "/poses.json", j.dump(2) + "\n");
     } catch (const std::exception& e) {
-      std::cerr << "error: --out " << out_dir << ": " << e.what() << "\n";
+      std::cerr << "error: --out " << massprops::app::OneLine(out_dir) << ": " << massprops::app::OneLine(e.what())
+                << "\n";
       return 1;
     }
   }

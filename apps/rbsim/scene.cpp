@@ -127,7 +127,15 @@ ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {
     if (p.is_relative()) p = fs::path(base_dir) / p;
     std::error_code ec;
     if (!fs::is_regular_file(p, ec)) {
-      f.Fail("mesh", "'" + file + "' not found" + (file == p.string() ? "" : " (looked for " + p.string() + ")"));
+      const std::string looked = file == p.string() ? "" : " (looked for " + p.string() + ")";
+      const fs::file_status st = fs::status(p, ec);
+      if (st.type() == fs::file_type::directory)
+        f.Fail("mesh", "'" + file + "' is a directory, not a mesh file" + looked);
+      if (fs::exists(st)) {
+        f.Fail("mesh",
+               "'" + file + "' is not a regular file (a device, FIFO or socket): meshes are read from files" + looked);
+      }
+      f.Fail("mesh", "'" + file + "' not found" + looked);
     }
     dynamics::MeshSource mesh;
     mesh.path = p.lexically_normal().string();
@@ -209,6 +217,14 @@ GroundSpec ReadGround(const json& j, const std::string& path, const std::string&
 }
 
 int BodyIndex(Fields& f, const std::string& key, const json& v, const std::vector<BodySpec>& bodies) {
+  if (v.is_number_unsigned()) {  // read as unsigned: 2^64 - 1 is not -1
+    const auto i = v.get<unsigned long long>();
+    if (i >= bodies.size()) {
+      f.Fail(key, "body index " + std::to_string(i) + " is out of range (the scene has " +
+                      std::to_string(bodies.size()) + " bodies)");
+    }
+    return static_cast<int>(i);
+  }
   if (v.is_number_integer()) {
     const auto i = v.get<long long>();
     if (i < 0 || i >= static_cast<long long>(bodies.size())) {

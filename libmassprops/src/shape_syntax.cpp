@@ -86,6 +86,14 @@ class Parser {
       v.text = s_.substr(pos_, end - pos_);
       pos_ = end + 1;
     } else if (pos_ < s_.size() && (std::isalpha(static_cast<unsigned char>(s_[pos_])))) {
+      // nan, inf and infinity are numbers strtod reads, not shapes: say that they are not finite.
+      std::size_t end = pos_;
+      while (end < s_.size() && std::isalpha(static_cast<unsigned char>(s_[end]))) ++end;
+      std::string word = s_.substr(pos_, end - pos_);
+      for (char& c : word) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      if (word == "nan" || word == "inf" || word == "infinity") {
+        Fail("expected a finite number, got '" + s_.substr(pos_, end - pos_) + "'");
+      }
       v.kind = Value::kShape;
       v.shape = Shape();
     } else {

@@ -322,6 +322,87 @@ TEST(LoadSolid, ShellAndWallModels) {
   EXPECT_THROW(LoadSolid(DataPath("meshes/t_handle.obj"), wall), std::invalid_argument);
 }
 
+std::string WriteCube(const std::string& name, double side) {
+  const std::string path = ::testing::TempDir() + "/" + name;
+  std::ofstream out(path);
+  out.precision(17);
+  for (int i = 0; i < 8; ++i)
+    out << "v " << side * (i & 1) << " " << side * (i >> 1 & 1) << " " << side * (i >> 2) << "\n";
+  out << "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+  return path;
+}
+
+// A wall is a difference of two solids: a thin one keeps only the digits rounding leaves it. A
+// 1e-12 m wall on a unit cube (exact volume 6e-12 less the edges' 12·1e-24) carries a bound
+// that covers its true error and is below 1 %; a 1e-15 m one would be noise and is refused; a
+// 1 mm one has every digit.
+TEST(LoadSolid, ThinWallsSayHowManyDigitsTheyHave) {
+  const std::string cube = WriteCube("unit_cube.obj", 1.0);
+  LoadOptions o;
+  o.unit_stated = true;
+  o.model = WallModel{1e-12};
+  const SolidResult thin = LoadSolid(cube, o);
+  const double exact = 1.0 - std::pow(1.0 - 2e-12, 3);
+  const double error = std::abs(thin.mp.volume - exact) / exact;
+  EXPECT_GT(thin.relative_error_bound, error);
+  EXPECT_LT(thin.relative_error_bound, 1e-2);
+  ASSERT_EQ(thin.findings.size(), 1u);
+  EXPECT_EQ(thin.findings[0].kind, FindingKind::kLimitedPrecision);
+  o.model = WallModel{1e-15};
+  EXPECT_THAT([&] { LoadSolid(cube, o); },
+              ::testing::ThrowsMessage<LoadError>(HasSubstr("too thin for double precision")));
+  o.model = WallModel{1e-3};
+  const SolidResult mm = LoadSolid(cube, o);
+  EXPECT_EQ(mm.relative_error_bound, 0.0);
+  EXPECT_TRUE(NearRel(mm.mp.volume, 1.0 - std::pow(0.998, 3), 1e-12));
+}
+
+// Numbers that are representable doubles are computed, whatever the size; those that are not are
+// refused naming which. A cube 1e60 m on a side (volume 1e180, inertia ~1.7e302) is exact; a
+// tetrahedron 1e-300 high has a volume the double sums cannot tell from zero but exact sums can;
+// a sphere of radius 1e-100 has an inertia of ~1e-497 and one of 1e300 a volume of ~4e900.
+TEST(LoadSolid, ExtremeSizesComputedOrRefusedNamingTheQuantity) {
+  LoadOptions o;
+  o.unit_stated = true;
+  const SolidResult big = LoadSolid(WriteCube("cube_1e60.obj", 1e60), o);
+  EXPECT_TRUE(NearRel(big.mp.volume, 1e180, 1e-15));
+  EXPECT_TRUE(NearRel(big.mp.inertia_com(2, 2), 1000 * 1e180 * 2e120 / 12, 1e-14));
+
+  auto tetrahedron = [](const std::string& name, const std::string& h) {
+    const std::string path = ::testing::TempDir() + "/" + name;
+    std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0.3 0.3 " << h << "\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
+    return path;
+  };
+  const SolidResult sliver = LoadSolid(tetrahedron("sliver.obj", "1e-300"), o);
+  const SolidResult unit = LoadSolid(tetrahedron("tet.obj", "1"), o);
+  EXPECT_TRUE(NearRel(sliver.mp.volume, 1e-300 / 6, 1e-15));
+  EXPECT_THAT(sliver.path_used, HasSubstr("exact rational"));
+  // Heights scale x–y second moments by h (volume) and the z ones by h³ (here underflowing to 0).
+  const Matrix3 C1 = 0.5 * unit.mp.inertia_com.trace() * Matrix3::Identity() - unit.mp.inertia_com;
+  EXPECT_TRUE(NearRel(sliver.mp.inertia_com(0, 0), 1e-300 * C1(1, 1), 1e-13));
+  EXPECT_TRUE(NearRel(sliver.mp.inertia_com(2, 2), 1e-300 * (C1(0, 0) + C1(1, 1)), 1e-13));
+  EXPECT_TRUE(NearRel(sliver.mp.inertia_com(0, 1), -1e-300 * C1(0, 1), 1e-13));
+  EXPECT_TRUE(NearRel(sliver.mp.center_of_mass.x(), 0.325, 1e-15));
+  // A double-sided surface is still zero, exactly.
+  EXPECT_THAT([&] { LoadSolid(tetrahedron("flat.obj", "0"), o); },
+              ::testing::ThrowsMessage<LoadError>(HasSubstr("zero")));
+
+  ImplicitOptions io;
+  io.sampling.samples = 1 << 14;
+  EXPECT_THAT([&] { EstimateImplicit(*ToImplicit(primitive::Sphere{1e-100}), io); },
+              ::testing::ThrowsMessage<LoadError>(HasSubstr("its inertia")));
+  EXPECT_THAT([&] { EstimateImplicit(*ToImplicit(primitive::Sphere{1e300}), io); },
+              ::testing::ThrowsMessage<LoadError>(HasSubstr("its volume")));
+  // Small but representable: the estimate is made at unit size and scaled back, error bars too
+  // (sampled at 1e-40 m directly, their variances underflowed to 0).
+  const SolidResult tiny = EstimateImplicit(*ToImplicit(primitive::Sphere{1e-40}), io);
+  const MassProperties exact = ClosedForm(primitive::Sphere{1e-40}, 1000.0);
+  EXPECT_GT(tiny.estimate->standard_error.inertia_com(0, 0), 0);
+  EXPECT_LT(std::abs(tiny.mp.volume - exact.volume), 4.5 * tiny.estimate->standard_error.volume);
+  EXPECT_LT(std::abs(tiny.mp.inertia_com(0, 0) - exact.inertia_com(0, 0)),
+            4.5 * tiny.estimate->standard_error.inertia_com(0, 0));
+}
+
 TEST(LoadSolid, TypedFindingsAndErrorsWordedPerFrontEnd) {
   const std::string open = WriteOpenTetrahedron();
   try {

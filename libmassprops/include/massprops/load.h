@@ -121,6 +121,7 @@ enum class FindingKind {
   kNonPlanarFaces,     ///< polygons off their plane: integrated as fans from their first corner
   kStreamedChecks,     ///< the streamed binary-STL path (one shell): edges used by more than two faces not counted
   kUnitOverridden,     ///< the file declares another unit than the one stated
+  kLimitedPrecision,   ///< rounding leaves fewer meaningful digits than a double holds (relative_error_bound)
 };
 
 struct Finding {
@@ -171,7 +172,10 @@ struct SolidResult {
   double wall_thickness = 0;  ///< WallModel: in the file's unit
   std::string path_used;      ///< how it was integrated, in words
   double size_m = 0;          ///< bounding-box diagonal, m
-  double seconds = 0;         ///< wall-clock time of the whole pipeline
+  /// > 0 when rounding may leave this relative error in every number (a thin wall: a small
+  /// difference of two large solids); the digits beyond it are noise. 0: as a double holds.
+  double relative_error_bound = 0;
+  double seconds = 0;  ///< wall-clock time of the whole pipeline
   std::vector<Finding> findings;
   std::optional<HullReport> hull;    ///< LoadOptions::hull
   std::optional<ExactReport> exact;  ///< LoadOptions::exact: mp holds the certified values

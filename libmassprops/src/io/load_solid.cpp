@@ -49,15 +49,36 @@ void Stage(const LoadOptions& o, const char* stage) {
   if (o.progress) o.progress(stage);
 }
 
-[[noreturn]] void RefuseMagnitude(const SolidResult& r, double size, LengthUnit unit) {
-  throw LoadError(r.source + ": the part's size (" + Fixed(size, "%.3g") + " " + UnitName(unit) +
-                  " across) makes its volume or inertia " + (size < 1 ? "underflow" : "overflow") +
-                  " double precision; rescale with {unit} (the numbers would be zeros, infinities or noise)");
+// Which number a part `size` across (in metres) at `density` would take beyond double precision:
+// the volume (∝ size³), the mass, or the inertia (∝ size⁵); "" when all are normal doubles.
+std::string BeyondDoubles(double size, double density) {
+  const auto ok = [](double x) { return std::isnormal(x) && x < 1e305; };
+  if (!ok(size)) return "size";
+  const double volume = size * size * size;
+  if (!ok(volume)) return "volume";
+  if (!ok(volume * density)) return "mass";
+  if (!ok(volume * density * size * size)) return "inertia";
+  return "";
 }
 
-// A volume and second moment (∝ size³ and size⁵) that double precision can hold as normal numbers.
-void RequireRepresentable(const SolidResult& r, double volume, double second, double size, LengthUnit unit) {
-  if (!std::isnormal(volume) || !std::isnormal(second) || !std::isfinite(size)) RefuseMagnitude(r, size, unit);
+[[noreturn]] void RefuseMagnitude(const SolidResult& r, double size, LengthUnit unit, const std::string& quantity) {
+  const char* law = quantity == "volume"    ? " (it goes as the size cubed)"
+                    : quantity == "inertia" ? " (it goes as the size to the fifth power)"
+                                            : "";
+  throw LoadError(r.source + ": the part is " + Fixed(size, "%.3g") + " " + UnitName(unit) + " across: its " +
+                  quantity + law + " would " + (size < 1 ? "underflow" : "overflow") +
+                  " double precision (zeros, infinities or noise, not numbers); rescale with {unit}");
+}
+
+// A result whose numbers are all normal doubles, or a refusal naming the first that is not.
+void RequireRepresentable(const SolidResult& r, const MassProperties& mp, double size_m) {
+  const auto ok = [](double x) { return std::isnormal(x) && std::isfinite(x); };
+  const char* bad = !ok(mp.volume)                                               ? "volume"
+                    : !ok(mp.mass)                                               ? "mass"
+                    : !ok(mp.inertia_com.trace()) || !mp.inertia_com.allFinite() ? "inertia"
+                    : !mp.center_of_mass.allFinite()                             ? "center of mass"
+                                                                                 : nullptr;
+  if (bad) RefuseMagnitude(r, size_m, LengthUnit::kMetre, bad);
 }
 
 // What every path reports once r.mp is known: size and its plausibility, principal axes, and
@@ -71,9 +92,11 @@ void Conclude(SolidResult& r, double size_m, const Plausibility& plausibility, d
 
 // Integrals in file units → SI mass properties at the requested density or total mass.
 void Finish(SolidResult& r, const VolumeIntegrals& integrals, const LoadOptions& opt, double size_file_units) {
-  // Volumes go as size³ and inertias as size⁵: both must be normal doubles.
-  const double fifth = std::pow(size_file_units, 5);
-  if (!std::isnormal(fifth) || fifth > 1e300) RefuseMagnitude(r, size_file_units, opt.unit);
+  // Integrated in file units: an integral beyond double range is an infinity here.
+  if (!std::isfinite(size_file_units) || !std::isfinite(integrals.volume) || !integrals.first.allFinite() ||
+      !integrals.second.allFinite()) {
+    RefuseMagnitude(r, size_file_units, opt.unit, std::isfinite(integrals.volume) ? "inertia" : "volume");
+  }
   // Rounding leaves about 1e-16 of the part's size cubed where faces cancel: a volume below
   // 1e-12 of it is zero, whatever its sign.
   if (std::abs(integrals.volume) <= 1e-12 * std::pow(size_file_units, 3)) {
@@ -89,11 +112,28 @@ void Finish(SolidResult& r, const VolumeIntegrals& integrals, const LoadOptions&
   // Integrate in file units, then scale exactly (no rounding of the coordinates themselves).
   const MassProperties unit_density = Scaled(FromIntegrals(integrals, 1.0), scale);
   r.mp = AtDensity(unit_density, ResolveDensity(opt.mass, unit_density.volume));
-  RequireRepresentable(r, r.mp.volume, r.mp.inertia_com.trace(), scale * size_file_units, LengthUnit::kMetre);
-  if (!std::isnormal(r.mp.mass) || !r.mp.inertia_com.allFinite()) {
-    RefuseMagnitude(r, scale * size_file_units, LengthUnit::kMetre);
-  }
+  RequireRepresentable(r, r.mp, scale * size_file_units);
   Conclude(r, scale * size_file_units, {opt.unit_stated, opt.mass});
+}
+
+// An estimate made at 1/k of the size, brought back: lengths ×k, volumes ×k³, inertias ×k⁵ (×k²
+// when the total mass is fixed), error bars alike.
+MassPropertiesEstimate ScaledEstimate(MassPropertiesEstimate e, double k, bool mass_fixed) {
+  const double inertia = mass_fixed ? k * k : k * k * k * k * k;
+  for (MassProperties* mp : {&e.value, &e.standard_error}) {
+    const double mass = mp->mass;
+    MassProperties out = *mp;
+    out.volume *= k * k * k;
+    out.mass = mass_fixed ? mass : mass * k * k * k;
+    out.center_of_mass *= k;
+    out.inertia_com *= inertia;
+    out.surface_area *= k * k;
+    *mp = out;
+  }
+  if (mass_fixed) e.value.density = e.value.mass / e.value.volume;  // else the density as given
+  e.principal_moments *= inertia;
+  e.principal_moments_se *= inertia;
+  return e;
 }
 
 // Runs the estimator on a solid already in metres and fills the result.
@@ -102,13 +142,25 @@ void Estimate(SolidResult& r, const ImplicitSolid& solid, MonteCarloOptions mc, 
   mc.num_threads = num_threads;
   mc.fixed_mass = FixesMass(mass) ? std::get<TotalMass>(mass).value : 0.0;
   const double density = FixesMass(mass) ? 1.0 : ResolveDensity(mass, 1.0);
+  // Sampled at a size near 1 (scaled by a power of two, exactly) and scaled back, so that no sum or
+  // variance of tiny or huge coordinates underflows or overflows; a part whose numbers themselves
+  // would is refused, naming which.
+  const Vector3 extent = solid.Bounds().sizes();
+  const double size = extent.allFinite() ? extent.stableNorm() : std::numeric_limits<double>::infinity();
+  if (const std::string beyond = BeyondDoubles(size, FixesMass(mass) ? 1.0 : density); !beyond.empty()) {
+    RefuseMagnitude(r, size, LengthUnit::kMetre, beyond == "size" ? "volume" : beyond);
+  }
+  const double k = std::ldexp(1.0, std::ilogb(size));
+  const ImplicitPtr view(std::shared_ptr<const ImplicitSolid>(), &solid);
   if (progress) progress(mc.tolerance > 0 ? "sampling until the tolerance is met" : "sampling");
-  const MassPropertiesEstimate e = EstimateMassProperties(solid, density, mc);
+  const MassPropertiesEstimate e =
+      ScaledEstimate(EstimateMassProperties(*implicit::Scaled(view, 1 / k), density, mc), k, FixesMass(mass));
   const bool qmc = mc.method == SamplingMethod::kQuasiMonteCarlo;
   r.estimate = e;
   r.mp = e.value;
   r.mass_fixed = FixesMass(mass);
-  Conclude(r, solid.Bounds().sizes().norm(), {unit_stated, mass}, 1e-6);
+  RequireRepresentable(r, r.mp, size);
+  Conclude(r, size, {unit_stated, mass}, 1e-6);
   r.path_used = std::string(qmc ? "quasi-Monte Carlo (Owen-scrambled Sobol)" : "Monte Carlo") + ", " +
                 std::to_string(e.samples) + " points" +
                 (qmc ? " in " + std::to_string(e.randomizations) + " randomizations" : "");
@@ -246,7 +298,56 @@ void IntegrateWall(SolidResult& r, const WallModel& wall, const LoadOptions& opt
   IntegrationOptions io;
   io.num_threads = opt.num_threads;
   r.mass_fixed = FixesMass(opt.mass);
-  Finish(r, IntegratePolygons(r.loaded.mesh, io), opt, Diagonal(mesh));
+  const VolumeIntegrals wall_integrals = IntegratePolygons(r.loaded.mesh, io);
+  // The wall is the outer solid less the inner one: a thin wall is a small difference of two
+  // large numbers. Rounding bounds: the sums (a few units in the last place of each solid) and the
+  // inner corners' positions (rounded to the last place of the largest coordinate, over both
+  // surfaces' area).
+  const double u = std::numeric_limits<double>::epsilon() / 2;
+  const double outer_volume = std::abs(SignedVolumeOf(mesh));
+  const double inner_volume = std::abs(outer_volume - wall_integrals.volume);
+  const double largest = mesh.V.cwiseAbs().maxCoeff();
+  const double error = 8 * u * (outer_volume + inner_volume) + 4 * u * largest * wall_integrals.surface_area;
+  const double bound = wall_integrals.volume > 0 ? error / wall_integrals.volume : 1.0;
+  if (bound > 1e-2) {
+    throw LoadError(r.source + ": {wall}: a wall of " + Fixed(wall.thickness, "%g") + " " + UnitName(opt.unit) +
+                    " is too thin for double precision on a part " + Fixed(Diagonal(mesh), "%.4g") + " " +
+                    UnitName(opt.unit) + " across: the wall's volume is the difference of two solids that agree to " +
+                    Fixed(-std::log10(std::max(bound * wall_integrals.volume / outer_volume, 1e-17)), "%.0f") +
+                    " digits, so rounding could be " + Fixed(100 * std::min(bound, 1e9), "%.2g") +
+                    " % of it; compute it as a thin shell (the surface carrying the wall's mass per area) instead");
+  }
+  if (bound > 1e-9) {
+    r.relative_error_bound = bound;
+    Warn(r, FindingKind::kLimitedPrecision,
+         "the wall is thin for its part (" + Fixed(wall.thickness, "%g") + " " + UnitName(opt.unit) + " on a part " +
+             Fixed(Diagonal(mesh), "%.4g") +
+             " across): it is the difference of two solids, and rounding leaves its "
+             "numbers good to about " +
+             Fixed(bound, "%.1g") + " relative: the digits beyond are noise");
+  }
+  Finish(r, wall_integrals, opt, Diagonal(mesh));
+}
+
+// A volume within rounding of zero may be a double-sided surface (zero) or a real sliver (a
+// tetrahedron 1e-300 high): exact rational sums tell them apart where the build has them. True when
+// the exact numbers were taken.
+bool IntegrateExactlyIfTiny(SolidResult& r, const LoadOptions& opt, double size, double area_file_units) {
+  ExactMassProperties e;
+  try {
+    Stage(opt, "the volume is within rounding of zero: integrating in exact arithmetic (GMP)");
+    e = RequireGeometrySteps("exact integration").exact(r.loaded.mesh, MetresPerUnit(opt.unit), opt.mass, 1);
+  } catch (const std::exception&) {
+    return false;  // zero, negative, or no exact arithmetic here: Finish says why
+  }
+  r.mp = e.mp;
+  r.mp.surface_area = area_file_units * MetresPerUnit(opt.unit) * MetresPerUnit(opt.unit);
+  RequireRepresentable(r, r.mp, MetresPerUnit(opt.unit) * size);
+  r.path_used +=
+      "; the volume is below the double sums' rounding, so it was integrated in exact rational "
+      "arithmetic (GMP), each number correctly rounded once";
+  Conclude(r, MetresPerUnit(opt.unit) * size, {opt.unit_stated, opt.mass});
+  return true;
 }
 
 void IntegrateSolid(SolidResult& r, const LoadOptions& opt) {
@@ -280,7 +381,12 @@ void IntegrateSolid(SolidResult& r, const LoadOptions& opt) {
     integrals = IntegrateTriangles(tri.V, tri.F, io);
   }
   r.mass_fixed = FixesMass(opt.mass);
-  Finish(r, integrals, opt, Diagonal(mesh));
+  const double size = Diagonal(mesh);
+  if (std::abs(integrals.volume) <= 1e-12 * std::pow(size, 3) && std::isfinite(size) && !opt.exact &&
+      IntegrateExactlyIfTiny(r, opt, size, integrals.surface_area)) {
+    return;
+  }
+  Finish(r, integrals, opt, size);
 }
 
 // Replaces the default path's numbers by the certified ones, keeping how far apart they were.

@@ -41,6 +41,8 @@ Json ToJson(const SolidResult& r, const FormatOptions& opt) {
     j["area_density"] = r.mp.density / u.AreaDensity();
   }
   if (r.model == ModelKind::kWall) j["wall_thickness_m"] = r.wall_thickness * MetresPerUnit(r.unit);
+  // Present when rounding leaves fewer digits than a double holds (a thin wall).
+  if (r.relative_error_bound > 0) j["relative_error_bound"] = r.relative_error_bound;
   if (opt.frame == Frame::kOrigin) j["inertia_origin"] = Mat(r.mp.InertiaAbout(Vector3::Zero()) / u.Inertia());
   if (opt.reference) {
     const ReferenceFrame f = ReferenceOf(r, opt);

@@ -8,12 +8,20 @@
 namespace massprops::report {
 namespace {
 
-std::string Num(double v) { return FormatDouble(v, "% .10e"); }
+// Numbers with `digits` after the point in scientific notation (10: eleven significant digits).
+std::string Num(double v, int digits = 10) { return FormatDouble(v, ("% ." + std::to_string(digits) + "e").c_str()); }
 
-void PrintMatrix(std::ostream& out, const std::string& indent, const Matrix3& m) {
+void PrintMatrix(std::ostream& out, const std::string& indent, const Matrix3& m, int digits = 10) {
   for (int i = 0; i < 3; ++i) {
-    out << indent << "[" << Num(m(i, 0)) << "  " << Num(m(i, 1)) << "  " << Num(m(i, 2)) << " ]\n";
+    out << indent << "[" << Num(m(i, 0), digits) << "  " << Num(m(i, 1), digits) << "  " << Num(m(i, 2), digits)
+        << " ]\n";
   }
+}
+
+// The digits a result's numbers carry: all eleven, or those its relative error bound leaves.
+int DigitsOf(const SolidResult& r) {
+  if (!(r.relative_error_bound > 0)) return 10;
+  return std::clamp(static_cast<int>(std::floor(-std::log10(r.relative_error_bound))) - 1, 0, 10);
 }
 
 std::string FormatOne(const SolidResult& r, const FormatOptions& opt);
@@ -53,8 +61,9 @@ std::string FormatOne(const SolidResult& r, const FormatOptions& opt) {
   std::ostringstream out;
   const ReportUnits& u = opt.units;
   const std::string len = UnitName(u.length), mass_unit = UnitName(u.mass), inertia_unit = UnitName(u.inertia);
+  const int digits = DigitsOf(r);
   auto vec = [&](const Vector3& v, double unit) {
-    return "[" + Num(v[0] / unit) + "  " + Num(v[1] / unit) + "  " + Num(v[2] / unit) + " ]";
+    return "[" + Num(v[0] / unit, digits) + "  " + Num(v[1] / unit, digits) + "  " + Num(v[2] / unit, digits) + " ]";
   };
   const auto& t = r.topology;
   const bool implicit = r.model == ModelKind::kImplicit;
@@ -95,6 +104,11 @@ std::string FormatOne(const SolidResult& r, const FormatOptions& opt) {
   if (r.loaded.float32_coordinates) {
     out << "precision       the file's coordinates are 32-bit floats (~7 significant digits)\n";
   }
+  if (r.relative_error_bound > 0) {
+    out << "precision       rounding leaves these numbers good to about "
+        << FormatDouble(r.relative_error_bound, "%.1g") << " relative (printed to " << digits + 1
+        << " significant digits)\n";
+  }
   out << "units           file coordinates in " << UnitName(r.unit) << " (" << MetresPerUnit(r.unit) << " m each"
       << (r.unit_source == UnitSource::kFile ? ", declared by the file" : "") << "), results in "
       << (u.IsSi() ? std::string("SI") : u.Describe()) << "; " << (shell ? "area density " : "density ")
@@ -116,30 +130,30 @@ std::string FormatOne(const SolidResult& r, const FormatOptions& opt) {
         << "\n";
   }
   if (!shell) {
-    out << "volume          " << Num(r.mp.volume / u.Volume()) << " " << u.VolumeName()
+    out << "volume          " << Num(r.mp.volume / u.Volume(), digits) << " " << u.VolumeName()
         << (se ? pm(se->volume, u.Volume()) : "") << "\n";
   }
   if (!r.estimate) out << "surface area    " << Num(r.mp.surface_area / u.Area()) << " " << u.AreaName() << "\n";
-  out << "mass            " << Num(r.mp.mass / u.Mass()) << " " << mass_unit << (se ? pm(se->mass, u.Mass()) : "")
-      << "\n";
+  out << "mass            " << Num(r.mp.mass / u.Mass(), digits) << " " << mass_unit
+      << (se ? pm(se->mass, u.Mass()) : "") << "\n";
   out << "center of mass  " << vec(r.mp.center_of_mass, u.Length()) << " " << len << ", in the file's axes\n";
   if (se) out << "  +-            " << vec(se->center_of_mass, u.Length()) << "\n";
   const std::string inertia_label = " (" + (u.IsSi() ? std::string("kg m^2") : inertia_unit) + "):\n";
   out << "inertia about the center of mass, file's axes" << inertia_label;
-  PrintMatrix(out, "                ", r.mp.inertia_com / u.Inertia());
+  PrintMatrix(out, "                ", r.mp.inertia_com / u.Inertia(), digits);
   if (se) {
     out << "  +-\n";
     PrintMatrix(out, "                ", se->inertia_com / u.Inertia());
   }
   if (opt.frame == Frame::kOrigin) {
     out << "inertia about the file's origin, file's axes" << inertia_label;
-    PrintMatrix(out, "                ", r.mp.InertiaAbout(Vector3::Zero()) / u.Inertia());
+    PrintMatrix(out, "                ", r.mp.InertiaAbout(Vector3::Zero()) / u.Inertia(), digits);
   }
   if (opt.reference) {
     const ReferenceFrame f = ReferenceOf(r, opt);
     out << "inertia about " << (f.point ? vec(*f.point, u.Length()) + " " + len : std::string("the center of mass"))
         << (f.axes.isIdentity(0) ? ", file's axes" : ", in the axes given") << inertia_label;
-    PrintMatrix(out, "                ", InertiaInFrame(r.mp, f) / u.Inertia());
+    PrintMatrix(out, "                ", InertiaInFrame(r.mp, f) / u.Inertia(), digits);
     if (!f.axes.isIdentity(0)) {
       out << "  axes (columns, in the file's axes):\n";
       PrintMatrix(out, "                ", f.axes);
@@ -150,15 +164,15 @@ std::string FormatOne(const SolidResult& r, const FormatOptions& opt) {
          "                as URDF ixy/ixz/iyz and MJCF fullinertia expect them\n";
   const Vector3& m = r.principal.moments;
   const double ui = u.Inertia();
-  out << "principal moments (ascending)  " << Num(m[0] / ui) << "  " << Num(m[1] / ui) << "  " << Num(m[2] / ui) << " "
-      << (u.IsSi() ? std::string("kg m^2") : inertia_unit) << "\n";
+  out << "principal moments (ascending)  " << Num(m[0] / ui, digits) << "  " << Num(m[1] / ui, digits) << "  "
+      << Num(m[2] / ui, digits) << " " << (u.IsSi() ? std::string("kg m^2") : inertia_unit) << "\n";
   if (r.estimate) {
     const Vector3& ms = r.estimate->principal_moments_se;
     out << "  +-                             " << Num(ms[0] / ui) << "  " << Num(ms[1] / ui) << "  " << Num(ms[2] / ui)
         << "\n";
   }
   out << "principal axes (columns, right-handed, in the file's axes):\n";
-  PrintMatrix(out, "                ", r.principal.axes);
+  PrintMatrix(out, "                ", r.principal.axes, digits);
   if (r.exact) {
     const ExactReport& e = *r.exact;
     out << "certified       volume, mass, center of mass and inertia above are the correctly rounded values of\n"
