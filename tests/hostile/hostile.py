@@ -9,6 +9,7 @@ Prints one line per failed case and 'N passed, M failed'; exit 0 when none faile
 generated here (no hostile file is committed). A case is (name, files, args, expected status,
 regex the stderr must match, regex the stdout must match or None for 'prints nothing').
 """
+import io
 import json
 import math
 import os
@@ -145,8 +146,30 @@ def gltf(v, f):
 
 
 # Each reader writes a mesh (vertices, polygon faces) into its format.
+def threemf_package(model, rels=True):
+    """A 3MF package (zip) holding `model` as its root model part."""
+    buf = io.BytesIO()
+    with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as z:
+        if rels:
+            z.writestr("_rels/.rels", '<?xml version="1.0" encoding="UTF-8"?><Relationships xmlns="http://schemas.'
+                       'openxmlformats.org/package/2006/relationships"><Relationship Target="/3D/3dmodel.model" '
+                       'Id="rel0" Type="http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel"/></Relationships>')
+        z.writestr("3D/3dmodel.model", model)
+    return buf.getvalue()
+
+
+def threemf_model(v, tris, unit="meter", extra_objects="", items='<item objectid="1"/>'):
+    return ('<?xml version="1.0" encoding="UTF-8"?><model unit="%s" xml:lang="en-US" '
+            'xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02"><resources><object id="1" '
+            'type="model"><mesh><vertices>' % unit +
+            "".join('<vertex x="%r" y="%r" z="%r"/>' % p for p in v) + "</vertices><triangles>" +
+            "".join('<triangle v1="%d" v2="%d" v3="%d"/>' % t for t in tris) +
+            "</triangles></mesh></object>" + extra_objects + "</resources><build>" + items + "</build></model>")
+
+
 READERS = {
     "obj": lambda v, f: obj(v, f),
+    "3mf": lambda v, f: threemf_package(threemf_model(v, tris_of(f))),
     "off": lambda v, f: off(v, f),
     "ply": lambda v, f: ply_ascii(v, f),
     "bply.ply": lambda v, f: ply_binary(v, f),
@@ -413,6 +436,46 @@ def main():
             ("grid_empty", "grid(file=\"empty.sdf\")", r"not an sdfgrid 1 file"),
             ("grid_missing", "grid(file=\"none.sdf\")", r"cannot open")]:
         run(name, ["--implicit", shape], 1, err_re)
+
+    # 3MF, our own reader: package and model faults, each naming the file and the part.
+    cube_t = tris_of(CUBE_Q)
+    for name, data, err_re in [
+            ("3mf_not_zip", b"solid x\n", r"not a 3MF package"),
+            ("3mf_cut_short", threemf_package(threemf_model(CUBE_V, cube_t))[:200], r"not a 3MF package|cannot be inflated"),
+            ("3mf_no_model", threemf_package(threemf_model(CUBE_V, cube_t)).replace(b"3D/3dmodel.model",
+                                                                                     b"3D/3dmodel.xodel"), r"no model part"),
+            ("3mf_bad_xml", threemf_package("<model><resources>"), r"3dmodel.model: not well-formed XML"),
+            ("3mf_nan", threemf_package(threemf_model([(float("nan"), 0, 0)] + CUBE_V[1:], cube_t)),
+             r"object 1, vertex 0: x=\"nan\" is not finite"),
+            ("3mf_index", threemf_package(threemf_model(CUBE_V, cube_t + [(0, 1, 99)])),
+             r"triangle 12: v3=99 is out of range"),
+            ("3mf_unit", threemf_package(threemf_model(CUBE_V, cube_t, unit="furlong")), r"unit 'furlong'"),
+            ("3mf_no_item", threemf_package(threemf_model(CUBE_V, cube_t, items="")), r"places no item"),
+            ("3mf_missing_object", threemf_package(threemf_model(CUBE_V, cube_t, items='<item objectid="7"/>')),
+             r"build item 0: no object has the id 7"),
+            ("3mf_cycle", threemf_package(threemf_model(CUBE_V, cube_t, extra_objects='<object id="2"><components>'
+                                                        '<component objectid="2"/></components></object>',
+                                                        items='<item objectid="2"/>')), r"contains itself"),
+            ("3mf_other_part", threemf_package(threemf_model(CUBE_V, cube_t, items='<item objectid="1" '
+                                                             'xmlns:p="http://schemas.microsoft.com/3dmanufacturing/'
+                                                             'production/2015/06" p:path="/3D/other.model"/>')),
+             r"another model part"),
+            ("3mf_bad_transform", threemf_package(threemf_model(CUBE_V, cube_t, items='<item objectid="1" '
+                                                                'transform="1 0 0 0 1 0 0 0 1 0 0"/>')),
+             r"not 12 finite numbers")]:
+        write(name + ".3mf", data)
+        run(name, [name + ".3mf"], 1, re.escape(name) + r"\.3mf: " + "(.|\n)*" + err_re)
+    # Several objects, components and transforms: two unit cubes as parts, one placed through a
+    # component that turns it 90° about z and moves it, one mirrored by its build item (its faces
+    # kept outward): 2 m^3, each part 1 m^3.
+    parts_model = threemf_model(CUBE_V, cube_t, extra_objects=
+                                '<object id="2" name="turned"><components><component objectid="1" '
+                                'transform="0 1 0 -1 0 0 0 0 1 5 0 0"/></components></object>',
+                                items='<item objectid="2"/><item objectid="1" transform="-1 0 0 0 1 0 0 0 1 -3 0 0"/>')
+    write("two_parts.3mf", threemf_package(parts_model))
+    run("3mf_parts", ["two_parts.3mf", "--parts", "--format", "csv"], 0, r"^$",
+        r'"two_parts.3mf","turned",m,1,1000,1000,4\.5,0\.5,0\.5,(.|\n)*"two_parts.3mf","object 1",m,1,1000,1000,'
+        r'-3\.5,0\.5,0\.5,(.|\n)*"two_parts.3mf",,m,2,2000,1000,0\.5,0\.5,0\.5,333\.33333333333\d*,32333\.333333333\d*,')
 
     # Round three. A big binary STL (streamed path) of a torus inside another, both outward: the
     # per-triangle checks pass, only counting shells sends it to the full check, which refuses it.

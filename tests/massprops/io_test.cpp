@@ -8,10 +8,15 @@
 #include <fstream>
 #include <string>
 
+#include <zlib.h>
+
+#include <sstream>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "massprops/composition.h"
+#include "massprops/load.h"
 #include "massprops/mass_properties.h"
 #include "massprops/mesh_topology.h"
 #include "massprops/solids.h"
@@ -328,6 +333,122 @@ TEST_F(BadFiles, OtherFormatsThroughAssimp) {
   const MassProperties mp = ComputeMassProperties(m.mesh, 1.0);
   EXPECT_TRUE(NearRel(mp.volume, 10.0, 1e-15));
   EXPECT_TRUE(MatrixNearRel(mp.center_of_mass, Vector3(1.25, 1.0, 0.75), 1e-15, 1.0));
+}
+
+// A zip package of stored (uncompressed) entries, as 3MF producers may write them.
+std::string Zip(const std::vector<std::pair<std::string, std::string>>& entries) {
+  std::string out, directory;
+  auto u16 = [](std::string& s, unsigned v) {
+    s += static_cast<char>(v & 0xff), s += static_cast<char>(v >> 8 & 0xff);
+  };
+  auto u32 = [&](std::string& s, unsigned long v) { u16(s, v & 0xffff), u16(s, v >> 16 & 0xffff); };
+  for (const auto& [name, data] : entries) {
+    const unsigned long crc = crc32(0, reinterpret_cast<const Bytef*>(data.data()), static_cast<uInt>(data.size()));
+    const auto offset = static_cast<unsigned long>(out.size());
+    u32(out, 0x04034b50), u16(out, 20), u16(out, 0), u16(out, 0), u16(out, 0), u16(out, 0);
+    u32(out, crc), u32(out, data.size()), u32(out, data.size()), u16(out, static_cast<unsigned>(name.size())),
+        u16(out, 0);
+    out += name + data;
+    u32(directory, 0x02014b50), u16(directory, 20), u16(directory, 20), u16(directory, 0), u16(directory, 0);
+    u16(directory, 0), u16(directory, 0), u32(directory, crc), u32(directory, data.size()), u32(directory, data.size());
+    u16(directory, static_cast<unsigned>(name.size())), u16(directory, 0), u16(directory, 0), u16(directory, 0);
+    u16(directory, 0), u32(directory, 0), u32(directory, offset);
+    directory += name;
+  }
+  const auto at = static_cast<unsigned long>(out.size());
+  out += directory;
+  u32(out, 0x06054b50), u16(out, 0), u16(out, 0), u16(out, static_cast<unsigned>(entries.size()));
+  u16(out, static_cast<unsigned>(entries.size())), u32(out, directory.size()), u32(out, at), u16(out, 0);
+  return out;
+}
+
+// A 3MF model part: each object a mesh (id 1, 2, ...), then `more` (objects with components),
+// and the build's items.
+std::string Model(const std::vector<TriangleMesh>& meshes, const std::string& more, const std::string& items,
+                  const std::string& unit) {
+  std::ostringstream m;
+  m.precision(17);
+  m << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<model unit=\"" << unit
+    << "\" xmlns=\"http://schemas.microsoft.com/3dmanufacturing/core/2015/02\"><resources>";
+  for (std::size_t k = 0; k < meshes.size(); ++k) {
+    m << "<object id=\"" << k + 1 << "\" name=\"mesh " << k + 1 << "\"><mesh><vertices>";
+    for (Eigen::Index i = 0; i < meshes[k].V.rows(); ++i) {
+      m << "<vertex x=\"" << meshes[k].V(i, 0) << "\" y=\"" << meshes[k].V(i, 1) << "\" z=\"" << meshes[k].V(i, 2)
+        << "\"/>";
+    }
+    m << "</vertices><triangles>";
+    for (Eigen::Index f = 0; f < meshes[k].F.rows(); ++f) {
+      m << "<triangle v1=\"" << meshes[k].F(f, 0) << "\" v2=\"" << meshes[k].F(f, 1) << "\" v3=\"" << meshes[k].F(f, 2)
+        << "\"/>";
+    }
+    m << "</triangles></mesh></object>";
+  }
+  m << more << "</resources><build>" << items << "</build></model>";
+  return m.str();
+}
+
+std::string Package(const std::string& model) {
+  return Zip({{"_rels/.rels",
+               "<Relationships xmlns=\"http://schemas.openxmlformats.org/package/2006/relationships\"><Relationship "
+               "Target=\"/3D/Part.model\" Id=\"r0\" Type=\"http://schemas.microsoft.com/3dmanufacturing/2013/01/"
+               "3dmodel\"/></Relationships>"},
+              {"3D/Part.model", model}});
+}
+
+// Our 3MF reader: a torus placed by its build item's transform (a rotation and a shift, in
+// millimetres), against the same mesh moved here and integrated, and against assimp's reader of
+// the same file (float32 inside: 1e-6); the root part found through _rels/.rels, not its usual name.
+TEST_F(BadFiles, ThreeMfReaderAgainstTheMeshAndAssimp) {
+  const TriangleMesh torus = solids::Torus(20.0, 5.0, 24);
+  const std::string path =
+      Write("torus.3mf",
+            Package(Model({torus}, "", "<item objectid=\"1\" transform=\"0 0 1 0 1 0 -1 0 0 3 4 5\"/>", "millimeter")));
+  const LoadedMesh m = ReadMeshFile(path);
+  EXPECT_EQ(m.format, "3mf");
+  EXPECT_EQ(m.declared_unit, LengthUnit::kMillimetre);
+  EXPECT_FALSE(m.float32_coordinates);
+  TriangleMesh moved = torus;
+  for (Eigen::Index i = 0; i < moved.V.rows(); ++i) {
+    const Vector3 p = torus.V.row(i);
+    moved.V.row(i) = Vector3(-p.z() + 3, p.y() + 4, p.x() + 5).transpose();  // (x y z 1)·M
+  }
+  ExpectMassPropertiesNear(ComputeMassProperties(m.mesh, 1.0), ComputeMassProperties(moved, 1.0), 1e-13, 1.0);
+  LoadOptions ours, theirs;
+  theirs.reader = Reader::kAssimp;
+  const SolidResult a = LoadSolid(path, ours), b = LoadSolid(path, theirs);
+  EXPECT_EQ(a.unit, LengthUnit::kMillimetre);
+  EXPECT_EQ(b.unit, LengthUnit::kMillimetre);
+  EXPECT_TRUE(NearRel(a.mp.volume, b.mp.volume, 1e-6));
+  EXPECT_TRUE(MatrixNearRel(a.mp.center_of_mass, b.mp.center_of_mass, 1e-6, 0.05));  // 1e-6 of its size
+  EXPECT_TRUE(MatrixNearRel(a.mp.inertia_com, b.mp.inertia_com, 1e-6, a.mp.inertia_com.norm()));
+}
+
+// Several objects: a box placed twice through components of one object (one turned 90° about z),
+// a sphere mirrored by its item (faces kept outward), a support structure left out. Parts are
+// the build's items, named after their objects; numbers against the meshes placed by hand.
+TEST_F(BadFiles, ThreeMfObjectsComponentsAndParts) {
+  const TriangleMesh box = Triangulate(solids::Box(Vector3(1, 2, 3)));
+  const TriangleMesh ball = solids::Sphere(1.0, 16);
+  const std::string more =
+      "<object id=\"3\" name=\"pair\"><components><component objectid=\"1\" transform=\"1 0 0 0 1 0 0 0 1 10 0 0\"/>"
+      "<component objectid=\"1\" transform=\"0 1 0 -1 0 0 0 0 1 20 0 0\"/></components></object>"
+      "<object id=\"4\" type=\"support\"><components><component objectid=\"2\"/></components></object>";
+  const std::string items =
+      "<item objectid=\"3\"/><item objectid=\"2\" transform=\"-1 0 0 0 1 0 0 0 1 -5 0 0\"/><item objectid=\"4\"/>";
+  const LoadedMesh m = ReadMeshFile(Write("parts.3mf", Package(Model({box, ball}, more, items, "meter"))));
+  ASSERT_EQ(m.part_names, (std::vector<std::string>{"pair", "mesh 2"}));
+  ASSERT_EQ(static_cast<Eigen::Index>(m.face_part.size()), m.mesh.num_faces());
+  EXPECT_EQ(m.mesh.num_faces(), 2 * box.F.rows() + ball.F.rows());
+  const MeshTopology t = AnalyzeTopology(m.mesh);
+  EXPECT_TRUE(t.BoundsVolume()) << t.Problems();
+  EXPECT_EQ(t.components, 3);
+  const MassProperties b = ComputeMassProperties(box, 1.0), s = ComputeMassProperties(ball, 1.0);
+  const MassProperties whole = ComputeMassProperties(m.mesh, 1.0);
+  EXPECT_TRUE(NearRel(whole.volume, 2 * b.volume + s.volume, 1e-14));  // the mirrored sphere is not negative
+  const Vector3 c1 = b.center_of_mass + Vector3(10, 0, 0);
+  const Vector3 c2(20 - b.center_of_mass.y(), b.center_of_mass.x(), b.center_of_mass.z());
+  const Vector3 c3(-s.center_of_mass.x() - 5, s.center_of_mass.y(), s.center_of_mass.z());
+  EXPECT_TRUE(MatrixNearRel(whole.center_of_mass, (b.volume * (c1 + c2) + s.volume * c3) / whole.volume, 1e-13, 1.0));
 }
 
 TEST(Shells, NestingDecidesCavityOrOverlap) {

@@ -55,6 +55,10 @@ LoadedMesh ParseObj(const std::string& path, std::string_view data);
 LoadedMesh ParseStl(const std::string& path, std::string_view data);
 LoadedMesh ParsePly(const std::string& path, std::string_view data);
 LoadedMesh ParseOff(const std::string& path, std::string_view data);
+LoadedMesh Parse3mf(const std::string& path, std::string_view data);
+
+/// The length unit a 3MF or AMF unit attribute names ("millimeter", "inch", ...), if it is one.
+std::optional<LengthUnit> ModelUnitNamed(const std::string& word);
 
 /// The unit a 3MF or AMF file declares (their default, millimetres, when they declare none), with
 /// the file's word for it; nothing for other formats or a package that cannot be read.

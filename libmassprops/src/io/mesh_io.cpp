@@ -16,10 +16,7 @@ struct ReaderEntry {
 
 // Our own parsers (double precision): one row per format.
 constexpr ReaderEntry kReaders[] = {
-    {"obj", ParseObj},
-    {"stl", ParseStl},
-    {"ply", ParsePly},
-    {"off", ParseOff},
+    {"obj", ParseObj}, {"stl", ParseStl}, {"ply", ParsePly}, {"off", ParseOff}, {"3mf", Parse3mf},
 };
 
 const ReaderEntry* FindReader(const std::string& extension) {
