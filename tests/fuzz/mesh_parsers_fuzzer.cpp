@@ -1,10 +1,12 @@
 // libFuzzer target for every hand-written parser: the same bytes go through the STL (binary and
-// ASCII), OBJ, PLY and OFF readers, the binary-STL record path, the shape syntax, and — when they
-// parse — the topology checks and the integrators (or a small Monte-Carlo run). Any crash, sanitizer report or hang is
-// a bug; a MeshFileError or std::invalid_argument is the expected answer to bad input.
+// ASCII), OBJ, PLY, OFF and 3MF readers (3MF both as the bytes and as a package holding them), the binary-STL record
+// path, the shape syntax, and — when they parse — the topology checks and the integrators (or a small Monte-Carlo run).
+// Any crash, sanitizer report or hang is a bug; a MeshFileError or std::invalid_argument is the expected answer to bad
+// input.
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <string_view>
 
 #include "massprops/implicit.h"
@@ -14,11 +16,43 @@
 #include "massprops/monte_carlo.h"
 #include "massprops/triangle_soup.h"
 
+namespace {
+
+// The bytes as the model part of a 3MF package (one stored zip entry, CRC left 0: the reader does
+// not check it), so that the fuzzer reaches the 3MF reader's XML, not only its zip directory.
+std::string AsThreeMfPackage(std::string_view model) {
+  std::string out, dir;
+  auto u16 = [](std::string& s, unsigned v) {
+    s += static_cast<char>(v & 0xff), s += static_cast<char>(v >> 8 & 0xff);
+  };
+  auto u32 = [&](std::string& s, unsigned long v) { u16(s, v & 0xffff), u16(s, v >> 16 & 0xffff); };
+  const std::string name = "3D/3dmodel.model";
+  u32(out, 0x04034b50), u16(out, 20), u16(out, 0), u16(out, 0), u16(out, 0), u16(out, 0), u32(out, 0);
+  u32(out, model.size()), u32(out, model.size()), u16(out, static_cast<unsigned>(name.size())), u16(out, 0);
+  out += name;
+  out.append(model);
+  u32(dir, 0x02014b50), u16(dir, 20), u16(dir, 20), u16(dir, 0), u16(dir, 0), u16(dir, 0), u16(dir, 0), u32(dir, 0);
+  u32(dir, model.size()), u32(dir, model.size()), u16(dir, static_cast<unsigned>(name.size()));
+  for (int i = 0; i < 4; ++i) u16(dir, 0);
+  u32(dir, 0), u32(dir, 0);
+  dir += name;
+  const auto at = static_cast<unsigned long>(out.size());
+  out += dir;
+  u32(out, 0x06054b50), u16(out, 0), u16(out, 0), u16(out, 1), u16(out, 1), u32(out, dir.size()), u32(out, at);
+  u16(out, 0);
+  return out;
+}
+
+}  // namespace
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
-  for (const char* ext : {"stl", "obj", "ply", "off"}) {
+  const std::string package = AsThreeMfPackage(bytes);
+  for (const char* ext : {"stl", "obj", "ply", "off", "3mf", "3mf-package"}) {
     try {
-      const massprops::LoadedMesh m = massprops::ParseMeshBuffer("fuzz", ext, bytes);
+      const bool wrap = std::string_view(ext) == "3mf-package";
+      const massprops::LoadedMesh m =
+          massprops::ParseMeshBuffer("fuzz", wrap ? "3mf" : ext, wrap ? std::string_view(package) : bytes);
       const massprops::MeshTopology t = massprops::AnalyzeTopology(m.mesh);
       if (m.mesh.num_faces() <= 2000) {
         if (t.components > 1) massprops::AnalyzeShells(m.mesh);

@@ -60,8 +60,12 @@ PolygonMesh ConvexHull(const PolygonMesh& mesh);
 /// Number of pairs of faces that intersect other than along shared edges or vertices, counting up
 /// to `limit`: polygons are split into triangles (SplitPolygon), candidate pairs come from CGAL's
 /// box intersection, and each pair is decided with exact predicates. Triangles of the same polygon
-/// are not tested against each other.
+/// are not tested against each other. Returns −1 (not decided) when the candidate pairs exceed
+/// kSelfIntersectionWork + 50 per triangle: a corner shared by 10⁵ faces (a cone's apex, a
+/// cap's fan) makes the boxes of every two of them overlap, 5·10⁹ pairs; the check stops in seconds
+/// instead of running for hours.
 inline constexpr std::int64_t kSelfIntersectionLimit = 1000000;
+inline constexpr std::int64_t kSelfIntersectionWork = 10000000;
 std::int64_t CountSelfIntersections(const PolygonMesh& mesh, std::int64_t limit = kSelfIntersectionLimit);
 
 }  // namespace massprops

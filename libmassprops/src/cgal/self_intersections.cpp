@@ -4,10 +4,10 @@
 // Candidate pairs come from bounding boxes. A large polygon split into triangles has a triangle
 // spanning it at every scale, and each face along its rim overlaps the boxes of log2 n of them:
 // 4·10^7 candidate pairs for a prism over a 10^6-gon. So a polygon of more than 32 corners that
-// lies exactly in one plane is one box, tested as a whole against each triangle that meets its
-// box: a triangle whose other corners lie strictly on one side of the plane, and which touches it
-// only at one corner of the polygon or along one of its edges, meets it only there. Anything else
-// (a triangle crossing the plane, or lying in it) is decided against the polygon's triangles.
+// lies in one plane (exactly, or within rounding when the plane is tilted) is one box, tested as a whole against each
+// triangle that meets its box: a triangle whose other corners lie strictly on one side of the plane, and which touches
+// it only at one corner of the polygon or along one of its edges, meets it only there. Anything else (a triangle
+// crossing the plane, or lying in it) is decided against the polygon's triangles.
 
 #include <algorithm>
 #include <array>
@@ -148,10 +148,12 @@ int Orientation(const Point& a, const Point& b, const Point& c, const Point& d) 
   return exact == CGAL::POSITIVE ? -1 : exact == CGAL::NEGATIVE ? 1 : 0;
 }
 
-// A polygon tested as a whole: its corners lie exactly in the plane through three of them.
+// A polygon tested as a whole: its corners lie in the plane through three of them, exactly or
+// within `off_plane` (rounding: a polygon in a tilted plane cannot hold its corners exactly in it).
 struct FlatPolygon {
   std::int64_t face = 0;
   std::array<std::int32_t, 3> plane{};  // three corners, not collinear
+  double off_plane = 0;                 // largest distance of a corner from that plane
   std::vector<Triangle> triangles;      // its split, for the pairs decided on triangles
 };
 
@@ -182,8 +184,11 @@ class CornerIndex {
 };
 
 // Three corners of the polygon spanning its plane (the first, the farthest from it, the farthest
-// from their line), when every corner lies exactly in that plane.
-bool FindPlane(const std::vector<Point>& p, const std::int32_t* corners, int n, std::array<std::int32_t, 3>& plane) {
+// from their line), when every corner lies in that plane: exactly, or within rounding of it (1e-12
+// of the polygon's size; `off_plane` says how far).
+bool FindPlane(const std::vector<Point>& p, const std::int32_t* corners, int n, std::array<std::int32_t, 3>& plane,
+               double& off_plane) {
+  off_plane = 0;
   auto P = [&](int k) -> const Point& { return p[static_cast<std::size_t>(corners[k])]; };
   int far = 0;
   double best = 0;
@@ -192,6 +197,7 @@ bool FindPlane(const std::vector<Point>& p, const std::int32_t* corners, int n, 
     if (d > best) best = d, far = k;
   }
   if (far == 0) return false;
+  const double size = std::sqrt(best);
   const Kernel::Vector_3 axis = P(far) - P(0);
   int third = 0;
   best = 0;
@@ -208,10 +214,14 @@ bool FindPlane(const std::vector<Point>& p, const std::int32_t* corners, int n, 
   }
   const Point &a = p[static_cast<std::size_t>(plane[0])], &b = p[static_cast<std::size_t>(plane[1])],
               &c = p[static_cast<std::size_t>(plane[2])];
-  for (int k = 0; k < n; ++k) {
-    if (CGAL::orientation(a, b, c, P(k)) != CGAL::COPLANAR) return false;
-  }
-  return true;
+  bool exact = true;
+  for (int k = 0; k < n && exact; ++k) exact = CGAL::orientation(a, b, c, P(k)) == CGAL::COPLANAR;
+  if (exact) return true;
+  const Kernel::Vector_3 normal = CGAL::cross_product(b - a, c - a);
+  const double length = std::sqrt(normal.squared_length());
+  if (!(length > 0) || !std::isfinite(length)) return false;
+  for (int k = 0; k < n; ++k) off_plane = std::max(off_plane, std::abs(normal * (P(k) - a)) / length);
+  return off_plane <= 1e-12 * size;
 }
 
 }  // namespace
@@ -234,7 +244,7 @@ std::int64_t CountSelfIntersections(const PolygonMesh& polygons, std::int64_t li
     const std::int32_t* corners = polygons.indices.data() + polygons.offsets[f];
     const int n = polygons.face_size(f);
     FlatPolygon unit;
-    if (n > 32 && FindPlane(points, corners, n, unit.plane)) {
+    if (n > 32 && FindPlane(points, corners, n, unit.plane, unit.off_plane)) {
       bool repeated = false;  // a corner twice: the polygon touches itself, decided on triangles
       for (int k = 0; k < n && !repeated; ++k) {
         repeated = seen_in[static_cast<std::size_t>(corners[k])] == f;
@@ -294,6 +304,12 @@ std::int64_t CountSelfIntersections(const PolygonMesh& polygons, std::int64_t li
       }
       const int o = Orientation(a, b, c, points[std::size_t(t[k])]);
       if (o == 0 || (side != 0 && o != side)) return false;
+      // A polygon within rounding of its plane: the corner must clear the polygon's own spread.
+      if (poly.off_plane > 0) {
+        const Kernel::Vector_3 normal = CGAL::cross_product(b - a, c - a);
+        const double distance = std::abs(normal * (points[std::size_t(t[k])] - a)) / std::sqrt(normal.squared_length());
+        if (!(distance > 4 * poly.off_plane)) return false;
+      }
       side = o;
     }
     if (on <= 1) return side != 0;
@@ -304,10 +320,18 @@ std::int64_t CountSelfIntersections(const PolygonMesh& polygons, std::int64_t li
   };
 
   std::int64_t count = 0;
+  // Candidate pairs are counted: past the budget the check stops undecided (a high-valence corner).
+  struct OverBudget {};
+  const std::int64_t budget = kSelfIntersectionWork + 50 * static_cast<std::int64_t>(tris.size());
+  std::int64_t pairs = 0;
+  auto spend = [&] {
+    if (++pairs > budget) throw OverBudget{};
+  };
   std::vector<std::pair<std::int32_t, std::int32_t>> triangle_vs_polygon;  // decided on its triangles
   std::vector<std::pair<std::int32_t, std::int32_t>> polygon_vs_polygon;
   auto test = [&](const Box* x, const Box* y) {
     if (count >= limit) return;
+    spend();
     std::int32_t i = x->info(), j = y->info();
     if (i < 0 && j < 0) {
       polygon_vs_polygon.emplace_back(-1 - i, -1 - j);
@@ -322,33 +346,39 @@ std::int64_t CountSelfIntersections(const PolygonMesh& polygons, std::int64_t li
     if (owner[static_cast<std::size_t>(i)] == owner[static_cast<std::size_t>(j)]) return;
     if (TrianglesIntersect(points, tris[static_cast<std::size_t>(i)], tris[static_cast<std::size_t>(j)])) ++count;
   };
-  CGAL::box_self_intersection_d(handles.begin(), handles.end(), test);
+  try {
+    CGAL::box_self_intersection_d(handles.begin(), handles.end(), test);
 
-  // What the whole-polygon test left open, triangle against triangle (in a fixed order).
-  auto decide = [&](const std::vector<Triangle>& left, const std::vector<Triangle>& right) {
-    std::vector<Box> lb, rb;
-    add_boxes(left, lb);
-    add_boxes(right, rb);
-    CGAL::box_intersection_d(lb.begin(), lb.end(), rb.begin(), rb.end(), [&](const Box& x, const Box& y) {
-      if (count < limit && TrianglesIntersect(points, left[std::size_t(x.info())], right[std::size_t(y.info())])) {
-        ++count;
-      }
+    // What the whole-polygon test left open, triangle against triangle (in a fixed order).
+    auto decide = [&](const std::vector<Triangle>& left, const std::vector<Triangle>& right) {
+      std::vector<Box> lb, rb;
+      add_boxes(left, lb);
+      add_boxes(right, rb);
+      CGAL::box_intersection_d(lb.begin(), lb.end(), rb.begin(), rb.end(), [&](const Box& x, const Box& y) {
+        spend();
+        if (count < limit && TrianglesIntersect(points, left[std::size_t(x.info())], right[std::size_t(y.info())])) {
+          ++count;
+        }
+      });
+    };
+    std::sort(triangle_vs_polygon.begin(), triangle_vs_polygon.end(), [](const auto& p, const auto& q) {
+      return p.second < q.second || (p.second == q.second && p.first < q.first);
     });
-  };
-  std::sort(triangle_vs_polygon.begin(), triangle_vs_polygon.end(), [](const auto& p, const auto& q) {
-    return p.second < q.second || (p.second == q.second && p.first < q.first);
-  });
-  for (std::size_t k = 0; k < triangle_vs_polygon.size() && count < limit;) {
-    const std::int32_t u = triangle_vs_polygon[k].second;
-    std::vector<Triangle> group;
-    for (; k < triangle_vs_polygon.size() && triangle_vs_polygon[k].second == u; ++k) {
-      group.push_back(tris[static_cast<std::size_t>(triangle_vs_polygon[k].first)]);
+    for (std::size_t k = 0; k < triangle_vs_polygon.size() && count < limit;) {
+      const std::int32_t u = triangle_vs_polygon[k].second;
+      std::vector<Triangle> group;
+      for (; k < triangle_vs_polygon.size() && triangle_vs_polygon[k].second == u; ++k) {
+        group.push_back(tris[static_cast<std::size_t>(triangle_vs_polygon[k].first)]);
+      }
+      decide(group, flat[static_cast<std::size_t>(u)].triangles);
     }
-    decide(group, flat[static_cast<std::size_t>(u)].triangles);
-  }
-  std::sort(polygon_vs_polygon.begin(), polygon_vs_polygon.end());
-  for (const auto& [u, w] : polygon_vs_polygon) {
-    if (count < limit) decide(flat[static_cast<std::size_t>(u)].triangles, flat[static_cast<std::size_t>(w)].triangles);
+    std::sort(polygon_vs_polygon.begin(), polygon_vs_polygon.end());
+    for (const auto& [u, w] : polygon_vs_polygon) {
+      if (count < limit)
+        decide(flat[static_cast<std::size_t>(u)].triangles, flat[static_cast<std::size_t>(w)].triangles);
+    }
+  } catch (const OverBudget&) {
+    return -1;
   }
   return count;
 }

@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -137,18 +138,23 @@ std::string ReadInChild(const Plugin& p, const std::string& path) {
   return out;
 }
 
-double TimeLimitSeconds() {
+// 10 s plus 1 s per MB of file (assimp reads tens of MB a second on the slowest formats): a
+// cut-short or looping file answers in seconds, a 500 MB scan still has minutes.
+// MASSPROPS_ASSIMP_TIMEOUT (seconds) overrides it.
+double TimeLimitSeconds(const std::string& path) {
   if (const char* env = std::getenv("MASSPROPS_ASSIMP_TIMEOUT")) {
     const double t = std::atof(env);
     if (t > 0) return t;
   }
-  return 120.0;
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
+  return 10.0 + (ec ? 0.0 : static_cast<double>(bytes) / 1e6);
 }
 
 // Runs the plugin in a child process, so that a crash or a hang inside assimp becomes this file's
 // error and the program (and its other files) goes on.
 AssimpOutput ReadIsolated(const Plugin& p, const std::string& path) {
-  const double limit = TimeLimitSeconds();
+  const double limit = TimeLimitSeconds(path);
   IsolatedOutcome outcome;
   try {
     RunIsolated(

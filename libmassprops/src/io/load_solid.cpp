@@ -283,7 +283,15 @@ void IntegrateWall(SolidResult& r, const WallModel& wall, const LoadOptions& opt
     const OffsetResult inner = OffsetInward(mesh, wall.thickness);
     if (inner.flipped_faces == 0 && inner.inner_volume > 0) {
       Stage(opt, "checking the inner surface for self-intersections (CGAL)");
-      if (RequireGeometrySteps("the wall's self-intersection check").count_self_intersections(inner.inner, 1) > 0) {
+      const std::int64_t crossings =
+          RequireGeometrySteps("the wall's self-intersection check").count_self_intersections(inner.inner, 1);
+      if (crossings < 0) {
+        throw std::invalid_argument(
+            "the inner surface could not be checked for self-intersections (too many overlapping faces around "
+            "one corner, such as the apex of a fan of 10^5 triangles), so a wall that does not fit could not be "
+            "told from one that does; not computed (a shell model needs no such check)");
+      }
+      if (crossings > 0) {
         throw std::invalid_argument("a wall of " + Fixed(wall.thickness, "%g") + " " + UnitName(opt.unit) +
                                     " is thicker than the part allows: the inner surface passes through itself "
                                     "(the part is thinner than twice the wall somewhere); use a thinner wall");
@@ -586,6 +594,12 @@ SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_c
         RequireGeometrySteps("the self-intersection check").count_self_intersections(mesh, kSelfIntersectionLimit);
   }
   if (r.topology.duplicate_faces + r.topology.reversed_duplicate_faces > 0) RefuseDuplicates(r);
+  if (r.self_intersections < 0 && opt.check_self_intersections) {
+    Warn(r, FindingKind::kSelfIntersections,
+         "self-intersections not checked: the check stopped after its budget of candidate pairs (boxes of many "
+         "faces overlap around one corner, such as the apex of a large fan); the numbers are those of the surface "
+         "as given");
+  }
   if (r.self_intersections > 0) {
     Warn(r, FindingKind::kSelfIntersections,
          std::to_string(r.self_intersections) +
