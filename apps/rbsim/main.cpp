@@ -135,15 +135,8 @@ int main(int argc, char** argv) {
       }
       scene.outputs = rbsim::DefaultOutputs();
       const std::filesystem::path path = std::filesystem::absolute(mesh).lexically_normal();
-      std::error_code ec;
-      if (!std::filesystem::is_regular_file(path, ec)) {
-        const auto type = std::filesystem::status(path, ec).type();
-        std::cerr << "error: --mesh: '" << massprops::app::OneLine(mesh) << "' "
-                  << (type == std::filesystem::file_type::directory ? "is a directory, not a mesh file"
-                      : type == std::filesystem::file_type::not_found || type == std::filesystem::file_type::none
-                          ? "not found"
-                          : "is not a regular file (a device, FIFO or socket): meshes are read from files")
-                  << "\n";
+      if (const std::string problem = rbsim::MeshFileProblem(path); !problem.empty()) {
+        std::cerr << "error: --mesh: '" << massprops::app::OneLine(mesh) << "' " << problem << "\n";
         return 1;
       }
       rbsim::BodySpec body;

@@ -125,17 +125,8 @@ ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {
     namespace fs = std::filesystem;
     fs::path p(file);
     if (p.is_relative()) p = fs::path(base_dir) / p;
-    std::error_code ec;
-    if (!fs::is_regular_file(p, ec)) {
-      const std::string looked = file == p.string() ? "" : " (looked for " + p.string() + ")";
-      const fs::file_status st = fs::status(p, ec);
-      if (st.type() == fs::file_type::directory)
-        f.Fail("mesh", "'" + file + "' is a directory, not a mesh file" + looked);
-      if (fs::exists(st)) {
-        f.Fail("mesh",
-               "'" + file + "' is not a regular file (a device, FIFO or socket): meshes are read from files" + looked);
-      }
-      f.Fail("mesh", "'" + file + "' not found" + looked);
+    if (const std::string problem = MeshFileProblem(p); !problem.empty()) {
+      f.Fail("mesh", "'" + file + "' " + problem + (file == p.string() ? "" : " (looked for " + p.string() + ")"));
     }
     dynamics::MeshSource mesh;
     mesh.path = p.lexically_normal().string();
@@ -508,6 +499,16 @@ void CheckTiming(const Scene& scene, std::vector<std::string>& warnings) {
     warnings.push_back(scene.file + ": output_rate " + Num(scene.output_rate) +
                        " Hz is above 1/dt; every step is written");
   }
+}
+
+std::string MeshFileProblem(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_regular_file(path, ec)) return "";
+  const fs::file_status st = fs::status(path, ec);
+  if (st.type() == fs::file_type::directory) return "is a directory, not a mesh file";
+  if (fs::exists(st)) return "is not a regular file (a device, FIFO or socket): meshes are read from files";
+  return "not found";
 }
 
 Scene LoadScene(const std::string& path, std::vector<std::string>& warnings) {

@@ -3,6 +3,7 @@
 // runs. The schema is documented in the README ("rbsim scenes"); every error names the scene
 // file, the field (JSON path) and what is wrong.
 
+#include <filesystem>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -128,6 +129,9 @@ Scene ParseScene(const nlohmann::json& json, const std::string& file, const std:
 /// The checks of dt, duration and output_rate (ParseScene runs them; run them again after
 /// changing those fields). @throws SceneError naming the file and the field.
 void CheckTiming(const Scene& scene, std::vector<std::string>& warnings);
+/// Why `path` cannot be read as a mesh ("not found", "is a directory, not a mesh file", "is not a
+/// regular file (…)"), or "" when it is a regular file: the scenes' and --mesh's one wording.
+std::string MeshFileProblem(const std::filesystem::path& path);
 /// Reads, parses and validates a scene file. @throws SceneError.
 Scene LoadScene(const std::string& path, std::vector<std::string>& warnings);
 

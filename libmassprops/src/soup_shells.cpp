@@ -32,13 +32,13 @@ void JoinBlock(const std::uint64_t* corner_hash, int triangles, BlockPieces& out
   std::size_t slots = 64;
   while (4 * slots < 5 * static_cast<std::size_t>(corners)) slots *= 2;  // at most 3/4 full
   // A slot is empty unless stamped with this call's number: no clearing between blocks.
-  struct Slot_ {
+  struct TableSlot {
     std::uint64_t key;
     std::uint32_t stamp;
     std::int32_t id;
   };
   struct Scratch {
-    std::vector<Slot_> table;
+    std::vector<TableSlot> table;
     std::uint32_t stamp = 0;
     std::vector<std::int32_t> id;
     std::vector<std::uint32_t> parent, piece;
@@ -47,14 +47,14 @@ void JoinBlock(const std::uint64_t* corner_hash, int triangles, BlockPieces& out
   thread_local Scratch scratch;
   Scratch& s = scratch;
   if (s.table.size() < slots || ++s.stamp == 0) {
-    s.table.assign(std::max(slots, s.table.size()), Slot_{0, 0, 0});
+    s.table.assign(std::max(slots, s.table.size()), TableSlot{0, 0, 0});
     s.stamp = 1;
   }
   const std::uint32_t stamp = s.stamp;
   s.id.resize(static_cast<std::size_t>(corners));
   s.hash.clear();
   const std::size_t mask = slots - 1;
-  Slot_* table = s.table.data();
+  TableSlot* table = s.table.data();
   for (int i = 0; i < corners; ++i) {
     const std::uint64_t h = corner_hash[i];
     std::size_t at = Slot(h, mask);

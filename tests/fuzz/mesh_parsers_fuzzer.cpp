@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 
+#include "../zip_bytes.h"
 #include "massprops/implicit.h"
 #include "massprops/io.h"
 #include "massprops/mass_properties.h"
@@ -16,38 +17,11 @@
 #include "massprops/monte_carlo.h"
 #include "massprops/triangle_soup.h"
 
-namespace {
-
-// The bytes as the model part of a 3MF package (one stored zip entry, CRC left 0: the reader does
-// not check it), so that the fuzzer reaches the 3MF reader's XML, not only its zip directory.
-std::string AsThreeMfPackage(std::string_view model) {
-  std::string out, dir;
-  auto u16 = [](std::string& s, unsigned v) {
-    s += static_cast<char>(v & 0xff), s += static_cast<char>(v >> 8 & 0xff);
-  };
-  auto u32 = [&](std::string& s, unsigned long v) { u16(s, v & 0xffff), u16(s, v >> 16 & 0xffff); };
-  const std::string name = "3D/3dmodel.model";
-  u32(out, 0x04034b50), u16(out, 20), u16(out, 0), u16(out, 0), u16(out, 0), u16(out, 0), u32(out, 0);
-  u32(out, model.size()), u32(out, model.size()), u16(out, static_cast<unsigned>(name.size())), u16(out, 0);
-  out += name;
-  out.append(model);
-  u32(dir, 0x02014b50), u16(dir, 20), u16(dir, 20), u16(dir, 0), u16(dir, 0), u16(dir, 0), u16(dir, 0), u32(dir, 0);
-  u32(dir, model.size()), u32(dir, model.size()), u16(dir, static_cast<unsigned>(name.size()));
-  for (int i = 0; i < 4; ++i) u16(dir, 0);
-  u32(dir, 0), u32(dir, 0);
-  dir += name;
-  const auto at = static_cast<unsigned long>(out.size());
-  out += dir;
-  u32(out, 0x06054b50), u16(out, 0), u16(out, 0), u16(out, 1), u16(out, 1), u32(out, dir.size()), u32(out, at);
-  u16(out, 0);
-  return out;
-}
-
-}  // namespace
-
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
-  const std::string package = AsThreeMfPackage(bytes);
+  // The bytes also as the model part of a 3MF package, so that the fuzzer reaches the 3MF reader's
+  // XML, not only its zip directory.
+  const std::string package = massprops::testing::StoredZip({{"3D/3dmodel.model", std::string(bytes)}});
   for (const char* ext : {"stl", "obj", "ply", "off", "3mf", "3mf-package"}) {
     try {
       const bool wrap = std::string_view(ext) == "3mf-package";

@@ -15,10 +15,12 @@ import math
 import os
 import re
 import shutil
+import signal
 import struct
 import subprocess
 import sys
 import tempfile
+import time
 import zipfile
 
 CUBE_V = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
@@ -609,8 +611,6 @@ def main():
               '"angular_velocity": [1, 2, 3]}]}')
         out_dir = os.path.join(tmp, "long.out")
         p = subprocess.Popen([rbsim, "long.json", "--out", out_dir, "-q"], cwd=tmp, stderr=subprocess.PIPE)
-        import signal
-        import time
         time.sleep(1.5)
         p.send_signal(signal.SIGINT)
         _, err = p.communicate(timeout=60)

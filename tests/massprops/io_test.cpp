@@ -8,8 +8,6 @@
 #include <fstream>
 #include <string>
 
-#include <zlib.h>
-
 #include <sstream>
 
 #include <gmock/gmock.h>
@@ -21,6 +19,7 @@
 #include "massprops/mesh_topology.h"
 #include "massprops/solids.h"
 #include "test_utils.h"
+#include "zip_bytes.h"
 
 namespace massprops {
 namespace {
@@ -335,33 +334,6 @@ TEST_F(BadFiles, OtherFormatsThroughAssimp) {
   EXPECT_TRUE(MatrixNearRel(mp.center_of_mass, Vector3(1.25, 1.0, 0.75), 1e-15, 1.0));
 }
 
-// A zip package of stored (uncompressed) entries, as 3MF producers may write them.
-std::string Zip(const std::vector<std::pair<std::string, std::string>>& entries) {
-  std::string out, directory;
-  auto u16 = [](std::string& s, unsigned v) {
-    s += static_cast<char>(v & 0xff), s += static_cast<char>(v >> 8 & 0xff);
-  };
-  auto u32 = [&](std::string& s, unsigned long v) { u16(s, v & 0xffff), u16(s, v >> 16 & 0xffff); };
-  for (const auto& [name, data] : entries) {
-    const unsigned long crc = crc32(0, reinterpret_cast<const Bytef*>(data.data()), static_cast<uInt>(data.size()));
-    const auto offset = static_cast<unsigned long>(out.size());
-    u32(out, 0x04034b50), u16(out, 20), u16(out, 0), u16(out, 0), u16(out, 0), u16(out, 0);
-    u32(out, crc), u32(out, data.size()), u32(out, data.size()), u16(out, static_cast<unsigned>(name.size())),
-        u16(out, 0);
-    out += name + data;
-    u32(directory, 0x02014b50), u16(directory, 20), u16(directory, 20), u16(directory, 0), u16(directory, 0);
-    u16(directory, 0), u16(directory, 0), u32(directory, crc), u32(directory, data.size()), u32(directory, data.size());
-    u16(directory, static_cast<unsigned>(name.size())), u16(directory, 0), u16(directory, 0), u16(directory, 0);
-    u16(directory, 0), u32(directory, 0), u32(directory, offset);
-    directory += name;
-  }
-  const auto at = static_cast<unsigned long>(out.size());
-  out += directory;
-  u32(out, 0x06054b50), u16(out, 0), u16(out, 0), u16(out, static_cast<unsigned>(entries.size()));
-  u16(out, static_cast<unsigned>(entries.size())), u32(out, directory.size()), u32(out, at), u16(out, 0);
-  return out;
-}
-
 // A 3MF model part: each object a mesh (id 1, 2, ...), then `more` (objects with components),
 // and the build's items.
 std::string Model(const std::vector<TriangleMesh>& meshes, const std::string& more, const std::string& items,
@@ -388,11 +360,12 @@ std::string Model(const std::vector<TriangleMesh>& meshes, const std::string& mo
 }
 
 std::string Package(const std::string& model) {
-  return Zip({{"_rels/.rels",
-               "<Relationships xmlns=\"http://schemas.openxmlformats.org/package/2006/relationships\"><Relationship "
-               "Target=\"/3D/Part.model\" Id=\"r0\" Type=\"http://schemas.microsoft.com/3dmanufacturing/2013/01/"
-               "3dmodel\"/></Relationships>"},
-              {"3D/Part.model", model}});
+  return testing::StoredZip(
+      {{"_rels/.rels",
+        "<Relationships xmlns=\"http://schemas.openxmlformats.org/package/2006/relationships\"><Relationship "
+        "Target=\"/3D/Part.model\" Id=\"r0\" Type=\"http://schemas.microsoft.com/3dmanufacturing/2013/01/"
+        "3dmodel\"/></Relationships>"},
+       {"3D/Part.model", model}});
 }
 
 // Our 3MF reader: a torus placed by its build item's transform (a rotation and a shift, in

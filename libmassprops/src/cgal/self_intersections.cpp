@@ -154,6 +154,7 @@ struct FlatPolygon {
   std::int64_t face = 0;
   std::array<std::int32_t, 3> plane{};  // three corners, not collinear
   double off_plane = 0;                 // largest distance of a corner from that plane
+  Kernel::Vector_3 unit_normal;         // of that plane, when off_plane > 0
   std::vector<Triangle> triangles;      // its split, for the pairs decided on triangles
 };
 
@@ -187,7 +188,7 @@ class CornerIndex {
 // from their line), when every corner lies in that plane: exactly, or within rounding of it (1e-12
 // of the polygon's size; `off_plane` says how far).
 bool FindPlane(const std::vector<Point>& p, const std::int32_t* corners, int n, std::array<std::int32_t, 3>& plane,
-               double& off_plane) {
+               double& off_plane, Kernel::Vector_3& unit_normal) {
   off_plane = 0;
   auto P = [&](int k) -> const Point& { return p[static_cast<std::size_t>(corners[k])]; };
   int far = 0;
@@ -220,7 +221,8 @@ bool FindPlane(const std::vector<Point>& p, const std::int32_t* corners, int n, 
   const Kernel::Vector_3 normal = CGAL::cross_product(b - a, c - a);
   const double length = std::sqrt(normal.squared_length());
   if (!(length > 0) || !std::isfinite(length)) return false;
-  for (int k = 0; k < n; ++k) off_plane = std::max(off_plane, std::abs(normal * (P(k) - a)) / length);
+  unit_normal = normal / length;
+  for (int k = 0; k < n; ++k) off_plane = std::max(off_plane, std::abs(unit_normal * (P(k) - a)));
   return off_plane <= 1e-12 * size;
 }
 
@@ -244,7 +246,7 @@ std::int64_t CountSelfIntersections(const PolygonMesh& polygons, std::int64_t li
     const std::int32_t* corners = polygons.indices.data() + polygons.offsets[f];
     const int n = polygons.face_size(f);
     FlatPolygon unit;
-    if (n > 32 && FindPlane(points, corners, n, unit.plane, unit.off_plane)) {
+    if (n > 32 && FindPlane(points, corners, n, unit.plane, unit.off_plane, unit.unit_normal)) {
       bool repeated = false;  // a corner twice: the polygon touches itself, decided on triangles
       for (int k = 0; k < n && !repeated; ++k) {
         repeated = seen_in[static_cast<std::size_t>(corners[k])] == f;
@@ -305,10 +307,8 @@ std::int64_t CountSelfIntersections(const PolygonMesh& polygons, std::int64_t li
       const int o = Orientation(a, b, c, points[std::size_t(t[k])]);
       if (o == 0 || (side != 0 && o != side)) return false;
       // A polygon within rounding of its plane: the corner must clear the polygon's own spread.
-      if (poly.off_plane > 0) {
-        const Kernel::Vector_3 normal = CGAL::cross_product(b - a, c - a);
-        const double distance = std::abs(normal * (points[std::size_t(t[k])] - a)) / std::sqrt(normal.squared_length());
-        if (!(distance > 4 * poly.off_plane)) return false;
+      if (poly.off_plane > 0 && !(std::abs(poly.unit_normal * (points[std::size_t(t[k])] - a)) > 4 * poly.off_plane)) {
+        return false;
       }
       side = o;
     }

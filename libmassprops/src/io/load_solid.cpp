@@ -53,7 +53,7 @@ void Stage(const LoadOptions& o, const char* stage) {
 // the volume (∝ size³), the mass, or the inertia (∝ size⁵); "" when all are normal doubles.
 std::string BeyondDoubles(double size, double density) {
   const auto ok = [](double x) { return std::isnormal(x) && x < 1e305; };
-  if (!ok(size)) return "size";
+  if (!ok(size)) return "volume";
   const double volume = size * size * size;
   if (!ok(volume)) return "volume";
   if (!ok(volume * density)) return "mass";
@@ -148,7 +148,7 @@ void Estimate(SolidResult& r, const ImplicitSolid& solid, MonteCarloOptions mc, 
   const Vector3 extent = solid.Bounds().sizes();
   const double size = extent.allFinite() ? extent.stableNorm() : std::numeric_limits<double>::infinity();
   if (const std::string beyond = BeyondDoubles(size, FixesMass(mass) ? 1.0 : density); !beyond.empty()) {
-    RefuseMagnitude(r, size, LengthUnit::kMetre, beyond == "size" ? "volume" : beyond);
+    RefuseMagnitude(r, size, LengthUnit::kMetre, beyond);
   }
   const double k = std::ldexp(1.0, std::ilogb(size));
   const ImplicitPtr view(std::shared_ptr<const ImplicitSolid>(), &solid);
@@ -279,8 +279,10 @@ void IntegrateWall(SolidResult& r, const WallModel& wall, const LoadOptions& opt
   r.model = ModelKind::kWall;
   r.wall_thickness = wall.thickness;
   const PolygonMesh mesh = r.loaded.mesh;
+  double inner_volume = 0;  // the offset surface's, already integrated by OffsetInward
   try {
     const OffsetResult inner = OffsetInward(mesh, wall.thickness);
+    inner_volume = inner.inner_volume;
     if (inner.flipped_faces == 0 && inner.inner_volume > 0) {
       Stage(opt, "checking the inner surface for self-intersections (CGAL)");
       const std::int64_t crossings =
@@ -312,8 +314,7 @@ void IntegrateWall(SolidResult& r, const WallModel& wall, const LoadOptions& opt
   // inner corners' positions (rounded to the last place of the largest coordinate, over both
   // surfaces' area).
   const double u = std::numeric_limits<double>::epsilon() / 2;
-  const double outer_volume = std::abs(SignedVolumeOf(mesh));
-  const double inner_volume = std::abs(outer_volume - wall_integrals.volume);
+  const double outer_volume = wall_integrals.volume + inner_volume;
   const double largest = mesh.V.cwiseAbs().maxCoeff();
   const double error = 8 * u * (outer_volume + inner_volume) + 4 * u * largest * wall_integrals.surface_area;
   const double bound = wall_integrals.volume > 0 ? error / wall_integrals.volume : 1.0;
@@ -344,7 +345,8 @@ bool IntegrateExactlyIfTiny(SolidResult& r, const LoadOptions& opt, double size,
   ExactMassProperties e;
   try {
     Stage(opt, "the volume is within rounding of zero: integrating in exact arithmetic (GMP)");
-    e = RequireGeometrySteps("exact integration").exact(r.loaded.mesh, MetresPerUnit(opt.unit), opt.mass, 1);
+    e = RequireGeometrySteps("exact integration")
+            .exact(r.loaded.mesh, MetresPerUnit(opt.unit), opt.mass, opt.num_threads);
   } catch (const std::exception&) {
     return false;  // zero, negative, or no exact arithmetic here: Finish says why
   }
