@@ -435,8 +435,13 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
   if (const json* c = f.Get("contact")) {
     scene.contact_given = true;
     Fields o(*c, "contact", file);
-    scene.contact.max_iterations =
-        static_cast<int>(o.Number("max_iterations", scene.contact.max_iterations, "positive"));
+    if (o.Get("max_iterations") != nullptr) {
+      const double sweeps = o.Number("max_iterations", 16, "positive");
+      if (sweeps != std::floor(sweeps) || sweeps > 1e6) o.Fail("max_iterations", "must be a whole number up to 10^6");
+      scene.contact.max_iterations = static_cast<int>(sweeps);
+    }
+    scene.contact.speed_tolerance = o.Number("speed_tolerance", scene.contact.speed_tolerance, "positive");
+    scene.contact.exact = o.Bool("exact", false);
     scene.contact.restitution_threshold = o.Number("restitution_threshold", 0.0, "non-negative");
     scene.contact.sleeping = o.Bool("sleeping", false);
     scene.contact.sleep_speed = o.Number("sleep_speed", scene.contact.sleep_speed, "positive");

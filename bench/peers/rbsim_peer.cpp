@@ -3,6 +3,8 @@
 //
 //   rbsim_peer SCENE.json [--dt S] [--out trajectory.csv]
 
+#include <algorithm>
+#include <cstdlib>
 #include <iostream>
 
 #include "massprops/version.h"
@@ -25,11 +27,19 @@ int main(int argc, char** argv) {
     }
   };
   std::string failure;
+  long long contacts = 0, iterations = 0, steps = 0;
+  double deepest = 0;
   const double seconds = peers::RunPeer(
       scene, args,
       [&] {
         const dynamics::StepStatus status = sim.physics.Step(scene.dt);
         if (!status.ok && failure.empty()) failure = status.message;
+        const dynamics::ContactStats& st = sim.physics.stats();
+        contacts += st.contacts;
+        iterations += st.iterations;
+        deepest = std::max(deepest, st.max_penetration);
+        ++steps;
+        if (std::getenv("RBSIM_PEER_TRACE") != nullptr && steps < 40) std::cerr << st.iterations << " ";
       },
       sample);
   if (!failure.empty()) {
@@ -37,6 +47,10 @@ int main(int argc, char** argv) {
     return 1;
   }
   peers::PrintTiming("rbsim", massprops::kVersion, scene, seconds);
+  if (std::getenv("RBSIM_PEER_STATS") != nullptr && steps > 0) {  // for profiling the solver
+    std::cerr << "contacts/step " << double(contacts) / double(steps) << ", sweeps/step "
+              << double(iterations) / double(steps) << ", deepest overlap " << deepest << " m\n";
+  }
   if (!args.out.empty()) csv.Write(args.out);
   return 0;
 }

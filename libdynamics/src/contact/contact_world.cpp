@@ -20,6 +20,7 @@
 #include "polytope.h"
 #include "position_correction.h"
 #include "solver.h"
+#include "workers.h"
 
 namespace dynamics {
 
@@ -100,6 +101,15 @@ struct ContactWorld::Impl {
   std::vector<contact::Velocities> vel;
   std::vector<contact::Velocities> before_kick;  // the velocities at the start of the step (for impacts)
   contact::BodyResponse response;
+  std::unique_ptr<contact::Workers> workers;  // kept between steps; null: one thread
+
+  // The worker pool for `threads` (null for one thread).
+  contact::Workers* WorkersFor(int threads) {
+    const int n = contact::ThreadCount(threads);
+    if (n <= 1) return nullptr;
+    if (!workers || workers->threads() != n) workers = std::make_unique<contact::Workers>(n);
+    return workers.get();
+  }
 };
 
 ContactWorld::ContactWorld(World world, ContactOptions options)
@@ -107,6 +117,17 @@ ContactWorld::ContactWorld(World world, ContactOptions options)
   if (!world_.bodies().empty()) {
     throw std::invalid_argument("ContactWorld: start from a world without bodies (each body needs a collider)");
   }
+  const ContactOptions& o = options_;
+  auto require = [](bool ok, const char* what) {
+    if (!ok) throw std::invalid_argument(std::string("contact options: ") + what);
+  };
+  require(o.max_iterations >= 0 && o.max_iterations <= 1000000, "max_iterations must be 0 (automatic) or 1 to 10^6");
+  require(o.speed_tolerance > 0 && std::isfinite(o.speed_tolerance), "speed_tolerance must be positive and finite");
+  require(o.tolerance >= 0 && std::isfinite(o.tolerance), "tolerance must be non-negative and finite");
+  require(o.restitution_threshold >= 0 && std::isfinite(o.restitution_threshold),
+          "restitution_threshold must be non-negative and finite");
+  require(o.sleep_speed > 0 && std::isfinite(o.sleep_speed), "sleep_speed must be positive and finite");
+  require(o.sleep_time > 0 && std::isfinite(o.sleep_time), "sleep_time must be positive and finite");
 }
 ContactWorld::~ContactWorld() = default;
 ContactWorld::ContactWorld(ContactWorld&&) noexcept = default;
@@ -482,14 +503,17 @@ StepStatus ContactWorld::Step(double h) {
   // 4. The impulses.
   std::vector<contact::Patch> patches = contact::PreparePatches(m.rows, m.cache, m.vel, m.response, bounce_threshold);
   const double energy_before = KineticEnergy(bodies, m.vel);
+  std::vector<int> island(bodies.size());
+  for (int k = 0; k < nb; ++k) island[static_cast<std::size_t>(k)] = islands.Find(k);
+  const int sweeps = options_.max_iterations > 0 ? options_.max_iterations : (options_.exact ? 64 : 32);
+  const contact::SolveSettings settings{sweeps, options_.speed_tolerance, options_.exact, options_.tolerance};
   stats_.iterations = contact::SolveImpulses(m.rows, patches, m.vel, m.response, contact::SupportLevels(nb, m.rows),
-                                             options_.max_iterations, options_.tolerance);
+                                             island, settings, m.WorkersFor(world_.num_threads_));
   m.cache = std::move(kept);
   contact::StoreImpulses(m.rows, patches, m.cache);
   stats_.dissipated = energy_before - KineticEnergy(bodies, m.vel);
   // 5. Position correction of overlap beyond each contact's slop, then 6. the drift.
-  const std::vector<contact::Velocities> pseudo =
-      contact::PushOutVelocities(m.rows, m.response, nb, h, options_.max_iterations, options_.tolerance);
+  const std::vector<contact::Velocities> pseudo = contact::PushOutVelocities(m.rows, nb, h, settings);
   StepStatus status = DriftBodies(bodies, m.vel, pseudo, m.sleep.asleep, radius, h, stats_);
   if (!status.ok) return status;
   world_.time_ += h;

@@ -152,7 +152,7 @@ void CylinderPolytope(const Posed& cylinder, const Polytope& p, const Posed& pos
   if (exact.empty()) return;  // over the face's edge: the prism's manifold
   out.resize(first);
   for (ContactPoint& c : exact) {
-    c.feature |= 1u << 20;  // not the prism's features
+    c.feature |= 1u << 30;  // not the prism's features
     out.push_back(c);
   }
 }

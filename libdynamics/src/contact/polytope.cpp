@@ -237,10 +237,15 @@ void PolytopePolytope(const Polytope& pa, const Posed& a, const Polytope& pb, co
       best_index = static_cast<int>(f);
     }
   }
+  // A face of b is the reference only when clearly better than a's best: two faces flush (a
+  // box on a box) would otherwise swap with rounding from step to step, and with them the
+  // points' keys that warm-start the next step.
+  const double face_tie = 1e-6 * (wa.v.empty() ? 1.0 : (wa.v[0] - a.R * pa.centroid - a.t).norm());
+  const double best_of_a = best;
   for (std::size_t f = 0; f < wb.n.size(); ++f) {
     const double s = MinAlong(wa.v, wb.n[f]) - wb.d[f];
     if (s >= margin) return;
-    if (s > best) {
+    if (s > best && s > best_of_a + face_tie) {
       best = s;
       best_kind = 1;
       best_index = static_cast<int>(f);
@@ -317,8 +322,14 @@ void PolytopePolytope(const Polytope& pa, const Posed& a, const Polytope& pb, co
       inc = f;
     }
   }
+  // Each point's key: the incident corner's index, or for a point the clipping made, a mix of the
+  // reference side and the two points of the segment it cut (stable while the faces overlap alike).
   std::vector<Vector3> poly;
-  for (int i : pi.faces[inc]) poly.push_back(wi.v[static_cast<std::size_t>(i)]);
+  std::vector<std::uint32_t> ids;
+  for (int i : pi.faces[inc]) {
+    poly.push_back(wi.v[static_cast<std::size_t>(i)]);
+    ids.push_back(static_cast<std::uint32_t>(i) & 0x3FFFFu);
+  }
   const std::vector<int>& ref_face = pr.faces[static_cast<std::size_t>(best_index)];
   for (std::size_t k = 0; k < ref_face.size() && !poly.empty(); ++k) {
     const Vector3& p = wr.v[static_cast<std::size_t>(ref_face[k])];
@@ -326,14 +337,24 @@ void PolytopePolytope(const Polytope& pa, const Posed& a, const Polytope& pb, co
     const Vector3 side = (q - p).cross(rn).normalized();  // out of the face, in its plane
     const double offset = side.dot(p);
     std::vector<Vector3> clipped;
+    std::vector<std::uint32_t> clipped_ids;
     for (std::size_t i = 0; i < poly.size(); ++i) {
+      const std::size_t j = (i + 1) % poly.size();
       const Vector3& x = poly[i];
-      const Vector3& y = poly[(i + 1) % poly.size()];
+      const Vector3& y = poly[j];
       const double dx = side.dot(x) - offset, dy = side.dot(y) - offset;
-      if (dx <= 0) clipped.push_back(x);
-      if ((dx < 0) != (dy < 0) && dx != dy) clipped.push_back(x + (y - x) * (dx / (dx - dy)));
+      if (dx <= 0) {
+        clipped.push_back(x);
+        clipped_ids.push_back(ids[i]);
+      }
+      if ((dx < 0) != (dy < 0) && dx != dy) {
+        clipped.push_back(x + (y - x) * (dx / (dx - dy)));
+        clipped_ids.push_back(0x40000u |
+                              ((static_cast<std::uint32_t>(k) * 2654435761u + ids[i] * 40503u + ids[j]) & 0x3FFFFu));
+      }
     }
     poly = std::move(clipped);
+    ids = std::move(clipped_ids);
   }
   const double rd = wr.d[static_cast<std::size_t>(best_index)];
   std::vector<ContactPoint> found;
@@ -341,7 +362,7 @@ void PolytopePolytope(const Polytope& pa, const Posed& a, const Polytope& pb, co
     const double sep = rn.dot(poly[i]) - rd;
     if (sep >= margin) continue;
     found.push_back({poly[i] - rn * (0.5 * sep), ref_a ? Vector3(-rn) : rn, sep,
-                     static_cast<std::uint32_t>((ref_a ? 0 : 1) * 65536 + best_index * 64 + static_cast<int>(i))});
+                     (ref_a ? 0u : 1u << 31) | (static_cast<std::uint32_t>(best_index) & 0x7FFu) << 19 | ids[i]});
   }
   if (found.size() > 4) {  // the deepest, then those farthest from the points kept
     std::vector<ContactPoint> kept;

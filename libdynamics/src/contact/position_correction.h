@@ -12,8 +12,8 @@
 namespace dynamics::contact {
 
 /// The pseudo-velocities that push each row's overlap beyond its slop out by half a step's worth
-/// (empty when no row needs it).
-std::vector<Velocities> PushOutVelocities(std::vector<Row>& rows, const BodyResponse& bodies, int num_bodies, double h,
-                                          int max_iterations, double tolerance);
+/// (empty when no row needs it). The sweeps stop by the velocity solve's rule.
+std::vector<Velocities> PushOutVelocities(std::vector<Row>& rows, int num_bodies, double h,
+                                          const SolveSettings& settings);
 
 }  // namespace dynamics::contact

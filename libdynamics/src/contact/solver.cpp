@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "../integrators/integrator.h"
+#include "workers.h"
 
 namespace dynamics::contact {
 namespace {
@@ -25,17 +26,19 @@ Matrix3 PointResponse(const BodyResponse& bodies, int i, const Vector3& r) {
   return InvMass(bodies, i) * Matrix3::Identity() - S * InvInertia(bodies, i) * S;
 }
 
-// A body's share of a patch's friction response: generalized directions (t1, t2 at r; ρ n as
-// a turn), K_ij = (1/m) d_i·d_j + a_i·I⁻¹ a_j.
-Matrix3 PatchResponse(const BodyResponse& bodies, int i, const Patch& p, const Vector3& r) {
-  Matrix3 A;
-  A.col(0) = r.cross(p.t1);
-  A.col(1) = r.cross(p.t2);
-  A.col(2) = p.rho * p.n;
-  Matrix3 K = A.transpose() * InvInertia(bodies, i) * A;
-  K(0, 0) += InvMass(bodies, i);
-  K(1, 1) += InvMass(bodies, i);
-  return K;
+// A row's effective masses and Jacobian.
+void SetRowJacobian(Row& r, const BodyResponse& bodies) {
+  r.Ka = PointResponse(bodies, r.a, r.ra);
+  r.Kb = PointResponse(bodies, r.b, r.rb);
+  r.mass_n = 1.0 / r.n.dot((r.Ka + r.Kb) * r.n);
+  r.inv_mass_a = InvMass(bodies, r.a);
+  r.inv_mass_b = InvMass(bodies, r.b);
+  r.ang_a = r.ra.cross(r.n);
+  r.turn_a = InvInertia(bodies, r.a) * r.ang_a;
+  if (r.b >= 0) {
+    r.ang_b = r.rb.cross(r.n);
+    r.turn_b = InvInertia(bodies, r.b) * r.ang_b;
+  }
 }
 
 // The effective mass of a patch's friction, K⁻¹ (the tangential 2 × 2 block's alone when the patch
@@ -47,17 +50,58 @@ Matrix3 PatchMass(const Matrix3& K, double rho) {
   return m;
 }
 
-// The patch's generalized sliding velocity: (v·t1, v·t2, ρ ω·n) at its anchor.
-Vector3 PatchVelocity(const std::vector<Velocities>& vel, const Patch& p) {
-  const Vector3 v = RelativeVelocity(vel, p.a, p.b, p.ra, p.rb);
-  Vector3 w = vel[static_cast<std::size_t>(p.a)].w;
-  if (p.b >= 0) w -= vel[static_cast<std::size_t>(p.b)].w;
-  return {p.t1.dot(v), p.t2.dot(v), p.rho * p.n.dot(w)};
+// A patch's Jacobian and effective masses at its anchor (ra, rb): generalized directions (t1, t2
+// at r; ρ n as a turn), each body's K_ij = (1/m) d_i·d_j + a_i·I⁻¹ a_j.
+void SetPatchJacobian(Patch& p, const BodyResponse& bodies) {
+  p.inv_mass_a = InvMass(bodies, p.a);
+  p.inv_mass_b = InvMass(bodies, p.b);
+  auto side = [&](int i, const Vector3& r, double inv_mass, Matrix3& ang, Matrix3& turn, Matrix3& K) {
+    ang.col(0) = r.cross(p.t1);
+    ang.col(1) = r.cross(p.t2);
+    ang.col(2) = p.rho * p.n;
+    turn = InvInertia(bodies, i) * ang;
+    K = ang.transpose() * turn;
+    K(0, 0) += inv_mass;
+    K(1, 1) += inv_mass;
+  };
+  side(p.a, p.ra, p.inv_mass_a, p.ang_a, p.turn_a, p.Ka);
+  if (p.b >= 0) {
+    side(p.b, p.rb, p.inv_mass_b, p.ang_b, p.turn_b, p.Kb);
+  } else {
+    p.ang_b.setZero();
+    p.turn_b.setZero();
+    p.Kb.setZero();
+  }
+  p.mass = PatchMass(p.Ka + p.Kb, p.rho);
 }
 
-void ApplyPatch(std::vector<Velocities>& vel, const BodyResponse& bodies, const Patch& p, const Vector3& d,
-                int frozen) {
-  ApplyImpulse(vel, bodies, p.a, p.b, p.ra, p.rb, p.t1 * d[0] + p.t2 * d[1], p.n * (p.rho * d[2]), frozen);
+// The patch's generalized sliding velocity: (v·t1, v·t2, ρ ω·n) at its anchor.
+Vector3 PatchVelocity(const std::vector<Velocities>& vel, const Patch& p) {
+  const Velocities& va = vel[static_cast<std::size_t>(p.a)];
+  Vector3 v = va.v;
+  Vector3 g = p.ang_a.transpose() * va.w;
+  if (p.b >= 0) {
+    const Velocities& vb = vel[static_cast<std::size_t>(p.b)];
+    v -= vb.v;
+    g -= p.ang_b.transpose() * vb.w;
+  }
+  g[0] += p.t1.dot(v);
+  g[1] += p.t2.dot(v);
+  return g;
+}
+
+void ApplyPatch(std::vector<Velocities>& vel, const Patch& p, const Vector3& d, int frozen) {
+  const Vector3 f = p.t1 * d[0] + p.t2 * d[1];
+  if (p.a != frozen) {
+    Velocities& va = vel[static_cast<std::size_t>(p.a)];
+    va.v += p.inv_mass_a * f;
+    va.w += p.turn_a * d;
+  }
+  if (p.b >= 0 && p.b != frozen) {
+    Velocities& vb = vel[static_cast<std::size_t>(p.b)];
+    vb.v -= p.inv_mass_b * f;
+    vb.w -= p.turn_b * d;
+  }
 }
 
 // The tangent directions of a normal.
@@ -155,17 +199,26 @@ void Outline(const std::vector<Row>& rows, const Patch& p, Vector3& anchor, doub
   anchor = p.t1 * c2.x() + p.t2 * c2.y() + p.n * height;
 }
 
+// How much a sweep changed: the largest impulse change and impulse (exact mode), and the largest
+// change of a contact's velocity (m/s).
+struct Progress {
+  double change = 0, scale = 0, speed = 0;
+  bool Done(const SolveSettings& s) const {
+    return s.exact ? change <= s.tolerance * scale : speed <= s.speed_tolerance;
+  }
+};
+
 // One Gauss–Seidel update of a row's normal impulse: the least that keeps its normal velocity
 // at its target.
-void UpdateNormal(Row& r, std::vector<Velocities>& vel, const BodyResponse& bodies, int frozen, double mass_n,
-                  double& change, double& scale) {
-  const double vn = r.n.dot(RelativeVelocity(vel, r));
+void UpdateNormal(Row& r, std::vector<Velocities>& vel, int frozen, double mass_n, Progress& progress) {
+  const double vn = NormalSpeed(vel, r);
   const double ln = std::max(r.lambda_n + mass_n * (r.target - vn), 0.0);
   const double dn = ln - r.lambda_n;
   r.lambda_n = ln;
-  ApplyImpulse(vel, bodies, r.a, r.b, r.ra, r.rb, r.n * dn, Vector3::Zero(), frozen);
-  change = std::max(change, std::abs(dn));
-  scale = std::max(scale, ln);
+  ApplyNormal(vel, r, dn, frozen);
+  progress.change = std::max(progress.change, std::abs(dn));
+  progress.scale = std::max(progress.scale, ln);
+  progress.speed = std::max(progress.speed, std::abs(dn) / mass_n);
 }
 
 // The impulse nearest `target` in the metric of the response K (the one that leaves the least
@@ -230,14 +283,12 @@ double Load(const Patch& p, const std::vector<Row>& rows, Vector3* centre = null
 void FollowPressure(Patch& p, std::vector<Velocities>& vel, const BodyResponse& bodies, int frozen, Vector3 centre) {
   centre += p.n * p.n.dot(p.anchor - centre);                                               // in the patch's plane
   if ((centre - p.anchor).squaredNorm() <= std::max(1e-24, 1e-16 * p.rho * p.rho)) return;  // within 10⁻⁸ ρ
-  ApplyPatch(vel, bodies, p, -p.lambda, frozen);
+  ApplyPatch(vel, p, -p.lambda, frozen);
   p.ra += centre - p.anchor;
   if (p.b >= 0) p.rb += centre - p.anchor;
   p.anchor = centre;
-  p.Ka = PatchResponse(bodies, p.a, p, p.ra);
-  p.Kb = PatchResponse(bodies, p.b, p, p.rb);
-  p.mass = PatchMass(p.Ka + p.Kb, p.rho);
-  ApplyPatch(vel, bodies, p, p.lambda, frozen);
+  SetPatchJacobian(p, bodies);
+  ApplyPatch(vel, p, p.lambda, frozen);
 }
 
 // One update of a patch's friction: the impulse that stops its sliding and turning, if it lies
@@ -246,7 +297,7 @@ void FollowPressure(Patch& p, std::vector<Velocities>& vel, const BodyResponse& 
 // opposing its sliding). With a body held still (shock propagation), only the other's response
 // counts.
 void UpdateFriction(Patch& p, const std::vector<Row>& rows, std::vector<Velocities>& vel, const BodyResponse& bodies,
-                    int frozen, double& change, double& scale) {
+                    int frozen, Progress& progress) {
   const bool follow = p.sliding && frozen < 0;
   Vector3 centre = p.anchor;
   const double N = Load(p, rows, follow ? &centre : nullptr);
@@ -262,24 +313,129 @@ void UpdateFriction(Patch& p, const std::vector<Row>& rows, std::vector<Velociti
   }
   const Vector3 d = lt - p.lambda;
   p.lambda = lt;
-  ApplyPatch(vel, bodies, p, d, frozen);
-  change = std::max(change, d.norm());
-  scale = std::max(scale, lt.norm());
+  ApplyPatch(vel, p, d, frozen);
+  progress.change = std::max(progress.change, d.norm());
+  progress.scale = std::max(progress.scale, lt.norm());
+  const Matrix3 K = frozen < 0 ? Matrix3(p.Ka + p.Kb) : (frozen == p.a ? p.Kb : p.Ka);
+  progress.speed = std::max(progress.speed, (K * d).norm());
 }
 
 // A sweep over the patches in `order` (forward or backward): each patch's normals, then its
 // friction.
 void Sweep(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order, bool forward,
-           std::vector<Velocities>& vel, const BodyResponse& bodies, double& change, double& scale) {
+           std::vector<Velocities>& vel, const BodyResponse& bodies, Progress& progress) {
   const int n = static_cast<int>(order.size());
   for (int k = 0; k < n; ++k) {
     Patch& p = patches[static_cast<std::size_t>(order[static_cast<std::size_t>(forward ? k : n - 1 - k)])];
     for (int j = 0; j < p.count; ++j) {
       Row& r = rows[static_cast<std::size_t>(forward ? p.first + j : p.first + p.count - 1 - j)];
-      UpdateNormal(r, vel, bodies, -1, r.mass_n, change, scale);
+      UpdateNormal(r, vel, -1, r.mass_n, progress);
     }
-    UpdateFriction(p, rows, vel, bodies, -1, change, scale);
+    UpdateFriction(p, rows, vel, bodies, -1, progress);
   }
+}
+
+// Shock propagation (Guendelman, Bridson & Fedkiw 2003): level by level from the ground up, each
+// body's contacts with the level below are solved with the lower body held still, so what the
+// iterations left of a resting stack's velocities does not survive the step.
+void PropagateShock(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order,
+                    std::vector<Velocities>& vel, const BodyResponse& bodies, const std::vector<int>& body_level,
+                    const SolveSettings& settings) {
+  constexpr int kNone = std::numeric_limits<int>::max();
+  int max_level = -1;
+  for (const int k : order) {
+    const int level = patches[static_cast<std::size_t>(k)].level;
+    if (level != kNone) max_level = std::max(max_level, level);
+  }
+  for (int level = 0; level <= max_level; ++level) {
+    for (int pass = 0; pass < settings.max_iterations; ++pass) {
+      Progress progress;
+      for (const int k : order) {
+        Patch& p = patches[static_cast<std::size_t>(k)];
+        if (p.level != level) continue;
+        const int la = body_level[static_cast<std::size_t>(p.a)];
+        const int lb = p.b >= 0 ? body_level[static_cast<std::size_t>(p.b)] : -1;
+        if (la == lb) continue;
+        const int frozen = la < lb ? p.a : p.b;
+        for (int i = p.first; i < p.first + p.count; ++i) {
+          Row& r = rows[static_cast<std::size_t>(i)];
+          const Matrix3& K = frozen == r.a ? r.Kb : r.Ka;
+          UpdateNormal(r, vel, frozen, 1.0 / r.n.dot(K * r.n), progress);
+        }
+        UpdateFriction(p, rows, vel, bodies, frozen, progress);
+      }
+      if (progress.Done(settings)) break;
+    }
+  }
+}
+
+// One island's solve: its patches in `order` (by support level), warm start, sweeps until the
+// stopping rule holds, and (exact mode) shock propagation when they run out. Returns the sweeps.
+int SolveIsland(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order,
+                std::vector<Velocities>& vel, const BodyResponse& bodies, const std::vector<int>& body_level,
+                const SolveSettings& settings) {
+  for (const int k : order) {
+    const Patch& p = patches[static_cast<std::size_t>(k)];
+    for (int i = p.first; i < p.first + p.count; ++i) {
+      const Row& r = rows[static_cast<std::size_t>(i)];
+      ApplyNormal(vel, r, r.lambda_n, -1);
+    }
+    ApplyPatch(vel, p, p.lambda, -1);
+  }
+  // Sweeps from the ground up, then back down (symmetric Gauss-Seidel carries a load through a
+  // stack in both directions), until no impulse changes.
+  int iteration = 0;
+  for (; iteration < settings.max_iterations; ++iteration) {
+    Progress progress;
+    Sweep(rows, patches, order, iteration % 2 == 0, vel, bodies, progress);
+    if (progress.Done(settings)) return iteration + 1;
+  }
+  // The sweeps ran out (a tall stack, whose load Gauss–Seidel carries down slowly): shock
+  // propagation settles what they left. It holds lower bodies still, so it is not passive by
+  // construction: where it would add kinetic energy to the island, the sweeps' result stands.
+  if (settings.exact) {
+    PropagateShock(rows, patches, order, vel, bodies, body_level, settings);
+    return iteration;
+  }
+  std::vector<int> members;
+  for (const int k : order) {
+    const Patch& p = patches[static_cast<std::size_t>(k)];
+    members.push_back(p.a);
+    if (p.b >= 0) members.push_back(p.b);
+  }
+  std::sort(members.begin(), members.end());
+  members.erase(std::unique(members.begin(), members.end()), members.end());
+  auto energy = [&] {
+    double e = 0;
+    for (const int i : members) {
+      const auto k = static_cast<std::size_t>(i);
+      if (!(bodies.inv_mass[k] > 0)) continue;
+      e += 0.5 * vel[k].v.squaredNorm() / bodies.inv_mass[k] +
+           0.5 * vel[k].w.dot(bodies.inv_inertia[k].inverse() * vel[k].w);
+    }
+    return e;
+  };
+  std::vector<Velocities> before;
+  std::vector<double> normal;
+  std::vector<Vector3> friction;
+  for (const int i : members) before.push_back(vel[static_cast<std::size_t>(i)]);
+  for (const int k : order) {
+    const Patch& p = patches[static_cast<std::size_t>(k)];
+    friction.push_back(p.lambda);
+    for (int i = p.first; i < p.first + p.count; ++i) normal.push_back(rows[static_cast<std::size_t>(i)].lambda_n);
+  }
+  const double energy_before = energy();
+  PropagateShock(rows, patches, order, vel, bodies, body_level, settings);
+  if (energy() > energy_before) {
+    for (std::size_t j = 0; j < members.size(); ++j) vel[static_cast<std::size_t>(members[j])] = before[j];
+    std::size_t n = 0, f = 0;
+    for (const int k : order) {
+      Patch& p = patches[static_cast<std::size_t>(k)];
+      p.lambda = friction[f++];
+      for (int i = p.first; i < p.first + p.count; ++i) rows[static_cast<std::size_t>(i)].lambda_n = normal[n++];
+    }
+  }
+  return iteration;
 }
 
 }  // namespace
@@ -313,9 +469,7 @@ std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& ca
   const double same = std::cos(kPatchAngle);
   // Each row's normal effective mass and warm start.
   for (Row& r : rows) {
-    r.Ka = PointResponse(bodies, r.a, r.ra);
-    r.Kb = PointResponse(bodies, r.b, r.rb);
-    r.mass_n = 1.0 / r.n.dot((r.Ka + r.Kb) * r.n);
+    SetRowJacobian(r, bodies);
     const auto it = cache.rows.find(r.key);
     if (it != cache.rows.end()) r.lambda_n = it->second.lambda_n;
   }
@@ -367,9 +521,7 @@ std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& ca
       const Row& r0 = rows[static_cast<std::size_t>(p.first)];
       p.ra = anchor - (r0.point - r0.ra);
       p.rb = p.b >= 0 ? Vector3(anchor - (r0.point - r0.rb)) : Vector3::Zero();
-      p.Ka = PatchResponse(bodies, p.a, p, p.ra);
-      p.Kb = PatchResponse(bodies, p.b, p, p.rb);
-      p.mass = PatchMass(p.Ka + p.Kb, p.rho);
+      SetPatchJacobian(p, bodies);
       // The patch it was last step: the cached patch of one of its rows (by the rows' feature
       // keys, as a contact is known step after step); none: a new patch.
       std::size_t best = used.size();
@@ -407,65 +559,46 @@ std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& ca
 }
 
 int SolveImpulses(std::vector<Row>& rows, std::vector<Patch>& patches, std::vector<Velocities>& vel,
-                  const BodyResponse& bodies, const std::vector<int>& body_level, int max_iterations,
-                  double tolerance) {
-  constexpr int kNone = std::numeric_limits<int>::max();
-  int max_level = -1;
+                  const BodyResponse& bodies, const std::vector<int>& body_level, const std::vector<int>& island,
+                  const SolveSettings& settings, Workers* workers) {
   for (Patch& p : patches) {
     const int la = body_level[static_cast<std::size_t>(p.a)];
     p.level = p.b < 0 ? la : std::min(la, body_level[static_cast<std::size_t>(p.b)]);
-    if (p.level != kNone) max_level = std::max(max_level, p.level);
   }
   std::vector<int> order(patches.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](int x, int y) {
     return patches[static_cast<std::size_t>(x)].level < patches[static_cast<std::size_t>(y)].level;
   });
-  // Warm start, then iterate until no impulse changes.
+  // Each island's patches, in that order; the islands in the order they first appear.
+  std::vector<int> group_of(island.size(), -1);
+  std::vector<std::vector<int>> groups;
   for (const int k : order) {
-    const Patch& p = patches[static_cast<std::size_t>(k)];
-    for (int i = p.first; i < p.first + p.count; ++i) {
-      const Row& r = rows[static_cast<std::size_t>(i)];
-      ApplyImpulse(vel, bodies, r.a, r.b, r.ra, r.rb, r.n * r.lambda_n, Vector3::Zero());
+    const int label = island[static_cast<std::size_t>(patches[static_cast<std::size_t>(k)].a)];
+    int& g = group_of[static_cast<std::size_t>(label)];
+    if (g < 0) {
+      g = static_cast<int>(groups.size());
+      groups.emplace_back();
     }
-    ApplyPatch(vel, bodies, p, p.lambda, -1);
+    groups[static_cast<std::size_t>(g)].push_back(k);
   }
-  // Sweeps from the ground up, then back down (symmetric Gauss-Seidel carries a load through a
-  // stack in both directions), until no impulse changes.
-  int iteration = 0;
-  for (; iteration < max_iterations; ++iteration) {
-    double change = 0, scale = 0;
-    Sweep(rows, patches, order, iteration % 2 == 0, vel, bodies, change, scale);
-    if (change <= tolerance * scale) {
-      ++iteration;
-      break;
-    }
+  // The largest islands first (the others fill in around them on several threads).
+  std::vector<std::size_t> by_size(groups.size());
+  std::iota(by_size.begin(), by_size.end(), std::size_t{0});
+  std::stable_sort(by_size.begin(), by_size.end(),
+                   [&](std::size_t x, std::size_t y) { return groups[x].size() > groups[y].size(); });
+  std::vector<int> sweeps(groups.size(), 0);
+  auto solve = [&](std::size_t i) {
+    const std::size_t g = by_size[i];
+    sweeps[g] = SolveIsland(rows, patches, groups[g], vel, bodies, body_level, settings);
+  };
+  // A few small islands are not worth waking the workers for.
+  if (workers != nullptr && groups.size() > 1 && patches.size() >= 32) {
+    workers->ForEach(groups.size(), solve);
+  } else {
+    for (std::size_t i = 0; i < groups.size(); ++i) solve(i);
   }
-  if (iteration < max_iterations) return iteration;
-  // Shock propagation (Guendelman, Bridson & Fedkiw 2003): level by level from the ground up,
-  // each body's contacts with the level below are solved with the lower body held still, so
-  // what the iterations left of a resting stack's velocities does not survive the step.
-  for (int level = 0; level <= max_level; ++level) {
-    for (int pass = 0; pass < max_iterations; ++pass) {
-      double change = 0, scale = 0;
-      for (const int k : order) {
-        Patch& p = patches[static_cast<std::size_t>(k)];
-        if (p.level != level) continue;
-        const int la = body_level[static_cast<std::size_t>(p.a)];
-        const int lb = p.b >= 0 ? body_level[static_cast<std::size_t>(p.b)] : -1;
-        if (la == lb) continue;
-        const int frozen = la < lb ? p.a : p.b;
-        for (int i = p.first; i < p.first + p.count; ++i) {
-          Row& r = rows[static_cast<std::size_t>(i)];
-          const Matrix3& K = frozen == r.a ? r.Kb : r.Ka;
-          UpdateNormal(r, vel, bodies, frozen, 1.0 / r.n.dot(K * r.n), change, scale);
-        }
-        UpdateFriction(p, rows, vel, bodies, frozen, change, scale);
-      }
-      if (change <= tolerance * scale) break;
-    }
-  }
-  return iteration;
+  return sweeps.empty() ? 0 : *std::max_element(sweeps.begin(), sweeps.end());
 }
 
 void StoreImpulses(const std::vector<Row>& rows, const std::vector<Patch>& patches, ContactCache& cache) {

@@ -29,7 +29,12 @@ struct Row {
   Vector3 point = Vector3::Zero();                     // world
   Matrix3 Ka = Matrix3::Zero(), Kb = Matrix3::Zero();  // each body's share of K (below)
   double mass_n = 0;                                   // 1 / (n·K n)
-  double target = 0;                                   // the least normal velocity after the step
+  // The normal's Jacobian, set with the effective masses: the angular parts ra × n and rb × n,
+  // and what a unit impulse does to each body (its linear part is n times the inverse mass).
+  Vector3 ang_a = Vector3::Zero(), ang_b = Vector3::Zero();
+  Vector3 turn_a = Vector3::Zero(), turn_b = Vector3::Zero();  // I⁻¹ (r × n)
+  double inv_mass_a = 0, inv_mass_b = 0;
+  double target = 0;  // the least normal velocity after the step
   double mu_s = 0, mu_k = 0;
   double lambda_n = 0;
   RowKey key;
@@ -58,6 +63,9 @@ struct Patch {
   double rho = 0;                                      // m, the torsion radius (0: no torsion)
   Matrix3 Ka = Matrix3::Zero(), Kb = Matrix3::Zero();  // each body's share of the friction's K
   Matrix3 mass = Matrix3::Zero();                      // K⁻¹ (2 × 2 block alone when rho = 0)
+  // The Jacobian's angular columns for each body (r × t1, r × t2, ρ n) and I⁻¹ times them.
+  Matrix3 ang_a = Matrix3::Zero(), ang_b = Matrix3::Zero(), turn_a = Matrix3::Zero(), turn_b = Matrix3::Zero();
+  double inv_mass_a = 0, inv_mass_b = 0;
   double mu_s = 0, mu_k = 0;
   double mu = 0;                     // the bound of this step: μs for a patch that holds, μk for one that slides
   bool sliding = false;              // did not hold last step, and slides at the start of this one
@@ -101,6 +109,31 @@ inline Vector3 RelativeVelocity(const std::vector<Velocities>& vel, const Row& r
   return RelativeVelocity(vel, r.a, r.b, r.ra, r.rb);
 }
 
+/// The relative normal velocity of a row (the velocity of a's point relative to b's, along n).
+inline double NormalSpeed(const std::vector<Velocities>& vel, const Row& r) {
+  const Velocities& va = vel[static_cast<std::size_t>(r.a)];
+  double s = r.n.dot(va.v) + r.ang_a.dot(va.w);
+  if (r.b >= 0) {
+    const Velocities& vb = vel[static_cast<std::size_t>(r.b)];
+    s -= r.n.dot(vb.v) + r.ang_b.dot(vb.w);
+  }
+  return s;
+}
+
+/// A normal impulse d at a row, on a and (opposite) on b; the body `frozen` is not moved.
+inline void ApplyNormal(std::vector<Velocities>& vel, const Row& r, double d, int frozen) {
+  if (r.a != frozen) {
+    Velocities& va = vel[static_cast<std::size_t>(r.a)];
+    va.v += (r.inv_mass_a * d) * r.n;
+    va.w += d * r.turn_a;
+  }
+  if (r.b >= 0 && r.b != frozen) {
+    Velocities& vb = vel[static_cast<std::size_t>(r.b)];
+    vb.v -= (r.inv_mass_b * d) * r.n;
+    vb.w -= d * r.turn_b;
+  }
+}
+
 /// An impulse at a point (ra, rb) on a, and its opposite on b, with an angular impulse `moment`
 /// on a (and its opposite on b), into `vel`; the body `frozen` (shock propagation) is not moved.
 void ApplyImpulse(std::vector<Velocities>& vel, const BodyResponse& bodies, int a, int b, const Vector3& ra,
@@ -114,13 +147,28 @@ void ApplyImpulse(std::vector<Velocities>& vel, const BodyResponse& bodies, int 
 std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& cache, const std::vector<Velocities>& vel,
                                   const BodyResponse& bodies, double slow);
 
-/// Solves the impulses into `vel`: patches ordered by support level (body_level: 0 on the
-/// ground or a static body, k + 1 on level k), warm start, then symmetric Gauss–Seidel sweeps
-/// (each patch's normals, then its friction) until no impulse changes by more than `tolerance`
-/// times the largest, and shock propagation level by level when the sweeps run out. Returns the
-/// sweeps used.
+/// When the sweeps stop.
+struct SolveSettings {
+  int max_iterations = 64;
+  /// m/s: once no update of a sweep changes a contact's velocity (normal, tangential, or a
+  /// patch's turning times its torsion radius) by more than this.
+  double speed_tolerance = 1e-6;
+  /// Instead: once no impulse changes by more than `tolerance` times the largest, with shock
+  /// propagation when the sweeps run out (ContactOptions::exact).
+  bool exact = false;
+  double tolerance = 1e-12;
+};
+
+/// Solves the impulses into `vel`, island by island (island: each body's island, by any label;
+/// the islands may be solved on several threads, with the same result): patches ordered by
+/// support level (body_level: 0 on the ground or a static body, k + 1 on level k), warm start,
+/// then symmetric Gauss–Seidel sweeps (each patch's normals, then its friction) until the
+/// settings' stopping rule holds, and in exact mode shock propagation level by level when the
+/// sweeps run out. Returns the most sweeps an island used.
+class Workers;
 int SolveImpulses(std::vector<Row>& rows, std::vector<Patch>& patches, std::vector<Velocities>& vel,
-                  const BodyResponse& bodies, const std::vector<int>& body_level, int max_iterations, double tolerance);
+                  const BodyResponse& bodies, const std::vector<int>& body_level, const std::vector<int>& island,
+                  const SolveSettings& settings, Workers* workers);
 
 /// Adds the solved rows and patches to the cache for the next step.
 void StoreImpulses(const std::vector<Row>& rows, const std::vector<Patch>& patches, ContactCache& cache);

@@ -1,0 +1,47 @@
+#pragma once
+// A small pool of worker threads kept between contact steps (internal to ContactWorld): starting
+// threads each step costs more than a small step's work. Work items are independent; which thread
+// runs which item never changes a result.
+
+#include <condition_variable>
+#include <cstddef>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace dynamics::contact {
+
+class Workers {
+ public:
+  /// `threads` in all, the caller's included (0: one per core).
+  explicit Workers(int threads);
+  ~Workers();
+  Workers(const Workers&) = delete;
+  Workers& operator=(const Workers&) = delete;
+
+  int threads() const { return static_cast<int>(pool_.size()) + 1; }
+  /// fn(i) for every i in [0, n), on the caller and the workers; returns when all are done.
+  /// Rethrows the first exception an item threw.
+  void ForEach(std::size_t n, const std::function<void(std::size_t)>& fn);
+
+ private:
+  void Work();
+  void RunItems();
+
+  std::vector<std::thread> pool_;
+  std::mutex mutex_;
+  std::condition_variable wake_, finished_;
+  const std::function<void(std::size_t)>* job_ = nullptr;
+  std::size_t count_ = 0, next_ = 0;
+  int running_ = 0;  // workers still on the present job
+  unsigned long generation_ = 0;
+  bool stop_ = false;
+  std::exception_ptr error_;
+};
+
+/// The number of threads `requested` means (0: one per core).
+int ThreadCount(int requested);
+
+}  // namespace dynamics::contact
