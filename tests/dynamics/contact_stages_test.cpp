@@ -1,0 +1,140 @@
+// The contact step's stages on their own (internal headers in src/contact/): the worker pool, the
+// velocity solve of one patch against its closed forms, and islands solved in parallel giving the
+// same bits as one thread.
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "dynamics/contact.h"
+#include "dynamics/forces.h"
+#include "islands.h"
+#include "solver.h"
+#include "workers.h"
+
+namespace dynamics::contact {
+namespace {
+
+constexpr double kG = 9.81;
+
+TEST(Workers, EveryItemRunsOnceAndErrorsReachTheCaller) {
+  for (const int threads : {1, 2, 3}) {
+    Workers workers(threads);
+    EXPECT_EQ(workers.threads(), threads);
+    for (const std::size_t n : {0u, 1u, 7u, 1000u}) {
+      std::vector<std::atomic<int>> seen(n);
+      workers.ForEach(n, [&](std::size_t i) { seen[i].fetch_add(1); });
+      for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(seen[i].load(), 1) << "item " << i << " of " << n;
+    }
+    EXPECT_THROW(workers.ForEach(50,
+                                 [](std::size_t i) {
+                                   if (i == 17) throw std::runtime_error("item 17");
+                                 }),
+                 std::runtime_error);
+    // The pool still works after an item threw.
+    std::atomic<int> count{0};
+    workers.ForEach(10, [&](std::size_t) { count.fetch_add(1); });
+    EXPECT_EQ(count.load(), 10);
+  }
+}
+
+// A unit-mass cube (inertia 1/6) resting on the ground on its four bottom corners, after a kick of
+// g h downward: the normal impulses sum to m g h (the velocity is stopped), and with a sideways
+// velocity v0 beyond what μk N can stop the friction takes exactly μk N, along −v0. One solve
+// from cold (no warm start): exact mode to rounding; the default's 32 sweeps leave ~10⁻⁶ m/s of
+// the four redundant corners' shares, which a step's warm start then carries on removing.
+struct RestingCube {
+  std::vector<Row> rows;
+  std::vector<Velocities> vel{{Vector3(0, 0, -kG * 1e-3), Vector3::Zero()}};
+  BodyResponse response{{1.0}, {Matrix3::Identity() * 6.0}};
+
+  explicit RestingCube(const Vector3& slide, double mu) {
+    vel[0].v += slide;
+    for (int k = 0; k < 4; ++k) {
+      Row r;
+      r.a = 0;
+      r.b = -1;
+      r.n = Vector3::UnitZ();
+      r.ra = Vector3(k & 1 ? 0.5 : -0.5, k & 2 ? 0.5 : -0.5, -0.5);
+      r.point = r.ra;
+      r.mu_s = mu;
+      r.mu_k = mu;
+      r.key = {0, -1000, static_cast<std::uint32_t>(k)};
+      rows.push_back(r);
+    }
+  }
+};
+
+TEST(Solver, ACubeAtRestTakesItsWeightAndASlidingOneKineticFriction) {
+  for (const bool exact : {false, true}) {
+    SCOPED_TRACE(exact ? "exact" : "default");
+    SolveSettings settings;
+    settings.exact = exact;
+    settings.max_iterations = exact ? 64 : 32;
+    // At rest.
+    {
+      RestingCube c(Vector3::Zero(), 0.5);
+      std::vector<Patch> patches = PreparePatches(c.rows, ContactCache{}, c.vel, c.response, 1e-6);
+      ASSERT_EQ(patches.size(), 1u);
+      SolveImpulses(c.rows, patches, c.vel, c.response, SupportLevels(1, c.rows), {0}, settings, nullptr);
+      double N = 0;
+      for (const Row& r : c.rows) N += r.lambda_n;
+      EXPECT_NEAR(N, kG * 1e-3, exact ? 1e-12 : 1e-5 * kG * 1e-3);
+      EXPECT_LT(c.vel[0].v.norm() + c.vel[0].w.norm(), exact ? 1e-12 : 2e-6);
+    }
+    // Sliding at 1 m/s along (3, 4, 0)/5: μk N = 0.5 m g h stops 0.0049 m/s of it.
+    {
+      const Vector3 dir(0.6, 0.8, 0);
+      RestingCube c(dir, 0.5);
+      std::vector<Patch> patches = PreparePatches(c.rows, ContactCache{}, c.vel, c.response, 1e-6);
+      SolveImpulses(c.rows, patches, c.vel, c.response, SupportLevels(1, c.rows), {0}, settings, nullptr);
+      const double tol = exact ? 1e-9 : 1e-7;
+      EXPECT_NEAR(c.vel[0].v.dot(dir), 1.0 - 0.5 * kG * 1e-3, tol);
+      EXPECT_NEAR(c.vel[0].v.z(), 0, tol);
+      EXPECT_LT(c.vel[0].w.norm(), exact ? 1e-8 : 1e-6);  // friction at the centre of pressure: no yaw, no tilt
+    }
+  }
+}
+
+// Sixteen separate stacks of three boxes (sixteen islands, 48 patches: the parallel solve runs)
+// on 1, 2 and 3 threads: the same bits, and every stack stands.
+TEST(Islands, SolvedInParallelGiveTheSameBits) {
+  auto run = [](int threads) {
+    ContactWorld w;
+    const Vector3 half = Vector3::Constant(0.05);
+    for (int s = 0; s < 16; ++s) {
+      for (int k = 0; k < 3; ++k) {
+        RigidBody b;
+        b.mass = 1;
+        b.inertia = Vector3::Constant(b.mass * 0.01 / 6);
+        b.position = Vector3(0.3 * (s % 4), 0.3 * (s / 4), 0.05 + 0.1 * k);
+        b.orientation = Quaternion(Eigen::AngleAxisd(0.05 * s + 0.02 * k, Vector3::UnitZ()));
+        w.AddBody(b, Collider{shape::Box{half}, Matrix3::Identity(), Vector3::Zero(), Material{0.6, 0.5, 0}});
+      }
+    }
+    w.AddGround({Vector3::UnitZ(), 0, Material{0.6, 0.5, 0}});
+    w.AddForce(Gravity(Vector3(0, 0, -kG)));
+    w.world().set_num_threads(threads);
+    for (int i = 0; i < 300; ++i) EXPECT_TRUE(w.Step(1e-3).ok);
+    EXPECT_EQ(w.stats().contacts, 16 * 3 * 4);
+    return w.world().bodies();
+  };
+  const std::vector<RigidBody> one = run(1);
+  for (const int threads : {2, 3}) {
+    const std::vector<RigidBody> many = run(threads);
+    for (std::size_t i = 0; i < one.size(); ++i) {
+      ASSERT_EQ(one[i].position, many[i].position) << "body " << i << ", " << threads << " threads";
+      ASSERT_EQ(one[i].orientation.coeffs(), many[i].orientation.coeffs()) << "body " << i;
+      ASSERT_EQ(one[i].velocity, many[i].velocity) << "body " << i;
+    }
+  }
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    EXPECT_NEAR(one[i].position.z(), 0.05 + 0.1 * static_cast<double>(i % 3), 1e-6) << "body " << i;
+  }
+}
+
+}  // namespace
+}  // namespace dynamics::contact
