@@ -139,7 +139,15 @@ void TrajectoryCsv::Write(const std::string& path) const { massprops::report::Wr
 bool ParsePeerArgs(int argc, char** argv, const char* program, PeerArgs& args) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if ((a == "--dt" || a == "--out") && i + 1 < argc) {
+    if (a == "--threads" && i + 1 < argc) {
+      char* end = nullptr;
+      const long n = std::strtol(argv[++i], &end, 10);
+      if (*end != '\0' || n < 1 || n > 256) {
+        std::cerr << "error: --threads: expected a whole number from 1 to 256\n";
+        return false;
+      }
+      args.threads = static_cast<int>(n);
+    } else if ((a == "--dt" || a == "--out") && i + 1 < argc) {
       if (a == "--out") {
         args.out = argv[++i];
       } else {
@@ -153,12 +161,12 @@ bool ParsePeerArgs(int argc, char** argv, const char* program, PeerArgs& args) {
     } else if (!a.empty() && a[0] != '-' && args.scene.empty()) {
       args.scene = a;
     } else {
-      std::cerr << "usage: " << program << " SCENE.json [--dt S] [--out trajectory.csv]\n";
+      std::cerr << "usage: " << program << " SCENE.json [--dt S] [--out trajectory.csv] [--threads N (rbsim only)]\n";
       return false;
     }
   }
   if (args.scene.empty()) {
-    std::cerr << "usage: " << program << " SCENE.json [--dt S] [--out trajectory.csv]\n";
+    std::cerr << "usage: " << program << " SCENE.json [--dt S] [--out trajectory.csv] [--threads N (rbsim only)]\n";
     return false;
   }
   return true;

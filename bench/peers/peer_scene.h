@@ -78,6 +78,7 @@ class TrajectoryCsv {
 struct PeerArgs {
   std::string scene, out;
   double dt = 0;
+  int threads = 1;  ///< rbsim_peer's worker threads (the peers run on one)
 };
 bool ParsePeerArgs(int argc, char** argv, const char* program, PeerArgs& args);
 

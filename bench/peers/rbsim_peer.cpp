@@ -1,7 +1,7 @@
 // The same scene in rbsim's own engine, timed the same way as the peers (the steps only): the
 // third column of the comparison. Writes rbsim's trajectory CSV (the same rows `rbsim --out` writes).
 //
-//   rbsim_peer SCENE.json [--dt S] [--out trajectory.csv]
+//   rbsim_peer SCENE.json [--dt S] [--out trajectory.csv] [--threads N]
 
 #include <algorithm>
 #include <cstdlib>
@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> warnings;
   rbsim::Scene full = rbsim::LoadScene(args.scene, warnings);
   if (args.dt > 0) full.dt = args.dt;
-  rbsim::Simulation sim = rbsim::BuildSimulation(full, warnings, 1);
+  rbsim::Simulation sim = rbsim::BuildSimulation(full, warnings, args.threads);
   peers::TrajectoryCsv csv;
   auto sample = [&] {
     for (std::size_t i = 0; i < sim.bodies.size(); ++i) {
@@ -39,7 +39,8 @@ int main(int argc, char** argv) {
         iterations += st.iterations;
         deepest = std::max(deepest, st.max_penetration);
         ++steps;
-        if (std::getenv("RBSIM_PEER_TRACE") != nullptr && steps < 40) std::cerr << st.iterations << " ";
+        if (std::getenv("RBSIM_PEER_TRACE") != nullptr && steps < 40)
+          std::cerr << st.iterations << "/" << st.contacts << " ";
       },
       sample);
   if (!failure.empty()) {

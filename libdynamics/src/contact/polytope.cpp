@@ -336,6 +336,9 @@ void PolytopePolytope(const Polytope& pa, const Posed& a, const Polytope& pb, co
     const Vector3& q = wr.v[static_cast<std::size_t>(ref_face[(k + 1) % ref_face.size()])];
     const Vector3 side = (q - p).cross(rn).normalized();  // out of the face, in its plane
     const double offset = side.dot(p);
+    // A corner within rounding of the side (a box flush on an equal box) is kept as itself, not
+    // replaced by a cut whose key would change with the rounding from step to step.
+    const double on = 1e-9 * (q - p).norm();
     std::vector<Vector3> clipped;
     std::vector<std::uint32_t> clipped_ids;
     for (std::size_t i = 0; i < poly.size(); ++i) {
@@ -343,11 +346,11 @@ void PolytopePolytope(const Polytope& pa, const Posed& a, const Polytope& pb, co
       const Vector3& x = poly[i];
       const Vector3& y = poly[j];
       const double dx = side.dot(x) - offset, dy = side.dot(y) - offset;
-      if (dx <= 0) {
+      if (dx <= on) {
         clipped.push_back(x);
         clipped_ids.push_back(ids[i]);
       }
-      if ((dx < 0) != (dy < 0) && dx != dy) {
+      if ((dx < -on && dy > on) || (dx > on && dy < -on)) {
         clipped.push_back(x + (y - x) * (dx / (dx - dy)));
         clipped_ids.push_back(0x40000u |
                               ((static_cast<std::uint32_t>(k) * 2654435761u + ids[i] * 40503u + ids[j]) & 0x3FFFFu));
