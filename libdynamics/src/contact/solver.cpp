@@ -347,43 +347,57 @@ bool UpdateNormalBlock(const Patch& p, std::vector<Row>& rows, std::vector<Veloc
   }
   const double scale = c.head(m).cwiseAbs().maxCoeff();
   Eigen::Vector4d x = Eigen::Vector4d::Zero();
-  bool solved = false;
-  const int sets = (1 << m) - 1;
-  for (int size = m; size >= 0 && !solved; --size) {
-    for (int set = sets; set >= 0 && !solved; --set) {
-      if (__builtin_popcount(static_cast<unsigned>(set)) != size) continue;
-      int index[4], k = 0;
-      for (int i = 0; i < m; ++i) {
-        if (set & (1 << i)) index[k++] = i;
-      }
-      x.setZero();
-      if (k > 0) {
-        // The set's block, padded to 4 × 4 with the identity (and zeros on the right).
-        Eigen::Matrix4d As = Eigen::Matrix4d::Identity();
-        Eigen::Vector4d cs = Eigen::Vector4d::Zero();
-        for (int i = 0; i < k; ++i) {
-          for (int j = 0; j < k; ++j) As(i, j) = A(index[i], index[j]);
-          As(i, i) *= 1 + 1e-9;
-          cs[i] = c[index[i]];
-        }
-        const Eigen::Vector4d xs = As.ldlt().solve(cs);
-        // (a set whose block is singular beyond the regularization has no solution of its own)
-        bool ok = xs.allFinite() && (As * xs - cs).cwiseAbs().maxCoeff() <= 1e-6 * scale;
-        for (int i = 0; i < k && ok; ++i) ok = xs[i] >= 0;
-        if (!ok) continue;
-        for (int i = 0; i < k; ++i) x[index[i]] = xs[i];
-      }
-      bool feasible = true;
-      for (int i = 0; i < m && feasible; ++i) {
-        if (!(set & (1 << i))) feasible = A.row(i).head(m).dot(x.head(m)) - c[i] >= -1e-9 * scale;
-      }
-      solved = feasible;
+  // One set of loaded points: their impulses solve their block (Cholesky, the regularization on
+  // its diagonal), none negative, and the others' velocities reach their targets unloaded.
+  auto try_set = [&](int set) {
+    int index[4], k = 0;
+    for (int i = 0; i < m; ++i) {
+      if (set & (1 << i)) index[k++] = i;
     }
+    double L[4][4] = {}, y[4] = {};
+    for (int i = 0; i < k; ++i) {
+      for (int j = 0; j <= i; ++j) {
+        double sum = A(index[i], index[j]) * (i == j ? 1 + 1e-9 : 1.0);
+        for (int l = 0; l < j; ++l) sum -= L[i][l] * L[j][l];
+        if (i == j) {
+          if (!(sum > 0)) return false;  // singular beyond the regularization
+          L[i][i] = std::sqrt(sum);
+        } else {
+          L[i][j] = sum / L[j][j];
+        }
+      }
+    }
+    for (int i = 0; i < k; ++i) {
+      double sum = c[index[i]];
+      for (int l = 0; l < i; ++l) sum -= L[i][l] * y[l];
+      y[i] = sum / L[i][i];
+    }
+    Eigen::Vector4d trial = Eigen::Vector4d::Zero();
+    for (int i = k - 1; i >= 0; --i) {
+      double sum = y[i];
+      for (int l = i + 1; l < k; ++l) sum -= L[l][i] * trial[index[l]];
+      trial[index[i]] = sum / L[i][i];
+      if (!(trial[index[i]] >= 0)) return false;
+    }
+    for (int i = 0; i < m; ++i) {
+      if (!(set & (1 << i)) && !(A.row(i).head(m).dot(trial.head(m)) - c[i] >= -1e-9 * scale)) return false;
+    }
+    x = trial;
+    return true;
+  };
+  // The points loaded now first (the set rarely changes from sweep to sweep), then every set, the
+  // most points first.
+  static constexpr int kBySize[] = {15, 14, 13, 11, 7, 12, 10, 9, 6, 5, 3, 8, 4, 2, 1, 0};
+  int loaded = 0;
+  for (int i = 0; i < m; ++i) loaded |= old[i] > 0 ? 1 << i : 0;
+  bool solved = loaded != 0 && try_set(loaded);
+  for (const int set : kBySize) {
+    if (solved) break;
+    if (set >> m == 0 && (loaded == 0 || set != loaded)) solved = try_set(set);
   }
   if (!solved) return false;
   const Eigen::Vector4d d = x - old;
   const Eigen::Vector4d dv = A * d;
-
   for (int i = 0; i < m; ++i) {
     ApplyNormal(vel, r[i], d[i], -1);
     r[i].lambda_n = x[i];
