@@ -40,6 +40,54 @@ double MaxAlong(const std::vector<Vector3>& v, const Vector3& u) {
   return m;
 }
 
+// Each face's outline (Polytope::faces): its boundary edges chained, counter-clockwise seen from
+// outside, starting at its lowest corner in the face's (u, w) basis, corners where it does not
+// turn dropped. owner: each directed edge's triangle.
+void FaceOutlines(const std::vector<Vector3>& vertices, const std::vector<std::array<int, 3>>& triangles,
+                  const std::vector<int>& face_of, const std::map<std::pair<int, int>, std::size_t>& owner,
+                  Polytope& p) {
+  const std::size_t nt = triangles.size();
+  auto twin = [&](std::size_t t, int k) { return owner.at({triangles[t][(k + 1) % 3], triangles[t][k]}); };
+  std::vector<std::map<int, int>> next(p.normals.size());
+  for (std::size_t t = 0; t < nt; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      if (face_of[twin(t, k)] != face_of[t])
+        next[static_cast<std::size_t>(face_of[t])][triangles[t][k]] = triangles[t][(k + 1) % 3];
+    }
+  }
+  p.faces.resize(p.normals.size());
+  for (std::size_t f = 0; f < p.normals.size(); ++f) {
+    const Vector3& n = p.normals[f];
+    const Vector3 u = (std::abs(n.x()) < 0.6 ? Vector3::UnitX() : Vector3::UnitY()).cross(n).normalized();
+    const Vector3 w = n.cross(u);  // (u, w, n) right-handed
+    auto at = [&](int i) {
+      const Vector3& x = vertices[static_cast<std::size_t>(i)];
+      return Eigen::Vector2d(u.dot(x), w.dot(x));
+    };
+    std::vector<int> loop;
+    int start = next[f].begin()->first;
+    for (const auto& [a, b] : next[f]) {
+      (void)b;
+      const Eigen::Vector2d pa = at(a), ps = at(start);
+      if (pa.x() < ps.x() || (pa.x() == ps.x() && pa.y() < ps.y())) start = a;
+    }
+    for (int v = start;;) {
+      loop.push_back(v);
+      v = next[f].at(v);
+      if (v == start) break;
+      if (loop.size() > next[f].size()) throw std::invalid_argument("the convex shape's hull is not closed");
+    }
+    if (loop.size() != next[f].size()) throw std::invalid_argument("the convex shape's hull is not closed");
+    std::vector<int> corners;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const Eigen::Vector2d a = at(corners.empty() ? loop[(k + loop.size() - 1) % loop.size()] : corners.back());
+      const Eigen::Vector2d b = at(loop[k]), c = at(loop[(k + 1) % loop.size()]);
+      if ((b - a).x() * (c - b).y() - (b - a).y() * (c - b).x() > 0 || k == 0) corners.push_back(loop[k]);
+    }
+    p.faces[f] = corners.size() >= 3 ? corners : loop;
+  }
+}
+
 }  // namespace
 
 Polytope MakePolytope(const std::vector<Vector3>& vertices, const std::vector<std::array<int, 3>>& triangles) {
@@ -149,46 +197,7 @@ Polytope MakePolytope(const std::vector<Vector3>& vertices, const std::vector<st
     }
   }
 
-  // Each face's outline: its boundary edges chained, counter-clockwise seen from outside, starting
-  // at its lowest corner in the face's (u, w) basis, corners where it does not turn dropped.
-  std::vector<std::map<int, int>> next(p.normals.size());
-  for (std::size_t t = 0; t < nt; ++t) {
-    for (int k = 0; k < 3; ++k) {
-      if (face_of[twin(t, k)] != face_of[t])
-        next[static_cast<std::size_t>(face_of[t])][triangles[t][k]] = triangles[t][(k + 1) % 3];
-    }
-  }
-  p.faces.resize(p.normals.size());
-  for (std::size_t f = 0; f < p.normals.size(); ++f) {
-    const Vector3& n = p.normals[f];
-    const Vector3 u = (std::abs(n.x()) < 0.6 ? Vector3::UnitX() : Vector3::UnitY()).cross(n).normalized();
-    const Vector3 w = n.cross(u);  // (u, w, n) right-handed
-    auto at = [&](int i) {
-      const Vector3& x = vertices[static_cast<std::size_t>(i)];
-      return Eigen::Vector2d(u.dot(x), w.dot(x));
-    };
-    std::vector<int> loop;
-    int start = next[f].begin()->first;
-    for (const auto& [a, b] : next[f]) {
-      (void)b;
-      const Eigen::Vector2d pa = at(a), ps = at(start);
-      if (pa.x() < ps.x() || (pa.x() == ps.x() && pa.y() < ps.y())) start = a;
-    }
-    for (int v = start;;) {
-      loop.push_back(v);
-      v = next[f].at(v);
-      if (v == start) break;
-      if (loop.size() > next[f].size()) throw std::invalid_argument("the convex shape's hull is not closed");
-    }
-    if (loop.size() != next[f].size()) throw std::invalid_argument("the convex shape's hull is not closed");
-    std::vector<int> corners;
-    for (std::size_t k = 0; k < loop.size(); ++k) {
-      const Eigen::Vector2d a = at(corners.empty() ? loop[(k + loop.size() - 1) % loop.size()] : corners.back());
-      const Eigen::Vector2d b = at(loop[k]), c = at(loop[(k + 1) % loop.size()]);
-      if ((b - a).x() * (c - b).y() - (b - a).y() * (c - b).x() > 0 || k == 0) corners.push_back(loop[k]);
-    }
-    p.faces[f] = corners.size() >= 3 ? corners : loop;
-  }
+  FaceOutlines(vertices, triangles, face_of, owner, p);
 
   // Edges: the triangle edges between two faces (a long edge of a tessellated hull may come as
   // several collinear pieces: each is an edge, which the separating-axis test takes alike).
@@ -221,6 +230,97 @@ Polytope BoxPolytope(const Vector3& h) {
                                              {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
   return MakePolytope(v, t);
 }
+
+namespace {
+
+// Of more than four points, four: the deepest, then each time the one farthest from those kept.
+std::vector<ContactPoint> KeepFour(std::vector<ContactPoint> found) {
+  std::vector<ContactPoint> kept;
+  auto deepest = std::min_element(found.begin(), found.end(), [](const ContactPoint& x, const ContactPoint& y) {
+    return x.separation < y.separation;
+  });
+  kept.push_back(*deepest);
+  found.erase(deepest);
+  while (kept.size() < 4 && !found.empty()) {
+    auto far = std::max_element(found.begin(), found.end(), [&](const ContactPoint& x, const ContactPoint& y) {
+      double dx = 1e300, dy = 1e300;
+      for (const ContactPoint& k : kept) {
+        dx = std::min(dx, (x.point - k.point).squaredNorm());
+        dy = std::min(dy, (y.point - k.point).squaredNorm());
+      }
+      return dx < dy;
+    });
+    kept.push_back(*far);
+    found.erase(far);
+  }
+  return kept;
+}
+
+// The contact of a face of pr (best_index, its normal rn out of pr) with the face of pi most against
+// it: pi's face clipped by the reference face's sides, its corners within the margin. ref_a: pr is
+// the pair's first polytope (the normal points out of the second into the first).
+void FaceContact(const Polytope& pr, const World& wr, const Polytope& pi, const World& wi, int best_index, bool ref_a,
+                 double margin, std::vector<ContactPoint>& out) {
+  const Vector3 rn = wr.n[static_cast<std::size_t>(best_index)];
+  std::size_t inc = 0;
+  double most = std::numeric_limits<double>::infinity();
+  for (std::size_t f = 0; f < wi.n.size(); ++f) {
+    const double c = wi.n[f].dot(rn);
+    if (c < most) {
+      most = c;
+      inc = f;
+    }
+  }
+  // Each point's key: the incident corner's index, or for a point the clipping made, a mix of the
+  // reference side and the two points of the segment it cut (stable while the faces overlap alike).
+  std::vector<Vector3> poly;
+  std::vector<std::uint32_t> ids;
+  for (int i : pi.faces[inc]) {
+    poly.push_back(wi.v[static_cast<std::size_t>(i)]);
+    ids.push_back(static_cast<std::uint32_t>(i) & 0x3FFFFu);
+  }
+  const std::vector<int>& ref_face = pr.faces[static_cast<std::size_t>(best_index)];
+  for (std::size_t k = 0; k < ref_face.size() && !poly.empty(); ++k) {
+    const Vector3& p = wr.v[static_cast<std::size_t>(ref_face[k])];
+    const Vector3& q = wr.v[static_cast<std::size_t>(ref_face[(k + 1) % ref_face.size()])];
+    const Vector3 side = (q - p).cross(rn).normalized();  // out of the face, in its plane
+    const double offset = side.dot(p);
+    // A corner within rounding of the side (a box flush on an equal box) is kept as itself, not
+    // replaced by a cut whose key would change with the rounding from step to step.
+    const double on = 1e-9 * (q - p).norm();
+    std::vector<Vector3> clipped;
+    std::vector<std::uint32_t> clipped_ids;
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+      const std::size_t j = (i + 1) % poly.size();
+      const Vector3& x = poly[i];
+      const Vector3& y = poly[j];
+      const double dx = side.dot(x) - offset, dy = side.dot(y) - offset;
+      if (dx <= on) {
+        clipped.push_back(x);
+        clipped_ids.push_back(ids[i]);
+      }
+      if ((dx < -on && dy > on) || (dx > on && dy < -on)) {
+        clipped.push_back(x + (y - x) * (dx / (dx - dy)));
+        clipped_ids.push_back(0x40000u |
+                              ((static_cast<std::uint32_t>(k) * 2654435761u + ids[i] * 40503u + ids[j]) & 0x3FFFFu));
+      }
+    }
+    poly = std::move(clipped);
+    ids = std::move(clipped_ids);
+  }
+  const double rd = wr.d[static_cast<std::size_t>(best_index)];
+  std::vector<ContactPoint> found;
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    const double sep = rn.dot(poly[i]) - rd;
+    if (sep >= margin) continue;
+    found.push_back({poly[i] - rn * (0.5 * sep), ref_a ? Vector3(-rn) : rn, sep,
+                     (ref_a ? 0u : 1u << 31) | (static_cast<std::uint32_t>(best_index) & 0x7FFu) << 19 | ids[i]});
+  }
+  if (found.size() > 4) found = KeepFour(std::move(found));
+  out.insert(out.end(), found.begin(), found.end());
+}
+
+}  // namespace
 
 void PolytopePolytope(const Polytope& pa, const Posed& a, const Polytope& pb, const Posed& b, double margin,
                       std::vector<ContactPoint>& out) {
@@ -307,88 +407,11 @@ void PolytopePolytope(const Polytope& pa, const Posed& a, const Polytope& pb, co
     return;
   }
   // Face contact: the reference face's polytope, and the other's face most against its normal.
-  const bool ref_a = best_kind == 0;
-  const Polytope& pr = ref_a ? pa : pb;
-  const Polytope& pi = ref_a ? pb : pa;
-  const World& wr = ref_a ? wa : wb;
-  const World& wi = ref_a ? wb : wa;
-  const Vector3 rn = wr.n[static_cast<std::size_t>(best_index)];
-  std::size_t inc = 0;
-  double most = std::numeric_limits<double>::infinity();
-  for (std::size_t f = 0; f < wi.n.size(); ++f) {
-    const double c = wi.n[f].dot(rn);
-    if (c < most) {
-      most = c;
-      inc = f;
-    }
+  if (best_kind == 0) {
+    FaceContact(pa, wa, pb, wb, best_index, true, margin, out);
+  } else {
+    FaceContact(pb, wb, pa, wa, best_index, false, margin, out);
   }
-  // Each point's key: the incident corner's index, or for a point the clipping made, a mix of the
-  // reference side and the two points of the segment it cut (stable while the faces overlap alike).
-  std::vector<Vector3> poly;
-  std::vector<std::uint32_t> ids;
-  for (int i : pi.faces[inc]) {
-    poly.push_back(wi.v[static_cast<std::size_t>(i)]);
-    ids.push_back(static_cast<std::uint32_t>(i) & 0x3FFFFu);
-  }
-  const std::vector<int>& ref_face = pr.faces[static_cast<std::size_t>(best_index)];
-  for (std::size_t k = 0; k < ref_face.size() && !poly.empty(); ++k) {
-    const Vector3& p = wr.v[static_cast<std::size_t>(ref_face[k])];
-    const Vector3& q = wr.v[static_cast<std::size_t>(ref_face[(k + 1) % ref_face.size()])];
-    const Vector3 side = (q - p).cross(rn).normalized();  // out of the face, in its plane
-    const double offset = side.dot(p);
-    // A corner within rounding of the side (a box flush on an equal box) is kept as itself, not
-    // replaced by a cut whose key would change with the rounding from step to step.
-    const double on = 1e-9 * (q - p).norm();
-    std::vector<Vector3> clipped;
-    std::vector<std::uint32_t> clipped_ids;
-    for (std::size_t i = 0; i < poly.size(); ++i) {
-      const std::size_t j = (i + 1) % poly.size();
-      const Vector3& x = poly[i];
-      const Vector3& y = poly[j];
-      const double dx = side.dot(x) - offset, dy = side.dot(y) - offset;
-      if (dx <= on) {
-        clipped.push_back(x);
-        clipped_ids.push_back(ids[i]);
-      }
-      if ((dx < -on && dy > on) || (dx > on && dy < -on)) {
-        clipped.push_back(x + (y - x) * (dx / (dx - dy)));
-        clipped_ids.push_back(0x40000u |
-                              ((static_cast<std::uint32_t>(k) * 2654435761u + ids[i] * 40503u + ids[j]) & 0x3FFFFu));
-      }
-    }
-    poly = std::move(clipped);
-    ids = std::move(clipped_ids);
-  }
-  const double rd = wr.d[static_cast<std::size_t>(best_index)];
-  std::vector<ContactPoint> found;
-  for (std::size_t i = 0; i < poly.size(); ++i) {
-    const double sep = rn.dot(poly[i]) - rd;
-    if (sep >= margin) continue;
-    found.push_back({poly[i] - rn * (0.5 * sep), ref_a ? Vector3(-rn) : rn, sep,
-                     (ref_a ? 0u : 1u << 31) | (static_cast<std::uint32_t>(best_index) & 0x7FFu) << 19 | ids[i]});
-  }
-  if (found.size() > 4) {  // the deepest, then those farthest from the points kept
-    std::vector<ContactPoint> kept;
-    auto deepest = std::min_element(found.begin(), found.end(), [](const ContactPoint& x, const ContactPoint& y) {
-      return x.separation < y.separation;
-    });
-    kept.push_back(*deepest);
-    found.erase(deepest);
-    while (kept.size() < 4 && !found.empty()) {
-      auto far = std::max_element(found.begin(), found.end(), [&](const ContactPoint& x, const ContactPoint& y) {
-        double dx = 1e300, dy = 1e300;
-        for (const ContactPoint& k : kept) {
-          dx = std::min(dx, (x.point - k.point).squaredNorm());
-          dy = std::min(dy, (y.point - k.point).squaredNorm());
-        }
-        return dx < dy;
-      });
-      kept.push_back(*far);
-      found.erase(far);
-    }
-    found = std::move(kept);
-  }
-  out.insert(out.end(), found.begin(), found.end());
 }
 
 void SpherePolytope(const Vector3& c, double r, const Polytope& p, const Posed& posed, double margin, bool sphere_first,

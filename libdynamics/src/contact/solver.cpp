@@ -320,6 +320,21 @@ void UpdateFriction(Patch& p, const std::vector<Row>& rows, std::vector<Velociti
   progress.speed = std::max(progress.speed, (K * d).norm());
 }
 
+// A patch's normals' coupled response (Patch::block).
+void SetNormalBlock(Patch& p, const std::vector<Row>& rows) {
+  p.block.setZero();
+  if (p.count < 2 || p.count > 4) return;
+  const Row* r = &rows[static_cast<std::size_t>(p.first)];
+  for (int i = 0; i < p.count; ++i) {
+    for (int j = 0; j < p.count; ++j) {
+      const double nn = r[i].n.dot(r[j].n);
+      double a = r[i].inv_mass_a * nn + r[i].ang_a.dot(r[j].turn_a);
+      if (r[i].b >= 0) a += r[i].inv_mass_b * nn + r[i].ang_b.dot(r[j].turn_b);
+      p.block(i, j) = a;
+    }
+  }
+}
+
 // A patch's normal impulses (2 to 4 points) solved together: the new impulses x ≥ 0 whose normal
 // velocities w = A x − c reach their targets (w ≥ 0), complementary (x·w = 0), with A the points'
 // coupled response — the linear complementarity problem of the patch alone, by trying the sets of
@@ -330,18 +345,10 @@ void UpdateFriction(Patch& p, const std::vector<Row>& rows, std::vector<Velociti
 bool UpdateNormalBlock(const Patch& p, std::vector<Row>& rows, std::vector<Velocities>& vel, Progress& progress) {
   const int m = p.count;
   if (m < 2 || m > 4) return false;
-  Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
+  const Eigen::Matrix4d& A = p.block;
   Eigen::Vector4d c = Eigen::Vector4d::Zero(), old = Eigen::Vector4d::Zero();
   Row* r = &rows[static_cast<std::size_t>(p.first)];
-  for (int i = 0; i < m; ++i) {
-    for (int j = 0; j < m; ++j) {
-      const double nn = r[i].n.dot(r[j].n);
-      double a = r[i].inv_mass_a * nn + r[i].ang_a.dot(r[j].turn_a);
-      if (r[i].b >= 0) a += r[i].inv_mass_b * nn + r[i].ang_b.dot(r[j].turn_b);
-      A(i, j) = a;
-    }
-    old[i] = r[i].lambda_n;
-  }
+  for (int i = 0; i < m; ++i) old[i] = r[i].lambda_n;
   for (int i = 0; i < m; ++i) {
     c[i] = r[i].target - NormalSpeed(vel, r[i]) + A.row(i).head(m).dot(old.head(m));
   }
@@ -616,6 +623,7 @@ std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& ca
     if (it != cache.rows.end()) r.lambda_n = it->second.lambda_n;
   }
   std::vector<Patch> patches;
+  patches.reserve(rows.size());
   std::vector<Row> sorted;
   for (std::size_t first = 0; first < rows.size();) {
     // The pair's rows: [first, last).
@@ -664,6 +672,7 @@ std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& ca
       p.ra = anchor - (r0.point - r0.ra);
       p.rb = p.b >= 0 ? Vector3(anchor - (r0.point - r0.rb)) : Vector3::Zero();
       SetPatchJacobian(p, bodies);
+      SetNormalBlock(p, rows);
       // The patch it was last step: the cached patch of one of its rows (by the rows' feature
       // keys, as a contact is known step after step); none: a new patch.
       std::size_t best = used.size();

@@ -66,6 +66,9 @@ struct Patch {
   // The Jacobian's angular columns for each body (r × t1, r × t2, ρ n) and I⁻¹ times them.
   Matrix3 ang_a = Matrix3::Zero(), ang_b = Matrix3::Zero(), turn_a = Matrix3::Zero(), turn_b = Matrix3::Zero();
   double inv_mass_a = 0, inv_mass_b = 0;
+  // Its normals' coupled response (2 to 4 points; the rest zero): A_ij, the normal velocity at
+  // point i per unit normal impulse at point j.
+  Eigen::Matrix4d block = Eigen::Matrix4d::Zero();
   double mu_s = 0, mu_k = 0;
   double mu = 0;                     // the bound of this step: μs for a patch that holds, μk for one that slides
   bool sliding = false;              // did not hold last step, and slides at the start of this one
