@@ -23,7 +23,7 @@ using dynamics::Vector3;
 void Settle(dynamics::ContactWorld& w, int threads) {
   w.AddGround({Vector3::UnitZ(), 0, dynamics::Material{0.6, 0.5, 0.1}});
   w.AddForce(dynamics::Gravity(Vector3(0, 0, -9.81)));
-  w.world().set_num_threads(threads);
+  w.set_num_threads(threads);
   for (int i = 0; i < 500; ++i) w.Step(1e-3);
 }
 

@@ -58,7 +58,7 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
   Simulation sim;
   sim.scene = scene;
   sim.physics = dynamics::ContactWorld(dynamics::World(scene.integrator), scene.contact);
-  sim.world().set_num_threads(threads);
+  sim.physics.set_num_threads(threads);
   dynamics::BodyBuilder builder(massprops::report::WordsFor(massprops::report::FrontEnd::kScene), threads);
   // Contact is on when the scene asks for it: a ground, a static body, or a body's "collision".
   // Then box, sphere, capsule and cylinder solids collide as themselves unless they say "none";
@@ -202,20 +202,20 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     const int body = f.bodies.empty() ? -1 : f.bodies[0];
     const auto principal_axes = [&](int b) { return sim.bodies[static_cast<std::size_t>(b)].principal.axes; };
     switch (f.kind) {
-      case ForceKind::kGravity: sim.world().AddForce(dynamics::Gravity(f.vector)); break;
-      case ForceKind::kLinearDamping: sim.world().AddForce(dynamics::LinearDamping(f.coefficient, body)); break;
-      case ForceKind::kAngularDamping: sim.world().AddForce(dynamics::AngularDamping(f.coefficient, body)); break;
+      case ForceKind::kGravity: sim.physics.AddForce(dynamics::Gravity(f.vector)); break;
+      case ForceKind::kLinearDamping: sim.physics.AddForce(dynamics::LinearDamping(f.coefficient, body)); break;
+      case ForceKind::kAngularDamping: sim.physics.AddForce(dynamics::AngularDamping(f.coefficient, body)); break;
       case ForceKind::kForce: {
         const Vector3 point = f.point ? to_body(body, *f.point) : Vector3::Zero();
         const Vector3 vec = f.body_frame ? Vector3(principal_axes(body).transpose() * f.vector) : f.vector;
-        sim.world().AddForce(dynamics::PointForce(body, point, vec, f.body_frame));
+        sim.physics.AddForce(dynamics::PointForce(body, point, vec, f.body_frame));
         break;
       }
       case ForceKind::kTorque:
         if (f.body_frame) {
-          sim.world().AddForce(dynamics::BodyFrameTorque(body, principal_axes(body).transpose() * f.vector));
+          sim.physics.AddForce(dynamics::BodyFrameTorque(body, principal_axes(body).transpose() * f.vector));
         } else {
-          sim.world().AddForce(dynamics::ConstantTorque(body, f.vector));
+          sim.physics.AddForce(dynamics::ConstantTorque(body, f.vector));
         }
         break;
       case ForceKind::kSpring:
@@ -223,11 +223,11 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
         if (f.bodies.size() == 2) {
           const Vector3 pa = f.points.empty() ? Vector3::Zero() : to_body(f.bodies[0], f.points[0]);
           const Vector3 pb = f.points.empty() ? Vector3::Zero() : to_body(f.bodies[1], f.points[1]);
-          sim.world().AddForce(
+          sim.physics.AddForce(
               dynamics::SpringBetween(f.bodies[0], pa, f.bodies[1], pb, f.coefficient, f.rest_length, f.damping));
         } else {
           const Vector3 p = f.point ? to_body(body, *f.point) : Vector3::Zero();
-          sim.world().AddForce(dynamics::SpringToWorld(body, p, f.anchor, f.coefficient, f.rest_length, f.damping));
+          sim.physics.AddForce(dynamics::SpringToWorld(body, p, f.anchor, f.coefficient, f.rest_length, f.damping));
         }
         break;
     }

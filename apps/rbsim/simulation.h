@@ -49,7 +49,6 @@ struct Simulation {
   dynamics::ContactWorld physics;
   dynamics::Conservation conservation;  ///< what the scene's physics conserves (from the forces)
   bool contact = false;                 ///< the scene has ground, static bodies or colliders
-  dynamics::World& world() { return physics.world(); }
   const dynamics::World& world() const { return physics.world(); }
 };
 

@@ -117,7 +117,7 @@ TEST(Islands, SolvedInParallelGiveTheSameBits) {
     }
     w.AddGround({Vector3::UnitZ(), 0, Material{0.6, 0.5, 0}});
     w.AddForce(Gravity(Vector3(0, 0, -kG)));
-    w.world().set_num_threads(threads);
+    w.set_num_threads(threads);
     for (int i = 0; i < 300; ++i) EXPECT_TRUE(w.Step(1e-3).ok);
     EXPECT_EQ(w.stats().contacts, 16 * 3 * 4);
     return w.world().bodies();

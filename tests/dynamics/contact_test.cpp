@@ -504,7 +504,7 @@ TEST(Contact, SameBitsWhateverTheThreads) {
     }
     w.AddGround({Vector3::UnitZ(), 0, Mat(0.6, 0.5, 0.2)});
     w.AddForce(Gravity(Vector3(0, 0, -kG)));
-    w.world().set_num_threads(threads);
+    w.set_num_threads(threads);
     for (int i = 0; i < 800; ++i) w.Step(1e-3);
     return w.world().bodies();
   };

@@ -171,8 +171,9 @@ struct ContactStats {
   double pushed = 0;
 };
 
-/// A World with contact. The bodies, forces and integrator are the world's; each dynamic body has
-/// one collider; static bodies and ground planes have no state.
+/// A World with contact. It owns its world: bodies and forces are added here (each dynamic body
+/// with one collider or none), and world() reads them; static bodies and ground planes have no
+/// state.
 class ContactWorld {
  public:
   /// @throws std::invalid_argument for a world that has bodies already, or options out of range
@@ -199,8 +200,12 @@ class ContactWorld {
   /// Advances by h seconds (see the file comment). @throws as World::Step.
   StepStatus Step(double h);
 
+  /// The bodies, forces, clock and integrator; read-only: bodies and forces are added through
+  /// this class, which keeps a collider and contact state for each.
   const World& world() const { return world_; }
-  World& world() { return world_; }
+  /// Worker threads for the narrow phase, the islands' solve and the world's per-body work (0: all
+  /// cores). Results do not depend on it.
+  void set_num_threads(int n) { world_.set_num_threads(n); }
   const ContactStats& stats() const { return stats_; }
 
  private:

@@ -105,8 +105,6 @@ struct StepStatus {
 namespace internal {
 struct StepScratch;
 }  // namespace internal
-class ContactWorld;
-
 class World {
  public:
   explicit World(Integrator integrator = Integrator::kImplicitMidpoint);
@@ -135,6 +133,9 @@ class World {
   /// Worker threads for the per-body work of large worlds (0: all cores). Results do not depend
   /// on it: bodies are independent within each phase.
   void set_num_threads(int n) { num_threads_ = n; }
+  int num_threads() const { return num_threads_; }
+  /// For a stepper that moves the bodies itself (ContactWorld): the clock after its step.
+  void set_time(double t) { time_ = t; }
 
   Diagnostics Diagnose() const;
   Conservation Conserves() const;
@@ -144,7 +145,6 @@ class World {
   const std::vector<std::unique_ptr<Force>>& forces() const { return forces_; }
 
  private:
-  friend class ContactWorld;  // steps the bodies itself when they touch (contact.h)
   StepStatus Advance(double h);
 
   Integrator integrator_;

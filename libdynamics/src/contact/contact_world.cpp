@@ -102,6 +102,7 @@ struct ContactWorld::Impl {
   std::vector<contact::Velocities> before_kick;  // the velocities at the start of the step (for impacts)
   contact::BodyResponse response;
   std::unique_ptr<contact::Workers> workers;  // kept between steps; null: one thread
+  internal::StepScratch scratch;              // the forces' wrenches
 
   // The worker pool for `threads` (null for one thread).
   contact::Workers* WorkersFor(int threads) {
@@ -391,12 +392,12 @@ StepStatus ContactWorld::Step(double h) {
     stats_ = {};
     return world_.Step(h);  // nothing can touch: the world's integrator, at no extra cost
   }
-  std::vector<RigidBody>& bodies = world_.bodies_;
+  std::vector<RigidBody>& bodies = world_.bodies();
   const int nb = static_cast<int>(bodies.size());
   stats_ = {};
   // 1. The kick: velocities after this step's forces, before contact.
-  internal::StepContext context(bodies, world_.forces_, *world_.scratch_, world_.num_threads_);
-  context.ComputeWrenches(world_.time_);
+  internal::StepContext context(bodies, world_.forces(), m.scratch, world_.num_threads());
+  context.ComputeWrenches(world_.time());
   const double kick_speed = Kick(bodies, context.wrenches(), h, m.vel, m.before_kick, m.response);
   const double bounce_threshold =
       options_.restitution_threshold > 0 ? options_.restitution_threshold : 2 * kick_speed + 1e-12;
@@ -444,7 +445,7 @@ StepStatus ContactWorld::Step(double h) {
   // not depend on the thread count.
   std::vector<std::vector<contact::ContactPoint>> found;
   std::vector<char> supported;
-  contact::CollidePairs(queries, world_.num_threads_, found, supported);
+  contact::CollidePairs(queries, world_.num_threads(), found, supported);
   for (std::size_t c = 0; c < candidates.size(); ++c) {
     const int a = candidates[c].a, b = candidates[c].b;
     const auto ka = static_cast<std::size_t>(a);
@@ -508,7 +509,7 @@ StepStatus ContactWorld::Step(double h) {
   const int sweeps = options_.max_iterations > 0 ? options_.max_iterations : (options_.exact ? 64 : 32);
   const contact::SolveSettings settings{sweeps, options_.speed_tolerance, options_.exact, options_.tolerance};
   stats_.iterations = contact::SolveImpulses(m.rows, patches, m.vel, m.response, contact::SupportLevels(nb, m.rows),
-                                             island, settings, m.WorkersFor(world_.num_threads_));
+                                             island, settings, m.WorkersFor(world_.num_threads()));
   m.cache = std::move(kept);
   contact::StoreImpulses(m.rows, patches, m.cache);
   stats_.dissipated = energy_before - KineticEnergy(bodies, m.vel);
@@ -516,7 +517,7 @@ StepStatus ContactWorld::Step(double h) {
   const std::vector<contact::Velocities> pseudo = contact::PushOutVelocities(m.rows, nb, h, settings);
   StepStatus status = DriftBodies(bodies, m.vel, pseudo, m.sleep.asleep, radius, h, stats_);
   if (!status.ok) return status;
-  world_.time_ += h;
+  world_.set_time(world_.time() + h);
   if (options_.sleeping) {
     contact::FallAsleep(islands, m.rows, m.collides, radius, options_.sleep_speed, options_.sleep_time, h, bodies,
                         m.sleep);
@@ -527,7 +528,7 @@ StepStatus ContactWorld::Step(double h) {
     status.ok = false;
     status.diverged = true;
     status.body = bad;
-    status.message = "diverged at t = " + std::to_string(world_.time_) + " s: body " + std::to_string(bad) + "'s " +
+    status.message = "diverged at t = " + std::to_string(world_.time()) + " s: body " + std::to_string(bad) + "'s " +
                      quantity + " is no longer finite";
   }
   return status;

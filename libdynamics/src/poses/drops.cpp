@@ -55,7 +55,7 @@ DropOutcome RunOne(const Part& part, const Estimate& estimate, const DropOptions
   contact.sleep_speed = o.rest_speed;
   contact.sleep_time = o.rest_time;
   ContactWorld world(World(), contact);
-  world.world().set_num_threads(1);
+  world.set_num_threads(1);
   world.AddGround(Ground{Vector3::UnitZ(), 0.0, o.ground});
   world.AddForce(Gravity(Vector3(0, 0, -9.80665)));
   RigidBody body = placed.body;
