@@ -101,8 +101,10 @@ struct ContactWorld::Impl {
   std::vector<contact::Velocities> vel;
   std::vector<contact::Velocities> before_kick;  // the velocities at the start of the step (for impacts)
   contact::BodyResponse response;
-  std::unique_ptr<contact::Workers> workers;  // kept between steps; null: one thread
-  internal::StepScratch scratch;              // the forces' wrenches
+  std::unique_ptr<contact::Workers> workers;              // kept between steps; null: one thread
+  internal::StepScratch scratch;                          // the forces' wrenches
+  std::vector<std::vector<contact::ContactPoint>> found;  // each candidate pair's points
+  std::vector<char> supported;                            // each candidate pair's kinds have a routine
 
   // The worker pool for `threads` (null for one thread).
   contact::Workers* WorkersFor(int threads) {
@@ -443,9 +445,9 @@ StepStatus ContactWorld::Step(double h) {
   }
   // The narrow phase: each pair on its own, then the rows in the pairs' order, so the step does
   // not depend on the thread count.
-  std::vector<std::vector<contact::ContactPoint>> found;
-  std::vector<char> supported;
-  contact::CollidePairs(queries, world_.num_threads(), found, supported);
+  std::vector<std::vector<contact::ContactPoint>>& found = m.found;
+  std::vector<char>& supported = m.supported;
+  contact::CollidePairs(queries, m.WorkersFor(world_.num_threads()), found, supported);
   for (std::size_t c = 0; c < candidates.size(); ++c) {
     const int a = candidates[c].a, b = candidates[c].b;
     const auto ka = static_cast<std::size_t>(a);

@@ -4,6 +4,8 @@
 
 #include "narrow_phase.h"
 
+#include "workers.h"
+
 #include "mesh_field.h"
 #include "polytope.h"
 
@@ -379,22 +381,23 @@ bool Collide(const Posed& a, const Posed& b, double margin, std::vector<ContactP
   return false;
 }
 
-void CollidePairs(const std::vector<PairQuery>& pairs, int threads, std::vector<std::vector<ContactPoint>>& found,
+void CollidePairs(const std::vector<PairQuery>& pairs, Workers* workers, std::vector<std::vector<ContactPoint>>& found,
                   std::vector<char>& supported) {
-  found.assign(pairs.size(), {});
+  found.resize(pairs.size());
+  for (auto& f : found) f.clear();
   supported.assign(pairs.size(), 1);
-  std::atomic<std::size_t> next{0};
-  auto worker = [&] {
-    for (std::size_t c = next.fetch_add(1); c < pairs.size(); c = next.fetch_add(1)) {
+  constexpr std::size_t kGroup = 16;
+  const std::size_t groups = (pairs.size() + kGroup - 1) / kGroup;
+  auto collide = [&](std::size_t g) {
+    for (std::size_t c = g * kGroup; c < std::min(pairs.size(), (g + 1) * kGroup); ++c) {
       supported[c] = Collide(*pairs[c].a, *pairs[c].b, pairs[c].margin, found[c]);
     }
   };
-  static const int kHardwareThreads = static_cast<int>(std::thread::hardware_concurrency());
-  const int n = std::min<int>(threads > 0 ? threads : kHardwareThreads, static_cast<int>(pairs.size() / 8));
-  std::vector<std::thread> pool;
-  for (int t = 1; t < n; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
+  if (workers != nullptr && groups > 1) {
+    workers->ForEach(groups, collide);
+  } else {
+    for (std::size_t g = 0; g < groups; ++g) collide(g);
+  }
 }
 
 }  // namespace dynamics::contact

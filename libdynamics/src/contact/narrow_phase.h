@@ -55,10 +55,11 @@ struct PairQuery {
   const Posed* b = nullptr;
   double margin = 0;
 };
+class Workers;
 /// Collide on each pair: found[c] gets pair c's points, supported[c] whether its kinds have a
-/// routine. Pairs run on up to `threads` workers (0: the hardware's; never more than one per 8
-/// pairs), each on its own, so the result does not depend on the thread count.
-void CollidePairs(const std::vector<PairQuery>& pairs, int threads, std::vector<std::vector<ContactPoint>>& found,
+/// routine. Pairs run in groups of 16 on the workers (null: on the caller), each on its own, so
+/// the result does not depend on the thread count.
+void CollidePairs(const std::vector<PairQuery>& pairs, Workers* workers, std::vector<std::vector<ContactPoint>>& found,
                   std::vector<char>& supported);
 
 }  // namespace dynamics::contact
