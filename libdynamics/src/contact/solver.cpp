@@ -471,7 +471,7 @@ void PropagateShock(std::vector<Row>& rows, std::vector<Patch>& patches, const s
 // An island's bodies, their kinetic energy, and a copy of its impulses and velocities to go back to.
 class IslandState {
  public:
-  IslandState(const std::vector<Row>& rows, const std::vector<Patch>& patches, const std::vector<int>& order) {
+  IslandState(const std::vector<Patch>& patches, const std::vector<int>& order) {
     for (const int k : order) {
       const Patch& p = patches[static_cast<std::size_t>(k)];
       members_.push_back(p.a);
@@ -479,7 +479,6 @@ class IslandState {
     }
     std::sort(members_.begin(), members_.end());
     members_.erase(std::unique(members_.begin(), members_.end()), members_.end());
-    (void)rows;
   }
   double Energy(const std::vector<Velocities>& vel, const BodyResponse& bodies) const {
     double e = 0;
@@ -565,7 +564,7 @@ int SolveIsland(std::vector<Row>& rows, std::vector<Patch>& patches, const std::
     if (sweeps == settings.max_iterations) PropagateShock(rows, patches, order, vel, bodies, body_level, settings);
     return sweeps;
   }
-  IslandState state(rows, patches, order);
+  IslandState state(patches, order);
   const double kicked = state.Energy(vel, bodies);
   state.Save(rows, patches, order, vel);  // the kicked velocities, the warm start's impulses
   WarmStart(rows, patches, order, vel);
