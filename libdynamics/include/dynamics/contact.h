@@ -140,7 +140,7 @@ struct ContactOptions {
   int max_iterations = 0;
   double speed_tolerance = 1e-9;
   /// Exact mode: sweep until no impulse changes by more than `tolerance` times the largest (the
-  /// solver of rbsim 0.3 and before) — 3–10× slower, for references: a resting stack's drift
+  /// solver of rbsim 0.3 and before) — 2–5× slower, for references: a resting stack's drift
   /// ~10⁻¹⁴ m instead of ~10⁻⁹–10⁻⁶ m; impulses that never add energy, where the default may leave
   /// ~10⁻⁷ of it in a step of a settling pile or a tall stack's first steps.
   bool exact = false;

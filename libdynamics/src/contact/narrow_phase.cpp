@@ -4,18 +4,15 @@
 
 #include "narrow_phase.h"
 
-#include "workers.h"
-
 #include "mesh_field.h"
 #include "polytope.h"
+#include "workers.h"
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
 namespace dynamics::contact {
 namespace {

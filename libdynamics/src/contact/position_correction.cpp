@@ -16,19 +16,19 @@ std::vector<Velocities> PushOutVelocities(std::vector<Row>& rows, int num_bodies
   pseudo.assign(static_cast<std::size_t>(num_bodies), {Vector3::Zero(), Vector3::Zero()});
   constexpr double kPush = 0.5;  // of the excess overlap, per step
   for (int sweep = 0; sweep < settings.max_iterations; ++sweep) {
-    double change = 0, scale = 0, speed = 0;
+    Progress progress;
     for (Row& r : rows) {
       if (r.slop < 0) continue;
       const double target = kPush * std::max(-r.separation - r.slop, 0.0) / h;
       const double push = std::max(r.push + r.mass_n * (target - NormalSpeed(pseudo, r)), 0.0);
       const double d = push - r.push;
-      change = std::max(change, std::abs(d));
-      scale = std::max(scale, push);
-      speed = std::max(speed, std::abs(d) / r.mass_n);
+      progress.change = std::max(progress.change, std::abs(d));
+      progress.scale = std::max(progress.scale, push);
+      progress.speed = std::max(progress.speed, std::abs(d) / r.mass_n);
       r.push = push;
       ApplyNormal(pseudo, r, d, -1);
     }
-    if (settings.exact ? change <= settings.tolerance * scale : speed <= settings.speed_tolerance) break;
+    if (progress.Done(settings)) break;
   }
   return pseudo;
 }

@@ -199,15 +199,6 @@ void Outline(const std::vector<Row>& rows, const Patch& p, Vector3& anchor, doub
   anchor = p.t1 * c2.x() + p.t2 * c2.y() + p.n * height;
 }
 
-// How much a sweep changed: the largest impulse change and impulse (exact mode), and the largest
-// change of a contact's velocity (m/s).
-struct Progress {
-  double change = 0, scale = 0, speed = 0;
-  bool Done(const SolveSettings& s) const {
-    return s.exact ? change <= s.tolerance * scale : speed <= s.speed_tolerance;
-  }
-};
-
 // One Gauss–Seidel update of a row's normal impulse: the least that keeps its normal velocity
 // at its target.
 void UpdateNormal(Row& r, std::vector<Velocities>& vel, int frozen, double mass_n, Progress& progress) {
@@ -568,7 +559,7 @@ int SolveIsland(std::vector<Row>& rows, std::vector<Patch>& patches, const std::
   const double kicked = state.Energy(vel, bodies);
   state.Save(rows, patches, order, vel);  // the kicked velocities, the warm start's impulses
   WarmStart(rows, patches, order, vel);
-  int sweeps = Sweeps(rows, patches, order, vel, bodies, settings);
+  int last = Sweeps(rows, patches, order, vel, bodies, settings), sweeps = last;
   if (state.Energy(vel, bodies) > kicked) {
     state.Restore(rows, patches, order, vel);
     for (const int k : order) {
@@ -576,9 +567,10 @@ int SolveIsland(std::vector<Row>& rows, std::vector<Patch>& patches, const std::
       p.lambda.setZero();
       for (int i = p.first; i < p.first + p.count; ++i) rows[static_cast<std::size_t>(i)].lambda_n = 0;
     }
-    sweeps += Sweeps(rows, patches, order, vel, bodies, settings);
+    last = Sweeps(rows, patches, order, vel, bodies, settings);
+    sweeps += last;
   }
-  if (sweeps % settings.max_iterations != 0) return sweeps;
+  if (last < settings.max_iterations) return sweeps;
   const double before_shock = state.Energy(vel, bodies);
   state.Save(rows, patches, order, vel);
   PropagateShock(rows, patches, order, vel, bodies, body_level, settings);
@@ -596,20 +588,6 @@ Vector3 RelativeVelocity(const std::vector<Velocities>& vel, int a, int b, const
     v -= vb.v + vb.w.cross(rb);
   }
   return v;
-}
-
-void ApplyImpulse(std::vector<Velocities>& vel, const BodyResponse& bodies, int a, int b, const Vector3& ra,
-                  const Vector3& rb, const Vector3& impulse, const Vector3& moment, int frozen) {
-  if (a != frozen) {
-    Velocities& va = vel[static_cast<std::size_t>(a)];
-    va.v += InvMass(bodies, a) * impulse;
-    va.w += bodies.inv_inertia[static_cast<std::size_t>(a)] * (ra.cross(impulse) + moment);
-  }
-  if (b >= 0 && b != frozen) {
-    Velocities& vb = vel[static_cast<std::size_t>(b)];
-    vb.v -= InvMass(bodies, b) * impulse;
-    vb.w -= bodies.inv_inertia[static_cast<std::size_t>(b)] * (rb.cross(impulse) + moment);
-  }
 }
 
 std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& cache, const std::vector<Velocities>& vel,

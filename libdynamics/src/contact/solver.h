@@ -137,11 +137,6 @@ inline void ApplyNormal(std::vector<Velocities>& vel, const Row& r, double d, in
   }
 }
 
-/// An impulse at a point (ra, rb) on a, and its opposite on b, with an angular impulse `moment`
-/// on a (and its opposite on b), into `vel`; the body `frozen` (shock propagation) is not moved.
-void ApplyImpulse(std::vector<Velocities>& vel, const BodyResponse& bodies, int a, int b, const Vector3& ra,
-                  const Vector3& rb, const Vector3& impulse, const Vector3& moment, int frozen = -1);
-
 /// Groups the rows (consecutive by pair) into patches, reordering a pair's rows so that each
 /// patch's are consecutive; sets every row's and patch's effective masses; warm-starts them
 /// from the cache and chooses static or kinetic friction: a patch that held last step (or a new
@@ -150,24 +145,33 @@ void ApplyImpulse(std::vector<Velocities>& vel, const BodyResponse& bodies, int 
 std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& cache, const std::vector<Velocities>& vel,
                                   const BodyResponse& bodies, double slow);
 
-/// When the sweeps stop.
+/// When the sweeps stop (ContactOptions; its automatic sweep count resolved).
 struct SolveSettings {
-  int max_iterations = 64;
+  int max_iterations = 32;
   /// m/s: once no update of a sweep changes a contact's velocity (normal, tangential, or a
   /// patch's turning times its torsion radius) by more than this.
-  double speed_tolerance = 1e-6;
-  /// Instead: once no impulse changes by more than `tolerance` times the largest, with shock
-  /// propagation when the sweeps run out (ContactOptions::exact).
+  double speed_tolerance = 1e-9;
+  /// Instead: once no impulse changes by more than `tolerance` times the largest
+  /// (ContactOptions::exact).
   bool exact = false;
   double tolerance = 1e-12;
+};
+
+/// How much a sweep changed: the largest impulse change and impulse (exact mode), and the largest
+/// change of a contact's velocity (m/s); Done: the settings' stopping rule holds.
+struct Progress {
+  double change = 0, scale = 0, speed = 0;
+  bool Done(const SolveSettings& s) const {
+    return s.exact ? change <= s.tolerance * scale : speed <= s.speed_tolerance;
+  }
 };
 
 /// Solves the impulses into `vel`, island by island (island: each body's island, by any label;
 /// the islands may be solved on several threads, with the same result): patches ordered by
 /// support level (body_level: 0 on the ground or a static body, k + 1 on level k), warm start,
 /// then symmetric Gauss–Seidel sweeps (each patch's normals, then its friction) until the
-/// settings' stopping rule holds, and in exact mode shock propagation level by level when the
-/// sweeps run out. Returns the most sweeps an island used.
+/// settings' stopping rule holds, and shock propagation level by level when the sweeps run out
+/// (by default kept only where it adds no kinetic energy). Returns the most sweeps an island used.
 class Workers;
 int SolveImpulses(std::vector<Row>& rows, std::vector<Patch>& patches, std::vector<Velocities>& vel,
                   const BodyResponse& bodies, const std::vector<int>& body_level, const std::vector<int>& island,
