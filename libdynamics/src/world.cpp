@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "articulated/articulation.h"
 #include "integrators/integrator.h"
 
 namespace dynamics {
@@ -45,10 +46,38 @@ World& World::operator=(World&&) noexcept = default;
 
 int World::AddBody(const RigidBody& body) {
   CheckBody(body);
+  if (articulation_ && time_ != 0.0) {
+    throw std::invalid_argument("World::AddBody: an articulated world takes its bodies before its first step");
+  }
   RigidBody b = body;
   b.orientation.normalize();
   bodies_.push_back(b);
+  if (articulation_) articulation_ = std::make_unique<internal::Articulation>(joints_, bodies_);
   return static_cast<int>(bodies_.size()) - 1;
+}
+
+int World::AddJoint(const Joint& joint) {
+  if (time_ != 0.0) throw std::invalid_argument("World::AddJoint: joint '" + joint.name + "': add joints before the first step");
+  internal::CheckJoint(joint, static_cast<int>(bodies_.size()), joints_);
+  joints_.push_back(joint);
+  try {
+    auto articulation = std::make_unique<internal::Articulation>(joints_, bodies_);
+    // Only free joints from the world (so no body carries another): free bodies, stepped as such.
+    bool lone_free = true;
+    for (const Joint& j : joints_) lone_free = lone_free && j.type == JointType::kFree && j.parent < 0;
+    articulation_ = lone_free ? nullptr : std::move(articulation);
+  } catch (...) {
+    joints_.pop_back();
+    throw;
+  }
+  return static_cast<int>(joints_.size()) - 1;
+}
+
+JointState World::joint_state(int j) const {
+  if (j < 0 || j >= static_cast<int>(joints_.size())) {
+    throw std::out_of_range("World::joint_state: no joint " + std::to_string(j));
+  }
+  return articulation_ ? articulation_->State(j) : internal::JointStateFromBodies(joints_[static_cast<std::size_t>(j)], bodies_);
 }
 
 void World::AddForce(std::unique_ptr<Force> force) {
@@ -101,6 +130,17 @@ std::pair<int, const char*> World::FirstNonFinite() const {
 
 StepStatus World::Advance(double h) {
   const internal::IntegratorInfo& info = internal::Info(integrator_);
+  if (articulation_) {
+    if (integrator_ != Integrator::kImplicitMidpoint && integrator_ != Integrator::kRK4) {
+      throw std::invalid_argument(std::string("World::Step: the ") + info.name +
+                                  " integrator has no meaning for joints (it steps free bodies); an articulated world "
+                                  "takes implicit-midpoint or rk4");
+    }
+    const double t0 = time_;
+    StepStatus status = articulation_->Advance(integrator_, forces_, t0, h, bodies_);
+    time_ = t0 + h;
+    return status;
+  }
   internal::StepContext context(bodies_, forces_, *scratch_, num_threads_);
   StepStatus status;
   const double t0 = time_;
@@ -149,6 +189,18 @@ Conservation World::Conserves() const {
   auto note = [](std::string& list, const char* what) {
     if (list.find(what) == std::string::npos) list += (list.empty() ? "" : ", ") + std::string(what);
   };
+  for (const Joint& j : joints_) {
+    const bool one_dof = j.type == JointType::kRevolute || j.type == JointType::kPrismatic;
+    if (j.damping > 0) note(c.energy_broken_by, "joint damping");
+    if (j.friction > 0) note(c.energy_broken_by, "joint friction");
+    if (j.motor.mode != JointMotor::Mode::kOff) note(c.energy_broken_by, "joint motors");
+    if (one_dof && j.limits.restitution < 1 && (std::isfinite(j.limits.lower) || std::isfinite(j.limits.upper))) {
+      note(c.energy_broken_by, "joint stops");
+    }
+    if (j.parent < 0 && j.type != JointType::kFree) note(c.momentum_broken_by, "joints to the world");
+  }
+  c.energy = c.energy_broken_by.empty();
+  c.momentum = c.momentum_broken_by.empty();
   for (const auto& f : forces_) {
     const ForceTraits t = f->Traits();
     if (t.breaks_energy) {
@@ -172,6 +224,7 @@ Diagnostics World::Diagnose() const {
     d.angular_momentum += b.AngularMomentumAbout(Vector3::Zero());
   }
   for (const auto& f : forces_) d.potential_energy += f->PotentialEnergy(bodies_);
+  if (articulation_) d.potential_energy += articulation_->SpringEnergy();
   d.total_energy = d.kinetic_energy + d.potential_energy;
   return d;
 }

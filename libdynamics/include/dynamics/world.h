@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "dynamics/forces.h"
+#include "dynamics/joints.h"
 #include "dynamics/rigid_body.h"
 
 namespace dynamics {
@@ -104,6 +105,7 @@ struct StepStatus {
 
 namespace internal {
 struct StepScratch;
+class Articulation;
 }  // namespace internal
 class World {
  public:
@@ -117,12 +119,27 @@ class World {
   int AddBody(const RigidBody& body);
   /// Adds a force. @throws std::invalid_argument if it names a body that does not exist.
   void AddForce(std::unique_ptr<Force> force);
+  /// Adds a joint (dynamics/joints.h) and places its child, and whatever hangs from it, at the
+  /// joint's initial position; returns its index. A world with joints other than free joints
+  /// from the world to a lone body is articulated: every body is stepped in joint coordinates
+  /// (a body without a joint on an implicit free joint), by the implicit midpoint rule on (q, p)
+  /// or RK4 — the other integrators refuse it. A lone free joint leaves its body's bits alone.
+  /// The jointed bodies' states in bodies() are then outputs: writing them changes nothing.
+  /// @throws std::invalid_argument for a missing body, a body that already has a parent joint, a
+  /// loop, parameters out of range (naming the joint and the field), or after the first step.
+  int AddJoint(const Joint& joint);
+  const std::vector<Joint>& joints() const { return joints_; }
+  /// Position, velocity and last step's impulses of joint j. @throws std::out_of_range.
+  JointState joint_state(int j) const;
+  /// True when the world is stepped in joint coordinates (see AddJoint).
+  bool articulated() const { return articulation_ != nullptr; }
 
   /// Advances by h seconds. Never clamps angular velocity: when an implicit solve does not
   /// converge it halves the step (up to 2^10 sub-steps) and says so in the status; if even that
   /// fails, the status says so and the state is left as before the call. Allocates nothing once
   /// the world has stepped (scratch is kept between steps).
-  /// @throws std::invalid_argument if h is not finite and positive.
+  /// @throws std::invalid_argument if h is not finite and positive, or for an articulated world
+  /// and an integrator other than implicit-midpoint and rk4.
   StepStatus Step(double h);
 
   double time() const { return time_; }
@@ -151,6 +168,8 @@ class World {
   std::vector<RigidBody> bodies_;
   std::vector<std::unique_ptr<Force>> forces_;
   std::unique_ptr<internal::StepScratch> scratch_;  ///< kept between steps
+  std::vector<Joint> joints_;
+  std::unique_ptr<internal::Articulation> articulation_;  ///< null: free bodies only
   double time_ = 0;
   int num_threads_ = 0;
 };

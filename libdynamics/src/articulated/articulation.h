@@ -1,0 +1,141 @@
+#pragma once
+// The joined bodies of a World in reduced coordinates (internal).
+//
+// Every body of an articulated world is a node of a tree rooted in the world: the child of its
+// joint, or of an implicit free joint when it has none. Spatial vectors are in world axes about
+// the world origin (Featherstone 2008, ch. 2): a motion (ω, v_O), v_O the velocity of the body
+// point at the origin; a force (n_O, f). The state is the joint positions q and the generalized
+// momenta p = M(q) v; v is kept beside them. Each joint's motion subspace S is fixed in its child,
+// so Ṡ = V × S and the momentum equation is, joint by joint,
+//     ṗ_i = Q_i + S_iᵀ (f_i − V_i ×* h_i)
+// with h_i and f_i the spatial momentum and the external wrench of the subtree below joint i and
+// Q_i the joint's own efforts (spring, damping, servo). The mass matrix is the composite-rigid-
+// body algorithm's, factorized by Cholesky.
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "dynamics/forces.h"
+#include "dynamics/joints.h"
+#include "dynamics/world.h"
+
+namespace dynamics::internal {
+
+using Vector6 = Eigen::Matrix<double, 6, 1>;
+using Matrix6 = Eigen::Matrix<double, 6, 6>;
+using MotionColumns = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>;
+
+/// One body of the tree, parents before children.
+struct Node {
+  int body = 0;
+  int parent = -1;  ///< node index, -1: the world
+  int joint = -1;   ///< index in World::joints(), -1: an implicit free joint
+  JointType type = JointType::kFree;
+  Vector3 axis = Vector3::UnitZ();
+  Matrix3 parent_rotation = Matrix3::Identity();  ///< J_p in the parent (or world)
+  Vector3 parent_origin = Vector3::Zero();
+  Matrix3 child_rotation = Matrix3::Identity();  ///< J_c in the child body
+  Vector3 child_origin = Vector3::Zero();
+  int q = 0, nq = 0;  ///< position slice
+  int v = 0, nv = 0;  ///< velocity slice
+};
+
+/// What the kinematics of one configuration gives each node.
+struct NodeFrame {
+  Matrix3 R;             ///< body axes → world
+  Vector3 x;             ///< center of mass, world
+  Matrix3 joint_R;       ///< J_c → world
+  Vector3 joint_origin;  ///< J_c's origin, world
+  MotionColumns S;       ///< motion subspace, 6 × nv
+  Matrix6 inertia;       ///< spatial inertia about the world origin
+  Vector6 V;             ///< spatial velocity
+};
+
+/// The state a joint (or an unjoined body) starts from when it takes its body's: q and v of a
+/// free joint from J_p (placed by the parent's frame R_p, x_p, V_p) to the child body b.
+void FreeJointFromBody(const Node& node, const Matrix3& parent_R, const Vector3& parent_x, const Vector6& parent_V,
+                       const RigidBody& b, double* q, double* v);
+/// A joint's state read from the bodies (a world without articulation: lone free joints).
+JointState JointStateFromBodies(const Joint& joint, const std::vector<RigidBody>& bodies);
+
+/// World::AddJoint's checks of one joint against the bodies and the joints already there.
+/// @throws std::invalid_argument naming the joint and the field.
+void CheckJoint(const Joint& joint, int num_bodies, const std::vector<Joint>& existing);
+
+/// One configuration's kinematics and mass matrix.
+struct Configuration {
+  std::vector<NodeFrame> frames;
+  std::vector<Matrix6> composite;  ///< composite inertia of each subtree
+  Eigen::MatrixXd M;
+  Eigen::LLT<Eigen::MatrixXd> llt;
+};
+
+class Articulation {
+ public:
+  /// Builds the tree of `joints` over `bodies` (validated by World::AddJoint), takes the initial
+  /// state (the joints' given positions and velocities; free joints and unjoined bodies keep
+  /// their bodies' state) and places the bodies accordingly.
+  /// @throws std::invalid_argument for a loop of joints.
+  Articulation(const std::vector<Joint>& joints, std::vector<RigidBody>& bodies);
+
+  /// Advances by h with the implicit midpoint rule on (q, p) or RK4; sub-steps when the midpoint
+  /// solve does not converge. Writes the bodies' states.
+  StepStatus Advance(Integrator integrator, const std::vector<std::unique_ptr<Force>>& forces, double t, double h,
+                     std::vector<RigidBody>& bodies);
+  JointState State(int joint) const;
+  /// Σ ½ k (q − rest)² over the joints' springs, J.
+  double SpringEnergy() const;
+
+ private:
+  bool MidpointStep(const std::vector<std::unique_ptr<Force>>& forces, double t, double h,
+                    std::vector<RigidBody>& bodies);
+  bool RK4Step(const std::vector<std::unique_ptr<Force>>& forces, double t, double h, std::vector<RigidBody>& bodies);
+  /// Kinematics, mass matrix and its factor at q (false: the mass matrix is not positive definite).
+  bool Configure(const Eigen::VectorXd& q, Configuration& c) const;
+  /// Spatial velocities V of c's frames from v.
+  void Velocities(const Eigen::VectorXd& v, Configuration& c) const;
+  /// ṗ at (q, v) of configuration c (velocities set), time t.
+  void MomentumRate(const std::vector<std::unique_ptr<Force>>& forces, double t, const Eigen::VectorXd& q,
+                    const Eigen::VectorXd& v, const Configuration& c, std::vector<RigidBody>& stage,
+                    Eigen::VectorXd& rate);
+  /// q̇ at (q, v).
+  void PositionRate(const Eigen::VectorXd& q, const Eigen::VectorXd& v, Eigen::VectorXd& rate) const;
+  /// q ⊕ h v: positions moved by h v, rotations by the exponential map of h ω; a free joint's
+  /// origin moves by h R v_lin with R its rotation turned by `turn` ω (h/2: the midpoint's).
+  void Move(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double h, double turn, Eigen::VectorXd& out) const;
+  /// Stops, friction and velocity motors: impulses on p (with M at configuration c and the
+  /// positions q1 reached without them). Returns the dofs held on a stop (and their limit).
+  /// Returns whether any impulse was applied.
+  bool Impulses(const Configuration& c, const Eigen::VectorXd& q1, double h, Eigen::VectorXd& p1,
+                std::vector<std::pair<int, double>>& stops);
+  /// Writes the bodies' poses and motions from configuration c and velocities v.
+  /// `only` (optional): write just the bodies flagged there.
+  void Sync(const Configuration& c, const Eigen::VectorXd& v, std::vector<RigidBody>& bodies,
+            const std::vector<char>* only = nullptr) const;
+  /// Places node i (its frame in c) from its parent's frame and q.
+  void PlaceNode(int i, const Eigen::VectorXd& q, Configuration& c) const;
+
+  std::vector<Joint> joints_;
+  std::vector<Node> nodes_;
+  std::vector<int> node_of_joint_;
+  std::vector<RigidBody> inertias_;  ///< mass and principal moments of each body (the rest unused)
+  Eigen::VectorXd q_, v_, p_;
+  std::vector<double> limit_impulse_, drive_impulse_;  ///< per joint, last step
+  // Scratch.
+  Configuration start_, mid_, end_;
+  std::vector<RigidBody> stage_;
+  std::vector<Wrench> wrenches_;
+  std::vector<Vector6> subtree_momentum_, subtree_force_;
+  Eigen::VectorXd q0_, p0_, q1_, p1_, vbar_, vnew_, pnew_, rate_, k_[4], kq_[4], qs_, ps_, vs_;
+  struct Row {
+    int joint, dof;
+    double lo, hi, target;
+    bool stop;
+  };
+  std::vector<Row> rows_;
+};
+
+}  // namespace dynamics::internal

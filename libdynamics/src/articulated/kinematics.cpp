@@ -1,0 +1,445 @@
+// The articulation's tree, kinematics, mass matrix and momentum rate (see articulation.h).
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <sstream>
+#include <stdexcept>
+
+#include "articulation.h"
+
+namespace dynamics::internal {
+namespace {
+
+Matrix3 Cross(const Vector3& w) {
+  Matrix3 m;
+  m << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
+  return m;
+}
+
+Quaternion QuatAt(const Eigen::VectorXd& q, int at) {
+  return Quaternion(q[at], q[at + 1], q[at + 2], q[at + 3]).normalized();
+}
+
+void PutQuat(const Quaternion& r, Eigen::VectorXd& q, int at) {
+  q[at] = r.w();
+  q[at + 1] = r.x();
+  q[at + 2] = r.y();
+  q[at + 3] = r.z();
+}
+
+/// exp of the rotation vector θ as a unit quaternion.
+Quaternion ExpRotation(const Vector3& theta) {
+  const double angle = theta.norm();
+  const double half = 0.5 * angle;
+  // sin(θ/2)/θ, by its series where θ is small.
+  const double s = angle < 1e-4 ? 0.5 - angle * angle / 48.0 : std::sin(half) / angle;
+  return Quaternion(std::cos(half), s * theta.x(), s * theta.y(), s * theta.z());
+}
+
+/// Spatial force cross product V ×* h.
+Vector6 CrossForce(const Vector6& V, const Vector6& h) {
+  const Vector3 w = V.head<3>(), u = V.tail<3>(), n = h.head<3>(), f = h.tail<3>();
+  Vector6 r;
+  r << w.cross(n) + u.cross(f), w.cross(f);
+  return r;
+}
+
+/// The joint's relative turn and shift (J_c in J_p) at q.
+void Relative(const Node& n, const Eigen::VectorXd& q, Matrix3& R, Vector3& t) {
+  R.setIdentity();
+  t.setZero();
+  switch (n.type) {
+    case JointType::kFixed:
+      break;
+    case JointType::kRevolute:
+      R = Eigen::AngleAxisd(q[n.q], n.axis).toRotationMatrix();
+      break;
+    case JointType::kPrismatic:
+      t = q[n.q] * n.axis;
+      break;
+    case JointType::kSpherical:
+      R = QuatAt(q, n.q).toRotationMatrix();
+      break;
+    case JointType::kFree:
+      t = q.segment<3>(n.q);
+      R = QuatAt(q, n.q + 3).toRotationMatrix();
+      break;
+  }
+}
+
+Matrix6 SpatialInertia(const RigidBody& b, const Matrix3& R, const Vector3& c) {
+  const Matrix3 Ic = R * b.inertia.asDiagonal() * R.transpose();
+  const Matrix3 C = Cross(c);
+  Matrix6 I;
+  I.topLeftCorner<3, 3>() = Ic + b.mass * C * C.transpose();
+  I.topRightCorner<3, 3>() = b.mass * C;
+  I.bottomLeftCorner<3, 3>() = b.mass * C.transpose();
+  I.bottomRightCorner<3, 3>() = b.mass * Matrix3::Identity();
+  return I;
+}
+
+}  // namespace
+
+void FreeJointFromBody(const Node& node, const Matrix3& parent_R, const Vector3& parent_x, const Vector6& parent_V,
+                       const RigidBody& b, double* q, double* v) {
+  const Matrix3 Rj = parent_R * node.parent_rotation;
+  const Vector3 oj = parent_x + parent_R * node.parent_origin;
+  const Matrix3 Rb = b.Rotation();
+  const Matrix3 Rc = Rb * node.child_rotation;
+  const Vector3 o = b.position + Rb * node.child_origin;
+  const Vector3 t = Rj.transpose() * (o - oj);
+  const Quaternion r(Rj.transpose() * Rc);
+  q[0] = t.x(), q[1] = t.y(), q[2] = t.z();
+  q[3] = r.w(), q[4] = r.x(), q[5] = r.y(), q[6] = r.z();
+  const Vector3 w = b.AngularVelocity();
+  const Vector3 dw = w - parent_V.head<3>();
+  const Vector3 dvo = (b.velocity - w.cross(b.position)) - parent_V.tail<3>();
+  const Vector3 vr = Rc.transpose() * dw;
+  const Vector3 vl = Rc.transpose() * (dvo + dw.cross(o));
+  v[0] = vr.x(), v[1] = vr.y(), v[2] = vr.z(), v[3] = vl.x(), v[4] = vl.y(), v[5] = vl.z();
+}
+
+JointState JointStateFromBodies(const Joint& joint, const std::vector<RigidBody>& bodies) {
+  Node n;
+  n.parent_rotation = joint.parent_frame.orientation.normalized().toRotationMatrix();
+  n.parent_origin = joint.parent_frame.origin;
+  n.child_rotation = joint.child_frame.orientation.normalized().toRotationMatrix();
+  n.child_origin = joint.child_frame.origin;
+  Matrix3 Rp = Matrix3::Identity();
+  Vector3 xp = Vector3::Zero();
+  Vector6 Vp = Vector6::Zero();
+  if (joint.parent >= 0) {
+    const RigidBody& p = bodies[static_cast<std::size_t>(joint.parent)];
+    Rp = p.Rotation();
+    xp = p.position;
+    const Vector3 w = p.AngularVelocity();
+    Vp << w, p.velocity - w.cross(p.position);
+  }
+  JointState s;
+  s.position.resize(7);
+  s.velocity.resize(6);
+  FreeJointFromBody(n, Rp, xp, Vp, bodies[static_cast<std::size_t>(joint.child)], s.position.data(),
+                    s.velocity.data());
+  return s;
+}
+
+Articulation::Articulation(const std::vector<Joint>& joints, std::vector<RigidBody>& bodies)
+    : joints_(joints), inertias_(bodies) {
+  const int nb = static_cast<int>(bodies.size());
+  std::vector<int> joint_of(static_cast<std::size_t>(nb), -1);
+  for (std::size_t j = 0; j < joints.size(); ++j) joint_of[static_cast<std::size_t>(joints[j].child)] = static_cast<int>(j);
+  std::vector<std::vector<int>> kids(static_cast<std::size_t>(nb));
+  std::deque<int> queue;
+  for (int b = 0; b < nb; ++b) {
+    const int j = joint_of[static_cast<std::size_t>(b)];
+    const int parent = j < 0 ? -1 : joints[static_cast<std::size_t>(j)].parent;
+    if (parent < 0) {
+      queue.push_back(b);
+    } else {
+      kids[static_cast<std::size_t>(parent)].push_back(b);
+    }
+  }
+  std::vector<int> node_of_body(static_cast<std::size_t>(nb), -1);
+  node_of_joint_.assign(joints.size(), -1);
+  int nq = 0, nv = 0;
+  while (!queue.empty()) {
+    const int b = queue.front();
+    queue.pop_front();
+    Node n;
+    n.body = b;
+    n.joint = joint_of[static_cast<std::size_t>(b)];
+    if (n.joint >= 0) {
+      const Joint& jt = joints[static_cast<std::size_t>(n.joint)];
+      n.parent = jt.parent < 0 ? -1 : node_of_body[static_cast<std::size_t>(jt.parent)];
+      n.type = jt.type;
+      n.axis = jt.axis.normalized();
+      n.parent_rotation = jt.parent_frame.orientation.normalized().toRotationMatrix();
+      n.parent_origin = jt.parent_frame.origin;
+      n.child_rotation = jt.child_frame.orientation.normalized().toRotationMatrix();
+      n.child_origin = jt.child_frame.origin;
+      node_of_joint_[static_cast<std::size_t>(n.joint)] = static_cast<int>(nodes_.size());
+    }
+    n.q = nq;
+    n.nq = JointPositionSize(n.type);
+    n.v = nv;
+    n.nv = JointVelocitySize(n.type);
+    nq += n.nq;
+    nv += n.nv;
+    node_of_body[static_cast<std::size_t>(b)] = static_cast<int>(nodes_.size());
+    nodes_.push_back(n);
+    for (int k : kids[static_cast<std::size_t>(b)]) queue.push_back(k);
+  }
+  if (static_cast<int>(nodes_.size()) != nb) {
+    for (int b = 0; b < nb; ++b) {
+      if (node_of_body[static_cast<std::size_t>(b)] >= 0) continue;
+      std::ostringstream msg;
+      msg << "World::AddJoint: joint '" << joints[static_cast<std::size_t>(joint_of[static_cast<std::size_t>(b)])].name
+          << "' closes a loop of joints through body " << b
+          << " (joints must form a tree: each body hangs from one parent, down from the world)";
+      throw std::invalid_argument(msg.str());
+    }
+  }
+  // The initial state, parents first; the bodies that take it from their own state are left as
+  // they are (a lone free body keeps its bits).
+  q_ = Eigen::VectorXd::Zero(nq);
+  v_ = Eigen::VectorXd::Zero(nv);
+  limit_impulse_.assign(joints.size(), 0.0);
+  drive_impulse_.assign(joints.size(), 0.0);
+  std::vector<char> placed(static_cast<std::size_t>(nb), 0);
+  Configuration& c = end_;
+  c.frames.resize(nodes_.size());
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    const Node& n = nodes_[i];
+    const Joint* jt = n.joint >= 0 ? &joints[static_cast<std::size_t>(n.joint)] : nullptr;
+    const bool from_body = n.type == JointType::kFree && (!jt || jt->position.empty());
+    const bool velocity_from_body = n.type == JointType::kFree && (!jt || jt->velocity.empty());
+    Matrix3 Rp = Matrix3::Identity();
+    Vector3 xp = Vector3::Zero();
+    Vector6 Vp = Vector6::Zero();
+    if (n.parent >= 0) {
+      const NodeFrame& pf = c.frames[static_cast<std::size_t>(n.parent)];
+      Rp = pf.R, xp = pf.x, Vp = pf.V;
+    }
+    double fq[7], fv[6];
+    if (from_body || velocity_from_body) {
+      FreeJointFromBody(n, Rp, xp, Vp, bodies[static_cast<std::size_t>(n.body)], fq, fv);
+    }
+    for (int k = 0; k < n.nq; ++k) {
+      q_[n.q + k] = from_body ? fq[k] : (jt->position.empty() ? 0.0 : jt->position[static_cast<std::size_t>(k)]);
+    }
+    if (n.type == JointType::kSpherical && jt->position.empty()) q_[n.q] = 1.0;
+    if (n.type == JointType::kFree && !from_body && jt->position.empty()) q_[n.q + 3] = 1.0;
+    for (int k = 0; k < n.nv; ++k) {
+      v_[n.v + k] = velocity_from_body ? fv[k] : (jt->velocity.empty() ? 0.0 : jt->velocity[static_cast<std::size_t>(k)]);
+    }
+    PlaceNode(static_cast<int>(i), q_, c);
+    NodeFrame& f = c.frames[i];
+    f.V = Vp + f.S * v_.segment(n.v, n.nv);
+    placed[static_cast<std::size_t>(n.body)] = !(from_body && velocity_from_body);
+  }
+  if (!Configure(q_, end_)) throw std::invalid_argument("World::AddJoint: the mass matrix is not positive definite");
+  Velocities(v_, end_);
+  p_ = end_.M * v_;
+  Sync(end_, v_, bodies, &placed);
+}
+
+void Articulation::PlaceNode(int i, const Eigen::VectorXd& q, Configuration& c) const {
+  const Node& n = nodes_[static_cast<std::size_t>(i)];
+  NodeFrame& f = c.frames[static_cast<std::size_t>(i)];
+  Matrix3 Rp = Matrix3::Identity();
+  Vector3 xp = Vector3::Zero();
+  if (n.parent >= 0) {
+    const NodeFrame& pf = c.frames[static_cast<std::size_t>(n.parent)];
+    Rp = pf.R, xp = pf.x;
+  }
+  Matrix3 Rrel;
+  Vector3 trel;
+  Relative(n, q, Rrel, trel);
+  const Matrix3 Rj = Rp * n.parent_rotation;
+  const Vector3 oj = xp + Rp * n.parent_origin;
+  f.joint_R = Rj * Rrel;
+  f.joint_origin = oj + Rj * trel;
+  f.R = f.joint_R * n.child_rotation.transpose();
+  f.x = f.joint_origin - f.R * n.child_origin;
+  f.S.resize(6, n.nv);
+  const Vector3& o = f.joint_origin;
+  auto rotation = [&](int col, const Vector3& a) { f.S.col(col) << a, o.cross(a); };
+  auto translation = [&](int col, const Vector3& d) { f.S.col(col) << Vector3::Zero(), d; };
+  switch (n.type) {
+    case JointType::kFixed:
+      break;
+    case JointType::kRevolute:
+      rotation(0, Rj * n.axis);
+      break;
+    case JointType::kPrismatic:
+      translation(0, Rj * n.axis);
+      break;
+    case JointType::kSpherical:
+      for (int k = 0; k < 3; ++k) rotation(k, f.joint_R.col(k));
+      break;
+    case JointType::kFree:
+      for (int k = 0; k < 3; ++k) rotation(k, f.joint_R.col(k));
+      for (int k = 0; k < 3; ++k) translation(3 + k, f.joint_R.col(k));
+      break;
+  }
+  f.inertia = SpatialInertia(inertias_[static_cast<std::size_t>(n.body)], f.R, f.x);
+}
+
+bool Articulation::Configure(const Eigen::VectorXd& q, Configuration& c) const {
+  const std::size_t n = nodes_.size();
+  c.frames.resize(n);
+  c.composite.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    PlaceNode(static_cast<int>(i), q, c);
+    c.composite[i] = c.frames[i].inertia;
+  }
+  for (std::size_t i = n; i-- > 0;) {
+    if (nodes_[i].parent >= 0) c.composite[static_cast<std::size_t>(nodes_[i].parent)] += c.composite[i];
+  }
+  const auto nv = static_cast<Eigen::Index>(v_.size());
+  c.M.setZero(nv, nv);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Node& ni = nodes_[i];
+    if (ni.nv == 0) continue;
+    const MotionColumns F = c.composite[i] * c.frames[i].S;
+    c.M.block(ni.v, ni.v, ni.nv, ni.nv) = c.frames[i].S.transpose() * F;
+    for (int j = ni.parent; j >= 0; j = nodes_[static_cast<std::size_t>(j)].parent) {
+      const Node& nj = nodes_[static_cast<std::size_t>(j)];
+      if (nj.nv == 0) continue;
+      c.M.block(nj.v, ni.v, nj.nv, ni.nv) = c.frames[static_cast<std::size_t>(j)].S.transpose() * F;
+      c.M.block(ni.v, nj.v, ni.nv, nj.nv) = c.M.block(nj.v, ni.v, nj.nv, ni.nv).transpose();
+    }
+  }
+  if (nv == 0) return true;
+  c.llt.compute(c.M);
+  return c.llt.info() == Eigen::Success;
+}
+
+void Articulation::Velocities(const Eigen::VectorXd& v, Configuration& c) const {
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    const Node& n = nodes_[i];
+    NodeFrame& f = c.frames[i];
+    f.V = n.parent >= 0 ? c.frames[static_cast<std::size_t>(n.parent)].V : Vector6::Zero();
+    if (n.nv > 0) f.V += f.S * v.segment(n.v, n.nv);
+  }
+}
+
+void Articulation::Sync(const Configuration& c, const Eigen::VectorXd& v, std::vector<RigidBody>& bodies,
+                        const std::vector<char>* only) const {
+  (void)v;
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    const NodeFrame& f = c.frames[i];
+    RigidBody& b = bodies[static_cast<std::size_t>(nodes_[i].body)];
+    if (only && !(*only)[static_cast<std::size_t>(nodes_[i].body)]) continue;
+    Quaternion r(f.R);
+    if (r.coeffs().dot(b.orientation.coeffs()) < 0) r.coeffs() = -r.coeffs();
+    b.orientation = r;
+    b.position = f.x;
+    const Vector3 w = f.V.head<3>();
+    b.velocity = f.V.tail<3>() + w.cross(f.x);
+    b.angular_momentum = f.R * b.inertia.asDiagonal() * (f.R.transpose() * w);
+  }
+}
+
+void Articulation::MomentumRate(const std::vector<std::unique_ptr<Force>>& forces, double t,
+                                const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Configuration& c,
+                                std::vector<RigidBody>& stage, Eigen::VectorXd& rate) {
+  const std::size_t n = nodes_.size();
+  if (stage.size() != inertias_.size()) stage = inertias_;
+  Sync(c, v, stage);
+  wrenches_.assign(stage.size(), Wrench{});
+  for (const auto& force : forces) force->Apply(t, stage, wrenches_);
+  subtree_momentum_.resize(n);
+  subtree_force_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const NodeFrame& f = c.frames[i];
+    const Wrench& w = wrenches_[static_cast<std::size_t>(nodes_[i].body)];
+    subtree_momentum_[i] = f.inertia * f.V;
+    subtree_force_[i] << w.torque + f.x.cross(w.force), w.force;
+  }
+  for (std::size_t i = n; i-- > 0;) {
+    const int p = nodes_[i].parent;
+    if (p < 0) continue;
+    subtree_momentum_[static_cast<std::size_t>(p)] += subtree_momentum_[i];
+    subtree_force_[static_cast<std::size_t>(p)] += subtree_force_[i];
+  }
+  rate.resize(v.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    const Node& nd = nodes_[i];
+    if (nd.nv == 0) continue;
+    const NodeFrame& f = c.frames[i];
+    rate.segment(nd.v, nd.nv) =
+        f.S.transpose() * (subtree_force_[i] - CrossForce(f.V, subtree_momentum_[i]));
+    if (nd.joint < 0) continue;
+    const Joint& j = joints_[static_cast<std::size_t>(nd.joint)];
+    if (nd.type == JointType::kSpherical) {
+      rate.segment<3>(nd.v) -= j.damping * v.segment<3>(nd.v);
+      continue;
+    }
+    if (nd.nv != 1) continue;
+    const double qi = q[nd.q], vi = v[nd.v];
+    double effort = -j.stiffness * (qi - j.rest_position) - j.damping * vi;
+    if (j.motor.mode == JointMotor::Mode::kPosition) {
+      const double servo = j.motor.kp * (j.motor.target - qi) - j.motor.kd * vi;
+      effort += std::clamp(servo, -j.motor.max_effort, j.motor.max_effort);
+    }
+    rate[nd.v] += effort;
+  }
+}
+
+void Articulation::PositionRate(const Eigen::VectorXd& q, const Eigen::VectorXd& v, Eigen::VectorXd& rate) const {
+  rate.resize(q.size());
+  auto quat_rate = [&](int qi, int vi) {
+    const Quaternion r(q[qi], q[qi + 1], q[qi + 2], q[qi + 3]);
+    const Quaternion w(0.0, v[vi], v[vi + 1], v[vi + 2]);
+    const Quaternion d = r * w;
+    rate[qi] = 0.5 * d.w(), rate[qi + 1] = 0.5 * d.x(), rate[qi + 2] = 0.5 * d.y(), rate[qi + 3] = 0.5 * d.z();
+  };
+  for (const Node& n : nodes_) {
+    switch (n.type) {
+      case JointType::kFixed:
+        break;
+      case JointType::kRevolute:
+      case JointType::kPrismatic:
+        rate[n.q] = v[n.v];
+        break;
+      case JointType::kSpherical:
+        quat_rate(n.q, n.v);
+        break;
+      case JointType::kFree:
+        rate.segment<3>(n.q) = QuatAt(q, n.q + 3) * Vector3(v.segment<3>(n.v + 3));
+        quat_rate(n.q + 3, n.v);
+        break;
+    }
+  }
+}
+
+void Articulation::Move(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double h, double turn,
+                        Eigen::VectorXd& out) const {
+  out = q;
+  for (const Node& n : nodes_) {
+    switch (n.type) {
+      case JointType::kFixed:
+        break;
+      case JointType::kRevolute:
+      case JointType::kPrismatic:
+        out[n.q] = q[n.q] + h * v[n.v];
+        break;
+      case JointType::kSpherical:
+        PutQuat((QuatAt(q, n.q) * ExpRotation(h * Vector3(v.segment<3>(n.v)))).normalized(), out, n.q);
+        break;
+      case JointType::kFree: {
+        const Quaternion r0 = QuatAt(q, n.q + 3);
+        const Vector3 w = v.segment<3>(n.v);
+        const Quaternion mid = r0 * ExpRotation(turn * w);
+        out.segment<3>(n.q) = q.segment<3>(n.q) + h * (mid * Vector3(v.segment<3>(n.v + 3)));
+        PutQuat((r0 * ExpRotation(h * w)).normalized(), out, n.q + 3);
+        break;
+      }
+    }
+  }
+}
+
+JointState Articulation::State(int joint) const {
+  const Node& n = nodes_[static_cast<std::size_t>(node_of_joint_[static_cast<std::size_t>(joint)])];
+  JointState s;
+  s.position.assign(q_.data() + n.q, q_.data() + n.q + n.nq);
+  s.velocity.assign(v_.data() + n.v, v_.data() + n.v + n.nv);
+  s.limit_impulse = limit_impulse_[static_cast<std::size_t>(joint)];
+  s.drive_impulse = drive_impulse_[static_cast<std::size_t>(joint)];
+  return s;
+}
+
+double Articulation::SpringEnergy() const {
+  double e = 0;
+  for (const Node& n : nodes_) {
+    if (n.joint < 0 || n.nq != 1) continue;
+    const Joint& j = joints_[static_cast<std::size_t>(n.joint)];
+    const double d = q_[n.q] - j.rest_position;
+    e += 0.5 * j.stiffness * d * d;
+  }
+  return e;
+}
+
+}  // namespace dynamics::internal

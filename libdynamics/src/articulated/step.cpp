@@ -1,0 +1,208 @@
+// Stepping the articulation: the implicit midpoint rule on (q, p), RK4, and the impulses of the
+// stops, Coulomb friction and velocity motors (see articulation.h).
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "articulation.h"
+
+namespace dynamics::internal {
+namespace {
+
+double MaxAbs(const Eigen::VectorXd& x) { return x.size() ? x.cwiseAbs().maxCoeff() : 0.0; }
+
+}  // namespace
+
+StepStatus Articulation::Advance(Integrator integrator, const std::vector<std::unique_ptr<Force>>& forces, double t,
+                                 double h, std::vector<RigidBody>& bodies) {
+  StepStatus status;
+  const Eigen::VectorXd q = q_, v = v_, p = p_;
+  for (int substeps = 1; substeps <= 1024; substeps *= 2) {
+    bool ok = true;
+    const double dt = h / substeps;
+    std::fill(limit_impulse_.begin(), limit_impulse_.end(), 0.0);
+    std::fill(drive_impulse_.begin(), drive_impulse_.end(), 0.0);
+    for (int s = 0; s < substeps && ok; ++s) {
+      ok = integrator == Integrator::kRK4 ? RK4Step(forces, t + dt * s, dt, bodies)
+                                           : MidpointStep(forces, t + dt * s, dt, bodies);
+    }
+    if (ok) {
+      status.substeps = substeps;
+      return status;
+    }
+    q_ = q, v_ = v, p_ = p;
+  }
+  if (Configure(q_, end_)) {
+    Velocities(v_, end_);
+    Sync(end_, v_, bodies);
+  }
+  status.ok = false;
+  status.substeps = 1024;
+  status.message =
+      "the joints' implicit midpoint solve did not converge even with 1024 sub-steps (stiff springs, damping or "
+      "servo gains for this step: reduce the time step)";
+  return status;
+}
+
+// The implicit midpoint rule on (q, p): with v̄ the midpoint velocity,
+//   q̄ = q0 ⊕ (h/2) v̄,  v̄ = M(q̄)⁻¹ (p0 + p1)/2,  p1 = p0 + h ṗ(q̄, v̄),  q1 = q0 ⊕ h v̄,
+// solved by fixed-point iteration (it contracts by about h times the fastest rate). For joints
+// that are all revolute or prismatic, q̄ = (q0 + q1)/2 and this is the symplectic implicit
+// midpoint rule itself.
+bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& forces, double t, double h,
+                                std::vector<RigidBody>& bodies) {
+  q0_ = q_;
+  p0_ = p_;
+  vbar_ = v_;
+  p1_ = p_;
+  double last_change = std::numeric_limits<double>::infinity();
+  bool converged = false;
+  for (int iteration = 0; iteration < 100 && !converged; ++iteration) {
+    Move(q0_, vbar_, 0.5 * h, 0.5 * h, qs_);
+    if (!Configure(qs_, mid_)) return false;
+    vnew_ = mid_.llt.solve(0.5 * (p0_ + p1_));
+    Velocities(vnew_, mid_);
+    MomentumRate(forces, t + 0.5 * h, qs_, vnew_, mid_, stage_, rate_);
+    pnew_ = p0_ + h * rate_;
+    if (!pnew_.allFinite() || !vnew_.allFinite()) return false;
+    const double p_scale = std::max(MaxAbs(p0_), MaxAbs(pnew_)) + h * MaxAbs(rate_) + 1e-300;
+    const double v_scale = std::max(MaxAbs(v_), MaxAbs(vnew_)) + 1e-300;
+    const double change = std::max(MaxAbs(pnew_ - p1_) / p_scale, MaxAbs(vnew_ - vbar_) / v_scale);
+    // Done at rounding level, or when the change has stopped shrinking well below the step's
+    // truncation error (rounding then decides the last bits).
+    converged = change <= 4e-15 || (change <= 1e-11 && change >= last_change);
+    last_change = change;
+    vbar_ = vnew_;
+    p1_ = pnew_;
+  }
+  if (!converged) return false;
+  Move(q0_, vbar_, h, 0.5 * h, q1_);
+  if (!Configure(q1_, end_)) return false;
+  std::vector<std::pair<int, double>> stops;
+  if (Impulses(end_, q1_, h, p1_, stops)) {
+    // The impulses act over the step: the midpoint velocity takes half of them.
+    vbar_ = mid_.llt.solve(0.5 * (p0_ + p1_));
+    Move(q0_, vbar_, h, 0.5 * h, q1_);
+    for (const auto& [qi, limit] : stops) q1_[qi] = limit;
+    if (!Configure(q1_, end_)) return false;
+  }
+  q_ = q1_;
+  p_ = p1_;
+  v_ = end_.llt.solve(p_);
+  if (v_.size() == 0) v_.resize(0);
+  Velocities(v_, end_);
+  Sync(end_, v_, bodies);
+  return true;
+}
+
+// Classical RK4 on (q, p), q̇ from v = M(q)⁻¹ p (quaternions as four numbers, normalized at the
+// end of the step).
+bool Articulation::RK4Step(const std::vector<std::unique_ptr<Force>>& forces, double t, double h,
+                           std::vector<RigidBody>& bodies) {
+  q0_ = q_;
+  p0_ = p_;
+  static constexpr double kAt[4] = {0.0, 0.5, 0.5, 1.0};
+  for (int s = 0; s < 4; ++s) {
+    if (s == 0) {
+      qs_ = q0_, ps_ = p0_;
+    } else {
+      qs_ = q0_ + kAt[s] * h * kq_[s - 1];
+      ps_ = p0_ + kAt[s] * h * k_[s - 1];
+    }
+    if (!Configure(qs_, mid_)) return false;
+    vs_ = mid_.llt.solve(ps_);
+    Velocities(vs_, mid_);
+    MomentumRate(forces, t + kAt[s] * h, qs_, vs_, mid_, stage_, k_[s]);
+    PositionRate(qs_, vs_, kq_[s]);
+  }
+  q1_ = q0_ + (h / 6) * (kq_[0] + 2 * kq_[1] + 2 * kq_[2] + kq_[3]);
+  p1_ = p0_ + (h / 6) * (k_[0] + 2 * k_[1] + 2 * k_[2] + k_[3]);
+  for (const Node& n : nodes_) {
+    const int at = n.type == JointType::kSpherical ? n.q : n.type == JointType::kFree ? n.q + 3 : -1;
+    if (at >= 0) q1_.segment<4>(at).normalize();
+  }
+  if (!q1_.allFinite() || !p1_.allFinite()) return false;
+  if (!Configure(q1_, end_)) return false;
+  std::vector<std::pair<int, double>> stops;
+  pnew_ = p1_;
+  if (Impulses(end_, q1_, h, p1_, stops)) {
+    // Their share of the step's motion: half the velocity change over the step.
+    vs_ = end_.llt.solve(p1_ - pnew_);
+    qs_ = q1_;
+    Move(qs_, vs_, 0.5 * h, 0.25 * h, q1_);
+    for (const auto& [qi, limit] : stops) q1_[qi] = limit;
+    if (!Configure(q1_, end_)) return false;
+  }
+  q_ = q1_;
+  p_ = p1_;
+  v_ = end_.llt.solve(p_);
+  Velocities(v_, end_);
+  Sync(end_, v_, bodies);
+  return true;
+}
+
+// Rows on the end-of-step velocity of one joint coordinate each, solved together by projected
+// Gauss–Seidel on W = M⁻¹ (a handful of rows; run to rounding):
+//   friction:  q̇ = 0 with |impulse| ≤ friction · h
+//   velocity motor:  q̇ = target with |impulse| ≤ max_effort · h
+//   stop (a coordinate past its limit at the end of the step): q̇ ≥ −e q̇_arrival (at the lower
+//   limit; ≤ at the upper), impulse ≥ 0 (≤ 0), and the coordinate is placed on the limit.
+bool Articulation::Impulses(const Configuration& c, const Eigen::VectorXd& q1, double h, Eigen::VectorXd& p1,
+                            std::vector<std::pair<int, double>>& stops) {
+  rows_.clear();
+  stops.clear();
+  const double inf = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd v1;
+  for (const Node& n : nodes_) {
+    if (n.joint < 0 || n.nv != 1) continue;
+    const Joint& j = joints_[static_cast<std::size_t>(n.joint)];
+    if (j.friction > 0) rows_.push_back({n.joint, n.v, -j.friction * h, j.friction * h, 0.0, false});
+    if (j.motor.mode == JointMotor::Mode::kVelocity) {
+      rows_.push_back({n.joint, n.v, -j.motor.max_effort * h, j.motor.max_effort * h, j.motor.target, false});
+    }
+    const double qi = q1[n.q];
+    if (qi < j.limits.lower || qi > j.limits.upper) {
+      if (v1.size() == 0) v1 = c.llt.solve(p1);
+      const double arrival = v1[n.v];
+      if (qi < j.limits.lower) {
+        rows_.push_back({n.joint, n.v, 0.0, inf, -j.limits.restitution * std::min(arrival, 0.0), true});
+        stops.emplace_back(n.q, j.limits.lower);
+      } else {
+        rows_.push_back({n.joint, n.v, -inf, 0.0, -j.limits.restitution * std::max(arrival, 0.0), true});
+        stops.emplace_back(n.q, j.limits.upper);
+      }
+    }
+  }
+  if (rows_.empty()) return false;
+  if (v1.size() == 0) v1 = c.llt.solve(p1);
+  const auto nr = static_cast<Eigen::Index>(rows_.size());
+  Eigen::MatrixXd W(nr, nr);
+  for (Eigen::Index r = 0; r < nr; ++r) {
+    Eigen::VectorXd e = Eigen::VectorXd::Zero(p1.size());
+    e[rows_[static_cast<std::size_t>(r)].dof] = 1.0;
+    const Eigen::VectorXd col = c.llt.solve(e);
+    for (Eigen::Index s = 0; s < nr; ++s) W(s, r) = col[rows_[static_cast<std::size_t>(s)].dof];
+  }
+  Eigen::VectorXd lambda = Eigen::VectorXd::Zero(nr);
+  for (int sweep = 0; sweep < 1000; ++sweep) {
+    double change = 0, size = 1e-300;
+    for (Eigen::Index r = 0; r < nr; ++r) {
+      const Row& row = rows_[static_cast<std::size_t>(r)];
+      const double v = v1[row.dof] + W.row(r).dot(lambda);
+      const double next = std::clamp(lambda[r] + (row.target - v) / W(r, r), row.lo, row.hi);
+      change = std::max(change, std::fabs(next - lambda[r]));
+      size = std::max(size, std::fabs(next));
+      lambda[r] = next;
+    }
+    if (change <= 1e-15 * size || nr == 1) break;
+  }
+  for (Eigen::Index r = 0; r < nr; ++r) {
+    const Row& row = rows_[static_cast<std::size_t>(r)];
+    p1[row.dof] += lambda[r];
+    (row.stop ? limit_impulse_ : drive_impulse_)[static_cast<std::size_t>(row.joint)] += lambda[r];
+  }
+  return true;
+}
+
+}  // namespace dynamics::internal
