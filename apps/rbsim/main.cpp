@@ -223,7 +223,7 @@ int main(int argc, char** argv) {
   try {
     if (!out_dir.empty()) {
       std::filesystem::create_directories(out_dir);
-      writer = std::make_unique<rbsim::TrajectoryWriter>(out_dir, scene.outputs);
+      writer = std::make_unique<rbsim::TrajectoryWriter>(out_dir, scene.outputs, !scene.joints.empty());
     }
   } catch (const std::exception& e) {
     std::cerr << "error: --out " << massprops::app::OneLine(out_dir) << ": " << massprops::app::OneLine(e.what())

@@ -8,6 +8,8 @@
 namespace rbsim {
 
 const char* const kTrajectoryCsvHeader = "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,w1,w2,w3";
+const char* const kJointsCsvHeader =
+    "time,joint,type,q1,q2,q3,q4,q5,q6,q7,v1,v2,v3,v4,v5,v6,limit_impulse,drive_impulse";
 const char* const kDiagnosticsCsvHeader =
     "time,kinetic_energy,potential_energy,energy,px,py,pz,Lx,Ly,Lz,energy_drift,p_drift,L_drift";
 
@@ -67,12 +69,16 @@ void Recording::Add(const Simulation& sim, const dynamics::World& world, const d
   momentum_drift.push_back(l0 > 0 ? (d.angular_momentum.norm() - l0) / l0 : d.angular_momentum.norm());
 }
 
-TrajectoryWriter::TrajectoryWriter(const std::string& dir, const std::vector<OutputKind>& outputs) {
+TrajectoryWriter::TrajectoryWriter(const std::string& dir, const std::vector<OutputKind>& outputs, bool joints) {
   auto want = [&](OutputKind k) { return std::find(outputs.begin(), outputs.end(), k) != outputs.end(); };
   using massprops::report::AtomicFile;
   if (want(OutputKind::kCsv)) {
     csv_ = std::make_unique<AtomicFile>(dir + "/trajectory.csv");
     csv_->stream() << kTrajectoryCsvHeader << "\n";
+    if (joints) {
+      joints_ = std::make_unique<AtomicFile>(dir + "/joints.csv");
+      joints_->stream() << kJointsCsvHeader << "\n";
+    }
   }
   if (want(OutputKind::kJsonl)) jsonl_ = std::make_unique<AtomicFile>(dir + "/trajectory.jsonl");
   if (want(OutputKind::kDiagnostics)) {
@@ -116,6 +122,24 @@ void TrajectoryWriter::Add(const Simulation& sim, const dynamics::World& world, 
       jsonl_->stream() << line_;
     }
   }
+  for (std::size_t j = 0; joints_ && j < world.joints().size(); ++j) {
+    const dynamics::JointState js = world.joint_state(static_cast<int>(j));
+    line_.clear();
+    Put(line_, d.time);
+    line_ += ',' + world.joints()[j].name + ',' + dynamics::JointTypeName(world.joints()[j].type);
+    for (std::size_t k = 0; k < 7; ++k) {
+      line_ += ',';
+      if (k < js.position.size()) Put(line_, js.position[k]);
+    }
+    for (std::size_t k = 0; k < 6; ++k) {
+      line_ += ',';
+      if (k < js.velocity.size()) Put(line_, js.velocity[k]);
+    }
+    line_ += ',';
+    PutList(line_, {js.limit_impulse, js.drive_impulse});
+    line_ += '\n';
+    joints_->stream() << line_;
+  }
   if (diagnostics_) {
     const dynamics::Drift drift = dynamics::DriftSince(start_, d);
     line_.clear();
@@ -129,7 +153,7 @@ void TrajectoryWriter::Add(const Simulation& sim, const dynamics::World& world, 
 
 std::vector<std::string> TrajectoryWriter::Commit() {
   std::vector<std::string> paths;
-  for (auto* f : {csv_.get(), jsonl_.get(), diagnostics_.get()}) {
+  for (auto* f : {csv_.get(), jsonl_.get(), diagnostics_.get(), joints_.get()}) {
     if (!f) continue;
     f->Commit();
     paths.push_back(f->path());

@@ -27,16 +27,17 @@ struct Recording {
   void Add(const Simulation& sim, const dynamics::World& world, const dynamics::Diagnostics& d);
 };
 
-/// Streams the per-sample files (trajectory.csv, trajectory.jsonl, diagnostics.csv) into `dir`.
+/// Streams the per-sample files (trajectory.csv, trajectory.jsonl, diagnostics.csv, and joints.csv
+/// with csv when the scene has joints) into `dir`.
 class TrajectoryWriter {
  public:
-  TrajectoryWriter(const std::string& dir, const std::vector<OutputKind>& outputs);
+  TrajectoryWriter(const std::string& dir, const std::vector<OutputKind>& outputs, bool joints = false);
   void Add(const Simulation& sim, const dynamics::World& world, const dynamics::Diagnostics& d);
   /// Renames the finished files into place and returns their paths.
   std::vector<std::string> Commit();
 
  private:
-  std::unique_ptr<massprops::report::AtomicFile> csv_, jsonl_, diagnostics_;
+  std::unique_ptr<massprops::report::AtomicFile> csv_, jsonl_, diagnostics_, joints_;
   dynamics::Diagnostics start_;
   bool started_ = false;
   std::string line_;
@@ -45,6 +46,9 @@ class TrajectoryWriter {
 /// The CSV header of trajectory.csv (documented in the README).
 extern const char* const kTrajectoryCsvHeader;
 extern const char* const kDiagnosticsCsvHeader;
+/// joints.csv: per joint per sample, its position q1..q7 and velocity v1..v6 (as many as the
+/// joint type has, the rest empty) and the last step's impulses.
+extern const char* const kJointsCsvHeader;
 
 /// Writes the bodies' meshes and their animation (one key per sample) as a glTF 2.0 binary.
 /// @throws std::runtime_error naming the path.

@@ -207,6 +207,8 @@ GroundSpec ReadGround(const json& j, const std::string& path, const std::string&
   return g;
 }
 
+}  // namespace
+
 int BodyIndex(Fields& f, const std::string& key, const json& v, const std::vector<BodySpec>& bodies) {
   if (v.is_number_unsigned()) {  // read as unsigned: 2^64 - 1 is not -1
     const auto i = v.get<unsigned long long>();
@@ -235,6 +237,8 @@ int BodyIndex(Fields& f, const std::string& key, const json& v, const std::vecto
   }
   f.Fail(key, "must name a body (its name or index), not " + TypeName(v));
 }
+
+namespace {
 
 ForceSpec ReadForce(const json& j, const std::string& path, const std::string& file,
                     const std::vector<BodySpec>& bodies) {
@@ -453,6 +457,11 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
     for (std::size_t i = 0; i < forces->size(); ++i) {
       scene.forces.push_back(ReadForce((*forces)[i], "forces[" + std::to_string(i) + "]", file, scene.bodies));
     }
+  }
+  if (const json* jt = f.Get("joints")) scene.joints = ReadJoints(*jt, file, scene.bodies);
+  if (!scene.joints.empty() && scene.integrator != dynamics::Integrator::kImplicitMidpoint &&
+      scene.integrator != dynamics::Integrator::kRK4) {
+    f.Fail("integrator", "'" + integrator + "' has no meaning for joints (it steps free bodies): use implicit-midpoint or rk4");
   }
   if (const json* pairs = f.Get("pairs")) {
     if (!pairs->is_array()) f.Fail("pairs", "must be an array of {\"bodies\": [a, b], \"material\": {...}}");

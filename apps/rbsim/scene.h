@@ -96,6 +96,16 @@ struct ForceSpec {
   double damping = 0;  ///< spring damping along its line
 };
 
+/// A joint (dynamics/joints.h) as the scene gives it: its frames are placed at `anchor` with z
+/// along `axis` (both in the world, at the scene's placement of the bodies, where q = 0) when the
+/// simulation is built.
+struct JointSpec {
+  std::string field;  ///< "joints[0]"
+  dynamics::Joint joint;  ///< type, parent, child and parameters (frames not yet placed)
+  std::optional<Vector3> anchor;  ///< empty: the child's center of mass
+  Vector3 axis = Vector3::UnitZ();
+};
+
 enum class OutputKind { kCsv, kJsonl, kDiagnostics, kPlotSvg, kPlotPng, kGlb };
 
 struct Scene {
@@ -109,6 +119,7 @@ struct Scene {
   int plot_body = 0;
   std::vector<BodySpec> bodies;
   std::vector<ForceSpec> forces;
+  std::vector<JointSpec> joints;
   std::vector<GroundSpec> grounds;
   std::vector<StaticSpec> statics;
   dynamics::ContactOptions contact;
@@ -120,6 +131,10 @@ struct Scene {
   };
   std::vector<PairMaterial> pairs;
 };
+
+/// Reads the scene's "joints" array (the bodies already read). @throws SceneError.
+std::vector<JointSpec> ReadJoints(const nlohmann::json& joints, const std::string& file,
+                                  const std::vector<BodySpec>& bodies);
 
 /// Parses and validates a scene. `base_dir` resolves relative mesh paths. Non-fatal findings
 /// (a non-unit quaternion, an output rate above 1/dt, ...) are appended to `warnings`.

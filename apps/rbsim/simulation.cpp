@@ -105,6 +105,26 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     sim.bodies.push_back(std::move(body));
   }
 
+  // Joints, placed at the scene's placement of the bodies (q = 0 there), then moved to their
+  // initial positions.
+  if (!scene.joints.empty() && wants_contact) {
+    throw SceneError(scene.file + ": " + scene.joints[0].field +
+                     ": joints and contact (ground, static bodies, colliders) in one scene are not supported yet");
+  }
+  for (const JointSpec& spec : scene.joints) {
+    dynamics::Joint joint = spec.joint;
+    const Vector3 anchor = spec.anchor.value_or(sim.world().bodies()[static_cast<std::size_t>(joint.child)].position);
+    const std::string prefix = "World::AddJoint: joint '" + joint.name + "': ";
+    try {
+      dynamics::PlaceJointAt(joint, sim.world().bodies(), anchor, spec.axis);
+      sim.physics.AddJoint(joint);
+    } catch (const std::exception& e) {
+      std::string what = e.what();
+      if (what.rfind(prefix, 0) == 0) what = what.substr(prefix.size());
+      throw SceneError(scene.file + ": " + spec.field + ": " + what);
+    }
+  }
+
   // Ground planes, drawn as squares four times as wide as the bodies' spread, under their centre.
   Vector3 lo = Vector3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (std::size_t i = 0; i < sim.bodies.size(); ++i) {

@@ -4,7 +4,9 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <filesystem>
 #include <fstream>
+#include <unistd.h>
 #include <string>
 
 #include <gmock/gmock.h>
@@ -122,6 +124,105 @@ TEST(Scene, ErrorsNameTheFieldAndTheReason) {
   for (const auto& c : cases) EXPECT_THAT(ErrorOf(c.scene), HasSubstr(c.expect)) << c.scene;
 }
 
+TEST(Scene, JointErrorsNameTheJointsField) {
+  const std::string two = R"("bodies": [{"name": "a", "solid": {"type": "box", "size": [0.1, 0.1, 0.4]}},
+                                         {"name": "b", "solid": {"type": "box", "size": [0.1, 0.1, 0.4]}}], )";
+  auto scene = [&](const std::string& joints, const std::string& top = "") {
+    return "{" + top + two + R"("joints": )" + joints + "}";
+  };
+  struct Case {
+    std::string scene, expect;
+  } cases[] = {
+      {scene(R"([{"type": "hinge", "parent": "world", "child": "a"}])"), "joints[0].type: 'hinge' is not one of"},
+      {scene(R"([{"type": "revolute", "parent": "world", "child": "c", "anchor": [0, 0, 0], "axis": [1, 0, 0]}])"),
+       "joints[0].child: no body is named 'c'"},
+      {scene(R"([{"type": "revolute", "parent": "wrld", "child": "a", "anchor": [0, 0, 0], "axis": [1, 0, 0]}])"),
+       "joints[0].parent: no body is named 'wrld'"},
+      {scene(R"([{"type": "revolute", "parent": "world", "child": "a", "anchor": [0, 0, 0]}])"),
+       "joints[0].axis: is required for a revolute joint"},
+      {scene(R"([{"type": "revolute", "parent": "world", "child": "a", "axis": [1, 0, 0]}])"),
+       "joints[0].anchor: is required"},
+      {scene(R"([{"type": "revolute", "parent": "world", "child": "a", "anchor": [0, 0, 0], "axis": [0, 0, 0]}])"),
+       "joints[0].axis: must not be zero"},
+      {scene(R"([{"type": "revolute", "parent": "a", "child": "a", "anchor": [0, 0, 0], "axis": [1, 0, 0]}])"),
+       "joints[0].parent: a body cannot be jointed to itself"},
+      {scene(R"([{"type": "revolute", "parent": "world", "child": "a", "anchor": [0, 0, 0], "axis": [1, 0, 0]},
+                 {"type": "revolute", "parent": "b", "child": "a", "anchor": [0, 0, 0], "axis": [1, 0, 0]}])"),
+       "joints[1].child: 'a' already hangs from joints[0]"},
+      {scene(R"([{"type": "revolute", "parent": "world", "child": "a", "anchor": [0, 0, 0], "axis": [1, 0, 0],
+                  "limits": {"lower": 1, "upper": 0}}])"),
+       "joints[0].limits: lower must not exceed upper"},
+      {scene(R"([{"type": "revolute", "parent": "world", "child": "a", "anchor": [0, 0, 0], "axis": [1, 0, 0],
+                  "limits": {"lower_deg": -10, "upper_deg": 10}, "position_deg": 20}])"),
+       "joints[0].position: is outside the joint's limits"},
+      {scene(R"([{"type": "spherical", "parent": "world", "child": "a", "anchor": [0, 0, 0], "friction": 1}])"),
+       "joints[0].friction: acts on revolute and prismatic joints, not on a spherical joint"},
+      {scene(R"([{"type": "revolute", "parent": "world", "child": "a", "anchor": [0, 0, 0], "axis": [1, 0, 0],
+                  "motor": {"mode": "position", "target": 1}}])"),
+       "joints[0].motor.kp: is required"},
+      {scene(R"([{"type": "revolute", "parent": "world", "child": "a", "anchor": [0, 0, 0], "axis": [1, 0, 0],
+                  "spring": {"stiffness": 3, "rst": 0}}])"),
+       "joints[0].spring: unknown key 'rst' (did you mean 'rest'?)"},
+      {scene(R"([{"type": "prismatic", "parent": "world", "child": "a", "anchor": [0, 0, 0], "axis": [1, 0, 0],
+                  "position_deg": 3}])"),
+       "joints[0].position_deg: degrees are for revolute joints"},
+      {scene(R"([{"type": "spherical", "parent": "world", "child": "a", "anchor": [0, 0, 0], "velocity": [1, 2]}])"),
+       "joints[0].velocity: must be an array of 3 numbers"},
+      {scene(R"([{"type": "spherical", "parent": "world", "child": "a", "anchor": [0, 0, 0], "position": [0, 0, 0, 0]}])"),
+       "joints[0]: the initial quaternion must be non-zero"},
+      {scene(R"([{"type": "revolute", "parent": "world", "child": "a", "anchor": [0, 0, 0], "axis": [1, 0, 0]}])",
+             R"("integrator": "splitting", )"),
+       "integrator: 'splitting' has no meaning for joints"},
+      {scene(R"([{"type": "revolute", "parent": "world", "child": "a", "anchor": [0, 0, 0], "axis": [1, 0, 0]}])",
+             R"("ground": {"normal": [0, 0, 1]}, )"),
+       "joints[0]: joints and contact (ground, static bodies, colliders) in one scene are not supported yet"},
+      {scene(R"([{"type": "revolute", "parent": "b", "child": "a", "anchor": [0, 0, 0], "axis": [1, 0, 0]},
+                 {"type": "revolute", "parent": "a", "child": "b", "anchor": [0, 0, 0], "axis": [1, 0, 0]}])"),
+       "joints[1]: closes a loop of joints through body"},
+  };
+  for (const auto& c : cases) EXPECT_THAT(ErrorOf(c.scene), HasSubstr(c.expect)) << c.scene;
+}
+
+// The example's T-handle pendulum against the closed form T = 4 √(I/(m g d)) K(sin(θ0/2)), run
+// through the scene (anchor and axis in the world, the mesh through massprops), and joints.csv.
+TEST(Simulation, JointExampleMeshPendulumHasTheEllipticPeriod) {
+  std::vector<std::string> w;
+  rbsim::Scene scene = rbsim::LoadScene(DataPath("scenes/joints.json"), w);
+  scene.duration = 6;
+  scene.output_rate = 1000;
+  rbsim::Simulation sim = rbsim::BuildSimulation(scene, w);
+  const dynamics::RigidBody& b = sim.world().bodies()[0];
+  ASSERT_EQ(sim.world().joints().size(), 4u);
+  // Hanging, the center of mass sits d = 5 cm below the pivot; released at 120°.
+  const double d = 0.05, theta0 = 2 * M_PI / 3;
+  // (The joint has turned the body about x already: I_xx is the same.)
+  const double I = b.WorldInertia()(0, 0) + b.mass * d * d;
+  const double T = 4 * std::sqrt(I / (b.mass * 9.81 * d)) * std::comp_ellint_1(std::sin(theta0 / 2));
+  std::vector<double> crossings;
+  double q_prev = 0, t_prev = 0;
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("rbsim_joints_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  rbsim::TrajectoryWriter writer(dir.string(), {rbsim::OutputKind::kCsv}, true);
+  rbsim::Run(sim, [&](const dynamics::World& world, const dynamics::Diagnostics& diag) {
+    writer.Add(sim, world, diag);
+    const double q = world.joint_state(0).position[0];
+    if (diag.time > 0 && q_prev > 0 && q <= 0) crossings.push_back(t_prev + (diag.time - t_prev) * q_prev / (q_prev - q));
+    q_prev = q, t_prev = diag.time;
+  });
+  writer.Commit();
+  ASSERT_GE(crossings.size(), 3u);
+  const double measured = (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+  EXPECT_NEAR(measured / T, 1, 2e-5) << measured << " vs " << T;
+  std::ifstream csv(dir / "joints.csv");
+  std::string header, first;
+  std::getline(csv, header);
+  std::getline(csv, first);
+  EXPECT_EQ(header, rbsim::kJointsCsvHeader);
+  EXPECT_THAT(first, HasSubstr("0,pivot,revolute,2.0943951023931953,"));
+  fs::remove_all(dir);
+}
+
 TEST(Scene, OpenMeshIsRefusedUnlessRepairedOrAllowed) {
   // A cube with its top face missing.
   const std::string path = ::testing::TempDir() + "/open_cube.obj";
@@ -198,7 +299,7 @@ TEST(Scene, NonUnitQuaternionIsNormalizedWithAWarning) {
 TEST(Scene, ExampleScenesAreValid) {
   for (const char* name :
        {"t_handle", "heavy_top", "tumbling_spot", "hanging_spring", "two_bodies", "csg_part", "box_stack",
-        "incline_roll", "dominoes", "spot_on_table", "pile", "ring_on_peg", "pile_in_bin"}) {
+        "incline_roll", "dominoes", "spot_on_table", "pile", "ring_on_peg", "pile_in_bin", "joints"}) {
     std::vector<std::string> w;
     EXPECT_NO_THROW(rbsim::BuildSimulation(rbsim::LoadScene(DataPath(std::string("scenes/") + name + ".json"), w), w))
         << name;

@@ -194,6 +194,9 @@ class ContactWorld {
   /// @throws std::invalid_argument for a zero or non-finite normal.
   void AddGround(Ground ground);
   void AddForce(std::unique_ptr<Force> force) { world_.AddForce(std::move(force)); }
+  /// A joint (World::AddJoint). Contact does not act on an articulated world yet: its step fails,
+  /// saying so, as soon as a contact would need solving.
+  int AddJoint(const Joint& joint) { return world_.AddJoint(joint); }
   /// The material of contacts between bodies a and b (-1: the ground and static bodies).
   void SetPairMaterial(int a, int b, const Material& material);
 

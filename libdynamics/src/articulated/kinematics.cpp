@@ -174,8 +174,8 @@ Articulation::Articulation(const std::vector<Joint>& joints, std::vector<RigidBo
     for (int b = 0; b < nb; ++b) {
       if (node_of_body[static_cast<std::size_t>(b)] >= 0) continue;
       std::ostringstream msg;
-      msg << "World::AddJoint: joint '" << joints[static_cast<std::size_t>(joint_of[static_cast<std::size_t>(b)])].name
-          << "' closes a loop of joints through body " << b
+      // The joint just added (the last) is the one that closed it.
+      msg << "World::AddJoint: joint '" << joints.back().name << "': closes a loop of joints through body " << b
           << " (joints must form a tree: each body hangs from one parent, down from the world)";
       throw std::invalid_argument(msg.str());
     }

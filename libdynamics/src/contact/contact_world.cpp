@@ -470,6 +470,12 @@ StepStatus ContactWorld::Step(double h) {
                m.rows, stats_);
   }
   stats_.contacts = static_cast<int>(m.rows.size());
+  if (!m.rows.empty() && world_.articulated()) {
+    StepStatus failure;
+    failure.ok = false;
+    failure.message = "contact with jointed bodies is not supported yet (the joints step in joint coordinates)";
+    return failure;
+  }
   if (m.rows.empty()) {  // free flight: the world's own integrator, bit for bit
     m.cache = {};
     std::fill(m.sleep.asleep.begin(), m.sleep.asleep.end(), false);
