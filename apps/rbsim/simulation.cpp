@@ -111,17 +111,22 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     throw SceneError(scene.file + ": " + scene.joints[0].field +
                      ": joints and contact (ground, static bodies, colliders) in one scene are not supported yet");
   }
+  // Every joint is placed before any is added: adding one moves its child to its initial position.
+  std::vector<dynamics::Joint> joints;
   for (const JointSpec& spec : scene.joints) {
     dynamics::Joint joint = spec.joint;
     const Vector3 anchor = spec.anchor.value_or(sim.world().bodies()[static_cast<std::size_t>(joint.child)].position);
-    const std::string prefix = "World::AddJoint: joint '" + joint.name + "': ";
+    dynamics::PlaceJointAt(joint, sim.world().bodies(), anchor, spec.axis);  // the axis is checked non-zero
+    joints.push_back(joint);
+  }
+  for (std::size_t k = 0; k < joints.size(); ++k) {
+    const std::string prefix = "World::AddJoint: joint '" + joints[k].name + "': ";
     try {
-      dynamics::PlaceJointAt(joint, sim.world().bodies(), anchor, spec.axis);
-      sim.physics.AddJoint(joint);
+      sim.physics.AddJoint(joints[k]);
     } catch (const std::exception& e) {
       std::string what = e.what();
       if (what.rfind(prefix, 0) == 0) what = what.substr(prefix.size());
-      throw SceneError(scene.file + ": " + spec.field + ": " + what);
+      throw SceneError(scene.file + ": " + scene.joints[k].field + ": " + what);
     }
   }
 

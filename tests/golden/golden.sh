@@ -66,6 +66,9 @@ for scene in data/scenes/*.json; do
   fi
   compare "rbsim $name trajectory" "$tmp/run/trajectory.csv" "$here/rbsim/$name.trajectory.csv"
   compare "rbsim $name diagnostics" "$tmp/run/diagnostics.csv" "$here/rbsim/$name.diagnostics.csv"
+  if [ -f "$tmp/run/joints.csv" ]; then
+    compare "rbsim $name joints" "$tmp/run/joints.csv" "$here/rbsim/$name.joints.csv"
+  fi
 done
 
 # Resting poses of the example parts: both estimates, the intervals and the rest transforms.

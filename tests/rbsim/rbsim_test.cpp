@@ -193,6 +193,14 @@ TEST(Simulation, JointExampleMeshPendulumHasTheEllipticPeriod) {
   rbsim::Simulation sim = rbsim::BuildSimulation(scene, w);
   const dynamics::RigidBody& b = sim.world().bodies()[0];
   ASSERT_EQ(sim.world().joints().size(), 4u);
+  // The double pendulum starts where its angles put it: the shoulder at 1.2 rad, the elbow at
+  // −1.6 rad relative (each joint placed at the scene's pose before any moved a body).
+  const auto at = [](double angle, double down) {
+    return Vector3(Eigen::AngleAxisd(angle, Vector3::UnitX()) * Vector3(0, 0, -down));
+  };
+  const Vector3 shoulder(0.4, 0, 0);
+  EXPECT_LT((sim.world().bodies()[1].position - (shoulder + at(1.2, 0.25))).norm(), 1e-15);
+  EXPECT_LT((sim.world().bodies()[2].position - (shoulder + at(1.2, 0.5) + at(1.2 - 1.6, 0.2))).norm(), 1e-15);
   // Hanging, the center of mass sits d = 5 cm below the pivot; released at 120°.
   const double d = 0.05, theta0 = 2 * M_PI / 3;
   // (The joint has turned the body about x already: I_xx is the same.)
