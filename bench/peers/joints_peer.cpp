@@ -7,7 +7,7 @@
 //                         h = 0.1 ms, MuJoCo's RK4 against libdynamics' implicit midpoint and
 //                         RK4: joint angles every millisecond; exit 1 beyond 1e-4 rad
 //   joints_peer --bench   steps per second of a 7-DOF arm and a 30-link chain, both engines,
-//                         h = 1 ms, medians of three runs
+//                         h = 1 ms, medians of three runs, and each one's error after 1 s
 //   joints_peer --urdf    prints the 6-link arm's URDF
 
 #include <algorithm>
@@ -206,6 +206,22 @@ double StepsPerSecond(const std::function<void()>& step, int steps) {
   return steps / std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+/// Joint angles after 1 s, every joint.
+std::vector<double> AnglesAfterOneSecond(const std::vector<Link>& links, double h, int engine) {
+  const int steps = static_cast<int>(std::lround(1.0 / h));
+  std::vector<double> q(links.size());
+  if (engine < 2) {
+    dynamics::World w = Ours(links, engine == 0 ? dynamics::Integrator::kImplicitMidpoint : dynamics::Integrator::kRK4);
+    for (int s = 0; s < steps; ++s) w.Step(h);
+    for (std::size_t i = 0; i < q.size(); ++i) q[i] = w.joint_state(static_cast<int>(i)).position[0];
+  } else {
+    MuJoCo mj(links, h, engine == 2 ? mjINT_EULER : mjINT_RK4);
+    for (int s = 0; s < steps; ++s) mj_step(mj.m, mj.d);
+    for (std::size_t i = 0; i < q.size(); ++i) q[i] = mj.d->qpos[i];
+  }
+  return q;
+}
+
 int Bench() {
   const double h = 1e-3;
   const int steps = 5000;
@@ -213,23 +229,27 @@ int Bench() {
     const char* name;
     std::vector<Link> links;
   } models[] = {{"7-DOF mesh arm", MeshArm(7)}, {"30-link chain", BoxChain(30)}};
-  std::printf("steps/s at h = 1 ms (medians of 3 runs of %d steps; higher is better)\n", steps);
-  std::printf("%-16s %14s %10s %14s %12s\n", "model", "ours midpoint", "ours RK4", "MuJoCo Euler", "MuJoCo RK4");
+  const char* engines[] = {"ours midpoint", "ours RK4", "MuJoCo Euler", "MuJoCo RK4"};
+  std::printf("h = 1 ms: steps/s (medians of 3 runs of %d steps) and the largest joint-angle error after 1 s\n"
+              "(against MuJoCo's RK4 at h = 10 us)\n", steps);
+  std::printf("%-16s %-14s %10s %12s\n", "model", "engine", "steps/s", "error, rad");
   for (const Model& model : models) {
-    auto ours = [&](dynamics::Integrator integrator) {
-      return Median3([&] {
-        dynamics::World w = Ours(model.links, integrator);
-        return StepsPerSecond([&] { w.Step(h); }, steps);
-      });
-    };
-    auto theirs = [&](int integrator) {
-      return Median3([&] {
-        MuJoCo mj(model.links, h, integrator);
+    const std::vector<double> reference = AnglesAfterOneSecond(model.links, 1e-5, 3);
+    for (int engine = 0; engine < 4; ++engine) {
+      const double rate = Median3([&] {
+        if (engine < 2) {
+          dynamics::World w = Ours(model.links, engine == 0 ? dynamics::Integrator::kImplicitMidpoint
+                                                            : dynamics::Integrator::kRK4);
+          return StepsPerSecond([&] { w.Step(h); }, steps);
+        }
+        MuJoCo mj(model.links, h, engine == 2 ? mjINT_EULER : mjINT_RK4);
         return StepsPerSecond([&] { mj_step(mj.m, mj.d); }, steps);
       });
-    };
-    std::printf("%-16s %14.0f %10.0f %14.0f %12.0f\n", model.name, ours(dynamics::Integrator::kImplicitMidpoint),
-                ours(dynamics::Integrator::kRK4), theirs(mjINT_EULER), theirs(mjINT_RK4));
+      const std::vector<double> q = AnglesAfterOneSecond(model.links, h, engine);
+      double error = 0;
+      for (std::size_t i = 0; i < q.size(); ++i) error = std::max(error, std::fabs(q[i] - reference[i]));
+      std::printf("%-16s %-14s %10.0f %12.1e\n", model.name, engines[engine], rate, error);
+    }
   }
   return 0;
 }

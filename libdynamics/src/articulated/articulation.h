@@ -69,7 +69,7 @@ void CheckJoint(const Joint& joint, int num_bodies, const std::vector<Joint>& ex
 struct Configuration {
   std::vector<NodeFrame> frames;
   std::vector<Matrix6> composite;  ///< composite inertia of each subtree
-  Eigen::MatrixXd M;
+  Eigen::MatrixXd M;  ///< the mass matrix's lower triangle (the upper is not kept)
   Eigen::LLT<Eigen::MatrixXd> llt;
 };
 
@@ -129,6 +129,8 @@ class Articulation {
   std::vector<RigidBody> stage_;
   std::vector<Wrench> wrenches_;
   std::vector<Vector6> subtree_momentum_, subtree_force_;
+  Eigen::VectorXd last_rate_, older_rate_;  ///< ṗ of the last two midpoint steps (the predictor)
+  Eigen::VectorXd last_vbar_;               ///< the last midpoint velocity
   Eigen::VectorXd q0_, p0_, q1_, p1_, vbar_, vnew_, pnew_, rate_, k_[4], kq_[4], qs_, ps_, vs_;
   struct Row {
     int joint, dof;

@@ -220,7 +220,7 @@ Articulation::Articulation(const std::vector<Joint>& joints, std::vector<RigidBo
   }
   if (!Configure(q_, end_)) throw std::invalid_argument("World::AddJoint: the mass matrix is not positive definite");
   Velocities(v_, end_);
-  p_ = end_.M * v_;
+  p_ = end_.M.selfadjointView<Eigen::Lower>() * v_;
   Sync(end_, v_, bodies, &placed);
 }
 
@@ -282,17 +282,26 @@ bool Articulation::Configure(const Eigen::VectorXd& q, Configuration& c) const {
   for (std::size_t i = 0; i < n; ++i) {
     const Node& ni = nodes_[i];
     if (ni.nv == 0) continue;
+    if (ni.nv == 1) {  // hinges and sliders: one column, fixed-size products
+      const Vector6 F = c.composite[i] * c.frames[i].S.col(0);
+      c.M(ni.v, ni.v) = c.frames[i].S.col(0).dot(F);
+      for (int j = ni.parent; j >= 0; j = nodes_[static_cast<std::size_t>(j)].parent) {
+        const Node& nj = nodes_[static_cast<std::size_t>(j)];
+        const MotionColumns& Sj = c.frames[static_cast<std::size_t>(j)].S;
+        for (int k = 0; k < nj.nv; ++k) c.M(ni.v, nj.v + k) = Sj.col(k).dot(F);  // the lower triangle
+      }
+      continue;
+    }
     const MotionColumns F = c.composite[i] * c.frames[i].S;
     c.M.block(ni.v, ni.v, ni.nv, ni.nv) = c.frames[i].S.transpose() * F;
     for (int j = ni.parent; j >= 0; j = nodes_[static_cast<std::size_t>(j)].parent) {
       const Node& nj = nodes_[static_cast<std::size_t>(j)];
       if (nj.nv == 0) continue;
-      c.M.block(nj.v, ni.v, nj.nv, ni.nv) = c.frames[static_cast<std::size_t>(j)].S.transpose() * F;
-      c.M.block(ni.v, nj.v, ni.nv, nj.nv) = c.M.block(nj.v, ni.v, nj.nv, ni.nv).transpose();
+      c.M.block(ni.v, nj.v, ni.nv, nj.nv) = F.transpose() * c.frames[static_cast<std::size_t>(j)].S;
     }
   }
   if (nv == 0) return true;
-  c.llt.compute(c.M);
+  c.llt.compute(c.M);  // reads the lower triangle, the only one filled
   return c.llt.info() == Eigen::Success;
 }
 
