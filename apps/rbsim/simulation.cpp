@@ -115,8 +115,8 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
   std::vector<dynamics::Joint> joints;
   for (const JointSpec& spec : scene.joints) {
     dynamics::Joint joint = spec.joint;
-    const Vector3 anchor = spec.anchor.value_or(sim.world().bodies()[static_cast<std::size_t>(joint.child)].position);
-    dynamics::PlaceJointAt(joint, sim.world().bodies(), anchor, spec.axis);  // the axis is checked non-zero
+    const Vector3 anchor = spec.anchor.value_or(sim.world().body_as_added(joint.child).position);
+    sim.world().PlaceJoint(joint, anchor, spec.axis);  // the axis is checked non-zero
     joints.push_back(joint);
   }
   for (std::size_t k = 0; k < joints.size(); ++k) {

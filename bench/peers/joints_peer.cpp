@@ -102,7 +102,7 @@ dynamics::World Ours(const std::vector<Link>& links, dynamics::Integrator integr
     j.name = "joint" + std::to_string(i + 1);
     j.parent = static_cast<int>(i) - 1;
     j.child = static_cast<int>(i);
-    dynamics::PlaceJointAt(j, w.bodies(), links[i].anchor, links[i].axis);
+    w.PlaceJoint(j, links[i].anchor, links[i].axis);
     j.position = {links[i].q0};
     joints.push_back(j);
   }

@@ -52,6 +52,7 @@ int World::AddBody(const RigidBody& body) {
   RigidBody b = body;
   b.orientation.normalize();
   bodies_.push_back(b);
+  as_added_.push_back(b);
   if (articulation_) articulation_ = std::make_unique<internal::Articulation>(joints_, bodies_);
   return static_cast<int>(bodies_.size()) - 1;
 }

@@ -283,6 +283,58 @@ void StepAll(W& w, double h, int steps, double (*time)(const W&)) {
   if (!s.ok) throw py::value_error("step at t = " + std::to_string(time(w)) + ": " + s.message);
 }
 
+// World.add_joint: keyword arguments to a dynamics::Joint placed at the bodies as added.
+int AddJoint(dynamics::World& w, const std::string& type, int child, int parent, const py::handle& anchor,
+             const py::handle& axis, const std::string& name, double lower, double upper, double restitution,
+             double damping, double friction, double stiffness, double rest, const std::string& motor, double target,
+             double max_effort, double kp, double kd, const py::handle& position, const py::handle& velocity) {
+  dynamics::Joint j;
+  bool known = false;
+  for (auto t : {dynamics::JointType::kFixed, dynamics::JointType::kRevolute, dynamics::JointType::kPrismatic,
+                 dynamics::JointType::kSpherical, dynamics::JointType::kFree}) {
+    if (type == dynamics::JointTypeName(t)) j.type = t, known = true;
+  }
+  if (!known) throw py::value_error("type: '" + type + "' is not one of fixed, revolute, prismatic, spherical, free");
+  if (child < 0 || child >= static_cast<int>(w.bodies().size())) {
+    throw py::value_error("child: no body " + std::to_string(child));
+  }
+  j.child = child;
+  j.parent = parent;
+  j.name = name.empty() ? "joint" + std::to_string(w.joints().size()) : name;
+  j.limits = {lower, upper, restitution};
+  j.damping = damping;
+  j.friction = friction;
+  j.stiffness = stiffness;
+  j.rest_position = rest;
+  if (motor == "velocity") {
+    j.motor.mode = dynamics::JointMotor::Mode::kVelocity;
+  } else if (motor == "position") {
+    j.motor.mode = dynamics::JointMotor::Mode::kPosition;
+  } else if (!motor.empty()) {
+    throw py::value_error("motor: '" + motor + "' is not one of velocity, position");
+  }
+  j.motor.target = target;
+  j.motor.max_effort = max_effort;
+  j.motor.kp = kp;
+  j.motor.kd = kd;
+  auto numbers = [](const py::handle& v) {
+    std::vector<double> out;
+    if (v.is_none()) return out;
+    if (py::isinstance<py::float_>(v) || py::isinstance<py::int_>(v)) return std::vector<double>{py::cast<double>(v)};
+    for (const py::handle x : v) out.push_back(py::cast<double>(x));
+    return out;
+  };
+  j.position = numbers(position);
+  j.velocity = numbers(velocity);
+  // The anchor defaults to the child's center of mass as added (PlaceJoint's placement).
+  try {
+    w.PlaceJoint(j, anchor.is_none() ? w.body_as_added(child).position : Vec(anchor), Vec(axis));
+    return w.AddJoint(j);
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(e.what());
+  }
+}
+
 void BindDynamics(py::module_& m) {
   using dynamics::RigidBody;
   py::class_<RigidBody>(m, "RigidBody", PlainType(), "A free rigid body: mass, principal moments, state (SI units).")
@@ -359,6 +411,40 @@ void BindDynamics(py::module_& m) {
             StepAll<dynamics::World>(w, h, steps, [](const dynamics::World& x) { return x.time(); });
           },
           py::arg("h"), py::arg("steps") = 1, "Advances steps × h seconds; raises when a step fails or diverges")
+      .def("add_joint", &AddJoint, py::arg("type"), py::arg("child"), py::arg("parent") = -1,
+           py::arg("anchor") = py::none(), py::arg("axis") = py::make_tuple(0.0, 0.0, 1.0), py::arg("name") = "",
+           py::arg("lower") = -std::numeric_limits<double>::infinity(),
+           py::arg("upper") = std::numeric_limits<double>::infinity(), py::arg("restitution") = 0.0,
+           py::arg("damping") = 0.0, py::arg("friction") = 0.0, py::arg("stiffness") = 0.0, py::arg("rest") = 0.0,
+           py::arg("motor") = "", py::arg("target") = 0.0,
+           py::arg("max_effort") = std::numeric_limits<double>::infinity(), py::arg("kp") = 0.0, py::arg("kd") = 0.0,
+           py::arg("position") = py::none(), py::arg("velocity") = py::none(),
+           "Adds a joint (fixed, revolute, prismatic, spherical, free) from `parent` (-1: the world) to `child`, "
+           "its frames at `anchor` (world; default the child's center of mass) with z along `axis`, both at the "
+           "bodies' placement as added (q = 0); moves the child to `position`. Limits, friction, spring (stiffness, "
+           "rest) and motor ('velocity' or 'position') act on revolute and prismatic joints. Returns its index")
+      .def(
+          "joint_state",
+          [](const dynamics::World& w, int j) {
+            const dynamics::JointState s = w.joint_state(j);
+            py::dict out;
+            out["position"] = py::array_t<double>(static_cast<py::ssize_t>(s.position.size()), s.position.data());
+            out["velocity"] = py::array_t<double>(static_cast<py::ssize_t>(s.velocity.size()), s.velocity.data());
+            out["limit_impulse"] = s.limit_impulse;
+            out["drive_impulse"] = s.drive_impulse;
+            return out;
+          },
+          py::arg("joint"), "Joint j's position, velocity and last step's impulses, as a dict")
+      .def_property_readonly(
+          "joint_names",
+          [](const dynamics::World& w) {
+            std::vector<std::string> names;
+            for (const dynamics::Joint& j : w.joints()) names.push_back(j.name);
+            return names;
+          },
+          "the joints' names, in the order added")
+      .def_property_readonly("articulated", &dynamics::World::articulated,
+                             "True when the world steps in joint coordinates")
       .def_property_readonly("time", &dynamics::World::time, "simulated time, s")
       .def_property_readonly(
           "bodies", [](dynamics::World& w) { return w.bodies(); }, "copies of the bodies' current states")

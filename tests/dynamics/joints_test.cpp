@@ -50,7 +50,7 @@ Joint Hinge(const World& w, int parent, int child, const Vector3& anchor, const 
   j.type = type;
   j.parent = parent;
   j.child = child;
-  dynamics::PlaceJointAt(j, w.bodies(), anchor, axis);
+  w.PlaceJoint(j, anchor, axis);
   return j;
 }
 
@@ -159,11 +159,13 @@ struct DoublePendulum {
     World world(integrator);
     world.AddBody(Box(m1, w, w, L1, Vector3(0, 0, -c1())));
     world.AddBody(Box(m2, w, w, L2, Vector3(0, 0, -L1 - c2())));
+    // One after the other: World::PlaceJoint places at the bodies as added, whatever the first
+    // joint has moved.
     Joint a = Hinge(world, -1, 0, Vector3::Zero(), Vector3::UnitX());
-    Joint b = Hinge(world, 0, 1, Vector3(0, 0, -L1), Vector3::UnitX());
     a.position = {th1};
-    b.position = {th2 - th1};
     world.AddJoint(a);
+    Joint b = Hinge(world, 0, 1, Vector3(0, 0, -L1), Vector3::UnitX());
+    b.position = {th2 - th1};
     world.AddJoint(b);
     world.AddForce(dynamics::Gravity(Vector3(0, 0, -kG)));
     return world;

@@ -95,8 +95,9 @@ struct JointState {
 /// Frames for a joint that holds the bodies as they are now: J_p and J_c both at `anchor` (world
 /// point) with their z axis along `axis` (world direction; the joint's axis becomes +z), so that
 /// q = 0 is the current placement. `parent` -1 is the world. Sets parent_frame, child_frame, axis.
-/// Place every joint of a mechanism before adding any: World::AddJoint moves the child (and what
-/// hangs from it) to the joint's initial position, after which the bodies are no longer at q = 0.
+/// World::AddJoint moves the child (and what hangs from it) to the joint's initial position, after
+/// which the bodies are no longer at q = 0: place every joint before adding any, or use
+/// World::PlaceJoint, which places at the bodies as they were added.
 /// @throws std::invalid_argument for a zero axis.
 void PlaceJointAt(Joint& joint, const std::vector<RigidBody>& bodies, const Vector3& anchor, const Vector3& axis);
 

@@ -128,6 +128,13 @@ class World {
   /// @throws std::invalid_argument for a missing body, a body that already has a parent joint, a
   /// loop, parameters out of range (naming the joint and the field), or after the first step.
   int AddJoint(const Joint& joint);
+  /// PlaceJointAt with the bodies as they were added (q = 0 for every joint), whatever joints
+  /// added since have moved: `anchor` and `axis` in the world of that placement.
+  void PlaceJoint(Joint& joint, const Vector3& anchor, const Vector3& axis) const {
+    PlaceJointAt(joint, as_added_, anchor, axis);
+  }
+  /// Body i's state when it was added. @throws std::out_of_range.
+  const RigidBody& body_as_added(int i) const { return as_added_.at(static_cast<std::size_t>(i)); }
   const std::vector<Joint>& joints() const { return joints_; }
   /// Position, velocity and last step's impulses of joint j. @throws std::out_of_range.
   JointState joint_state(int j) const;
@@ -169,6 +176,7 @@ class World {
   std::vector<std::unique_ptr<Force>> forces_;
   std::unique_ptr<internal::StepScratch> scratch_;  ///< kept between steps
   std::vector<Joint> joints_;
+  std::vector<RigidBody> as_added_;  ///< the bodies' states when added (before joints moved them)
   std::unique_ptr<internal::Articulation> articulation_;  ///< null: free bodies only
   double time_ = 0;
   int num_threads_ = 0;
