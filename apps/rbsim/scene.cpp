@@ -461,7 +461,8 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
   if (const json* jt = f.Get("joints")) scene.joints = ReadJoints(*jt, file, scene.bodies);
   if (!scene.joints.empty() && scene.integrator != dynamics::Integrator::kImplicitMidpoint &&
       scene.integrator != dynamics::Integrator::kRK4) {
-    f.Fail("integrator", "'" + integrator + "' has no meaning for joints (it steps free bodies): use implicit-midpoint or rk4");
+    f.Fail("integrator",
+           "'" + integrator + "' has no meaning for joints (it steps free bodies): use implicit-midpoint or rk4");
   }
   if (const json* pairs = f.Get("pairs")) {
     if (!pairs->is_array()) f.Fail("pairs", "must be an array of {\"bodies\": [a, b], \"material\": {...}}");

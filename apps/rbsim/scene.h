@@ -100,8 +100,8 @@ struct ForceSpec {
 /// along `axis` (both in the world, at the scene's placement of the bodies, where q = 0) when the
 /// simulation is built.
 struct JointSpec {
-  std::string field;  ///< "joints[0]"
-  dynamics::Joint joint;  ///< type, parent, child and parameters (frames not yet placed)
+  std::string field;              ///< "joints[0]"
+  dynamics::Joint joint;          ///< type, parent, child and parameters (frames not yet placed)
   std::optional<Vector3> anchor;  ///< empty: the child's center of mass
   Vector3 axis = Vector3::UnitZ();
 };

@@ -13,8 +13,8 @@
 
 namespace rbsim {
 
-using nlohmann::json;
 using json_fields::Fields;
+using nlohmann::json;
 
 int BodyIndex(Fields& f, const std::string& key, const json& v, const std::vector<BodySpec>& bodies);
 
@@ -44,7 +44,8 @@ std::vector<double> State(Fields& f, const std::string& key, std::size_t size, b
   if (!v) return {};
   if (!v->is_array() || v->size() != size) f.Fail(key, "must be an array of " + std::to_string(size) + " numbers");
   std::vector<double> out;
-  for (std::size_t i = 0; i < size; ++i) out.push_back(f.CheckNumber(key + "[" + std::to_string(i) + "]", (*v)[i], nullptr));
+  for (std::size_t i = 0; i < size; ++i)
+    out.push_back(f.CheckNumber(key + "[" + std::to_string(i) + "]", (*v)[i], nullptr));
   return out;
 }
 
@@ -83,7 +84,8 @@ JointSpec ReadJoint(const json& j, const std::string& path, const std::string& f
   if (jt.parent == jt.child) f.Fail("parent", "a body cannot be jointed to itself");
   if (f.Has("anchor")) s.anchor = f.Vec3("anchor", Vector3::Zero());
   f.Get("anchor");
-  if (!s.anchor && jt.type != dynamics::JointType::kFree) f.Fail("anchor", "is required: the joint's world point at the scene's placement");
+  if (!s.anchor && jt.type != dynamics::JointType::kFree)
+    f.Fail("anchor", "is required: the joint's world point at the scene's placement");
   const bool needs_axis = one_dof;
   if (needs_axis && !f.Has("axis")) f.Fail("axis", "is required for a " + type + " joint: a world direction");
   s.axis = f.Vec3("axis", Vector3::UnitZ());
@@ -100,7 +102,8 @@ JointSpec ReadJoint(const json& j, const std::string& path, const std::string& f
     if (auto x = Angle(o, "lower", revolute)) jt.limits.lower = *x;
     if (auto x = Angle(o, "upper", revolute)) jt.limits.upper = *x;
     jt.limits.restitution = o.Number("restitution", 0.0, "non-negative");
-    if (jt.limits.restitution > 1) o.Fail("restitution", "must be between 0 and 1 (got " + json_fields::Num(jt.limits.restitution) + ")");
+    if (jt.limits.restitution > 1)
+      o.Fail("restitution", "must be between 0 and 1 (got " + json_fields::Num(jt.limits.restitution) + ")");
     if (!(jt.limits.lower <= jt.limits.upper)) o.Fail("lower must not exceed upper");
     o.Done();
   }

@@ -49,11 +49,17 @@ struct Link {
 };
 
 std::vector<Link> MeshArm(int n) {
-  const massprops::LoadedMesh loaded = massprops::ReadMeshFile(std::string(MASSPROPS_DATA_DIR) + "/meshes/t_handle.obj");
+  const massprops::LoadedMesh loaded =
+      massprops::ReadMeshFile(std::string(MASSPROPS_DATA_DIR) + "/meshes/t_handle.obj");
   const massprops::TriangleMesh mesh = massprops::Triangulate(loaded.mesh);
   const double densities[] = {2700, 7800, 1200, 4500, 2700, 8900, 1900};
-  const Vector3 axes[] = {Vector3::UnitX(), Vector3::UnitY(), Vector3(1, 1, 0).normalized(), Vector3::UnitX(),
-                          Vector3(0, 1, 1).normalized(), Vector3::UnitY(), Vector3::UnitX()};
+  const Vector3 axes[] = {Vector3::UnitX(),
+                          Vector3::UnitY(),
+                          Vector3(1, 1, 0).normalized(),
+                          Vector3::UnitX(),
+                          Vector3(0, 1, 1).normalized(),
+                          Vector3::UnitY(),
+                          Vector3::UnitX()};
   const double q0[] = {0.4, -0.6, 0.8, 0.3, -0.5, 0.7, -0.2};
   std::vector<Link> arm;
   for (int i = 0; i < n; ++i) {
@@ -150,7 +156,8 @@ struct MuJoCo {
     m = mj_loadXML(path.c_str(), nullptr, error, sizeof error);
     std::remove(path.c_str());
     if (!m) throw std::runtime_error(std::string("MuJoCo refused the URDF: ") + error);
-    if (m->nq != static_cast<int>(links.size())) throw std::runtime_error("MuJoCo compiled a different number of joints");
+    if (m->nq != static_cast<int>(links.size()))
+      throw std::runtime_error("MuJoCo compiled a different number of joints");
     m->opt.timestep = h;
     m->opt.integrator = integrator;
     m->opt.gravity[0] = 0, m->opt.gravity[1] = 0, m->opt.gravity[2] = -kG;
@@ -230,16 +237,18 @@ int Bench() {
     std::vector<Link> links;
   } models[] = {{"7-DOF mesh arm", MeshArm(7)}, {"30-link chain", BoxChain(30)}};
   const char* engines[] = {"ours midpoint", "ours RK4", "MuJoCo Euler", "MuJoCo RK4"};
-  std::printf("h = 1 ms: steps/s (medians of 3 runs of %d steps) and the largest joint-angle error after 1 s\n"
-              "(against MuJoCo's RK4 at h = 10 us)\n", steps);
+  std::printf(
+      "h = 1 ms: steps/s (medians of 3 runs of %d steps) and the largest joint-angle error after 1 s\n"
+      "(against MuJoCo's RK4 at h = 10 us)\n",
+      steps);
   std::printf("%-16s %-14s %10s %12s\n", "model", "engine", "steps/s", "error, rad");
   for (const Model& model : models) {
     const std::vector<double> reference = AnglesAfterOneSecond(model.links, 1e-5, 3);
     for (int engine = 0; engine < 4; ++engine) {
       const double rate = Median3([&] {
         if (engine < 2) {
-          dynamics::World w = Ours(model.links, engine == 0 ? dynamics::Integrator::kImplicitMidpoint
-                                                            : dynamics::Integrator::kRK4);
+          dynamics::World w =
+              Ours(model.links, engine == 0 ? dynamics::Integrator::kImplicitMidpoint : dynamics::Integrator::kRK4);
           return StepsPerSecond([&] { w.Step(h); }, steps);
         }
         MuJoCo mj(model.links, h, engine == 2 ? mjINT_EULER : mjINT_RK4);

@@ -10,46 +10,33 @@ namespace dynamics {
 
 const char* JointTypeName(JointType type) {
   switch (type) {
-    case JointType::kFixed:
-      return "fixed";
-    case JointType::kRevolute:
-      return "revolute";
-    case JointType::kPrismatic:
-      return "prismatic";
-    case JointType::kSpherical:
-      return "spherical";
-    case JointType::kFree:
-      return "free";
+    case JointType::kFixed: return "fixed";
+    case JointType::kRevolute: return "revolute";
+    case JointType::kPrismatic: return "prismatic";
+    case JointType::kSpherical: return "spherical";
+    case JointType::kFree: return "free";
   }
   return "?";
 }
 
 int JointPositionSize(JointType type) {
   switch (type) {
-    case JointType::kFixed:
-      return 0;
+    case JointType::kFixed: return 0;
     case JointType::kRevolute:
-    case JointType::kPrismatic:
-      return 1;
-    case JointType::kSpherical:
-      return 4;
-    case JointType::kFree:
-      return 7;
+    case JointType::kPrismatic: return 1;
+    case JointType::kSpherical: return 4;
+    case JointType::kFree: return 7;
   }
   return 0;
 }
 
 int JointVelocitySize(JointType type) {
   switch (type) {
-    case JointType::kFixed:
-      return 0;
+    case JointType::kFixed: return 0;
     case JointType::kRevolute:
-    case JointType::kPrismatic:
-      return 1;
-    case JointType::kSpherical:
-      return 3;
-    case JointType::kFree:
-      return 6;
+    case JointType::kPrismatic: return 1;
+    case JointType::kSpherical: return 3;
+    case JointType::kFree: return 6;
   }
   return 0;
 }

@@ -58,7 +58,8 @@ int World::AddBody(const RigidBody& body) {
 }
 
 int World::AddJoint(const Joint& joint) {
-  if (time_ != 0.0) throw std::invalid_argument("World::AddJoint: joint '" + joint.name + "': add joints before the first step");
+  if (time_ != 0.0)
+    throw std::invalid_argument("World::AddJoint: joint '" + joint.name + "': add joints before the first step");
   internal::CheckJoint(joint, static_cast<int>(bodies_.size()), joints_);
   joints_.push_back(joint);
   try {
@@ -78,7 +79,8 @@ JointState World::joint_state(int j) const {
   if (j < 0 || j >= static_cast<int>(joints_.size())) {
     throw std::out_of_range("World::joint_state: no joint " + std::to_string(j));
   }
-  return articulation_ ? articulation_->State(j) : internal::JointStateFromBodies(joints_[static_cast<std::size_t>(j)], bodies_);
+  return articulation_ ? articulation_->State(j)
+                       : internal::JointStateFromBodies(joints_[static_cast<std::size_t>(j)], bodies_);
 }
 
 void World::AddForce(std::unique_ptr<Force> force) {

@@ -7,9 +7,9 @@
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wuninitialized"
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <array>
 #include <boost/numeric/odeint.hpp>  // its steppers' members warn as uninitialized when copied
 #include <cmath>
-#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -76,10 +76,10 @@ struct Crossings {
       double s = x0 / (x0 - x);
       for (int it = 0; it < 30; ++it) {
         const double s2 = s * s, s3 = s2 * s;
-        const double p = (2 * s3 - 3 * s2 + 1) * x0 + (s3 - 2 * s2 + s) * h * v0 + (-2 * s3 + 3 * s2) * x +
-                         (s3 - s2) * h * v;
-        const double dp = (6 * s2 - 6 * s) * x0 + (3 * s2 - 4 * s + 1) * h * v0 + (-6 * s2 + 6 * s) * x +
-                          (3 * s2 - 2 * s) * h * v;
+        const double p =
+            (2 * s3 - 3 * s2 + 1) * x0 + (s3 - 2 * s2 + s) * h * v0 + (-2 * s3 + 3 * s2) * x + (s3 - s2) * h * v;
+        const double dp =
+            (6 * s2 - 6 * s) * x0 + (3 * s2 - 4 * s + 1) * h * v0 + (-6 * s2 + 6 * s) * x + (3 * s2 - 2 * s) * h * v;
         s -= p / dp;
       }
       times.push_back(t0 + s * h);
@@ -97,7 +97,8 @@ struct MeshPendulum {
   Vector3 pivot;
   Joint joint;
   MeshPendulum(double theta0, Integrator integrator) : w(integrator) {
-    const massprops::LoadedMesh loaded = massprops::ReadMeshFile(std::string(MASSPROPS_DATA_DIR) + "/meshes/t_handle.obj");
+    const massprops::LoadedMesh loaded =
+        massprops::ReadMeshFile(std::string(MASSPROPS_DATA_DIR) + "/meshes/t_handle.obj");
     const massprops::MassProperties mp = massprops::ComputeMassProperties(massprops::Triangulate(loaded.mesh), 2700.0);
     const dynamics::PlacedBody placed = dynamics::BodyFromMassProperties(mp);
     w.AddBody(placed.body);
@@ -186,8 +187,9 @@ struct DoublePendulum {
     };
     namespace odeint = boost::numeric::odeint;
     std::array<double, 4> s{th1, th2, 0, 0};
-    odeint::integrate_adaptive(odeint::make_controlled(1e-15, 1e-15, odeint::runge_kutta_fehlberg78<std::array<double, 4>>()),
-                               rhs, s, 0.0, t, 1e-4);
+    odeint::integrate_adaptive(
+        odeint::make_controlled(1e-15, 1e-15, odeint::runge_kutta_fehlberg78<std::array<double, 4>>()), rhs, s, 0.0, t,
+        1e-4);
     return s;
   }
   /// In the model the lower hinge's angle is relative: θ2 = q1 + q2.
@@ -208,7 +210,8 @@ TEST(Joints, DoublePendulumOrdersAgainstAnIndependentIntegration) {
   };
   if (std::getenv("JOINTS_ORDERS")) {
     for (double h : {1e-2, 5e-3, 2.5e-3, 1.25e-3, 6.25e-4, 3.125e-4, 1.5625e-4, 7.8125e-5})
-      std::printf("h %g midpoint %.3e rk4 %.3e\n", h, error_at(Integrator::kImplicitMidpoint, h), error_at(Integrator::kRK4, h));
+      std::printf("h %g midpoint %.3e rk4 %.3e\n", h, error_at(Integrator::kImplicitMidpoint, h),
+                  error_at(Integrator::kRK4, h));
   }
   const double m1 = error_at(Integrator::kImplicitMidpoint, 2e-3), m2 = error_at(Integrator::kImplicitMidpoint, 1e-3);
   const double m_order = std::log2(m1 / m2);
@@ -313,7 +316,8 @@ TEST(Joints, LagrangeTopNutatesBetweenTheRootsAtThePeriodByQuadrature) {
     EXPECT_NEAR(hi / u2, 1, 1e-6) << IntegratorName(integrator) << " highest u " << hi << " root " << u2;
     for (double x : minima) EXPECT_NEAR(x / u1, 1, 1e-6);
     const double period = (max_times.back() - max_times.front()) / static_cast<double>(max_times.size() - 1);
-    EXPECT_NEAR(period / T_nut, 1, 1e-6) << IntegratorName(integrator) << " period " << period << " quadrature " << T_nut;
+    EXPECT_NEAR(period / T_nut, 1, 1e-6) << IntegratorName(integrator) << " period " << period << " quadrature "
+                                         << T_nut;
   }
 }
 
@@ -327,7 +331,8 @@ TEST(Joints, HangingChainOfTwentyStaysStill) {
   w.AddForce(dynamics::Gravity(Vector3(0, 0, -kG)));
   double fastest = 0;
   Simulate(w, 1e-3, 10000, [&](long) {
-    for (const RigidBody& b : w.bodies()) fastest = std::max(fastest, b.velocity.norm() + b.AngularVelocity().norm() * L);
+    for (const RigidBody& b : w.bodies())
+      fastest = std::max(fastest, b.velocity.norm() + b.AngularVelocity().norm() * L);
   });
   EXPECT_LT(fastest, 1e-9);
 }

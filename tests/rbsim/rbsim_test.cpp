@@ -2,11 +2,10 @@
 // exact torque-free flow, body-point conversions against statics, conservation in a two-body
 // scene, and the outputs' structure.
 
+#include <unistd.h>
 #include <cstdio>
 #include <filesystem>
-#include <filesystem>
 #include <fstream>
-#include <unistd.h>
 #include <string>
 
 #include <gmock/gmock.h>
@@ -168,7 +167,8 @@ TEST(Scene, JointErrorsNameTheJointsField) {
        "joints[0].position_deg: degrees are for revolute joints"},
       {scene(R"([{"type": "spherical", "parent": "world", "child": "a", "anchor": [0, 0, 0], "velocity": [1, 2]}])"),
        "joints[0].velocity: must be an array of 3 numbers"},
-      {scene(R"([{"type": "spherical", "parent": "world", "child": "a", "anchor": [0, 0, 0], "position": [0, 0, 0, 0]}])"),
+      {scene(
+           R"([{"type": "spherical", "parent": "world", "child": "a", "anchor": [0, 0, 0], "position": [0, 0, 0, 0]}])"),
        "joints[0]: the initial quaternion must be non-zero"},
       {scene(R"([{"type": "revolute", "parent": "world", "child": "a", "anchor": [0, 0, 0], "axis": [1, 0, 0]}])",
              R"("integrator": "splitting", )"),
@@ -215,7 +215,8 @@ TEST(Simulation, JointExampleMeshPendulumHasTheEllipticPeriod) {
   rbsim::Run(sim, [&](const dynamics::World& world, const dynamics::Diagnostics& diag) {
     writer.Add(sim, world, diag);
     const double q = world.joint_state(0).position[0];
-    if (diag.time > 0 && q_prev > 0 && q <= 0) crossings.push_back(t_prev + (diag.time - t_prev) * q_prev / (q_prev - q));
+    if (diag.time > 0 && q_prev > 0 && q <= 0)
+      crossings.push_back(t_prev + (diag.time - t_prev) * q_prev / (q_prev - q));
     q_prev = q, t_prev = diag.time;
   });
   writer.Commit();

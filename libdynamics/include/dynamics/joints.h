@@ -14,7 +14,8 @@
 /// | revolute | angle, rad | rate, rad/s | turned by q about `axis` |
 /// | prismatic | offset, m | speed, m/s | moved by q along `axis` |
 /// | spherical | unit quaternion w, x, y, z | ω in J_c's axes, rad/s | turned by the quaternion |
-/// | free | origin x, y, z in J_p's axes, then the quaternion | ω, then the origin's velocity, both in J_c's axes | placed |
+/// | free | origin x, y, z in J_p's axes, then the quaternion | ω, then the origin's velocity, both in J_c's axes |
+/// placed |
 ///
 /// Limits, damping, friction, springs and motors act on revolute and prismatic joints (their
 /// "effort" is a torque in N·m or a force in N).
@@ -67,15 +68,15 @@ struct JointMotor {
 struct Joint {
   std::string name;  ///< for messages and outputs
   JointType type = JointType::kRevolute;
-  int parent = -1;  ///< body index, or -1 for the world
-  int child = 0;    ///< body index; each body is the child of at most one joint
-  Frame parent_frame;  ///< J_p in the parent's body coordinates (world coordinates for the world)
-  Frame child_frame;   ///< J_c in the child's body coordinates
+  int parent = -1;                  ///< body index, or -1 for the world
+  int child = 0;                    ///< body index; each body is the child of at most one joint
+  Frame parent_frame;               ///< J_p in the parent's body coordinates (world coordinates for the world)
+  Frame child_frame;                ///< J_c in the child's body coordinates
   Vector3 axis = Vector3::UnitZ();  ///< revolute and prismatic: unit axis in J_p (and J_c) axes
   JointLimits limits;
-  double damping = 0;   ///< effort −c q̇, N·m·s/rad or N·s/m
-  double friction = 0;  ///< Coulomb: the joint sticks while the other efforts stay below this, N·m or N
-  double stiffness = 0;     ///< spring effort −k (q − rest), N·m/rad or N/m
+  double damping = 0;        ///< effort −c q̇, N·m·s/rad or N·s/m
+  double friction = 0;       ///< Coulomb: the joint sticks while the other efforts stay below this, N·m or N
+  double stiffness = 0;      ///< spring effort −k (q − rest), N·m/rad or N/m
   double rest_position = 0;  ///< the spring's rest position
   JointMotor motor;
   /// Initial position and velocity (sizes from the table; empty: zero, identity quaternion).

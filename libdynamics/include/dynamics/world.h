@@ -176,7 +176,7 @@ class World {
   std::vector<std::unique_ptr<Force>> forces_;
   std::unique_ptr<internal::StepScratch> scratch_;  ///< kept between steps
   std::vector<Joint> joints_;
-  std::vector<RigidBody> as_added_;  ///< the bodies' states when added (before joints moved them)
+  std::vector<RigidBody> as_added_;                       ///< the bodies' states when added (before joints moved them)
   std::unique_ptr<internal::Articulation> articulation_;  ///< null: free bodies only
   double time_ = 0;
   int num_threads_ = 0;

@@ -69,7 +69,7 @@ void CheckJoint(const Joint& joint, int num_bodies, const std::vector<Joint>& ex
 struct Configuration {
   std::vector<NodeFrame> frames;
   std::vector<Matrix6> composite;  ///< composite inertia of each subtree
-  Eigen::MatrixXd M;  ///< the mass matrix's lower triangle (the upper is not kept)
+  Eigen::MatrixXd M;               ///< the mass matrix's lower triangle (the upper is not kept)
   Eigen::LLT<Eigen::MatrixXd> llt;
 };
 

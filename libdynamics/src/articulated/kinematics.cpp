@@ -50,17 +50,10 @@ void Relative(const Node& n, const Eigen::VectorXd& q, Matrix3& R, Vector3& t) {
   R.setIdentity();
   t.setZero();
   switch (n.type) {
-    case JointType::kFixed:
-      break;
-    case JointType::kRevolute:
-      R = Eigen::AngleAxisd(q[n.q], n.axis).toRotationMatrix();
-      break;
-    case JointType::kPrismatic:
-      t = q[n.q] * n.axis;
-      break;
-    case JointType::kSpherical:
-      R = QuatAt(q, n.q).toRotationMatrix();
-      break;
+    case JointType::kFixed: break;
+    case JointType::kRevolute: R = Eigen::AngleAxisd(q[n.q], n.axis).toRotationMatrix(); break;
+    case JointType::kPrismatic: t = q[n.q] * n.axis; break;
+    case JointType::kSpherical: R = QuatAt(q, n.q).toRotationMatrix(); break;
     case JointType::kFree:
       t = q.segment<3>(n.q);
       R = QuatAt(q, n.q + 3).toRotationMatrix();
@@ -119,8 +112,7 @@ JointState JointStateFromBodies(const Joint& joint, const std::vector<RigidBody>
   JointState s;
   s.position.resize(7);
   s.velocity.resize(6);
-  FreeJointFromBody(n, Rp, xp, Vp, bodies[static_cast<std::size_t>(joint.child)], s.position.data(),
-                    s.velocity.data());
+  FreeJointFromBody(n, Rp, xp, Vp, bodies[static_cast<std::size_t>(joint.child)], s.position.data(), s.velocity.data());
   return s;
 }
 
@@ -128,7 +120,8 @@ Articulation::Articulation(const std::vector<Joint>& joints, std::vector<RigidBo
     : joints_(joints), inertias_(bodies) {
   const int nb = static_cast<int>(bodies.size());
   std::vector<int> joint_of(static_cast<std::size_t>(nb), -1);
-  for (std::size_t j = 0; j < joints.size(); ++j) joint_of[static_cast<std::size_t>(joints[j].child)] = static_cast<int>(j);
+  for (std::size_t j = 0; j < joints.size(); ++j)
+    joint_of[static_cast<std::size_t>(joints[j].child)] = static_cast<int>(j);
   std::vector<std::vector<int>> kids(static_cast<std::size_t>(nb));
   std::deque<int> queue;
   for (int b = 0; b < nb; ++b) {
@@ -211,7 +204,8 @@ Articulation::Articulation(const std::vector<Joint>& joints, std::vector<RigidBo
     if (n.type == JointType::kSpherical && jt->position.empty()) q_[n.q] = 1.0;
     if (n.type == JointType::kFree && !from_body && jt->position.empty()) q_[n.q + 3] = 1.0;
     for (int k = 0; k < n.nv; ++k) {
-      v_[n.v + k] = velocity_from_body ? fv[k] : (jt->velocity.empty() ? 0.0 : jt->velocity[static_cast<std::size_t>(k)]);
+      v_[n.v + k] =
+          velocity_from_body ? fv[k] : (jt->velocity.empty() ? 0.0 : jt->velocity[static_cast<std::size_t>(k)]);
     }
     PlaceNode(static_cast<int>(i), q_, c);
     NodeFrame& f = c.frames[i];
@@ -247,14 +241,9 @@ void Articulation::PlaceNode(int i, const Eigen::VectorXd& q, Configuration& c) 
   auto rotation = [&](int col, const Vector3& a) { f.S.col(col) << a, o.cross(a); };
   auto translation = [&](int col, const Vector3& d) { f.S.col(col) << Vector3::Zero(), d; };
   switch (n.type) {
-    case JointType::kFixed:
-      break;
-    case JointType::kRevolute:
-      rotation(0, Rj * n.axis);
-      break;
-    case JointType::kPrismatic:
-      translation(0, Rj * n.axis);
-      break;
+    case JointType::kFixed: break;
+    case JointType::kRevolute: rotation(0, Rj * n.axis); break;
+    case JointType::kPrismatic: translation(0, Rj * n.axis); break;
     case JointType::kSpherical:
       for (int k = 0; k < 3; ++k) rotation(k, f.joint_R.col(k));
       break;
@@ -331,9 +320,9 @@ void Articulation::Sync(const Configuration& c, const Eigen::VectorXd& v, std::v
   }
 }
 
-void Articulation::MomentumRate(const std::vector<std::unique_ptr<Force>>& forces, double t,
-                                const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Configuration& c,
-                                std::vector<RigidBody>& stage, Eigen::VectorXd& rate) {
+void Articulation::MomentumRate(const std::vector<std::unique_ptr<Force>>& forces, double t, const Eigen::VectorXd& q,
+                                const Eigen::VectorXd& v, const Configuration& c, std::vector<RigidBody>& stage,
+                                Eigen::VectorXd& rate) {
   const std::size_t n = nodes_.size();
   if (stage.size() != inertias_.size()) stage = inertias_;
   Sync(c, v, stage);
@@ -358,8 +347,7 @@ void Articulation::MomentumRate(const std::vector<std::unique_ptr<Force>>& force
     const Node& nd = nodes_[i];
     if (nd.nv == 0) continue;
     const NodeFrame& f = c.frames[i];
-    rate.segment(nd.v, nd.nv) =
-        f.S.transpose() * (subtree_force_[i] - CrossForce(f.V, subtree_momentum_[i]));
+    rate.segment(nd.v, nd.nv) = f.S.transpose() * (subtree_force_[i] - CrossForce(f.V, subtree_momentum_[i]));
     if (nd.joint < 0) continue;
     const Joint& j = joints_[static_cast<std::size_t>(nd.joint)];
     if (nd.type == JointType::kSpherical) {
@@ -387,15 +375,10 @@ void Articulation::PositionRate(const Eigen::VectorXd& q, const Eigen::VectorXd&
   };
   for (const Node& n : nodes_) {
     switch (n.type) {
-      case JointType::kFixed:
-        break;
+      case JointType::kFixed: break;
       case JointType::kRevolute:
-      case JointType::kPrismatic:
-        rate[n.q] = v[n.v];
-        break;
-      case JointType::kSpherical:
-        quat_rate(n.q, n.v);
-        break;
+      case JointType::kPrismatic: rate[n.q] = v[n.v]; break;
+      case JointType::kSpherical: quat_rate(n.q, n.v); break;
       case JointType::kFree:
         rate.segment<3>(n.q) = QuatAt(q, n.q + 3) * Vector3(v.segment<3>(n.v + 3));
         quat_rate(n.q + 3, n.v);
@@ -409,12 +392,9 @@ void Articulation::Move(const Eigen::VectorXd& q, const Eigen::VectorXd& v, doub
   out = q;
   for (const Node& n : nodes_) {
     switch (n.type) {
-      case JointType::kFixed:
-        break;
+      case JointType::kFixed: break;
       case JointType::kRevolute:
-      case JointType::kPrismatic:
-        out[n.q] = q[n.q] + h * v[n.v];
-        break;
+      case JointType::kPrismatic: out[n.q] = q[n.q] + h * v[n.v]; break;
       case JointType::kSpherical:
         PutQuat((QuatAt(q, n.q) * ExpRotation(h * Vector3(v.segment<3>(n.v)))).normalized(), out, n.q);
         break;

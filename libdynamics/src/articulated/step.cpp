@@ -25,7 +25,7 @@ StepStatus Articulation::Advance(Integrator integrator, const std::vector<std::u
     std::fill(drive_impulse_.begin(), drive_impulse_.end(), 0.0);
     for (int s = 0; s < substeps && ok; ++s) {
       ok = integrator == Integrator::kRK4 ? RK4Step(forces, t + dt * s, dt, bodies)
-                                           : MidpointStep(forces, t + dt * s, dt, bodies);
+                                          : MidpointStep(forces, t + dt * s, dt, bodies);
     }
     if (ok) {
       status.substeps = substeps;
