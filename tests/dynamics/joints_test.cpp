@@ -7,6 +7,7 @@
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wuninitialized"
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <algorithm>
 #include <array>
 #include <boost/numeric/odeint.hpp>  // its steppers' members warn as uninitialized when copied
 #include <cmath>
@@ -135,6 +136,7 @@ TEST(Joints, MeshPendulumPeriodAtLargeAmplitude) {
     MeshPendulum p(theta0, Integrator::kImplicitMidpoint);
     double separation = 0;
     const double T = p.MeasuredPeriod(1e-4, 50, separation);
+    std::printf("h = 0.1 ms: period error %.2e, anchor separation %.1e m\n", T / p.period - 1, separation);
     EXPECT_NEAR(T / p.period - 1, 0, 1e-6) << "T " << T << " closed form " << p.period;
     EXPECT_LE(separation, 1e-12);
   }
@@ -142,6 +144,7 @@ TEST(Joints, MeshPendulumPeriodAtLargeAmplitude) {
     MeshPendulum p(theta0, Integrator::kImplicitMidpoint);
     double separation = 0;
     const double T = p.MeasuredPeriod(1e-3, 50, separation);
+    std::printf("h = 1 ms: period error %.2e, anchor separation %.1e m\n", T / p.period - 1, separation);
     EXPECT_NEAR(T / p.period - 1, 0, 3e-5) << "T " << T << " closed form " << p.period;
     EXPECT_LE(separation, 1e-12);
   }
@@ -215,6 +218,8 @@ TEST(Joints, DoublePendulumOrdersAgainstAnIndependentIntegration) {
   }
   const double m1 = error_at(Integrator::kImplicitMidpoint, 2e-3), m2 = error_at(Integrator::kImplicitMidpoint, 1e-3);
   const double m_order = std::log2(m1 / m2);
+  std::printf("orders: midpoint %.3f, RK4 %.3f\n", m_order, std::log2(error_at(Integrator::kRK4, 3.125e-4) /
+                                                                          error_at(Integrator::kRK4, 1.5625e-4)));
   EXPECT_NEAR(m_order, 2.0, 0.1) << "errors " << m1 << " " << m2;
   // RK4's h⁵ term still shows at larger steps (error ratios 28, 24, 22, 20, 18 from h = 5 ms
   // down); below 0.1 ms the reference's own accuracy (~1e-14) is reached.
@@ -232,15 +237,20 @@ TEST(Joints, DoublePendulumEnergyHasNoSecularDrift) {
   const double scale = dp.m1 * kG * dp.L1;  // J
   double first = 0, last = 0;
   const double h = 1e-3;
+  std::vector<double> windows(10, 0.0);  // the largest error in each 10 s
   Simulate(w, h, 100000, [&](long s) {
     const double err = std::fabs(w.Diagnose().total_energy - e0) / scale;
+    windows[static_cast<std::size_t>(s / 10000)] = std::max(windows[static_cast<std::size_t>(s / 10000)], err);
     if (s < 10000) first = std::max(first, err);
     if (s >= 90000) last = std::max(last, err);
   });
   EXPECT_LT(first, 1e-4);
   EXPECT_LT(last, 1e-4);
-  // Bounded: the last 10 s wander no further than the first 10 s (a drift would grow tenfold).
-  EXPECT_LT(last, 2 * first) << "first 10 s " << first << ", last 10 s " << last;
+  // Bounded: the last 50 s wander no further than the first 50 s (a drift would double it;
+  // measured 5.0e-5 against 5.0e-5).
+  const double early = *std::max_element(windows.begin(), windows.begin() + 5);
+  const double late = *std::max_element(windows.begin() + 5, windows.end());
+  EXPECT_LT(late, 1.5 * early) << "first 50 s " << early << ", last 50 s " << late;
 }
 
 // The heavy symmetric top on a ball joint at its tip (Goldstein §5.7): u = cos θ obeys
@@ -312,6 +322,8 @@ TEST(Joints, LagrangeTopNutatesBetweenTheRootsAtThePeriodByQuadrature) {
     double lo = 1, hi = -1;
     for (double x : minima) lo = std::min(lo, x);
     for (double x : maxima) hi = std::max(hi, x);
+    std::printf("%s: u1 %.2e, u2 %.2e, period %.2e relative\n", IntegratorName(integrator), lo / u1 - 1, hi / u2 - 1,
+                (max_times.back() - max_times.front()) / static_cast<double>(max_times.size() - 1) / T_nut - 1);
     EXPECT_NEAR(lo / u1, 1, 1e-6) << IntegratorName(integrator) << " lowest u " << lo << " root " << u1;
     EXPECT_NEAR(hi / u2, 1, 1e-6) << IntegratorName(integrator) << " highest u " << hi << " root " << u2;
     for (double x : minima) EXPECT_NEAR(x / u1, 1, 1e-6);
