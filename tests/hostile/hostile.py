@@ -569,6 +569,25 @@ def main():
                 ("scene_mesh_directory", '{"bodies": [{"mesh": "."}]}', r"bodies\[0\].mesh: '.' is a directory"),
                 ("scene_mesh_device", '{"bodies": [{"mesh": "/dev/zero"}]}',
                  r"bodies\[0\].mesh: '/dev/zero' is not a regular file"),
+                # Joints: a stiff spring or a state beyond double precision stops the run with a message
+                # (never a hang, never a silently wrong number); a loop and a tiny quaternion are refused.
+                ("scene_joint_stiff_spring",
+                 '{"bodies": [%s], "joints": [{"type": "revolute", "parent": "world", "child": "b", "anchor": [0, 0, 0], '
+                 '"axis": [1, 0, 0], "spring": {"stiffness": 1e300}, "position": 0.1}]}' % box,
+                 r"the run failed at t = 0.001 s: the joints' implicit midpoint solve did not converge"),
+                ("scene_joint_far_away",
+                 '{"bodies": [%s], "joints": [{"type": "prismatic", "parent": "world", "child": "b", "anchor": [0, 0, 0], '
+                 '"axis": [1, 0, 0], "position": 1e300}]}' % box, r"the run failed at t = 0.001 s"),
+                ("scene_joint_fast", '{"bodies": [%s], "joints": [{"type": "revolute", "parent": "world", "child": "b", '
+                 '"anchor": [0, 0, 0], "axis": [1, 0, 0], "velocity": 1e300}]}' % box,
+                 r"initial state's energy is not finite"),
+                ("scene_joint_loop", '{"bodies": [%s, {"name": "c", "solid": {"type": "sphere", "radius": 0.1}}], "joints": ['
+                 '{"type": "fixed", "parent": "c", "child": "b", "anchor": [0, 0, 0]}, '
+                 '{"type": "fixed", "parent": "b", "child": "c", "anchor": [0, 0, 0]}]}' % box,
+                 r"joints\[1\]: closes a loop of joints"),
+                ("scene_joint_tiny_quaternion", '{"bodies": [%s], "joints": [{"type": "spherical", "parent": "world", '
+                 '"child": "b", "anchor": [0, 0, 0], "position": [1e-200, 0, 0, 0]}]}' % box,
+                 r"joints\[0\]: the initial quaternion must be non-zero"),
                 ("scene_index_2_64", '{"bodies": [%s], "forces": [{"type": "spring", "bodies": [0, 18446744073709551615], '
                  '"k": 1}]}' % box, r"forces\[0\].bodies\[1\]: body index 18446744073709551615 is out of range")]:
             write(name + ".json", text)

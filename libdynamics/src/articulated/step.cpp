@@ -40,8 +40,8 @@ StepStatus Articulation::Advance(Integrator integrator, const std::vector<std::u
   status.ok = false;
   status.substeps = 1024;
   status.message =
-      "the joints' implicit midpoint solve did not converge even with 1024 sub-steps (stiff springs, damping or "
-      "servo gains for this step: reduce the time step)";
+      "the joints' implicit midpoint solve did not converge even with 1024 sub-steps: springs, damping or servo "
+      "gains too stiff for this step (reduce the time step), or a state beyond double precision";
   return status;
 }
 
