@@ -218,8 +218,8 @@ TEST(Joints, DoublePendulumOrdersAgainstAnIndependentIntegration) {
   }
   const double m1 = error_at(Integrator::kImplicitMidpoint, 2e-3), m2 = error_at(Integrator::kImplicitMidpoint, 1e-3);
   const double m_order = std::log2(m1 / m2);
-  std::printf("orders: midpoint %.3f, RK4 %.3f\n", m_order, std::log2(error_at(Integrator::kRK4, 3.125e-4) /
-                                                                          error_at(Integrator::kRK4, 1.5625e-4)));
+  std::printf("orders: midpoint %.3f, RK4 %.3f\n", m_order,
+              std::log2(error_at(Integrator::kRK4, 3.125e-4) / error_at(Integrator::kRK4, 1.5625e-4)));
   EXPECT_NEAR(m_order, 2.0, 0.1) << "errors " << m1 << " " << m2;
   // RK4's h⁵ term still shows at larger steps (error ratios 28, 24, 22, 20, 18 from h = 5 ms
   // down); below 0.1 ms the reference's own accuracy (~1e-14) is reached.
