@@ -541,6 +541,37 @@ TEST(Joints, FreeJointAloneIsTheFreeBodyBitForBit) {
   EXPECT_NEAR((Vector3(s.position[0], s.position[1], s.position[2]) - y.position).norm(), 0, 1e-15);
 }
 
+// Fixed joints weld: a body fixed to the world stays, and one welded under a swinging hinge
+// swings with it as one rigid body (the composite's period).
+TEST(Joints, FixedJointsWeld) {
+  World still;
+  still.AddBody(Box(1, 0.1, 0.1, 0.1, Vector3::Zero()));
+  Joint weld = Hinge(still, -1, 0, Vector3::Zero(), Vector3::UnitZ(), JointType::kFixed);
+  still.AddJoint(weld);
+  still.AddForce(dynamics::Gravity(Vector3(0, 0, -kG)));
+  Simulate(still, 1e-3, 100);
+  EXPECT_EQ(still.bodies()[0].position, Vector3::Zero());
+  // Two rods welded end to end hang from a hinge: a physical pendulum of length 2L.
+  World w;
+  const double L = 0.3, m = 0.5;
+  w.AddBody(Box(m, 0.01, 0.01, L, Vector3(0, 0, -L / 2)));
+  w.AddBody(Box(m, 0.01, 0.01, L, Vector3(0, 0, -3 * L / 2)));
+  Joint hinge = Hinge(w, -1, 0, Vector3::Zero(), Vector3::UnitX());
+  hinge.position = {0.2};
+  w.AddJoint(hinge);
+  w.AddJoint(Hinge(w, 0, 1, Vector3(0, 0, -L), Vector3::UnitX(), JointType::kFixed));
+  w.AddForce(dynamics::Gravity(Vector3(0, 0, -kG)));
+  const double I = 2 * m * (2 * L) * (2 * L) / 3 + 2 * m * 0.01 * 0.01 / 12;  // a rod of 2L about its end
+  const double T = 4 * std::sqrt(I / (2 * m * kG * L)) * boost::math::ellint_1(std::sin(0.1));
+  Crossings c;
+  Simulate(w, 1e-4, 40000, [&](long) { c.Add(w.time(), w.joint_state(0).position[0], w.joint_state(0).velocity[0]); });
+  ASSERT_GE(c.times.size(), 3u);
+  EXPECT_NEAR((c.times.back() - c.times.front()) / static_cast<double>(c.times.size() - 1) / T, 1, 1e-6);
+  // The welded rod stays in line with the first.
+  const Vector3 axis0 = w.bodies()[0].position.normalized(), axis1 = w.bodies()[1].position.normalized();
+  EXPECT_NEAR((axis0 - axis1).norm(), 0, 1e-12);
+}
+
 TEST(Joints, SameBitsForAnyThreadCount) {
   std::vector<RigidBody> first;
   for (int threads : {1, 2, 3}) {

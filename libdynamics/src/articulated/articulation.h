@@ -93,6 +93,8 @@ class Articulation {
   bool MidpointStep(const std::vector<std::unique_ptr<Force>>& forces, double t, double h,
                     std::vector<RigidBody>& bodies);
   bool RK4Step(const std::vector<std::unique_ptr<Force>>& forces, double t, double h, std::vector<RigidBody>& bodies);
+  /// A step of a tree without degrees of freedom.
+  bool Still(std::vector<RigidBody>& bodies);
   /// Kinematics, mass matrix and its factor at q (false: the mass matrix is not positive definite).
   bool Configure(const Eigen::VectorXd& q, Configuration& c) const;
   /// Spatial velocities V of c's frames from v.

@@ -203,6 +203,8 @@ Articulation::Articulation(const std::vector<Joint>& joints, std::vector<RigidBo
     }
     if (n.type == JointType::kSpherical && jt->position.empty()) q_[n.q] = 1.0;
     if (n.type == JointType::kFree && !from_body && jt->position.empty()) q_[n.q + 3] = 1.0;
+    const int quat = n.type == JointType::kSpherical ? n.q : n.type == JointType::kFree ? n.q + 3 : -1;
+    if (quat >= 0) q_.segment<4>(quat).normalize();  // a given quaternion of any length (checked non-zero)
     for (int k = 0; k < n.nv; ++k) {
       v_[n.v + k] =
           velocity_from_body ? fv[k] : (jt->velocity.empty() ? 0.0 : jt->velocity[static_cast<std::size_t>(k)]);

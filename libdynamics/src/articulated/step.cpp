@@ -45,6 +45,14 @@ StepStatus Articulation::Advance(Integrator integrator, const std::vector<std::u
   return status;
 }
 
+// Nothing moves (every joint fixed, down from the world): the bodies stay where they are.
+bool Articulation::Still(std::vector<RigidBody>& bodies) {
+  if (!Configure(q_, end_)) return false;
+  Velocities(v_, end_);
+  Sync(end_, v_, bodies);
+  return true;
+}
+
 // The implicit midpoint rule on (q, p): with v̄ the midpoint velocity,
 //   q̄ = q0 ⊕ (h/2) v̄,  v̄ = M(q̄)⁻¹ (p0 + p1)/2,  p1 = p0 + h ṗ(q̄, v̄),  q1 = q0 ⊕ h v̄,
 // solved by fixed-point iteration (it contracts by about h times the fastest rate). For joints
@@ -52,6 +60,7 @@ StepStatus Articulation::Advance(Integrator integrator, const std::vector<std::u
 // midpoint rule itself.
 bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& forces, double t, double h,
                                 std::vector<RigidBody>& bodies) {
+  if (p_.size() == 0) return Still(bodies);
   q0_ = q_;
   p0_ = p_;
   // Predictor: the rate extrapolated from the last two steps, and the midpoint velocity from the
@@ -101,7 +110,6 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
   q_ = q1_;
   p_ = p1_;
   v_ = end_.llt.solve(p_);
-  if (v_.size() == 0) v_.resize(0);
   Velocities(v_, end_);
   Sync(end_, v_, bodies);
   return true;
@@ -111,6 +119,7 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
 // end of the step).
 bool Articulation::RK4Step(const std::vector<std::unique_ptr<Force>>& forces, double t, double h,
                            std::vector<RigidBody>& bodies) {
+  if (p_.size() == 0) return Still(bodies);
   q0_ = q_;
   p0_ = p_;
   static constexpr double kAt[4] = {0.0, 0.5, 0.5, 1.0};
