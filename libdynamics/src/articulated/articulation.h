@@ -5,7 +5,8 @@
 // joint, or of an implicit free joint when it has none. Spatial vectors are in world axes about
 // the world origin (Featherstone 2008, ch. 2): a motion (ω, v_O), v_O the velocity of the body
 // point at the origin; a force (n_O, f). The state is the joint positions q and the generalized
-// momenta p = M(q) v; v is kept beside them. Each joint's motion subspace S is fixed in its child,
+// momenta p = M(q) v; v is kept beside them. Each joint's motion subspace S is fixed in its child
+// (a free joint's translation columns, along J_p's axes, in its parent, where V is the parent's),
 // so Ṡ = V × S and the momentum equation is, joint by joint,
 //     ṗ_i = Q_i + S_iᵀ (f_i − V_i ×* h_i)
 // with h_i and f_i the spatial momentum and the external wrench of the subtree below joint i and
@@ -105,9 +106,9 @@ class Articulation {
                     Eigen::VectorXd& rate);
   /// q̇ at (q, v).
   void PositionRate(const Eigen::VectorXd& q, const Eigen::VectorXd& v, Eigen::VectorXd& rate) const;
-  /// q ⊕ h v: positions moved by h v, rotations by the exponential map of h ω; a free joint's
-  /// origin moves by h R v_lin with R its rotation turned by `turn` ω (h/2: the midpoint's).
-  void Move(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double h, double turn, Eigen::VectorXd& out) const;
+  /// q ⊕ h v: positions moved by h v (a free joint's origin along J_p's axes), rotations by the
+  /// exponential map of h ω (ω in J_c's axes).
+  void Move(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double h, Eigen::VectorXd& out) const;
   /// Stops, friction and velocity motors: impulses on p (with M at configuration c and the
   /// positions q1 reached without them). Returns the dofs held on a stop (and their limit).
   /// Returns whether any impulse was applied.

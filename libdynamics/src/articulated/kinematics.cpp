@@ -89,7 +89,7 @@ void FreeJointFromBody(const Node& node, const Matrix3& parent_R, const Vector3&
   const Vector3 dw = w - parent_V.head<3>();
   const Vector3 dvo = (b.velocity - w.cross(b.position)) - parent_V.tail<3>();
   const Vector3 vr = Rc.transpose() * dw;
-  const Vector3 vl = Rc.transpose() * (dvo + dw.cross(o));
+  const Vector3 vl = Rj.transpose() * (dvo + dw.cross(o));
   v[0] = vr.x(), v[1] = vr.y(), v[2] = vr.z(), v[3] = vl.x(), v[4] = vl.y(), v[5] = vl.z();
 }
 
@@ -249,9 +249,9 @@ void Articulation::PlaceNode(int i, const Eigen::VectorXd& q, Configuration& c) 
     case JointType::kSpherical:
       for (int k = 0; k < 3; ++k) rotation(k, f.joint_R.col(k));
       break;
-    case JointType::kFree:
+    case JointType::kFree:  // turning about J_c's axes, moving along J_p's (fixed in the parent)
       for (int k = 0; k < 3; ++k) rotation(k, f.joint_R.col(k));
-      for (int k = 0; k < 3; ++k) translation(3 + k, f.joint_R.col(k));
+      for (int k = 0; k < 3; ++k) translation(3 + k, Rj.col(k));
       break;
   }
   f.inertia = SpatialInertia(inertias_[static_cast<std::size_t>(n.body)], f.R, f.x);
@@ -350,6 +350,11 @@ void Articulation::MomentumRate(const std::vector<std::unique_ptr<Force>>& force
     if (nd.nv == 0) continue;
     const NodeFrame& f = c.frames[i];
     rate.segment(nd.v, nd.nv) = f.S.transpose() * (subtree_force_[i] - CrossForce(f.V, subtree_momentum_[i]));
+    if (nd.type == JointType::kFree) {  // its translation columns are fixed in the parent: Ṡ = V_parent × S
+      const Vector6 Vp = nd.parent >= 0 ? c.frames[static_cast<std::size_t>(nd.parent)].V : Vector6::Zero();
+      rate.segment<3>(nd.v + 3) =
+          f.S.rightCols<3>().transpose() * (subtree_force_[i] - CrossForce(Vp, subtree_momentum_[i]));
+    }
     if (nd.joint < 0) continue;
     const Joint& j = joints_[static_cast<std::size_t>(nd.joint)];
     if (nd.type == JointType::kSpherical) {
@@ -382,32 +387,30 @@ void Articulation::PositionRate(const Eigen::VectorXd& q, const Eigen::VectorXd&
       case JointType::kPrismatic: rate[n.q] = v[n.v]; break;
       case JointType::kSpherical: quat_rate(n.q, n.v); break;
       case JointType::kFree:
-        rate.segment<3>(n.q) = QuatAt(q, n.q + 3) * Vector3(v.segment<3>(n.v + 3));
+        rate.segment<3>(n.q) = v.segment<3>(n.v + 3);
         quat_rate(n.q + 3, n.v);
         break;
     }
   }
 }
 
-void Articulation::Move(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double h, double turn,
-                        Eigen::VectorXd& out) const {
+void Articulation::Move(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double h, Eigen::VectorXd& out) const {
   out = q;
   for (const Node& n : nodes_) {
     switch (n.type) {
-      case JointType::kFixed: break;
+      case JointType::kFixed:
+        break;
       case JointType::kRevolute:
-      case JointType::kPrismatic: out[n.q] = q[n.q] + h * v[n.v]; break;
+      case JointType::kPrismatic:
+        out[n.q] = q[n.q] + h * v[n.v];
+        break;
       case JointType::kSpherical:
         PutQuat((QuatAt(q, n.q) * ExpRotation(h * Vector3(v.segment<3>(n.v)))).normalized(), out, n.q);
         break;
-      case JointType::kFree: {
-        const Quaternion r0 = QuatAt(q, n.q + 3);
-        const Vector3 w = v.segment<3>(n.v);
-        const Quaternion mid = r0 * ExpRotation(turn * w);
-        out.segment<3>(n.q) = q.segment<3>(n.q) + h * (mid * Vector3(v.segment<3>(n.v + 3)));
-        PutQuat((r0 * ExpRotation(h * w)).normalized(), out, n.q + 3);
+      case JointType::kFree:
+        out.segment<3>(n.q) = q.segment<3>(n.q) + h * v.segment<3>(n.v + 3);
+        PutQuat((QuatAt(q, n.q + 3) * ExpRotation(h * Vector3(v.segment<3>(n.v)))).normalized(), out, n.q + 3);
         break;
-      }
     }
   }
 }

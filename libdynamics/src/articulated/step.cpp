@@ -75,7 +75,7 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
   double last_change = std::numeric_limits<double>::infinity();
   bool converged = false;
   for (int iteration = 0; iteration < 100 && !converged; ++iteration) {
-    Move(q0_, vbar_, 0.5 * h, 0.5 * h, qs_);
+    Move(q0_, vbar_, 0.5 * h, qs_);
     if (!Configure(qs_, mid_)) return false;
     vnew_ = mid_.llt.solve(0.5 * (p0_ + p1_));
     Velocities(vnew_, mid_);
@@ -97,13 +97,13 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
   older_rate_ = last_rate_;
   last_rate_ = rate_;
   last_vbar_ = vbar_;
-  Move(q0_, vbar_, h, 0.5 * h, q1_);
+  Move(q0_, vbar_, h, q1_);
   if (!Configure(q1_, end_)) return false;
   std::vector<std::pair<int, double>> stops;
   if (Impulses(end_, q1_, h, p1_, stops)) {
     // The impulses act over the step: the midpoint velocity takes half of them.
     vbar_ = mid_.llt.solve(0.5 * (p0_ + p1_));
-    Move(q0_, vbar_, h, 0.5 * h, q1_);
+    Move(q0_, vbar_, h, q1_);
     for (const auto& [qi, limit] : stops) q1_[qi] = limit;
     if (!Configure(q1_, end_)) return false;
   }
@@ -150,7 +150,7 @@ bool Articulation::RK4Step(const std::vector<std::unique_ptr<Force>>& forces, do
     // Their share of the step's motion: half the velocity change over the step.
     vs_ = end_.llt.solve(p1_ - pnew_);
     qs_ = q1_;
-    Move(qs_, vs_, 0.5 * h, 0.25 * h, q1_);
+    Move(qs_, vs_, 0.5 * h, q1_);
     for (const auto& [qi, limit] : stops) q1_[qi] = limit;
     if (!Configure(q1_, end_)) return false;
   }
