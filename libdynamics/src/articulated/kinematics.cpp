@@ -398,12 +398,9 @@ void Articulation::Move(const Eigen::VectorXd& q, const Eigen::VectorXd& v, doub
   out = q;
   for (const Node& n : nodes_) {
     switch (n.type) {
-      case JointType::kFixed:
-        break;
+      case JointType::kFixed: break;
       case JointType::kRevolute:
-      case JointType::kPrismatic:
-        out[n.q] = q[n.q] + h * v[n.v];
-        break;
+      case JointType::kPrismatic: out[n.q] = q[n.q] + h * v[n.v]; break;
       case JointType::kSpherical:
         PutQuat((QuatAt(q, n.q) * ExpRotation(h * Vector3(v.segment<3>(n.v)))).normalized(), out, n.q);
         break;
