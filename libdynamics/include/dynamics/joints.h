@@ -14,8 +14,7 @@
 /// | revolute | angle, rad | rate, rad/s | turned by q about `axis` |
 /// | prismatic | offset, m | speed, m/s | moved by q along `axis` |
 /// | spherical | unit quaternion w, x, y, z | ω in J_c's axes, rad/s | turned by the quaternion |
-/// | free | origin x, y, z in J_p's axes, then the quaternion | ω in J_c's axes, then the origin's velocity in J_p's
-/// axes | placed |
+/// | free | origin x, y, z (J_p's axes), quaternion | ω (J_c's axes), origin's velocity (J_p's axes) | placed |
 ///
 /// Limits, damping, friction, springs and motors act on revolute and prismatic joints (their
 /// "effort" is a torque in N·m or a force in N).
