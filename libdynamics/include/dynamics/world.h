@@ -143,8 +143,9 @@ class World {
 
   /// Advances by h seconds. Never clamps angular velocity: when an implicit solve does not
   /// converge it halves the step (up to 2^10 sub-steps) and says so in the status; if even that
-  /// fails, the status says so and the state is left as before the call. Allocates nothing once
-  /// the world has stepped (scratch is kept between steps).
+  /// fails, the status says so and the state is left as before the call. A world of free bodies
+  /// allocates nothing once it has stepped (scratch is kept between steps); an articulated one
+  /// allocates a few small vectors a step.
   /// @throws std::invalid_argument if h is not finite and positive, or for an articulated world
   /// and an integrator other than implicit-midpoint and rk4.
   StepStatus Step(double h);

@@ -94,6 +94,8 @@ class Articulation {
   bool MidpointStep(const std::vector<std::unique_ptr<Force>>& forces, double t, double h,
                     std::vector<RigidBody>& bodies);
   bool RK4Step(const std::vector<std::unique_ptr<Force>>& forces, double t, double h, std::vector<RigidBody>& bodies);
+  /// Takes the step's end (q1_, p1_, configured in end_) as the state and writes the bodies.
+  void Accept(std::vector<RigidBody>& bodies);
   /// A step of a tree without degrees of freedom.
   bool Still(std::vector<RigidBody>& bodies);
   /// Kinematics, mass matrix and its factor at q (false: the mass matrix is not positive definite).

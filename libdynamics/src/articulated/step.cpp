@@ -45,6 +45,14 @@ StepStatus Articulation::Advance(Integrator integrator, const std::vector<std::u
   return status;
 }
 
+void Articulation::Accept(std::vector<RigidBody>& bodies) {
+  q_ = q1_;
+  p_ = p1_;
+  v_ = end_.llt.solve(p_);
+  Velocities(v_, end_);
+  Sync(end_, v_, bodies);
+}
+
 // Nothing moves (every joint fixed, down from the world): the bodies stay where they are.
 bool Articulation::Still(std::vector<RigidBody>& bodies) {
   if (!Configure(q_, end_)) return false;
@@ -107,11 +115,7 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
     for (const auto& [qi, limit] : stops) q1_[qi] = limit;
     if (!Configure(q1_, end_)) return false;
   }
-  q_ = q1_;
-  p_ = p1_;
-  v_ = end_.llt.solve(p_);
-  Velocities(v_, end_);
-  Sync(end_, v_, bodies);
+  Accept(bodies);
   return true;
 }
 
@@ -154,11 +158,7 @@ bool Articulation::RK4Step(const std::vector<std::unique_ptr<Force>>& forces, do
     for (const auto& [qi, limit] : stops) q1_[qi] = limit;
     if (!Configure(q1_, end_)) return false;
   }
-  q_ = q1_;
-  p_ = p1_;
-  v_ = end_.llt.solve(p_);
-  Velocities(v_, end_);
-  Sync(end_, v_, bodies);
+  Accept(bodies);
   return true;
 }
 
