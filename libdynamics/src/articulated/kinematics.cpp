@@ -211,12 +211,14 @@ Articulation::Articulation(const std::vector<Joint>& joints, std::vector<RigidBo
     }
     PlaceNode(static_cast<int>(i), q_, c);
     NodeFrame& f = c.frames[i];
-    f.V = Vp + f.S * v_.segment(n.v, n.nv);
+    f.V = Vp;
+    if (n.nv > 0) f.V += f.S * v_.segment(n.v, n.nv);
     placed[static_cast<std::size_t>(n.body)] = !(from_body && velocity_from_body);
   }
   if (!Configure(q_, end_)) throw std::invalid_argument("World::AddJoint: the mass matrix is not positive definite");
   Velocities(v_, end_);
-  p_ = end_.M.selfadjointView<Eigen::Lower>() * v_;
+  p_ = Eigen::VectorXd::Zero(nv);  // (an empty product is UB in Eigen's self-adjoint kernel)
+  if (nv > 0) p_ = end_.M.selfadjointView<Eigen::Lower>() * v_;
   Sync(end_, v_, bodies, &placed);
 }
 
