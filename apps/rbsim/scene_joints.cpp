@@ -58,11 +58,8 @@ JointSpec ReadJoint(const json& j, const std::string& path, const std::string& f
   dynamics::Joint& jt = s.joint;
   const std::string type = f.String("type", "", {"fixed", "revolute", "prismatic", "spherical", "free"});
   if (type.empty()) f.Fail("type", "is required (fixed, revolute, prismatic, spherical, free)");
-  for (auto t : {dynamics::JointType::kFixed, dynamics::JointType::kRevolute, dynamics::JointType::kPrismatic,
-                 dynamics::JointType::kSpherical, dynamics::JointType::kFree}) {
-    if (type == dynamics::JointTypeName(t)) jt.type = t;
-  }
-  const bool one_dof = jt.type == dynamics::JointType::kRevolute || jt.type == dynamics::JointType::kPrismatic;
+  jt.type = dynamics::ParseJointType(type);  // one of the names String checked
+  const bool one_dof = dynamics::HasOneCoordinate(jt.type);
   const bool revolute = jt.type == dynamics::JointType::kRevolute;
   const json* child = f.Get("child");
   if (!child) f.Fail("child", "is required: the body the joint moves");

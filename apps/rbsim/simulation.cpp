@@ -111,22 +111,19 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     throw SceneError(scene.file + ": " + scene.joints[0].field +
                      ": joints and contact (ground, static bodies, colliders) in one scene are not supported yet");
   }
-  // Every joint is placed before any is added: adding one moves its child to its initial position.
-  std::vector<dynamics::Joint> joints;
+  // Placed at the bodies as the scene puts them (PlaceJoint: as added, whatever joints added
+  // before have moved), then moved to their initial positions.
   for (const JointSpec& spec : scene.joints) {
     dynamics::Joint joint = spec.joint;
     const Vector3 anchor = spec.anchor.value_or(sim.world().body_as_added(joint.child).position);
     sim.world().PlaceJoint(joint, anchor, spec.axis);  // the axis is checked non-zero
-    joints.push_back(joint);
-  }
-  for (std::size_t k = 0; k < joints.size(); ++k) {
-    const std::string prefix = "World::AddJoint: joint '" + joints[k].name + "': ";
+    const std::string prefix = "World::AddJoint: joint '" + joint.name + "': ";
     try {
-      sim.physics.AddJoint(joints[k]);
+      sim.physics.AddJoint(joint);
     } catch (const std::exception& e) {
       std::string what = e.what();
       if (what.rfind(prefix, 0) == 0) what = what.substr(prefix.size());
-      throw SceneError(scene.file + ": " + scene.joints[k].field + ": " + what);
+      throw SceneError(scene.file + ": " + spec.field + ": " + what);
     }
   }
 

@@ -102,17 +102,15 @@ dynamics::World Ours(const std::vector<Link>& links, dynamics::Integrator integr
     mp.inertia_com = l.inertia;
     w.AddBody(dynamics::BodyFromMassProperties(mp).body);
   }
-  std::vector<dynamics::Joint> joints;  // all placed at q = 0 before any is added (adding moves bodies)
-  for (std::size_t i = 0; i < links.size(); ++i) {
+  for (std::size_t i = 0; i < links.size(); ++i) {  // PlaceJoint: at q = 0, whatever the last joint moved
     dynamics::Joint j;
     j.name = "joint" + std::to_string(i + 1);
     j.parent = static_cast<int>(i) - 1;
     j.child = static_cast<int>(i);
     w.PlaceJoint(j, links[i].anchor, links[i].axis);
     j.position = {links[i].q0};
-    joints.push_back(j);
+    w.AddJoint(j);
   }
-  for (const dynamics::Joint& j : joints) w.AddJoint(j);
   w.AddForce(dynamics::Gravity(Vector3(0, 0, -kG)));
   return w;
 }

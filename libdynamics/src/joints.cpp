@@ -19,6 +19,13 @@ const char* JointTypeName(JointType type) {
   return "?";
 }
 
+JointType ParseJointType(const std::string& name) {
+  for (JointType t : kAllJointTypes) {
+    if (name == JointTypeName(t)) return t;
+  }
+  throw std::invalid_argument("'" + name + "' is not one of fixed, revolute, prismatic, spherical, free");
+}
+
 int JointPositionSize(JointType type) {
   switch (type) {
     case JointType::kFixed: return 0;
@@ -84,7 +91,7 @@ void CheckJoint(const Joint& j, int num_bodies, const std::vector<Joint>& existi
            "' (each body is the child of one joint)");
     }
   }
-  const bool one_dof = j.type == JointType::kRevolute || j.type == JointType::kPrismatic;
+  const bool one_dof = HasOneCoordinate(j.type);
   if (one_dof && (!j.axis.allFinite() || !(j.axis.norm() > 1e-12))) fail("the axis must be finite and non-zero");
   for (const Frame* f : {&j.parent_frame, &j.child_frame}) {
     if (!f->origin.allFinite() || !f->orientation.coeffs().allFinite() || !(f->orientation.norm() > 1e-12)) {

@@ -193,11 +193,11 @@ Conservation World::Conserves() const {
     if (list.find(what) == std::string::npos) list += (list.empty() ? "" : ", ") + std::string(what);
   };
   for (const Joint& j : joints_) {
-    const bool one_dof = j.type == JointType::kRevolute || j.type == JointType::kPrismatic;
     if (j.damping > 0) note(c.energy_broken_by, "joint damping");
     if (j.friction > 0) note(c.energy_broken_by, "joint friction");
     if (j.motor.mode != JointMotor::Mode::kOff) note(c.energy_broken_by, "joint motors");
-    if (one_dof && j.limits.restitution < 1 && (std::isfinite(j.limits.lower) || std::isfinite(j.limits.upper))) {
+    if (HasOneCoordinate(j.type) && j.limits.restitution < 1 &&
+        (std::isfinite(j.limits.lower) || std::isfinite(j.limits.upper))) {
       note(c.energy_broken_by, "joint stops");
     }
     if (j.parent < 0 && j.type != JointType::kFree) note(c.momentum_broken_by, "joints to the world");

@@ -289,12 +289,11 @@ int AddJoint(dynamics::World& w, const std::string& type, int child, int parent,
              double damping, double friction, double stiffness, double rest, const std::string& motor, double target,
              double max_effort, double kp, double kd, const py::handle& position, const py::handle& velocity) {
   dynamics::Joint j;
-  bool known = false;
-  for (auto t : {dynamics::JointType::kFixed, dynamics::JointType::kRevolute, dynamics::JointType::kPrismatic,
-                 dynamics::JointType::kSpherical, dynamics::JointType::kFree}) {
-    if (type == dynamics::JointTypeName(t)) j.type = t, known = true;
+  try {
+    j.type = dynamics::ParseJointType(type);
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(std::string("type: ") + e.what());
   }
-  if (!known) throw py::value_error("type: '" + type + "' is not one of fixed, revolute, prismatic, spherical, free");
   if (child < 0 || child >= static_cast<int>(w.bodies().size())) {
     throw py::value_error("child: no body " + std::to_string(child));
   }

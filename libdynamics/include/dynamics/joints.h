@@ -29,8 +29,15 @@ namespace dynamics {
 
 enum class JointType { kFixed, kRevolute, kPrismatic, kSpherical, kFree };
 
+/// Every joint type, in the order above.
+inline constexpr JointType kAllJointTypes[] = {JointType::kFixed, JointType::kRevolute, JointType::kPrismatic,
+                                               JointType::kSpherical, JointType::kFree};
 /// "fixed", "revolute", "prismatic", "spherical", "free".
 const char* JointTypeName(JointType type);
+/// Parses a joint type's name. @throws std::invalid_argument for an unknown name, listing the known ones.
+JointType ParseJointType(const std::string& name);
+/// Revolute and prismatic joints: one coordinate, on which limits, friction, springs and motors act.
+inline bool HasOneCoordinate(JointType type) { return type == JointType::kRevolute || type == JointType::kPrismatic; }
 /// Numbers in a joint's position and velocity (table above).
 int JointPositionSize(JointType type);
 int JointVelocitySize(JointType type);

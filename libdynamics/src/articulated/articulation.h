@@ -42,6 +42,8 @@ struct Node {
   Vector3 child_origin = Vector3::Zero();
   int q = 0, nq = 0;  ///< position slice
   int v = 0, nv = 0;  ///< velocity slice
+  /// Where its quaternion starts in q (ball and free joints), -1: it has none.
+  int quaternion() const { return type == JointType::kSpherical ? q : type == JointType::kFree ? q + 3 : -1; }
 };
 
 /// What the kinematics of one configuration gives each node.
@@ -116,10 +118,9 @@ class Articulation {
   /// Returns whether any impulse was applied.
   bool Impulses(const Configuration& c, const Eigen::VectorXd& q1, double h, Eigen::VectorXd& p1,
                 std::vector<std::pair<int, double>>& stops);
-  /// Writes the bodies' poses and motions from configuration c and velocities v.
+  /// Writes the bodies' poses and motions from configuration c (its velocities set).
   /// `only` (optional): write just the bodies flagged there.
-  void Sync(const Configuration& c, const Eigen::VectorXd& v, std::vector<RigidBody>& bodies,
-            const std::vector<char>* only = nullptr) const;
+  void Sync(const Configuration& c, std::vector<RigidBody>& bodies, const std::vector<char>* only = nullptr) const;
   /// Places node i (its frame in c) from its parent's frame and q.
   void PlaceNode(int i, const Eigen::VectorXd& q, Configuration& c) const;
 
@@ -134,8 +135,9 @@ class Articulation {
   std::vector<RigidBody> stage_;
   std::vector<Wrench> wrenches_;
   std::vector<Vector6> subtree_momentum_, subtree_force_;
-  Eigen::VectorXd last_rate_, older_rate_;  ///< ṗ of the last two midpoint steps (the predictor)
-  Eigen::VectorXd last_vbar_;               ///< the last midpoint velocity
+  Eigen::VectorXd last_rate_, older_rate_;       ///< ṗ of the last two midpoint steps (the predictor)
+  Eigen::VectorXd last_vbar_;                    ///< the last midpoint velocity
+  Eigen::VectorXd saved_q_, saved_v_, saved_p_;  ///< the state before a step that may be retried
   Eigen::VectorXd q0_, p0_, q1_, p1_, vbar_, vnew_, pnew_, rate_, k_[4], kq_[4], qs_, ps_, vs_;
   struct Row {
     int joint, dof;

@@ -203,7 +203,7 @@ Articulation::Articulation(const std::vector<Joint>& joints, std::vector<RigidBo
     }
     if (n.type == JointType::kSpherical && jt->position.empty()) q_[n.q] = 1.0;
     if (n.type == JointType::kFree && !from_body && jt->position.empty()) q_[n.q + 3] = 1.0;
-    const int quat = n.type == JointType::kSpherical ? n.q : n.type == JointType::kFree ? n.q + 3 : -1;
+    const int quat = n.quaternion();
     if (quat >= 0) q_.segment<4>(quat).normalize();  // a given quaternion of any length (checked non-zero)
     for (int k = 0; k < n.nv; ++k) {
       v_[n.v + k] =
@@ -219,7 +219,7 @@ Articulation::Articulation(const std::vector<Joint>& joints, std::vector<RigidBo
   Velocities(v_, end_);
   p_ = Eigen::VectorXd::Zero(nv);  // (an empty product is UB in Eigen's self-adjoint kernel)
   if (nv > 0) p_ = end_.M.selfadjointView<Eigen::Lower>() * v_;
-  Sync(end_, v_, bodies, &placed);
+  Sync(end_, bodies, &placed);
 }
 
 void Articulation::PlaceNode(int i, const Eigen::VectorXd& q, Configuration& c) const {
@@ -307,9 +307,7 @@ void Articulation::Velocities(const Eigen::VectorXd& v, Configuration& c) const 
   }
 }
 
-void Articulation::Sync(const Configuration& c, const Eigen::VectorXd& v, std::vector<RigidBody>& bodies,
-                        const std::vector<char>* only) const {
-  (void)v;
+void Articulation::Sync(const Configuration& c, std::vector<RigidBody>& bodies, const std::vector<char>* only) const {
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
     const NodeFrame& f = c.frames[i];
     RigidBody& b = bodies[static_cast<std::size_t>(nodes_[i].body)];
@@ -329,7 +327,7 @@ void Articulation::MomentumRate(const std::vector<std::unique_ptr<Force>>& force
                                 Eigen::VectorXd& rate) {
   const std::size_t n = nodes_.size();
   if (stage.size() != inertias_.size()) stage = inertias_;
-  Sync(c, v, stage);
+  Sync(c, stage);
   wrenches_.assign(stage.size(), Wrench{});
   for (const auto& force : forces) force->Apply(t, stage, wrenches_);
   subtree_momentum_.resize(n);

@@ -17,7 +17,7 @@ double MaxAbs(const Eigen::VectorXd& x) { return x.size() ? x.cwiseAbs().maxCoef
 StepStatus Articulation::Advance(Integrator integrator, const std::vector<std::unique_ptr<Force>>& forces, double t,
                                  double h, std::vector<RigidBody>& bodies) {
   StepStatus status;
-  const Eigen::VectorXd q = q_, v = v_, p = p_;
+  saved_q_ = q_, saved_v_ = v_, saved_p_ = p_;  // into kept capacity
   for (int substeps = 1; substeps <= 1024; substeps *= 2) {
     bool ok = true;
     const double dt = h / substeps;
@@ -31,11 +31,11 @@ StepStatus Articulation::Advance(Integrator integrator, const std::vector<std::u
       status.substeps = substeps;
       return status;
     }
-    q_ = q, v_ = v, p_ = p;
+    q_ = saved_q_, v_ = saved_v_, p_ = saved_p_;
   }
   if (Configure(q_, end_)) {
     Velocities(v_, end_);
-    Sync(end_, v_, bodies);
+    Sync(end_, bodies);
   }
   status.ok = false;
   status.substeps = 1024;
@@ -50,14 +50,14 @@ void Articulation::Accept(std::vector<RigidBody>& bodies) {
   p_ = p1_;
   v_ = end_.llt.solve(p_);
   Velocities(v_, end_);
-  Sync(end_, v_, bodies);
+  Sync(end_, bodies);
 }
 
 // Nothing moves (every joint fixed, down from the world): the bodies stay where they are.
 bool Articulation::Still(std::vector<RigidBody>& bodies) {
   if (!Configure(q_, end_)) return false;
   Velocities(v_, end_);
-  Sync(end_, v_, bodies);
+  Sync(end_, bodies);
   return true;
 }
 
@@ -73,7 +73,7 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
   p0_ = p_;
   // Predictor: the rate extrapolated from the last two steps, and the midpoint velocity from the
   // last one's (v_n ≈ (v̄_{n−½} + v̄_{n+½}) / 2); the first step starts from the current state.
-  if (older_rate_.size() == p_.size() && p_.size() > 0) {
+  if (older_rate_.size() == p_.size()) {
     p1_ = p0_ + h * (2 * last_rate_ - older_rate_);
     vbar_ = 2 * v_ - last_vbar_;
   } else {
@@ -143,7 +143,7 @@ bool Articulation::RK4Step(const std::vector<std::unique_ptr<Force>>& forces, do
   q1_ = q0_ + (h / 6) * (kq_[0] + 2 * kq_[1] + 2 * kq_[2] + kq_[3]);
   p1_ = p0_ + (h / 6) * (k_[0] + 2 * k_[1] + 2 * k_[2] + k_[3]);
   for (const Node& n : nodes_) {
-    const int at = n.type == JointType::kSpherical ? n.q : n.type == JointType::kFree ? n.q + 3 : -1;
+    const int at = n.quaternion();
     if (at >= 0) q1_.segment<4>(at).normalize();
   }
   if (!q1_.allFinite() || !p1_.allFinite()) return false;
