@@ -23,6 +23,11 @@
 ///      a small slop (a quarter of a mesh field's cell; half a percent of a primitive's size) is
 ///      pushed out by split impulses that move the bodies without changing their velocities
 ///      (ContactStats::pushed).
+/// Jointed bodies (an articulated world) take part through their joints: the kick and the drift
+/// are the joints' (symplectic Euler on the joint coordinates and momenta), and an impulse on
+/// one link moves its whole tree (its response Φ M⁻¹ Φᵀ through the tree's mass matrix M), with
+/// the joints' stops, friction and velocity motors solved after the contacts. Sleeping and shock
+/// propagation leave jointed bodies out.
 /// With no contact in the world the step is the world's own integrator, bit for bit: free flight
 /// is unchanged. Contact steps are first order (semi-implicit Euler) and dissipative: the
 /// impulses never add kinetic energy; only the push-out may lift a body (by ContactStats::pushed).
@@ -154,6 +159,10 @@ struct ContactOptions {
   bool sleeping = false;
   double sleep_speed = 1e-3;
   double sleep_time = 0.5;
+  /// Jointed bodies: links of one articulation collide with each other, except a joint's parent
+  /// and child (which meet at the joint). Off by default, as in URDF simulators (robot files
+  /// often let links' collision shapes overlap where they never touch in motion).
+  bool self_collision = false;
 };
 
 /// What the last step's contact did (diagnostics).
@@ -194,8 +203,7 @@ class ContactWorld {
   /// @throws std::invalid_argument for a zero or non-finite normal.
   void AddGround(Ground ground);
   void AddForce(std::unique_ptr<Force> force) { world_.AddForce(std::move(force)); }
-  /// A joint (World::AddJoint). Contact does not act on an articulated world yet: its step fails,
-  /// saying so, as soon as a contact would need solving.
+  /// A joint (World::AddJoint): its bodies then step in joint coordinates, through contact too.
   int AddJoint(const Joint& joint) { return world_.AddJoint(joint); }
   /// The material of contacts between bodies a and b (-1: the ground and static bodies).
   void SetPairMaterial(int a, int b, const Material& material);

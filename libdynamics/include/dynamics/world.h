@@ -170,6 +170,7 @@ class World {
   const std::vector<std::unique_ptr<Force>>& forces() const { return forces_; }
 
  private:
+  friend class ContactWorld;  // steps the articulation through contact
   StepStatus Advance(double h);
 
   Integrator integrator_;

@@ -23,6 +23,10 @@
 #include "dynamics/joints.h"
 #include "dynamics/world.h"
 
+namespace dynamics::contact {
+struct Coupling;
+}
+
 namespace dynamics::internal {
 
 using Vector6 = Eigen::Matrix<double, 6, 1>;
@@ -88,6 +92,19 @@ class Articulation {
   /// solve does not converge. Writes the bodies' states.
   StepStatus Advance(Integrator integrator, const std::vector<std::unique_ptr<Force>>& forces, double t, double h,
                      std::vector<RigidBody>& bodies);
+  // Contact steps (ContactWorld): symplectic Euler on (q, p) with impulses from outside, the
+  // joints' springs, dampers and servos implicit (D, K their diagonal gains) —
+  //   (M + h D + h² K) u = p + h ṗ(q, v) + h D v + Jᵀλ,  q ← q ⊕ h u,  p ← M(q) u.
+  /// The kick p + h ṗ(q, v) at the start of the step (the state is kept): each body's (v, ω)
+  /// after it into `kicked`. False: the mass matrix is not positive definite.
+  bool ContactKick(const std::vector<std::unique_ptr<Force>>& forces, double t, double h, std::vector<Vector6>& kicked);
+  /// How the bodies answer impulses at the start of the step (after ContactKick).
+  void Couple(contact::Coupling& coupling);
+  /// Ends the step: each body's impulse (force and torque about its centre) and push-out
+  /// (a pseudo-impulse that moves without changing velocities) added, then the joints' stops,
+  /// friction and velocity motors; q moved by h; the bodies written.
+  bool ContactFinish(const std::vector<Wrench>& impulses, const std::vector<Wrench>& pushes, double h,
+                     std::vector<RigidBody>& bodies);
   JointState State(int joint) const;
   /// Σ ½ k (q − rest)² over the joints' springs, J.
   double SpringEnergy() const;
@@ -123,6 +140,10 @@ class Articulation {
   void Sync(const Configuration& c, std::vector<RigidBody>& bodies, const std::vector<char>* only = nullptr) const;
   /// Places node i (its frame in c) from its parent's frame and q.
   void PlaceNode(int i, const Eigen::VectorXd& q, Configuration& c) const;
+  /// Each node's Jacobian in c: its body's (v, ω) = Φ u (6 × nv).
+  void BodyJacobians(const Configuration& c, std::vector<Eigen::MatrixXd>& phi) const;
+  /// Σ Φᵀ w over the bodies' wrenches (force, torque about the centre).
+  Eigen::VectorXd GeneralizedImpulse(const std::vector<Wrench>& w) const;
 
   std::vector<Joint> joints_;
   std::vector<Node> nodes_;
@@ -145,6 +166,9 @@ class Articulation {
     bool stop;
   };
   std::vector<Row> rows_;
+  std::vector<Eigen::MatrixXd> phi_;  ///< ContactKick's body Jacobians (by node)
+  Eigen::VectorXd kicked_p_;          ///< ContactKick's p + h ṗ (+ h D v)
+  Configuration effective_;           ///< ContactKick's start with M + h D + h² K
 };
 
 }  // namespace dynamics::internal

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "../articulated/articulation.h"
 #include "../integrators/integrator.h"
 #include "broad_phase.h"
 #include "dynamics/contact.h"
@@ -105,6 +106,8 @@ struct ContactWorld::Impl {
   internal::StepScratch scratch;                          // the forces' wrenches
   std::vector<std::vector<contact::ContactPoint>> found;  // each candidate pair's points
   std::vector<char> supported;                            // each candidate pair's kinds have a routine
+  contact::Coupling coupling;                             // an articulated world's bodies (a step's)
+  std::vector<internal::Vector6> kicked;                  // their (v, ω) after the kick
 
   // The worker pool for `threads` (null for one thread).
   contact::Workers* WorkersFor(int threads) {
@@ -375,6 +378,69 @@ StepStatus DriftBodies(std::vector<RigidBody>& bodies, const std::vector<contact
   return status;
 }
 
+// The kick of an articulated world: each body's velocities after it (from the joints' kick), at
+// the start of the step, and its own inverse mass and inertia (for the kinetic energy; impulses
+// act through the coupling). Returns the largest speed the forces give in one step.
+double JointedKick(const std::vector<RigidBody>& bodies, const std::vector<internal::Vector6>& kicked,
+                   std::vector<contact::Velocities>& vel, std::vector<contact::Velocities>& before_kick,
+                   contact::BodyResponse& response) {
+  const std::size_t nb = bodies.size();
+  vel.resize(nb);
+  before_kick.resize(nb);
+  response.inv_inertia.resize(nb);
+  response.inv_mass.resize(nb);
+  double kick_speed = 0;
+  for (std::size_t i = 0; i < nb; ++i) {
+    const RigidBody& b = bodies[i];
+    const Matrix3 R = b.Rotation();
+    response.inv_inertia[i] = R * b.inertia.cwiseInverse().asDiagonal() * R.transpose();
+    response.inv_mass[i] = 1.0 / b.mass;
+    before_kick[i] = {b.velocity, b.AngularVelocity()};
+    vel[i] = {kicked[i].head<3>(), kicked[i].tail<3>()};
+    kick_speed = std::max(kick_speed, (vel[i].v - before_kick[i].v).norm());
+  }
+  return kick_speed;
+}
+
+// The drift of an articulated world: the impulses the solve found (and the push-out's) as
+// wrenches on the bodies, handed to the joints, which finish the step.
+StepStatus DriftJointed(internal::Articulation& jointed, const std::vector<contact::Row>& rows,
+                        const std::vector<contact::Patch>& patches, const std::vector<contact::Velocities>& pseudo,
+                        const std::vector<double>& radius, double h, std::vector<RigidBody>& bodies,
+                        ContactStats& stats) {
+  std::vector<Wrench> impulses(bodies.size()), pushes(bodies.size());
+  auto add = [](std::vector<Wrench>& w, int body, const Vector3& f, const Vector3& tau) {
+    if (body < 0) return;
+    w[static_cast<std::size_t>(body)].force += f;
+    w[static_cast<std::size_t>(body)].torque += tau;
+  };
+  for (const contact::Row& r : rows) {
+    add(impulses, r.a, r.lambda_n * r.n, r.lambda_n * r.ang_a);
+    add(impulses, r.b, -r.lambda_n * r.n, -r.lambda_n * r.ang_b);
+    if (r.push > 0) {
+      add(pushes, r.a, r.push * r.n, r.push * r.ang_a);
+      add(pushes, r.b, -r.push * r.n, -r.push * r.ang_b);
+    }
+  }
+  for (const contact::Patch& p : patches) {
+    const Vector3 f = p.t1 * p.lambda[0] + p.t2 * p.lambda[1];
+    add(impulses, p.a, f, p.ang_a * p.lambda);
+    add(impulses, p.b, -f, -(p.ang_b * p.lambda));
+  }
+  StepStatus status;
+  if (!jointed.ContactFinish(impulses, pushes, h, bodies)) {
+    status.ok = false;
+    status.message =
+        "the joints' step through contact failed (a configuration whose mass matrix is not positive "
+        "definite, or a state no longer finite)";
+    return status;
+  }
+  for (std::size_t k = 0; k < pseudo.size(); ++k) {
+    stats.pushed = std::max(stats.pushed, h * (pseudo[k].v.norm() + pseudo[k].w.norm() * radius[k]));
+  }
+  return status;
+}
+
 double KineticEnergy(const std::vector<RigidBody>& bodies, const std::vector<contact::Velocities>& vel) {
   double e = 0;
   for (std::size_t k = 0; k < bodies.size(); ++k) {
@@ -398,9 +464,24 @@ StepStatus ContactWorld::Step(double h) {
   const int nb = static_cast<int>(bodies.size());
   stats_ = {};
   // 1. The kick: velocities after this step's forces, before contact.
-  internal::StepContext context(bodies, world_.forces(), m.scratch, world_.num_threads());
-  context.ComputeWrenches(world_.time());
-  const double kick_speed = Kick(bodies, context.wrenches(), h, m.vel, m.before_kick, m.response);
+  internal::Articulation* const jointed = world_.articulation_.get();
+  double kick_speed = 0;
+  if (jointed != nullptr) {
+    if (!jointed->ContactKick(world_.forces(), world_.time(), h, m.kicked)) {
+      StepStatus failure;
+      failure.ok = false;
+      failure.message = "the joints' mass matrix is not positive definite at t = " + std::to_string(world_.time());
+      return failure;
+    }
+    jointed->Couple(m.coupling);
+    kick_speed = JointedKick(bodies, m.kicked, m.vel, m.before_kick, m.response);
+    m.response.coupling = &m.coupling;
+  } else {
+    internal::StepContext context(bodies, world_.forces(), m.scratch, world_.num_threads());
+    context.ComputeWrenches(world_.time());
+    kick_speed = Kick(bodies, context.wrenches(), h, m.vel, m.before_kick, m.response);
+    m.response.coupling = nullptr;
+  }
   const double bounce_threshold =
       options_.restitution_threshold > 0 ? options_.restitution_threshold : 2 * kick_speed + 1e-12;
   // 2. Contacts at the start-of-step positions, within each body's reach in this step.
@@ -423,6 +504,7 @@ StepStatus ContactWorld::Step(double h) {
   std::vector<contact::ContactPoint> points;
   for (std::size_t k = 0; k < posed.size(); ++k) {
     if (!m.collides[k]) continue;
+    if (jointed != nullptr && !m.coupling.movable[k]) continue;  // welded to the world
     for (const Ground& g : m.grounds) {
       if (g.normal.dot(posed[k].t) - g.offset - radius[k] >= broad[k].reach) continue;
       points.clear();
@@ -434,7 +516,20 @@ StepStatus ContactWorld::Step(double h) {
     }
   }
   const std::vector<contact::BroadStatic>& statics = m.static_broad;
-  const std::vector<contact::Candidate> candidates = contact::FindCandidates(broad, statics);
+  std::vector<contact::Candidate> candidates = contact::FindCandidates(broad, statics);
+  if (jointed != nullptr) {
+    const contact::Coupling& c = m.coupling;
+    candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
+                                    [&](const contact::Candidate& p) {
+                                      const auto a = static_cast<std::size_t>(p.a);
+                                      if (p.b < 0) return !c.movable[a];
+                                      const auto b = static_cast<std::size_t>(p.b);
+                                      if (!c.movable[a] && !c.movable[b]) return true;
+                                      if (c.tree[a] != c.tree[b]) return false;
+                                      return !options_.self_collision || c.parent[a] == p.b || c.parent[b] == p.a;
+                                    }),
+                     candidates.end());
+  }
   std::vector<contact::PairQuery> queries;
   queries.reserve(candidates.size());
   for (const contact::Candidate& c : candidates) {
@@ -469,13 +564,19 @@ StepStatus ContactWorld::Step(double h) {
                     b >= 0 ? radius[static_cast<std::size_t>(b)] : statics[static_cast<std::size_t>(-1 - b)].radius),
                m.rows, stats_);
   }
-  stats_.contacts = static_cast<int>(m.rows.size());
-  if (!m.rows.empty() && world_.articulated()) {
-    StepStatus failure;
-    failure.ok = false;
-    failure.message = "contact with jointed bodies is not supported yet (the joints step in joint coordinates)";
-    return failure;
+  if (jointed != nullptr) {
+    // A contact whose normal no motion of the trees changes (a hinged link pressed along its
+    // axis) takes no impulse: its row is left out (its response would be singular).
+    m.rows.erase(std::remove_if(m.rows.begin(), m.rows.end(),
+                                [&](const contact::Row& r) {
+                                  const double own =
+                                      m.response.inv_mass[static_cast<std::size_t>(r.a)] +
+                                      (r.b >= 0 ? m.response.inv_mass[static_cast<std::size_t>(r.b)] : 0);
+                                  return !(m.coupling.NormalResponse(r) > 1e-9 * own);
+                                }),
+                 m.rows.end());
   }
+  stats_.contacts = static_cast<int>(m.rows.size());
   if (m.rows.empty()) {  // free flight: the world's own integrator, bit for bit
     m.cache = {};
     std::fill(m.sleep.asleep.begin(), m.sleep.asleep.end(), false);
@@ -486,6 +587,11 @@ StepStatus ContactWorld::Step(double h) {
   // asleep are held still (no kick, as heavy as the ground), and contacts among them alone are
   // not solved (their impulses are kept for when the island wakes).
   contact::Islands islands(nb, m.rows);
+  if (jointed != nullptr) {
+    for (const std::vector<int>& tree : m.coupling.members) {
+      for (const int k : tree) islands.Join(k, tree.front());
+    }
+  }
   contact::WakeTouched(islands, m.sleep);
   for (std::size_t k = 0; k < bodies.size(); ++k) {
     if (m.sleep.asleep[k]) {
@@ -523,10 +629,11 @@ StepStatus ContactWorld::Step(double h) {
   stats_.dissipated = energy_before - KineticEnergy(bodies, m.vel);
   // 5. Position correction of overlap beyond each contact's slop, then 6. the drift.
   const std::vector<contact::Velocities> pseudo = contact::PushOutVelocities(m.rows, nb, h, settings);
-  StepStatus status = DriftBodies(bodies, m.vel, pseudo, m.sleep.asleep, radius, h, stats_);
+  StepStatus status = jointed != nullptr ? DriftJointed(*jointed, m.rows, patches, pseudo, radius, h, bodies, stats_)
+                                         : DriftBodies(bodies, m.vel, pseudo, m.sleep.asleep, radius, h, stats_);
   if (!status.ok) return status;
   world_.set_time(world_.time() + h);
-  if (options_.sleeping) {
+  if (options_.sleeping && jointed == nullptr) {
     contact::FallAsleep(islands, m.rows, m.collides, radius, options_.sleep_speed, options_.sleep_time, h, bodies,
                         m.sleep);
     stats_.sleeping = static_cast<int>(std::count(m.sleep.asleep.begin(), m.sleep.asleep.end(), true));

@@ -14,6 +14,8 @@ class Islands {
   Islands(int bodies, const std::vector<Row>& rows);
   /// The island's representative body.
   int Find(int i);
+  /// Puts a and b in one island (the bodies of one articulation move together).
+  void Join(int a, int b) { parent_[static_cast<std::size_t>(Find(a))] = Find(b); }
 
  private:
   std::vector<int> parent_;

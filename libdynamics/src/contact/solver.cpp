@@ -26,8 +26,43 @@ Matrix3 PointResponse(const BodyResponse& bodies, int i, const Vector3& r) {
   return InvMass(bodies, i) * Matrix3::Identity() - S * InvInertia(bodies, i) * S;
 }
 
+// P = [E, −[r]×]: a point's velocity from its body's (v, ω); Pᵀ f the wrench of a force at it.
+Eigen::Matrix<double, 3, 6> PointMap(const Vector3& r) {
+  Eigen::Matrix<double, 3, 6> P;
+  P << Matrix3::Identity(), -internal::Skew(r);
+  return P;
+}
+
+// Jointed bodies: the response of a's generalized directions Wa (columns of wrenches on a) minus
+// b's to impulses along them (+ on a, − on b): Waᵀ G_aa Wa + Wbᵀ G_bb Wb − Waᵀ G_ab Wb − Wbᵀ G_ba Wa.
+template <int N>
+Eigen::Matrix<double, N, N> CoupledResponse(const Coupling& c, int a, int b, const Eigen::Matrix<double, 6, N>& Wa,
+                                            const Eigen::Matrix<double, 6, N>& Wb) {
+  Eigen::Matrix<double, N, N> K = Wa.transpose() * c.Response(a, a) * Wa;
+  if (b >= 0) {
+    K += Wb.transpose() * c.Response(b, b) * Wb;
+    if (c.Joined(a, b)) {
+      K -= Wa.transpose() * c.Response(a, b) * Wb;
+      K -= Wb.transpose() * c.Response(b, a) * Wa;
+    }
+  }
+  return K;
+}
+
 // A row's effective masses and Jacobian.
 void SetRowJacobian(Row& r, const BodyResponse& bodies) {
+  if (bodies.coupling != nullptr) {
+    r.coupling = bodies.coupling;
+    r.ang_a = r.ra.cross(r.n);
+    r.ang_b = r.b >= 0 ? Vector3(r.rb.cross(r.n)) : Vector3::Zero();
+    const Eigen::Matrix<double, 6, 3> Wa = PointMap(r.ra).transpose();
+    const Eigen::Matrix<double, 6, 3> Wb =
+        r.b >= 0 ? Eigen::Matrix<double, 6, 3>(PointMap(r.rb).transpose()) : Eigen::Matrix<double, 6, 3>::Zero();
+    r.Ka = CoupledResponse<3>(*r.coupling, r.a, r.b, Wa, Wb);
+    r.Kb.setZero();
+    r.mass_n = 1.0 / r.n.dot(r.Ka * r.n);
+    return;
+  }
   r.Ka = PointResponse(bodies, r.a, r.ra);
   r.Kb = PointResponse(bodies, r.b, r.rb);
   r.mass_n = 1.0 / r.n.dot((r.Ka + r.Kb) * r.n);
@@ -53,6 +88,33 @@ Matrix3 PatchMass(const Matrix3& K, double rho) {
 // A patch's Jacobian and effective masses at its anchor (ra, rb): generalized directions (t1, t2
 // at r; ρ n as a turn), each body's K_ij = (1/m) d_i·d_j + a_i·I⁻¹ a_j.
 void SetPatchJacobian(Patch& p, const BodyResponse& bodies) {
+  if (bodies.coupling != nullptr) {
+    p.coupling = bodies.coupling;
+    auto directions = [&](const Vector3& r, Matrix3& ang) {
+      ang.col(0) = r.cross(p.t1);
+      ang.col(1) = r.cross(p.t2);
+      ang.col(2) = p.rho * p.n;
+      Eigen::Matrix<double, 6, 3> W;
+      W.topRows<3>() << p.t1, p.t2, Vector3::Zero();
+      W.bottomRows<3>() = ang;
+      return W;
+    };
+    const Eigen::Matrix<double, 6, 3> Wa = directions(p.ra, p.ang_a);
+    Eigen::Matrix<double, 6, 3> Wb = Eigen::Matrix<double, 6, 3>::Zero();
+    if (p.b >= 0) {
+      Wb = directions(p.rb, p.ang_b);
+    } else {
+      p.ang_b.setZero();
+    }
+    p.Ka = CoupledResponse<3>(*p.coupling, p.a, p.b, Wa, Wb);
+    // A tree may not move a point along every direction (a hinge's bob not along its axis): the
+    // response is then singular there, and so is the relative velocity, which no impulse
+    // changes. A regularization of 10⁻⁹ of the largest response keeps the inverse finite.
+    p.Ka.diagonal().array() += 1e-9 * p.Ka.diagonal().maxCoeff();
+    p.Kb.setZero();
+    p.mass = PatchMass(p.Ka, p.rho);
+    return;
+  }
   p.inv_mass_a = InvMass(bodies, p.a);
   p.inv_mass_b = InvMass(bodies, p.b);
   auto side = [&](int i, const Vector3& r, double inv_mass, Matrix3& ang, Matrix3& turn, Matrix3& K) {
@@ -92,6 +154,11 @@ Vector3 PatchVelocity(const std::vector<Velocities>& vel, const Patch& p) {
 
 void ApplyPatch(std::vector<Velocities>& vel, const Patch& p, const Vector3& d, int frozen) {
   const Vector3 f = p.t1 * d[0] + p.t2 * d[1];
+  if (p.coupling != nullptr) {
+    p.coupling->Apply(vel, p.a, f, p.ang_a * d);
+    if (p.b >= 0) p.coupling->Apply(vel, p.b, -f, -(p.ang_b * d));
+    return;
+  }
   if (p.a != frozen) {
     Velocities& va = vel[static_cast<std::size_t>(p.a)];
     va.v += p.inv_mass_a * f;
@@ -316,6 +383,15 @@ void SetNormalBlock(Patch& p, const std::vector<Row>& rows) {
   p.block.setZero();
   if (p.count < 2 || p.count > 4) return;
   const Row* r = &rows[static_cast<std::size_t>(p.first)];
+  if (p.coupling != nullptr) {
+    Eigen::Matrix<double, 6, 4> Wa = Eigen::Matrix<double, 6, 4>::Zero(), Wb = Eigen::Matrix<double, 6, 4>::Zero();
+    for (int i = 0; i < p.count; ++i) {
+      Wa.col(i) << r[i].n, r[i].ang_a;
+      if (p.b >= 0) Wb.col(i) << r[i].n, r[i].ang_b;
+    }
+    p.block = CoupledResponse<4>(*p.coupling, p.a, p.b, Wa, Wb);
+    return;
+  }
   for (int i = 0; i < p.count; ++i) {
     for (int j = 0; j < p.count; ++j) {
       const double nn = r[i].n.dot(r[j].n);
@@ -462,11 +538,19 @@ void PropagateShock(std::vector<Row>& rows, std::vector<Patch>& patches, const s
 // An island's bodies, their kinetic energy, and a copy of its impulses and velocities to go back to.
 class IslandState {
  public:
-  IslandState(const std::vector<Patch>& patches, const std::vector<int>& order) {
+  IslandState(const std::vector<Patch>& patches, const std::vector<int>& order, const Coupling* coupling) {
+    auto add = [&](int body) {
+      if (coupling == nullptr) {
+        members_.push_back(body);
+        return;
+      }
+      const auto& tree = coupling->members[static_cast<std::size_t>(coupling->tree[static_cast<std::size_t>(body)])];
+      members_.insert(members_.end(), tree.begin(), tree.end());  // all of them move
+    };
     for (const int k : order) {
       const Patch& p = patches[static_cast<std::size_t>(k)];
-      members_.push_back(p.a);
-      if (p.b >= 0) members_.push_back(p.b);
+      add(p.a);
+      if (p.b >= 0) add(p.b);
     }
     std::sort(members_.begin(), members_.end());
     members_.erase(std::unique(members_.begin(), members_.end()), members_.end());
@@ -555,7 +639,7 @@ int SolveIsland(std::vector<Row>& rows, std::vector<Patch>& patches, const std::
     if (sweeps == settings.max_iterations) PropagateShock(rows, patches, order, vel, bodies, body_level, settings);
     return sweeps;
   }
-  IslandState state(patches, order);
+  IslandState state(patches, order, bodies.coupling);
   const double kicked = state.Energy(vel, bodies);
   state.Save(rows, patches, order, vel);  // the kicked velocities, the warm start's impulses
   WarmStart(rows, patches, order, vel);
@@ -579,6 +663,27 @@ int SolveIsland(std::vector<Row>& rows, std::vector<Patch>& patches, const std::
 }
 
 }  // namespace
+
+void Coupling::Apply(std::vector<Velocities>& vel, int a, const Vector3& f, const Vector3& tau) const {
+  const auto t = static_cast<std::size_t>(tree[static_cast<std::size_t>(a)]);
+  const std::vector<int>& m = members[t];
+  const std::size_t n = m.size(), k = static_cast<std::size_t>(slot[static_cast<std::size_t>(a)]);
+  Vector6 w;
+  w << f, tau;
+  for (std::size_t j = 0; j < n; ++j) {
+    const Vector6 d = response[t][j * n + k] * w;
+    Velocities& v = vel[static_cast<std::size_t>(m[j])];
+    v.v += d.head<3>();
+    v.w += d.tail<3>();
+  }
+}
+
+double Coupling::NormalResponse(const Row& r) const {
+  Vector6 wa, wb = Vector6::Zero();
+  wa << r.n, r.ra.cross(r.n);
+  if (r.b >= 0) wb << r.n, r.rb.cross(r.n);
+  return CoupledResponse<1>(*this, r.a, r.b, Eigen::Matrix<double, 6, 1>(wa), Eigen::Matrix<double, 6, 1>(wb))(0, 0);
+}
 
 Vector3 RelativeVelocity(const std::vector<Velocities>& vel, int a, int b, const Vector3& ra, const Vector3& rb) {
   const Velocities& va = vel[static_cast<std::size_t>(a)];
@@ -692,6 +797,8 @@ int SolveImpulses(std::vector<Row>& rows, std::vector<Patch>& patches, std::vect
   for (Patch& p : patches) {
     const int la = body_level[static_cast<std::size_t>(p.a)];
     p.level = p.b < 0 ? la : std::min(la, body_level[static_cast<std::size_t>(p.b)]);
+    // Jointed bodies are not held still level by level (their tree moves as one).
+    if (p.coupling != nullptr) p.level = std::numeric_limits<int>::max();
   }
   std::vector<int> order(patches.size());
   std::iota(order.begin(), order.end(), 0);

@@ -18,6 +18,38 @@ struct Velocities {
   Vector3 v, w;  // linear, angular
 };
 
+using Vector6 = Eigen::Matrix<double, 6, 1>;
+using Matrix6 = Eigen::Matrix<double, 6, 6>;
+
+struct Row;
+
+/// Jointed bodies answer an impulse together (an articulated world: every body is in a tree, a
+/// lone body alone in its own). Response(j, k) maps an impulsive wrench on body k — force f and
+/// torque τ about k's centre — to the change of body j's (v, ω): Φ_j M⁻¹ Φ_kᵀ with M the tree's
+/// mass matrix and Φ the bodies' Jacobians. Bodies of different trees do not couple.
+struct Coupling {
+  std::vector<int> tree;                       ///< each body's tree
+  std::vector<int> slot;                       ///< each body's index among its tree's members
+  std::vector<std::vector<int>> members;       ///< each tree's bodies
+  std::vector<std::vector<Matrix6>> response;  ///< each tree's blocks, [j × size + k]
+  /// Bodies that move at all (some joint between them and the world has a degree of freedom).
+  std::vector<char> movable;
+  std::vector<int> parent;  ///< each body's parent body in its tree (-1: a root)
+  const Matrix6& Response(int j, int k) const {
+    const auto t = static_cast<std::size_t>(tree[static_cast<std::size_t>(j)]);
+    return response[t][static_cast<std::size_t>(slot[static_cast<std::size_t>(j)]) * members[t].size() +
+                       static_cast<std::size_t>(slot[static_cast<std::size_t>(k)])];
+  }
+  bool Joined(int a, int b) const {
+    return b >= 0 && tree[static_cast<std::size_t>(a)] == tree[static_cast<std::size_t>(b)];
+  }
+  /// n·K n of a row: its normal velocity's change per unit impulse (0: no motion of the trees
+  /// moves the point along its normal).
+  double NormalResponse(const Row& r) const;
+  /// Adds to every body of a's tree its response to the impulse (f, τ about a's centre) on a.
+  void Apply(std::vector<Velocities>& vel, int a, const Vector3& f, const Vector3& tau) const;
+};
+
 /// (body a, the other: a body's index, -2 - a static body's, INT_MIN + a ground's, feature):
 /// which contact a row is, step after step.
 using RowKey = std::tuple<int, int, std::uint32_t>;
@@ -42,6 +74,9 @@ struct Row {
   // Overlap beyond this is pushed out after the step (< 0: never).
   double slop = -1;
   double push = 0;  // its accumulated pseudo-impulse
+  // Jointed bodies (else null): impulses act through the coupling, and Ka holds the whole point
+  // response of the relative velocity (Kb zero).
+  const Coupling* coupling = nullptr;
 };
 
 /// The friction of a contact patch: the rows of one pair of bodies whose normals agree (within
@@ -70,10 +105,11 @@ struct Patch {
   // point i per unit normal impulse at point j.
   Eigen::Matrix4d block = Eigen::Matrix4d::Zero();
   double mu_s = 0, mu_k = 0;
-  double mu = 0;                     // the bound of this step: μs for a patch that holds, μk for one that slides
-  bool sliding = false;              // did not hold last step, and slides at the start of this one
-  Vector3 lambda = Vector3::Zero();  // impulses (f·t1, f·t2, τ/ρ)
-  double nu = 0;                     // the multiplier of its last projection onto the limit
+  double mu = 0;                       // the bound of this step: μs for a patch that holds, μk for one that slides
+  bool sliding = false;                // did not hold last step, and slides at the start of this one
+  Vector3 lambda = Vector3::Zero();    // impulses (f·t1, f·t2, τ/ρ)
+  double nu = 0;                       // the multiplier of its last projection onto the limit
+  const Coupling* coupling = nullptr;  // as Row::coupling (Ka the whole response, Kb zero)
 };
 
 /// Normals within this angle (rad) of a patch's first belong to it: a flat face's points (a
@@ -101,9 +137,12 @@ struct ContactCache {
 };
 
 /// Each body's response to impulses: 0 inverse mass and inertia for a body held still (asleep).
+/// With a coupling (an articulated world) the impulses act through it; the inverse masses and
+/// inertias are then each body's own, for its kinetic energy.
 struct BodyResponse {
   std::vector<double> inv_mass;
   std::vector<Matrix3> inv_inertia;
+  const Coupling* coupling = nullptr;
 };
 
 /// The velocity of a point (ra from a's centre, rb from b's) on a relative to b (b < 0: at rest).
@@ -125,6 +164,11 @@ inline double NormalSpeed(const std::vector<Velocities>& vel, const Row& r) {
 
 /// A normal impulse d at a row, on a and (opposite) on b; the body `frozen` is not moved.
 inline void ApplyNormal(std::vector<Velocities>& vel, const Row& r, double d, int frozen) {
+  if (r.coupling != nullptr) {  // (never frozen: shock propagation skips jointed bodies)
+    r.coupling->Apply(vel, r.a, d * r.n, d * r.ang_a);
+    if (r.b >= 0) r.coupling->Apply(vel, r.b, -d * r.n, -d * r.ang_b);
+    return;
+  }
   if (r.a != frozen) {
     Velocities& va = vel[static_cast<std::size_t>(r.a)];
     va.v += (r.inv_mass_a * d) * r.n;

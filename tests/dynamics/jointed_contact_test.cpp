@@ -1,0 +1,273 @@
+// Jointed bodies in contact: a pendulum striking a wall rebounds with the restitution's share of
+// its angular velocity (a one-degree-of-freedom impact: ω⁺ = −e ω⁻, ω⁻ from energy), a
+// four-legged robot dropped limp comes to rest and, held by PD servos, stands; a two-link arm
+// resting its hand on a table holds still; an impulse on one link moves its whole tree as the
+// tree's mass matrix says (a free body hit beside the same body jointed to nothing).
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include <gtest/gtest.h>
+
+#include "dynamics/contact.h"
+#include "dynamics/joints.h"
+#include "dynamics/world.h"
+
+namespace {
+
+using dynamics::Collider;
+using dynamics::ContactOptions;
+using dynamics::ContactWorld;
+using dynamics::Integrator;
+using dynamics::Joint;
+using dynamics::JointType;
+using dynamics::Material;
+using dynamics::RigidBody;
+using dynamics::World;
+using massprops::Matrix3;
+using massprops::Vector3;
+namespace shape = dynamics::shape;
+
+constexpr double kG = 9.81;
+
+RigidBody Box(double m, const Vector3& size, const Vector3& at) {
+  RigidBody b;
+  b.mass = m;
+  const Vector3 s2 = size.cwiseProduct(size);
+  b.inertia = Vector3(s2.y() + s2.z(), s2.x() + s2.z(), s2.x() + s2.y()) * (m / 12.0);
+  b.position = at;
+  return b;
+}
+
+Collider BoxCollider(const Vector3& size, Material mat = {}) {
+  return Collider{shape::Box{size / 2}, Matrix3::Identity(), Vector3::Zero(), mat};
+}
+
+ContactWorld MakeWorld(Integrator integrator = Integrator::kImplicitMidpoint, ContactOptions options = {}) {
+  World w(integrator);
+  w.AddForce(dynamics::Gravity(Vector3(0, 0, -kG)));
+  return ContactWorld(std::move(w), options);
+}
+
+Joint Hinge(const ContactWorld& c, int parent, int child, const Vector3& anchor, const Vector3& axis) {
+  Joint j;
+  j.name = "j" + std::to_string(child);
+  j.type = JointType::kRevolute;
+  j.parent = parent;
+  j.child = child;
+  c.world().PlaceJoint(j, anchor, axis);
+  return j;
+}
+
+void Simulate(ContactWorld& w, double h, long n, const std::function<void(long)>& each = {}) {
+  for (long s = 0; s < n; ++s) {
+    const dynamics::StepStatus st = w.Step(h);
+    ASSERT_TRUE(st.ok) << st.message;
+    if (each) each(s);
+  }
+}
+
+// A four-legged robot: a 0.4 × 0.2 × 0.08 m body (6 kg) and four legs of two 0.2 m links
+// (0.3 kg each) hinged about y at the hip and the knee, standing straight with its feet 1 cm
+// above z = `lift`. Returns the body's index; `joints` receives the eight hinges.
+int AddQuadruped(ContactWorld& w, double lift, std::vector<int>& joints,
+                 const std::function<void(Joint&, bool knee)>& configure) {
+  const Vector3 body_size(0.4, 0.2, 0.08), leg(0.04, 0.04, 0.2);
+  const double leg_length = 0.2, foot = lift + 0.01;
+  const double hip_z = foot + 2 * leg_length;
+  const int base = w.AddBody(Box(6.0, body_size, Vector3(0, 0, hip_z + 0.04)), BoxCollider(body_size));
+  for (const double sx : {0.15, -0.15}) {
+    for (const double sy : {0.12, -0.12}) {
+      const int thigh = w.AddBody(Box(0.3, leg, Vector3(sx, sy, hip_z - leg_length / 2)), BoxCollider(leg));
+      const int shin = w.AddBody(Box(0.3, leg, Vector3(sx, sy, hip_z - 1.5 * leg_length)), BoxCollider(leg));
+      Joint hip = Hinge(w, base, thigh, Vector3(sx, sy, hip_z), Vector3::UnitY());
+      Joint knee = Hinge(w, thigh, shin, Vector3(sx, sy, hip_z - leg_length), Vector3::UnitY());
+      for (Joint* j : {&hip, &knee}) {
+        j->limits.lower = -2.0;
+        j->limits.upper = 2.0;
+        configure(*j, j == &knee);
+      }
+      joints.push_back(w.AddJoint(hip));
+      joints.push_back(w.AddJoint(knee));
+    }
+  }
+  return base;
+}
+
+double MaxSpeed(const World& w) {
+  double v = 0;
+  for (const RigidBody& b : w.bodies()) v = std::max(v, b.velocity.norm() + 0.2 * b.AngularVelocity().norm());
+  return v;
+}
+
+TEST(JointedContact, PendulumReboundsFromAWallPerTheRestitution) {
+  for (const double e : {0.0, 0.5, 0.8}) {
+    ContactWorld w = MakeWorld();
+    w.AddGround({});
+    // A 1 kg ball of radius 0.05 m on a massless-looking rod: hinge at z = 1, the ball's centre
+    // 0.5 m below when it hangs, released from horizontal (x = +0.5).
+    RigidBody ball;
+    ball.mass = 1.0;
+    ball.inertia = Vector3::Constant(0.4 * 0.05 * 0.05);
+    ball.position = Vector3(0.5, 0, 1.0);
+    Material mat;
+    mat.restitution = e;
+    mat.static_friction = mat.kinetic_friction = 0.0;
+    const int b = w.AddBody(ball, Collider{shape::Sphere{0.05}, Matrix3::Identity(), Vector3::Zero(), mat});
+    w.AddJoint(Hinge(w, -1, b, Vector3(0, 0, 1), Vector3::UnitY()));
+    // The wall: its face at x = −0.05 m, the ball meets it hanging straight down.
+    w.AddStatic(BoxCollider(Vector3(0.2, 0.4, 0.4), mat), Matrix3::Identity(), Vector3(-0.15, 0, 0.5));
+    const double I = ball.inertia.x() + ball.mass * 0.25;
+    const double omega_in = std::sqrt(2 * ball.mass * kG * 0.5 / I);  // energy at the bottom
+    double fastest_back = 0, omega_before = 0;
+    bool hit = false;
+    Simulate(w, 1e-4, 8000, [&](long) {
+      const double omega = w.world().joint_state(0).velocity[0];
+      // Falling from +x it turns about +y, fastest just before the wall; after the bounce, back.
+      if (!hit && w.stats().contacts > 0 && omega < 0.9 * omega_before) hit = true;
+      if (!hit) omega_before = std::max(omega_before, omega);
+      if (hit) fastest_back = std::max(fastest_back, -omega);
+    });
+    ASSERT_TRUE(hit) << "e = " << e;
+    EXPECT_NEAR(omega_before, omega_in, 2e-3 * omega_in) << "e = " << e;
+    // After the bounce it turns back at e ω⁻ (rising, it only slows).
+    EXPECT_NEAR(fastest_back, e * omega_in, 5e-3 * omega_in + 1e-6) << "e = " << e;
+  }
+}
+
+TEST(JointedContact, ImpulseOnALinkMovesTheTreeByItsMassMatrix) {
+  // A ball strikes a ball off its centre, without gravity (friction spins it): the struck ball
+  // free in a world of free bodies, unjoined in a jointed world, and on a free joint from the
+  // world whose frame is away from its centre. Impulses through the coupling of a one-body tree (Φ M⁻¹ Φᵀ over its six
+  // joint coordinates) are the free body's own response: the same momentum after the blow.
+  enum Variant { kFreeWorld, kUnjoined, kFreeJoint };
+  auto run = [](Variant variant) {
+    World world(Integrator::kImplicitMidpoint);
+    ContactWorld w(std::move(world));
+    RigidBody struck;
+    struck.mass = 2.0;
+    struck.inertia = Vector3::Constant(0.4 * 2.0 * 0.1 * 0.1);
+    const int box = w.AddBody(struck, Collider{shape::Sphere{0.1}, Matrix3::Identity(), Vector3::Zero(), Material{}});
+    RigidBody ball;
+    ball.mass = 0.5;
+    ball.inertia = Vector3::Constant(0.4 * 0.5 * 0.03 * 0.03);
+    ball.position = Vector3(-0.3, 0.08, 0.02);
+    ball.velocity = Vector3(3, 0, 0);
+    Material mat;
+    mat.restitution = 0.5;
+    w.AddBody(ball, Collider{shape::Sphere{0.03}, Matrix3::Identity(), Vector3::Zero(), mat});
+    if (variant != kFreeWorld) {  // a pendulum far away makes the world jointed
+      const int bob = w.AddBody(Box(1.0, Vector3::Constant(0.1), Vector3(5, 0, 0)));
+      w.AddJoint(Hinge(w, -1, bob, Vector3(5, 0, 1), Vector3::UnitY()));
+    }
+    if (variant == kFreeJoint) {
+      Joint free;
+      free.type = JointType::kFree;
+      free.parent = -1;
+      free.child = box;
+      w.world().PlaceJoint(free, Vector3(0.1, -0.05, 0.02), Vector3(1, 1, 0).normalized());
+      w.AddJoint(free);
+    }
+    Simulate(w, 1e-3, 150);
+    const RigidBody& b = w.world().bodies()[static_cast<std::size_t>(box)];
+    return std::pair<Vector3, Vector3>(b.mass * b.velocity, b.angular_momentum);
+  };
+  const auto [p0, L0] = run(kFreeWorld);
+  EXPECT_GT(p0.x(), 0.3);      // struck
+  EXPECT_GT(L0.norm(), 1e-3);  // and turned
+  for (const Variant v : {kUnjoined, kFreeJoint}) {
+    const auto [p, L] = run(v);
+    EXPECT_LT((p - p0).norm(), 1e-12 * p0.norm()) << v;
+    // The angular momentum about the centre: to rounding for the joint at the centre; with the
+    // joint's frame 12 cm away, the contact steps' first-order integration in its coordinates
+    // (which carry r × m v beside I ω) turns L by ~10⁻⁵ per step while the ball moves.
+    EXPECT_LT((L - L0).norm(), (v == kUnjoined ? 1e-6 : 3e-2) * L0.norm()) << v;
+  }
+}
+
+TEST(JointedContact, QuadrupedDroppedLimpComesToRest) {
+  ContactWorld w = MakeWorld();
+  w.AddGround({});
+  std::vector<int> joints;
+  // Limp, its knees a little bent (straight legs would balance, unstably, for a while).
+  const int base = AddQuadruped(w, 0.1, joints, [](Joint& j, bool knee) {
+    j.damping = 0.02;
+    j.position = {knee ? -0.3 : 0.15};
+  });
+  double at_rest = -1;
+  Simulate(w, 1e-3, 3000, [&](long s) {
+    if (MaxSpeed(w.world()) < 1e-4) {
+      if (at_rest < 0) at_rest = 1e-3 * static_cast<double>(s + 1);
+    } else {
+      at_rest = -1;
+    }
+  });
+  EXPECT_GT(at_rest, 0) << "still moving at 3 s: " << MaxSpeed(w.world());
+  // Folded down: the body lies on its legs or the ground, not through it.
+  const double z = w.world().bodies()[static_cast<std::size_t>(base)].position.z();
+  EXPECT_GT(z, 0.04 - 1e-3);
+  EXPECT_LT(z, 0.5);
+  for (const RigidBody& b : w.world().bodies()) EXPECT_GT(b.position.z(), 0.0);
+}
+
+TEST(JointedContact, QuadrupedStandsOnPdServos) {
+  ContactWorld w = MakeWorld();
+  w.AddGround({});
+  std::vector<int> joints;
+  // Servos bend the legs, started straight on the ground, into a stance (hips +0.4 rad, knees
+  // −0.8 rad) and hold it.
+  const int base = AddQuadruped(w, 0.0, joints, [](Joint& j, bool knee) {
+    j.motor.mode = dynamics::JointMotor::Mode::kPosition;
+    j.motor.target = knee ? -0.8 : 0.4;
+    j.motor.kp = 200;
+    j.motor.kd = 5;
+    j.motor.max_effort = 60;
+  });
+  const auto& bodies = w.world().bodies();
+  double z1 = 0, worst = 0;
+  Simulate(w, 1e-3, 6000, [&](long s) {
+    const double z = bodies[static_cast<std::size_t>(base)].position.z();
+    if (s + 1 == 1000) z1 = z;
+    if (s + 1 > 1000) worst = std::max(worst, std::abs(z - z1));
+  });
+  // Standing: the body's height held, at about what the stance gives (hips 2 × 0.2 cos 0.4 above
+  // the feet, less the sag of the servos under the weight).
+  EXPECT_LT(worst, 1e-3);
+  EXPECT_GT(z1, 0.3);
+  EXPECT_LT(z1, 0.42);
+  for (const int j : joints) EXPECT_LT(std::abs(w.world().joint_state(j).position[0]), 1.0);
+}
+
+TEST(JointedContact, ArmRestingOnATableHoldsStill) {
+  // A two-link arm hinged to the world at its shoulder (z = 0.3 m), straight along +x, its elbow
+  // on a stop that keeps it from bending down, its hand resting on a table: a rigid lever on a
+  // pin and a support, which holds (static friction, the stop, the contact) without creeping.
+  ContactWorld w = MakeWorld();
+  const Vector3 link(0.3, 0.04, 0.04);
+  const int upper = w.AddBody(Box(1.0, link, Vector3(0.15, 0, 0.3)), BoxCollider(link));
+  const int fore = w.AddBody(Box(0.8, link, Vector3(0.45, 0, 0.3)), BoxCollider(link));
+  w.AddJoint(Hinge(w, -1, upper, Vector3(0, 0, 0.3), Vector3::UnitY()));
+  Joint elbow = Hinge(w, upper, fore, Vector3(0.3, 0, 0.3), Vector3::UnitY());
+  elbow.limits.lower = 0;  // bending down at the elbow (the hand on the table) is stopped
+  elbow.limits.upper = 2;
+  w.AddJoint(elbow);
+  w.AddStatic(BoxCollider(Vector3(0.3, 0.3, 0.28)), Matrix3::Identity(), Vector3(0.55, 0, 0.14 - 1e-4));
+  Vector3 hand1 = Vector3::Zero();
+  double drift = 0;
+  const auto& bodies = w.world().bodies();
+  auto hand = [&] {
+    const RigidBody& b = bodies[static_cast<std::size_t>(fore)];
+    return Vector3(b.position + b.Rotation() * Vector3(0.15, 0, 0));
+  };
+  Simulate(w, 1e-3, 6000, [&](long s) {
+    if (s + 1 == 1000) hand1 = hand();
+    if (s + 1 > 1000) drift = std::max(drift, (hand() - hand1).norm());
+  });
+  EXPECT_LT(drift, 1e-6);
+  // Resting on the table top (z = 0.28 − 10⁻⁴, the hand's lower edge 2 cm below its axis).
+  EXPECT_NEAR(hand1.z(), 0.28 - 1e-4 + 0.02, 2e-4);
+  EXPECT_GT(w.world().joint_state(0).position[0], 0.0);  // it fell onto the table
+}
+
+}  // namespace
