@@ -25,6 +25,7 @@ namespace {
 
 struct Compiler {
   bool degrees = true;
+  bool autolimits = false;  // MuJoCo 2.2's default
   std::string eulerseq = "xyz";
   std::string meshdir;
 };
@@ -82,6 +83,44 @@ Matrix3 FromZAxis(const Vector3& z, const std::string& what) {
   const double n = z.norm();
   if (!(n > 1e-12)) throw ElementError(what + ": a zero axis");
   return Eigen::Quaterniond::FromTwoVectors(Vector3::UnitZ(), z / n).toRotationMatrix();
+}
+
+// A frame's pos and orientation (quat, axisangle, euler, xyaxes, zaxis) by attr(name).
+template <typename Attr>
+void PlaceBy(const Attr& attr, const Compiler& compiler, Geometry& g, const std::string& what) {
+  if (const pugi::xml_attribute pos = attr("pos")) {
+    const auto p = Numbers(pos.value(), 3, what + " pos");
+    g.translation = Vector3(p[0], p[1], p[2]);
+  }
+  if (const pugi::xml_attribute q = attr("quat")) {
+    const auto v = Numbers(q.value(), 4, what + " quat");
+    g.rotation = FromQuaternion(v[0], v[1], v[2], v[3], what + " quat");
+  }
+  if (const pugi::xml_attribute aa = attr("axisangle")) {
+    const auto v = Numbers(aa.value(), 4, what + " axisangle");
+    const Vector3 axis(v[0], v[1], v[2]);
+    if (!(axis.norm() > 1e-12)) throw ElementError(what + ": axisangle has a zero axis");
+    g.rotation = Eigen::AngleAxisd(v[3] * (compiler.degrees ? M_PI / 180 : 1.0), axis.normalized()).toRotationMatrix();
+  }
+  if (const pugi::xml_attribute e = attr("euler")) {
+    g.rotation = FromEuler(Numbers(e.value(), 3, what + " euler"), compiler, what);
+  }
+  if (const pugi::xml_attribute xy = attr("xyaxes")) {
+    const auto v = Numbers(xy.value(), 6, what + " xyaxes");
+    Vector3 x(v[0], v[1], v[2]), y(v[3], v[4], v[5]);
+    if (!(x.norm() > 1e-12)) throw ElementError(what + ": xyaxes has a zero x axis");
+    x.normalize();
+    y -= x * x.dot(y);
+    if (!(y.norm() > 1e-12)) throw ElementError(what + ": xyaxes' axes are parallel");
+    y.normalize();
+    g.rotation.col(0) = x;
+    g.rotation.col(1) = y;
+    g.rotation.col(2) = x.cross(y);
+  }
+  if (const pugi::xml_attribute z = attr("zaxis")) {
+    const auto v = Numbers(z.value(), 3, what + " zaxis");
+    g.rotation = FromZAxis(Vector3(v[0], v[1], v[2]), what);
+  }
 }
 
 class GeomReader {
@@ -202,41 +241,7 @@ class GeomReader {
   }
 
   void Place(pugi::xml_node geom, const std::string& cls, Geometry& g, const std::string& what) const {
-    auto attr = [&](const char* name) { return Attr(geom, cls, name); };
-    if (const pugi::xml_attribute pos = attr("pos")) {
-      const auto p = Numbers(pos.value(), 3, what + " pos");
-      g.translation = Vector3(p[0], p[1], p[2]);
-    }
-    if (const pugi::xml_attribute q = attr("quat")) {
-      const auto v = Numbers(q.value(), 4, what + " quat");
-      g.rotation = FromQuaternion(v[0], v[1], v[2], v[3], what + " quat");
-    }
-    if (const pugi::xml_attribute aa = attr("axisangle")) {
-      const auto v = Numbers(aa.value(), 4, what + " axisangle");
-      const Vector3 axis(v[0], v[1], v[2]);
-      if (!(axis.norm() > 1e-12)) throw ElementError(what + ": axisangle has a zero axis");
-      g.rotation =
-          Eigen::AngleAxisd(v[3] * (compiler_.degrees ? M_PI / 180 : 1.0), axis.normalized()).toRotationMatrix();
-    }
-    if (const pugi::xml_attribute e = attr("euler")) {
-      g.rotation = FromEuler(Numbers(e.value(), 3, what + " euler"), compiler_, what);
-    }
-    if (const pugi::xml_attribute xy = attr("xyaxes")) {
-      const auto v = Numbers(xy.value(), 6, what + " xyaxes");
-      Vector3 x(v[0], v[1], v[2]), y(v[3], v[4], v[5]);
-      if (!(x.norm() > 1e-12)) throw ElementError(what + ": xyaxes has a zero x axis");
-      x.normalize();
-      y -= x * x.dot(y);
-      if (!(y.norm() > 1e-12)) throw ElementError(what + ": xyaxes' axes are parallel");
-      y.normalize();
-      g.rotation.col(0) = x;
-      g.rotation.col(1) = y;
-      g.rotation.col(2) = x.cross(y);
-    }
-    if (const pugi::xml_attribute z = attr("zaxis")) {
-      const auto v = Numbers(z.value(), 3, what + " zaxis");
-      g.rotation = FromZAxis(Vector3(v[0], v[1], v[2]), what);
-    }
+    PlaceBy([&](const char* name) { return Attr(geom, cls, name); }, compiler_, g, what);
   }
 
   const Document& doc_;
@@ -245,6 +250,19 @@ class GeomReader {
   const Defaults& defaults_;
   std::map<std::string, pugi::xml_node> meshes_;
 };
+
+Compiler CompilerOf(pugi::xml_node root) {
+  Compiler compiler;
+  for (pugi::xml_node c : root.children("compiler")) {
+    if (const pugi::xml_attribute angle = c.attribute("angle"))
+      compiler.degrees = std::string(angle.value()) != "radian";
+    if (const pugi::xml_attribute seq = c.attribute("eulerseq")) compiler.eulerseq = seq.value();
+    if (const pugi::xml_attribute dir = c.attribute("meshdir")) compiler.meshdir = dir.value();
+    if (!c.attribute("meshdir") && c.attribute("assetdir")) compiler.meshdir = c.attribute("assetdir").value();
+    if (const pugi::xml_attribute a = c.attribute("autolimits")) compiler.autolimits = a.as_bool();
+  }
+  return compiler;
+}
 
 // Every body under `world`, parents before children, in file order, with the class its geoms
 // take when they name none (the nearest `childclass`, itself included, else "main").
@@ -276,13 +294,8 @@ std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options) {
     throw std::runtime_error(doc.path + ": <include file=\"" + std::string(include.attribute("file").value()) +
                              "\"> is not followed: give the file with its includes expanded");
   }
-  Compiler compiler;
+  const Compiler compiler = CompilerOf(root);
   for (pugi::xml_node c : root.children("compiler")) {
-    if (const pugi::xml_attribute angle = c.attribute("angle"))
-      compiler.degrees = std::string(angle.value()) != "radian";
-    if (const pugi::xml_attribute seq = c.attribute("eulerseq")) compiler.eulerseq = seq.value();
-    if (const pugi::xml_attribute dir = c.attribute("meshdir")) compiler.meshdir = dir.value();
-    if (!c.attribute("meshdir") && c.attribute("assetdir")) compiler.meshdir = c.attribute("assetdir").value();
     if (std::string(c.attribute("inertiafromgeom").value()) == "true") {
       doc.notes.push_back(
           "<compiler inertiafromgeom=\"true\"> makes MuJoCo ignore every <inertial>, the filled ones too: set it "
@@ -323,6 +336,131 @@ std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options) {
     links.push_back(std::move(link));
   }
   return links;
+}
+
+void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotModel& model) {
+  const pugi::xml_node root = doc.xml.child("mujoco");
+  model.name = root.attribute("model").value();
+  model.notes.insert(model.notes.end(), doc.notes.begin(), doc.notes.end());
+  for (pugi::xml_node c : root.children("compiler")) {
+    if (std::string(c.attribute("coordinate").value()) == "global") {
+      throw ElementError("<compiler coordinate=\"global\"> is not followed: give local coordinates");
+    }
+  }
+  if (root.child("actuator")) model.notes.push_back("<actuator>s are not simulated: set motors per joint in the scene");
+  if (root.child("tendon")) model.notes.push_back("<tendon>s are not simulated");
+  const Compiler compiler = CompilerOf(root);
+  const Defaults defaults(root);
+  std::map<pugi::xml_node_struct*, int> index;
+  for (std::size_t k = 0; k < links.size(); ++k) index[links[k].element.internal_object()] = static_cast<int>(k);
+  const double angle = compiler.degrees ? M_PI / 180 : 1.0;
+  for (std::size_t k = 0; k < links.size(); ++k) {
+    const pugi::xml_node body = links[k].element;
+    const std::string name = links[k].name, what = "body '" + name + "'";
+    Geometry frame;
+    PlaceBy([&](const char* a) { return body.attribute(a); }, compiler, frame, what);
+    const Placement body_in_parent{frame.rotation, frame.translation};
+    if (const pugi::xml_node inertial = body.child("inertial")) {
+      const std::string in = what + " <inertial>";
+      Geometry f;
+      PlaceBy([&](const char* a) { return inertial.attribute(a); }, compiler, f, in);
+      const double m = Numbers(inertial.attribute("mass").value(), 1, in + " mass")[0];
+      if (!(m > 0) || !std::isfinite(m)) throw ElementError(in + ": mass must be positive");
+      std::vector<double> six;
+      if (const pugi::xml_attribute d = inertial.attribute("diaginertia")) {
+        const auto v = Numbers(d.value(), 3, in + " diaginertia");
+        six = {v[0], 0, 0, v[1], 0, v[2]};
+      } else if (const pugi::xml_attribute full = inertial.attribute("fullinertia")) {
+        const auto v = Numbers(full.value(), 6, in + " fullinertia");  // ixx iyy izz ixy ixz iyz
+        six = {v[0], v[3], v[4], v[1], v[5], v[2]};
+      } else {
+        throw ElementError(in + ": no diaginertia or fullinertia");
+      }
+      model.links[k].inertial = RobotInertial{m, f.translation, InertiaTensor(six, f.rotation, in)};
+    }
+    const pugi::xml_node up = body.parent();
+    const int parent = std::string(up.name()) == "body" ? index.at(up.internal_object()) : -1;
+    std::vector<pugi::xml_node> joints;
+    for (pugi::xml_node j : body.children()) {
+      const std::string tag = j.name();
+      if (tag == "joint" || tag == "freejoint") joints.push_back(j);
+    }
+    if (joints.size() > 1) {
+      throw ElementError(what + " has " + std::to_string(joints.size()) +
+                         " joints: one joint per body is simulated (give each its own body)");
+    }
+    RobotJoint j;
+    j.parent = parent;
+    j.child = static_cast<int>(k);
+    j.name = name;
+    j.parent_to_joint = body_in_parent;
+    if (joints.empty()) {
+      j.type = RobotJointType::kFixed;
+      j.name = name + " (welded)";
+      model.joints.push_back(j);
+      continue;
+    }
+    const pugi::xml_node e = joints.front();
+    const std::string cls = e.attribute("class")           ? e.attribute("class").value()
+                            : body.attribute("childclass") ? body.attribute("childclass").value()
+                                                           : "main";
+    auto attr = [&](const char* a) -> pugi::xml_attribute {
+      if (const pugi::xml_attribute own = e.attribute(a)) return own;
+      return defaults.Find(cls, "joint", a);
+    };
+    if (e.attribute("name")) j.name = e.attribute("name").value();
+    const std::string jw = "joint '" + j.name + "'";
+    const std::string type = std::string(e.name()) == "freejoint" ? "free"
+                             : attr("type")                       ? attr("type").value()
+                                                                  : "hinge";
+    if (type == "free") {
+      if (parent >= 0) throw ElementError(jw + ": a free joint below another body is not simulated");
+      j.type = RobotJointType::kFloating;
+      model.joints.push_back(j);
+      continue;
+    }
+    j.type = type == "hinge"   ? RobotJointType::kRevolute
+             : type == "slide" ? RobotJointType::kPrismatic
+             : type == "ball"  ? RobotJointType::kBall
+                               : throw ElementError(jw + ": type \"" + type + "\" is not simulated");
+    Vector3 pos = Vector3::Zero();
+    if (const pugi::xml_attribute p = attr("pos")) {
+      const auto v = Numbers(p.value(), 3, jw + " pos");
+      pos = Vector3(v[0], v[1], v[2]);
+    }
+    j.parent_to_joint = body_in_parent.Then(Placement{Matrix3::Identity(), pos});
+    j.joint_to_child = Placement{Matrix3::Identity(), -pos};
+    if (const pugi::xml_attribute a = attr("axis")) {
+      const auto v = Numbers(a.value(), 3, jw + " axis");
+      const Vector3 axis(v[0], v[1], v[2]);
+      if (!(axis.norm() > 1e-12)) throw ElementError(jw + ": a zero axis");
+      j.axis = axis.normalized();
+    } else {
+      j.axis = Vector3::UnitZ();
+    }
+    const double unit = j.type == RobotJointType::kRevolute ? angle : 1.0;
+    auto number = [&](const char* a, double fallback) {
+      const pugi::xml_attribute v = attr(a);
+      return v ? Numbers(v.value(), 1, jw + " " + a)[0] : fallback;
+    };
+    const std::string limited = attr("limited") ? attr("limited").value() : "auto";
+    const pugi::xml_attribute range = attr("range");
+    if (range && (limited == "true" || (limited == "auto" && compiler.autolimits)) && type != "ball") {
+      const auto r = Numbers(range.value(), 2, jw + " range");
+      if (!(r[0] <= r[1])) throw ElementError(jw + ": range's lower end is above its upper");
+      j.lower = r[0] * unit;
+      j.upper = r[1] * unit;
+    } else if (type == "hinge") {
+      j.type = RobotJointType::kContinuous;
+    }
+    j.damping = number("damping", 0.0);
+    j.friction = number("frictionloss", 0.0);
+    j.stiffness = number("stiffness", 0.0);
+    j.rest = number("springref", 0.0) * unit;
+    if (number("ref", 0.0) != 0) throw ElementError(jw + ": a non-zero ref is not followed");
+    if (number("armature", 0.0) != 0) model.notes.push_back(jw + ": its armature is not simulated");
+    model.joints.push_back(j);
+  }
 }
 
 void WriteMjcfInertial(Link& link, const MassProperties& mp, const PrincipalInertia& principal) {

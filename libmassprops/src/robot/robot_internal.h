@@ -11,6 +11,7 @@
 
 #include "massprops/primitive.h"
 #include "massprops/robot.h"
+#include "massprops/robot_model.h"
 
 namespace massprops::robot {
 
@@ -69,9 +70,25 @@ void ReadGeometries(Link& link, const char* tag, const Read& read) {
   }
 }
 
+/// Reads `path` into doc (comments and blanks kept). @throws FileAccessError, std::runtime_error.
+void Parse(Document& doc, const std::string& path);
+/// The same from the file's text (a filled document).
+void ParseText(Document& doc, const std::string& path, std::string text);
+/// The format of a parsed document, from its root element. @throws std::runtime_error.
+RobotFormat FormatOf(const Document& doc);
+
 std::vector<Link> UrdfLinks(Document& doc, const FillOptions& options);
 std::vector<Link> SdfLinks(Document& doc, const FillOptions& options);
 std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options);
+/// The kinematic tree (robot_model.h): each link's inertial and frame, the joints; `links` are
+/// the format's links in order (their geometries already read), model.links matches them.
+/// @throws ElementError naming the element.
+void UrdfKinematics(const Document& doc, RobotModel& model);
+void SdfKinematics(const Document& doc, const std::vector<Link>& links, RobotModel& model);
+void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotModel& model);
+/// A 3 × 3 inertia tensor from its six elements (ixx ixy ixz iyy iyz izz: the tensor's own
+/// entries, products of inertia negated), rotated into the link by R. @throws ElementError.
+Matrix3 InertiaTensor(const std::vector<double>& six, const Matrix3& R, const std::string& what);
 void WriteUrdfInertial(Link& link, const MassProperties& mp);
 void WriteSdfInertial(Link& link, const MassProperties& mp);
 void WriteMjcfInertial(Link& link, const MassProperties& mp, const PrincipalInertia& principal);

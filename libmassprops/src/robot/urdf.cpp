@@ -2,6 +2,9 @@
 // and a <geometry> with one <box size>, <cylinder radius length>, <sphere radius>,
 // <capsule radius length> or <mesh filename scale>.
 
+#include <cmath>
+#include <map>
+
 #include "massprops/export.h"
 #include "robot_internal.h"
 
@@ -86,6 +89,101 @@ std::vector<Link> UrdfLinks(Document& doc, const FillOptions& options) {
     links.push_back(std::move(link));
   }
   return links;
+}
+
+namespace {
+
+double Attribute(pugi::xml_node e, const char* name, const std::string& what, double fallback) {
+  const pugi::xml_attribute a = e.attribute(name);
+  if (!a) return fallback;
+  const auto v = Numbers(a.value(), 1, what + " " + name);
+  return v[0];
+}
+
+}  // namespace
+
+void UrdfKinematics(const Document& doc, RobotModel& model) {
+  const pugi::xml_node root = doc.xml.child("robot");
+  model.name = root.attribute("name").value();
+  std::map<std::string, int> index;
+  std::size_t k = 0;
+  for (pugi::xml_node element : root.children("link")) {
+    RobotLink& link = model.links.at(k);
+    if (!index.emplace(link.name, static_cast<int>(k)).second) {
+      throw ElementError("two links are named '" + link.name + "'");
+    }
+    ++k;
+    const pugi::xml_node inertial = element.child("inertial");
+    if (!inertial) continue;
+    const std::string what = "link '" + link.name + "' <inertial>";
+    Geometry frame;
+    ReadOrigin(inertial, frame, what);
+    const pugi::xml_attribute mass = inertial.child("mass").attribute("value");
+    if (!mass) throw ElementError(what + ": no <mass value>");
+    const double m = Numbers(mass.value(), 1, what + " <mass value>")[0];
+    if (!(m >= 0) || !std::isfinite(m)) throw ElementError(what + ": <mass value> must be a finite number ≥ 0");
+    if (m == 0) continue;  // massless
+    const pugi::xml_node inertia = inertial.child("inertia");
+    if (!inertia) throw ElementError(what + ": no <inertia>");
+    std::vector<double> six;
+    for (const char* name : {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"}) {
+      if (!inertia.attribute(name)) throw ElementError(what + ": <inertia> has no " + name);
+      six.push_back(Numbers(inertia.attribute(name).value(), 1, what + " <inertia " + name + ">")[0]);
+    }
+    link.inertial = RobotInertial{m, frame.translation, InertiaTensor(six, frame.rotation, what)};
+  }
+  for (pugi::xml_node element : root.children("joint")) {
+    RobotJoint j;
+    j.name = element.attribute("name").value();
+    const std::string what = "joint '" + j.name + "'";
+    const std::string type = element.attribute("type").value();
+    if (type == "fixed") {
+      j.type = RobotJointType::kFixed;
+    } else if (type == "revolute") {
+      j.type = RobotJointType::kRevolute;
+    } else if (type == "continuous") {
+      j.type = RobotJointType::kContinuous;
+    } else if (type == "prismatic") {
+      j.type = RobotJointType::kPrismatic;
+    } else if (type == "floating") {
+      j.type = RobotJointType::kFloating;
+    } else {
+      throw ElementError(what + ": type \"" + type +
+                         "\" is not simulated (fixed, revolute, continuous, prismatic, "
+                         "floating are)");
+    }
+    auto link_of = [&](const char* tag) {
+      const std::string name = element.child(tag).attribute("link").value();
+      const auto it = index.find(name);
+      if (it == index.end()) throw ElementError(what + ": <" + tag + " link=\"" + name + "\"> names no link");
+      return it->second;
+    };
+    j.parent = link_of("parent");
+    j.child = link_of("child");
+    Geometry origin;
+    ReadOrigin(element, origin, what);
+    j.parent_to_joint = {origin.rotation, origin.translation};
+    if (const pugi::xml_node axis = element.child("axis")) {
+      const auto a = Numbers(axis.attribute("xyz").value(), 3, what + " <axis xyz>");
+      const Vector3 v(a[0], a[1], a[2]);
+      if (!(v.norm() > 1e-12)) throw ElementError(what + ": <axis xyz> is zero");
+      j.axis = v.normalized();
+    }
+    if (const pugi::xml_node limit = element.child("limit")) {
+      if (j.type == RobotJointType::kRevolute || j.type == RobotJointType::kPrismatic) {
+        j.lower = Attribute(limit, "lower", what + " <limit>", 0.0);
+        j.upper = Attribute(limit, "upper", what + " <limit>", 0.0);
+        if (!(*j.lower <= *j.upper)) throw ElementError(what + ": <limit> lower is above upper");
+      }
+      j.effort = Attribute(limit, "effort", what + " <limit>", 0.0);
+      j.velocity = Attribute(limit, "velocity", what + " <limit>", 0.0);
+    }
+    if (const pugi::xml_node dynamics = element.child("dynamics")) {
+      j.damping = Attribute(dynamics, "damping", what + " <dynamics>", 0.0);
+      j.friction = Attribute(dynamics, "friction", what + " <dynamics>", 0.0);
+    }
+    model.joints.push_back(j);
+  }
 }
 
 void WriteUrdfInertial(Link& link, const MassProperties& mp) {

@@ -210,4 +210,38 @@ std::string Describe(pugi::xml_node element, int k) {
   return std::string(element.name()) + " #" + std::to_string(k);
 }
 
+RobotFormat FormatOf(const Document& doc) {
+  const pugi::xml_node root = doc.xml.document_element();
+  const std::string name = root.name();
+  if (name == "robot") return RobotFormat::kUrdf;
+  if (name == "sdf") return RobotFormat::kSdf;
+  if (name == "mujoco") return RobotFormat::kMjcf;
+  throw std::runtime_error(doc.path + ": the root element <" + name +
+                           "> is none of <robot> (URDF), <sdf> (SDFormat) or <mujoco> (MJCF)");
+}
+
+void Parse(Document& doc, const std::string& path) {
+  std::error_code e;
+  if (!std::filesystem::is_regular_file(path, e)) throw FileAccessError(path + ": not a regular file");
+  std::ifstream file(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << file.rdbuf();
+  if (!file) throw FileAccessError(path + ": cannot be read");
+  ParseText(doc, path, bytes.str());
+}
+
+void ParseText(Document& doc, const std::string& path, std::string text) {
+  doc.path = path;
+  doc.dir = std::filesystem::path(path).parent_path().string();
+  doc.text = std::move(text);
+  // Comments and the blanks between elements are kept, so that the file is written back as it
+  // was, but for the inertials. Offsets are then offsets into doc.text.
+  const pugi::xml_parse_result parsed = doc.xml.load_buffer(
+      doc.text.data(), doc.text.size(), (pugi::parse_full | pugi::parse_ws_pcdata) & ~pugi::parse_eol);
+  if (!parsed) {
+    throw std::runtime_error(path + ": not well-formed XML at byte " + std::to_string(parsed.offset) + " (" +
+                             parsed.description() + ")");
+  }
+}
+
 }  // namespace massprops::robot

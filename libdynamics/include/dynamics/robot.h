@@ -1,0 +1,57 @@
+#pragma once
+/// @file
+/// Robots in a world (target massprops::bodies): a robot description read by
+/// massprops::ReadRobotModel (URDF, SDFormat, MJCF; inertials as written or filled) made into
+/// bodies, colliders and joints of a ContactWorld.
+///
+///   massprops::RobotModel model = massprops::ReadRobotModel("dog.urdf", {.fill = true});
+///   dynamics::RobotOptions options;
+///   options.pose.translation = {0, 0, 0.5};
+///   dynamics::RobotInWorld dog = dynamics::AddRobot(world, model, options);
+///
+/// Links joined by fixed joints are one body (their inertials combined, as simulators lump
+/// them); a body's collider is its links' one collision geometry as it is (box, sphere, capsule,
+/// cylinder; a mesh as its convex hull, or as the mesh itself on request), or the convex hull of
+/// all of them when there are several. Joints keep their type, axis, limits, damping, friction,
+/// spring; a motor per joint comes from the options, its effort bounded by the file's effort
+/// limit when the motor names none.
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "dynamics/contact.h"
+#include "massprops/load.h"
+#include "massprops/robot_model.h"
+
+namespace dynamics {
+
+struct RobotOptions {
+  /// The root link's frame in the world (with a joint to the world as written: the frame the
+  /// file places that joint in).
+  massprops::Placement pose;
+  enum class Base {
+    kAsWritten,  ///< URDF, SDFormat: floating unless joined to "world"; MJCF: as its top bodies' joints say
+    kFixed,      ///< the root welded to the world at `pose`
+    kFloating,   ///< the root free
+  };
+  Base base = Base::kAsWritten;
+  std::map<std::string, double> positions;   ///< initial joint positions by joint name (rad, m)
+  std::map<std::string, JointMotor> motors;  ///< by joint name
+  bool mesh_colliders = false;               ///< meshes collide as meshes (signed distance fields), not hulls
+  Material material;
+  massprops::LoadOptions load;  ///< how collision meshes are read
+};
+
+struct RobotInWorld {
+  std::vector<int> body_of_link;   ///< each link's body index in the world (lumped links share one)
+  std::vector<int> joint_of;       ///< each model joint's index in the world's joints (-1: lumped)
+  std::vector<std::string> notes;  ///< lumping, hulls, what the file has that is not simulated
+};
+
+/// @throws std::invalid_argument naming the link or joint: a massless link that a joint moves, a
+/// joint or position named in the options that the robot has not, a non-positive inertia; or as
+/// massprops::LoadSolid for a collision mesh that cannot be read.
+RobotInWorld AddRobot(ContactWorld& world, const massprops::RobotModel& model, const RobotOptions& options = {});
+
+}  // namespace dynamics

@@ -1,0 +1,366 @@
+// Robots in a world (robot.h): links lumped by fixed joints into bodies, their colliders, and the
+// joints between the bodies.
+
+#include "dynamics/robot.h"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+#include "massprops/repair.h"
+#include "massprops/units.h"
+
+namespace dynamics {
+namespace {
+
+using massprops::Placement;
+using massprops::RobotJoint;
+using massprops::RobotJointType;
+using massprops::RobotModel;
+
+// A group of links welded together (by fixed joints between links): one body.
+struct Group {
+  int root = 0;                    // its topmost link
+  std::vector<int> links;          // in model order
+  std::vector<Placement> in_root;  // each link's frame in the root link's frame
+  double mass = 0;
+  Vector3 com = Vector3::Zero();      // root link frame
+  Matrix3 inertia = Matrix3::Zero();  // about com, root link axes
+  Placement body_in_root;             // the body frame (principal axes at com) in the root link frame
+  Vector3 moments = Vector3::Zero();
+};
+
+Quaternion QuaternionOf(const Matrix3& R) { return Quaternion(R).normalized(); }
+
+Frame FrameOf(const Placement& p) {
+  Frame f;
+  f.origin = p.translation;
+  f.orientation = QuaternionOf(p.rotation);
+  return f;
+}
+
+// A geometry's points (metres, its own frame) and, for a mesh, its triangles.
+struct Points {
+  std::vector<Vector3> vertices;
+  std::vector<std::array<int, 3>> triangles;
+};
+
+Points PointsOf(const massprops::RobotGeometry& g, const massprops::LoadOptions& load) {
+  Points out;
+  massprops::TriangleMesh mesh;
+  double scale = 1;
+  Vector3 axes = Vector3::Ones();
+  if (const auto* p = std::get_if<massprops::Primitive>(&g.shape)) {
+    mesh = massprops::Tessellate(*p, 24);
+  } else {
+    const auto& m = std::get<massprops::RobotMesh>(g.shape);
+    massprops::LoadOptions options = load;
+    options.mass = massprops::Density{1.0};
+    const massprops::SolidResult r = massprops::LoadSolid(m.path, options);
+    mesh = massprops::Triangulate(r.loaded.mesh);
+    scale = massprops::MetresPerUnit(r.unit);
+    axes = m.scale;
+  }
+  for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+    out.vertices.push_back(scale * Vector3(mesh.V.row(i).transpose()).cwiseProduct(axes));
+  }
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    out.triangles.push_back(
+        {static_cast<int>(mesh.F(f, 0)), static_cast<int>(mesh.F(f, 1)), static_cast<int>(mesh.F(f, 2))});
+  }
+  if (axes.prod() < 0) {
+    for (auto& t : out.triangles) std::swap(t[1], t[2]);  // a mirroring scale turns the faces inside out
+  }
+  return out;
+}
+
+// The collider of a group in its body frame (none: no collision geometry).
+std::optional<Collider> ColliderOf(const RobotModel& model, const Group& g, const RobotOptions& options,
+                                   std::vector<std::string>& notes) {
+  std::vector<std::pair<const massprops::RobotGeometry*, Placement>> geometries;  // in the body frame
+  const Placement root_to_body = g.body_in_root.Inverse();
+  for (std::size_t k = 0; k < g.links.size(); ++k) {
+    for (const auto& geometry : model.links[static_cast<std::size_t>(g.links[k])].collisions) {
+      geometries.emplace_back(&geometry, root_to_body.Then(g.in_root[k]).Then(geometry.pose));
+    }
+  }
+  if (geometries.empty()) return std::nullopt;
+  Collider c;
+  c.material = options.material;
+  if (geometries.size() == 1) {
+    const auto& [geometry, pose] = geometries.front();
+    c.rotation = pose.rotation;
+    c.translation = pose.translation;
+    if (const auto* p = std::get_if<massprops::Primitive>(&geometry->shape)) {
+      if (const auto* box = std::get_if<massprops::primitive::Box>(p)) {
+        c.shape = shape::Box{box->size / 2};
+        return c;
+      }
+      if (const auto* s = std::get_if<massprops::primitive::Sphere>(p)) {
+        c.shape = shape::Sphere{s->radius};
+        return c;
+      }
+      if (const auto* s = std::get_if<massprops::primitive::Capsule>(p)) {
+        c.shape = shape::Capsule{s->radius, s->length / 2};
+        return c;
+      }
+      if (const auto* s = std::get_if<massprops::primitive::Cylinder>(p)) {
+        c.shape = shape::Cylinder{s->radius, s->height / 2};
+        return c;
+      }
+    }
+    const Points points = PointsOf(*geometry, options.load);
+    if (options.mesh_colliders && std::holds_alternative<massprops::RobotMesh>(geometry->shape)) {
+      c.shape = MakeMesh(points.vertices, points.triangles);
+      return c;
+    }
+  }
+  // The convex hull of them all, in the body frame.
+  massprops::PolygonMesh cloud;
+  std::vector<Vector3> all;
+  for (const auto& [geometry, pose] : geometries) {
+    for (const Vector3& v : PointsOf(*geometry, options.load).vertices)
+      all.push_back(pose.rotation * v + pose.translation);
+  }
+  cloud.V.resize(static_cast<Eigen::Index>(all.size()), 3);
+  for (std::size_t i = 0; i < all.size(); ++i) cloud.V.row(static_cast<Eigen::Index>(i)) = all[i].transpose();
+  c.rotation.setIdentity();
+  c.translation.setZero();
+  c.shape = ConvexOf(massprops::ConvexHull(cloud));
+  if (geometries.size() > 1) {
+    notes.push_back("link '" + model.links[static_cast<std::size_t>(g.root)].name + "': its " +
+                    std::to_string(geometries.size()) + " collision geometries" +
+                    (g.links.size() > 1 ? " (with the links welded to it)" : "") + " collide as their convex hull");
+  }
+  return c;
+}
+
+}  // namespace
+
+RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotOptions& options) {
+  const std::size_t nl = model.links.size();
+  RobotInWorld out;
+  out.notes = model.notes;
+  if (nl == 0) throw std::invalid_argument(model.path + ": the robot has no links");
+  for (const auto& [name, q] : options.positions) {
+    (void)q;
+    if (std::none_of(model.joints.begin(), model.joints.end(), [&](const RobotJoint& j) { return j.name == name; })) {
+      throw std::invalid_argument(model.path + ": positions names the joint '" + name + "', which the robot has not");
+    }
+  }
+  for (const auto& [name, motor] : options.motors) {
+    (void)motor;
+    if (std::none_of(model.joints.begin(), model.joints.end(), [&](const RobotJoint& j) { return j.name == name; })) {
+      throw std::invalid_argument(model.path + ": motors names the joint '" + name + "', which the robot has not");
+    }
+  }
+  // The joint above each link, and the groups of links welded by fixed joints between links.
+  std::vector<int> joint_above(nl, -1);
+  for (std::size_t k = 0; k < model.joints.size(); ++k)
+    joint_above[static_cast<std::size_t>(model.joints[k].child)] = static_cast<int>(k);
+  auto welded = [&](int link) {
+    const int j = joint_above[static_cast<std::size_t>(link)];
+    return j >= 0 && model.joints[static_cast<std::size_t>(j)].type == RobotJointType::kFixed &&
+           model.joints[static_cast<std::size_t>(j)].parent >= 0;
+  };
+  std::vector<int> group_of(nl, -1);
+  std::vector<Group> groups;
+  // Links in an order where parents come first.
+  std::vector<int> order;
+  std::vector<char> placed(nl, 0);
+  while (order.size() < nl) {
+    const std::size_t before = order.size();
+    for (std::size_t i = 0; i < nl; ++i) {
+      if (placed[i]) continue;
+      const int j = joint_above[i];
+      const int parent = j >= 0 ? model.joints[static_cast<std::size_t>(j)].parent : -1;
+      if (parent < 0 || placed[static_cast<std::size_t>(parent)]) {
+        placed[i] = 1;
+        order.push_back(static_cast<int>(i));
+      }
+    }
+    if (order.size() == before) throw std::invalid_argument(model.path + ": its joints form a loop");
+  }
+  for (const int link : order) {
+    const auto l = static_cast<std::size_t>(link);
+    if (welded(link)) {
+      const RobotJoint& j = model.joints[static_cast<std::size_t>(joint_above[l])];
+      const int g = group_of[static_cast<std::size_t>(j.parent)];
+      Group& group = groups[static_cast<std::size_t>(g)];
+      const auto at = std::find(group.links.begin(), group.links.end(), j.parent) - group.links.begin();
+      group.in_root.push_back(
+          group.in_root[static_cast<std::size_t>(at)].Then(j.parent_to_joint).Then(j.joint_to_child));
+      group.links.push_back(link);
+      group_of[l] = g;
+    } else {
+      Group group;
+      group.root = link;
+      group.links = {link};
+      group.in_root = {Placement{}};
+      group_of[l] = static_cast<int>(groups.size());
+      groups.push_back(group);
+    }
+  }
+  // Each group's mass, center of mass and inertia; its principal frame.
+  for (Group& g : groups) {
+    for (std::size_t k = 0; k < g.links.size(); ++k) {
+      const auto& inertial = model.links[static_cast<std::size_t>(g.links[k])].inertial;
+      if (!inertial) continue;
+      const Placement& p = g.in_root[k];
+      const Vector3 c = p.rotation * inertial->center_of_mass + p.translation;
+      g.com = (g.mass * g.com + inertial->mass * c) / (g.mass + inertial->mass);
+      g.mass += inertial->mass;
+    }
+    const std::string name = model.links[static_cast<std::size_t>(g.root)].name;
+    if (!(g.mass > 0)) {
+      throw std::invalid_argument(model.path + ": link '" + name +
+                                  "' has no mass (no inertial, nor any link welded to it): give it an inertial, or "
+                                  "compute them from the geometry (--fill)");
+    }
+    for (std::size_t k = 0; k < g.links.size(); ++k) {
+      const auto& inertial = model.links[static_cast<std::size_t>(g.links[k])].inertial;
+      if (!inertial) continue;
+      const Placement& p = g.in_root[k];
+      const Vector3 d = p.rotation * inertial->center_of_mass + p.translation - g.com;
+      g.inertia += p.rotation * inertial->inertia * p.rotation.transpose() +
+                   inertial->mass * (d.squaredNorm() * Matrix3::Identity() - d * d.transpose());
+    }
+    const Eigen::SelfAdjointEigenSolver<Matrix3> eig(g.inertia);
+    g.moments = eig.eigenvalues();
+    Matrix3 axes = eig.eigenvectors();
+    if (axes.determinant() < 0) axes.col(2) = -axes.col(2);
+    if (!(g.moments.minCoeff() > 0) || !g.moments.allFinite()) {
+      throw std::invalid_argument(model.path + ": link '" + name +
+                                  "' has an inertia that is not positive definite (principal moments " +
+                                  std::to_string(g.moments.x()) + ", " + std::to_string(g.moments.y()) + ", " +
+                                  std::to_string(g.moments.z()) + " kg·m²)");
+    }
+    g.body_in_root = Placement{axes, g.com};
+    if (g.links.size() > 1) {
+      out.notes.push_back("link '" + name + "' and " + std::to_string(g.links.size() - 1) +
+                          " link(s) welded to it by fixed joints are one body");
+    }
+  }
+  // Where each group's root link is at q = 0, and how the root attaches to the world.
+  const bool fixed_base = options.base == RobotOptions::Base::kFixed;
+  const bool floating_base = options.base == RobotOptions::Base::kFloating;
+  std::vector<Placement> root_in_world(groups.size());
+  auto index_in_group = [&](int link) {
+    const Group& g = groups[static_cast<std::size_t>(group_of[static_cast<std::size_t>(link)])];
+    return static_cast<std::size_t>(std::find(g.links.begin(), g.links.end(), link) - g.links.begin());
+  };
+  auto link_in_world = [&](int link) {  // (its group's root placed already)
+    const auto g = static_cast<std::size_t>(group_of[static_cast<std::size_t>(link)]);
+    return root_in_world[g].Then(groups[g].in_root[index_in_group(link)]);
+  };
+  for (const int link : order) {
+    const auto l = static_cast<std::size_t>(link);
+    const auto g = static_cast<std::size_t>(group_of[l]);
+    if (groups[g].root != link) continue;
+    const int j = joint_above[l];
+    if (j < 0) {
+      root_in_world[g] = options.pose;
+      continue;
+    }
+    const RobotJoint& joint = model.joints[static_cast<std::size_t>(j)];
+    if (joint.parent < 0 && (fixed_base || floating_base)) {
+      root_in_world[g] = options.pose;
+    } else {
+      const Placement parent = joint.parent >= 0 ? link_in_world(joint.parent) : options.pose;
+      root_in_world[g] = parent.Then(joint.parent_to_joint).Then(joint.joint_to_child);
+    }
+  }
+  // The bodies.
+  const int first_body = static_cast<int>(world.world().bodies().size());
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const Group& group = groups[g];
+    const Placement body = root_in_world[g].Then(group.body_in_root);
+    RigidBody b;
+    b.mass = group.mass;
+    b.inertia = group.moments;
+    b.position = body.translation;
+    b.orientation = QuaternionOf(body.rotation);
+    const std::optional<Collider> collider = ColliderOf(model, group, options, out.notes);
+    if (collider) {
+      world.AddBody(b, *collider);
+    } else {
+      world.AddBody(b);
+    }
+  }
+  out.body_of_link.resize(nl);
+  for (std::size_t l = 0; l < nl; ++l) out.body_of_link[l] = first_body + group_of[l];
+  // A link's frame in its body's frame.
+  auto link_in_body = [&](int link) {
+    const Group& g = groups[static_cast<std::size_t>(group_of[static_cast<std::size_t>(link)])];
+    return g.body_in_root.Inverse().Then(g.in_root[index_in_group(link)]);
+  };
+  // The joints.
+  out.joint_of.assign(model.joints.size(), -1);
+  for (std::size_t k = 0; k < model.joints.size(); ++k) {
+    const RobotJoint& rj = model.joints[k];
+    if (welded(rj.child)) continue;  // lumped
+    Joint j;
+    j.name = rj.name;
+    j.child = out.body_of_link[static_cast<std::size_t>(rj.child)];
+    j.parent = rj.parent >= 0 ? out.body_of_link[static_cast<std::size_t>(rj.parent)] : -1;
+    Placement parent_frame;
+    if (rj.parent >= 0) {
+      parent_frame = link_in_body(rj.parent).Then(rj.parent_to_joint);
+    } else {
+      if (floating_base) continue;  // the file's joint to the world is replaced by none
+      parent_frame =
+          fixed_base ? options.pose.Then(rj.joint_to_child.Inverse()) : options.pose.Then(rj.parent_to_joint);
+    }
+    j.parent_frame = FrameOf(parent_frame);
+    j.child_frame = FrameOf(link_in_body(rj.child).Then(rj.joint_to_child.Inverse()));
+    j.axis = rj.axis;
+    switch (rj.type) {
+      case RobotJointType::kFixed: j.type = JointType::kFixed; break;
+      case RobotJointType::kRevolute:
+      case RobotJointType::kContinuous: j.type = JointType::kRevolute; break;
+      case RobotJointType::kPrismatic: j.type = JointType::kPrismatic; break;
+      case RobotJointType::kBall: j.type = JointType::kSpherical; break;
+      case RobotJointType::kFloating: j.type = JointType::kFree; break;
+    }
+    if (rj.parent < 0 && fixed_base) j.type = JointType::kFixed;
+    if (rj.lower) j.limits.lower = *rj.lower;
+    if (rj.upper) j.limits.upper = *rj.upper;
+    j.damping = rj.damping;
+    j.friction = rj.friction;
+    j.stiffness = rj.stiffness;
+    j.rest_position = rj.rest;
+    if (const auto it = options.motors.find(rj.name); it != options.motors.end()) {
+      j.motor = it->second;
+      if (!std::isfinite(j.motor.max_effort) && rj.effort > 0) j.motor.max_effort = rj.effort;
+    }
+    if (const auto it = options.positions.find(rj.name); it != options.positions.end()) {
+      if (!HasOneCoordinate(j.type)) {
+        throw std::invalid_argument(model.path + ": positions gives joint '" + rj.name + "' (" +
+                                    massprops::RobotJointTypeName(rj.type) +
+                                    ") one number; only revolute and "
+                                    "prismatic joints take one");
+      }
+      j.position = {it->second};
+    }
+    out.joint_of[k] = world.AddJoint(j);
+  }
+  // A root without a joint to the world, welded at the pose when asked.
+  if (fixed_base) {
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+      const int root = groups[g].root;
+      if (joint_above[static_cast<std::size_t>(root)] >= 0) continue;
+      Joint weld;
+      weld.name = model.links[static_cast<std::size_t>(root)].name + " (fixed base)";
+      weld.type = JointType::kFixed;
+      weld.parent = -1;
+      weld.child = first_body + static_cast<int>(g);
+      weld.parent_frame = FrameOf(options.pose);
+      weld.child_frame = FrameOf(link_in_body(root));
+      world.AddJoint(weld);
+    }
+  }
+  return out;
+}
+
+}  // namespace dynamics

@@ -1,0 +1,105 @@
+#pragma once
+/// @file
+/// Robot descriptions as kinematic trees (target massprops::robot): the links of a URDF,
+/// SDFormat or MJCF file with their inertials and collision geometries, and the joints between
+/// them, in one convention whatever the format — for simulators (libdynamics' AddRobot).
+///
+/// Frames. Each link has its frame L (URDF's link frame, SDFormat's link pose, an MJCF body's
+/// frame); its inertial and geometries are placed in L. A joint has its frame J: placed in the
+/// parent's L by `parent_to_joint`, and the child's L placed in J by `joint_to_child`; the axis is
+/// in J. At position q the child is placed by parent_to_joint · motion(q) · joint_to_child, with
+/// motion(q) a turn by q about the axis (revolute, continuous), a shift by q along it (prismatic),
+/// a quaternion (ball) or nothing (fixed).
+///
+/// What cannot be simulated is refused, naming the element: mimic joints, transmissions,
+/// planar/universal/screw joints, closed loops (a link that is the child of two joints, MJCF
+/// <equality>), several joints in one MJCF body, xacro (expand it first), nested SDFormat models.
+
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "massprops/primitive.h"
+#include "massprops/robot.h"
+#include "massprops/wording.h"
+
+namespace massprops {
+
+/// A rigid placement x ↦ R x + t.
+struct Placement {
+  Matrix3 rotation = Matrix3::Identity();
+  Vector3 translation = Vector3::Zero();
+  Placement Then(const Placement& inner) const {  ///< this ∘ inner
+    return {rotation * inner.rotation, rotation * inner.translation + translation};
+  }
+  Placement Inverse() const { return {rotation.transpose(), -(rotation.transpose() * translation)}; }
+};
+
+struct RobotMesh {
+  std::string path;  ///< resolved to a file
+  Vector3 scale = Vector3::Ones();
+};
+
+struct RobotGeometry {
+  std::variant<Primitive, RobotMesh> shape;
+  Placement pose;     ///< in the link frame
+  std::string where;  ///< "link 'thigh' collision 'box'", for messages
+};
+
+/// Mass, center of mass (link frame) and inertia about it (link axes), SI.
+struct RobotInertial {
+  double mass = 0;
+  Vector3 center_of_mass = Vector3::Zero();
+  Matrix3 inertia = Matrix3::Zero();
+};
+
+struct RobotLink {
+  std::string name;
+  std::optional<RobotInertial> inertial;  ///< none: the file gives no mass (URDF: massless)
+  std::vector<RobotGeometry> collisions;
+};
+
+enum class RobotJointType { kFixed, kRevolute, kContinuous, kPrismatic, kBall, kFloating };
+/// "fixed", "revolute", "continuous", "prismatic", "ball", "floating".
+const char* RobotJointTypeName(RobotJointType type);
+
+struct RobotJoint {
+  std::string name;
+  RobotJointType type = RobotJointType::kFixed;
+  int parent = -1;  ///< link index; -1: the world (an SDFormat joint to "world", an MJCF top body)
+  int child = 0;    ///< link index
+  Placement parent_to_joint, joint_to_child;
+  Vector3 axis = Vector3::UnitX();     ///< unit, in J
+  std::optional<double> lower, upper;  ///< rad or m (revolute, prismatic)
+  double effort = 0;                   ///< N·m or N; 0: not stated
+  double velocity = 0;                 ///< rad/s or m/s; 0: not stated
+  double damping = 0, friction = 0, stiffness = 0, rest = 0;
+};
+
+struct RobotModel {
+  std::string path;
+  RobotFormat format = RobotFormat::kUrdf;
+  std::string name;
+  std::vector<RobotLink> links;
+  std::vector<RobotJoint> joints;  ///< each link is the child of one joint at most
+  std::vector<std::string> notes;  ///< what was read but is not simulated (actuators, armature)
+  /// The links no joint moves from a parent link: the roots of the trees.
+  std::vector<int> Roots() const;
+};
+
+struct RobotModelOptions {
+  /// Each link's inertial computed from its geometries first, as `massprops fill` writes it
+  /// (the model is read from the filled document, so it matches the filled file bit for bit).
+  bool fill = false;
+  FillOptions fill_options;  ///< how (density, masses, packages, mesh checks)
+  /// How the front end names options in messages (null: the C++ API's names).
+  const Vocabulary* words = nullptr;
+};
+
+/// @throws FileAccessError (io.h) when the file cannot be read; std::runtime_error naming the
+///         file and the element for what cannot be read or simulated, or (fill) a link whose
+///         inertial could not be computed.
+RobotModel ReadRobotModel(const std::string& path, const RobotModelOptions& options = {});
+
+}  // namespace massprops
