@@ -134,3 +134,13 @@ class Fields {
 };
 
 }  // namespace rbsim::json_fields
+
+namespace rbsim {
+/// A rotation given as a quaternion [w, x, y, z] (normalized, with a warning) or as
+/// {"axis": [...], "angle"/"angle_deg": ...}; identity when absent.
+Quaternion ReadOrientation(json_fields::Fields& f, const std::string& key, std::vector<std::string>& warnings);
+/// The "material" object of an entry; the defaults when absent.
+dynamics::Material ReadMaterial(json_fields::Fields& f);
+/// A joint motor {"mode", "target" (or "target_deg"), "max_effort", "kp", "kd"}.
+dynamics::JointMotor ReadMotor(json_fields::Fields& o, bool degrees_allowed);
+}  // namespace rbsim

@@ -1,6 +1,7 @@
 // rbsim: simulate rigid bodies made from mesh files (or closed-form solids).
 //
 //   rbsim SCENE.json [--dt S] [--duration S] [--integrator NAME] [--rate HZ] [--out DIR]
+//   rbsim ROBOT.urdf|.sdf|.xml [--fill] [--fixed-base] ...  (a robot dropped on the ground)
 //   rbsim --mesh part.stl --omega 0,10,0.01 [--omega-frame world|body|principal] [--duration S] ...
 //   rbsim poses PART [--drops N] ...   (resting-pose statistics: poses_cli.cpp)
 //
@@ -24,6 +25,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli.h"
+#include "massprops/robot.h"
 #include "massprops/version.h"
 #include "outputs.h"
 #include "poses_cli.h"
@@ -56,9 +58,13 @@ int main(int argc, char** argv) {
                                 outputs_text;
   double density = 1000, mass = 0;
   std::optional<double> dt, duration, rate;
-  bool repair = false, allow_open = false, quiet = false;
+  bool repair = false, allow_open = false, quiet = false, fill = false, fixed_base = false;
   int threads = 1;
-  auto* scene_opt = app.add_option("scene", scene_file, "Scene file (JSON)");
+  auto* scene_opt = app.add_option("scene", scene_file,
+                                   "Scene file (JSON), or a robot file (URDF, SDFormat, MJCF) to drop on the ground");
+  app.add_flag("--fill", fill, "Robot file: compute every link's inertial from its geometry first (as massprops fill)")
+      ->needs(scene_opt);
+  app.add_flag("--fixed-base", fixed_base, "Robot file: weld its root link to the world")->needs(scene_opt);
   auto* mesh_opt =
       app.add_option("--mesh", mesh, "Quick path: spin this one mesh torque-free (no scene file)")->excludes(scene_opt);
   std::vector<std::string> units;
@@ -107,7 +113,16 @@ int main(int argc, char** argv) {
   };
   rbsim::Scene scene;
   try {
-    if (!scene_file.empty()) {
+    const std::string extension = std::filesystem::path(scene_file).extension().string();
+    const bool robot_file = !scene_file.empty() && extension != ".json" && std::filesystem::is_regular_file(scene_file);
+    if ((fill || fixed_base) && !robot_file) {
+      std::cerr << "error: --fill, --fixed-base: for a robot file (URDF, SDFormat, MJCF), not a scene\n";
+      return massprops::app::kBadArguments;
+    }
+    if (robot_file) {
+      massprops::DetectRobotFormat(scene_file);  // names the file when it is no robot description
+      scene = rbsim::RobotScene(scene_file, fill, fixed_base);
+    } else if (!scene_file.empty()) {
       scene = rbsim::LoadScene(scene_file, warnings);
     } else {
       massprops::Vector3 omega = massprops::Vector3::Zero(), velocity = massprops::Vector3::Zero();
@@ -223,7 +238,7 @@ int main(int argc, char** argv) {
   try {
     if (!out_dir.empty()) {
       std::filesystem::create_directories(out_dir);
-      writer = std::make_unique<rbsim::TrajectoryWriter>(out_dir, scene.outputs, !scene.joints.empty());
+      writer = std::make_unique<rbsim::TrajectoryWriter>(out_dir, scene.outputs, !sim->world().joints().empty());
     }
   } catch (const std::exception& e) {
     std::cerr << "error: --out " << massprops::app::OneLine(out_dir) << ": " << massprops::app::OneLine(e.what())

@@ -25,42 +25,6 @@ using json_fields::Num;
 using json_fields::Suggest;
 using json_fields::TypeName;
 
-Quaternion ReadOrientation(Fields& f, const std::string& key, std::vector<std::string>& warnings) {
-  const json* v = f.Get(key);
-  if (!v) return Quaternion::Identity();
-  if (v->is_array()) {
-    if (v->size() != 4) f.Fail(key, "a quaternion is 4 numbers [w, x, y, z], not " + std::to_string(v->size()));
-    double c[4];
-    for (std::size_t i = 0; i < 4; ++i) c[i] = f.CheckNumber(key + "[" + std::to_string(i) + "]", (*v)[i], nullptr);
-    // Its norm without overflow or underflow: scaled by its largest component first (the norm of
-    // [1e300, 1e300, 0, 0] overflowed, and was called zero).
-    const double largest = std::max({std::abs(c[0]), std::abs(c[1]), std::abs(c[2]), std::abs(c[3])});
-    if (!(largest > 0)) f.Fail(key, "the quaternion is zero: it names no rotation");
-    const Quaternion scaled(c[0] / largest, c[1] / largest, c[2] / largest, c[3] / largest);
-    const double n = largest * scaled.norm();  // may be infinite: only reported
-    if (!(n > 1e-12)) f.Fail(key, "the quaternion is zero: it names no rotation");
-    if (std::abs(n - 1.0) > 1e-12) {
-      warnings.push_back(f.file() + ": " + f.Path(key) + ": the quaternion has norm " + Num(n) +
-                         "; normalized to unit length");
-    }
-    return scaled.normalized();
-  }
-  if (v->is_object()) {
-    Fields o(*v, f.Path(key), f.file());
-    const Vector3 axis = o.Vec3("axis", Vector3::Zero());
-    if (!o.Has("axis")) o.Fail("axis", "is required (with angle_deg or angle)");
-    if (!(axis.norm() > 0)) o.Fail("axis", "must not be the zero vector");
-    if (o.Has("angle_deg") == o.Has("angle")) o.Fail("give exactly one of angle_deg and angle (radians)");
-    // Whole turns dropped first, so that an angle of 1e308 degrees is a rotation, not an overflow.
-    const double angle = o.Has("angle") ? std::fmod(o.Number("angle", 0), 2 * M_PI)
-                                        : std::fmod(o.Number("angle_deg", 0), 360.0) * M_PI / 180.0;
-    o.Get(o.Has("angle") ? "angle_deg" : "angle");  // both are known keys
-    o.Done();
-    return Quaternion(Eigen::AngleAxisd(angle, axis.normalized()));
-  }
-  f.Fail(key, "must be a quaternion [w, x, y, z] or {\"axis\": [x, y, z], \"angle_deg\": a}, not " + TypeName(*v));
-}
-
 std::vector<std::string> UnitNames() {
   std::vector<std::string> names;
   for (massprops::LengthUnit u : massprops::kAllLengthUnits) names.emplace_back(massprops::UnitName(u));
@@ -142,27 +106,6 @@ ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {
   return s;
 }
 
-dynamics::Material ReadMaterial(Fields& f) {
-  dynamics::Material m;
-  const json* v = f.Get("material");
-  if (!v) return m;
-  Fields o(*v, f.Path("material"), f.file());
-  if (o.Has("friction") && (o.Has("static_friction") || o.Has("kinetic_friction"))) {
-    o.Fail("give 'friction' (both coefficients) or 'static_friction' and 'kinetic_friction', not both");
-  }
-  const double mu = o.Number("friction", -1, "non-negative");
-  m.static_friction = o.Number("static_friction", mu >= 0 ? mu : m.static_friction, "non-negative");
-  m.kinetic_friction =
-      o.Number("kinetic_friction", mu >= 0 ? mu : std::min(m.kinetic_friction, m.static_friction), "non-negative");
-  if (m.kinetic_friction > m.static_friction) {
-    o.Fail("kinetic_friction", "must not exceed static_friction (" + Num(m.static_friction) + ")");
-  }
-  m.restitution = o.Number("restitution", 0.0, "non-negative");
-  if (m.restitution > 1) o.Fail("restitution", "lies between 0 and 1");
-  o.Done();
-  return m;
-}
-
 // "collision": "none" | "hull" | "mesh" | a primitive {"type": "box", ...}; absent: the solid
 // itself when it is a box, sphere, capsule or cylinder.
 CollisionSpec ReadCollision(Fields& f) {
@@ -208,6 +151,63 @@ GroundSpec ReadGround(const json& j, const std::string& path, const std::string&
 }
 
 }  // namespace
+
+Quaternion ReadOrientation(Fields& f, const std::string& key, std::vector<std::string>& warnings) {
+  const json* v = f.Get(key);
+  if (!v) return Quaternion::Identity();
+  if (v->is_array()) {
+    if (v->size() != 4) f.Fail(key, "a quaternion is 4 numbers [w, x, y, z], not " + std::to_string(v->size()));
+    double c[4];
+    for (std::size_t i = 0; i < 4; ++i) c[i] = f.CheckNumber(key + "[" + std::to_string(i) + "]", (*v)[i], nullptr);
+    // Its norm without overflow or underflow: scaled by its largest component first (the norm of
+    // [1e300, 1e300, 0, 0] overflowed, and was called zero).
+    const double largest = std::max({std::abs(c[0]), std::abs(c[1]), std::abs(c[2]), std::abs(c[3])});
+    if (!(largest > 0)) f.Fail(key, "the quaternion is zero: it names no rotation");
+    const Quaternion scaled(c[0] / largest, c[1] / largest, c[2] / largest, c[3] / largest);
+    const double n = largest * scaled.norm();  // may be infinite: only reported
+    if (!(n > 1e-12)) f.Fail(key, "the quaternion is zero: it names no rotation");
+    if (std::abs(n - 1.0) > 1e-12) {
+      warnings.push_back(f.file() + ": " + f.Path(key) + ": the quaternion has norm " + Num(n) +
+                         "; normalized to unit length");
+    }
+    return scaled.normalized();
+  }
+  if (v->is_object()) {
+    Fields o(*v, f.Path(key), f.file());
+    const Vector3 axis = o.Vec3("axis", Vector3::Zero());
+    if (!o.Has("axis")) o.Fail("axis", "is required (with angle_deg or angle)");
+    if (!(axis.norm() > 0)) o.Fail("axis", "must not be the zero vector");
+    if (o.Has("angle_deg") == o.Has("angle")) o.Fail("give exactly one of angle_deg and angle (radians)");
+    // Whole turns dropped first, so that an angle of 1e308 degrees is a rotation, not an overflow.
+    const double angle = o.Has("angle") ? std::fmod(o.Number("angle", 0), 2 * M_PI)
+                                        : std::fmod(o.Number("angle_deg", 0), 360.0) * M_PI / 180.0;
+    o.Get(o.Has("angle") ? "angle_deg" : "angle");  // both are known keys
+    o.Done();
+    return Quaternion(Eigen::AngleAxisd(angle, axis.normalized()));
+  }
+  f.Fail(key, "must be a quaternion [w, x, y, z] or {\"axis\": [x, y, z], \"angle_deg\": a}, not " + TypeName(*v));
+}
+
+dynamics::Material ReadMaterial(Fields& f) {
+  dynamics::Material m;
+  const json* v = f.Get("material");
+  if (!v) return m;
+  Fields o(*v, f.Path("material"), f.file());
+  if (o.Has("friction") && (o.Has("static_friction") || o.Has("kinetic_friction"))) {
+    o.Fail("give 'friction' (both coefficients) or 'static_friction' and 'kinetic_friction', not both");
+  }
+  const double mu = o.Number("friction", -1, "non-negative");
+  m.static_friction = o.Number("static_friction", mu >= 0 ? mu : m.static_friction, "non-negative");
+  m.kinetic_friction =
+      o.Number("kinetic_friction", mu >= 0 ? mu : std::min(m.kinetic_friction, m.static_friction), "non-negative");
+  if (m.kinetic_friction > m.static_friction) {
+    o.Fail("kinetic_friction", "must not exceed static_friction (" + Num(m.static_friction) + ")");
+  }
+  m.restitution = o.Number("restitution", 0.0, "non-negative");
+  if (m.restitution > 1) o.Fail("restitution", "lies between 0 and 1");
+  o.Done();
+  return m;
+}
 
 int BodyIndex(Fields& f, const std::string& key, const json& v, const std::vector<BodySpec>& bodies) {
   if (v.is_number_unsigned()) {  // read as unsigned: 2^64 - 1 is not -1
@@ -378,9 +378,13 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
     scene.outputs = DefaultOutputs();
   }
 
+  if (const json* r = f.Get("robots")) scene.robots = ReadRobots(*r, file, base_dir, warnings);
+  static const json kNoBodies = json::array();
   const json* bodies = f.Get("bodies");
-  if (!bodies || !bodies->is_array() || bodies->empty()) {
-    f.Fail("bodies", "must be a non-empty array of bodies" + (bodies ? std::string() : f.MisspelledAs("bodies")));
+  if (!bodies && !scene.robots.empty()) bodies = &kNoBodies;
+  if (!bodies || !bodies->is_array() || (bodies->empty() && scene.robots.empty())) {
+    f.Fail("bodies", "must be a non-empty array of bodies (or give \"robots\")" +
+                         (bodies ? std::string() : f.MisspelledAs("bodies")));
   }
   std::set<std::string> names;
   for (std::size_t i = 0; i < bodies->size(); ++i) {
@@ -459,10 +463,10 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
     }
   }
   if (const json* jt = f.Get("joints")) scene.joints = ReadJoints(*jt, file, scene.bodies);
-  if (!scene.joints.empty() && scene.integrator != dynamics::Integrator::kImplicitMidpoint &&
+  if ((!scene.joints.empty() || !scene.robots.empty()) && scene.integrator != dynamics::Integrator::kImplicitMidpoint &&
       scene.integrator != dynamics::Integrator::kRK4) {
-    f.Fail("integrator",
-           "'" + integrator + "' has no meaning for joints (it steps free bodies): use implicit-midpoint or rk4");
+    f.Fail("integrator", "'" + integrator + "' has no meaning for joints and robots (it steps free bodies): use " +
+                             "implicit-midpoint or rk4");
   }
   if (const json* pairs = f.Get("pairs")) {
     if (!pairs->is_array()) f.Fail("pairs", "must be an array of {\"bodies\": [a, b], \"material\": {...}}");

@@ -13,6 +13,7 @@
 
 #include "dynamics/bodies.h"
 #include "dynamics/contact.h"
+#include "dynamics/robot.h"
 #include "dynamics/world.h"
 #include "massprops/mass_properties.h"
 #include "massprops/mass_spec.h"
@@ -106,6 +107,18 @@ struct JointSpec {
   Vector3 axis = Vector3::UnitZ();
 };
 
+/// A robot description placed in the scene (docs/robots.md).
+struct RobotSpec {
+  std::string name;   ///< prefixes its bodies' names ("dog/base_link")
+  std::string field;  ///< "robots[0]"
+  std::string path;   ///< the URDF, SDFormat or MJCF file
+  bool fill = false;  ///< inertials computed from the links' geometries first (massprops fill)
+  massprops::FillOptions fill_options;
+  dynamics::RobotOptions options;  ///< pose, base, positions, motors, colliders, material
+  /// No position given: the robot is raised so that its lowest point is 1 cm above the ground.
+  bool position_given = false;
+};
+
 enum class OutputKind { kCsv, kJsonl, kDiagnostics, kPlotSvg, kPlotPng, kGlb };
 
 struct Scene {
@@ -120,6 +133,7 @@ struct Scene {
   std::vector<BodySpec> bodies;
   std::vector<ForceSpec> forces;
   std::vector<JointSpec> joints;
+  std::vector<RobotSpec> robots;
   std::vector<GroundSpec> grounds;
   std::vector<StaticSpec> statics;
   dynamics::ContactOptions contact;
@@ -135,6 +149,12 @@ struct Scene {
 /// Reads the scene's "joints" array (the bodies already read). @throws SceneError.
 std::vector<JointSpec> ReadJoints(const nlohmann::json& joints, const std::string& file,
                                   const std::vector<BodySpec>& bodies);
+
+/// Reads the scene's "robots" array (files relative to base_dir). @throws SceneError.
+std::vector<RobotSpec> ReadRobots(const nlohmann::json& robots, const std::string& file, const std::string& base_dir,
+                                  std::vector<std::string>& warnings);
+/// A robot file given on the command line: on the ground, dropped from 1 cm, for `duration`.
+Scene RobotScene(const std::string& path, bool fill, bool fixed_base);
 
 /// Parses and validates a scene. `base_dir` resolves relative mesh paths. Non-fatal findings
 /// (a non-unit quaternion, an output rate above 1/dt, ...) are appended to `warnings`.

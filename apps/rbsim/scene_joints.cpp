@@ -117,19 +117,7 @@ JointSpec ReadJoint(const json& j, const std::string& path, const std::string& f
   }
   if (const json* m = f.Get("motor")) {
     Fields o(*m, f.Path("motor"), file);
-    const std::string mode = o.String("mode", "", {"velocity", "position"});
-    if (mode.empty()) o.Fail("mode", "is required (velocity, position)");
-    jt.motor.mode = mode == "velocity" ? dynamics::JointMotor::Mode::kVelocity : dynamics::JointMotor::Mode::kPosition;
-    const std::optional<double> target = Angle(o, "target", revolute);
-    if (!target) o.Fail("target", "is required");
-    jt.motor.target = *target;
-    if (o.Has("max_effort")) jt.motor.max_effort = o.Number("max_effort", 1.0, "positive");
-    o.Get("max_effort");
-    if (jt.motor.mode == dynamics::JointMotor::Mode::kPosition) {
-      jt.motor.kp = o.RequiredNumber("kp", "non-negative");
-      jt.motor.kd = o.Number("kd", 0.0, "non-negative");
-    }
-    o.Done();
+    jt.motor = ReadMotor(o, revolute);
   }
   const auto nq = static_cast<std::size_t>(dynamics::JointPositionSize(jt.type));
   const auto nv = static_cast<std::size_t>(dynamics::JointVelocitySize(jt.type));
@@ -143,6 +131,24 @@ JointSpec ReadJoint(const json& j, const std::string& path, const std::string& f
 }
 
 }  // namespace
+
+dynamics::JointMotor ReadMotor(Fields& o, bool degrees_allowed) {
+  dynamics::JointMotor motor;
+  const std::string mode = o.String("mode", "", {"velocity", "position"});
+  if (mode.empty()) o.Fail("mode", "is required (velocity, position)");
+  motor.mode = mode == "velocity" ? dynamics::JointMotor::Mode::kVelocity : dynamics::JointMotor::Mode::kPosition;
+  const std::optional<double> target = Angle(o, "target", degrees_allowed);
+  if (!target) o.Fail("target", "is required");
+  motor.target = *target;
+  if (o.Has("max_effort")) motor.max_effort = o.Number("max_effort", 1.0, "positive");
+  o.Get("max_effort");
+  if (motor.mode == dynamics::JointMotor::Mode::kPosition) {
+    motor.kp = o.RequiredNumber("kp", "non-negative");
+    motor.kd = o.Number("kd", 0.0, "non-negative");
+  }
+  o.Done();
+  return motor;
+}
 
 std::vector<JointSpec> ReadJoints(const json& joints, const std::string& file, const std::vector<BodySpec>& bodies) {
   if (!joints.is_array()) throw SceneError(file + ": joints: must be an array of joints");

@@ -10,6 +10,7 @@
 
 #include "dynamics/bodies.h"
 #include "dynamics/forces.h"
+#include "dynamics/robot.h"
 #include "massprops/implicit.h"
 #include "massprops/load.h"
 #include "massprops/primitive.h"
@@ -52,6 +53,72 @@ BuiltShape LoadShape(const dynamics::BodyBuilder& builder, const ShapeSpec& shap
   }
 }
 
+// A robot of the scene: its file read (filled on request), its bodies and joints added, each
+// body drawn as its collision geometry. Without a position it is raised so that its lowest point
+// is 1 cm above the highest ground under it.
+void AddRobot(Simulation& sim, const RobotSpec& spec, std::vector<std::string>& warnings) {
+  const std::string where = sim.scene.file + ": " + spec.field;
+  const massprops::Vocabulary& words = massprops::report::WordsFor(massprops::report::FrontEnd::kScene);
+  massprops::RobotModelOptions read;
+  read.fill = spec.fill;
+  read.fill_options = spec.fill_options;
+  read.words = &words;
+  massprops::RobotModel model;
+  try {
+    model = massprops::ReadRobotModel(spec.path, read);
+  } catch (const std::exception& e) {
+    throw SceneError(where + ": " + e.what());
+  }
+  dynamics::RobotOptions options = spec.options;
+  try {
+    if (!spec.position_given && !sim.scene.grounds.empty()) {
+      // Where its lowest point is with the root at the origin (a scratch world), then raised.
+      dynamics::ContactWorld scratch;
+      const dynamics::RobotInWorld trial = dynamics::AddRobot(scratch, model, options);
+      double lowest = std::numeric_limits<double>::infinity();
+      const Vector3 up = sim.scene.grounds.front().normal;
+      double floor = -std::numeric_limits<double>::infinity();
+      for (const GroundSpec& g : sim.scene.grounds) {
+        if (g.normal.isApprox(up)) floor = std::max(floor, g.offset);
+      }
+      for (std::size_t k = 0; k < trial.bodies.size(); ++k) {
+        const dynamics::RigidBody& b = scratch.world().bodies()[static_cast<std::size_t>(trial.bodies[k])];
+        const TriangleMesh& m = trial.shapes[k];
+        for (Eigen::Index v = 0; v < m.V.rows(); ++v) {
+          lowest = std::min(lowest, up.dot(b.orientation * Vector3(m.V.row(v).transpose()) + b.position));
+        }
+      }
+      if (std::isfinite(lowest)) options.pose.translation += up * (floor + 0.01 - lowest);
+    }
+    const dynamics::RobotInWorld added = dynamics::AddRobot(sim.physics, model, options);
+    for (const std::string& note : added.notes) warnings.push_back(where + ": " + note);
+    for (std::size_t k = 0; k < added.bodies.size(); ++k) {
+      const dynamics::RigidBody& rb = sim.world().bodies()[static_cast<std::size_t>(added.bodies[k])];
+      SimBody body;
+      body.name = spec.name + "/" + added.body_names[k];
+      body.color = DefaultColor(sim.bodies.size());
+      // In its link's frame (the outputs' orientation is the link's): the body's principal
+      // axes R and center of mass t there; the drawn geometry about the center, in link axes.
+      const massprops::Placement& in_link = added.body_in_link[k];
+      body.mp.mass = rb.mass;
+      body.mp.center_of_mass = in_link.translation;
+      body.mp.inertia_com = in_link.rotation * rb.inertia.asDiagonal() * in_link.rotation.transpose();
+      body.principal.axes = in_link.rotation;
+      body.principal.moments = rb.inertia;
+      body.source = spec.path + " (" + massprops::RobotFormatName(model.format) + (spec.fill ? ", filled" : "") + ")";
+      body.display = added.shapes[k];
+      for (Eigen::Index v = 0; v < body.display.V.rows(); ++v) {
+        body.display.V.row(v) = (in_link.rotation * body.display.V.row(v).transpose()).transpose();
+      }
+      sim.bodies.push_back(std::move(body));
+    }
+  } catch (const SceneError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw SceneError(where + ": " + e.what());
+  }
+}
+
 }  // namespace
 
 Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warnings, int threads) {
@@ -63,7 +130,7 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
   // Contact is on when the scene asks for it: a ground, a static body, or a body's "collision".
   // Then box, sphere, capsule and cylinder solids collide as themselves unless they say "none";
   // scenes without any of these run as before, bodies passing through each other.
-  bool wants_contact = !scene.grounds.empty() || !scene.statics.empty();
+  bool wants_contact = !scene.grounds.empty() || !scene.statics.empty() || !scene.robots.empty();
   for (const BodySpec& b : scene.bodies) wants_contact = wants_contact || b.collision.kind != CollisionKind::kAuto;
   sim.contact = wants_contact;
   std::vector<bool> collides;  // each body has a collider
@@ -105,12 +172,6 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     sim.bodies.push_back(std::move(body));
   }
 
-  // Joints, placed at the scene's placement of the bodies (q = 0 there), then moved to their
-  // initial positions.
-  if (!scene.joints.empty() && wants_contact) {
-    throw SceneError(scene.file + ": " + scene.joints[0].field +
-                     ": joints and contact (ground, static bodies, colliders) in one scene are not supported yet");
-  }
   // Placed at the bodies as the scene puts them (PlaceJoint: as added, whatever joints added
   // before have moved), then moved to their initial positions.
   for (const JointSpec& spec : scene.joints) {
@@ -126,6 +187,8 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
       throw SceneError(scene.file + ": " + spec.field + ": " + what);
     }
   }
+
+  for (const RobotSpec& spec : scene.robots) AddRobot(sim, spec, warnings);
 
   // Ground planes, drawn as squares four times as wide as the bodies' spread, under their centre.
   Vector3 lo = Vector3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;

@@ -22,6 +22,7 @@
 
 #include "dynamics/contact.h"
 #include "massprops/load.h"
+#include "massprops/mesh.h"
 #include "massprops/robot_model.h"
 
 namespace dynamics {
@@ -44,6 +45,11 @@ struct RobotOptions {
 };
 
 struct RobotInWorld {
+  std::vector<int> bodies;                      ///< the world's indices of the bodies added, in order
+  std::vector<std::string> body_names;          ///< each body's (its topmost link's) name
+  std::vector<massprops::TriangleMesh> shapes;  ///< each body's collision geometry, body frame, metres
+  /// Each body's frame (principal axes at its center of mass) in its topmost link's frame.
+  std::vector<massprops::Placement> body_in_link;
   std::vector<int> body_of_link;   ///< each link's body index in the world (lumped links share one)
   std::vector<int> joint_of;       ///< each model joint's index in the world's joints (-1: lumped)
   std::vector<std::string> notes;  ///< lumping, hulls, what the file has that is not simulated

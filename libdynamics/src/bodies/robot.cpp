@@ -125,6 +125,9 @@ std::optional<Collider> ColliderOf(const RobotModel& model, const Group& g, cons
   }
   cloud.V.resize(static_cast<Eigen::Index>(all.size()), 3);
   for (std::size_t i = 0; i < all.size(); ++i) cloud.V.row(static_cast<Eigen::Index>(i)) = all[i].transpose();
+  std::vector<int> corners(all.size());
+  std::iota(corners.begin(), corners.end(), 0);
+  cloud.AddFace(corners);  // (the hull takes the corners of faces)
   c.rotation.setIdentity();
   c.translation.setZero();
   c.shape = ConvexOf(massprops::ConvexHull(cloud));
@@ -134,6 +137,30 @@ std::optional<Collider> ColliderOf(const RobotModel& model, const Group& g, cons
                     (g.links.size() > 1 ? " (with the links welded to it)" : "") + " collide as their convex hull");
   }
   return c;
+}
+
+// The group's collision geometry as triangles in its body frame (for pictures and placement).
+massprops::TriangleMesh ShapeOf(const RobotModel& model, const Group& g, const RobotOptions& options) {
+  std::vector<Vector3> v;
+  std::vector<std::array<int, 3>> t;
+  const Placement root_to_body = g.body_in_root.Inverse();
+  for (std::size_t k = 0; k < g.links.size(); ++k) {
+    for (const auto& geometry : model.links[static_cast<std::size_t>(g.links[k])].collisions) {
+      const Placement pose = root_to_body.Then(g.in_root[k]).Then(geometry.pose);
+      const Points points = PointsOf(geometry, options.load);
+      const int base = static_cast<int>(v.size());
+      for (const Vector3& p : points.vertices) v.push_back(pose.rotation * p + pose.translation);
+      for (const auto& tri : points.triangles) t.push_back({base + tri[0], base + tri[1], base + tri[2]});
+    }
+  }
+  massprops::TriangleMesh mesh;
+  mesh.V.resize(static_cast<Eigen::Index>(v.size()), 3);
+  for (std::size_t i = 0; i < v.size(); ++i) mesh.V.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
+  mesh.F.resize(static_cast<Eigen::Index>(t.size()), 3);
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    mesh.F.row(static_cast<Eigen::Index>(i)) << t[i][0], t[i][1], t[i][2];
+  }
+  return mesh;
 }
 
 }  // namespace
@@ -282,11 +309,10 @@ RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotO
     b.position = body.translation;
     b.orientation = QuaternionOf(body.rotation);
     const std::optional<Collider> collider = ColliderOf(model, group, options, out.notes);
-    if (collider) {
-      world.AddBody(b, *collider);
-    } else {
-      world.AddBody(b);
-    }
+    out.bodies.push_back(collider ? world.AddBody(b, *collider) : world.AddBody(b));
+    out.body_names.push_back(model.links[static_cast<std::size_t>(group.root)].name);
+    out.shapes.push_back(ShapeOf(model, group, options));
+    out.body_in_link.push_back(group.body_in_root);
   }
   out.body_of_link.resize(nl);
   for (std::size_t l = 0; l < nl; ++l) out.body_of_link[l] = first_body + group_of[l];
@@ -308,7 +334,9 @@ RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotO
     if (rj.parent >= 0) {
       parent_frame = link_in_body(rj.parent).Then(rj.parent_to_joint);
     } else {
-      if (floating_base) continue;  // the file's joint to the world is replaced by none
+      // A floating base is a free body (the file's free joint to the world, or none): the same
+      // motion, stepped in the body's own coordinates whatever the format.
+      if (floating_base || (rj.type == RobotJointType::kFloating && !fixed_base)) continue;
       parent_frame =
           fixed_base ? options.pose.Then(rj.joint_to_child.Inverse()) : options.pose.Then(rj.parent_to_joint);
     }

@@ -1,0 +1,117 @@
+// The scene's "robots": a URDF, SDFormat or MJCF file placed in the world, its base, initial
+// joint positions, motors and colliders (docs/robots.md); and the scene of `rbsim ROBOT.urdf`.
+
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+#include "json_fields.h"
+#include "scene.h"
+
+namespace rbsim {
+
+using json_fields::Fields;
+using nlohmann::json;
+
+namespace {
+
+constexpr double kDegree = M_PI / 180.0;
+
+// {"joint": number, ...} in SI (`key`) or degrees (`key_deg`), into `out`.
+void ReadPositions(Fields& f, const std::string& key, double unit, std::map<std::string, double>& out) {
+  const json* v = f.Get(key);
+  if (!v) return;
+  if (!v->is_object()) f.Fail(key, "must be an object {\"joint name\": number, ...}");
+  for (auto it = v->begin(); it != v->end(); ++it) {
+    const double x = f.CheckNumber(key + "." + it.key(), it.value(), nullptr);
+    if (!out.emplace(it.key(), x * unit).second) f.Fail(key, "joint '" + it.key() + "' is given twice");
+  }
+}
+
+RobotSpec ReadRobot(const json& j, const std::string& path, const std::string& file, const std::string& base_dir,
+                    std::vector<std::string>& warnings, std::set<std::string>& names) {
+  Fields f(j, path, file);
+  RobotSpec r;
+  r.field = path;
+  const std::string given = f.String("file", "");
+  if (given.empty()) f.Fail("file", "is required: a URDF, SDFormat or MJCF file");
+  std::filesystem::path p(given);
+  if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
+  if (const std::string problem = MeshFileProblem(p); !problem.empty()) f.Fail("file", "'" + given + "' " + problem);
+  r.path = p.lexically_normal().string();
+  r.name = f.String("name", p.stem().string());
+  if (r.name.empty()) f.Fail("name", "must not be empty");
+  if (!names.insert(r.name).second) f.Fail("name", "'" + r.name + "' is used by another robot");
+  r.fill = f.Bool("fill", false);
+  if (f.Has("density") && !r.fill) f.Fail("density", "is for \"fill\": true (the inertials are otherwise as written)");
+  r.fill_options.density = f.Number("density", 1000.0, "positive");
+  if (f.Has("position")) {
+    r.position_given = true;
+    r.options.pose.translation = f.Vec3("position", Vector3::Zero());
+  }
+  f.Get("position");
+  r.options.pose.rotation = ReadOrientation(f, "orientation", warnings).toRotationMatrix();
+  const std::string base = f.String("base", "as_written", {"as_written", "fixed", "floating"});
+  r.options.base = base == "fixed"      ? dynamics::RobotOptions::Base::kFixed
+                   : base == "floating" ? dynamics::RobotOptions::Base::kFloating
+                                        : dynamics::RobotOptions::Base::kAsWritten;
+  ReadPositions(f, "positions", 1.0, r.options.positions);
+  std::map<std::string, double> degrees;
+  ReadPositions(f, "positions_deg", kDegree, degrees);
+  for (const auto& [name, q] : degrees) {
+    if (!r.options.positions.emplace(name, q).second) {
+      f.Fail("positions_deg", "joint '" + name + "' is also in 'positions'");
+    }
+  }
+  if (const json* m = f.Get("motors")) {
+    if (!m->is_object()) f.Fail("motors", "must be an object {\"joint name\": {motor}, ...}");
+    for (auto it = m->begin(); it != m->end(); ++it) {
+      Fields o(it.value(), f.Path("motors") + "." + it.key(), file);
+      r.options.motors[it.key()] = ReadMotor(o, true);
+    }
+  }
+  const std::string collision = f.String("collision", "hull", {"hull", "mesh"});
+  r.options.mesh_colliders = collision == "mesh";
+  r.options.material = ReadMaterial(f);
+  f.Done();
+  return r;
+}
+
+}  // namespace
+
+std::vector<RobotSpec> ReadRobots(const json& robots, const std::string& file, const std::string& base_dir,
+                                  std::vector<std::string>& warnings) {
+  if (!robots.is_array()) throw SceneError(file + ": robots: must be an array of robots");
+  std::vector<RobotSpec> out;
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < robots.size(); ++i) {
+    out.push_back(ReadRobot(robots[i], "robots[" + std::to_string(i) + "]", file, base_dir, warnings, names));
+  }
+  return out;
+}
+
+Scene RobotScene(const std::string& path, bool fill, bool fixed_base) {
+  Scene scene;
+  scene.file = "<command line>";
+  scene.duration = 3.0;
+  scene.dt = 1e-3;
+  scene.outputs = DefaultOutputs();
+  RobotSpec r;
+  r.field = "robot";
+  r.path = std::filesystem::absolute(path).lexically_normal().string();
+  r.name = std::filesystem::path(path).stem().string();
+  r.fill = fill;
+  r.options.base = fixed_base ? dynamics::RobotOptions::Base::kFixed : dynamics::RobotOptions::Base::kAsWritten;
+  scene.robots.push_back(std::move(r));
+  ForceSpec gravity;
+  gravity.kind = ForceKind::kGravity;
+  gravity.field = "gravity";
+  gravity.vector = Vector3(0, 0, -9.81);
+  scene.forces.push_back(gravity);
+  scene.grounds.push_back(GroundSpec{});
+  return scene;
+}
+
+}  // namespace rbsim
