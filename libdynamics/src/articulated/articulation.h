@@ -169,6 +169,7 @@ class Articulation {
   std::vector<Eigen::MatrixXd> phi_;  ///< ContactKick's body Jacobians (by node)
   Eigen::VectorXd kicked_p_;          ///< ContactKick's p + h ṗ (+ h D v)
   Configuration effective_;           ///< ContactKick's start with M + h D + h² K
+  std::vector<char> held_;            ///< dofs ContactKick holds on a stop (Impulses leaves their stops)
 };
 
 }  // namespace dynamics::internal

@@ -62,6 +62,7 @@ bool Articulation::ContactKick(const std::vector<std::unique_ptr<Force>>& forces
   // then act on this effective mass, and the step's momentum is M u.
   kicked_p_ = p_ + h * rate_;
   effective_ = start_;
+  held_.assign(static_cast<std::size_t>(v_.size()), 0);
   for (const Node& n : nodes_) {
     if (n.joint < 0 || n.nv == 0 || n.type == JointType::kFree) continue;
     const Joint& j = joints_[static_cast<std::size_t>(n.joint)];
@@ -76,6 +77,21 @@ bool Articulation::ContactKick(const std::vector<std::unique_ptr<Force>>& forces
       effective_.M(i, i) += h * damping + h * h * stiffness;
       kicked_p_[i] += h * damping * v_[i];
     }
+    // A stop the joint is on, or would pass in this step at its present rate, holds it as a
+    // stiff implicit spring toward the limit — (M + h² k) u = … − h k (q − limit), with h² k a
+    // million times the joint's own inertia: rigid, in the very solve that the contacts see
+    // (a leg on its stop pressed against the ground), never pulling it past the limit.
+    if (n.nv != 1) continue;
+    const double q = q_[n.q], reach = q + h * v_[n.v];
+    if (!(reach < j.limits.lower || reach > j.limits.upper)) continue;
+    // Toward the limit from inside; from beyond it (where the last step's contacts left it),
+    // held where it is: the end of the step places it back on the limit, without a velocity.
+    const bool inside = q >= j.limits.lower && q <= j.limits.upper;
+    const double rest = !inside ? q : reach < j.limits.lower ? j.limits.lower : j.limits.upper;
+    const double k = 1e6 * start_.M(n.v, n.v) / (h * h);
+    effective_.M(n.v, n.v) += h * h * k;
+    kicked_p_[n.v] -= h * k * (q - rest);
+    held_[static_cast<std::size_t>(n.v)] = 1;
   }
   effective_.llt.compute(effective_.M);
   if (effective_.llt.info() != Eigen::Success) return false;
@@ -167,6 +183,7 @@ bool Articulation::ContactFinish(const std::vector<Wrench>& impulses, const std:
   if (push.cwiseAbs().maxCoeff() > 0) vbar_ += start_.llt.solve(push);
   Move(q_, vbar_, h, q1_);
   for (const auto& [qi, limit] : stops) q1_[qi] = limit;
+  held_.clear();  // (the midpoint rule's stops are its own)
   if (!q1_.allFinite() || !p1_.allFinite() || !Configure(q1_, end_)) return false;
   Accept(bodies);
   return true;

@@ -17,6 +17,7 @@ double MaxAbs(const Eigen::VectorXd& x) { return x.size() ? x.cwiseAbs().maxCoef
 StepStatus Articulation::Advance(Integrator integrator, const std::vector<std::unique_ptr<Force>>& forces, double t,
                                  double h, std::vector<RigidBody>& bodies) {
   StepStatus status;
+  held_.clear();                                // (a contact step's, when it found no contact)
   saved_q_ = q_, saved_v_ = v_, saved_p_ = p_;  // into kept capacity
   for (int substeps = 1; substeps <= 1024; substeps *= 2) {
     bool ok = true;
@@ -182,6 +183,11 @@ bool Articulation::Impulses(const Configuration& c, const Eigen::VectorXd& q1, d
       rows_.push_back({n.joint, n.v, -j.motor.max_effort * h, j.motor.max_effort * h, j.motor.target, false});
     }
     const double qi = q1[n.q];
+    if (!held_.empty() && held_[static_cast<std::size_t>(n.v)]) {  // a contact step's implicit stop holds it
+      if (qi < j.limits.lower) stops.emplace_back(n.q, j.limits.lower);
+      if (qi > j.limits.upper) stops.emplace_back(n.q, j.limits.upper);
+      continue;
+    }
     if (qi < j.limits.lower || qi > j.limits.upper) {
       if (v1.size() == 0) v1 = c.llt.solve(p1);
       const double arrival = v1[n.v];

@@ -1,0 +1,265 @@
+// Robots in contact side by side with MuJoCo 2.2 (Debian's libmujoco-dev): one MJCF file read by
+// both engines — ours through massprops::ReadRobotModel and dynamics::AddRobot, MuJoCo through
+// mj_loadXML with a floor (or a table) written beside it. A comparison tool: never a dependency
+// of the libraries.
+//
+//   robot_peer --check   the example quadruped (data/robots/quadruped/quadruped.xml) dropped limp
+//                        onto the ground from 5 cm: its resting base height and the time it
+//                        takes to come to rest in each engine; exit 1 when either does not rest
+//                        within 3 s or the heights differ by more than 1 cm
+//   robot_peer --bench   steps per second (h = 1 ms, medians of three runs) of the quadruped
+//                        settling on the ground and of a 7-DOF arm draped over a table, ours
+//                        against MuJoCo's Euler
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include <unistd.h>
+
+#include <mujoco/mujoco.h>
+
+#include "dynamics/contact.h"
+#include "dynamics/robot.h"
+#include "massprops/robot_model.h"
+
+namespace {
+
+using massprops::Vector3;
+
+const std::string kQuadruped = std::string(MASSPROPS_DATA_DIR) + "/robots/quadruped/quadruped.xml";
+constexpr double kDrop = 0.05;  // m: the feet's height above the ground at the start
+
+/// A model both engines read: the MJCF text, and what stands beside the robot.
+struct Setup {
+  std::string path;                         ///< the MJCF file (ours reads it)
+  std::string mujoco_path;                  ///< with the floor or table MuJoCo needs in its own file
+  bool ground = true;                       ///< else a table
+  double base_z = 0;                        ///< the root body's height at the start
+  std::map<std::string, double> positions;  ///< initial joint positions
+};
+
+std::string Slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  if (at == std::string::npos) throw std::runtime_error("robot_peer: '" + from + "' not in the model");
+  return text.replace(at, from.size(), to);
+}
+
+// The table: its top at z = 0.3 m under x in [0.05, 0.65] m.
+const Vector3 kTableCentre(0.35, 0, 0.15), kTableHalf(0.3, 0.3, 0.15);
+
+/// The quadruped, its feet 5 cm above the ground.
+Setup Quadruped() {
+  Setup s;
+  s.path = kQuadruped;
+  // Knees a little bent (straight legs would balance, unstably, for a while): the feet 0.4 cos 0.3
+  // below the hips.
+  for (const char* leg : {"front_left", "front_right", "rear_left", "rear_right"}) {
+    s.positions[std::string(leg) + "_hip"] = 0.3;
+    s.positions[std::string(leg) + "_knee"] = -0.6;
+  }
+  s.base_z = 0.4 * std::cos(0.3) + kDrop;
+  std::string text = Slurp(kQuadruped);
+  const std::string dir = std::string(MASSPROPS_DATA_DIR) + "/robots/quadruped/";
+  text = Replace(text, "<compiler angle=\"radian\"/>",
+                 "<compiler angle=\"radian\" meshdir=\"" + dir +
+                     "\"/>\n  <option timestep=\"0.001\"/>\n"
+                     "  <default><geom friction=\"0.6 0.005 0.0001\"/></default>");
+  text = Replace(text, "<worldbody>", "<worldbody>\n    <geom name=\"floor\" type=\"plane\" size=\"5 5 0.1\"/>");
+  s.mujoco_path = "/tmp/robot_peer_quadruped_" + std::to_string(::getpid()) + ".xml";
+  std::ofstream(s.mujoco_path) << text;
+  return s;
+}
+
+/// A 7-DOF arm of 0.1 m box links reaching along +x from a base 0.5 m up, hinges about z, y, x,
+/// y, x, y, x with a little damping: limp, it falls onto the table and drapes over it.
+Setup Arm() {
+  std::ostringstream x;
+  x << "<mujoco model=\"arm\">\n  <compiler angle=\"radian\"/>\n  <worldbody>\n";
+  const char* axes[] = {"0 0 1", "0 1 0", "1 0 0", "0 1 0", "1 0 0", "0 1 0", "1 0 0"};
+  std::string close;
+  for (int i = 0; i < 7; ++i) {
+    x << std::string(4 + 2 * i, ' ') << "<body name=\"link" << i + 1 << "\" pos=\"" << (i == 0 ? "0 0 0.5" : "0.1 0 0")
+      << "\">\n"
+      << std::string(6 + 2 * i, ' ') << "<joint name=\"j" << i + 1 << "\" type=\"hinge\" axis=\"" << axes[i]
+      << "\" damping=\"0.05\"/>\n"
+      << std::string(6 + 2 * i, ' ')
+      << "<inertial pos=\"0.05 0 0\" mass=\"0.5\" diaginertia=\"0.0001333 0.0004833 0.0004833\"/>\n"
+      << std::string(6 + 2 * i, ' ') << "<geom type=\"box\" pos=\"0.05 0 0\" size=\"0.05 0.02 0.02\"/>\n";
+    close = std::string(4 + 2 * i, ' ') + "</body>\n" + close;
+  }
+  x << close << "  </worldbody>\n</mujoco>\n";
+  Setup s;
+  s.ground = false;
+  s.path = "/tmp/robot_peer_arm_" + std::to_string(::getpid()) + ".xml";
+  std::ofstream(s.path) << x.str();
+  std::string text =
+      Replace(x.str(), "<worldbody>",
+              "<option timestep=\"0.001\"/>\n  <default><geom friction=\"0.6 0.005 0.0001\"/></default>\n"
+              "  <worldbody>\n    <geom name=\"table\" type=\"box\" pos=\"0.35 0 0.15\" size=\"0.3 0.3 0.15\"/>");
+  s.mujoco_path = "/tmp/robot_peer_arm_mj_" + std::to_string(::getpid()) + ".xml";
+  std::ofstream(s.mujoco_path) << text;
+  return s;
+}
+
+struct Ours {
+  dynamics::ContactWorld world;
+  int base = 0;
+  explicit Ours(const Setup& s) {
+    dynamics::World w(dynamics::Integrator::kImplicitMidpoint);
+    w.AddForce(dynamics::Gravity(Vector3(0, 0, -9.81)));
+    world = dynamics::ContactWorld(std::move(w));
+    if (s.ground) {
+      world.AddGround({});
+    } else {
+      world.AddStatic({dynamics::shape::Box{kTableHalf}, massprops::Matrix3::Identity(), Vector3::Zero(), {}},
+                      massprops::Matrix3::Identity(), kTableCentre);
+    }
+    dynamics::RobotOptions options;
+    options.pose.translation = Vector3(0, 0, s.base_z);
+    options.positions = s.positions;
+    base = dynamics::AddRobot(world, massprops::ReadRobotModel(s.path), options).bodies.front();
+  }
+  void Step() {
+    const dynamics::StepStatus st = world.Step(1e-3);
+    if (!st.ok) throw std::runtime_error("ours: " + st.message);
+  }
+  double BaseZ() const { return world.world().bodies()[static_cast<std::size_t>(base)].position.z(); }
+  double Fastest() const {
+    double v = 0;
+    for (const dynamics::RigidBody& b : world.world().bodies()) v = std::max(v, b.velocity.norm());
+    return v;
+  }
+};
+
+struct MuJoCo {
+  mjModel* m = nullptr;
+  mjData* d = nullptr;
+  int base = 1;
+  explicit MuJoCo(const Setup& s) {
+    char error[1000] = "";
+    m = mj_loadXML(s.mujoco_path.c_str(), nullptr, error, sizeof error);
+    if (!m) throw std::runtime_error(std::string("MuJoCo refused the model: ") + error);
+    d = mj_makeData(m);
+    if (s.ground) d->qpos[2] = s.base_z;  // the free joint's position
+    for (const auto& [name, q] : s.positions) {
+      const int j = mj_name2id(m, mjOBJ_JOINT, name.c_str());
+      if (j < 0) throw std::runtime_error("MuJoCo's model has no joint '" + name + "'");
+      d->qpos[m->jnt_qposadr[j]] = q;
+    }
+    mj_forward(m, d);
+  }
+  ~MuJoCo() {
+    mj_deleteData(d);
+    mj_deleteModel(m);
+  }
+  void Step() { mj_step(m, d); }
+  double BaseZ() const { return d->xipos[3 * base + 2]; }  // the base's center of mass
+  double Fastest() const {
+    double v = 0;
+    for (int b = 1; b < m->nbody; ++b) {
+      mjtNum vel[6];
+      mj_objectVelocity(m, d, mjOBJ_BODY, b, vel, 0);
+      v = std::max(v, std::sqrt(vel[3] * vel[3] + vel[4] * vel[4] + vel[5] * vel[5]));
+    }
+    return v;
+  }
+};
+
+/// Steps for `seconds`: the time after which every body stays slower than 1 mm/s (-1: never),
+/// and the base's height at the end.
+template <typename Engine>
+std::pair<double, double> Settle(Engine& e, double seconds) {
+  double rest = -1;
+  const int steps = static_cast<int>(std::lround(seconds / 1e-3));
+  for (int s = 1; s <= steps; ++s) {
+    e.Step();
+    if (e.Fastest() < 1e-3) {
+      if (rest < 0) rest = s * 1e-3;
+    } else {
+      rest = -1;
+    }
+  }
+  return {rest, e.BaseZ()};
+}
+
+int Check() {
+  const Setup q = Quadruped();
+  Ours ours(q);
+  MuJoCo mj(q);
+  const auto [ours_rest, ours_z] = Settle(ours, 3.0);
+  const auto [mj_rest, mj_z] = Settle(mj, 3.0);
+  std::remove(q.mujoco_path.c_str());
+  std::printf("the example quadruped dropped limp from %.0f cm onto the ground (h = 1 ms):\n", kDrop * 100);
+  std::printf("  %-22s %14s %22s\n", "engine", "at rest after", "resting base height");
+  auto row = [](const char* name, double rest, double z) {
+    if (rest < 0) {
+      std::printf("  %-22s %14s %20.4f m\n", name, "not in 3 s", z);
+    } else {
+      std::printf("  %-22s %12.3f s %20.4f m\n", name, rest, z);
+    }
+  };
+  row("ours (implicit midpoint)", ours_rest, ours_z);
+  row("MuJoCo 2.2 (Euler)", mj_rest, mj_z);
+  const bool ok = ours_rest > 0 && mj_rest > 0 && std::fabs(ours_z - mj_z) < 0.01;
+  std::printf("%s\n", ok ? "agree (both at rest, heights within 1 cm)" : "DISAGREE");
+  return ok ? 0 : 1;
+}
+
+double Median3(const std::function<double()>& f) {
+  double r[3] = {f(), f(), f()};
+  std::sort(r, r + 3);
+  return r[1];
+}
+
+template <typename Engine>
+double StepsPerSecond(const Setup& s, int steps) {
+  return Median3([&] {
+    Engine e(s);
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int k = 0; k < steps; ++k) e.Step();
+    return steps / std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  });
+}
+
+int Bench() {
+  const Setup q = Quadruped(), a = Arm();
+  std::printf("h = 1 ms, steps/s (medians of 3 runs of 3000 steps: the fall, the landing and rest)\n");
+  std::printf("%-34s %12s %14s %8s\n", "model", "ours", "MuJoCo Euler", "ratio");
+  for (const auto& [name, setup] : {std::pair<const char*, const Setup*>{"quadruped on the ground (14 dof)", &q},
+                                    std::pair<const char*, const Setup*>{"7-DOF arm draped over a table", &a}}) {
+    const double ours = StepsPerSecond<Ours>(*setup, 3000), mj = StepsPerSecond<MuJoCo>(*setup, 3000);
+    std::printf("%-34s %12.0f %14.0f %8.2f\n", name, ours, mj, mj / ours);
+  }
+  for (const std::string& p : {q.mujoco_path, a.path, a.mujoco_path}) std::remove(p.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string mode = argc > 1 ? argv[1] : "";
+  try {
+    if (mode == "--check") return Check();
+    if (mode == "--bench") return Bench();
+  } catch (const std::exception& e) {
+    std::cerr << "robot_peer: " << e.what() << "\n";
+    return 1;
+  }
+  std::cerr << "usage: robot_peer --check | --bench\n";
+  return 2;
+}
