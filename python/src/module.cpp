@@ -15,6 +15,7 @@
 #include "dynamics/contact.h"
 #include "dynamics/forces.h"
 #include "dynamics/rigid_body.h"
+#include "dynamics/robot.h"
 #include "dynamics/world.h"
 #include "massprops/io.h"
 #include "massprops/isolation.h"
@@ -22,6 +23,7 @@
 #include "massprops/report/format.h"
 #include "massprops/report/record.h"
 #include "massprops/robot.h"
+#include "massprops/robot_model.h"
 #include "massprops/version.h"
 
 namespace py = pybind11;
@@ -334,6 +336,102 @@ int AddJoint(dynamics::World& w, const std::string& type, int child, int parent,
   }
 }
 
+// ContactWorld.add_robot: a URDF, SDFormat or MJCF file's robot (dynamics/robot.h).
+py::dict AddRobot(dynamics::ContactWorld& w, const std::string& path, const py::handle& position,
+                  const py::handle& orientation, const std::string& base, bool fill, double density,
+                  const py::dict& positions, const py::dict& motors, const std::string& collision,
+                  const dynamics::Material& material) {
+  massprops::RobotModelOptions read;
+  read.fill = fill;
+  read.fill_options.density = density;
+  read.words = &massprops_python::PythonWords();
+  dynamics::RobotOptions options;
+  if (!position.is_none()) options.pose.translation = Vec(position);
+  if (!orientation.is_none()) {
+    const auto a = py::cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(orientation);
+    if (a.size() != 4) throw py::value_error("orientation is a quaternion (w, x, y, z)");
+    const dynamics::Quaternion q(a.data()[0], a.data()[1], a.data()[2], a.data()[3]);
+    if (!(q.norm() > 0)) throw py::value_error("orientation: a zero quaternion");
+    options.pose.rotation = q.normalized().toRotationMatrix();
+  }
+  if (base == "fixed") {
+    options.base = dynamics::RobotOptions::Base::kFixed;
+  } else if (base == "floating") {
+    options.base = dynamics::RobotOptions::Base::kFloating;
+  } else if (base != "as_written") {
+    throw py::value_error("base: '" + base + "' is not one of as_written, fixed, floating");
+  }
+  for (const auto& [name, q] : positions) options.positions[py::cast<std::string>(name)] = py::cast<double>(q);
+  for (const auto& [name, spec] : motors) {
+    const auto d = py::cast<py::dict>(spec);
+    dynamics::JointMotor motor;
+    const std::string mode = d.contains("mode") ? py::cast<std::string>(d["mode"]) : "position";
+    if (mode == "velocity") {
+      motor.mode = dynamics::JointMotor::Mode::kVelocity;
+    } else if (mode == "position") {
+      motor.mode = dynamics::JointMotor::Mode::kPosition;
+    } else {
+      throw py::value_error("motors: '" + mode + "' is not one of velocity, position");
+    }
+    for (const auto& [key, value] : d) {
+      const std::string k = py::cast<std::string>(key);
+      if (k == "mode") continue;
+      const double x = py::cast<double>(value);
+      if (k == "target") {
+        motor.target = x;
+      } else if (k == "kp") {
+        motor.kp = x;
+      } else if (k == "kd") {
+        motor.kd = x;
+      } else if (k == "max_effort") {
+        motor.max_effort = x;
+      } else {
+        throw py::value_error("motors: unknown key '" + k + "' (mode, target, kp, kd, max_effort)");
+      }
+    }
+    options.motors[py::cast<std::string>(name)] = motor;
+  }
+  if (collision != "hull" && collision != "mesh") {
+    throw py::value_error("collision: '" + collision + "' is not one of hull, mesh");
+  }
+  options.mesh_colliders = collision == "mesh";
+  options.material = material;
+  dynamics::RobotInWorld added;
+  try {
+    added = dynamics::AddRobot(w, massprops::ReadRobotModel(path, read), options);
+  } catch (const massprops::FileAccessError& e) {
+    throw py::value_error(e.what());
+  } catch (const std::runtime_error& e) {
+    throw py::value_error(e.what());
+  }
+  py::dict out;
+  out["bodies"] = added.bodies;
+  out["body_names"] = added.body_names;
+  std::vector<int> joints;
+  for (const int j : added.joint_of) {
+    if (j >= 0) joints.push_back(j);
+  }
+  out["joints"] = joints;
+  out["notes"] = added.notes;
+  return out;
+}
+
+py::dict JointStateDict(const dynamics::World& w, int j) {
+  const dynamics::JointState s = w.joint_state(j);
+  py::dict out;
+  out["position"] = py::array_t<double>(static_cast<py::ssize_t>(s.position.size()), s.position.data());
+  out["velocity"] = py::array_t<double>(static_cast<py::ssize_t>(s.velocity.size()), s.velocity.data());
+  out["limit_impulse"] = s.limit_impulse;
+  out["drive_impulse"] = s.drive_impulse;
+  return out;
+}
+
+std::vector<std::string> JointNames(const dynamics::World& w) {
+  std::vector<std::string> names;
+  for (const dynamics::Joint& j : w.joints()) names.push_back(j.name);
+  return names;
+}
+
 void BindDynamics(py::module_& m) {
   using dynamics::RigidBody;
   py::class_<RigidBody>(m, "RigidBody", PlainType(), "A free rigid body: mass, principal moments, state (SI units).")
@@ -422,26 +520,9 @@ void BindDynamics(py::module_& m) {
            "its frames at `anchor` (world; default the child's center of mass) with z along `axis`, both at the "
            "bodies' placement as added (q = 0); moves the child to `position`. Limits, friction, spring (stiffness, "
            "rest) and motor ('velocity' or 'position') act on revolute and prismatic joints. Returns its index")
-      .def(
-          "joint_state",
-          [](const dynamics::World& w, int j) {
-            const dynamics::JointState s = w.joint_state(j);
-            py::dict out;
-            out["position"] = py::array_t<double>(static_cast<py::ssize_t>(s.position.size()), s.position.data());
-            out["velocity"] = py::array_t<double>(static_cast<py::ssize_t>(s.velocity.size()), s.velocity.data());
-            out["limit_impulse"] = s.limit_impulse;
-            out["drive_impulse"] = s.drive_impulse;
-            return out;
-          },
-          py::arg("joint"), "Joint j's position, velocity and last step's impulses, as a dict")
-      .def_property_readonly(
-          "joint_names",
-          [](const dynamics::World& w) {
-            std::vector<std::string> names;
-            for (const dynamics::Joint& j : w.joints()) names.push_back(j.name);
-            return names;
-          },
-          "the joints' names, in the order added")
+      .def("joint_state", &JointStateDict, py::arg("joint"),
+           "Joint j's position, velocity and last step's impulses, as a dict")
+      .def_property_readonly("joint_names", &JointNames, "the joints' names, in the order added")
       .def_property_readonly("articulated", &dynamics::World::articulated,
                              "True when the world steps in joint coordinates")
       .def_property_readonly("time", &dynamics::World::time, "simulated time, s")
@@ -618,6 +699,22 @@ void BindDynamics(py::module_& m) {
           "body",
           [](const dynamics::ContactWorld& w, int i) { return w.world().bodies().at(static_cast<std::size_t>(i)); },
           "A copy of body i's current state")
+      .def("add_robot", &AddRobot, py::arg("path"), py::arg("position") = py::none(),
+           py::arg("orientation") = py::none(), py::arg("base") = "as_written", py::arg("fill") = false,
+           py::arg("density") = 1000.0, py::arg("positions") = py::dict(), py::arg("motors") = py::dict(),
+           py::arg("collision") = "hull", py::arg("material") = dynamics::Material{},
+           "Adds the robot of a URDF, SDFormat or MJCF file: its root link's frame at `position` turned by "
+           "`orientation` (w, x, y, z); base 'as_written', 'fixed' or 'floating'; inertials as written, or "
+           "computed from the links' geometry at `density` (fill=True, as massprops fill); initial joint "
+           "`positions` and `motors` ({'mode': 'position', 'target', 'kp', 'kd', 'max_effort'}) by joint name; "
+           "meshes collide as hulls or (collision='mesh') as meshes. Returns a dict: bodies, body_names, joints, "
+           "notes")
+      .def(
+          "joint_state", [](const dynamics::ContactWorld& w, int j) { return JointStateDict(w.world(), j); },
+          py::arg("joint"), "Joint j's position, velocity and last step's impulses, as a dict")
+      .def_property_readonly(
+          "joint_names", [](const dynamics::ContactWorld& w) { return JointNames(w.world()); },
+          "the joints' names, in the order added")
       .def(
           "stats",
           [](const dynamics::ContactWorld& w) {

@@ -406,3 +406,46 @@ def test_contact_a_mesh_hull_rests_on_a_table():
     assert world.stats()["sleeping"] == 1
     with pytest.raises(ValueError):
         d.ContactWorld().add_body(d.RigidBody(), d.sphere(-1.0))
+
+
+def _standing_quadruped(path, **kw):
+    """The example quadruped on the ground, its servos holding a bent-knee stance, after 4 s."""
+    world = massprops.dynamics.ContactWorld()
+    world.add_ground()
+    world.add_gravity([0, 0, -9.81])
+    legs = ["front_left", "front_right", "rear_left", "rear_right"]
+    servo = {"mode": "position", "kp": 60.0, "kd": 1.0}
+    motors = {}
+    for leg in legs:
+        motors[leg + "_hip"] = dict(servo, target=0.4)
+        motors[leg + "_knee"] = dict(servo, target=-0.8)
+    positions = {name: m["target"] for name, m in motors.items()}
+    robot = world.add_robot(path, position=[0, 0, 0.4 * math.cos(0.4) + 0.005], positions=positions,
+                            motors=motors, **kw)
+    world.step(1e-3, steps=4000)
+    return world, robot
+
+
+def test_robots_stand_alike_from_urdf_and_mjcf():
+    """The example quadruped read from its URDF and its MJCF stands on its servos the same (to
+    1e-9), where its legs put it: hips 2 x 0.2 m x cos 0.4 above the feet, less the servos' sag."""
+    robots = os.path.join(os.path.dirname(MESHES), "robots", "quadruped")
+    a, ra = _standing_quadruped(os.path.join(robots, "quadruped.urdf"))
+    b, rb = _standing_quadruped(os.path.join(robots, "quadruped.xml"))
+    assert ra["body_names"][0] == "base_link" and len(ra["bodies"]) == 9 and len(ra["joints"]) == 8
+    assert any("welded" in note for note in ra["notes"])
+    base_a, base_b = a.body(ra["bodies"][0]), b.body(rb["bodies"][0])
+    assert np.allclose(base_a.position, base_b.position, atol=1e-9, rtol=0)
+    assert abs(base_a.velocity).max() < 1e-4  # standing still
+    assert 0.30 < base_a.position[2] < 0.2 * 2 * math.cos(0.4) + 0.01
+    knee = a.joint_names.index("front_left_knee")
+    assert a.joint_state(knee)["position"][0] == pytest.approx(-0.8, abs=0.1)
+
+
+def test_robot_errors_name_the_element():
+    world = massprops.dynamics.ContactWorld()
+    robots = os.path.join(os.path.dirname(MESHES), "robots", "quadruped")
+    with pytest.raises(ValueError, match="names the joint 'elbow'"):
+        world.add_robot(os.path.join(robots, "quadruped.urdf"), positions={"elbow": 0.1})
+    with pytest.raises(ValueError, match="not a regular file"):
+        world.add_robot(robots)
