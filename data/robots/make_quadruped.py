@@ -5,8 +5,8 @@ MJCF files of the same robot, with OBJ meshes, into data/robots/quadruped/.
   /usr/bin/python3 data/robots/make_quadruped.py [OUT_DIR]
 
 The body is an octagonal prism (a box with bevelled vertical edges), each leg a hexagonal thigh
-and shin hinged about y at the hip and the knee; a head (a box) and an IMU frame (massless) are
-welded to the body. Every inertial is the solid's at 1000 kg/m^3, computed here from the meshes by
+and shin hinged about y at the hip and the knee; a head (a box, visual only: it does not collide)
+and an IMU frame (massless) are welded to the body. Every inertial is the solid's at 1000 kg/m^3, computed here from the meshes by
 the divergence theorem (signed tetrahedra from the origin), independently of massprops: so
 `massprops fill` and `rbsim --fill` agree with the inertials as written to rounding. Numbers are
 written with 17 significant digits: the three files describe the same robot to the bit.
@@ -149,7 +149,7 @@ def main():
              '    <collision name="body"><geometry><mesh filename="meshes/body.obj"/></geometry></collision>\n'
              '  </link>\n')
     u.append('  <link name="head">\n' + urdf_inertial(head_mp, "    ") +
-             f'    <collision name="head"><geometry><box size="{hs}"/></geometry></collision>\n  </link>\n')
+             f'    <visual name="head"><geometry><box size="{hs}"/></geometry></visual>\n  </link>\n')
     u.append(f'  <joint name="neck" type="fixed"><parent link="base_link"/><child link="head"/>'
              f'<origin xyz="{ha}" rpy="0 0 0"/></joint>\n')
     u.append('  <link name="imu"/>\n  <joint name="imu_mount" type="fixed"><parent link="base_link"/>'
@@ -178,7 +178,7 @@ def main():
              '      <collision name="body"><geometry><mesh><uri>meshes/body.obj</uri></mesh></geometry></collision>\n'
              '    </link>\n')
     s.append(f'    <link name="head">\n      <pose>{ha} 0 0 0</pose>\n' + sdf_inertial(head_mp, "      ") +
-             f'      <collision name="head"><geometry><box><size>{hs}</size></box></geometry></collision>\n'
+             f'      <visual name="head"><geometry><box><size>{hs}</size></box></geometry></visual>\n'
              '    </link>\n')
     s.append('    <joint name="neck" type="fixed"><parent>base_link</parent><child>head</child></joint>\n')
     for name, x, y in HIPS:
@@ -205,7 +205,8 @@ def main():
          '    <body name="base_link" pos="0 0 0">\n      <freejoint name="root"/>\n' + mjcf_inertial(body_mp, "      ") +
          '      <geom name="body" type="mesh" mesh="body"/>\n'
          f'      <body name="head" pos="{ha}">\n' + mjcf_inertial(head_mp, "        ") +
-         f'        <geom name="head" type="box" size="{" ".join(g(v / 2) for v in head_size)}"/>\n      </body>\n'
+         f'        <geom name="head" type="box" size="{" ".join(g(v / 2) for v in head_size)}" contype="0" '
+         'conaffinity="0"/>\n      </body>\n'
          '      <body name="imu" pos="0 0 0.04"/>\n']
     for name, x, y in HIPS:
         lo, hi = JOINTS["hip"]

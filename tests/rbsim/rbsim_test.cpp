@@ -305,7 +305,7 @@ TEST(Scene, NonUnitQuaternionIsNormalizedWithAWarning) {
 TEST(Scene, ExampleScenesAreValid) {
   for (const char* name :
        {"t_handle", "heavy_top", "tumbling_spot", "hanging_spring", "two_bodies", "csg_part", "box_stack",
-        "incline_roll", "dominoes", "spot_on_table", "pile", "ring_on_peg", "pile_in_bin", "joints"}) {
+        "incline_roll", "dominoes", "spot_on_table", "pile", "ring_on_peg", "pile_in_bin", "joints", "quadruped"}) {
     std::vector<std::string> w;
     EXPECT_NO_THROW(rbsim::BuildSimulation(rbsim::LoadScene(DataPath(std::string("scenes/") + name + ".json"), w), w))
         << name;

@@ -264,10 +264,6 @@ RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotO
                                   std::to_string(g.moments.z()) + " kg·m²)");
     }
     g.body_in_root = Placement{axes, g.com};
-    if (g.links.size() > 1) {
-      out.notes.push_back("link '" + name + "' and " + std::to_string(g.links.size() - 1) +
-                          " link(s) welded to it by fixed joints are one body");
-    }
   }
   // Where each group's root link is at q = 0, and how the root attaches to the world.
   const bool fixed_base = options.base == RobotOptions::Base::kFixed;
