@@ -94,13 +94,13 @@ std::vector<RobotSpec> ReadRobots(const json& robots, const std::string& file, c
 
 Scene RobotScene(const std::string& path, bool fill, bool fixed_base) {
   Scene scene;
-  scene.file = "<command line>";
+  scene.file = std::filesystem::absolute(path).lexically_normal().string();  // its messages name the file
   scene.duration = 3.0;
   scene.dt = 1e-3;
   scene.outputs = DefaultOutputs();
   RobotSpec r;
   r.field = "robot";
-  r.path = std::filesystem::absolute(path).lexically_normal().string();
+  r.path = scene.file;
   r.name = std::filesystem::path(path).stem().string();
   r.fill = fill;
   r.options.base = fixed_base ? dynamics::RobotOptions::Base::kFixed : dynamics::RobotOptions::Base::kAsWritten;

@@ -57,7 +57,9 @@ BuiltShape LoadShape(const dynamics::BodyBuilder& builder, const ShapeSpec& shap
 // body drawn as its collision geometry. Without a position it is raised so that its lowest point
 // is 1 cm above the highest ground under it.
 void AddRobot(Simulation& sim, const RobotSpec& spec, std::vector<std::string>& warnings) {
-  const std::string where = sim.scene.file + ": " + spec.field;
+  // A robot given on the command line is its own scene: its messages name the file once.
+  const bool alone = sim.scene.file == spec.path;
+  const std::string where = alone ? std::string() : sim.scene.file + ": " + spec.field + ": ";
   const massprops::Vocabulary& words = massprops::report::WordsFor(massprops::report::FrontEnd::kScene);
   massprops::RobotModelOptions read;
   read.fill = spec.fill;
@@ -67,7 +69,7 @@ void AddRobot(Simulation& sim, const RobotSpec& spec, std::vector<std::string>& 
   try {
     model = massprops::ReadRobotModel(spec.path, read);
   } catch (const std::exception& e) {
-    throw SceneError(where + ": " + e.what());
+    throw SceneError(where + e.what());
   }
   dynamics::RobotOptions options = spec.options;
   try {
@@ -91,7 +93,7 @@ void AddRobot(Simulation& sim, const RobotSpec& spec, std::vector<std::string>& 
       if (std::isfinite(lowest)) options.pose.translation += up * (floor + 0.01 - lowest);
     }
     const dynamics::RobotInWorld added = dynamics::AddRobot(sim.physics, model, options);
-    for (const std::string& note : added.notes) warnings.push_back(where + ": " + note);
+    for (const std::string& note : added.notes) warnings.push_back((alone ? spec.path + ": " : where) + note);
     for (std::size_t k = 0; k < added.bodies.size(); ++k) {
       const dynamics::RigidBody& rb = sim.world().bodies()[static_cast<std::size_t>(added.bodies[k])];
       SimBody body;
@@ -115,7 +117,7 @@ void AddRobot(Simulation& sim, const RobotSpec& spec, std::vector<std::string>& 
   } catch (const SceneError&) {
     throw;
   } catch (const std::exception& e) {
-    throw SceneError(where + ": " + e.what());
+    throw SceneError((alone ? spec.path + ": " : where) + e.what());
   }
 }
 

@@ -598,6 +598,42 @@ def main():
             if os.path.isdir(out_dir) and os.listdir(out_dir):
                 failed += 1
                 print("FAIL: %s: files left in --out: %s" % (name, os.listdir(out_dir)))
+        # Robot files: every fault names the file and the element; a state beyond double precision
+        # stops the run with a message; a 300-link chain runs (no recursion; each step costs O(n³), n
+        # its degrees of freedom: 3000 links take seconds a step).
+        link = ('<inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>'
+                '<collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>')
+        two = '<robot name="r"><link name="a">%s</link><link name="b">%s</link>' % (link, link)
+        hinge = '<joint name="j" type="revolute"><parent link="a"/><child link="b"/>%s</joint></robot>'
+        for name, text, status, err_re in [
+                ("robot_nan_inertia.urdf", '<robot name="r"><link name="a"><inertial><mass value="1"/><inertia ixx="nan" '
+                 'ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link></robot>', 1,
+                 r"link 'a' <inertial> <inertia ixx>: 'nan' is not"),
+                ("robot_negative_mass.urdf", '<robot name="r"><link name="a"><inertial><mass value="-1"/><inertia ixx="1" '
+                 'ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link></robot>', 1, r"<mass value> must be"),
+                ("robot_far_joint.urdf", two + hinge % '<origin xyz="1e300 0 0"/><axis xyz="0 1 0"/>', 1,
+                 r"the run failed at t = 0.001 s"),
+                ("robot_zero_axis.urdf", two + hinge % '<axis xyz="0 0 0"/>', 1, r"joint 'j': <axis xyz> is zero"),
+                ("robot_inverted_limits.urdf", two + hinge % '<axis xyz="0 1 0"/><limit lower="1" upper="-1"/>', 1,
+                 r"joint 'j': <limit> lower is above upper"),
+                ("robot_missing_mesh.urdf", '<robot name="r"><link name="a"><collision><geometry><mesh '
+                 'filename="nowhere.stl"/></geometry></collision></link></robot>', 1, r"link 'a': 'nowhere.stl'"),
+                ("robot_self_joint.urdf", '<robot name="r"><link name="a">%s</link><joint name="j" type="revolute">'
+                 '<parent link="a"/><child link="a"/><axis xyz="0 1 0"/></joint></robot>' % link, 1,
+                 r"the joints above link 'a' form a loop"),
+                ("robot_flat_inertia.xml", '<mujoco><worldbody><body name="b"><freejoint/><inertial mass="1" '
+                 'diaginertia="0 0 0"/><geom type="sphere" size="0.1"/></body></worldbody></mujoco>', 1,
+                 r"link 'b' has an inertia that is not positive definite"),
+                ("robot_pose_cycle.sdf", '<sdf version="1.7"><model name="m"><link name="a"><pose relative_to="b">0 0 0 0 '
+                 '0 0</pose></link><link name="b"><pose relative_to="a">0 0 0 0 0 0</pose></link></model></sdf>', 1,
+                 r"<pose relative_to> form a cycle"),
+                ("robot_long_chain.urdf", '<robot name="r">' + "".join('<link name="l%d">%s</link>' % (i, link)
+                 for i in range(300)) + "".join('<joint name="j%d" type="revolute"><parent link="l%d"/><child '
+                 'link="l%d"/><origin xyz="0 0 -0.1"/><axis xyz="0 1 0"/></joint>' % (i, i, i + 1) for i in range(299)) +
+                 "</robot>", 0, r"^$")]:
+            write(name, text)
+            run(name, [name, "--duration", "0.002"], status, (re.escape(name) + ": (.|\n)*" if status else "") + err_re,
+                program=rbsim)
         # rbsim poses: a part that cannot rest (open, flat) exits 1 naming the file; bad numbers exit 2.
         write("flat_part.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 3 2 4\nf 1 3 2\nf 3 4 2\n")
         for name, args, status, err_re in [

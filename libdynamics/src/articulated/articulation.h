@@ -98,8 +98,11 @@ class Articulation {
   /// The kick p + h ṗ(q, v) at the start of the step (the state is kept): each body's (v, ω)
   /// after it into `kicked`. False: the mass matrix is not positive definite.
   bool ContactKick(const std::vector<std::unique_ptr<Force>>& forces, double t, double h, std::vector<Vector6>& kicked);
-  /// How the bodies answer impulses at the start of the step (after ContactKick).
-  void Couple(contact::Coupling& coupling);
+  /// Each body's tree, parent and whether it moves at all (after ContactKick).
+  void Classify(contact::Coupling& coupling) const;
+  /// How the `touched` bodies (those with contacts) answer impulses at the start of the step:
+  /// each tree's touched members and their responses (after Classify).
+  void Respond(contact::Coupling& coupling, const std::vector<char>& touched) const;
   /// Ends the step: each body's impulse (force and torque about its centre) and push-out
   /// (a pseudo-impulse that moves without changing velocities) added, then the joints' stops,
   /// friction and velocity motors; q moved by h; the bodies written.
@@ -138,6 +141,8 @@ class Articulation {
   /// Writes the bodies' poses and motions from configuration c (its velocities set).
   /// `only` (optional): write just the bodies flagged there.
   void Sync(const Configuration& c, std::vector<RigidBody>& bodies, const std::vector<char>* only = nullptr) const;
+  /// p = M(q) v, once before the first step (false: the mass matrix is not positive definite).
+  bool EnsureMomenta();
   /// Places node i (its frame in c) from its parent's frame and q.
   void PlaceNode(int i, const Eigen::VectorXd& q, Configuration& c) const;
   /// Each node's Jacobian in c: its body's (v, ω) = Φ u (6 × nv).
@@ -166,6 +171,7 @@ class Articulation {
     bool stop;
   };
   std::vector<Row> rows_;
+  bool momenta_ready_ = false;
   std::vector<Eigen::MatrixXd> phi_;  ///< ContactKick's body Jacobians (by node)
   Eigen::VectorXd kicked_p_;          ///< ContactKick's p + h ṗ (+ h D v)
   Configuration effective_;           ///< ContactKick's start with M + h D + h² K

@@ -49,7 +49,7 @@ Eigen::VectorXd Articulation::GeneralizedImpulse(const std::vector<Wrench>& w) c
 bool Articulation::ContactKick(const std::vector<std::unique_ptr<Force>>& forces, double t, double h,
                                std::vector<Vector6>& kicked) {
   kicked.assign(inertias_.size(), Vector6::Zero());
-  if (!Configure(q_, start_)) return false;
+  if (!EnsureMomenta() || !Configure(q_, start_)) return false;
   BodyJacobians(start_, phi_);
   if (p_.size() == 0) {
     kicked_p_.resize(0);
@@ -102,66 +102,55 @@ bool Articulation::ContactKick(const std::vector<std::unique_ptr<Force>>& forces
   return true;
 }
 
-void Articulation::Couple(contact::Coupling& c) {
+void Articulation::Classify(contact::Coupling& c) const {
   const std::size_t nb = inertias_.size();
   c.tree.assign(nb, -1);
-  c.slot.assign(nb, 0);
   c.movable.assign(nb, 0);
   c.parent.assign(nb, -1);
-  c.members.clear();
-  c.response.clear();
-  std::vector<int> tree_of_node(nodes_.size());
-  std::vector<std::vector<int>> nodes_of_tree;
+  int trees = 0;
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
     const Node& n = nodes_[i];
     const auto body = static_cast<std::size_t>(n.body);
     if (n.parent < 0) {
-      tree_of_node[i] = static_cast<int>(c.members.size());
-      c.members.emplace_back();
-      nodes_of_tree.emplace_back();
+      c.tree[body] = trees++;
     } else {
-      tree_of_node[i] = tree_of_node[static_cast<std::size_t>(n.parent)];
-      c.parent[body] = nodes_[static_cast<std::size_t>(n.parent)].body;
+      const int parent_body = nodes_[static_cast<std::size_t>(n.parent)].body;
+      c.tree[body] = c.tree[static_cast<std::size_t>(parent_body)];
+      c.parent[body] = parent_body;
     }
-    const auto t = static_cast<std::size_t>(tree_of_node[i]);
-    c.tree[body] = static_cast<int>(t);
-    c.slot[body] = static_cast<int>(c.members[t].size());
-    c.members[t].push_back(n.body);
-    nodes_of_tree[t].push_back(static_cast<int>(i));
     c.movable[body] = phi_[i].size() > 0 && phi_[i].cwiseAbs().maxCoeff() > 0;
   }
-  // Each tree's own block of the effective mass (block-diagonal by trees): G_jk = Φ_j M_t⁻¹ Φ_kᵀ
-  // over its degrees of freedom alone.
-  Eigen::MatrixXd full;
-  if (v_.size() > 0) full = effective_.M.selfadjointView<Eigen::Lower>();
-  c.response.resize(c.members.size());
+}
+
+void Articulation::Respond(contact::Coupling& c, const std::vector<char>& touched) const {
+  const std::size_t nb = inertias_.size();
+  c.slot.assign(nb, 0);
+  c.members.assign(static_cast<std::size_t>(*std::max_element(c.tree.begin(), c.tree.end()) + 1), {});
+  std::vector<int> node_of_body(nb);
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    const int body = nodes_[i].body;
+    node_of_body[static_cast<std::size_t>(body)] = static_cast<int>(i);
+    if (!touched[static_cast<std::size_t>(body)]) continue;
+    auto& m = c.members[static_cast<std::size_t>(c.tree[static_cast<std::size_t>(body)])];
+    c.slot[static_cast<std::size_t>(body)] = static_cast<int>(m.size());
+    m.push_back(body);
+  }
+  // G_jk = Φ_j M⁻¹ Φ_kᵀ among the touched bodies of each tree, M the step's effective mass (its
+  // factor is the kick's; M is block-diagonal by trees, so the other trees' coordinates stay 0).
+  c.response.assign(c.members.size(), {});
   for (std::size_t t = 0; t < c.members.size(); ++t) {
-    const std::vector<int>& tn = nodes_of_tree[t];
-    const std::size_t size = tn.size();
-    std::vector<int> dofs;
-    for (const int i : tn) {
-      const Node& n = nodes_[static_cast<std::size_t>(i)];
-      for (int k = 0; k < n.nv; ++k) dofs.push_back(n.v + k);
-    }
+    const std::vector<int>& m = c.members[t];
     std::vector<Matrix6>& G = c.response[t];
-    G.assign(size * size, Matrix6::Zero());
-    if (dofs.empty()) continue;
-    const auto nd = static_cast<Eigen::Index>(dofs.size());
-    Eigen::MatrixXd Mt(nd, nd);
-    for (Eigen::Index r = 0; r < nd; ++r) {
-      for (Eigen::Index s = 0; s < nd; ++s)
-        Mt(r, s) = full(dofs[static_cast<std::size_t>(r)], dofs[static_cast<std::size_t>(s)]);
+    G.assign(m.size() * m.size(), Matrix6::Zero());
+    if (m.empty() || v_.size() == 0) continue;
+    std::vector<Eigen::MatrixXd> solved(m.size());
+    for (std::size_t k = 0; k < m.size(); ++k) {
+      solved[k] = effective_.llt.solve(
+          phi_[static_cast<std::size_t>(node_of_body[static_cast<std::size_t>(m[k])])].transpose());
     }
-    const Eigen::LLT<Eigen::MatrixXd> llt(Mt);
-    std::vector<Eigen::MatrixXd> phi(size), solved(size);
-    for (std::size_t j = 0; j < size; ++j) {
-      phi[j].resize(6, nd);
-      const Eigen::MatrixXd& P = phi_[static_cast<std::size_t>(tn[j])];
-      for (Eigen::Index s = 0; s < nd; ++s) phi[j].col(s) = P.col(dofs[static_cast<std::size_t>(s)]);
-      solved[j] = llt.solve(phi[j].transpose());
-    }
-    for (std::size_t j = 0; j < size; ++j) {
-      for (std::size_t k = 0; k < size; ++k) G[j * size + k] = phi[j] * solved[k];
+    for (std::size_t j = 0; j < m.size(); ++j) {
+      const Eigen::MatrixXd& Pj = phi_[static_cast<std::size_t>(node_of_body[static_cast<std::size_t>(m[j])])];
+      for (std::size_t k = 0; k < m.size(); ++k) G[j * m.size() + k] = Pj * solved[k];
     }
   }
 }

@@ -215,11 +215,20 @@ Articulation::Articulation(const std::vector<Joint>& joints, std::vector<RigidBo
     if (n.nv > 0) f.V += f.S * v_.segment(n.v, n.nv);
     placed[static_cast<std::size_t>(n.body)] = !(from_body && velocity_from_body);
   }
-  if (!Configure(q_, end_)) throw std::invalid_argument("World::AddJoint: the mass matrix is not positive definite");
-  Velocities(v_, end_);
-  p_ = Eigen::VectorXd::Zero(nv);  // (an empty product is UB in Eigen's self-adjoint kernel)
-  if (nv > 0) p_ = end_.M.selfadjointView<Eigen::Lower>() * v_;
+  // The momenta wait for the first step (EnsureMomenta): a mass matrix for every joint added
+  // would make adding n joints cost O(n⁴).
+  momenta_ready_ = false;
   Sync(end_, bodies, &placed);
+}
+
+bool Articulation::EnsureMomenta() {
+  if (momenta_ready_) return true;
+  if (!Configure(q_, end_)) return false;
+  Velocities(v_, end_);
+  p_ = Eigen::VectorXd::Zero(v_.size());  // (an empty product is UB in Eigen's self-adjoint kernel)
+  if (v_.size() > 0) p_ = end_.M.selfadjointView<Eigen::Lower>() * v_;
+  momenta_ready_ = true;
+  return true;
 }
 
 void Articulation::PlaceNode(int i, const Eigen::VectorXd& q, Configuration& c) const {

@@ -17,6 +17,11 @@ double MaxAbs(const Eigen::VectorXd& x) { return x.size() ? x.cwiseAbs().maxCoef
 StepStatus Articulation::Advance(Integrator integrator, const std::vector<std::unique_ptr<Force>>& forces, double t,
                                  double h, std::vector<RigidBody>& bodies) {
   StepStatus status;
+  if (!EnsureMomenta()) {
+    status.ok = false;
+    status.message = "the joints' mass matrix is not positive definite";
+    return status;
+  }
   held_.clear();                                // (a contact step's, when it found no contact)
   saved_q_ = q_, saved_v_ = v_, saved_p_ = p_;  // into kept capacity
   for (int substeps = 1; substeps <= 1024; substeps *= 2) {

@@ -473,7 +473,7 @@ StepStatus ContactWorld::Step(double h) {
       failure.message = "the joints' mass matrix is not positive definite at t = " + std::to_string(world_.time());
       return failure;
     }
-    jointed->Couple(m.coupling);
+    jointed->Classify(m.coupling);
     kick_speed = JointedKick(bodies, m.kicked, m.vel, m.before_kick, m.response);
     m.response.coupling = &m.coupling;
   } else {
@@ -563,6 +563,14 @@ StepStatus ContactWorld::Step(double h) {
                Slop(*posed[ka].shape, radius[ka], queries[c].b->shape,
                     b >= 0 ? radius[static_cast<std::size_t>(b)] : statics[static_cast<std::size_t>(-1 - b)].radius),
                m.rows, stats_);
+  }
+  if (jointed != nullptr && !m.rows.empty()) {  // the touched links' responses
+    std::vector<char> touched(static_cast<std::size_t>(nb), 0);
+    for (const contact::Row& r : m.rows) {
+      touched[static_cast<std::size_t>(r.a)] = 1;
+      if (r.b >= 0) touched[static_cast<std::size_t>(r.b)] = 1;
+    }
+    jointed->Respond(m.coupling, touched);
   }
   if (jointed != nullptr) {
     // A contact whose normal no motion of the trees changes (a hinged link pressed along its

@@ -26,11 +26,12 @@ struct Row;
 /// Jointed bodies answer an impulse together (an articulated world: every body is in a tree, a
 /// lone body alone in its own). Response(j, k) maps an impulsive wrench on body k — force f and
 /// torque τ about k's centre — to the change of body j's (v, ω): Φ_j M⁻¹ Φ_kᵀ with M the tree's
-/// mass matrix and Φ the bodies' Jacobians. Bodies of different trees do not couple.
+/// mass matrix and Φ the bodies' Jacobians. Bodies of different trees do not couple. Only the
+/// bodies a step's contacts touch are members (the others' velocities are not read).
 struct Coupling {
   std::vector<int> tree;                       ///< each body's tree
-  std::vector<int> slot;                       ///< each body's index among its tree's members
-  std::vector<std::vector<int>> members;       ///< each tree's bodies
+  std::vector<int> slot;                       ///< each member's index among its tree's members
+  std::vector<std::vector<int>> members;       ///< each tree's touched bodies
   std::vector<std::vector<Matrix6>> response;  ///< each tree's blocks, [j × size + k]
   /// Bodies that move at all (some joint between them and the world has a degree of freedom).
   std::vector<char> movable;

@@ -144,7 +144,9 @@ void SdfKinematics(const Document& doc, const std::vector<Link>& links, RobotMod
       if (!rel.empty() && rel != "__model__" && rel != model.name) {
         const auto it = index.find(rel);
         if (it == index.end()) throw ElementError(what + ": <pose relative_to=\"" + rel + "\"> names no link");
-        if (depth > static_cast<int>(links.size())) throw ElementError(what + ": its pose is relative to itself");
+        if (depth > static_cast<int>(links.size())) {
+          throw ElementError(what + ": the links' <pose relative_to> form a cycle");
+        }
         p = place(it->second, depth + 1).Then(p);
       }
     }
