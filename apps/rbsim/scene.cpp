@@ -454,6 +454,7 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
     scene.contact.sleeping = o.Bool("sleeping", false);
     scene.contact.sleep_speed = o.Number("sleep_speed", scene.contact.sleep_speed, "positive");
     scene.contact.sleep_time = o.Number("sleep_time", scene.contact.sleep_time, "positive");
+    scene.contact.self_collision = o.Bool("self_collision", false);
     o.Done();
   }
   if (const json* forces = f.Get("forces")) {

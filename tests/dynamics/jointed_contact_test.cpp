@@ -270,4 +270,49 @@ TEST(JointedContact, ArmRestingOnATableHoldsStill) {
   EXPECT_GT(w.world().joint_state(0).position[0], 0.0);  // it fell onto the table
 }
 
+TEST(JointedContact, SelfCollisionIsSwitchable) {
+  // A bar welded to the world, a second bar hinged about z at its end, swung round at 3 rad/s
+  // without gravity, and a ball welded to the second bar's far end: after half a turn the ball
+  // (two joints from the first bar, so not its neighbour) reaches the first bar. With
+  // self-collision it stops there; without, it passes through and the hinge turns on.
+  for (const bool self : {false, true}) {
+    ContactOptions options;
+    options.self_collision = self;
+    ContactWorld w(World(Integrator::kImplicitMidpoint), options);
+    const Vector3 bar(0.4, 0.1, 0.1);
+    const int a = w.AddBody(Box(1.0, bar, Vector3(0, 0, 0)), BoxCollider(bar));
+    const int b = w.AddBody(Box(1.0, bar, Vector3(0.45, 0, 0)), BoxCollider(bar));
+    RigidBody ball;
+    ball.mass = 0.5;
+    ball.inertia = Vector3::Constant(0.4 * 0.5 * 0.05 * 0.05);
+    ball.position = Vector3(0.7, 0, 0);
+    const int c = w.AddBody(ball, Collider{shape::Sphere{0.05}, Matrix3::Identity(), Vector3::Zero(), Material{}});
+    Joint weld;
+    weld.type = JointType::kFixed;
+    weld.parent = -1;
+    weld.child = a;
+    w.world().PlaceJoint(weld, Vector3::Zero(), Vector3::UnitZ());
+    w.AddJoint(weld);
+    Joint hinge = Hinge(w, a, b, Vector3(0.25, 0, 0), Vector3::UnitZ());
+    hinge.velocity = {3.0};
+    const int h = w.AddJoint(hinge);
+    Joint hand;
+    hand.type = JointType::kFixed;
+    hand.parent = b;
+    hand.child = c;
+    w.world().PlaceJoint(hand, ball.position, Vector3::UnitZ());
+    w.AddJoint(hand);
+    double turned = 0;
+    Simulate(w, 1e-3, 1500, [&](long) { turned = std::max(turned, w.world().joint_state(h).position[0]); });
+    if (self) {
+      // The ball (0.45 m from the hinge) meets the bar's end face (x = -0.2 ... its corner) before
+      // half a turn: it never gets past pi.
+      EXPECT_LT(turned, M_PI);
+      EXPECT_GT(turned, 2.5);
+    } else {
+      EXPECT_GT(turned, 4.0);  // through the bar and on
+    }
+  }
+}
+
 }  // namespace

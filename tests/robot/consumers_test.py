@@ -149,6 +149,25 @@ def main():
                 if fmt == "sdf":
                     check(read[10] == 1, f"sdf {link['name']}: gz-math finds the inertia invalid")
             print(f"{name}: {len(filled)} links filled and read back by the consumer")
+        # The example robot (robots/quadruped, rbsim's robot route) as its three consumers read it:
+        # check_urdf parses the URDF, and every link's mass is the one the files state, in all three.
+        quadruped = robots / "quadruped"
+        rc, o, e = run([a.check_urdf, str(quadruped / "quadruped.urdf")])
+        check(rc == 0 and "Successfully Parsed" in o, f"check_urdf quadruped.urdf: exit {rc}: {o}{e}")
+        masses = {}
+        for line in (quadruped / "quadruped.urdf").read_text().splitlines():
+            if "<link name=" in line:
+                current = line.split('"')[1]
+            if "<mass value=" in line:
+                masses[current] = float(line.split('"')[1])
+        for name, tool in (("quadruped.urdf", a.urdf_dump), ("quadruped.sdf", a.sdf_dump),
+                           ("quadruped.xml", a.mjcf_dump)):
+            rows = dump(tool, quadruped / name)
+            for link, mass in masses.items():
+                read = rows.get(link)
+                check(read is not None and abs(read[0] - mass) <= 1e-12 * mass,
+                      f"{name}: the consumer reads link '{link}' as {read and read[0]}, the file states {mass}")
+        print(f"quadruped: {len(masses)} links' masses read alike by urdfdom, libsdformat and MuJoCo")
         flat_plates(a, Path(tmp))
     if failures:
         print(f"{len(failures)} failures")
