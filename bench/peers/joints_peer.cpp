@@ -30,11 +30,14 @@
 #include "dynamics/world.h"
 #include "massprops/io.h"
 #include "massprops/mass_properties.h"
+#include "peer_timing.h"
 
 namespace {
 
 using massprops::Matrix3;
 using massprops::Vector3;
+using peers::Median3;
+using peers::StepsPerSecond;
 
 constexpr double kG = 9.81;
 
@@ -197,18 +200,6 @@ int Check() {
   const bool ok = worst_mid < 1e-4 && worst_rk4 < 1e-4 && largest_swing > 0.1;
   std::printf("%s\n", ok ? "agree" : "DISAGREE");
   return ok ? 0 : 1;
-}
-
-double Median3(const std::function<double()>& f) {
-  double r[3] = {f(), f(), f()};
-  std::sort(r, r + 3);
-  return r[1];
-}
-
-double StepsPerSecond(const std::function<void()>& step, int steps) {
-  const auto t0 = std::chrono::steady_clock::now();
-  for (int s = 0; s < steps; ++s) step();
-  return steps / std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 /// Joint angles after 1 s, every joint.

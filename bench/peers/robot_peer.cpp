@@ -29,6 +29,7 @@
 #include "dynamics/contact.h"
 #include "dynamics/robot.h"
 #include "massprops/robot_model.h"
+#include "peer_timing.h"
 
 namespace {
 
@@ -220,19 +221,11 @@ int Check() {
   return ok ? 0 : 1;
 }
 
-double Median3(const std::function<double()>& f) {
-  double r[3] = {f(), f(), f()};
-  std::sort(r, r + 3);
-  return r[1];
-}
-
 template <typename Engine>
 double StepsPerSecond(const Setup& s, int steps) {
-  return Median3([&] {
+  return peers::Median3([&] {
     Engine e(s);
-    const auto t0 = std::chrono::steady_clock::now();
-    for (int k = 0; k < steps; ++k) e.Step();
-    return steps / std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return peers::StepsPerSecond([&] { e.Step(); }, steps);
   });
 }
 

@@ -257,12 +257,14 @@ void ContactWorld::SetPairMaterial(int a, int b, const Material& material) {
 
 namespace {
 
-// The bodies' velocities after the step's forces, before contact (the kick), into `vel`; the
-// velocities at the start of the step into `before_kick`; each body's world inverse inertia into
-// `response`. Returns the largest speed the forces give in one step.
-double Kick(const std::vector<RigidBody>& bodies, const std::vector<Wrench>& w, double h,
-            std::vector<contact::Velocities>& vel, std::vector<contact::Velocities>& before_kick,
-            contact::BodyResponse& response) {
+// The bodies' velocities after the step's forces, before contact (the kick), into `vel`: each
+// body kicked by its wrench `w`, or (an articulated world) as the joints' kick left it, `kicked`
+// (v, ω); the velocities at the start of the step into `before_kick`; each body's world inverse
+// inertia into `response` (a jointed body's own, for its kinetic energy: impulses act on it
+// through the coupling). Returns the largest speed the forces give in one step.
+double Kick(const std::vector<RigidBody>& bodies, const std::vector<Wrench>* w,
+            const std::vector<internal::Vector6>* kicked, double h, std::vector<contact::Velocities>& vel,
+            std::vector<contact::Velocities>& before_kick, contact::BodyResponse& response) {
   const std::size_t nb = bodies.size();
   vel.resize(nb);
   before_kick.resize(nb);
@@ -274,10 +276,15 @@ double Kick(const std::vector<RigidBody>& bodies, const std::vector<Wrench>& w, 
     const Matrix3 R = b.Rotation();
     response.inv_inertia[i] = R * b.inertia.cwiseInverse().asDiagonal() * R.transpose();
     response.inv_mass[i] = 1.0 / b.mass;
-    const Vector3 dv = h / b.mass * w[i].force;
-    kick_speed = std::max(kick_speed, dv.norm());
-    const Vector3 L = b.angular_momentum + h * w[i].torque;
     before_kick[i] = {b.velocity, b.AngularVelocity()};
+    if (kicked != nullptr) {
+      vel[i] = {(*kicked)[i].head<3>(), (*kicked)[i].tail<3>()};
+      kick_speed = std::max(kick_speed, (vel[i].v - b.velocity).norm());
+      continue;
+    }
+    const Vector3 dv = h / b.mass * (*w)[i].force;
+    kick_speed = std::max(kick_speed, dv.norm());
+    const Vector3 L = b.angular_momentum + h * (*w)[i].torque;
     vel[i] = {b.velocity + dv, response.inv_inertia[i] * L};
   }
   return kick_speed;
@@ -378,30 +385,6 @@ StepStatus DriftBodies(std::vector<RigidBody>& bodies, const std::vector<contact
   return status;
 }
 
-// The kick of an articulated world: each body's velocities after it (from the joints' kick), at
-// the start of the step, and its own inverse mass and inertia (for the kinetic energy; impulses
-// act through the coupling). Returns the largest speed the forces give in one step.
-double JointedKick(const std::vector<RigidBody>& bodies, const std::vector<internal::Vector6>& kicked,
-                   std::vector<contact::Velocities>& vel, std::vector<contact::Velocities>& before_kick,
-                   contact::BodyResponse& response) {
-  const std::size_t nb = bodies.size();
-  vel.resize(nb);
-  before_kick.resize(nb);
-  response.inv_inertia.resize(nb);
-  response.inv_mass.resize(nb);
-  double kick_speed = 0;
-  for (std::size_t i = 0; i < nb; ++i) {
-    const RigidBody& b = bodies[i];
-    const Matrix3 R = b.Rotation();
-    response.inv_inertia[i] = R * b.inertia.cwiseInverse().asDiagonal() * R.transpose();
-    response.inv_mass[i] = 1.0 / b.mass;
-    before_kick[i] = {b.velocity, b.AngularVelocity()};
-    vel[i] = {kicked[i].head<3>(), kicked[i].tail<3>()};
-    kick_speed = std::max(kick_speed, (vel[i].v - before_kick[i].v).norm());
-  }
-  return kick_speed;
-}
-
 // The drift of an articulated world: the impulses the solve found (and the push-out's) as
 // wrenches on the bodies, handed to the joints, which finish the step.
 StepStatus DriftJointed(internal::Articulation& jointed, const std::vector<contact::Row>& rows,
@@ -474,12 +457,12 @@ StepStatus ContactWorld::Step(double h) {
       return failure;
     }
     jointed->Classify(m.coupling);
-    kick_speed = JointedKick(bodies, m.kicked, m.vel, m.before_kick, m.response);
+    kick_speed = Kick(bodies, nullptr, &m.kicked, h, m.vel, m.before_kick, m.response);
     m.response.coupling = &m.coupling;
   } else {
     internal::StepContext context(bodies, world_.forces(), m.scratch, world_.num_threads());
     context.ComputeWrenches(world_.time());
-    kick_speed = Kick(bodies, context.wrenches(), h, m.vel, m.before_kick, m.response);
+    kick_speed = Kick(bodies, &context.wrenches(), nullptr, h, m.vel, m.before_kick, m.response);
     m.response.coupling = nullptr;
   }
   const double bounce_threshold =

@@ -35,6 +35,16 @@ std::vector<int> RobotModel::Roots() const {
 
 namespace robot {
 
+RobotJointType JointTypeNamed(const std::string& type, const std::vector<RobotJointType>& allowed,
+                              const std::string& what) {
+  std::string names;
+  for (const RobotJointType t : allowed) {
+    if (type == RobotJointTypeName(t)) return t;
+    names += (names.empty() ? "" : ", ") + std::string(RobotJointTypeName(t));
+  }
+  throw ElementError(what + ": type \"" + type + "\" is not simulated (" + names + " are)");
+}
+
 Matrix3 InertiaTensor(const std::vector<double>& six, const Matrix3& R, const std::string& what) {
   Matrix3 I;
   I << six[0], six[1], six[2], six[1], six[3], six[4], six[2], six[4], six[5];

@@ -86,6 +86,10 @@ std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options);
 void UrdfKinematics(const Document& doc, RobotModel& model);
 void SdfKinematics(const Document& doc, const std::vector<Link>& links, RobotModel& model);
 void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotModel& model);
+/// The joint type a URDF or SDFormat `type` names, among `allowed` (by RobotJointTypeName).
+/// @throws ElementError naming `what` and listing the allowed types.
+RobotJointType JointTypeNamed(const std::string& type, const std::vector<RobotJointType>& allowed,
+                              const std::string& what);
 /// A 3 × 3 inertia tensor from its six elements (ixx ixy ixz iyy iyz izz: the tensor's own
 /// entries, products of inertia negated), rotated into the link by R. @throws ElementError.
 Matrix3 InertiaTensor(const std::vector<double>& six, const Matrix3& R, const std::string& what);

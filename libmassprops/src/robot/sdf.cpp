@@ -186,21 +186,10 @@ void SdfKinematics(const Document& doc, const std::vector<Link>& links, RobotMod
     RobotJoint j;
     j.name = element.attribute("name").value();
     const std::string what = "joint '" + j.name + "'";
-    const std::string type = element.attribute("type").value();
-    if (type == "fixed") {
-      j.type = RobotJointType::kFixed;
-    } else if (type == "revolute") {
-      j.type = RobotJointType::kRevolute;
-    } else if (type == "continuous") {
-      j.type = RobotJointType::kContinuous;
-    } else if (type == "prismatic") {
-      j.type = RobotJointType::kPrismatic;
-    } else if (type == "ball") {
-      j.type = RobotJointType::kBall;
-    } else {
-      throw ElementError(what + ": type \"" + type +
-                         "\" is not simulated (fixed, revolute, continuous, prismatic, ball are)");
-    }
+    j.type = JointTypeNamed(element.attribute("type").value(),
+                            {RobotJointType::kFixed, RobotJointType::kRevolute, RobotJointType::kContinuous,
+                             RobotJointType::kPrismatic, RobotJointType::kBall},
+                            what);
     const std::string parent = element.child("parent").text().get(), child = element.child("child").text().get();
     const auto c = index.find(child);
     if (c == index.end()) throw ElementError(what + ": <child> " + child + " names no link");

@@ -136,22 +136,10 @@ void UrdfKinematics(const Document& doc, RobotModel& model) {
     RobotJoint j;
     j.name = element.attribute("name").value();
     const std::string what = "joint '" + j.name + "'";
-    const std::string type = element.attribute("type").value();
-    if (type == "fixed") {
-      j.type = RobotJointType::kFixed;
-    } else if (type == "revolute") {
-      j.type = RobotJointType::kRevolute;
-    } else if (type == "continuous") {
-      j.type = RobotJointType::kContinuous;
-    } else if (type == "prismatic") {
-      j.type = RobotJointType::kPrismatic;
-    } else if (type == "floating") {
-      j.type = RobotJointType::kFloating;
-    } else {
-      throw ElementError(what + ": type \"" + type +
-                         "\" is not simulated (fixed, revolute, continuous, prismatic, "
-                         "floating are)");
-    }
+    j.type = JointTypeNamed(element.attribute("type").value(),
+                            {RobotJointType::kFixed, RobotJointType::kRevolute, RobotJointType::kContinuous,
+                             RobotJointType::kPrismatic, RobotJointType::kFloating},
+                            what);
     auto link_of = [&](const char* tag) {
       const std::string name = element.child(tag).attribute("link").value();
       const auto it = index.find(name);
