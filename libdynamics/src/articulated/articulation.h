@@ -175,7 +175,9 @@ class Articulation {
   std::vector<Eigen::MatrixXd> phi_;  ///< ContactKick's body Jacobians (by node)
   Eigen::VectorXd kicked_p_;          ///< ContactKick's p + h ṗ (+ h D v)
   Configuration effective_;           ///< ContactKick's start with M + h D + h² K
-  std::vector<char> held_;            ///< dofs ContactKick holds on a stop (Impulses leaves their stops)
+  /// Dofs ContactKick holds on a stop (-1 the lower, +1 the upper; Impulses leaves their stops),
+  /// and those the last contact step left pressed on one (held again in the next).
+  std::vector<signed char> held_, stuck_;
 };
 
 }  // namespace dynamics::internal

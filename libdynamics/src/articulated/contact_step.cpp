@@ -77,21 +77,25 @@ bool Articulation::ContactKick(const std::vector<std::unique_ptr<Force>>& forces
       effective_.M(i, i) += h * damping + h * h * stiffness;
       kicked_p_[i] += h * damping * v_[i];
     }
-    // A stop the joint is on, or would pass in this step at its present rate, holds it as a
-    // stiff implicit spring toward the limit — (M + h² k) u = … − h k (q − limit), with h² k a
-    // million times the joint's own inertia: rigid, in the very solve that the contacts see
-    // (a leg on its stop pressed against the ground), never pulling it past the limit.
+    // A stop the joint would pass in this step at its present rate, or that the last contact
+    // step left it pressed on, holds it as a stiff implicit spring — (M + h² k) u = … − h k
+    // (q − rest), with h² k a million times the joint's own inertia: rigid, in the very solve
+    // that the contacts see (a leg on its stop pressed against the ground).
     if (n.nv != 1) continue;
     const double q = q_[n.q], reach = q + h * v_[n.v];
-    if (!(reach < j.limits.lower || reach > j.limits.upper)) continue;
-    // Toward the limit from inside; from beyond it (where the last step's contacts left it),
-    // held where it is: the end of the step places it back on the limit, without a velocity.
-    const bool inside = q >= j.limits.lower && q <= j.limits.upper;
-    const double rest = !inside ? q : reach < j.limits.lower ? j.limits.lower : j.limits.upper;
+    const auto dof = static_cast<std::size_t>(n.v);
+    const signed char pressed = dof < stuck_.size() ? stuck_[dof] : 0;
+    const bool passes = reach < j.limits.lower || reach > j.limits.upper;
+    if (!passes && pressed == 0) continue;
+    // Toward the limit it would pass from inside; else held where it is (on the stop, or beyond
+    // it where the last step's contacts left it: the end of the step places it back on the
+    // limit, without a velocity).
+    const bool inside = q > j.limits.lower && q < j.limits.upper;
+    const double rest = inside && passes ? (reach < j.limits.lower ? j.limits.lower : j.limits.upper) : q;
     const double k = 1e6 * start_.M(n.v, n.v) / (h * h);
     effective_.M(n.v, n.v) += h * h * k;
     kicked_p_[n.v] -= h * k * (q - rest);
-    held_[static_cast<std::size_t>(n.v)] = 1;
+    held_[dof] = passes ? (reach < j.limits.lower ? -1 : 1) : pressed;
   }
   effective_.llt.compute(effective_.M);
   if (effective_.llt.info() != Eigen::Success) return false;
@@ -168,10 +172,28 @@ bool Articulation::ContactFinish(const std::vector<Wrench>& impulses, const std:
   std::vector<std::pair<int, double>> stops;
   if (Impulses(effective_, q1_, h, p1_, stops)) vbar_ = effective_.llt.solve(p1_);
   p1_ = start_.M.selfadjointView<Eigen::Lower>() * vbar_;  // the momentum of the step's velocity
+  const Eigen::VectorXd solved = vbar_;
   const Eigen::VectorXd push = GeneralizedImpulse(pushes);
   if (push.cwiseAbs().maxCoeff() > 0) vbar_ += start_.llt.solve(push);
   Move(q_, vbar_, h, q1_);
   for (const auto& [qi, limit] : stops) q1_[qi] = limit;
+  // Which stops stay held in the next contact step: those the contacts pressed on (a held
+  // joint whose velocity, however small, still points into its stop; a joint the stops' impulses
+  // placed on its limit after the contacts). One that would leave is let go.
+  stuck_.assign(static_cast<std::size_t>(v_.size()), 0);
+  for (const Node& n : nodes_) {
+    if (n.joint < 0 || n.nv != 1) continue;
+    const auto dof = static_cast<std::size_t>(n.v);
+    const Joint& j = joints_[static_cast<std::size_t>(n.joint)];
+    if (held_[dof] != 0) {
+      const double into = held_[dof] < 0 ? -solved[n.v] : solved[n.v];
+      stuck_[dof] = into >= 0 ? held_[dof] : 0;
+    } else if (q1_[n.q] == j.limits.lower || q1_[n.q] == j.limits.upper) {
+      for (const auto& [qi, limit] : stops) {
+        if (qi == n.q) stuck_[dof] = limit == j.limits.lower ? -1 : 1;
+      }
+    }
+  }
   held_.clear();  // (the midpoint rule's stops are its own)
   if (!q1_.allFinite() || !p1_.allFinite() || !Configure(q1_, end_)) return false;
   Accept(bodies);

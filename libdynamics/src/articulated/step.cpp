@@ -22,7 +22,8 @@ StepStatus Articulation::Advance(Integrator integrator, const std::vector<std::u
     status.message = "the joints' mass matrix is not positive definite";
     return status;
   }
-  held_.clear();                                // (a contact step's, when it found no contact)
+  held_.clear();  // (a contact step's, when it found no contact)
+  stuck_.clear();
   saved_q_ = q_, saved_v_ = v_, saved_p_ = p_;  // into kept capacity
   for (int substeps = 1; substeps <= 1024; substeps *= 2) {
     bool ok = true;
