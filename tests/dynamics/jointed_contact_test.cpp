@@ -315,4 +315,23 @@ TEST(JointedContact, SelfCollisionIsSwitchable) {
   }
 }
 
+TEST(JointedContact, ABoxDroppedOnALimpRobotDoesNotSinkIntoIt) {
+  // An 8 kg box falls 0.5 m onto the limp quadruped, whose legs fold onto their stops under it:
+  // the legs pressed on their stops hold rigid against the ground, and nothing sinks into
+  // anything by more than the contacts' slop and a step's worth of motion.
+  ContactWorld w = MakeWorld();
+  w.AddGround({});
+  std::vector<int> joints;
+  AddQuadruped(w, 0.0, joints, [](Joint& j, bool knee) {
+    j.damping = 0.02;
+    j.position = {knee ? -0.3 : 0.15};
+  });
+  const Vector3 size = Vector3::Constant(0.2);
+  w.AddBody(Box(8.0, size, Vector3(0, 0, 1.0)), BoxCollider(size));
+  double deepest = 0;
+  Simulate(w, 1e-3, 2000, [&](long) { deepest = std::max(deepest, w.stats().max_penetration); });
+  EXPECT_LT(deepest, 2e-3);
+  for (const RigidBody& b : w.world().bodies()) EXPECT_GT(b.position.z(), 0.0);
+}
+
 }  // namespace
