@@ -145,9 +145,9 @@ class Articulation {
   bool EnsureMomenta();
   /// Places node i (its frame in c) from its parent's frame and q.
   void PlaceNode(int i, const Eigen::VectorXd& q, Configuration& c) const;
-  /// Each node's Jacobian in c: its body's (v, ω) = Φ u (6 × nv).
-  void BodyJacobians(const Configuration& c, std::vector<Eigen::MatrixXd>& phi) const;
-  /// Σ Φᵀ w over the bodies' wrenches (force, torque about the centre).
+  /// Node `node`'s Jacobian in c: its body's (v, ω) = Φ u (6 × nv).
+  Eigen::MatrixXd BodyJacobian(const Configuration& c, int node) const;
+  /// Σ Φᵀ w over the bodies' wrenches (force, torque about the centre), at the contact step's start.
   Eigen::VectorXd GeneralizedImpulse(const std::vector<Wrench>& w) const;
 
   std::vector<Joint> joints_;
@@ -172,9 +172,8 @@ class Articulation {
   };
   std::vector<Row> rows_;
   bool momenta_ready_ = false;
-  std::vector<Eigen::MatrixXd> phi_;  ///< ContactKick's body Jacobians (by node)
-  Eigen::VectorXd kicked_p_;          ///< ContactKick's p + h ṗ (+ h D v)
-  Configuration effective_;           ///< ContactKick's start with M + h D + h² K
+  Eigen::VectorXd kicked_p_;  ///< ContactKick's p + h ṗ (+ h D v)
+  Configuration effective_;   ///< ContactKick's start with M + h D + h² K
   /// Dofs ContactKick holds on a stop (-1 the lower, +1 the upper; Impulses leaves their stops),
   /// and those the last contact step left pressed on one (held again in the next).
   std::vector<signed char> held_, stuck_;

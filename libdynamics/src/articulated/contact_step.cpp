@@ -9,39 +9,36 @@
 
 namespace dynamics::internal {
 
-void Articulation::BodyJacobians(const Configuration& c, std::vector<Eigen::MatrixXd>& phi) const {
-  const auto nv = static_cast<Eigen::Index>(v_.size());
-  phi.resize(nodes_.size());
-  std::vector<Eigen::MatrixXd> spatial(nodes_.size());  // V = Σ S u over the path from the world
-  for (std::size_t i = 0; i < nodes_.size(); ++i) {
-    const Node& n = nodes_[i];
-    Eigen::MatrixXd& J = spatial[i];
-    if (n.parent >= 0) {
-      J = spatial[static_cast<std::size_t>(n.parent)];
-    } else {
-      J.setZero(6, nv);
-    }
-    if (n.nv > 0) J.middleCols(n.v, n.nv) = c.frames[i].S;
-    // (v, ω) of the centre: v = v_O + ω × x = v_O − [x]× ω.
-    const Vector3& x = c.frames[i].x;
-    Matrix3 X;
-    X << 0, -x.z(), x.y(), x.z(), 0, -x.x(), -x.y(), x.x(), 0;
-    Eigen::MatrixXd& P = phi[i];
-    P.resize(6, nv);
-    P.topRows<3>() = J.bottomRows<3>() - X * J.topRows<3>();
-    P.bottomRows<3>() = J.topRows<3>();
+Eigen::MatrixXd Articulation::BodyJacobian(const Configuration& c, int node) const {
+  // V = Σ S u over the path from the world (the columns of the node and its ancestors), then the
+  // (v, ω) of the centre: v = v_O + ω × x = v_O − [x]× ω.
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(6, v_.size());
+  for (int i = node; i >= 0; i = nodes_[static_cast<std::size_t>(i)].parent) {
+    const Node& n = nodes_[static_cast<std::size_t>(i)];
+    if (n.nv > 0) J.middleCols(n.v, n.nv) = c.frames[static_cast<std::size_t>(i)].S;
   }
+  const Vector3& x = c.frames[static_cast<std::size_t>(node)].x;
+  Matrix3 X;
+  X << 0, -x.z(), x.y(), x.z(), 0, -x.x(), -x.y(), x.x(), 0;
+  Eigen::MatrixXd P(6, v_.size());
+  P.topRows<3>() = J.bottomRows<3>() - X * J.topRows<3>();
+  P.bottomRows<3>() = J.topRows<3>();
+  return P;
 }
 
 Eigen::VectorXd Articulation::GeneralizedImpulse(const std::vector<Wrench>& w) const {
+  // Φᵀ (f, τ) = Σ over the path of Sᵀ (n_O, f), with n_O = τ + x × f the moment about the origin.
   Eigen::VectorXd g = Eigen::VectorXd::Zero(v_.size());
   if (g.size() == 0) return g;
-  for (std::size_t i = 0; i < nodes_.size(); ++i) {
-    const Wrench& b = w[static_cast<std::size_t>(nodes_[i].body)];
+  for (std::size_t k = 0; k < nodes_.size(); ++k) {
+    const Wrench& b = w[static_cast<std::size_t>(nodes_[k].body)];
     if (b.force.squaredNorm() == 0 && b.torque.squaredNorm() == 0) continue;
     Vector6 f;
-    f << b.force, b.torque;
-    g.noalias() += phi_[i].transpose() * f;
+    f << b.torque + start_.frames[k].x.cross(b.force), b.force;
+    for (int i = static_cast<int>(k); i >= 0; i = nodes_[static_cast<std::size_t>(i)].parent) {
+      const Node& n = nodes_[static_cast<std::size_t>(i)];
+      if (n.nv > 0) g.segment(n.v, n.nv).noalias() += start_.frames[static_cast<std::size_t>(i)].S.transpose() * f;
+    }
   }
   return g;
 }
@@ -50,7 +47,6 @@ bool Articulation::ContactKick(const std::vector<std::unique_ptr<Force>>& forces
                                std::vector<Vector6>& kicked) {
   kicked.assign(inertias_.size(), Vector6::Zero());
   if (!EnsureMomenta() || !Configure(q_, start_)) return false;
-  BodyJacobians(start_, phi_);
   if (p_.size() == 0) {
     kicked_p_.resize(0);
     return true;
@@ -100,8 +96,11 @@ bool Articulation::ContactKick(const std::vector<std::unique_ptr<Force>>& forces
   effective_.llt.compute(effective_.M);
   if (effective_.llt.info() != Eigen::Success) return false;
   const Eigen::VectorXd u = effective_.llt.solve(kicked_p_);
+  Velocities(u, start_);  // (the start's velocities are read no more: ṗ is taken)
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
-    kicked[static_cast<std::size_t>(nodes_[i].body)] = phi_[i] * u;
+    const NodeFrame& f = start_.frames[i];
+    const Vector3 w = f.V.head<3>();
+    kicked[static_cast<std::size_t>(nodes_[i].body)] << f.V.tail<3>() + w.cross(f.x), w;
   }
   return true;
 }
@@ -122,7 +121,9 @@ void Articulation::Classify(contact::Coupling& c) const {
       c.tree[body] = c.tree[static_cast<std::size_t>(parent_body)];
       c.parent[body] = parent_body;
     }
-    c.movable[body] = phi_[i].size() > 0 && phi_[i].cwiseAbs().maxCoeff() > 0;
+    c.movable[body] =
+        n.nv > 0 ||
+        (n.parent >= 0 && c.movable[static_cast<std::size_t>(nodes_[static_cast<std::size_t>(n.parent)].body)]);
   }
 }
 
@@ -147,14 +148,13 @@ void Articulation::Respond(contact::Coupling& c, const std::vector<char>& touche
     std::vector<Matrix6>& G = c.response[t];
     G.assign(m.size() * m.size(), Matrix6::Zero());
     if (m.empty() || v_.size() == 0) continue;
-    std::vector<Eigen::MatrixXd> solved(m.size());
+    std::vector<Eigen::MatrixXd> phi(m.size()), solved(m.size());
     for (std::size_t k = 0; k < m.size(); ++k) {
-      solved[k] = effective_.llt.solve(
-          phi_[static_cast<std::size_t>(node_of_body[static_cast<std::size_t>(m[k])])].transpose());
+      phi[k] = BodyJacobian(start_, node_of_body[static_cast<std::size_t>(m[k])]);
+      solved[k] = effective_.llt.solve(phi[k].transpose());
     }
     for (std::size_t j = 0; j < m.size(); ++j) {
-      const Eigen::MatrixXd& Pj = phi_[static_cast<std::size_t>(node_of_body[static_cast<std::size_t>(m[j])])];
-      for (std::size_t k = 0; k < m.size(); ++k) G[j * m.size() + k] = Pj * solved[k];
+      for (std::size_t k = 0; k < m.size(); ++k) G[j * m.size() + k] = phi[j] * solved[k];
     }
   }
 }

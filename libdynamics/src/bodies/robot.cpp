@@ -170,18 +170,15 @@ RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotO
   RobotInWorld out;
   out.notes = model.notes;
   if (nl == 0) throw std::invalid_argument(model.path + ": the robot has no links");
-  for (const auto& [name, q] : options.positions) {
-    (void)q;
+  // Every joint the options name is the robot's.
+  auto check_named = [&](const std::string& name, const char* what) {
     if (std::none_of(model.joints.begin(), model.joints.end(), [&](const RobotJoint& j) { return j.name == name; })) {
-      throw std::invalid_argument(model.path + ": positions names the joint '" + name + "', which the robot has not");
+      throw std::invalid_argument(model.path + ": " + what + " names the joint '" + name +
+                                  "', which the robot has not");
     }
-  }
-  for (const auto& [name, motor] : options.motors) {
-    (void)motor;
-    if (std::none_of(model.joints.begin(), model.joints.end(), [&](const RobotJoint& j) { return j.name == name; })) {
-      throw std::invalid_argument(model.path + ": motors names the joint '" + name + "', which the robot has not");
-    }
-  }
+  };
+  for (const auto& entry : options.positions) check_named(entry.first, "positions");
+  for (const auto& entry : options.motors) check_named(entry.first, "motors");
   // The joint above each link, and the groups of links welded by fixed joints between links.
   std::vector<int> joint_above(nl, -1);
   for (std::size_t k = 0; k < model.joints.size(); ++k)
