@@ -75,24 +75,37 @@ Points PointsOf(const massprops::RobotGeometry& g, const massprops::LoadOptions&
   return out;
 }
 
-// The collider of a group in its body frame (none: no collision geometry).
-std::optional<Collider> ColliderOf(const RobotModel& model, const Group& g, const RobotOptions& options,
-                                   std::vector<std::string>& notes) {
-  std::vector<std::pair<const massprops::RobotGeometry*, Placement>> geometries;  // in the body frame
+// A collision geometry of a group, placed in the group's body frame, with its points (each mesh
+// read once: the collider and the drawn shape both take them from here).
+struct PlacedGeometry {
+  const massprops::RobotGeometry* geometry;
+  Placement pose;
+  Points points;
+};
+
+std::vector<PlacedGeometry> GeometriesOf(const RobotModel& model, const Group& g, const RobotOptions& options) {
+  std::vector<PlacedGeometry> out;
   const Placement root_to_body = g.body_in_root.Inverse();
   for (std::size_t k = 0; k < g.links.size(); ++k) {
     for (const auto& geometry : model.links[static_cast<std::size_t>(g.links[k])].collisions) {
-      geometries.emplace_back(&geometry, root_to_body.Then(g.in_root[k]).Then(geometry.pose));
+      out.push_back({&geometry, root_to_body.Then(g.in_root[k]).Then(geometry.pose), PointsOf(geometry, options.load)});
     }
   }
+  return out;
+}
+
+// The collider of a group in its body frame (none: no collision geometry).
+std::optional<Collider> ColliderOf(const RobotModel& model, const Group& g,
+                                   const std::vector<PlacedGeometry>& geometries, const RobotOptions& options,
+                                   std::vector<std::string>& notes) {
   if (geometries.empty()) return std::nullopt;
   Collider c;
   c.material = options.material;
   if (geometries.size() == 1) {
-    const auto& [geometry, pose] = geometries.front();
-    c.rotation = pose.rotation;
-    c.translation = pose.translation;
-    if (const auto* p = std::get_if<massprops::Primitive>(&geometry->shape)) {
+    const PlacedGeometry& one = geometries.front();
+    c.rotation = one.pose.rotation;
+    c.translation = one.pose.translation;
+    if (const auto* p = std::get_if<massprops::Primitive>(&one.geometry->shape)) {
       if (const auto* box = std::get_if<massprops::primitive::Box>(p)) {
         c.shape = shape::Box{box->size / 2};
         return c;
@@ -110,18 +123,16 @@ std::optional<Collider> ColliderOf(const RobotModel& model, const Group& g, cons
         return c;
       }
     }
-    const Points points = PointsOf(*geometry, options.load);
-    if (options.mesh_colliders && std::holds_alternative<massprops::RobotMesh>(geometry->shape)) {
-      c.shape = MakeMesh(points.vertices, points.triangles);
+    if (options.mesh_colliders && std::holds_alternative<massprops::RobotMesh>(one.geometry->shape)) {
+      c.shape = MakeMesh(one.points.vertices, one.points.triangles);
       return c;
     }
   }
   // The convex hull of them all, in the body frame.
   massprops::PolygonMesh cloud;
   std::vector<Vector3> all;
-  for (const auto& [geometry, pose] : geometries) {
-    for (const Vector3& v : PointsOf(*geometry, options.load).vertices)
-      all.push_back(pose.rotation * v + pose.translation);
+  for (const PlacedGeometry& placed : geometries) {
+    for (const Vector3& v : placed.points.vertices) all.push_back(placed.pose.rotation * v + placed.pose.translation);
   }
   cloud.V.resize(static_cast<Eigen::Index>(all.size()), 3);
   for (std::size_t i = 0; i < all.size(); ++i) cloud.V.row(static_cast<Eigen::Index>(i)) = all[i].transpose();
@@ -140,18 +151,13 @@ std::optional<Collider> ColliderOf(const RobotModel& model, const Group& g, cons
 }
 
 // The group's collision geometry as triangles in its body frame (for pictures and placement).
-massprops::TriangleMesh ShapeOf(const RobotModel& model, const Group& g, const RobotOptions& options) {
+massprops::TriangleMesh ShapeOf(const std::vector<PlacedGeometry>& geometries) {
   std::vector<Vector3> v;
   std::vector<std::array<int, 3>> t;
-  const Placement root_to_body = g.body_in_root.Inverse();
-  for (std::size_t k = 0; k < g.links.size(); ++k) {
-    for (const auto& geometry : model.links[static_cast<std::size_t>(g.links[k])].collisions) {
-      const Placement pose = root_to_body.Then(g.in_root[k]).Then(geometry.pose);
-      const Points points = PointsOf(geometry, options.load);
-      const int base = static_cast<int>(v.size());
-      for (const Vector3& p : points.vertices) v.push_back(pose.rotation * p + pose.translation);
-      for (const auto& tri : points.triangles) t.push_back({base + tri[0], base + tri[1], base + tri[2]});
-    }
+  for (const PlacedGeometry& placed : geometries) {
+    const int base = static_cast<int>(v.size());
+    for (const Vector3& p : placed.points.vertices) v.push_back(placed.pose.rotation * p + placed.pose.translation);
+    for (const auto& tri : placed.points.triangles) t.push_back({base + tri[0], base + tri[1], base + tri[2]});
   }
   massprops::TriangleMesh mesh;
   mesh.V.resize(static_cast<Eigen::Index>(v.size()), 3);
@@ -301,10 +307,11 @@ RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotO
     b.inertia = group.moments;
     b.position = body.translation;
     b.orientation = QuaternionOf(body.rotation);
-    const std::optional<Collider> collider = ColliderOf(model, group, options, out.notes);
+    const std::vector<PlacedGeometry> geometries = GeometriesOf(model, group, options);
+    const std::optional<Collider> collider = ColliderOf(model, group, geometries, options, out.notes);
     out.bodies.push_back(collider ? world.AddBody(b, *collider) : world.AddBody(b));
     out.body_names.push_back(model.links[static_cast<std::size_t>(group.root)].name);
-    out.shapes.push_back(ShapeOf(model, group, options));
+    out.shapes.push_back(ShapeOf(geometries));
     out.body_in_link.push_back(group.body_in_root);
   }
   out.body_of_link.resize(nl);
