@@ -188,11 +188,10 @@ bool Articulation::ContactFinish(const std::vector<Wrench>& impulses, const std:
     if (held_[dof] != 0) {
       const double into = held_[dof] < 0 ? -solved[n.v] : solved[n.v];
       stuck_[dof] = into >= 0 ? held_[dof] : 0;
-    } else if (q1_[n.q] == j.limits.lower || q1_[n.q] == j.limits.upper) {
-      for (const auto& [qi, limit] : stops) {
-        if (qi == n.q) stuck_[dof] = limit == j.limits.lower ? -1 : 1;
-      }
+      continue;
     }
+    const auto stop = std::find_if(stops.begin(), stops.end(), [&](const auto& s) { return s.first == n.q; });
+    if (stop != stops.end()) stuck_[dof] = stop->second == j.limits.lower ? -1 : 1;
   }
   held_.clear();  // (the midpoint rule's stops are its own)
   if (!q1_.allFinite() || !p1_.allFinite() || !Configure(q1_, end_)) return false;

@@ -26,13 +26,6 @@ Matrix3 PointResponse(const BodyResponse& bodies, int i, const Vector3& r) {
   return InvMass(bodies, i) * Matrix3::Identity() - S * InvInertia(bodies, i) * S;
 }
 
-// P = [E, −[r]×]: a point's velocity from its body's (v, ω); Pᵀ f the wrench of a force at it.
-Eigen::Matrix<double, 3, 6> PointMap(const Vector3& r) {
-  Eigen::Matrix<double, 3, 6> P;
-  P << Matrix3::Identity(), -internal::Skew(r);
-  return P;
-}
-
 // Jointed bodies: the response of a's generalized directions Wa (columns of wrenches on a) minus
 // b's to impulses along them (+ on a, − on b): Waᵀ G_aa Wa + Wbᵀ G_bb Wb − Waᵀ G_ab Wb − Wbᵀ G_ba Wa.
 template <int N>
@@ -55,12 +48,9 @@ void SetRowJacobian(Row& r, const BodyResponse& bodies) {
     r.coupling = bodies.coupling;
     r.ang_a = r.ra.cross(r.n);
     r.ang_b = r.b >= 0 ? Vector3(r.rb.cross(r.n)) : Vector3::Zero();
-    const Eigen::Matrix<double, 6, 3> Wa = PointMap(r.ra).transpose();
-    const Eigen::Matrix<double, 6, 3> Wb =
-        r.b >= 0 ? Eigen::Matrix<double, 6, 3>(PointMap(r.rb).transpose()) : Eigen::Matrix<double, 6, 3>::Zero();
-    r.Ka = CoupledResponse<3>(*r.coupling, r.a, r.b, Wa, Wb);
+    r.Ka.setZero();  // (the point responses serve shock propagation, which leaves jointed bodies out)
     r.Kb.setZero();
-    r.mass_n = 1.0 / r.n.dot(r.Ka * r.n);
+    r.mass_n = 1.0 / r.coupling->NormalResponse(r);
     return;
   }
   r.Ka = PointResponse(bodies, r.a, r.ra);

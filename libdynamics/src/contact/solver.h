@@ -75,8 +75,8 @@ struct Row {
   // Overlap beyond this is pushed out after the step (< 0: never).
   double slop = -1;
   double push = 0;  // its accumulated pseudo-impulse
-  // Jointed bodies (else null): impulses act through the coupling, and Ka holds the whole point
-  // response of the relative velocity (Kb zero).
+  // Jointed bodies (else null): impulses act through the coupling, mass_n is
+  // 1 / Coupling::NormalResponse (Ka and Kb zero).
   const Coupling* coupling = nullptr;
 };
 
