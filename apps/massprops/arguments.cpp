@@ -110,6 +110,21 @@ void AddArguments(CLI::App& app, Arguments& a) {
   app.add_option("--density-map", a.density_map,
                  "JSON or CSV: part name or glob pattern -> density (kg/m^3) or mass (kg); first match wins; "
                  "implies --parts");
+  app.add_option("--deflection", a.deflection,
+                 "CAD files (STEP, IGES, BREP): the tessellation's chordal deflection, in the file's unit (default: "
+                 "--relative-deflection times each part's bounding-box diagonal)")
+      ->check(app::Positive());
+  app.add_option("--relative-deflection", a.relative_deflection,
+                 "CAD files: the chordal deflection as a fraction of each part's diagonal")
+      ->check(app::InRange(1e-9, 0.5))
+      ->capture_default_str();
+  app.add_option("--angular-deflection", a.angular_deflection,
+                 "CAD files: the largest angle in radians between the normals of neighbouring triangles")
+      ->check(app::InRange(1e-3, 3.14159))
+      ->capture_default_str();
+  app.add_flag("--brep", a.brep,
+               "CAD files: report the exact B-rep's integrals (OpenCASCADE) as the result, the mesh's beside them "
+               "(both are always computed; the default result is the mesh's)");
   app.add_flag("-q,--quiet", a.quiet, "No progress line on stderr");
   app.add_option("-o,--output", a.output, "Write the output to this file (whole or not at all)");
 }
@@ -149,6 +164,11 @@ LoadOptions ToLoadOptions(const Arguments& a, const CLI::App& app) {
   o.parts = a.parts || !a.density_map.empty();
   o.num_threads = a.threads;
   o.unit_stated = app.count("--unit") > 0;
+  o.mass_stated = app.count("--density") > 0 || app.count("--mass") > 0;
+  o.cad.deflection = a.deflection;
+  o.cad.relative_deflection = a.relative_deflection;
+  o.cad.angular_deflection = a.angular_deflection;
+  o.brep = a.brep;
   return o;
 }
 
@@ -176,9 +196,9 @@ std::optional<std::string> CheckArguments(const Arguments& a, const CLI::App& ap
   }
   if (conflict) return worded(*conflict);
   if (a.files.empty()) {  // only --implicit: the options about mesh files would be ignored
-    for (const char* flag :
-         {"--parts", "--density-map", "--repair", "--allow-open", "--full-check", "--check-self-intersections",
-          "--path", "--reader", "--winding-number", "--hull", "--exact"}) {
+    for (const char* flag : {"--parts", "--density-map", "--repair", "--allow-open", "--full-check",
+                             "--check-self-intersections", "--path", "--reader", "--winding-number", "--hull",
+                             "--exact", "--deflection", "--relative-deflection", "--angular-deflection", "--brep"}) {
       if (app.count(flag) > 0)
         return std::string(flag) + " applies to mesh files; --implicit shapes take no such option";
     }

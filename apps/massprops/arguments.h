@@ -52,6 +52,10 @@ struct Arguments {
   std::string output_units;
   bool parts = false;
   std::string density_map;
+  double deflection = 0;  // CAD files: chordal, in the file's unit; 0: relative to each part's size
+  double relative_deflection = 1e-4;
+  double angular_deflection = 0.5;
+  bool brep = false;
 };
 
 /// The value of a name that CLI11's IsMember admitted.

@@ -28,6 +28,27 @@ class FileAccessError : public MeshFileError {
   using MeshFileError::MeshFileError;
 };
 
+/// How a CAD file (STEP, IGES, BREP) becomes triangles: OpenCASCADE's BRepMesh, per part.
+struct CadOptions {
+  /// Chordal deflection (the largest distance between a triangle and the surface), in the file's
+  /// unit; 0: `relative_deflection` times each part's bounding-box diagonal.
+  double deflection = 0;
+  double relative_deflection = 1e-4;
+  double angular_deflection = 0.5;  ///< rad: the largest angle between neighbouring triangles' normals
+};
+
+/// What a CAD reader knows about one part beyond its triangles.
+struct CadPart {
+  std::string material;  ///< the file's material name (STEP AP242), "" when it names none
+  double density = 0;    ///< kg/m^3, from the file's material; 0: none
+  bool solid = false;    ///< the part has solids (false: surfaces only, no exact volume)
+  /// The exact B-rep's integrals (OpenCASCADE's Gauss integration), unit density, in the file's
+  /// unit and axes, the placement applied.
+  VolumeIntegrals brep;
+  double brep_error = 0;  ///< OpenCASCADE's estimate of their relative error
+  double deflection = 0;  ///< the chordal deflection its triangles were made with, file unit
+};
+
 /// What was read, and how.
 struct LoadedMesh {
   PolygonMesh mesh;         ///< faces as in the file (OBJ n-gons are kept whole)
@@ -44,6 +65,8 @@ struct LoadedMesh {
   /// and the part of each face; both empty when the file names none.
   std::vector<std::string> part_names;
   std::vector<std::int32_t> face_part;
+  /// CAD files: one entry per part (as part_names; one when the file names none).
+  std::vector<CadPart> cad_parts;
 };
 
 /// Reads an OBJ (v/f records, n-gons, negative indices, several objects, `\` continuations) or an
@@ -54,6 +77,13 @@ struct LoadedMesh {
 /// @throws MeshFileError for a missing, empty, truncated or malformed file, an unknown extension,
 ///         non-finite coordinates, or a face index out of range.
 LoadedMesh ReadMeshFile(const std::string& path);
+
+/// As ReadMeshFile, with the tessellation options for CAD files (STEP, IGES, BREP), which
+/// OpenCASCADE reads in a child process with a time limit (a plugin, optional at build time).
+LoadedMesh ReadMeshFile(const std::string& path, const CadOptions& cad);
+
+/// Whether `path` is a CAD file by its extension (.step, .stp, .iges, .igs, .brep, .brp).
+bool IsCadFile(const std::string& path);
 
 /// Parses a mesh held in memory with the readers of our own: `extension` is "obj", "stl", "ply"
 /// or "off"; `name` is used in messages. The same checks as ReadMeshFile.

@@ -74,6 +74,9 @@ struct LoadOptions {
   /// across draws a finding that names the likely unit.
   bool unit_stated = false;
   MassSpec mass = Density{1000.0};  ///< kg/m^3, or the total mass
+  /// True when the user chose `mass`; false when it is a default: then the density a CAD file's
+  /// material gives a part (STEP AP242) is used instead.
+  bool mass_stated = false;
   Model model = SolidModel{};
   IntegrationPath path = IntegrationPath::kAuto;
   Reader reader = Reader::kAuto;
@@ -100,6 +103,11 @@ struct LoadOptions {
   /// With `parts`: densities or total masses per part, first match wins; the others take `mass`
   /// (a TotalMass there is then shared by the parts at one density). Every entry must match a part.
   std::vector<PartMass> part_masses;
+  /// CAD files (STEP, IGES, BREP): how they are tessellated.
+  CadOptions cad;
+  /// CAD files: report the exact B-rep's integrals (OpenCASCADE) as the result, the mesh's beside
+  /// them. Solid model.
+  bool brep = false;
   int num_threads = 0;  ///< 0: every core; the bits do not depend on it
   ProgressCallback progress;
 };
@@ -111,17 +119,19 @@ const char* ModelName(ModelKind kind);
 
 /// What the checks found that a user must know about, though the numbers stand.
 enum class FindingKind {
-  kOpenSurface,        ///< holes or inconsistent orientation; computed anyway (or bridged, or a shell)
-  kOverlappingShells,  ///< shells whose volumes overlap; computed anyway
-  kNonManifoldEdges,   ///< edges shared by more than two faces, matched in both directions
-  kSelfIntersections,  ///< faces that pass through each other
-  kUnitSuspicion,      ///< the size suggests the coordinates are in another unit
-  kUndeterminedAxes,   ///< an estimate's principal moments are equal within their error bars
-  kToleranceNotMet,    ///< an adaptive estimate stopped at its sample limit
-  kNonPlanarFaces,     ///< polygons off their plane: integrated as fans from their first corner
-  kStreamedChecks,     ///< the streamed binary-STL path (one shell): edges used by more than two faces not counted
-  kUnitOverridden,     ///< the file declares another unit than the one stated
-  kLimitedPrecision,   ///< rounding leaves fewer meaningful digits than a double holds (relative_error_bound)
+  kOpenSurface,         ///< holes or inconsistent orientation; computed anyway (or bridged, or a shell)
+  kOverlappingShells,   ///< shells whose volumes overlap; computed anyway
+  kNonManifoldEdges,    ///< edges shared by more than two faces, matched in both directions
+  kSelfIntersections,   ///< faces that pass through each other
+  kUnitSuspicion,       ///< the size suggests the coordinates are in another unit
+  kUndeterminedAxes,    ///< an estimate's principal moments are equal within their error bars
+  kToleranceNotMet,     ///< an adaptive estimate stopped at its sample limit
+  kNonPlanarFaces,      ///< polygons off their plane: integrated as fans from their first corner
+  kStreamedChecks,      ///< the streamed binary-STL path (one shell): edges used by more than two faces not counted
+  kUnitOverridden,      ///< the file declares another unit than the one stated
+  kLimitedPrecision,    ///< rounding leaves fewer meaningful digits than a double holds (relative_error_bound)
+  kMaterialOverridden,  ///< the file gives a part a material density other than the one used
+  kNoBrep,              ///< a CAD part without a solid: the exact B-rep comparison is missing
 };
 
 struct Finding {
@@ -148,6 +158,20 @@ struct HullReport {
   MassProperties mp;  ///< SI, in the file's axes
   PrincipalInertia principal;
   std::int64_t vertices = 0, faces = 0;  ///< of the hull (triangles)
+};
+
+/// A CAD file's exact B-rep integrals (OpenCASCADE) beside the mesh's: how far the tessellation
+/// moved the numbers.
+struct BrepReport {
+  MassProperties mp;  ///< SI, in the file's axes, at the result's density
+  PrincipalInertia principal;
+  double estimated_error = 0;    ///< OpenCASCADE's estimate of the integration's relative error
+  double deflection = 0;         ///< the tessellation's chordal deflection, file unit (the largest of the parts')
+  double volume_difference = 0;  ///< (V_mesh − V_brep) / V_brep
+  double com_difference = 0;     ///< |c_mesh − c_brep| / size
+  double inertia_difference = 0;  ///< ‖I_mesh − I_brep‖ / ‖I_brep‖ (Frobenius, about each one's center of mass)
+  bool is_result = false;         ///< LoadOptions::brep: these are the result's numbers (mp), the mesh's in `mesh`
+  MassProperties mesh;            ///< the tessellation's numbers, SI
 };
 
 struct SolidResult {
@@ -179,6 +203,9 @@ struct SolidResult {
   std::vector<Finding> findings;
   std::optional<HullReport> hull;    ///< LoadOptions::hull
   std::optional<ExactReport> exact;  ///< LoadOptions::exact: mp holds the certified values
+  std::optional<BrepReport> brep;    ///< CAD files with solids: the exact B-rep's numbers and the difference
+  /// Where the density came from when not from the options: "the file's material 'steel'".
+  std::string density_source;
   /// LoadOptions::parts: each part's own result (its name in `part`), in the file's order. The
   /// whole's mass properties are their composition; its topology their sums; its findings
   /// theirs, each naming its part.
@@ -222,6 +249,7 @@ enum class OptionConflict {
   kPartMassesNeedParts,  ///< densities per part without computing the parts
   kPartsNeedSolid,       ///< parts with a shell or a winding-number estimate
   kPartsNotExact,        ///< parts with exact integration
+  kBrepNeedsSolid,       ///< the B-rep result with a shell, a wall or a winding-number estimate
 };
 
 /// The first conflict among `options`, in the order of the enum, or none.

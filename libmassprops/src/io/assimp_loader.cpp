@@ -3,25 +3,19 @@
 // on a PLY header cut short and segfaults on some 3MF files), and neither may take the program down.
 
 #include <dlfcn.h>
-#include <signal.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
-#include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
 
 #include "io_internal.h"
-#include "massprops/isolation.h"
 #include "plugins.h"
 
 namespace massprops {
@@ -45,27 +39,13 @@ const Plugin& LoadPlugin() {
   static std::once_flag once;
   std::call_once(once, [] {
     const char* name = "libmassprops_assimp.so";
-    std::vector<std::string> candidates;
 #ifndef MASSPROPS_WITH_ASSIMP
     plugin.error =
         "this build of massprops was configured without assimp (MASSPROPS_WITH_ASSIMP=OFF): only "
         "OBJ, STL, PLY and OFF can be read";
     return;
-#else
-    // The environment overrides; then beside the library (a shared libmassprops_io in lib/ has
-    // the plugin in lib/massprops/), the install layout seen from bin/, and this build tree.
-    if (const char* env = std::getenv("MASSPROPS_ASSIMP_PLUGIN")) candidates.emplace_back(env);
-    const std::string dir = plugins::HomeDir();
-    candidates.push_back(dir + "/massprops/" + name);
-    candidates.push_back(dir + "/" + MASSPROPS_PLUGIN_FROM_BINDIR + "/" + name);
-    candidates.push_back(dir + "/" + name);
-    // The build tree's plugin, only for programs of this build tree (an installed or copied
-    // binary must find its own, or say that it cannot).
-    if (dir.rfind(MASSPROPS_BUILD_DIR, 0) == 0) {
-      candidates.push_back(std::string(MASSPROPS_PLUGIN_BUILD_DIR) + "/" + name);
-    }
 #endif
-    candidates.emplace_back(name);  // the library search path
+    const std::vector<std::string> candidates = plugins::ModuleCandidates(name, "MASSPROPS_ASSIMP_PLUGIN");
     std::string tried;
     plugin.handle = plugins::Open(candidates, tried);
     if (plugin.handle == nullptr) {
@@ -104,11 +84,6 @@ struct AssimpOutput {
 // The child's work: reads the file through the plugin and returns [status, message | corners,
 // xyz, faces, sizes] for the parent, in this process's own layout.
 std::string ReadInChild(const Plugin& p, const std::string& path) {
-  if (const char* fault = std::getenv("MASSPROPS_ASSIMP_FAULT")) {  // fault injection, for tests
-    if (std::string(fault) == "crash") ::kill(::getpid(), SIGKILL);
-    if (std::string(fault) == "hang")
-      for (;;) ::pause();
-  }
   double* xyz = nullptr;
   int* sizes = nullptr;
   int* parts = nullptr;
@@ -138,43 +113,14 @@ std::string ReadInChild(const Plugin& p, const std::string& path) {
   return out;
 }
 
-// 10 s plus 1 s per MB of file (assimp reads tens of MB a second on the slowest formats): a
-// cut-short or looping file answers in seconds, a 500 MB scan still has minutes.
-// MASSPROPS_ASSIMP_TIMEOUT (seconds) overrides it.
-double TimeLimitSeconds(const std::string& path) {
-  if (const char* env = std::getenv("MASSPROPS_ASSIMP_TIMEOUT")) {
-    const double t = std::atof(env);
-    if (t > 0) return t;
-  }
-  std::error_code ec;
-  const auto bytes = std::filesystem::file_size(path, ec);
-  return 10.0 + (ec ? 0.0 : static_cast<double>(bytes) / 1e6);
-}
-
 // Runs the plugin in a child process, so that a crash or a hang inside assimp becomes this file's
-// error and the program (and its other files) goes on.
+// error and the program (and its other files) goes on. 10 s plus 1 s per MB of file (assimp reads
+// tens of MB a second on the slowest formats): a cut-short or looping file answers in seconds, a
+// 500 MB scan still has minutes.
 AssimpOutput ReadIsolated(const Plugin& p, const std::string& path) {
-  const double limit = TimeLimitSeconds(path);
-  IsolatedOutcome outcome;
-  try {
-    RunIsolated(
-        1, 1, limit, [&](std::size_t) { return ReadInChild(p, path); },
-        [&](std::size_t, IsolatedOutcome&& o) { outcome = std::move(o); });
-  } catch (const std::runtime_error& e) {
-    Fail(path, std::string("cannot start the assimp reader process (") + e.what() + ")");
-  }
-  if (outcome.end == IsolatedEnd::kTimedOut) {
-    Fail(path,
-         "assimp did not finish reading it within " + std::to_string(static_cast<long long>(limit)) +
-             " s and was stopped (a malformed file can make assimp loop; MASSPROPS_ASSIMP_TIMEOUT sets the limit)");
-  }
-  if (outcome.end == IsolatedEnd::kCrashed) {
-    const int sig = outcome.signal;
-    Fail(path, "assimp crashed while reading it (signal " + std::to_string(sig) + ", " + ::strsignal(sig) +
-                   "); the file is probably malformed, and no result is given for it");
-  }
-  if (outcome.end != IsolatedEnd::kFinished) Fail(path, "the assimp reader process failed");
-  const std::string& data = outcome.output;
+  const std::string data =
+      plugins::ReadIsolated(path, "assimp", plugins::TimeLimitSeconds(path, "MASSPROPS_ASSIMP_TIMEOUT", 10.0, 1.0),
+                            "MASSPROPS_ASSIMP_TIMEOUT", "MASSPROPS_ASSIMP_FAULT", [&] { return ReadInChild(p, path); });
   // Decode: the child wrote it, in this process's own layout.
   std::size_t at = 0;
   auto take = [&](void* dest, std::size_t n) {

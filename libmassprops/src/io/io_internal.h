@@ -76,4 +76,8 @@ bool AssimpCanRead(const std::string& extension);
 /// welded by position. Debian's assimp stores coordinates as 32-bit floats: LoadedMesh says so.
 LoadedMesh ReadWithAssimp(const std::string& path);
 
+/// Reads a STEP, IGES or BREP file through the CAD plugin (cad_loader.cpp): each part's triangles,
+/// its B-rep integrals and material, the file's unit.
+LoadedMesh ReadCadFile(const std::string& path, const CadOptions& cad);
+
 }  // namespace massprops

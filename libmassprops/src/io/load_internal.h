@@ -18,4 +18,19 @@ SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_c
 /// Everything after reading an assembly: each part solved on its own, the whole composed.
 SolidResult SolveParts(SolidResult r, const LoadOptions& given, std::chrono::steady_clock::time_point t0);
 
+/// CAD files (load_cad.cpp): whether the parts carry different material densities that the
+/// options leave in force (then the parts are computed one by one).
+bool MaterialsDiffer(const LoadedMesh& loaded, const LoadOptions& given);
+
+/// CAD files: the density of the file's material when every part has the same one and none is
+/// stated (recorded in r.density_source); a finding when a stated one overrides it.
+void ApplyFileMaterial(SolidResult& r, LoadOptions& opt);
+
+/// CAD files with solids: the exact B-rep's numbers beside the mesh's (r.brep), or in their place
+/// with LoadOptions::brep. After the integration (r.mp, r.size_m set).
+void AddBrep(SolidResult& r, const LoadOptions& opt);
+
+/// The whole's B-rep report from its parts' (when every part has one).
+void ComposeBrep(SolidResult& whole);
+
 }  // namespace massprops::internal

@@ -23,6 +23,8 @@ LoadedMesh ExtractPart(const LoadedMesh& whole, std::int32_t p) {
   part.float32_coordinates = whole.float32_coordinates;
   part.declared_unit = whole.declared_unit;
   part.declared_unit_name = whole.declared_unit_name;
+  if (static_cast<std::size_t>(p) < whole.cad_parts.size())
+    part.cad_parts = {whole.cad_parts[static_cast<std::size_t>(p)]};
   const PolygonMesh& m = whole.mesh;
   std::vector<std::int32_t> new_index(static_cast<std::size_t>(m.V.rows()), -1);
   for (std::int64_t f = 0; f < m.num_faces(); ++f) {
@@ -101,6 +103,7 @@ SolidResult SolveParts(SolidResult r, const LoadOptions& given, std::chrono::ste
     part_opt.part_masses.clear();
     part_opt.unit_stated = true;  // resolved for the whole: a small part is not a unit mistake
     const PartMass* entry = MatchPart(opt.part_masses, names[p]);
+    part_opt.mass_stated = opt.mass_stated || entry != nullptr;  // else the part's material, if it has one
     if (entry != nullptr) {
       part_opt.mass = entry->mass;
     } else if (shared_mass) {
@@ -135,6 +138,10 @@ SolidResult SolveParts(SolidResult r, const LoadOptions& given, std::chrono::ste
       if (MatchPart(opt.part_masses, names[p]) != nullptr) continue;
       part.mp = AtDensity(part.mp, density);  // solved at 1 kg/m^3
       if (part.hull) part.hull->mp = AtDensity(part.hull->mp, density);
+      if (part.brep) {
+        part.brep->mp = AtDensity(part.brep->mp, density);
+        part.brep->mesh = AtDensity(part.brep->mesh, density);
+      }
       part.principal = ComputePrincipalInertia(part.mp.inertia_com);
       part.mass_fixed = true;
     }
@@ -174,6 +181,7 @@ SolidResult SolveParts(SolidResult r, const LoadOptions& given, std::chrono::ste
   r.mp = Combine(mps);
   r.size_m = (loaded.mesh.V.colwise().maxCoeff() - loaded.mesh.V.colwise().minCoeff()).norm() * MetresPerUnit(r.unit);
   CheckPlausible(r, {opt.unit_stated, opt.mass});
+  ComposeBrep(r);
   r.principal = ComputePrincipalInertia(r.mp.inertia_com);
   r.validity = CheckPhysicallyValid(r.principal.moments, 1e-12);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

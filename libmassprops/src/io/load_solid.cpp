@@ -522,7 +522,20 @@ SolidResult LoadSolid(const std::string& file, const LoadOptions& given) {
     return r;
   }
   Stage(given, "reading");
-  r.loaded = given.reader == Reader::kAssimp ? ReadMeshFileWithAssimp(file) : ReadMeshFile(file);
+  r.loaded = given.reader == Reader::kAssimp && !IsCadFile(file) ? ReadMeshFileWithAssimp(file)
+                                                                 : ReadMeshFile(file, given.cad);
+  if (!given.parts && internal::MaterialsDiffer(r.loaded, given)) {
+    // A CAD file whose parts are of different materials: one density would be wrong for the whole.
+    LoadOptions as_parts = given;
+    as_parts.parts = true;
+    if (!FindOptionConflict(as_parts)) {
+      r.density_source = "each part's own material (the file gives its parts different densities)";
+      return internal::SolveParts(std::move(r), as_parts, t0);
+    }
+    Warn(r, FindingKind::kMaterialOverridden,
+         "the file gives its parts different materials, which these options cannot compute part by part: the "
+         "whole is computed at the one density stated or the default");
+  }
   return given.parts ? internal::SolveParts(std::move(r), given, t0) : internal::Solve(std::move(r), given, t0);
 }
 
@@ -553,6 +566,7 @@ std::optional<OptionConflict> FindOptionConflict(const LoadOptions& o) {
   if (!o.part_masses.empty() && !o.parts) return OptionConflict::kPartMassesNeedParts;
   if (o.parts && !solid && !wall) return OptionConflict::kPartsNeedSolid;
   if (o.parts && o.exact) return OptionConflict::kPartsNotExact;
+  if (o.brep && !solid) return OptionConflict::kBrepNeedsSolid;
   return std::nullopt;
 }
 
@@ -570,6 +584,9 @@ std::string DescribeConflict(OptionConflict conflict) {
       return "densities per part need the parts to be computed (LoadOptions::parts)";
     case OptionConflict::kPartsNeedSolid:
       return "parts are computed as solids or walls, not as shells or winding-number estimates";
+    case OptionConflict::kBrepNeedsSolid:
+      return "the B-rep result is the exact solid's: it goes with the solid model, not a shell, a wall or a "
+             "winding-number estimate";
     case OptionConflict::kPartsNotExact:
       return "certified results are for one solid: the composition of parts is not certified (run the exact "
              "integration without parts)";
@@ -580,7 +597,8 @@ std::string DescribeConflict(OptionConflict conflict) {
 namespace internal {
 
 SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_clock::time_point t0) {
-  const LoadOptions opt = ResolveUnit(r, given);  // the unit the file declares, unless one is stated
+  LoadOptions opt = ResolveUnit(r, given);  // the unit the file declares, unless one is stated
+  ApplyFileMaterial(r, opt);                // and the density its material gives, unless one is stated
   if (opt.repair) {
     Stage(opt, "repairing (CGAL)");
     RepairedMesh repaired = RequireGeometrySteps("the repair").repair(r.loaded.mesh, RepairOptions{});
@@ -667,6 +685,7 @@ SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_c
   }
   if (opt.hull) AddHull(r, surface, opt);
   if (opt.exact) Certify(r, opt);
+  if (!wall) AddBrep(r, opt);
   r.seconds = SecondsSince(t0);
   return r;
 }

@@ -1,4 +1,5 @@
-// The readers behind one table: our own parsers by extension, assimp (a plugin) for the rest.
+// The readers behind one table: our own parsers by extension, OpenCASCADE (a plugin) for CAD files,
+// assimp (a plugin) for the rest.
 
 #include <string>
 #include <string_view>
@@ -49,16 +50,19 @@ bool IsMeshFile(const std::string& path) {
   const std::size_t dot = path.find_last_of('.');
   if (dot == std::string::npos || path.find('/', dot) != std::string::npos) return false;
   const std::string ext = io_text::Lower(path.substr(dot + 1));
-  return FindReader(ext) != nullptr || AssimpCanRead(ext);
+  return FindReader(ext) != nullptr || IsCadFile(path) || AssimpCanRead(ext);
 }
 
-LoadedMesh ReadMeshFile(const std::string& path) {
+LoadedMesh ReadMeshFile(const std::string& path) { return ReadMeshFile(path, CadOptions{}); }
+
+LoadedMesh ReadMeshFile(const std::string& path, const CadOptions& cad) {
   const std::size_t dot = path.find_last_of('.');
   const std::string ext = dot == std::string::npos ? "" : io_text::Lower(path.substr(dot + 1));
   if (FindReader(ext)) {
     const MappedFile file(path);
     return ParseMeshBuffer(path, ext, std::string_view(reinterpret_cast<const char*>(file.data()), file.size()));
   }
+  if (IsCadFile(path)) return ReadCadFile(path, cad);
   if (AssimpCanRead(ext)) return ReadWithAssimp(path);
   const std::string plugin = AssimpPluginStatus();
   if (!plugin.empty()) {

@@ -1,7 +1,16 @@
 #include "plugins.h"
 
 #include <dlfcn.h>
+#include <signal.h>
 #include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <stdexcept>
+
+#include "io_internal.h"
+#include "massprops/isolation.h"
 
 namespace massprops::plugins {
 
@@ -24,6 +33,67 @@ void* Open(const std::vector<std::string>& candidates, std::string& error) {
   }
   error = "tried " + tried;
   return nullptr;
+}
+
+std::vector<std::string> ModuleCandidates(const std::string& name, const char* env_var) {
+  std::vector<std::string> candidates;
+  if (const char* env = std::getenv(env_var)) candidates.emplace_back(env);
+  const std::string dir = HomeDir();
+  candidates.push_back(dir + "/massprops/" + name);
+#ifdef MASSPROPS_PLUGIN_FROM_BINDIR
+  candidates.push_back(dir + "/" + MASSPROPS_PLUGIN_FROM_BINDIR + "/" + name);
+#endif
+  candidates.push_back(dir + "/" + name);
+#ifdef MASSPROPS_BUILD_DIR
+  // The build tree's module, only for programs of this build tree (an installed or copied binary
+  // must find its own, or say that it cannot).
+  if (dir.rfind(MASSPROPS_BUILD_DIR, 0) == 0)
+    candidates.push_back(std::string(MASSPROPS_PLUGIN_BUILD_DIR) + "/" + name);
+#endif
+  candidates.push_back(name);  // the library search path
+  return candidates;
+}
+
+double TimeLimitSeconds(const std::string& path, const char* env_var, double base, double per_megabyte) {
+  if (const char* env = std::getenv(env_var)) {
+    const double t = std::atof(env);
+    if (t > 0) return t;
+  }
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
+  return base + (ec ? 0.0 : per_megabyte * static_cast<double>(bytes) / 1e6);
+}
+
+std::string ReadIsolated(const std::string& path, const std::string& who, double limit, const char* timeout_env,
+                         const char* fault_env, const std::function<std::string()>& work) {
+  IsolatedOutcome outcome;
+  try {
+    RunIsolated(
+        1, 1, limit,
+        [&](std::size_t) {
+          if (const char* fault = std::getenv(fault_env)) {
+            if (std::string(fault) == "crash") ::kill(::getpid(), SIGKILL);
+            if (std::string(fault) == "hang")
+              for (;;) ::pause();
+          }
+          return work();
+        },
+        [&](std::size_t, IsolatedOutcome&& o) { outcome = std::move(o); });
+  } catch (const std::runtime_error& e) {
+    Fail(path, "cannot start the " + who + " reader process (" + e.what() + ")");
+  }
+  if (outcome.end == IsolatedEnd::kTimedOut) {
+    Fail(path, who + " did not finish reading it within " + std::to_string(static_cast<long long>(limit)) +
+                   " s and was stopped (a malformed file can make " + who + " loop; " + timeout_env +
+                   " sets the limit in seconds)");
+  }
+  if (outcome.end == IsolatedEnd::kCrashed) {
+    const int sig = outcome.signal;
+    Fail(path, who + " crashed while reading it (signal " + std::to_string(sig) + ", " + ::strsignal(sig) +
+                   "); the file is probably malformed, and no result is given for it");
+  }
+  if (outcome.end != IsolatedEnd::kFinished) Fail(path, "the " + who + " reader process failed");
+  return std::move(outcome.output);
 }
 
 }  // namespace massprops::plugins

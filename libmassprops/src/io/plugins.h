@@ -1,8 +1,9 @@
 #pragma once
 // The one way massprops::io reaches code it does not link: a shared module found relative to the
-// library (or the program it is linked into). The assimp reader and the CGAL steps come this way;
-// an own 3MF reader or a CAD reader would too.
+// library (or the program it is linked into), run in a child process when it reads files. The
+// assimp reader, the CAD reader (OpenCASCADE) and the CGAL steps come this way.
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -15,5 +16,22 @@ std::string HomeDir();
 /// dlopen()s the first of `candidates` that loads. Null, with `error` saying what was tried, when
 /// none does.
 void* Open(const std::vector<std::string>& candidates, std::string& error);
+
+/// Where a reader module `name` (libmassprops_assimp.so, ...) is looked for, in order: the path in
+/// the environment variable `env_var`, beside the library (lib/massprops/), the install layout seen
+/// from bin/, beside the program, this build tree (only for programs of this build tree), and the
+/// library search path.
+std::vector<std::string> ModuleCandidates(const std::string& name, const char* env_var);
+
+/// A reader's time limit: `base` seconds plus `per_megabyte` for each MB of the file, unless the
+/// environment variable `env_var` gives one (seconds).
+double TimeLimitSeconds(const std::string& path, const char* env_var, double base, double per_megabyte);
+
+/// Runs `work` in a forked child with a time limit and returns what it sent back. A crash, a hang
+/// or a failure inside the third-party reader `who` ("assimp", "OpenCASCADE") becomes a
+/// MeshFileError naming `path`, so that the program and its other files go on. The environment
+/// variable `fault_env` ("crash", "hang") injects faults, for tests.
+std::string ReadIsolated(const std::string& path, const std::string& who, double seconds, const char* timeout_env,
+                         const char* fault_env, const std::function<std::string()>& work);
 
 }  // namespace massprops::plugins

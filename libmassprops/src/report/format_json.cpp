@@ -126,6 +126,24 @@ Json ToJson(const SolidResult& r, const FormatOptions& opt) {
                  {"principal_moments", {hm[0], hm[1], hm[2]}},
                  {"principal_axes", Mat(h.principal.axes)}};
   }
+  if (r.brep) {
+    // The other side of the comparison: the mesh's numbers when the B-rep's are the result.
+    const BrepReport& b = *r.brep;
+    const MassProperties& other = b.is_result ? b.mesh : b.mp;
+    const Vector3 bc = other.center_of_mass / u.Length();
+    j["brep"] = {{"result", b.is_result ? "brep" : "mesh"},
+                 {b.is_result ? "mesh" : "brep",
+                  {{"volume", other.volume / u.Volume()},
+                   {"mass", other.mass / u.Mass()},
+                   {"center_of_mass", {bc[0], bc[1], bc[2]}},
+                   {"inertia_com", Mat(other.inertia_com / u.Inertia())}}},
+                 {"estimated_error", b.estimated_error},
+                 {"deflection", b.deflection},
+                 {"volume_difference", b.volume_difference},
+                 {"com_difference", b.com_difference},
+                 {"inertia_difference", b.inertia_difference}};
+  }
+  if (!r.density_source.empty()) j["density_source"] = r.density_source;
   Json warnings = Json::array();
   for (const Finding& f : r.findings) warnings.push_back(Worded(f.message, WordsOf(opt)));
   j["warnings"] = warnings;

@@ -113,7 +113,8 @@ std::string FormatOne(const SolidResult& r, const FormatOptions& opt) {
       << (r.unit_source == UnitSource::kFile ? ", declared by the file" : "") << "), results in "
       << (u.IsSi() ? std::string("SI") : u.Describe()) << "; " << (shell ? "area density " : "density ")
       << (shell ? r.mp.density / u.AreaDensity() : r.mp.density / u.Density()) << " "
-      << (shell ? u.AreaDensityName() : u.DensityName()) << (r.mass_fixed ? " (from --mass)" : "") << "\n";
+      << (shell ? u.AreaDensityName() : u.DensityName()) << (r.mass_fixed ? " (from --mass)" : "")
+      << (r.density_source.empty() ? "" : " (" + r.density_source + ")") << "\n";
   if (shell) out << "model           thin shell: the surface itself carries the mass (no volume)\n";
   if (r.model == ModelKind::kWall) {
     out << "model           hollow part: the solid between the surface and its inward offset by " << r.wall_thickness
@@ -198,6 +199,24 @@ std::string FormatOne(const SolidResult& r, const FormatOptions& opt) {
     const Vector3& hm = h.principal.moments;
     out << "  principal moments            " << Num(hm[0] / ui) << "  " << Num(hm[1] / ui) << "  " << Num(hm[2] / ui)
         << "  (" << pct(hm[0], m[0]) << ", " << pct(hm[1], m[1]) << ", " << pct(hm[2], m[2]) << ")\n";
+  }
+  if (r.brep) {
+    const BrepReport& b = *r.brep;
+    const MassProperties& other = b.is_result ? b.mesh : b.mp;
+    out << (b.is_result ? "mesh            the tessellation (deflection "
+                        : "exact B-rep     OpenCASCADE's integral of the solid (")
+        << (b.is_result ? FormatDouble(b.deflection, "%.3g") + " " + UnitName(r.unit) + ")"
+                        : "estimated error " + FormatDouble(b.estimated_error, "%.1g") + ")")
+        << ", the same " << (r.mass_fixed ? "mass" : "density") << ":\n";
+    out << "  volume        " << Num(other.volume / u.Volume(), digits) << " " << u.VolumeName() << "\n";
+    out << "  mass          " << Num(other.mass / u.Mass(), digits) << " " << mass_unit << "\n";
+    out << "  center of mass " << vec(other.center_of_mass, u.Length()) << " " << len << "\n";
+    out << "  inertia about its center of mass, file's axes" << inertia_label;
+    PrintMatrix(out, "                ", other.inertia_com / u.Inertia(), digits);
+    out << "  mesh - B-rep  volume " << FormatDouble(b.volume_difference, "%+.2e") << " relative, center of mass "
+        << FormatDouble(b.com_difference, "%.2e") << " of the size, inertia "
+        << FormatDouble(b.inertia_difference, "%.2e") << " (|dI|/|I|); tessellated with deflection "
+        << FormatDouble(b.deflection, "%.3g") << " " << UnitName(r.unit) << "\n";
   }
   out << "physically valid  "
       << (r.validity.valid ? "yes (moments positive, I1 + I2 >= I3)" : "NO: " + r.validity.reason) << "\n";
