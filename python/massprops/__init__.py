@@ -19,8 +19,13 @@ the surface is a thin shell), ``wall`` (a thickness in the file's unit: a hollow
 ``reader`` ('auto', 'assimp'), ``threads`` (0: every core; the bits do not depend on it),
 ``parts`` (each OBJ object or group, glTF/3MF/COLLADA node on its own: ``Result.parts``; the whole
 is their composition), ``densities`` (a dict, part name or glob -> kg/m³ or ``{"mass": kg}``;
-implies ``parts``).
+implies ``parts``). CAD files (STEP, IGES, BREP, read by OpenCASCADE): ``deflection`` (the
+tessellation's chordal deflection in the file's unit; default ``relative_deflection`` = 1e-4 of
+each part's diagonal), ``angular_deflection`` (rad, default 0.5), ``brep`` (report the exact
+B-rep's integrals as the result); ``Result.brep`` holds the other side and the differences.
 
+    >>> r = massprops.load("gearbox.step", deflection=0.01, parts=True)
+    >>> r.to_dict()["brep"]["volume_difference"]
     >>> r = massprops.load("assembly.obj", densities={"steel*": 7850, "grip": {"mass": 0.1}})
     >>> [(p.part, p.mass) for p in r.parts], r.mass
 
@@ -69,6 +74,8 @@ class Result:
         self.source = record["file"]
         self.part = record.get("part")
         self.parts = [Result(p) for p in record.get("parts", [])]
+        self.brep = record.get("brep")  # CAD files: the other side of mesh vs exact B-rep, and the differences
+        self.density_source = record.get("density_source")
         estimate = record.get("estimate")
         self.standard_errors = None
         if estimate is not None:

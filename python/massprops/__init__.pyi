@@ -25,6 +25,8 @@ class Result:
     source: str
     part: Optional[str]
     parts: List["Result"]
+    brep: Optional[Dict[str, Any]]
+    density_source: Optional[str]
     standard_errors: Optional[Dict[str, Any]]
     def __init__(self, record: Dict[str, Any]) -> None: ...
     def inertia_about(self, point: ArrayLike) -> NDArray[numpy.float64]: ...

@@ -118,6 +118,14 @@ LoadOptions ToLoadOptions(const py::kwargs& kw) {
     } else if (key == "densities") {
       o.part_masses = PartMasses(value, "densities");
       o.parts = true;
+    } else if (key == "deflection") {
+      o.cad.deflection = number(0);
+    } else if (key == "relative_deflection") {
+      o.cad.relative_deflection = number(0);
+    } else if (key == "angular_deflection") {
+      o.cad.angular_deflection = number(0);
+    } else if (key == "brep") {
+      o.brep = py::cast<bool>(value);
     } else if (key == "check_self_intersections") {
       o.check_self_intersections = py::cast<bool>(value);
     } else if (key == "threads") {
@@ -147,6 +155,7 @@ LoadOptions ToLoadOptions(const py::kwargs& kw) {
   }
   if (mass) o.mass = TotalMass{*mass};
   if (density) o.mass = Density{*density};
+  o.mass_stated = mass || density;
   if (shell) o.model = ShellModel{*shell};
   if (wall) o.model = WallModel{*wall};
   if (winding_number) o.model = WindingNumberModel{sampling};

@@ -249,8 +249,12 @@ void RefuseOpen(const SolidResult& r, const LoadOptions& opt, bool wall) {
     throw LoadError(r.source + ": " + r.topology.Problems() + UnweldedCorners(r) +
                     ". A wall needs a closed surface to offset inward (try {repair})");
   }
+  // A CAD part of surfaces only: the file holds no solid to begin with.
+  bool surfaces_only = false;
+  for (const CadPart& p : r.loaded.cad_parts) surfaces_only = surfaces_only || !p.solid;
   throw LoadError(r.source + ": " + (opt.repair ? "after {repair}: " : "") + r.topology.Problems() +
                   (opt.repair ? "" : UnweldedCorners(r)) +
+                  (surfaces_only ? " (the CAD file holds surfaces, not a solid)" : "") +
                   ". The mesh does not bound a solid, so its mass properties are not defined; " +
                   (opt.repair ? "close the holes in a modelling tool, " : "try {repair}, ") +
                   "or pass {allow_open} to compute anyway");

@@ -1,0 +1,224 @@
+// Writes the CAD files the tests and benchmarks read, with OpenCASCADE itself: closed-form solids
+// as STEP, IGES and BREP, a part in inches, named assemblies with placements and AP242 materials,
+// an open shell, a file with no solid, and the STL of a part's own tessellation.
+//
+//   make_cad DIR              the test set (see Fixtures below)
+//   make_cad --bench DIR      a part of about 10^3 faces and an assembly of 100 parts
+//
+// Dimensions are in millimetres (OpenCASCADE's unit) unless a file says otherwise.
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <BRepAlgoAPI_Cut.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakePolygon.hxx>
+#include <BRepBuilderAPI_Sewing.hxx>
+#include <BRepMesh_IncrementalMesh.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCone.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
+#include <BRepPrimAPI_MakeTorus.hxx>
+#include <BRepTools.hxx>
+#include <IGESControl_Controller.hxx>
+#include <IGESControl_Writer.hxx>
+#include <Interface_Static.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_PrinterOStream.hxx>
+#include <STEPCAFControl_Writer.hxx>
+#include <STEPControl_Controller.hxx>
+#include <STEPControl_Writer.hxx>
+#include <StlAPI_Writer.hxx>
+#include <TCollection_HAsciiString.hxx>
+#include <TDataStd_Name.hxx>
+#include <TDocStd_Document.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <XCAFApp_Application.hxx>
+#include <XCAFDoc_DocumentTool.hxx>
+#include <XCAFDoc_MaterialTool.hxx>
+#include <XCAFDoc_ShapeTool.hxx>
+#include <gp_Ax2.hxx>
+#include <gp_Trsf.hxx>
+
+namespace {
+
+bool Check(bool ok, const std::string& what) {
+  if (!ok) std::fprintf(stderr, "make_cad: could not write %s\n", what.c_str());
+  return ok;
+}
+
+bool WriteStep(const TopoDS_Shape& shape, const std::string& path, const char* unit = "MM") {
+  STEPControl_Controller::Init();  // before the unit: set earlier, it is ignored
+  Interface_Static::SetCVal("write.step.unit", unit);
+  STEPControl_Writer writer;
+  if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone) return Check(false, path);
+  const bool ok = writer.Write(path.c_str()) == IFSelect_RetDone;
+  Interface_Static::SetCVal("write.step.unit", "MM");
+  return Check(ok, path);
+}
+
+bool WriteIges(const TopoDS_Shape& shape, const std::string& path) {
+  IGESControl_Controller::Init();
+  IGESControl_Writer writer("MM", 1);  // B-rep mode: solids as solids
+  writer.AddShape(shape);
+  writer.ComputeModel();
+  return Check(writer.Write(path.c_str()), path);
+}
+
+bool WriteBrep(const TopoDS_Shape& shape, const std::string& path) {
+  return Check(BRepTools::Write(shape, path.c_str()), path);
+}
+
+struct Placed {
+  std::string product;
+  TopoDS_Shape shape;
+  gp_Trsf placement;
+  std::string material;
+  double density_g_cm3 = 0;
+};
+
+// A named assembly: one product per distinct name (instances of a name share its shape).
+bool WriteAssembly(const std::vector<Placed>& parts, const std::string& name, const std::string& path) {
+  Handle(XCAFApp_Application) app = XCAFApp_Application::GetApplication();
+  Handle(TDocStd_Document) doc;
+  app->NewDocument("MDTV-XCAF", doc);
+  const Handle(XCAFDoc_ShapeTool) shapes = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
+  const Handle(XCAFDoc_MaterialTool) materials = XCAFDoc_DocumentTool::MaterialTool(doc->Main());
+  const TDF_Label assembly = shapes->NewShape();
+  TDataStd_Name::Set(assembly, name.c_str());
+  std::vector<std::pair<std::string, TDF_Label>> products;
+  for (const Placed& p : parts) {
+    TDF_Label product;
+    for (const auto& [n, label] : products) {
+      if (n == p.product) product = label;
+    }
+    if (product.IsNull()) {
+      product = shapes->AddShape(p.shape, false);
+      TDataStd_Name::Set(product, p.product.c_str());
+      if (!p.material.empty()) {
+        materials->SetMaterial(product, new TCollection_HAsciiString(p.material.c_str()),
+                               new TCollection_HAsciiString(""), p.density_g_cm3,
+                               new TCollection_HAsciiString("density"),
+                               new TCollection_HAsciiString("POSITIVE_RATIO_MEASURE"));
+      }
+      products.emplace_back(p.product, product);
+    }
+    shapes->AddComponent(assembly, product, TopLoc_Location(p.placement));
+  }
+  shapes->UpdateAssemblies();
+  STEPControl_Controller::Init();
+  Interface_Static::SetCVal("write.step.unit", "MM");
+  STEPCAFControl_Writer writer;
+  writer.SetMaterialMode(true);
+  writer.SetNameMode(true);
+  if (!writer.Transfer(doc, STEPControl_AsIs)) return Check(false, path);
+  return Check(writer.Write(path.c_str()) == IFSelect_RetDone, path);
+}
+
+gp_Trsf Placement(double x, double y, double z, double degrees_about_z = 0) {
+  gp_Trsf rotation, translation;
+  rotation.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), degrees_about_z * M_PI / 180);
+  translation.SetTranslation(gp_Vec(x, y, z));
+  return translation * rotation;
+}
+
+// The STL of the shape's own tessellation (binary), at this chordal deflection, one thread.
+bool WriteStlOfTessellation(const TopoDS_Shape& shape, double deflection, const std::string& path) {
+  BRepMesh_IncrementalMesh mesher(shape, deflection, false, 0.5, false);
+  StlAPI_Writer writer;
+  writer.ASCIIMode() = false;
+  return Check(writer.Write(shape, path.c_str()), path);
+}
+
+// Five faces of a box, sewn: a shell with a hole, no solid.
+TopoDS_Shape OpenBox() {
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(10, 20, 30).Shape();
+  BRepBuilderAPI_Sewing sewing;
+  int n = 0;
+  for (TopExp_Explorer e(box, TopAbs_FACE); e.More(); e.Next()) {
+    if (n++ < 5) sewing.Add(e.Current());
+  }
+  sewing.Perform();
+  return sewing.SewedShape();
+}
+
+bool Fixtures(const std::string& dir) {
+  bool ok = true;
+  // Closed forms (README's table): box 10 × 20 × 30, cylinder r 5 h 10, sphere r 10, cone r 4 h 12,
+  // torus R 20 r 5, a 40 × 40 × 10 plate with a hole of radius 8 through its middle.
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(10, 20, 30).Shape();
+  const TopoDS_Shape cylinder = BRepPrimAPI_MakeCylinder(5, 10).Shape();
+  const TopoDS_Shape sphere = BRepPrimAPI_MakeSphere(10).Shape();
+  const TopoDS_Shape cone = BRepPrimAPI_MakeCone(4, 0, 12).Shape();
+  const TopoDS_Shape torus = BRepPrimAPI_MakeTorus(20, 5).Shape();
+  const TopoDS_Shape plate = BRepPrimAPI_MakeBox(gp_Pnt(-20, -20, 0), 40, 40, 10).Shape();
+  const TopoDS_Shape hole = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -1), gp_Dir(0, 0, 1)), 8, 12).Shape();
+  const TopoDS_Shape drilled = BRepAlgoAPI_Cut(plate, hole).Shape();
+  ok &= WriteStep(box, dir + "/box.step");
+  ok &= WriteStep(cylinder, dir + "/cylinder.step");
+  ok &= WriteStep(sphere, dir + "/sphere.step");
+  ok &= WriteStep(cone, dir + "/cone.step");
+  ok &= WriteStep(torus, dir + "/torus.step");
+  ok &= WriteStep(drilled, dir + "/drilled.step");
+  ok &= WriteIges(drilled, dir + "/drilled.iges");
+  ok &= WriteBrep(drilled, dir + "/drilled.brep");
+  ok &= WriteIges(box, dir + "/box.igs");
+  ok &= WriteBrep(torus, dir + "/torus.brep");
+  // 1 × 2 × 3 inches, made in millimetres, written in inches.
+  ok &= WriteStep(BRepPrimAPI_MakeBox(25.4, 50.8, 76.2).Shape(), dir + "/box_inches.step", "INCH");
+  // Three products: a steel base plate, an aluminium post standing on it, and a pin used twice
+  // (once turned 90 degrees about z); the pin has no material.
+  ok &= WriteAssembly({{"base", BRepPrimAPI_MakeBox(100, 60, 10).Shape(), Placement(0, 0, 0), "steel", 7.85},
+                       {"post", BRepPrimAPI_MakeCylinder(10, 50).Shape(), Placement(30, 30, 10), "aluminium", 2.7},
+                       {"pin", BRepPrimAPI_MakeBox(4, 20, 4).Shape(), Placement(70, 20, 10)},
+                       {"pin", BRepPrimAPI_MakeBox(4, 20, 4).Shape(), Placement(90, 40, 10, 90)}},
+                      "fixture", dir + "/assembly.step");
+  // One material throughout.
+  ok &= WriteAssembly({{"block", box, Placement(0, 0, 0), "steel", 7.85}}, "one", dir + "/steel_box.step");
+  ok &= WriteStep(OpenBox(), dir + "/open_box.step");
+  ok &= WriteStep(BRepBuilderAPI_MakeEdge(gp_Pnt(0, 0, 0), gp_Pnt(10, 0, 0)).Shape(), dir + "/edge_only.step");
+  // The same tessellation as STEP would make at deflection 0.05 mm, as a binary STL.
+  ok &= WriteStlOfTessellation(BRepPrimAPI_MakeCylinder(5, 10).Shape(), 0.05, dir + "/cylinder_0.05.stl");
+  return ok;
+}
+
+bool Bench(const std::string& dir) {
+  bool ok = true;
+  // A part of about 10^3 faces: a plate drilled with a 6 × 6 grid of holes (each hole a few faces).
+  TopoDS_Shape part = BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 140, 140, 10).Shape();
+  for (int i = 0; i < 15; ++i) {
+    for (int j = 0; j < 15; ++j) {
+      const TopoDS_Shape hole =
+          BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(10 + 8 * i, 10 + 8 * j, -1), gp_Dir(0, 0, 1)), 2.5, 12).Shape();
+      part = BRepAlgoAPI_Cut(part, hole).Shape();
+    }
+  }
+  ok &= WriteStep(part, dir + "/plate_1k_faces.step");
+  std::vector<Placed> parts;
+  for (int i = 0; i < 100; ++i) {
+    const std::string name = "part" + std::to_string(i % 10);
+    const TopoDS_Shape shape =
+        i % 2 == 0 ? BRepPrimAPI_MakeCylinder(3 + i % 10, 20).Shape() : BRepPrimAPI_MakeBox(5 + i % 10, 8, 6).Shape();
+    parts.push_back({name + (i % 2 == 0 ? "c" : "b"), shape, Placement(30.0 * (i % 10), 30.0 * (i / 10), 0, 7.0 * i)});
+  }
+  ok &= WriteAssembly(parts, "hundred", dir + "/assembly_100.step");
+  return ok;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
+  if (argc == 3 && std::string(argv[1]) == "--bench") return Bench(argv[2]) ? 0 : 1;
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: make_cad DIR | make_cad --bench DIR\n");
+    return 2;
+  }
+  return Fixtures(argv[1]) ? 0 : 1;
+}

@@ -1,0 +1,319 @@
+// CAD files (STEP, IGES, BREP) through the OpenCASCADE plugin, on files OpenCASCADE itself writes
+// (tests/cad/make_cad.cpp): the exact B-rep's numbers against closed forms, the tessellation's
+// error against the bound its deflection implies, units, assemblies, materials and faults.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "massprops/load.h"
+
+namespace massprops {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kMm = 1e-3;
+
+class Cad : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = (fs::temp_directory_path() / ("massprops_cad_" + std::to_string(::getpid()))).string();
+    fs::create_directories(dir_);
+    const std::string command = std::string(MASSPROPS_MAKE_CAD) + " " + dir_;
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  }
+  static void TearDownTestSuite() { fs::remove_all(dir_); }
+  static std::string File(const std::string& name) { return dir_ + "/" + name; }
+  static std::string dir_;
+};
+std::string Cad::dir_;
+
+// A solid's closed form, SI, density 1000.
+struct Truth {
+  double volume;
+  Vector3 com;
+  Matrix3 inertia;  // about the center of mass
+};
+
+Truth Box(double a, double b, double c) {
+  a *= kMm, b *= kMm, c *= kMm;
+  const double m = 1000 * a * b * c;
+  return {a * b * c,
+          {a / 2, b / 2, c / 2},
+          Vector3(m * (b * b + c * c) / 12, m * (a * a + c * c) / 12, m * (a * a + b * b) / 12).asDiagonal()};
+}
+
+Truth Cylinder(double r, double h) {
+  r *= kMm, h *= kMm;
+  const double v = kPi * r * r * h, m = 1000 * v;
+  const double side = m * (3 * r * r + h * h) / 12;
+  return {v, {0, 0, h / 2}, Vector3(side, side, m * r * r / 2).asDiagonal()};
+}
+
+Truth Sphere(double r) {
+  r *= kMm;
+  const double v = 4 * kPi * r * r * r / 3, i = 0.4 * 1000 * v * r * r;
+  return {v, Vector3::Zero(), Vector3(i, i, i).asDiagonal()};
+}
+
+Truth Cone(double r, double h) {  // base on z = 0, apex up
+  r *= kMm, h *= kMm;
+  const double v = kPi * r * r * h / 3, m = 1000 * v;
+  const double side = m * (3 * r * r / 20 + 3 * h * h / 80);
+  return {v, {0, 0, h / 4}, Vector3(side, side, 0.3 * m * r * r).asDiagonal()};
+}
+
+Truth Torus(double big, double small) {
+  big *= kMm, small *= kMm;
+  const double v = 2 * kPi * kPi * big * small * small, m = 1000 * v;
+  const double side = m * (big * big / 2 + 5 * small * small / 8);
+  return {v, Vector3::Zero(), Vector3(side, side, m * (big * big + 3 * small * small / 4)).asDiagonal()};
+}
+
+// A 40 × 40 × 10 plate centred on the z axis, z in [0, 10], with a hole of radius 8 along z.
+Truth Drilled() {
+  const double a = 40 * kMm, t = 10 * kMm, r = 8 * kMm;
+  const double vb = a * a * t, vc = kPi * r * r * t, mb = 1000 * vb, mc = 1000 * vc;
+  const double ixx = mb * (a * a + t * t) / 12 - mc * (3 * r * r + t * t) / 12;
+  const double izz = mb * (a * a + a * a) / 12 - mc * r * r / 2;
+  return {vb - vc, {0, 0, t / 2}, Vector3(ixx, ixx, izz).asDiagonal()};
+}
+
+void ExpectClose(const MassProperties& mp, const Truth& t, double tolerance, const std::string& what) {
+  EXPECT_NEAR(mp.volume, t.volume, tolerance * t.volume) << what;
+  const double size = std::cbrt(t.volume);
+  EXPECT_LE((mp.center_of_mass - t.com).norm(), tolerance * size) << what;
+  EXPECT_LE((mp.inertia_com - t.inertia).norm(), tolerance * t.inertia.norm()) << what;
+}
+
+TEST_F(Cad, BrepMatchesTheClosedForms) {
+  const std::vector<std::pair<std::string, Truth>> cases = {
+      {"box.step", Box(10, 20, 30)}, {"cylinder.step", Cylinder(5, 10)}, {"sphere.step", Sphere(10)},
+      {"cone.step", Cone(4, 12)},    {"torus.step", Torus(20, 5)},       {"drilled.step", Drilled()},
+      {"drilled.iges", Drilled()},   {"torus.brep", Torus(20, 5)},       {"box.igs", Box(10, 20, 30)},
+  };
+  for (const auto& [name, truth] : cases) {
+    LoadOptions o;
+    o.brep = true;
+    if (name.find(".brep") != std::string::npos) {
+      o.unit = LengthUnit::kMillimetre;  // a BREP file has no unit
+      o.unit_stated = true;
+    }
+    const SolidResult r = LoadSolid(File(name), o);
+    ASSERT_TRUE(r.brep) << name;
+    EXPECT_TRUE(r.brep->is_result);
+    EXPECT_EQ(r.unit, LengthUnit::kMillimetre) << name;
+    ExpectClose(r.mp, truth, 1e-9, name);
+    EXPECT_LT(r.brep->estimated_error, 1e-9) << name;
+    // The mesh beside it, within its deflection's reach.
+    ExpectClose(r.brep->mesh, truth, 1e-2, name + " (mesh)");
+  }
+}
+
+TEST_F(Cad, StepUnitIsTheFilesAndBothResultsAgreeOnABox) {
+  const SolidResult r = LoadSolid(File("box_inches.step"));
+  EXPECT_EQ(r.unit, LengthUnit::kInch);
+  EXPECT_EQ(r.unit_source, UnitSource::kFile);
+  EXPECT_NE(r.loaded.declared_unit_name.find("INCH"), std::string::npos) << r.loaded.declared_unit_name;
+  const double in = 0.0254;
+  EXPECT_NEAR(r.mp.volume, 6 * in * in * in, 1e-12 * r.mp.volume);
+  EXPECT_LE((r.mp.center_of_mass - Vector3(0.5, 1, 1.5) * in).norm(), 1e-12);
+  // Planar faces: the tessellation is the solid.
+  ASSERT_TRUE(r.brep);
+  EXPECT_LT(std::abs(r.brep->volume_difference), 1e-12);
+  EXPECT_LT(r.brep->inertia_difference, 1e-12);
+  // A stated unit overrides the file's, with a finding.
+  LoadOptions mm;
+  mm.unit = LengthUnit::kMillimetre;
+  mm.unit_stated = true;
+  const SolidResult overridden = LoadSolid(File("box_inches.step"), mm);
+  EXPECT_NEAR(overridden.mp.volume, 6e-9, 1e-20);
+  ASSERT_FALSE(overridden.findings.empty());
+  EXPECT_EQ(overridden.findings[0].kind, FindingKind::kUnitOverridden);
+}
+
+// |ΔV| ≤ 1.5 × area × deflection, and ΔV shrinks in proportion to the deflection.
+TEST_F(Cad, MeshErrorIsBoundedByTheDeflectionAndShrinksWithIt) {
+  for (const std::string name : {"sphere.step", "torus.step", "cylinder.step", "drilled.step"}) {
+    std::vector<double> log_d, log_e;
+    for (double d : {0.1, 0.05, 0.025, 0.0125}) {
+      LoadOptions o;
+      o.cad.deflection = d;
+      o.cad.angular_deflection = 3.0;  // loose: the chordal deflection decides
+      const SolidResult r = LoadSolid(File(name), o);
+      ASSERT_TRUE(r.brep) << name;
+      const double dv = std::abs(r.mp.volume - r.brep->mp.volume) / std::pow(kMm, 3);  // mm^3
+      const double area = r.mp.surface_area / (kMm * kMm);
+      EXPECT_LE(dv, 1.5 * area * d) << name << " at deflection " << d;
+      EXPECT_GT(dv, 0) << name;
+      EXPECT_NEAR(r.brep->deflection, d, 1e-12) << name;
+      log_d.push_back(std::log(d));
+      log_e.push_back(std::log(dv));
+    }
+    double md = 0, me = 0;
+    for (std::size_t i = 0; i < log_d.size(); ++i) md += log_d[i] / log_d.size(), me += log_e[i] / log_e.size();
+    double sxy = 0, sxx = 0;
+    for (std::size_t i = 0; i < log_d.size(); ++i) {
+      sxy += (log_d[i] - md) * (log_e[i] - me);
+      sxx += (log_d[i] - md) * (log_d[i] - md);
+    }
+    const double slope = sxy / sxx;
+    EXPECT_GE(slope, 0.8) << name;
+    EXPECT_LE(slope, 1.2) << name;
+  }
+}
+
+TEST_F(Cad, AssemblyPartsNamesPlacementsAndMaterials) {
+  LoadOptions o;
+  o.parts = true;
+  o.brep = true;
+  const SolidResult r = LoadSolid(File("assembly.step"), o);
+  ASSERT_EQ(r.parts.size(), 4u);
+  const std::vector<std::string> names = {"base", "post", "pin", "pin"};
+  const std::vector<double> densities = {7850, 2700, 1000, 1000};
+  const std::vector<Vector3> coms = {{50, 30, 5}, {30, 30, 35}, {72, 30, 12}, {80, 42, 12}};
+  const std::vector<double> volumes = {100 * 60 * 10, kPi * 100 * 50, 4 * 20 * 4, 4 * 20 * 4};
+  double mass = 0;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const SolidResult& p = r.parts[i];
+    EXPECT_EQ(p.part, names[i]);
+    EXPECT_DOUBLE_EQ(p.mp.density, densities[i]) << names[i];
+    EXPECT_NEAR(p.mp.volume, volumes[i] * 1e-9, 1e-9 * volumes[i] * 1e-9) << names[i];
+    EXPECT_LE((p.mp.center_of_mass - coms[i] * kMm).norm(), 1e-12) << names[i];
+    EXPECT_EQ(p.density_source.empty(), i >= 2) << names[i];
+    mass += p.mp.mass;
+  }
+  EXPECT_NE(r.parts[0].density_source.find("steel"), std::string::npos);
+  // The second pin is turned 90 degrees about z: its x and y moments trade places.
+  EXPECT_NEAR(r.parts[3].mp.inertia_com(0, 0), r.parts[2].mp.inertia_com(1, 1),
+              1e-12 * r.parts[2].mp.inertia_com.norm());
+  EXPECT_NEAR(r.mp.mass, mass, 1e-12 * mass);
+  ASSERT_TRUE(r.brep);
+  EXPECT_NEAR(r.brep->mp.mass, mass, 1e-12 * mass);
+  // Without parts asked for, the materials still apply: the parts are computed one by one.
+  const SolidResult whole = LoadSolid(File("assembly.step"));
+  EXPECT_EQ(whole.parts.size(), 4u);
+  EXPECT_FALSE(whole.density_source.empty());
+  double whole_mass = 0;
+  for (const SolidResult& p : whole.parts) whole_mass += p.mp.mass;
+  EXPECT_NEAR(whole.mp.mass, whole_mass, 1e-12 * whole_mass);
+  EXPECT_DOUBLE_EQ(whole.parts[1].mp.density, 2700);
+}
+
+TEST_F(Cad, OneMaterialIsTheDensityUnlessOneIsStated) {
+  const SolidResult steel = LoadSolid(File("steel_box.step"));
+  EXPECT_DOUBLE_EQ(steel.mp.density, 7850);
+  EXPECT_NE(steel.density_source.find("steel"), std::string::npos);
+  EXPECT_TRUE(steel.parts.empty());
+  LoadOptions stated;
+  stated.mass = Density{1000};
+  stated.mass_stated = true;
+  const SolidResult water = LoadSolid(File("steel_box.step"), stated);
+  EXPECT_DOUBLE_EQ(water.mp.density, 1000);
+  ASSERT_EQ(water.findings.size(), 1u);
+  EXPECT_EQ(water.findings[0].kind, FindingKind::kMaterialOverridden);
+}
+
+TEST_F(Cad, StepAndTheStlOfItsOwnTessellationAgree) {
+  LoadOptions o;
+  o.cad.deflection = 0.05;
+  const SolidResult step = LoadSolid(File("cylinder.step"), o);
+  LoadOptions mm;
+  mm.unit = LengthUnit::kMillimetre;
+  mm.unit_stated = true;
+  const SolidResult stl = LoadSolid(File("cylinder_0.05.stl"), mm);
+  EXPECT_EQ(step.topology.faces, stl.topology.faces);
+  EXPECT_NEAR(stl.mp.volume, step.mp.volume, 1e-6 * step.mp.volume);
+  EXPECT_LE((stl.mp.center_of_mass - step.mp.center_of_mass).norm(), 1e-6 * step.size_m);
+  EXPECT_LE((stl.mp.inertia_com - step.mp.inertia_com).norm(), 1e-6 * step.mp.inertia_com.norm());
+}
+
+TEST_F(Cad, IgesAndBrepReadTheSameSolidAsStep) {
+  const SolidResult step = LoadSolid(File("drilled.step"));
+  const SolidResult iges = LoadSolid(File("drilled.iges"));
+  EXPECT_EQ(iges.unit, LengthUnit::kMillimetre);
+  LoadOptions mm;
+  mm.unit = LengthUnit::kMillimetre;
+  mm.unit_stated = true;
+  const SolidResult brep = LoadSolid(File("drilled.brep"), mm);
+  ASSERT_TRUE(step.brep && iges.brep && brep.brep);
+  for (const SolidResult* r : {&iges, &brep}) {
+    EXPECT_NEAR(r->brep->mp.volume, step.brep->mp.volume, 1e-9 * step.brep->mp.volume);
+    EXPECT_LE((r->brep->mp.inertia_com - step.brep->mp.inertia_com).norm(), 1e-9 * step.brep->mp.inertia_com.norm());
+  }
+}
+
+TEST_F(Cad, SameFileSameBits) {
+  const SolidResult a = LoadSolid(File("torus.step"));
+  LoadOptions one;
+  one.num_threads = 1;
+  const SolidResult b = LoadSolid(File("torus.step"), one);
+  EXPECT_EQ(a.mp.volume, b.mp.volume);
+  EXPECT_EQ(a.mp.inertia_com, b.mp.inertia_com);
+  EXPECT_EQ(a.brep->mp.inertia_com, b.brep->mp.inertia_com);
+}
+
+TEST_F(Cad, AnOpenShellIsRefusedAsAnOpenMeshIs) {
+  try {
+    LoadSolid(File("open_box.step"));
+    FAIL() << "an open shell was computed";
+  } catch (const LoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("does not bound a solid"), std::string::npos) << e.what();
+  }
+  LoadOptions shell;
+  shell.model = ShellModel{2.0};
+  const SolidResult s = LoadSolid(File("open_box.step"), shell);
+  EXPECT_NEAR(s.mp.surface_area, (10 * 20 * 2 + 10 * 30 * 2 + 20 * 30 * 2 - 10 * 20) * 1e-6, 1e-15);  // no top
+  LoadOptions open;
+  open.allow_open = true;
+  const SolidResult computed = LoadSolid(File("open_box.step"), open);
+  EXPECT_FALSE(computed.brep);
+  bool said = false;
+  for (const Finding& f : computed.findings) said = said || f.kind == FindingKind::kNoBrep;
+  EXPECT_TRUE(said);
+  open.brep = true;
+  EXPECT_THROW(LoadSolid(File("open_box.step"), open), LoadError);
+}
+
+std::string ErrorOf(const std::string& path) {
+  try {
+    LoadSolid(path);
+  } catch (const MeshFileError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST_F(Cad, FaultsAreClearErrors) {
+  EXPECT_NE(ErrorOf(File("edge_only.step")).find("edge_only.step: "), std::string::npos);
+  // Cut short in the middle of its data section.
+  {
+    std::ifstream in(File("drilled.step"), std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::ofstream(File("cut.step"), std::ios::binary) << text.substr(0, text.size() / 2);
+    std::ofstream(File("noise.igs"), std::ios::binary) << std::string(5000, '\x07') << "S      1\n";
+  }
+  const std::string cut = ErrorOf(File("cut.step"));
+  EXPECT_NE(cut.find("cut.step: "), std::string::npos) << cut;
+  const std::string noise = ErrorOf(File("noise.igs"));
+  EXPECT_NE(noise.find("noise.igs: "), std::string::npos) << noise;
+  ::setenv("MASSPROPS_CAD_FAULT", "hang", 1);
+  ::setenv("MASSPROPS_CAD_TIMEOUT", "1", 1);
+  const std::string hang = ErrorOf(File("box.step"));
+  ::setenv("MASSPROPS_CAD_FAULT", "crash", 1);
+  const std::string crash = ErrorOf(File("box.step"));
+  ::unsetenv("MASSPROPS_CAD_FAULT");
+  ::unsetenv("MASSPROPS_CAD_TIMEOUT");
+  EXPECT_NE(hang.find("OpenCASCADE did not finish reading it within 1 s"), std::string::npos) << hang;
+  EXPECT_NE(crash.find("OpenCASCADE crashed while reading it"), std::string::npos) << crash;
+  EXPECT_NE(ErrorOf(File("missing.step")).find("missing.step"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace massprops
