@@ -18,6 +18,12 @@ bash "$root/tests/consumer/reader_only_test.sh" "$work/reader_only" "$(echo "$pr
 env -u MASSPROPS_ASSIMP_PLUGIN "$prefix/bin/massprops" "$root/data/meshes/box_0.1x0.2x0.3.gltf" --format csv -q \
   | tail -n 1 | grep -q '^"[^"]*box_0.1x0.2x0.3.gltf",m,0.0060000017' \
   || { echo "check_install: the installed massprops did not read the glTF box"; exit 1; }
+# ... and STEP through the CAD plugin installed beside the library (a 40 × 40 × 10 mm plate with a
+# hole of radius 8: 14 389.4 mm^3, 14.389 g at 1000 kg/m^3; the mesh is within 1e-3 of it).
+env -u MASSPROPS_CAD_PLUGIN "$prefix/bin/massprops" "$root/data/cad/drilled_plate.step" --format json -q \
+  | /usr/bin/python3 -c 'import json, math, sys; r = json.load(sys.stdin); v = 40 * 40 * 10 - math.pi * 64 * 10
+assert abs(r["brep"]["brep"]["volume"] * 1e9 - v) < 1e-6 * v and abs(r["volume"] * 1e9 - v) < 1e-3 * v, r' \
+  || { echo "check_install: the installed massprops did not read the STEP plate"; exit 1; }
 # The installed Python module, from the prefix's dist-packages, with Debian's interpreter.
 pydir=$(echo "$prefix"/lib/python3*/dist-packages)
 env -u MASSPROPS_ASSIMP_PLUGIN PYTHONPATH="$pydir" /usr/bin/python3 -c "
@@ -28,4 +34,4 @@ assert abs(r.mass - 6.0) < 1e-5 and abs(r.inertia_com[0][0] - 0.065) < 1e-7, r
 " || { echo "check_install: the installed Python module did not work"; exit 1; }
 "$prefix/bin/massprops" --version
 "$prefix/bin/rbsim" --version
-echo "check_install: installed package, find_package consumer and glTF reading work"
+echo "check_install: installed package, find_package consumer glTF and STEP reading work"

@@ -116,7 +116,7 @@ void AddArguments(CLI::App& app, Arguments& a) {
       ->check(app::Positive());
   app.add_option("--relative-deflection", a.relative_deflection,
                  "CAD files: the chordal deflection as a fraction of each part's diagonal")
-      ->check(app::InRange(1e-9, 0.5))
+      ->check(app::InRange(1e-6, 0.5))
       ->capture_default_str();
   app.add_option("--angular-deflection", a.angular_deflection,
                  "CAD files: the largest angle in radians between the normals of neighbouring triangles")

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,8 @@
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
+#include <TopoDS_Compound.hxx>
 #include <IGESControl_Controller.hxx>
 #include <IGESControl_Writer.hxx>
 #include <Interface_Static.hxx>
@@ -190,15 +193,21 @@ bool Fixtures(const std::string& dir) {
 
 bool Bench(const std::string& dir) {
   bool ok = true;
-  // A part of about 10^3 faces: a plate drilled with a 6 × 6 grid of holes (each hole a few faces).
-  TopoDS_Shape part = BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 140, 140, 10).Shape();
-  for (int i = 0; i < 15; ++i) {
-    for (int j = 0; j < 15; ++j) {
+  // A part of about 10^3 faces: a plate with a 17 × 17 grid of holes, square ones (4 faces each)
+  // and round ones (1 face), cut at once.
+  TopoDS_Compound tools;
+  BRep_Builder builder;
+  builder.MakeCompound(tools);
+  for (int i = 0; i < 17; ++i) {
+    for (int j = 0; j < 17; ++j) {
+      const double x = 10 + 8 * i, y = 10 + 8 * j;
       const TopoDS_Shape hole =
-          BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(10 + 8 * i, 10 + 8 * j, -1), gp_Dir(0, 0, 1)), 2.5, 12).Shape();
-      part = BRepAlgoAPI_Cut(part, hole).Shape();
+          (i + j) % 4 == 0 ? BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(x, y, -1), gp_Dir(0, 0, 1)), 2.5, 12).Shape()
+                           : BRepPrimAPI_MakeBox(gp_Pnt(x - 2, y - 2, -1), 4, 4, 12).Shape();
+      builder.Add(tools, hole);
     }
   }
+  const TopoDS_Shape part = BRepAlgoAPI_Cut(BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 156, 156, 10).Shape(), tools).Shape();
   ok &= WriteStep(part, dir + "/plate_1k_faces.step");
   std::vector<Placed> parts;
   for (int i = 0; i < 100; ++i) {
@@ -215,10 +224,13 @@ bool Bench(const std::string& dir) {
 
 int main(int argc, char** argv) {
   Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
-  if (argc == 3 && std::string(argv[1]) == "--bench") return Bench(argv[2]) ? 0 : 1;
-  if (argc != 2) {
+  const bool bench = argc == 3 && std::string(argv[1]) == "--bench";
+  if (argc != 2 && !bench) {
     std::fprintf(stderr, "usage: make_cad DIR | make_cad --bench DIR\n");
     return 2;
   }
-  return Fixtures(argv[1]) ? 0 : 1;
+  const std::string dir = argv[argc - 1];
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  return (bench ? Bench(dir) : Fixtures(dir)) ? 0 : 1;
 }

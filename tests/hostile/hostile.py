@@ -13,6 +13,7 @@ import io
 import json
 import math
 import os
+import random
 import re
 import shutil
 import signal
@@ -370,6 +371,32 @@ def main():
         r"clean_obj.obj", env={"MASSPROPS_ASSIMP_FAULT": "crash"})
     run("assimp_hang", ["box.gltf", "clean_obj.obj", "--format", "csv"], 1, r"box.gltf: assimp did not finish",
         r"clean_obj.obj", env={"MASSPROPS_ASSIMP_FAULT": "hang", "MASSPROPS_ASSIMP_TIMEOUT": "1"})
+    # CAD files: OpenCASCADE reads in a child process with a time limit too. A STEP cut short, one
+    # with no entities, noise named .step or .igs, a deflection too fine to tessellate, and
+    # injected crashes and hangs: each is that file's clear error, and the other files still print.
+    step = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "data", "cad", "drilled_plate.step")
+    with open(step, "rb") as src:
+        plate = src.read()
+    write("plate.step", plate)
+    write("cut.step", plate[:len(plate) // 2])
+    run("step_truncated", ["cut.step", "clean_obj.obj", "--format", "csv"], 1,
+        r"cut.step: OpenCASCADE could not parse it", r"clean_obj.obj")
+    write("empty_data.step", "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('','',(''),(''),'','','');"
+          "\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\nENDSEC;\nEND-ISO-10303-21;\n")
+    run("step_no_solid", ["empty_data.step"], 1, r"empty_data.step: OpenCASCADE found no shape")
+    write("noise.step", bytes(random.Random(7).getrandbits(8) for _ in range(20000)))
+    run("step_noise", ["noise.step"], 1, r"noise.step: OpenCASCADE could not parse it")
+    write("noise.igs", bytes(random.Random(8).getrandbits(8) for _ in range(20000)))
+    run("iges_corrupt", ["noise.igs"], 1, r"noise.igs: OpenCASCADE")
+    write("noise.brep", "DBRep_DrawableShape\nCASCADE Topology V1, (c) Matra-Datavision\n" + "9" * 5000)
+    run("brep_corrupt", ["noise.brep"], 1, r"noise.brep: ")
+    run("step_deflection_too_fine", ["plate.step", "--deflection", "1e-9"], 1, r"plate.step: the deflection 1e-09 is "
+        r"below 1e-6 of the part's diagonal")
+    run("step_crash", ["plate.step", "clean_obj.obj", "--format", "csv"], 1, r"plate.step: OpenCASCADE crashed",
+        r"clean_obj.obj", env={"MASSPROPS_CAD_FAULT": "crash"})
+    run("step_hang", ["plate.step", "clean_obj.obj", "--format", "csv"], 1, r"plate.step: OpenCASCADE did not finish",
+        r"clean_obj.obj", env={"MASSPROPS_CAD_FAULT": "hang", "MASSPROPS_CAD_TIMEOUT": "1"})
+    run("step_brep_with_shell", ["plate.step", "--brep", "--shell", "--area-density", "1"], 2, r"--brep")
     # A glTF node with a mirroring transform (scale -1) turns its faces the other way: two boxes.
     with open(gltf) as src:
         doc = json.load(src)

@@ -135,9 +135,13 @@ TEST_F(BadFiles, MissingEmptyAndUnknownFormat) {
   EXPECT_THAT([&] { ReadMeshFile(unknown); },
               ::testing::ThrowsMessage<MeshFileError>(HasSubstr("unknown mesh format 'qqq'")));
   // A format assimp knows but a file it cannot parse: assimp's reason, with the file named.
+  const std::string ifc = Write("part.ifc", "ISO-10303-21;");
+  EXPECT_THAT([&] { ReadMeshFile(ifc); },
+              ::testing::ThrowsMessage<MeshFileError>(HasSubstr("part.ifc: assimp could not read it")));
+  // STEP is OpenCASCADE's (the CAD plugin), not assimp's.
   const std::string step = Write("part.step", "ISO-10303-21;");
   EXPECT_THAT([&] { ReadMeshFile(step); },
-              ::testing::ThrowsMessage<MeshFileError>(HasSubstr("part.step: assimp could not read it")));
+              ::testing::ThrowsMessage<MeshFileError>(HasSubstr("part.step: OpenCASCADE could not parse it")));
 }
 
 TEST_F(BadFiles, TruncatedBinaryStl) {

@@ -31,7 +31,8 @@ class FileAccessError : public MeshFileError {
 /// How a CAD file (STEP, IGES, BREP) becomes triangles: OpenCASCADE's BRepMesh, per part.
 struct CadOptions {
   /// Chordal deflection (the largest distance between a triangle and the surface), in the file's
-  /// unit; 0: `relative_deflection` times each part's bounding-box diagonal.
+  /// unit; 0: `relative_deflection` times each part's bounding-box diagonal. Below 1e-6 of a
+  /// part's diagonal it is refused (the triangles would not fit in memory).
   double deflection = 0;
   double relative_deflection = 1e-4;
   double angular_deflection = 0.5;  ///< rad: the largest angle between neighbouring triangles' normals

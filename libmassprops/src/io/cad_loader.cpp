@@ -3,6 +3,8 @@
 // malformed file, and neither may take the program (or its other files) down.
 
 #include <dlfcn.h>
+#include <fcntl.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <mutex>
@@ -95,7 +97,7 @@ LoadedMesh ReadCadFile(const std::string& path, const CadOptions& cad) {
   const Plugin& p = LoadPlugin();
   if (p.read == nullptr) Fail(path, p.error);
   if (!(cad.deflection >= 0 && std::isfinite(cad.deflection)) ||
-      !(cad.relative_deflection > 0 && std::isfinite(cad.relative_deflection)) ||
+      !(cad.relative_deflection >= 1e-6 && cad.relative_deflection <= 0.5) ||
       !(cad.angular_deflection > 0 && cad.angular_deflection <= 3.2)) {
     throw std::invalid_argument(
         "the tessellation needs a finite deflection >= 0 (0: relative), a relative "
@@ -109,19 +111,25 @@ LoadedMesh ReadCadFile(const std::string& path, const CadOptions& cad) {
   options.relative_deflection = cad.relative_deflection;
   options.angular_deflection = cad.angular_deflection;
   options.brep_tolerance = 1e-12;
+  // The child's work: the plugin's status and bytes, as they are.
+  const auto read_in_child = [&] {
+    // Parts of OpenCASCADE print to standard output directly (BRepTools::Read's complaints): in
+    // this child, standard output is not the program's, so it goes nowhere.
+    const int null = ::open("/dev/null", O_WRONLY);
+    if (null >= 0) ::dup2(null, STDOUT_FILENO);
+    char* out = nullptr;
+    std::size_t size = 0;
+    const std::uint64_t status = p.read(path.c_str(), &options, &out, &size);
+    wire::Writer w;
+    w.U64(status);
+    w.Str(std::string_view(out == nullptr ? "" : out, size));
+    p.free(out);
+    return std::move(w.bytes());
+  };
   // STEP parsing, tessellation and integration: 30 s plus 5 s per MB.
+  const double limit = plugins::TimeLimitSeconds(path, "MASSPROPS_CAD_TIMEOUT", 30.0, 5.0);
   const std::string data =
-      plugins::ReadIsolated(path, "OpenCASCADE", plugins::TimeLimitSeconds(path, "MASSPROPS_CAD_TIMEOUT", 30.0, 5.0),
-                            "MASSPROPS_CAD_TIMEOUT", "MASSPROPS_CAD_FAULT", [&] {
-                              char* out = nullptr;
-                              std::size_t size = 0;
-                              const std::uint64_t status = p.read(path.c_str(), &options, &out, &size);
-                              wire::Writer w;
-                              w.U64(status);
-                              w.Str(std::string_view(out == nullptr ? "" : out, size));
-                              p.free(out);
-                              return std::move(w.bytes());
-                            });
+      plugins::ReadIsolated(path, "OpenCASCADE", limit, "MASSPROPS_CAD_TIMEOUT", "MASSPROPS_CAD_FAULT", read_in_child);
   LoadedMesh mesh;
   std::vector<double> xyz;
   try {

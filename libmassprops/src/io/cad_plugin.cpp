@@ -59,6 +59,11 @@
 
 namespace {
 
+// A request the plugin refuses, with the message as the user should read it.
+struct Refusal {
+  std::string message;
+};
+
 // A part as the assembly places it: its prototype shape (without the placement) and where it goes.
 struct Instance {
   std::string name;
@@ -167,6 +172,17 @@ Prototype Tessellate(const TopoDS_Shape& shape, const MasspropsCadOptions& o, do
   p.deflection =
       o.deflection > 0 ? o.deflection * (mm_per_unit > 0 ? mm_per_unit : 1.0) : o.relative_deflection * diagonal;
   if (!(p.deflection > 0)) p.deflection = 1e-3;
+  // Triangles grow as 1/deflection on curved faces: below 1e-6 of the part's size they would not
+  // fit in memory (nor finish), so such a request is refused rather than attempted.
+  if (p.deflection < 1e-6 * diagonal) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "the deflection %.3g is below 1e-6 of the part's diagonal (%.4g): its "
+                  "tessellation would not fit in memory; give a larger deflection",
+                  p.deflection / (mm_per_unit > 0 ? mm_per_unit : 1.0),
+                  diagonal / (mm_per_unit > 0 ? mm_per_unit : 1.0));
+    throw Refusal{text};
+  }
   // One thread: the same triangles every time.
   BRepMesh_IncrementalMesh mesher(shape, p.deflection, false, o.angular_deflection, false);
   for (TopExp_Explorer e(shape, TopAbs_FACE); e.More(); e.Next()) {
@@ -379,6 +395,8 @@ __attribute__((visibility("default"))) int massprops_cad_read(const char* path, 
   }
   try {
     return Read(path, *options, out, size);
+  } catch (const Refusal& e) {
+    Fail(e.message, out, size);
   } catch (const Standard_Failure& e) {
     Fail(std::string("OpenCASCADE failed while reading it: ") +
              (e.GetMessageString() && *e.GetMessageString() ? e.GetMessageString() : e.DynamicType()->Name()),
