@@ -183,7 +183,7 @@ TEST_F(Cad, AssemblyPartsNamesPlacementsAndMaterials) {
   for (std::size_t i = 0; i < 4; ++i) {
     const SolidResult& p = r.parts[i];
     EXPECT_EQ(p.part, names[i]);
-    EXPECT_DOUBLE_EQ(p.mp.density, densities[i]) << names[i];
+    EXPECT_EQ(p.mp.density, densities[i]) << names[i];
     EXPECT_NEAR(p.mp.volume, volumes[i] * 1e-9, 1e-9 * volumes[i] * 1e-9) << names[i];
     EXPECT_LE((p.mp.center_of_mass - coms[i] * kMm).norm(), 1e-12) << names[i];
     EXPECT_EQ(p.density_source.empty(), i >= 2) << names[i];
@@ -208,7 +208,7 @@ TEST_F(Cad, AssemblyPartsNamesPlacementsAndMaterials) {
 
 TEST_F(Cad, OneMaterialIsTheDensityUnlessOneIsStated) {
   const SolidResult steel = LoadSolid(File("steel_box.step"));
-  EXPECT_DOUBLE_EQ(steel.mp.density, 7850);
+  EXPECT_EQ(steel.mp.density, 7850);
   EXPECT_NE(steel.density_source.find("steel"), std::string::npos);
   EXPECT_TRUE(steel.parts.empty());
   LoadOptions stated;

@@ -151,7 +151,11 @@ void Collect(const Handle(XCAFDoc_ShapeTool) & shapes, const TDF_Label& label, c
   // The material (AP242): its density in OpenCASCADE's units, grams per cubic millimetre.
   const double density = XCAFDoc_MaterialTool::GetDensityForShape(label);
   if (density > 0) {
-    in.density = density * 1e6;  // g/mm^3 → kg/m^3
+    // g/mm^3 → kg/m^3, to 12 significant digits: a file's 7.85 g/cm^3 comes back as 0.00785 g/mm^3
+    // rounded, and is meant as 7850, not 7849.999999999999.
+    char text[32];
+    std::snprintf(text, sizeof text, "%.12g", density * 1e6);
+    in.density = std::strtod(text, nullptr);
     Handle(TDataStd_TreeNode) node;
     if (label.FindAttribute(XCAFDoc::MaterialRefGUID(), node) && node->HasFather()) {
       Handle(XCAFDoc_Material) material;

@@ -12,11 +12,14 @@
 namespace massprops::internal {
 namespace {
 
-// "the file's material 'steel' (7850 kg/m^3)".
-std::string MaterialWords(const CadPart& part) {
-  return "the file's material" + (part.material.empty() ? std::string() : " '" + part.material + "'") + " (" +
+// "'steel' (7850 kg/m^3)".
+std::string MaterialName(const CadPart& part) {
+  return (part.material.empty() ? std::string("unnamed") : "'" + part.material + "'") + " (" +
          Fixed(part.density, "%.6g") + " kg/m^3)";
 }
+
+// "the file's material 'steel' (7850 kg/m^3)".
+std::string MaterialWords(const CadPart& part) { return "the file's material " + MaterialName(part); }
 
 double FrobeniusDifference(const Matrix3& a, const Matrix3& b) {
   const double norm = b.norm();
@@ -35,20 +38,26 @@ bool MaterialsDiffer(const LoadedMesh& loaded, const LoadOptions& given) {
 
 void ApplyFileMaterial(SolidResult& r, LoadOptions& opt) {
   const std::vector<CadPart>& parts = r.loaded.cad_parts;
-  if (parts.empty() || parts.front().density <= 0) return;
+  bool any = false, same = true;
+  std::string list;
   for (const CadPart& p : parts) {
-    if (p.density != parts.front().density) return;  // several materials: a part at a time (SolveParts)
+    any = any || p.density > 0;
+    same = same && p.density == parts.front().density;
+    if (p.density > 0 && list.find(MaterialWords(p)) == std::string::npos)
+      list += (list.empty() ? "" : ", ") + MaterialWords(p);
   }
+  if (!any) return;
   if (!opt.mass_stated) {
+    if (!same) return;  // several materials: a part at a time (SolveParts)
     opt.mass = Density{parts.front().density};
     r.density_source = MaterialWords(parts.front());
     return;
   }
   const auto* stated = std::get_if<Density>(&opt.mass);
-  if (stated == nullptr || stated->value != parts.front().density) {
-    Warn(r, FindingKind::kMaterialOverridden,
-         MaterialWords(parts.front()) + " gives another density than the one stated, which was used");
-  }
+  if (same && stated != nullptr && stated->value == parts.front().density) return;
+  Warn(r, FindingKind::kMaterialOverridden,
+       (same ? MaterialWords(parts.front()) + " gives" : "the file's materials (" + list + ") give") +
+           " other densities than the one stated, which was used throughout");
 }
 
 BrepReport CompareWithBrep(const MassProperties& mesh, const MassProperties& brep, double size_m) {

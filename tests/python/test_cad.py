@@ -1,0 +1,85 @@
+"""CAD files (STEP through the OpenCASCADE plugin) from Python and from the command: the same bits,
+the exact B-rep against the closed form, the tessellation's error within its deflection's bound,
+an assembly's materials and names, and a robot whose link mesh is a STEP file.
+"""
+import json
+import math
+import os
+import subprocess
+
+import pytest
+
+import massprops
+
+DATA = os.environ.get("MASSPROPS_DATA", os.path.join(os.path.dirname(__file__), "..", "..", "data"))
+CLI = os.environ.get("MASSPROPS_CLI", "massprops")
+PLATE = os.path.join(DATA, "cad", "drilled_plate.step")
+ASSEMBLY = os.path.join(DATA, "cad", "fixture_assembly.step")
+# 40 × 40 × 10 mm with a hole of radius 8 mm: volume and surface area in mm.
+PLATE_V = 40 * 40 * 10 - math.pi * 64 * 10
+PLATE_A = 2 * (40 * 40 - math.pi * 64) + 4 * 40 * 10 + 2 * math.pi * 8 * 10
+
+
+def command_json(*args):
+    out = subprocess.run([CLI, *args, "--format", "json", "-q"], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    return json.loads(out.stdout)
+
+
+def test_step_from_python_is_the_commands_result():
+    r = massprops.load(PLATE, deflection=0.02)
+    c = command_json(PLATE, "--deflection", "0.02")
+    mine = r.to_dict()
+    for key in ("volume", "mass", "center_of_mass", "inertia_com", "brep", "unit", "unit_source"):
+        assert mine[key] == c[key], key
+    assert r.unit == "mm"
+    assert abs(r.brep["brep"]["volume"] * 1e9 - PLATE_V) < 1e-9 * PLATE_V
+
+
+@pytest.mark.parametrize("deflection", [0.05, 0.01])
+def test_mesh_error_within_the_deflection_bound(deflection):
+    r = massprops.load(PLATE, deflection=deflection, angular_deflection=3.0)
+    dv = abs(r.volume * 1e9 - PLATE_V)
+    assert 0 < dv <= 1.5 * PLATE_A * deflection
+    assert r.brep["deflection"] == deflection
+    assert r.brep["volume_difference"] == pytest.approx((r.volume * 1e9 - PLATE_V) / PLATE_V, rel=1e-6)
+
+
+def test_brep_result_is_the_closed_form():
+    r = massprops.load(PLATE, brep=True)
+    assert r.brep["result"] == "brep"
+    assert abs(r.volume * 1e9 - PLATE_V) < 1e-9 * PLATE_V
+    # Izz of the plate less the cylinder's, at 1000 kg/m^3, in kg m^2.
+    a, t, rr = 0.04, 0.01, 0.008
+    izz = 1000 * (a * a * t * (2 * a * a) / 12 - math.pi * rr * rr * t * rr * rr / 2)
+    assert r.inertia_com[2][2] == pytest.approx(izz, rel=1e-9)
+
+
+def test_assembly_materials_names_and_a_density_map():
+    r = massprops.load(ASSEMBLY, densities={"pin": 8000})
+    assert [p.part for p in r.parts] == ["base", "post", "pin", "pin"]
+    assert [p.density for p in r.parts] == [7850, 2700, 8000, 8000]
+    assert "steel" in r.parts[0].density_source and r.parts[2].density_source is None
+    assert r.mass == pytest.approx(sum(p.mass for p in r.parts), rel=1e-12)
+    stated = massprops.load(ASSEMBLY, density=1000)  # a stated density overrides the materials
+    assert stated.density == 1000 and not stated.parts
+    assert any("material" in w for w in stated.warnings)
+
+
+def test_bad_keywords():
+    with pytest.raises(ValueError):
+        massprops.load(PLATE, deflection=-1)
+    with pytest.raises(ValueError, match="B-rep"):
+        massprops.load(PLATE, brep=True, shell=1.0)
+
+
+def test_fill_a_robot_whose_mesh_is_a_step_file(tmp_path):
+    urdf = tmp_path / "plate.urdf"
+    urdf.write_text('<robot name="r"><link name="plate"><collision><geometry><mesh filename="%s"/></geometry>'
+                    '</collision></link></robot>' % PLATE)
+    report = massprops.fill(str(urdf))
+    link = report["links"][0]
+    assert link["status"] == "filled"
+    # The file declares millimetres; the mesh is within its deflection of the solid.
+    assert link["mass"] == pytest.approx(1000 * PLATE_V * 1e-9, rel=1e-3)
+    assert link["center_of_mass"][2] == pytest.approx(0.005, rel=1e-9)
