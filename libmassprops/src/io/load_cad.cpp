@@ -43,8 +43,8 @@ void ApplyFileMaterial(SolidResult& r, LoadOptions& opt) {
   for (const CadPart& p : parts) {
     any = any || p.density > 0;
     same = same && p.density == parts.front().density;
-    if (p.density > 0 && list.find(MaterialWords(p)) == std::string::npos)
-      list += (list.empty() ? "" : ", ") + MaterialWords(p);
+    if (p.density > 0 && list.find(MaterialName(p)) == std::string::npos)
+      list += (list.empty() ? "" : ", ") + MaterialName(p);
   }
   if (!any) return;
   if (!opt.mass_stated) {
