@@ -8,6 +8,8 @@
 
 #include "massprops/mesh_topology.h"
 
+#include <Eigen/Geometry>
+
 namespace massprops {
 namespace {
 
@@ -319,8 +321,22 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
     report.shells[s].closed = AnalyzeTopology(sub).BoundsVolume();
     probe[s] = behind_face(report.shells[s].faces[0]);
   }
+  // Each shell's bounding box: outside it (strictly), a closed shell's winding number is 0 exactly,
+  // so most pairs of an assembly's many parts need no sum over faces at all.
+  std::vector<Eigen::AlignedBox<double, 3>> box(ns);
+  for (std::size_t s = 0; s < ns; ++s) {
+    for (std::int64_t f : report.shells[s].faces) {
+      for (std::int64_t k = mesh.offsets[f]; k < mesh.offsets[f + 1]; ++k) {
+        box[s].extend(mesh.V.row(mesh.indices[static_cast<std::size_t>(k)]).transpose());
+      }
+    }
+  }
+  auto outside = [&](std::size_t t, const Vector3& x) {
+    return (x.array() < box[t].min().array()).any() || (x.array() > box[t].max().array()).any();
+  };
   // Winding number of shell t at a point.
   auto winding = [&](std::size_t t, const Vector3& x) {
+    if (outside(t, x)) return 0.0;
     double omega = 0;
     for (std::int64_t f : report.shells[t].faces) {
       const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
@@ -358,6 +374,8 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
     const std::size_t count = std::min(kSamples, faces.size());
     for (std::size_t t = 0; t < ns && report.crossing.first < 0; ++t) {
       if (t == s || !report.shells[t].closed) continue;
+      // Boxes apart: every sample is outside t, none inside.
+      if (!box[s].intersects(box[t])) continue;
       bool in = false, out = false;
       for (std::size_t k = 0; k < count; ++k) {
         const double spread = std::fmod(0.6180339887498949 * static_cast<double>(k), 1.0);

@@ -25,7 +25,9 @@ class Writer {
   std::string& bytes() { return bytes_; }
 
  private:
-  void Raw(const void* p, std::size_t n) { bytes_.append(static_cast<const char*>(p), n); }
+  void Raw(const void* p, std::size_t n) {
+    if (n > 0) bytes_.append(static_cast<const char*>(p), n);
+  }
   std::string bytes_;
 };
 
@@ -66,6 +68,7 @@ class Reader {
 
  private:
   void Raw(void* p, std::size_t n) {
+    if (n == 0) return;  // an empty array may have no storage at all
     if (n > Left()) throw Truncated();
     std::memcpy(p, bytes_.data() + at_, n);
     at_ += n;
