@@ -28,7 +28,7 @@ std::string HomeDir() {
 void* Open(const std::vector<std::string>& candidates, std::string& error) {
   std::string tried;
   for (const std::string& c : candidates) {
-    if (void* handle = ::dlopen(c.c_str(), RTLD_NOW | RTLD_LOCAL)) return handle;
+    if (void* handle = ::dlopen(c.c_str(), RTLD_LAZY | RTLD_LOCAL)) return handle;
     tried += (tried.empty() ? "" : ", ") + c;
   }
   error = "tried " + tried;
