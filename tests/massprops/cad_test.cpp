@@ -174,6 +174,8 @@ TEST_F(Cad, AssemblyPartsNamesPlacementsAndMaterials) {
   o.parts = true;
   o.brep = true;
   const SolidResult r = LoadSolid(File("assembly.step"), o);
+  EXPECT_EQ(r.unit, LengthUnit::kMillimetre);
+  EXPECT_EQ(r.unit_source, UnitSource::kFile);
   ASSERT_EQ(r.parts.size(), 4u);
   const std::vector<std::string> names = {"base", "post", "pin", "pin"};
   const std::vector<double> densities = {7850, 2700, 1000, 1000};

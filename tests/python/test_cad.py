@@ -83,3 +83,20 @@ def test_fill_a_robot_whose_mesh_is_a_step_file(tmp_path):
     # The file declares millimetres; the mesh is within its deflection of the solid.
     assert link["mass"] == pytest.approx(1000 * PLATE_V * 1e-9, rel=1e-3)
     assert link["center_of_mass"][2] == pytest.approx(0.005, rel=1e-9)
+
+
+def test_batch_reads_step_files_beside_meshes(tmp_path):
+    import shutil
+    for name in (PLATE, ASSEMBLY, os.path.join(DATA, "meshes", "spot.obj")):
+        shutil.copy(name, tmp_path)
+    out = tmp_path / "results.jsonl"
+    p = subprocess.run([CLI, "batch", str(tmp_path), "-o", str(out), "-q", "--deflection", "0.02"],
+                       capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    records = {os.path.basename(r["file"]): r for r in map(json.loads, out.read_text().splitlines())}
+    assert all(r["status"] == "ok" for r in records.values())
+    plate = records["drilled_plate.step"]["result"]
+    assert plate["brep"]["deflection"] == 0.02
+    assert abs(plate["volume"] * 1e9 - PLATE_V) <= 1.5 * PLATE_A * 0.02
+    assert [p["part"] for p in records["fixture_assembly.step"]["result"]["parts"]] == ["base", "post", "pin", "pin"]
+    assert "brep" not in records["spot.obj"]["result"]
