@@ -217,172 +217,186 @@ Prototype Tessellate(const TopoDS_Shape& shape, const MasspropsCadOptions& o, do
   return p;
 }
 
-// Reads the document of a STEP or IGES file; false with `error` set when the reader gives up.
+// What a file gave: its parts, and the unit it declares.
+struct Document {
+  std::string format;      // "STEP", "IGES", "BREP"
+  std::string unit_word;   // as the file names it; "" when it names none
+  double mm_per_unit = 0;  // 0: unknown (the coordinates stay in millimetres)
+  std::vector<Instance> instances;
+};
+
+// Reads a STEP or IGES file into an XCAF document (names, placements, materials).
 template <typename CafReader>
-bool Transfer(CafReader& reader, const char* path, Handle(TDocStd_Document) & doc, std::string& error) {
+Handle(TDocStd_Document) Transfer(CafReader& reader, const char* path) {
   if (reader.ReadFile(path) != IFSelect_RetDone) {
-    error = "OpenCASCADE could not parse it (not a valid file of this format, or cut short)";
-    return false;
+    throw Refusal{"OpenCASCADE could not parse it (not a valid file of this format, or cut short)"};
   }
-  Handle(XCAFApp_Application) app = XCAFApp_Application::GetApplication();
-  app->NewDocument("MDTV-XCAF", doc);
-  if (!reader.Transfer(doc)) {
-    error = "OpenCASCADE found no shape it could transfer (no solid, shell or face)";
-    return false;
-  }
-  return true;
+  Handle(TDocStd_Document) doc;
+  XCAFApp_Application::GetApplication()->NewDocument("MDTV-XCAF", doc);
+  if (!reader.Transfer(doc)) throw Refusal{"OpenCASCADE found no shape it could transfer (no solid, shell or face)"};
+  return doc;
 }
 
-void Fail(std::string message, char** out, std::size_t* size) {
-  massprops::wire::Writer w;
-  w.Str(message);
+// Every product instance of the document's assembly trees.
+void CollectInstances(const Handle(TDocStd_Document) & doc, Document& d) {
+  const Handle(XCAFDoc_ShapeTool) shapes = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
+  TDF_LabelSequence roots;
+  shapes->GetFreeShapes(roots);
+  for (Standard_Integer i = 1; i <= roots.Length(); ++i) Collect(shapes, roots(i), gp_Trsf(), d.instances, 0);
+}
+
+Document ReadStep(const char* path) {
+  Document d;
+  d.format = "STEP";
+  STEPCAFControl_Reader reader;
+  reader.SetNameMode(true);
+  reader.SetMatMode(true);
+  reader.SetColorMode(false);
+  reader.SetGDTMode(false);
+  reader.SetLayerMode(false);
+  const Handle(TDocStd_Document) doc = Transfer(reader, path);
+  TColStd_SequenceOfAsciiString lengths, angles, solid_angles;
+  reader.ChangeReader().FileUnits(lengths, angles, solid_angles);
+  if (lengths.Length() > 0) {
+    d.unit_word = lengths(1).ToCString();
+    d.mm_per_unit = MillimetresPerStepUnit(d.unit_word);
+    for (Standard_Integer i = 2; i <= lengths.Length(); ++i) {
+      if (MillimetresPerStepUnit(lengths(i).ToCString()) != d.mm_per_unit) {
+        d.unit_word += std::string(" and ") + lengths(i).ToCString();
+        d.mm_per_unit = 0;  // parts in several units: left in millimetres
+      }
+    }
+  }
+  CollectInstances(doc, d);
+  return d;
+}
+
+Document ReadIges(const char* path) {
+  Document d;
+  d.format = "IGES";
+  IGESCAFControl_Reader reader;
+  reader.SetNameMode(true);
+  reader.SetColorMode(false);
+  reader.SetLayerMode(false);
+  const Handle(TDocStd_Document) doc = Transfer(reader, path);
+  const Handle(IGESData_IGESModel) model = Handle(IGESData_IGESModel)::DownCast(reader.Model());
+  if (!model.IsNull()) IgesUnit(model->GlobalSection().UnitFlag(), d.unit_word, d.mm_per_unit);
+  CollectInstances(doc, d);
+  return d;
+}
+
+// A BREP file has no unit and no names: one part, or one per shape of a top-level compound.
+Document ReadBrep(const char* path) {
+  Document d;
+  d.format = "BREP";
+  TopoDS_Shape shape;
+  BRep_Builder builder;
+  if (!BRepTools::Read(shape, path, builder) || shape.IsNull()) {
+    throw Refusal{"OpenCASCADE could not read it as a BREP file (not one, or cut short)"};
+  }
+  std::vector<TopoDS_Shape> shapes;
+  if (shape.ShapeType() == TopAbs_COMPOUND) {
+    for (TopoDS_Iterator it(shape); it.More(); it.Next()) shapes.push_back(it.Value());
+  }
+  if (shapes.size() < 2) shapes = {shape};
+  for (std::size_t i = 0; i < shapes.size(); ++i) {
+    Instance in;
+    if (shapes.size() > 1) in.name = "shape " + std::to_string(i + 1);
+    in.placement = shapes[i].Location().Transformation();
+    in.shape = shapes[i].Located(TopLoc_Location());
+    d.instances.push_back(in);
+  }
+  return d;
+}
+
+// One instance's record: the prototype's triangles and integrals, placed.
+void WriteInstance(const Instance& in, const Prototype& p, const MasspropsCadOptions& o, massprops::wire::Writer& w) {
+  const gp_Trsf& t = in.placement;
+  Prototype moved;
+  if (std::abs(std::abs(t.ScaleFactor()) - 1.0) > 1e-12 && p.solid) {
+    // A placement that scales is applied to the integrals by moving the shape itself.
+    GProp_GProps props;
+    moved.error = BRepGProp::VolumeProperties(in.shape.Moved(TopLoc_Location(t)), props, o.brep_tolerance, true);
+    moved.volume = props.Mass();
+    moved.com = props.CentreOfMass();
+    moved.inertia = props.MatrixOfInertia();
+  } else {
+    // Rigid (a mirror included): c' = R c + t, I' = R I Rᵀ.
+    moved.volume = p.volume;
+    moved.error = p.error;
+    moved.com = p.com.Transformed(t);
+    const gp_Mat r = t.VectorialPart();
+    moved.inertia = r * p.inertia * r.Transposed();
+  }
+  w.Str(in.name);
+  w.Str(in.material);
+  w.F64(in.density);
+  w.U64(p.solid ? 1 : 0);
+  w.F64(moved.volume);
+  for (double x : {moved.com.X(), moved.com.Y(), moved.com.Z()}) w.F64(x);
+  for (int r = 1; r <= 3; ++r) {
+    for (int c = 1; c <= 3; ++c) w.F64(moved.inertia(r, c));
+  }
+  w.F64(moved.error);
+  w.F64(p.deflection);
+  const std::size_t triangles = p.corners.size() / 9;
+  w.U64(triangles);
+  // A mirroring placement turns the faces inside out: two corners swap back.
+  const bool mirrored = t.IsNegative();
+  std::vector<double> placed(p.corners.size());
+  for (std::size_t k = 0; k < triangles; ++k) {
+    for (int c = 0; c < 3; ++c) {
+      const int from = mirrored && c > 0 ? 3 - c : c;
+      gp_Pnt q(p.corners[9 * k + 3 * from], p.corners[9 * k + 3 * from + 1], p.corners[9 * k + 3 * from + 2]);
+      q.Transform(t);
+      placed[9 * k + 3 * c] = q.X();
+      placed[9 * k + 3 * c + 1] = q.Y();
+      placed[9 * k + 3 * c + 2] = q.Z();
+    }
+  }
+  w.F64s(placed.data(), placed.size());
+}
+
+void Hand(massprops::wire::Writer& w, char** out, std::size_t* size) {
   *size = w.bytes().size();
   *out = static_cast<char*>(std::malloc(std::max<std::size_t>(*size, 1)));
   if (*out != nullptr) std::memcpy(*out, w.bytes().data(), *size);
 }
 
+void Fail(const std::string& message, char** out, std::size_t* size) {
+  massprops::wire::Writer w;
+  w.Str(message);
+  Hand(w, out, size);
+}
+
 int Read(const char* path, const MasspropsCadOptions& o, char** out, std::size_t* size) {
   // OpenCASCADE prints its progress on standard output; the child's output is its pipe only.
   Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
-  std::vector<Instance> instances;
-  std::string format, unit_word, error;
-  double mm_per_unit = 0;
-  if (o.format == kMasspropsCadBrep) {
-    format = "BREP";
-    TopoDS_Shape shape;
-    BRep_Builder builder;
-    if (!BRepTools::Read(shape, path, builder) || shape.IsNull()) {
-      Fail("OpenCASCADE could not read it as a BREP file (not one, or cut short)", out, size);
-      return 1;
-    }
-    // A BREP file has no unit and no names: one part, or one per solid of a top-level compound.
-    std::vector<TopoDS_Shape> solids;
-    if (shape.ShapeType() == TopAbs_COMPOUND) {
-      for (TopoDS_Iterator it(shape); it.More(); it.Next()) solids.push_back(it.Value());
-    }
-    if (solids.size() < 2) solids = {shape};
-    for (std::size_t i = 0; i < solids.size(); ++i) {
-      Instance in;
-      if (solids.size() > 1) in.name = "shape " + std::to_string(i + 1);
-      in.placement = solids[i].Location().Transformation();
-      in.shape = solids[i].Located(TopLoc_Location());
-      instances.push_back(in);
-    }
-  } else {
-    Handle(TDocStd_Document) doc;
-    if (o.format == kMasspropsCadStep) {
-      format = "STEP";
-      STEPCAFControl_Reader reader;
-      reader.SetNameMode(true);
-      reader.SetMatMode(true);
-      reader.SetColorMode(false);
-      reader.SetGDTMode(false);
-      reader.SetLayerMode(false);
-      if (!Transfer(reader, path, doc, error)) {
-        Fail(error, out, size);
-        return 1;
-      }
-      TColStd_SequenceOfAsciiString lengths, angles, solid_angles;
-      reader.ChangeReader().FileUnits(lengths, angles, solid_angles);
-      if (lengths.Length() > 0) {
-        unit_word = lengths(1).ToCString();
-        mm_per_unit = MillimetresPerStepUnit(unit_word);
-        for (Standard_Integer i = 2; i <= lengths.Length(); ++i) {
-          if (MillimetresPerStepUnit(lengths(i).ToCString()) != mm_per_unit) {
-            unit_word += std::string(" and ") + lengths(i).ToCString();
-            mm_per_unit = 0;  // parts in several units: left in millimetres
-          }
-        }
-      }
-    } else {
-      format = "IGES";
-      IGESCAFControl_Reader reader;
-      reader.SetNameMode(true);
-      reader.SetColorMode(false);
-      reader.SetLayerMode(false);
-      if (!Transfer(reader, path, doc, error)) {
-        Fail(error, out, size);
-        return 1;
-      }
-      const Handle(IGESData_IGESModel) model = Handle(IGESData_IGESModel)::DownCast(reader.Model());
-      if (!model.IsNull()) IgesUnit(model->GlobalSection().UnitFlag(), unit_word, mm_per_unit);
-    }
-    const Handle(XCAFDoc_ShapeTool) shapes = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
-    TDF_LabelSequence roots;
-    shapes->GetFreeShapes(roots);
-    for (Standard_Integer i = 1; i <= roots.Length(); ++i) Collect(shapes, roots(i), gp_Trsf(), instances, 0);
-  }
-  if (instances.empty()) {
-    Fail("the file holds no shape (no solid, shell or face)", out, size);
-    return 1;
-  }
+  const Document d = o.format == kMasspropsCadBrep   ? ReadBrep(path)
+                     : o.format == kMasspropsCadIges ? ReadIges(path)
+                                                     : ReadStep(path);
+  if (d.instances.empty()) throw Refusal{"the file holds no shape (no solid, shell or face)"};
+  massprops::wire::Writer w;
+  w.Str(d.format);
+  w.Str(d.unit_word);
+  w.F64(d.mm_per_unit);
+  w.U64(d.instances.size());
   // Each prototype is tessellated and integrated once, however many instances place it.
   std::map<const TopoDS_TShape*, std::vector<std::pair<TopLoc_Location, Prototype>>> done;
-  massprops::wire::Writer w;
-  w.Str(format);
-  w.Str(unit_word);
-  w.F64(mm_per_unit);
-  w.U64(instances.size());
-  for (Instance& in : instances) {
+  for (const Instance& in : d.instances) {
     auto& list = done[in.shape.TShape().get()];
     const Prototype* p = nullptr;
-    for (const auto& [location, prototype] : list) {
-      if (location.IsEqual(in.shape.Location())) p = &prototype;
+    for (const auto& entry : list) {
+      if (entry.first.IsEqual(in.shape.Location())) p = &entry.second;
     }
     if (p == nullptr) {
-      list.emplace_back(in.shape.Location(), Tessellate(in.shape, o, mm_per_unit));
+      list.emplace_back(in.shape.Location(), Tessellate(in.shape, o, d.mm_per_unit));
       p = &list.back().second;
     }
-    const gp_Trsf& t = in.placement;
-    // A placement that scales or mirrors is applied to the integrals by moving the shape itself.
-    Prototype moved;
-    if (std::abs(std::abs(t.ScaleFactor()) - 1.0) > 1e-12 && p->solid) {
-      GProp_GProps props;
-      moved.error = BRepGProp::VolumeProperties(in.shape.Moved(TopLoc_Location(t)), props, o.brep_tolerance, true);
-      moved.volume = props.Mass();
-      moved.com = props.CentreOfMass();
-      moved.inertia = props.MatrixOfInertia();
-    } else {
-      // Rigid: c' = R c + t, I' = R I Rᵀ.
-      moved.volume = p->volume;
-      moved.error = p->error;
-      moved.com = p->com.Transformed(t);
-      const gp_Mat r = t.VectorialPart();
-      moved.inertia = r * p->inertia * r.Transposed();
-    }
-    const bool mirrored = t.IsNegative();
-    w.Str(in.name);
-    w.Str(in.material);
-    w.F64(in.density);
-    w.U64(p->solid ? 1 : 0);
-    w.F64(moved.volume);
-    for (double x : {moved.com.X(), moved.com.Y(), moved.com.Z()}) w.F64(x);
-    for (int r = 1; r <= 3; ++r) {
-      for (int c = 1; c <= 3; ++c) w.F64(moved.inertia(r, c));
-    }
-    w.F64(moved.error);
-    w.F64(p->deflection);
-    const std::size_t triangles = p->corners.size() / 9;
-    w.U64(triangles);
-    std::vector<double> placed(p->corners.size());
-    for (std::size_t k = 0; k < triangles; ++k) {
-      for (int c = 0; c < 3; ++c) {
-        // A mirroring placement turns the faces inside out: swap two corners back.
-        const int from = mirrored && c > 0 ? 3 - c : c;
-        gp_Pnt q(p->corners[9 * k + 3 * from], p->corners[9 * k + 3 * from + 1], p->corners[9 * k + 3 * from + 2]);
-        q.Transform(t);
-        placed[9 * k + 3 * c] = q.X();
-        placed[9 * k + 3 * c + 1] = q.Y();
-        placed[9 * k + 3 * c + 2] = q.Z();
-      }
-    }
-    w.F64s(placed.data(), placed.size());
+    WriteInstance(in, *p, o, w);
   }
-  *size = w.bytes().size();
-  *out = static_cast<char*>(std::malloc(std::max<std::size_t>(*size, 1)));
-  if (*out == nullptr) return 1;
-  std::memcpy(*out, w.bytes().data(), *size);
-  return 0;
+  Hand(w, out, size);
+  return *out == nullptr ? 1 : 0;
 }
 
 }  // namespace
