@@ -9,11 +9,9 @@ struct Marker {
   const char* name;
   Option option;
 };
-constexpr Marker kMarkers[] = {{"repair", Option::kRepair},
-                               {"allow_open", Option::kAllowOpen},
-                               {"unit", Option::kUnit},
-                               {"full_check", Option::kFullCheck},
-                               {"wall", Option::kWall}};
+constexpr Marker kMarkers[] = {{"repair", Option::kRepair}, {"allow_open", Option::kAllowOpen},
+                               {"unit", Option::kUnit},     {"full_check", Option::kFullCheck},
+                               {"wall", Option::kWall},     {"brep", Option::kBrep}};
 
 }  // namespace
 
@@ -25,6 +23,7 @@ const Vocabulary& ApiVocabulary() {
       case Option::kUnit: return value.empty() ? "LoadOptions::unit" : "LoadOptions::unit = " + std::string(value);
       case Option::kFullCheck: return "LoadOptions::full_check = true";
       case Option::kWall: return "WallModel";
+      case Option::kBrep: return "LoadOptions::brep = true";
     }
     return "?";
   };

@@ -46,8 +46,9 @@ struct CadPart {
   /// The exact B-rep's integrals (OpenCASCADE's Gauss integration), unit density, in the file's
   /// unit and axes, the placement applied.
   VolumeIntegrals brep;
-  double brep_error = 0;  ///< OpenCASCADE's estimate of their relative error
-  double deflection = 0;  ///< the chordal deflection its triangles were made with, file unit
+  double brep_error = 0;                 ///< OpenCASCADE's estimate of their relative error
+  double deflection = 0;                 ///< the chordal deflection its triangles were made with, file unit
+  std::int64_t untessellated_faces = 0;  ///< B-rep faces OpenCASCADE made no triangles of (holes in the mesh)
 };
 
 /// What was read, and how.

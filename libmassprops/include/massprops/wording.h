@@ -11,7 +11,7 @@
 
 namespace massprops {
 
-enum class Option { kRepair, kAllowOpen, kUnit, kFullCheck, kWall };
+enum class Option { kRepair, kAllowOpen, kUnit, kFullCheck, kWall, kBrep };
 
 /// Names an option, with a value where the message suggests one ({unit=mm}: value "mm").
 using Vocabulary = std::function<std::string(Option option, std::string_view value)>;

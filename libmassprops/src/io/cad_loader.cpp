@@ -172,6 +172,7 @@ LoadedMesh ReadCadFile(const std::string& path, const CadOptions& cad) {
         for (int b = 0; b < 3; ++b) inertia(a, b) = r.F64();
       part.brep_error = r.F64();
       part.deflection = r.F64() * k;
+      part.untessellated_faces = static_cast<std::int64_t>(r.U64());
       // Unit density, file unit: ∫r rᵀ = C + V c cᵀ with the covariance C = tr(I)/2 𝟙 − I.
       const double k3 = k * k * k;
       part.brep.volume = volume * k3;

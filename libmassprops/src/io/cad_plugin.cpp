@@ -12,10 +12,12 @@
 // Result layout (wire.h): format word, the file's unit word ("" when it names none), millimetres
 // per file unit (0: unknown), the number of parts, then per part: name, material name, density
 // (kg/m^3, 0: none), solid (0/1), volume, center of mass (3), inertia about it (9, row-major),
-// error estimate, deflection used, triangle count, and 9 coordinates per triangle.
+// error estimate, deflection used, faces left untessellated, triangle count, and 9 coordinates
+// per triangle.
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -76,7 +78,8 @@ struct Instance {
 // What a prototype gives once, however many instances use it: triangles and B-rep integrals in
 // the prototype's own frame.
 struct Prototype {
-  std::vector<double> corners;  // 9 per triangle
+  std::vector<double> corners;      // 9 per triangle
+  std::uint64_t untessellated = 0;  // faces BRepMesh left without triangles
   bool solid = false;
   double volume = 0, error = 0, deflection = 0;
   gp_Pnt com;
@@ -193,7 +196,10 @@ Prototype Tessellate(const TopoDS_Shape& shape, const MasspropsCadOptions& o, do
     const TopoDS_Face& face = TopoDS::Face(e.Current());
     TopLoc_Location location;
     const Handle(Poly_Triangulation) t = BRep_Tool::Triangulation(face, location);
-    if (t.IsNull()) continue;
+    if (t.IsNull() || t->NbTriangles() == 0) {
+      ++p.untessellated;  // a hole in the mesh: the checks refuse it, and the message says why
+      continue;
+    }
     const gp_Trsf to_shape = location.Transformation();
     const bool reversed = face.Orientation() == TopAbs_REVERSED;
     for (Standard_Integer i = 1; i <= t->NbTriangles(); ++i) {
@@ -339,6 +345,7 @@ void WriteInstance(const Instance& in, const Prototype& p, const MasspropsCadOpt
   }
   w.F64(moved.error);
   w.F64(p.deflection);
+  w.U64(p.untessellated);
   const std::size_t triangles = p.corners.size() / 9;
   w.U64(triangles);
   // A mirroring placement turns the faces inside out: two corners swap back.

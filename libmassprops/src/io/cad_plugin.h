@@ -7,7 +7,7 @@
 extern "C" {
 
 /// Bumped whenever the options or the result's layout change: a plugin of another build is refused.
-#define MASSPROPS_CAD_ABI 1
+#define MASSPROPS_CAD_ABI 2
 
 enum MasspropsCadFormat { kMasspropsCadStep = 0, kMasspropsCadIges = 1, kMasspropsCadBrep = 2 };
 

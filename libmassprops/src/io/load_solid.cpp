@@ -251,10 +251,18 @@ void RefuseOpen(const SolidResult& r, const LoadOptions& opt, bool wall) {
   }
   // A CAD part of surfaces only: the file holds no solid to begin with.
   bool surfaces_only = false;
-  for (const CadPart& p : r.loaded.cad_parts) surfaces_only = surfaces_only || !p.solid;
+  std::int64_t untessellated = 0;
+  for (const CadPart& p : r.loaded.cad_parts) {
+    surfaces_only = surfaces_only || !p.solid;
+    untessellated += p.untessellated_faces;
+  }
   throw LoadError(r.source + ": " + (opt.repair ? "after {repair}: " : "") + r.topology.Problems() +
                   (opt.repair ? "" : UnweldedCorners(r)) +
                   (surfaces_only ? " (the CAD file holds surfaces, not a solid)" : "") +
+                  (untessellated > 0 ? " (OpenCASCADE made no triangles of " + std::to_string(untessellated) +
+                                           " of the B-rep's faces: another deflection may mesh them, or {allow_open} "
+                                           "with {brep} reports the B-rep's own numbers)"
+                                     : "") +
                   ". The mesh does not bound a solid, so its mass properties are not defined; " +
                   (opt.repair ? "close the holes in a modelling tool, " : "try {repair}, ") +
                   "or pass {allow_open} to compute anyway");

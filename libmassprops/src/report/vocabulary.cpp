@@ -13,6 +13,7 @@ std::string CommandLine(Option option, std::string_view value) {
     case Option::kUnit: return "--unit" + suffix;
     case Option::kFullCheck: return "--full-check";
     case Option::kWall: return "--wall";
+    case Option::kBrep: return "--brep";
   }
   return "?";
 }
@@ -25,6 +26,7 @@ std::string Scene(Option option, std::string_view value) {
     case Option::kUnit: return value.empty() ? "\"unit\"" : "\"unit\": \"" + std::string(value) + "\"";
     case Option::kFullCheck: return "(always done in scenes)";
     case Option::kWall: return "wall";
+    case Option::kBrep: return "(the massprops command's --brep)";
   }
   return "?";
 }
@@ -36,6 +38,7 @@ std::string Poses(Option option, std::string_view value) {
     case Option::kUnit: return value.empty() ? "--unit" : "--unit " + std::string(value);
     case Option::kFullCheck: return "(always done by rbsim poses)";
     case Option::kWall: return "(not in rbsim poses)";
+    case Option::kBrep: return "(massprops --brep)";
   }
   return "?";
 }
@@ -47,6 +50,7 @@ std::string Python(Option option, std::string_view value) {
     case Option::kUnit: return value.empty() ? "unit=..." : "unit='" + std::string(value) + "'";
     case Option::kFullCheck: return "full_check=True";
     case Option::kWall: return "wall=...";
+    case Option::kBrep: return "brep=True";
   }
   return "?";
 }
