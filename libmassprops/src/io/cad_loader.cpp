@@ -101,7 +101,7 @@ LoadedMesh ReadCadFile(const std::string& path, const CadOptions& cad) {
       !(cad.angular_deflection > 0 && cad.angular_deflection <= 3.2)) {
     throw std::invalid_argument(
         "the tessellation needs a finite deflection >= 0 (0: relative), a relative "
-        "deflection > 0 and an angular deflection in (0, pi] rad");
+        "deflection in [1e-6, 0.5] and an angular deflection in (0, pi] rad");
   }
   OpenRegularFile(path);  // a clear message for a missing file, a folder or a FIFO, before any child
   MasspropsCadOptions options{};
@@ -142,8 +142,9 @@ LoadedMesh ReadCadFile(const std::string& path, const CadOptions& cad) {
     const std::string unit_word = r.Str();
     const double mm_per_unit = r.F64();
     const auto unit = UnitOfMillimetres(mm_per_unit);
-    // The readers hand out millimetres (OpenCASCADE's session unit); back to the file's unit.
-    const double k = format == kMasspropsCadBrep ? 1.0 : unit ? 1.0 / mm_per_unit : 1.0;
+    // The readers hand out millimetres (OpenCASCADE's session unit); back to the file's unit, by
+    // division (correctly rounded: an inch file's 1 in comes back as exactly 1).
+    const double mm = format != kMasspropsCadBrep && unit ? mm_per_unit : 1.0;
     if (format != kMasspropsCadBrep) {
       if (unit) {
         mesh.declared_unit = unit;
@@ -171,13 +172,13 @@ LoadedMesh ReadCadFile(const std::string& path, const CadOptions& cad) {
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) inertia(a, b) = r.F64();
       part.brep_error = r.F64();
-      part.deflection = r.F64() * k;
+      part.deflection = r.F64() / mm;
       part.untessellated_faces = static_cast<std::int64_t>(r.U64());
       // Unit density, file unit: ∫r rᵀ = C + V c cᵀ with the covariance C = tr(I)/2 𝟙 − I.
-      const double k3 = k * k * k;
-      part.brep.volume = volume * k3;
-      com *= k;
-      inertia *= k3 * k * k;
+      const double mm3 = mm * mm * mm;
+      part.brep.volume = volume / mm3;
+      com /= mm;
+      inertia /= mm3 * mm * mm;
       const Matrix3 covariance = 0.5 * inertia.trace() * Matrix3::Identity() - inertia;
       part.brep.first = part.brep.volume * com;
       part.brep.second = covariance + part.brep.volume * com * com.transpose();
@@ -186,7 +187,9 @@ LoadedMesh ReadCadFile(const std::string& path, const CadOptions& cad) {
       if (triangles > r.Left() / 72) throw wire::Truncated();
       const std::size_t at = xyz.size();
       r.F64s(9 * triangles, xyz);
-      for (std::size_t j = at; j < xyz.size(); ++j) xyz[j] *= k;
+      if (mm != 1.0) {
+        for (std::size_t j = at; j < xyz.size(); ++j) xyz[j] /= mm;
+      }
       sizes.insert(sizes.end(), triangles, 3);
       mesh.face_part.insert(mesh.face_part.end(), triangles, static_cast<std::int32_t>(i));
     }
