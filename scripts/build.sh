@@ -12,10 +12,13 @@ sanitize=${MASSPROPS_SANITIZE:-OFF}
 build_dir=${MASSPROPS_BUILD_DIR:-$root/build}
 if [ "$sanitize" = "ON" ] && [ -z "${MASSPROPS_BUILD_DIR:-}" ]; then build_dir=$root/build-asan; fi
 build_type=${MASSPROPS_BUILD_TYPE:-Release}
-if [ "$sanitize" = "ON" ]; then build_type=RelWithDebInfo; fi
+# Benchmarks and the peer engines' comparison programs run once, in the Release build: under the
+# sanitizers no test runs them, so they are not built there.
+bench=ON
+if [ "$sanitize" = "ON" ]; then build_type=RelWithDebInfo bench=OFF; fi
 
 cmake -S "$root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE="$build_type" \
-  -DMASSPROPS_SANITIZE="$sanitize" >/dev/null
+  -DMASSPROPS_SANITIZE="$sanitize" -DMASSPROPS_BUILD_BENCH="$bench" >/dev/null
 # MASSPROPS_BUILD_TARGETS: only these targets (and what they need), e.g. the quick start's massprops_cli.
 targets=()
 for t in ${MASSPROPS_BUILD_TARGETS:-}; do targets+=(--target "$t"); done
