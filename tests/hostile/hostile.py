@@ -371,6 +371,15 @@ def main():
         r"clean_obj.obj", env={"MASSPROPS_ASSIMP_FAULT": "crash"})
     run("assimp_hang", ["box.gltf", "clean_obj.obj", "--format", "csv"], 1, r"box.gltf: assimp did not finish",
         r"clean_obj.obj", env={"MASSPROPS_ASSIMP_FAULT": "hang", "MASSPROPS_ASSIMP_TIMEOUT": "1"})
+    # PLY elements whose row counts lie: without properties (nothing to read, once looped 5e13
+    # times: found by libFuzzer), and with more rows than the body has bytes.
+    write("element_no_props.ply", "ply\nformat ascii 1.0\nelement junk 51200133562088\nelement vertex 3\n"
+          "property float x\nproperty float y\nproperty float z\nelement face 1\n"
+          "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
+    run("ply_element_without_properties", ["element_no_props.ply", "--shell", "--area-density", "1"], 0, r"^$|warning")
+    write("rows_lie.ply", "ply\nformat ascii 1.0\nelement vertex 99999999999\nproperty float x\nproperty float y\n"
+          "property float z\nend_header\n0 0 0\n")
+    run("ply_rows_beyond_body", ["rows_lie.ply"], 1, r"rows_lie.ply: the header promises 99999999999 rows")
     # CAD files: OpenCASCADE reads in a child process with a time limit too. A STEP cut short, one
     # with no entities, noise named .step or .igs, a deflection too fine to tessellate, and
     # injected crashes and hangs: each is that file's clear error, and the other files still print.

@@ -209,6 +209,14 @@ LoadedMesh ParsePly(const std::string& path, std::string_view data) {
       have_vertices = true;
       verts.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(e.count, data.size())) * 3);
     }
+    // Every row of an element with properties takes at least a byte of the body: a count beyond
+    // that is a lie (and would loop for ages); an element without properties holds nothing.
+    if (e.properties.empty()) continue;
+    if (e.count > data.size() - std::min(body, data.size())) {
+      Fail(path, "the header promises " + std::to_string(e.count) + " rows of element '" + e.name +
+                     "', more than the " + std::to_string(data.size() - std::min(body, data.size())) +
+                     " bytes of its body can hold");
+    }
     for (std::uint64_t r = 0; r < e.count; ++r) {
       double xyz[3] = {0, 0, 0};
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
