@@ -27,67 +27,40 @@ inline std::size_t Slot(std::uint64_t h, std::size_t mask) { return static_cast<
 
 }  // namespace
 
-void JoinBlock(const std::uint64_t* corner_hash, int triangles, BlockPieces& out) {
-  const int corners = 3 * triangles;
+void GroupJoiner::Begin(int triangles) {
   std::size_t slots = 64;
-  while (4 * slots < 5 * static_cast<std::size_t>(corners)) slots *= 2;  // at most 3/4 full
-  // A slot is empty unless stamped with this call's number: no clearing between blocks.
-  struct TableSlot {
-    std::uint64_t key;
-    std::uint32_t stamp;
-    std::int32_t id;
-  };
-  struct Scratch {
-    std::vector<TableSlot> table;
-    std::uint32_t stamp = 0;
-    std::vector<std::int32_t> id;
-    std::vector<std::uint32_t> parent, piece;
-    std::vector<std::uint64_t> hash, fan;
-  };
-  thread_local Scratch scratch;
-  Scratch& s = scratch;
-  if (s.table.size() < slots || ++s.stamp == 0) {
-    s.table.assign(std::max(slots, s.table.size()), TableSlot{0, 0, 0});
-    s.stamp = 1;
+  while (slots < 2 * static_cast<std::size_t>(triangles)) slots *= 2;  // a closed surface: ~½ corner a triangle
+  if (table_.size() != slots)
+    table_.assign(slots, 0);
+  else
+    std::memset(table_.data(), 0, slots * sizeof(std::uint32_t));
+  mask_ = slots - 1;
+  hash_.clear();
+  fan_.clear();
+  parent_.clear();
+  std::fill(std::begin(recent_id_), std::end(recent_id_), kNone);
+}
+
+void GroupJoiner::Grow() {
+  table_.assign(2 * table_.size(), 0);
+  mask_ = table_.size() - 1;
+  for (std::size_t id = 0; id < hash_.size(); ++id) {
+    std::size_t at = Slot(hash_[id]) & mask_;
+    while (table_[at] != 0) at = (at + 1) & mask_;
+    table_[at] = static_cast<std::uint32_t>(id + 1);
   }
-  const std::uint32_t stamp = s.stamp;
-  s.id.resize(static_cast<std::size_t>(corners));
-  s.hash.clear();
-  const std::size_t mask = slots - 1;
-  TableSlot* table = s.table.data();
-  for (int i = 0; i < corners; ++i) {
-    const std::uint64_t h = corner_hash[i];
-    std::size_t at = Slot(h, mask);
-    while (table[at].stamp == stamp && table[at].key != h) at = (at + 1) & mask;
-    if (table[at].stamp != stamp) table[at] = {h, stamp, static_cast<std::int32_t>(s.hash.size())}, s.hash.push_back(h);
-    s.id[static_cast<std::size_t>(i)] = table[at].id;
-  }
-  const std::size_t unique = s.hash.size();
-  s.parent.resize(unique);
-  for (std::size_t u = 0; u < unique; ++u) s.parent[u] = static_cast<std::uint32_t>(u);
-  s.fan.assign(unique, 0);
-  std::uint32_t* parent = s.parent.data();
-  const std::uint64_t* hash = s.hash.data();
-  std::uint64_t* fan = s.fan.data();
-  for (int t = 0; t < triangles; ++t) {
-    const int* c = s.id.data() + 3 * t;
-    const auto a = static_cast<std::uint32_t>(c[0]), b = static_cast<std::uint32_t>(c[1]),
-               d = static_cast<std::uint32_t>(c[2]);
-    Join(parent, a, b);
-    Join(parent, a, d);
-    // Around each corner, the next corner counted +, the previous −: a closed fan sums to 0.
-    fan[a] += hash[b] - hash[d];
-    fan[b] += hash[d] - hash[a];
-    fan[d] += hash[a] - hash[b];
-  }
+}
+
+void GroupJoiner::Finish(BlockPieces& out) {
   // Pieces numbered in the order of their smallest corner, which is their set's root.
-  s.piece.resize(unique);
+  const std::size_t unique = hash_.size();
+  piece_.resize(unique);
   std::uint32_t pieces = 0;
   out.open.clear();
   for (std::size_t u = 0; u < unique; ++u) {
-    const std::uint32_t r = Find(parent, static_cast<std::uint32_t>(u));
-    s.piece[u] = r == u ? pieces++ : s.piece[r];
-    if (fan[u] != 0) out.open.push_back({hash[u], fan[u], s.piece[u]});
+    const std::uint32_t r = Find(static_cast<std::uint32_t>(u));
+    piece_[u] = r == u ? pieces++ : piece_[r];
+    if (fan_[u] != 0) out.open.push_back({hash_[u], fan_[u], piece_[u]});
   }
   out.pieces = pieces;
 }

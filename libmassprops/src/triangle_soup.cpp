@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "parallel.h"
+#include "soup_faces.h"
 #include "soup_shells.h"
 #include "triangle_kernel.h"
 
@@ -59,65 +60,6 @@ inline std::uint64_t FaceKey(const CornerHash& a, const CornerHash& b, const Cor
   return k ^ (k >> 29);
 }
 
-// Whether two keys are equal: scattered into 2^12 buckets by their top bits (chunks of keys
-// counted and scattered side by side), and each bucket's keys put in a hash table that stays in
-// cache. 16 bytes a triangle while it runs.
-bool AnyRepeated(const std::uint64_t* keys, std::size_t n, int num_threads) {
-  constexpr int kBits = 12;
-  constexpr std::size_t kBuckets = std::size_t{1} << kBits;
-  const std::size_t chunks = std::max<std::size_t>(1, std::min<std::size_t>(16, n / 65536));
-  auto chunk_range = [&](std::size_t c) { return std::make_pair(c * n / chunks, (c + 1) * n / chunks); };
-  std::vector<std::size_t> count(chunks * kBuckets, 0);  // chunk-major
-  internal::ParallelForBlocks(static_cast<std::int64_t>(chunks), num_threads, [&](std::int64_t c) {
-    const auto [lo, hi] = chunk_range(static_cast<std::size_t>(c));
-    std::size_t* own = count.data() + static_cast<std::size_t>(c) * kBuckets;
-    for (std::size_t i = lo; i < hi; ++i) ++own[keys[i] >> (64 - kBits)];
-  });
-  std::vector<std::size_t> begin(kBuckets + 1, 0);
-  {
-    std::size_t at = 0;
-    for (std::size_t b = 0; b < kBuckets; ++b) {
-      begin[b] = at;
-      for (std::size_t c = 0; c < chunks; ++c) {
-        const std::size_t k = count[c * kBuckets + b];
-        count[c * kBuckets + b] = at;  // now each chunk's cursor in the bucket
-        at += k;
-      }
-    }
-    begin[kBuckets] = at;
-  }
-  const std::unique_ptr<std::uint64_t[]> scattered(new std::uint64_t[n]);  // not zeroed: all written
-  internal::ParallelForBlocks(static_cast<std::int64_t>(chunks), num_threads, [&](std::int64_t c) {
-    const auto [lo, hi] = chunk_range(static_cast<std::size_t>(c));
-    std::size_t* cursor = count.data() + static_cast<std::size_t>(c) * kBuckets;
-    for (std::size_t i = lo; i < hi; ++i) scattered[cursor[keys[i] >> (64 - kBits)]++] = keys[i];
-  });
-  std::vector<char> repeated(kBuckets, 0);
-  internal::ParallelForBlocks(static_cast<std::int64_t>(kBuckets), num_threads, [&](std::int64_t b) {
-    // Each bucket's keys into a small open-addressing table (at most half full) by their low bits.
-    const std::size_t lo = begin[static_cast<std::size_t>(b)], hi = begin[static_cast<std::size_t>(b) + 1];
-    std::size_t slots = 16;
-    while (slots < 2 * (hi - lo)) slots *= 2;
-    thread_local std::vector<std::uint64_t> table;
-    thread_local std::vector<char> used;
-    table.assign(slots, 0);
-    used.assign(slots, 0);
-    for (std::size_t i = lo; i < hi; ++i) {
-      const std::uint64_t k = scattered[i];
-      std::size_t s = static_cast<std::size_t>(k) & (slots - 1);
-      for (; used[s]; s = (s + 1) & (slots - 1)) {
-        if (table[s] == k) {
-          repeated[static_cast<std::size_t>(b)] = 1;
-          return;
-        }
-      }
-      used[s] = 1;
-      table[s] = k;
-    }
-  });
-  return std::find(repeated.begin(), repeated.end(), 1) != repeated.end();
-}
-
 struct BlockResult {
   Moments moments;
   std::uint64_t edge_hash = 0;
@@ -141,17 +83,29 @@ SoupIntegrals Integrate(const Fetch& fetch, std::int64_t count, std::size_t stri
   const std::int64_t blocks = (count + kBlock - 1) / kBlock;
   std::vector<BlockResult> parts(static_cast<std::size_t>(blocks));
   internal::ShellCounter shells;
-  // Not zeroed (every key is written by the pass): its pages are first touched by the threads.
-  const std::unique_ptr<std::uint64_t[]> face_keys(new std::uint64_t[static_cast<std::size_t>(count)]);
+  constexpr std::int64_t kGroup = kShellBlocks * kBlock;
+  internal::FaceKeyBuckets faces(count, kGroup);
 
   // Blocks are integrated kShellBlocks at a time by one thread, and their corners joined together
   // (fewer corners left open at the edges of a group than of each block); each block's moments
   // are its own, so the bits do not depend on the grouping.
   const std::int64_t groups = (blocks + kShellBlocks - 1) / kShellBlocks;
   internal::ParallelForBlocks(groups, options.num_threads, [&](std::int64_t group) {
-    thread_local std::vector<std::uint64_t> corner_hash;
-    corner_hash.resize(static_cast<std::size_t>(3 * kBlock * kShellBlocks));
-    const std::int64_t group_begin = group * kShellBlocks * kBlock;
+    struct Scratch {
+      internal::GroupJoiner joiner;
+      std::vector<std::uint64_t> face_keys;
+      std::vector<std::uint32_t> face_counts;
+      std::uint64_t corner_hash[3 * internal::kBatch];
+    };
+    // Held through a pointer: a reference to a thread_local in a shared library is looked up
+    // again (__tls_get_addr) at every use in the loop below.
+    thread_local std::unique_ptr<Scratch> scratch;
+    if (!scratch) scratch = std::make_unique<Scratch>();
+    Scratch& s = *scratch;
+    const std::int64_t group_begin = group * kGroup;
+    const auto group_size = static_cast<int>(std::min(count, group_begin + kGroup) - group_begin);
+    s.joiner.Begin(group_size);
+    s.face_keys.resize(static_cast<std::size_t>(kGroup));
     for (std::int64_t b = group * kShellBlocks; b < std::min(blocks, (group + 1) * kShellBlocks); ++b) {
       BlockResult res;
       Batch batch;
@@ -179,21 +133,22 @@ SoupIntegrals Integrate(const Fetch& fetch, std::int64_t count, std::size_t stri
           res.edge_hash += ha.h * hb.g - hb.h * ha.g;
           res.edge_hash += hb.h * hc.g - hc.h * hb.g;
           res.edge_hash += hc.h * ha.g - ha.h * hc.g;
-          face_keys[static_cast<std::size_t>(t0 + j)] = FaceKey(ha, hb, hc);
-          std::uint64_t* corner = corner_hash.data() + 3 * (t0 + j - group_begin);
+          s.face_keys[static_cast<std::size_t>(t0 + j - group_begin)] = FaceKey(ha, hb, hc);
+          std::uint64_t* corner = s.corner_hash + 3 * j;
           corner[0] = ha.h;
           corner[1] = hb.h;
           corner[2] = hc.h;
           internal::SetTriangle(batch, j, c, c + 3, c + 6, ref.data());
         }
+        s.joiner.AddAll(s.corner_hash, n);
         internal::AccumulateBatch(batch, internal::PadBatch(batch, n), sums);
       }
       sums.Into(res.moments);
       parts[static_cast<std::size_t>(b)] = res;
     }
+    faces.Put(group, s.face_keys.data(), group_size, s.face_counts);
     internal::BlockPieces pieces;
-    internal::JoinBlock(corner_hash.data(),
-                        static_cast<int>(std::min(count, (group + 1) * kShellBlocks * kBlock) - group_begin), pieces);
+    s.joiner.Finish(pieces);
     shells.Add(group, std::move(pieces));
   });
 
@@ -219,7 +174,7 @@ SoupIntegrals Integrate(const Fetch& fetch, std::int64_t count, std::size_t stri
     out.upper = hi;
   }
   out.integrals = internal::ScaleTriangleSums(internal::PairwiseSum(moments)).ToIntegrals(ref);
-  out.repeated_faces = AnyRepeated(face_keys.get(), static_cast<std::size_t>(count), options.num_threads);
+  out.repeated_faces = faces.AnyRepeated(options.num_threads);
   out.shells = shells.Shells();
   return out;
 }

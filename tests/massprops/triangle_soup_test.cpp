@@ -155,6 +155,46 @@ TEST(TriangleSoup, RepeatedFacesAreFound) {
   EXPECT_TRUE(c.repeated_faces);
 }
 
+// The same across the streamed path's groups (32 768 triangles each): a face repeated far from its
+// first copy, a whole second surface in the next group, and a soup whose corners are all apart
+// (each triangle its own shell: the corner table grows past what shared corners need).
+TEST(TriangleSoup, RepeatedFacesAndShellsAcrossGroups) {
+  const TriangleMesh m = solids::Torus(2.0, 0.5, 140);  // 78 400 triangles: three groups
+  ASSERT_GT(m.F.rows(), 2 * 32768);
+  const SoupIntegrals once = Soup(StlBytes(m), 2);
+  EXPECT_FALSE(once.repeated_faces);
+  EXPECT_EQ(once.shells, 1);
+  TriangleMesh far = m;
+  far.F.conservativeResize(m.F.rows() + 2, 3);
+  far.F.row(m.F.rows()) = m.F.row(7);  // group 0's face, again in group 2, in both orientations
+  far.F.row(m.F.rows() + 1) << m.F(7, 0), m.F(7, 2), m.F(7, 1);
+  const SoupIntegrals f = Soup(StlBytes(far), 2);
+  EXPECT_TRUE(f.IsClosedCycle());
+  EXPECT_TRUE(f.repeated_faces);
+  TriangleMesh twice;
+  twice.V = m.V;
+  twice.F.resize(2 * m.F.rows(), 3);
+  twice.F << m.F, m.F;
+  EXPECT_TRUE(Soup(StlBytes(twice), 1).repeated_faces);
+  EXPECT_TRUE(Soup(StlBytes(twice), 2).repeated_faces);
+
+  TriangleMesh apart;  // 40 000 triangles, no corner shared
+  const int n = 40000;
+  apart.V.resize(3 * n, 3);
+  apart.F.resize(n, 3);
+  for (int t = 0; t < n; ++t) {
+    const double x = t % 200, y = t / 200;
+    apart.V.row(3 * t) << x, y, 0;
+    apart.V.row(3 * t + 1) << x + 0.5, y, 0;
+    apart.V.row(3 * t + 2) << x, y + 0.5, 0.25;
+    apart.F.row(t) << 3 * t, 3 * t + 1, 3 * t + 2;
+  }
+  const SoupIntegrals a = Soup(StlBytes(apart), 2);
+  EXPECT_EQ(a.shells, n);
+  EXPECT_FALSE(a.repeated_faces);
+  EXPECT_FALSE(a.IsClosedCycle());
+}
+
 // Meshes side by side as one soup (vertex indices offset), the second's faces reversed if asked.
 TriangleMesh Together(const TriangleMesh& a, const TriangleMesh& b, bool reverse_b = false) {
   TriangleMesh out;
