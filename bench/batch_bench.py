@@ -73,7 +73,7 @@ def main():
         print("| run | time | files/s | triangles/s | vs `cat` of all |")
         print("|---|---|---|---|---|")
         print(f"| `cat` of all the files | {cat * 1e3:.0f} ms | | | 1× |")
-        for label, t in (("`massprops batch DIR -o out.jsonl` (a process per file, records)", batch),
+        for label, t in (("`massprops batch DIR -o out.jsonl` (child processes, runs of files, records)", batch),
                          ("`massprops FILES…` (one call, files side by side)", call)):
             print(f"| {label} | {t:.2f} s | {len(files) / t:.0f} | {triangles / t:.2e} | {t / cat:.1f}× |")
         per_file = numpy_stl / len(stls)

@@ -182,6 +182,8 @@ void ParseShard(const std::string& text, int& index, int& count) {
   }
 }
 
+constexpr std::size_t kFilesPerProcess = 64;
+
 int RunBatch(const BatchOptions& b) {
   std::error_code ec;
   if (!fs::exists(b.input, ec)) return Bad(b.input + ": no such folder or manifest");
@@ -244,8 +246,10 @@ int RunBatch(const BatchOptions& b) {
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   bool write_failed = false;
   try {
-    RunIsolated(
-        todo.size(), jobs, b.timeout_seconds,
+    // A process computes a run of files (starting one per file cost more than the file); a crash
+    // or a timeout still ends only the file it happened on.
+    RunIsolatedInRuns(
+        todo.size(), jobs, b.timeout_seconds, kFilesPerProcess,
         [&](std::size_t k) { return ComputeRecord(all[todo[k]], todo[k], all.size(), load); },
         [&](std::size_t k, IsolatedOutcome&& o) {
           const std::size_t i = todo[k];

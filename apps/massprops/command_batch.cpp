@@ -1,5 +1,6 @@
 // massprops batch (DIR | MANIFEST) -o OUT.jsonl [batch options] [the options of massprops]: every
-// mesh file of a folder or manifest in its own process, one JSON line each (batch.cpp runs it).
+// mesh file of a folder or manifest in child processes (runs of files; a crash ends only its
+// file), one JSON line each (batch.cpp runs it).
 
 #include <iostream>
 #include <string>
@@ -18,13 +19,13 @@ namespace massprops::cli {
 
 int BatchMain(int argc, char** argv) {
   CLI::App app{
-      "massprops batch: every mesh file of a folder or a manifest, each in its own process, one JSON "
-      "line each in the output (see the README's dataset section)"};
+      "massprops batch: every mesh file of a folder or a manifest, in child processes that a crash or "
+      "hang of one file does not take down, one JSON line each in the output (see the README's dataset section)"};
   app.set_version_flag("--version", std::string("massprops ") + kVersion);
   Arguments a;
   BatchOptions b;
   std::string shard;
-  app.add_option("--jobs", b.jobs, "Files computed at a time, each in its own process (0 = one per core)")
+  app.add_option("--jobs", b.jobs, "Child processes computing files at a time (0 = one per core)")
       ->check(app::NonNegative());
   app.add_option("--shard", shard, "i/n: only the files whose index in sorted order is i mod n (job arrays)");
   app.add_flag("--resume", b.resume, "Go on from the records already in the output (a torn last line is dropped)");

@@ -35,6 +35,16 @@ struct IsolatedOutcome {
 void RunIsolated(std::size_t count, int jobs, double seconds_limit, const std::function<std::string(std::size_t)>& work,
                  const std::function<void(std::size_t, IsolatedOutcome&&)>& done);
 
+/// As RunIsolated, with each child computing a run of up to `items_per_child` consecutive items
+/// one after the other: where starting a process costs more than an item (many small files), a
+/// few processes do the work. The time limit is per item. A child that crashes or is stopped ends
+/// only the item it was on; the rest of its run go to a new child. A crashed item is computed once
+/// more alone in a fresh child, and that outcome is the one given (a crash caused by an earlier
+/// item of the same child is not blamed on it). `done` is called in the order of i, as above.
+void RunIsolatedInRuns(std::size_t count, int jobs, double seconds_limit, std::size_t items_per_child,
+                       const std::function<std::string(std::size_t)>& work,
+                       const std::function<void(std::size_t, IsolatedOutcome&&)>& done);
+
 /// Sends bytes from a streaming child to the parent as they are made.
 using IsolatedSend = std::function<void(const std::string& bytes)>;
 

@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <chrono>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <map>
@@ -155,7 +156,230 @@ void Run(std::size_t count, int jobs, double seconds_limit, bool silence, const 
   }
 }
 
+// --- Runs of items in one child ---------------------------------------------------------------
+// The child frames what it sends: 'B' + item (8 bytes) when it begins an item, then 'R' + length
+// (8 bytes) + the output, or 'F' if the work threw.
+
+struct ItemRun {
+  std::size_t begin, end;  // items [begin, end)
+  bool alone;              // a crashed item computed again by itself
+};
+
+struct RunWorker {
+  pid_t pid = -1;
+  int fd = -1;
+  ItemRun run{0, 0, false};
+  std::size_t current = 0;   // the item begun last (valid when `busy`)
+  std::size_t reported = 0;  // the items before this one are reported
+  bool busy = false;
+  Clock::time_point item_start, deadline;
+  std::string buffer;  // bytes not yet parsed
+};
+
+void PutU64(std::string& out, std::uint64_t v) {
+  for (int k = 0; k < 8; ++k) out.push_back(static_cast<char>((v >> (8 * k)) & 0xFF));
+}
+std::uint64_t GetU64(const char* p) {
+  std::uint64_t v = 0;
+  for (int k = 7; k >= 0; --k) v = (v << 8) | static_cast<unsigned char>(p[k]);
+  return v;
+}
+
+[[noreturn]] void ServeRun(const std::function<std::string(std::size_t)>& work, const ItemRun& run, int fd) {
+  for (std::size_t i = run.begin; i < run.end; ++i) {
+    std::string frame(1, 'B');
+    PutU64(frame, i);
+    if (!WriteAll(fd, frame.data(), frame.size())) ::_exit(3);
+    std::string out;
+    bool ok = true;
+    try {
+      out = work(i);
+    } catch (...) {
+      ok = false;
+    }
+    frame.assign(1, ok ? 'R' : 'F');
+    if (ok) PutU64(frame, out.size());
+    if (!WriteAll(fd, frame.data(), frame.size()) || !WriteAll(fd, out.data(), out.size())) ::_exit(3);
+  }
+  ::_exit(0);
+}
+
+RunWorker LaunchRun(const std::function<std::string(std::size_t)>& work, const ItemRun& run, double limit) {
+  int fds[2];
+  if (::pipe2(fds, O_CLOEXEC) != 0)
+    throw std::runtime_error(std::string("cannot create a pipe: ") + std::strerror(errno));
+  std::fflush(nullptr);
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    throw std::runtime_error(std::string("cannot start a process: ") + std::strerror(errno));
+  }
+  if (pid == 0) {
+    ::close(fds[0]);
+    ServeRun(work, run, fds[1]);
+  }
+  ::close(fds[1]);
+  RunWorker c;
+  c.pid = pid;
+  c.fd = fds[0];
+  c.run = run;
+  c.current = c.reported = run.begin;
+  c.item_start = Clock::now();
+  c.deadline = c.item_start + std::chrono::milliseconds(static_cast<long long>(limit * 1000));
+  return c;
+}
+
 }  // namespace
+
+void RunIsolatedInRuns(std::size_t count, int jobs, double seconds_limit, std::size_t items_per_child,
+                       const std::function<std::string(std::size_t)>& work,
+                       const std::function<void(std::size_t, IsolatedOutcome&&)>& done) {
+  jobs = std::max(jobs, 1);
+  items_per_child = std::max<std::size_t>(items_per_child, 1);
+  const auto limit = std::chrono::milliseconds(static_cast<long long>(seconds_limit * 1000));
+  std::vector<RunWorker> running;
+  std::vector<ItemRun> pending;  // runs to start before new ones: remainders and crashed items, last first
+  std::map<std::size_t, IsolatedOutcome> finished;
+  std::size_t next = 0, delivered = 0;
+  const std::size_t hold_limit = (64 + items_per_child) * static_cast<std::size_t>(jobs);
+  char buf[65536];
+  struct KillOnExit {
+    std::vector<RunWorker>& running;
+    ~KillOnExit() {
+      for (RunWorker& c : running) {
+        ::kill(c.pid, SIGKILL);
+        ::close(c.fd);
+        while (::waitpid(c.pid, nullptr, 0) < 0 && errno == EINTR) {
+        }
+      }
+    }
+  } guard{running};
+  // Parses the frames a child sent; false if they are malformed.
+  auto parse = [&](RunWorker& c) {
+    for (;;) {
+      if (c.buffer.empty()) return true;
+      const char tag = c.buffer[0];
+      if (tag == 'B') {
+        if (c.buffer.size() < 9) return true;
+        c.current = GetU64(c.buffer.data() + 1);
+        if (c.current < c.run.begin || c.current >= c.run.end) return false;
+        c.busy = true;
+        c.item_start = Clock::now();
+        c.deadline = c.item_start + limit;
+        c.buffer.erase(0, 9);
+      } else if (tag == 'R' || tag == 'F') {
+        std::size_t used = 1;
+        IsolatedOutcome o;
+        if (tag == 'R') {
+          if (c.buffer.size() < 9) return true;
+          const std::uint64_t n = GetU64(c.buffer.data() + 1);
+          if (c.buffer.size() - 9 < n) return true;
+          o.output = c.buffer.substr(9, n);
+          used = 9 + n;
+        } else {
+          o.end = IsolatedEnd::kFailed;
+        }
+        if (!c.busy) return false;
+        o.seconds = std::chrono::duration<double>(Clock::now() - c.item_start).count();
+        finished.emplace(c.current, std::move(o));
+        c.busy = false;
+        c.reported = c.current + 1;
+        c.buffer.erase(0, used);
+      } else {
+        return false;
+      }
+    }
+  };
+  // A child ended (its output closed, or stopped): the item it was on, and the rest of its run.
+  auto end_child = [&](RunWorker& c, bool timed_out) {
+    if (timed_out) ::kill(c.pid, SIGKILL);
+    ::close(c.fd);
+    int status = 0;
+    while (::waitpid(c.pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    std::size_t resume = c.busy ? c.current + 1 : c.run.end;
+    if (!c.busy && c.reported < c.run.end) {
+      // Between items (or before the first): the next item is the one it failed on.
+      c.current = c.reported;
+      c.busy = true;
+      resume = c.current + 1;
+    }
+    if (c.busy) {
+      IsolatedOutcome o;
+      o.seconds = std::chrono::duration<double>(Clock::now() - c.item_start).count();
+      if (timed_out) {
+        o.end = IsolatedEnd::kTimedOut;
+      } else if (WIFSIGNALED(status)) {
+        o.end = IsolatedEnd::kCrashed;
+        o.signal = WTERMSIG(status);
+      } else {
+        o.end = IsolatedEnd::kFailed;
+      }
+      if (o.end == IsolatedEnd::kCrashed && !c.run.alone) {
+        pending.push_back({c.current, c.current + 1, true});  // computed again, alone
+      } else {
+        finished.emplace(c.current, std::move(o));
+      }
+    }
+    if (resume < c.run.end) pending.push_back({resume, c.run.end, c.run.alone});
+  };
+  while (delivered < count) {
+    while (running.size() < static_cast<std::size_t>(jobs) && finished.size() < hold_limit &&
+           (!pending.empty() || next < count)) {
+      ItemRun run;
+      if (!pending.empty()) {
+        run = pending.back();
+        pending.pop_back();
+      } else {
+        // Runs shrink near the end, so the last children finish together.
+        const std::size_t left = count - next;
+        const std::size_t size =
+            std::clamp<std::size_t>(left / (2 * static_cast<std::size_t>(jobs)), 1, items_per_child);
+        run = {next, next + size, false};
+        next += size;
+      }
+      running.push_back(LaunchRun(work, run, seconds_limit));
+    }
+    std::vector<pollfd> pfds;
+    Clock::time_point nearest = Clock::time_point::max();
+    for (const RunWorker& c : running) {
+      pfds.push_back({c.fd, POLLIN, 0});
+      nearest = std::min(nearest, c.deadline);
+    }
+    if (!pfds.empty()) {
+      const auto wait_ms = std::chrono::duration_cast<std::chrono::milliseconds>(nearest - Clock::now()).count();
+      const int r = ::poll(pfds.data(), pfds.size(), static_cast<int>(std::clamp<long long>(wait_ms + 1, 0, 1000)));
+      if (r < 0 && errno != EINTR) throw std::runtime_error(std::string("poll: ") + std::strerror(errno));
+    }
+    const Clock::time_point now = Clock::now();
+    for (std::size_t k = 0; k < running.size();) {
+      RunWorker& c = running[k];
+      bool ended = false, timed_out = false;
+      if (pfds[k].revents & (POLLIN | POLLHUP | POLLERR)) {
+        const ssize_t n = ::read(c.fd, buf, sizeof buf);
+        if (n > 0) {
+          c.buffer.append(buf, static_cast<std::size_t>(n));
+          if (!parse(c)) ended = timed_out = true;  // not our frames (cannot happen): stopped
+        }
+        ended = ended || n == 0 || (n < 0 && errno != EINTR && errno != EAGAIN);
+      }
+      if (!ended && now >= c.deadline) ended = timed_out = true;
+      if (ended) {
+        end_child(c, timed_out);
+        running.erase(running.begin() + static_cast<std::ptrdiff_t>(k));
+        pfds.erase(pfds.begin() + static_cast<std::ptrdiff_t>(k));
+      } else {
+        ++k;
+      }
+    }
+    for (auto it = finished.find(delivered); it != finished.end(); it = finished.find(delivered)) {
+      IsolatedOutcome outcome = std::move(it->second);
+      finished.erase(it);
+      done(delivered++, std::move(outcome));
+    }
+  }
+}
 
 void RunIsolated(std::size_t count, int jobs, double seconds_limit, const std::function<std::string(std::size_t)>& work,
                  const std::function<void(std::size_t, IsolatedOutcome&&)>& done) {
