@@ -11,6 +11,7 @@
 #include <cstring>
 #include <map>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include <fcntl.h>
@@ -56,7 +57,10 @@ using StreamingWork = std::function<void(std::size_t, const IsolatedSend&)>;
   ::_exit(code);
 }
 
-Child Launch(const StreamingWork& work, std::size_t i, double limit) {
+// Forks a child that runs `body(fd)` (it must not return) with the write end of a new pipe; returns
+// its pid and the read end.
+template <typename Body>
+std::pair<pid_t, int> ForkWithPipe(const Body& body) {
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0)
     throw std::runtime_error(std::string("cannot create a pipe: ") + std::strerror(errno));
@@ -69,11 +73,17 @@ Child Launch(const StreamingWork& work, std::size_t i, double limit) {
   }
   if (pid == 0) {
     ::close(fds[0]);
-    RunChild(work, i, fds[1]);
+    body(fds[1]);
+    ::_exit(5);  // not reached: the bodies exit
   }
   ::close(fds[1]);
+  return {pid, fds[0]};
+}
+
+Child Launch(const StreamingWork& work, std::size_t i, double limit) {
+  const auto [pid, fd] = ForkWithPipe([&](int out) { RunChild(work, i, out); });
   const Clock::time_point now = Clock::now();
-  return {i, pid, fds[0], now, now + std::chrono::milliseconds(static_cast<long long>(limit * 1000)), {}};
+  return {i, pid, fd, now, now + std::chrono::milliseconds(static_cast<long long>(limit * 1000)), {}};
 }
 
 IsolatedOutcome Reap(Child& c, bool timed_out) {
@@ -96,6 +106,44 @@ IsolatedOutcome Reap(Child& c, bool timed_out) {
   return out;
 }
 
+// Waits for output, an end of output or the nearest deadline of the running children (each with
+// `fd` and `deadline`), then hands each child's new bytes to `on_bytes(child, bytes, n)` (false:
+// stop it) and each child that ended — output closed, stopped, or past its deadline — to
+// `on_end(child, timed_out)`, removing it from `running`.
+template <typename C, typename OnBytes, typename OnEnd>
+void PollChildren(std::vector<C>& running, const OnBytes& on_bytes, const OnEnd& on_end) {
+  std::vector<pollfd> pfds;
+  Clock::time_point nearest = Clock::time_point::max();
+  for (const C& c : running) {
+    pfds.push_back({c.fd, POLLIN, 0});
+    nearest = std::min(nearest, c.deadline);
+  }
+  if (!pfds.empty()) {
+    const auto wait_ms = std::chrono::duration_cast<std::chrono::milliseconds>(nearest - Clock::now()).count();
+    const int r = ::poll(pfds.data(), pfds.size(), static_cast<int>(std::clamp<long long>(wait_ms + 1, 0, 1000)));
+    if (r < 0 && errno != EINTR) throw std::runtime_error(std::string("poll: ") + std::strerror(errno));
+  }
+  char buf[65536];
+  const Clock::time_point now = Clock::now();
+  for (std::size_t k = 0; k < running.size();) {
+    C& c = running[k];
+    bool ended = false, timed_out = false;
+    if (pfds[k].revents & (POLLIN | POLLHUP | POLLERR)) {
+      const ssize_t n = ::read(c.fd, buf, sizeof buf);
+      if (n > 0 && !on_bytes(c, buf, static_cast<std::size_t>(n))) ended = timed_out = true;
+      ended = ended || n == 0 || (n < 0 && errno != EINTR && errno != EAGAIN);
+    }
+    if (!ended && now >= c.deadline) ended = timed_out = true;
+    if (ended) {
+      on_end(c, timed_out);
+      running.erase(running.begin() + static_cast<std::ptrdiff_t>(k));
+      pfds.erase(pfds.begin() + static_cast<std::ptrdiff_t>(k));
+    } else {
+      ++k;
+    }
+  }
+}
+
 void Run(std::size_t count, int jobs, double seconds_limit, bool silence, const StreamingWork& work,
          const std::function<void(std::size_t, IsolatedOutcome&&)>& done) {
   jobs = std::max(jobs, 1);
@@ -103,7 +151,6 @@ void Run(std::size_t count, int jobs, double seconds_limit, bool silence, const 
   std::map<std::size_t, IsolatedOutcome> finished;  // waiting for the items before them
   std::size_t next = 0, delivered = 0;
   const std::size_t hold_limit = 64 * static_cast<std::size_t>(jobs);  // bounds the memory held back
-  char buf[65536];
   struct KillOnExit {  // if `done` or a launch throws, no child outlives the call
     std::vector<Child>& running;
     ~KillOnExit() {
@@ -114,40 +161,15 @@ void Run(std::size_t count, int jobs, double seconds_limit, bool silence, const 
     while (running.size() < static_cast<std::size_t>(jobs) && next < count && finished.size() < hold_limit) {
       running.push_back(Launch(work, next++, seconds_limit));
     }
-    // Wait for output, an end of output, or the nearest deadline.
-    std::vector<pollfd> pfds;
-    Clock::time_point nearest = Clock::time_point::max();
-    for (const Child& c : running) {
-      pfds.push_back({c.fd, POLLIN, 0});
-      nearest = std::min(nearest, c.deadline);
-    }
-    const auto wait_ms = std::chrono::duration_cast<std::chrono::milliseconds>(nearest - Clock::now()).count();
-    if (!pfds.empty()) {
-      const int r = ::poll(pfds.data(), pfds.size(), static_cast<int>(std::clamp<long long>(wait_ms + 1, 0, 1000)));
-      if (r < 0 && errno != EINTR) throw std::runtime_error(std::string("poll: ") + std::strerror(errno));
-    }
-    const Clock::time_point now = Clock::now();
-    for (std::size_t k = 0; k < running.size();) {
-      Child& c = running[k];
-      bool ended = false, timed_out = false;
-      if (pfds[k].revents & (POLLIN | POLLHUP | POLLERR)) {
-        const ssize_t n = ::read(c.fd, buf, sizeof buf);
-        if (n > 0) {
-          c.output.append(buf, static_cast<std::size_t>(n));
+    PollChildren(
+        running,
+        [&](Child& c, const char* bytes, std::size_t n) {
+          c.output.append(bytes, n);
           if (silence)
             c.deadline = Clock::now() + std::chrono::milliseconds(static_cast<long long>(seconds_limit * 1000));
-        }
-        ended = n == 0 || (n < 0 && errno != EINTR && errno != EAGAIN);
-      }
-      if (!ended && now >= c.deadline) ended = timed_out = true;
-      if (ended) {
-        finished.emplace(c.index, Reap(c, timed_out));
-        running.erase(running.begin() + static_cast<std::ptrdiff_t>(k));
-        pfds.erase(pfds.begin() + static_cast<std::ptrdiff_t>(k));
-      } else {
-        ++k;
-      }
-    }
+          return true;
+        },
+        [&](Child& c, bool timed_out) { finished.emplace(c.index, Reap(c, timed_out)); });
     for (auto it = finished.find(delivered); it != finished.end(); it = finished.find(delivered)) {
       IsolatedOutcome outcome = std::move(it->second);
       finished.erase(it);
@@ -205,24 +227,10 @@ std::uint64_t GetU64(const char* p) {
 }
 
 RunWorker LaunchRun(const std::function<std::string(std::size_t)>& work, const ItemRun& run, double limit) {
-  int fds[2];
-  if (::pipe2(fds, O_CLOEXEC) != 0)
-    throw std::runtime_error(std::string("cannot create a pipe: ") + std::strerror(errno));
-  std::fflush(nullptr);
-  const pid_t pid = ::fork();
-  if (pid < 0) {
-    ::close(fds[0]);
-    ::close(fds[1]);
-    throw std::runtime_error(std::string("cannot start a process: ") + std::strerror(errno));
-  }
-  if (pid == 0) {
-    ::close(fds[0]);
-    ServeRun(work, run, fds[1]);
-  }
-  ::close(fds[1]);
+  const auto [pid, fd] = ForkWithPipe([&](int out) { ServeRun(work, run, out); });
   RunWorker c;
   c.pid = pid;
-  c.fd = fds[0];
+  c.fd = fd;
   c.run = run;
   c.current = c.reported = run.begin;
   c.item_start = Clock::now();
@@ -243,7 +251,6 @@ void RunIsolatedInRuns(std::size_t count, int jobs, double seconds_limit, std::s
   std::map<std::size_t, IsolatedOutcome> finished;
   std::size_t next = 0, delivered = 0;
   const std::size_t hold_limit = (64 + items_per_child) * static_cast<std::size_t>(jobs);
-  char buf[65536];
   struct KillOnExit {
     std::vector<RunWorker>& running;
     ~KillOnExit() {
@@ -341,38 +348,13 @@ void RunIsolatedInRuns(std::size_t count, int jobs, double seconds_limit, std::s
       }
       running.push_back(LaunchRun(work, run, seconds_limit));
     }
-    std::vector<pollfd> pfds;
-    Clock::time_point nearest = Clock::time_point::max();
-    for (const RunWorker& c : running) {
-      pfds.push_back({c.fd, POLLIN, 0});
-      nearest = std::min(nearest, c.deadline);
-    }
-    if (!pfds.empty()) {
-      const auto wait_ms = std::chrono::duration_cast<std::chrono::milliseconds>(nearest - Clock::now()).count();
-      const int r = ::poll(pfds.data(), pfds.size(), static_cast<int>(std::clamp<long long>(wait_ms + 1, 0, 1000)));
-      if (r < 0 && errno != EINTR) throw std::runtime_error(std::string("poll: ") + std::strerror(errno));
-    }
-    const Clock::time_point now = Clock::now();
-    for (std::size_t k = 0; k < running.size();) {
-      RunWorker& c = running[k];
-      bool ended = false, timed_out = false;
-      if (pfds[k].revents & (POLLIN | POLLHUP | POLLERR)) {
-        const ssize_t n = ::read(c.fd, buf, sizeof buf);
-        if (n > 0) {
-          c.buffer.append(buf, static_cast<std::size_t>(n));
-          if (!parse(c)) ended = timed_out = true;  // not our frames (cannot happen): stopped
-        }
-        ended = ended || n == 0 || (n < 0 && errno != EINTR && errno != EAGAIN);
-      }
-      if (!ended && now >= c.deadline) ended = timed_out = true;
-      if (ended) {
-        end_child(c, timed_out);
-        running.erase(running.begin() + static_cast<std::ptrdiff_t>(k));
-        pfds.erase(pfds.begin() + static_cast<std::ptrdiff_t>(k));
-      } else {
-        ++k;
-      }
-    }
+    PollChildren(
+        running,
+        [&](RunWorker& c, const char* bytes, std::size_t n) {
+          c.buffer.append(bytes, n);
+          return parse(c);  // not our frames (cannot happen): stopped
+        },
+        end_child);
     for (auto it = finished.find(delivered); it != finished.end(); it = finished.find(delivered)) {
       IsolatedOutcome outcome = std::move(it->second);
       finished.erase(it);
