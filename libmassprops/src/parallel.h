@@ -56,6 +56,16 @@ void ParallelForBlocks(std::int64_t num_blocks, int num_threads, const BlockFn& 
   if (error) std::rethrow_exception(error);
 }
 
+/// This thread's T, made on first use and kept for the thread's life: per-thread scratch reused
+/// block after block (one T per thread: give each use its own type). Out of line on purpose: in a shared library a
+/// thread_local named inside a hot loop is looked up again (__tls_get_addr) at every use; the reference this returns is
+/// not.
+template <typename T>
+[[gnu::noinline]] T& ThreadScratch() {
+  thread_local T scratch;
+  return scratch;
+}
+
 /// Adds partial results pairwise in a fixed tree (error grows as log2 of the count).
 template <typename T>
 T PairwiseSum(std::vector<T>& parts) {

@@ -2,25 +2,16 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cmath>
 #include <cstring>
 
 #include "parallel.h"
 
 namespace massprops::internal {
-
 namespace {
 
-struct BucketScratch {
-  std::vector<std::uint64_t> table;
+struct BucketTable {
+  std::vector<std::uint64_t> slots;
 };
-
-// Out of line: a thread_local of a shared library used in a loop is looked up (__tls_get_addr)
-// at every use.
-[[gnu::noinline]] BucketScratch& LocalScratch() {
-  thread_local BucketScratch scratch;
-  return scratch;
-}
 
 }  // namespace
 
@@ -52,7 +43,7 @@ bool FaceKeyBuckets::AnyRepeated(int num_threads) const {
   std::atomic<bool> repeated{false};
   const auto runs = static_cast<std::int64_t>((buckets_ + kRun - 1) / kRun);
   ParallelForBlocks(runs, num_threads, [&](std::int64_t run) {
-    std::vector<std::uint64_t>& table = LocalScratch().table;
+    std::vector<std::uint64_t>& table = ThreadScratch<BucketTable>().slots;
     for (std::size_t b = static_cast<std::size_t>(run) * kRun; b < std::min(buckets_, (run + 1) * kRun); ++b) {
       if (repeated.load(std::memory_order_relaxed)) return;
       std::size_t total = 0;

@@ -1,31 +1,8 @@
 #include "soup_shells.h"
 
 #include <algorithm>
-#include <utility>
 
 namespace massprops::internal {
-namespace {
-
-std::uint32_t Find(std::uint32_t* parent, std::uint32_t x) {
-  while (parent[x] != x) {
-    parent[x] = parent[parent[x]];  // path halving
-    x = parent[x];
-  }
-  return x;
-}
-
-bool Join(std::uint32_t* parent, std::uint32_t a, std::uint32_t b) {
-  a = Find(parent, a);
-  b = Find(parent, b);
-  if (a == b) return false;
-  if (a < b) std::swap(a, b);
-  parent[a] = b;  // the smaller index is the root
-  return true;
-}
-
-inline std::size_t Slot(std::uint64_t h, std::size_t mask) { return static_cast<std::size_t>(h ^ (h >> 29)) & mask; }
-
-}  // namespace
 
 void GroupJoiner::Begin(int triangles) {
   std::size_t slots = 64;
@@ -45,7 +22,7 @@ void GroupJoiner::Grow() {
   table_.assign(2 * table_.size(), 0);
   mask_ = table_.size() - 1;
   for (std::size_t id = 0; id < hash_.size(); ++id) {
-    std::size_t at = Slot(hash_[id]) & mask_;
+    std::size_t at = Slot(hash_[id], mask_);
     while (table_[at] != 0) at = (at + 1) & mask_;
     table_[at] = static_cast<std::uint32_t>(id + 1);
   }
@@ -58,7 +35,7 @@ void GroupJoiner::Finish(BlockPieces& out) {
   std::uint32_t pieces = 0;
   out.open.clear();
   for (std::size_t u = 0; u < unique; ++u) {
-    const std::uint32_t r = Find(static_cast<std::uint32_t>(u));
+    const std::uint32_t r = Find(parent_.data(), static_cast<std::uint32_t>(u));
     piece_[u] = r == u ? pieces++ : piece_[r];
     if (fan_[u] != 0) out.open.push_back({hash_[u], fan_[u], piece_[u]});
   }

@@ -12,9 +12,32 @@
 #include <cstring>
 #include <map>
 #include <mutex>
+#include <utility>
 #include <vector>
 
 namespace massprops::internal {
+
+/// Union–find over corner or piece numbers, for the groups and their merge alike.
+inline std::uint32_t Find(std::uint32_t* parent, std::uint32_t x) {
+  while (parent[x] != x) {
+    parent[x] = parent[parent[x]];  // path halving
+    x = parent[x];
+  }
+  return x;
+}
+
+/// Joins the sets of a and b, the smaller root staying the root; false if they were one already.
+inline bool Join(std::uint32_t* parent, std::uint32_t a, std::uint32_t b) {
+  a = Find(parent, a);
+  b = Find(parent, b);
+  if (a == b) return false;
+  if (a < b) std::swap(a, b);
+  parent[a] = b;
+  return true;
+}
+
+/// A corner hash's slot in a table of mask + 1 slots (a power of two).
+inline std::size_t Slot(std::uint64_t h, std::size_t mask) { return static_cast<std::size_t>(h ^ (h >> 29)) & mask; }
 
 /// What one group hands on: its pieces (connected sets of its triangles) and its open corners.
 struct BlockPieces {
@@ -35,8 +58,8 @@ class GroupJoiner {
   /// One triangle, by its corners' hashes in order.
   void Add(std::uint64_t a, std::uint64_t b, std::uint64_t c) {
     const std::uint32_t ia = Id(a), ib = Id(b), ic = Id(c);
-    Join(ia, ib);
-    Join(ia, ic);
+    Join(parent_.data(), ia, ib);
+    Join(parent_.data(), ia, ic);
     // Around each corner, the next corner counted +, the previous −: a closed fan sums to 0.
     fan_[ia] += b - c;
     fan_[ib] += c - a;
@@ -46,13 +69,13 @@ class GroupJoiner {
   void AddAll(const std::uint64_t* hash, int triangles) {
     constexpr int kAhead = 8;
     const int corners = 3 * triangles;
-    for (int i = 0; i < std::min(corners, 3 * kAhead); ++i) __builtin_prefetch(&table_[Slot(hash[i]) & mask_]);
+    for (int i = 0; i < std::min(corners, 3 * kAhead); ++i) __builtin_prefetch(&table_[Slot(hash[i], mask_)]);
     for (int t = 0; t < triangles; ++t) {
       if (t + kAhead < triangles) {
         const std::uint64_t* ahead = hash + 3 * (t + kAhead);
-        __builtin_prefetch(&table_[Slot(ahead[0]) & mask_]);
-        __builtin_prefetch(&table_[Slot(ahead[1]) & mask_]);
-        __builtin_prefetch(&table_[Slot(ahead[2]) & mask_]);
+        __builtin_prefetch(&table_[Slot(ahead[0], mask_)]);
+        __builtin_prefetch(&table_[Slot(ahead[1], mask_)]);
+        __builtin_prefetch(&table_[Slot(ahead[2], mask_)]);
       }
       Add(hash[3 * t], hash[3 * t + 1], hash[3 * t + 2]);
     }
@@ -61,7 +84,6 @@ class GroupJoiner {
   void Finish(BlockPieces& out);
 
  private:
-  static std::size_t Slot(std::uint64_t h) { return static_cast<std::size_t>(h ^ (h >> 29)); }
   std::uint32_t Id(std::uint64_t h) {
     // Files list triangles in strips and patches: most corners were among the last few seen.
     for (int k = 0; k < kRecent; ++k) {
@@ -74,7 +96,7 @@ class GroupJoiner {
     return id;
   }
   std::uint32_t Lookup(std::uint64_t h) {
-    std::size_t at = Slot(h) & mask_;
+    std::size_t at = Slot(h, mask_);
     for (std::uint32_t s; (s = table_[at]) != 0; at = (at + 1) & mask_) {
       if (hash_[s - 1] == h) return s - 1;
     }
@@ -85,22 +107,6 @@ class GroupJoiner {
     fan_.push_back(0);
     if (2 * hash_.size() > table_.size()) Grow();
     return id;
-  }
-  std::uint32_t Find(std::uint32_t x) {
-    while (parent_[x] != x) {
-      parent_[x] = parent_[parent_[x]];  // path halving
-      x = parent_[x];
-    }
-    return x;
-  }
-  void Join(std::uint32_t a, std::uint32_t b) {
-    a = Find(a);
-    b = Find(b);
-    if (a == b) return;
-    if (a < b)
-      parent_[b] = a;  // the smaller index is the root
-    else
-      parent_[a] = b;
   }
   void Grow();
 

@@ -97,11 +97,7 @@ SoupIntegrals Integrate(const Fetch& fetch, std::int64_t count, std::size_t stri
       std::vector<std::uint32_t> face_counts;
       std::uint64_t corner_hash[3 * internal::kBatch];
     };
-    // Held through a pointer: a reference to a thread_local in a shared library is looked up
-    // again (__tls_get_addr) at every use in the loop below.
-    thread_local std::unique_ptr<Scratch> scratch;
-    if (!scratch) scratch = std::make_unique<Scratch>();
-    Scratch& s = *scratch;
+    Scratch& s = internal::ThreadScratch<Scratch>();
     const std::int64_t group_begin = group * kGroup;
     const auto group_size = static_cast<int>(std::min(count, group_begin + kGroup) - group_begin);
     s.joiner.Begin(group_size);

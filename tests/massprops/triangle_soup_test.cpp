@@ -53,6 +53,24 @@ TriangleMesh OffsetTorus() {
   return m;
 }
 
+// m with face f appended once more at the end (and reversed after it, if asked).
+TriangleMesh WithFaceAgain(const TriangleMesh& m, Eigen::Index f, bool reversed_too) {
+  TriangleMesh out = m;
+  out.F.conservativeResize(m.F.rows() + (reversed_too ? 2 : 1), 3);
+  out.F.row(m.F.rows()) = m.F.row(f);
+  if (reversed_too) out.F.row(m.F.rows() + 1) << m.F(f, 0), m.F(f, 2), m.F(f, 1);
+  return out;
+}
+
+// m's faces, then all of them again.
+TriangleMesh SurfaceTwice(const TriangleMesh& m) {
+  TriangleMesh out;
+  out.V = m.V;
+  out.F.resize(2 * m.F.rows(), 3);
+  out.F << m.F, m.F;
+  return out;
+}
+
 TEST(TriangleSoup, EqualsTheIndexedPathOnTheSameFile) {
   const std::string path = ::testing::TempDir() + "torus.stl";
   std::ofstream(path, std::ios::binary) << StlBytes(OffsetTorus());
@@ -135,22 +153,11 @@ TEST(TriangleSoup, StreamingCheckFindsHolesAndFlippedFaces) {
 TEST(TriangleSoup, RepeatedFacesAreFound) {
   const TriangleMesh m = OffsetTorus();
   EXPECT_FALSE(Soup(StlBytes(m)).repeated_faces);
-  auto with_extra = [&](bool reversed_too) {
-    TriangleMesh out = m;
-    out.F.conservativeResize(m.F.rows() + (reversed_too ? 2 : 1), 3);
-    out.F.row(m.F.rows()) = m.F.row(321);
-    if (reversed_too) out.F.row(m.F.rows() + 1) << m.F(321, 0), m.F(321, 2), m.F(321, 1);
-    return Soup(StlBytes(out));
-  };
-  EXPECT_TRUE(with_extra(false).repeated_faces);
-  const SoupIntegrals patch = with_extra(true);
+  EXPECT_TRUE(Soup(StlBytes(WithFaceAgain(m, 321, false))).repeated_faces);
+  const SoupIntegrals patch = Soup(StlBytes(WithFaceAgain(m, 321, true)));
   EXPECT_TRUE(patch.IsClosedCycle());
   EXPECT_TRUE(patch.repeated_faces);
-  TriangleMesh copy;
-  copy.V = m.V;
-  copy.F.resize(2 * m.F.rows(), 3);
-  copy.F << m.F, m.F;
-  const SoupIntegrals c = Soup(StlBytes(copy), 2);
+  const SoupIntegrals c = Soup(StlBytes(SurfaceTwice(m)), 2);
   EXPECT_TRUE(c.IsClosedCycle());
   EXPECT_TRUE(c.repeated_faces);
 }
@@ -164,17 +171,11 @@ TEST(TriangleSoup, RepeatedFacesAndShellsAcrossGroups) {
   const SoupIntegrals once = Soup(StlBytes(m), 2);
   EXPECT_FALSE(once.repeated_faces);
   EXPECT_EQ(once.shells, 1);
-  TriangleMesh far = m;
-  far.F.conservativeResize(m.F.rows() + 2, 3);
-  far.F.row(m.F.rows()) = m.F.row(7);  // group 0's face, again in group 2, in both orientations
-  far.F.row(m.F.rows() + 1) << m.F(7, 0), m.F(7, 2), m.F(7, 1);
-  const SoupIntegrals f = Soup(StlBytes(far), 2);
+  // Group 0's face 7, again in group 2, in both orientations.
+  const SoupIntegrals f = Soup(StlBytes(WithFaceAgain(m, 7, true)), 2);
   EXPECT_TRUE(f.IsClosedCycle());
   EXPECT_TRUE(f.repeated_faces);
-  TriangleMesh twice;
-  twice.V = m.V;
-  twice.F.resize(2 * m.F.rows(), 3);
-  twice.F << m.F, m.F;
+  const TriangleMesh twice = SurfaceTwice(m);
   EXPECT_TRUE(Soup(StlBytes(twice), 1).repeated_faces);
   EXPECT_TRUE(Soup(StlBytes(twice), 2).repeated_faces);
 

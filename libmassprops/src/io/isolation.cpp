@@ -86,24 +86,42 @@ Child Launch(const StreamingWork& work, std::size_t i, double limit) {
   return {i, pid, fd, now, now + std::chrono::milliseconds(static_cast<long long>(limit * 1000)), {}};
 }
 
-IsolatedOutcome Reap(Child& c, bool timed_out) {
-  if (timed_out) ::kill(c.pid, SIGKILL);
-  ::close(c.fd);
+// Closes a child's pipe and waits for it, killing it first if asked; its wait status.
+int EndProcess(pid_t pid, int fd, bool kill) {
+  if (kill) ::kill(pid, SIGKILL);
+  ::close(fd);
   int status = 0;
-  while (::waitpid(c.pid, &status, 0) < 0 && errno == EINTR) {
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
+  return status;
+}
+
+// How a child ended, from its wait status (or the time limit).
+IsolatedEnd EndOf(int status, bool timed_out) {
+  if (timed_out) return IsolatedEnd::kTimedOut;
+  if (WIFSIGNALED(status)) return IsolatedEnd::kCrashed;
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return IsolatedEnd::kFailed;
+  return IsolatedEnd::kFinished;
+}
+
+IsolatedOutcome Reap(Child& c, bool timed_out) {
+  const int status = EndProcess(c.pid, c.fd, timed_out);
   IsolatedOutcome out;
   out.seconds = std::chrono::duration<double>(Clock::now() - c.start).count();
-  if (timed_out) {
-    out.end = IsolatedEnd::kTimedOut;
-  } else if (WIFSIGNALED(status)) {
-    out.end = IsolatedEnd::kCrashed;
-    out.signal = WTERMSIG(status);
-  } else if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    out.end = IsolatedEnd::kFailed;
-  }
+  out.end = EndOf(status, timed_out);
+  if (out.end == IsolatedEnd::kCrashed) out.signal = WTERMSIG(status);
   out.output = std::move(c.output);
   return out;
+}
+
+// Hands on, in order of item, the outcomes ready from `delivered` on.
+void DeliverReady(std::map<std::size_t, IsolatedOutcome>& finished, std::size_t& delivered,
+                  const std::function<void(std::size_t, IsolatedOutcome&&)>& done) {
+  for (auto it = finished.find(delivered); it != finished.end(); it = finished.find(delivered)) {
+    IsolatedOutcome outcome = std::move(it->second);
+    finished.erase(it);
+    done(delivered++, std::move(outcome));
+  }
 }
 
 // Waits for output, an end of output or the nearest deadline of the running children (each with
@@ -170,11 +188,7 @@ void Run(std::size_t count, int jobs, double seconds_limit, bool silence, const 
           return true;
         },
         [&](Child& c, bool timed_out) { finished.emplace(c.index, Reap(c, timed_out)); });
-    for (auto it = finished.find(delivered); it != finished.end(); it = finished.find(delivered)) {
-      IsolatedOutcome outcome = std::move(it->second);
-      finished.erase(it);
-      done(delivered++, std::move(outcome));
-    }
+    DeliverReady(finished, delivered, done);
   }
 }
 
@@ -254,12 +268,7 @@ void RunIsolatedInRuns(std::size_t count, int jobs, double seconds_limit, std::s
   struct KillOnExit {
     std::vector<RunWorker>& running;
     ~KillOnExit() {
-      for (RunWorker& c : running) {
-        ::kill(c.pid, SIGKILL);
-        ::close(c.fd);
-        while (::waitpid(c.pid, nullptr, 0) < 0 && errno == EINTR) {
-        }
-      }
+      for (RunWorker& c : running) EndProcess(c.pid, c.fd, true);
     }
   } guard{running};
   // Parses the frames a child sent; false if they are malformed.
@@ -300,11 +309,7 @@ void RunIsolatedInRuns(std::size_t count, int jobs, double seconds_limit, std::s
   };
   // A child ended (its output closed, or stopped): the item it was on, and the rest of its run.
   auto end_child = [&](RunWorker& c, bool timed_out) {
-    if (timed_out) ::kill(c.pid, SIGKILL);
-    ::close(c.fd);
-    int status = 0;
-    while (::waitpid(c.pid, &status, 0) < 0 && errno == EINTR) {
-    }
+    const int status = EndProcess(c.pid, c.fd, timed_out);
     std::size_t resume = c.busy ? c.current + 1 : c.run.end;
     if (!c.busy && c.reported < c.run.end) {
       // Between items (or before the first): the next item is the one it failed on.
@@ -315,14 +320,9 @@ void RunIsolatedInRuns(std::size_t count, int jobs, double seconds_limit, std::s
     if (c.busy) {
       IsolatedOutcome o;
       o.seconds = std::chrono::duration<double>(Clock::now() - c.item_start).count();
-      if (timed_out) {
-        o.end = IsolatedEnd::kTimedOut;
-      } else if (WIFSIGNALED(status)) {
-        o.end = IsolatedEnd::kCrashed;
-        o.signal = WTERMSIG(status);
-      } else {
-        o.end = IsolatedEnd::kFailed;
-      }
+      o.end = EndOf(status, timed_out);
+      if (o.end == IsolatedEnd::kCrashed) o.signal = WTERMSIG(status);
+      if (o.end == IsolatedEnd::kFinished) o.end = IsolatedEnd::kFailed;  // it exited without reporting the item
       if (o.end == IsolatedEnd::kCrashed && !c.run.alone) {
         pending.push_back({c.current, c.current + 1, true});  // computed again, alone
       } else {
@@ -355,11 +355,7 @@ void RunIsolatedInRuns(std::size_t count, int jobs, double seconds_limit, std::s
           return parse(c);  // not our frames (cannot happen): stopped
         },
         end_child);
-    for (auto it = finished.find(delivered); it != finished.end(); it = finished.find(delivered)) {
-      IsolatedOutcome outcome = std::move(it->second);
-      finished.erase(it);
-      done(delivered++, std::move(outcome));
-    }
+    DeliverReady(finished, delivered, done);
   }
 }
 
