@@ -10,6 +10,7 @@ PACKAGES=(
   libcli11-dev nlohmann-json3-dev libtbb-dev libfast-float-dev
   python3-dev python3-numpy python3-pytest pybind11-dev python3-stl python3-distributed python3-pandas
   python3-venv python3-pip python3-setuptools python3-wheel python3-mypy
+  librsvg2-dev chromium
   libocct-data-exchange-dev libocct-modeling-algorithms-dev libocct-ocaf-dev
   libpugixml-dev liburdfdom-dev liburdfdom-tools libsdformat-dev libmujoco-dev libbullet-dev
   clang-14 libclang-rt-14-dev clang-format-14

@@ -22,6 +22,7 @@
 #include "massprops/report/atomic_file.h"
 #include "massprops/report/density_map.h"
 #include "massprops/report/format.h"
+#include "massprops/report/picture.h"
 #include "massprops/version.h"
 #include "progress.h"
 
@@ -37,12 +38,30 @@ int ComputeMain(int argc, char** argv) {
   app.set_version_flag("--version", std::string("massprops ") + kVersion);
   Arguments a;
   AddArguments(app, a);
+  std::string picture;
+  app.add_option("--picture", picture,
+                 "Draw the result into this picture (.svg or .png, by the extension): four views, the center of "
+                 "mass, the principal axes, the equivalent-inertia ellipsoid, the bounding box; one input");
   if (const int status = app::ParseArguments(app, argc, argv); status >= 0) return status;
   auto bad = [](const std::string& what) {
     std::cerr << "error: " << massprops::app::OneLine(what) << "\n";
     return app::kBadArguments;
   };
   if (const auto error = CheckArguments(a, app)) return bad(*error);
+  if (!picture.empty()) {
+    if (a.files.size() + (a.implicit.empty() ? 0 : 1) != 1) {
+      return bad("--picture draws one input; for several, massprops batch ... --pictures DIR");
+    }
+    try {
+      report::PictureFormatOf(picture);
+      report::CheckOutputPath(picture, a.files);
+      if (report::PictureFormatOf(picture) == report::PictureFormat::kPng && !report::CanRasterize()) {
+        return bad("--picture: this build has no librsvg for PNG; write .svg");
+      }
+    } catch (const std::exception& e) {
+      return bad(std::string("--picture: ") + e.what());
+    }
+  }
 
   report::FormatOptions format;
   format.format = FromName<report::Format>({{"table", report::Format::kTable},
@@ -55,6 +74,7 @@ int ComputeMain(int argc, char** argv) {
   format.frame = a.frame == "origin" ? report::Frame::kOrigin : report::Frame::kCenterOfMass;
   format.json_array = a.files.size() + (a.implicit.empty() ? 0 : 1) > 1;
   LoadOptions options = ToLoadOptions(a, app);
+  if (!picture.empty()) options.full_check = true;  // the streamed STL pass keeps no surface to draw
   if (!a.density_map.empty()) {
     try {
       options.part_masses = report::ReadDensityMap(a.density_map);
@@ -184,6 +204,16 @@ int ComputeMain(int argc, char** argv) {
   }
   if (!results.empty()) {
     if (format.format == report::Format::kCsv) text = FormatCsv(results, format);
+  }
+  if (!picture.empty() && !results.empty()) {
+    try {
+      report::PictureOptions p;
+      p.units = format.units;
+      report::WritePicture(picture, results.front(), p);
+    } catch (const std::exception& e) {
+      std::cerr << "error: --picture: " << massprops::app::OneLine(e.what()) << "\n";
+      return 1;
+    }
   }
   if (!a.output.empty()) {
     try {
