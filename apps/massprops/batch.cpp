@@ -237,6 +237,24 @@ int RunBatch(const BatchOptions& b) {
               << std::strerror(errno) << ")\n";
     return 1;
   }
+  // Each file's picture: its stem, with its index where stems repeat.
+  std::vector<std::string> pictures;
+  if (!b.pictures.empty()) {
+    try {
+      fs::create_directories(b.pictures);
+    } catch (const std::exception& e) {
+      ::close(fd);
+      std::cerr << "error: --pictures: " << massprops::app::OneLine(e.what()) << "\n";
+      return 1;
+    }
+    std::map<std::string, int> stems;
+    for (const std::string& f : all) ++stems[fs::path(f).stem().string()];
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      const std::string stem = fs::path(all[i]).stem().string();
+      pictures.push_back((fs::path(b.pictures) / (stems[stem] > 1 ? stem + "-" + std::to_string(i) : stem)).string() +
+                         b.picture_extension);
+    }
+  }
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   const int jobs = b.jobs > 0 ? b.jobs : static_cast<int>(cores);
   LoadOptions load = b.load;
@@ -250,7 +268,9 @@ int RunBatch(const BatchOptions& b) {
     // or a timeout still ends only the file it happened on.
     RunIsolatedInRuns(
         todo.size(), jobs, b.timeout_seconds, kFilesPerProcess,
-        [&](std::size_t k) { return ComputeRecord(all[todo[k]], todo[k], all.size(), load); },
+        [&](std::size_t k) {
+          return ComputeRecord(all[todo[k]], todo[k], all.size(), load, pictures.empty() ? "" : pictures[todo[k]]);
+        },
         [&](std::size_t k, IsolatedOutcome&& o) {
           const std::size_t i = todo[k];
           const Json rec = Json::parse(RecordOf(all[i], i, all.size(), std::move(o), b.timeout_seconds));

@@ -22,6 +22,9 @@ struct BatchOptions {
   bool summary_json = false;  ///< print the summary as JSON on stdout
   bool quiet = false;
   bool threads_given = false;
+  /// A folder for each file's picture (created if missing; empty: none), and their format.
+  std::string pictures;
+  std::string picture_extension = ".svg";
   LoadOptions load;
 };
 

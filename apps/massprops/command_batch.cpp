@@ -2,6 +2,7 @@
 // mesh file of a folder or manifest in child processes (runs of files; a crash ends only its
 // file), one JSON line each (batch.cpp runs it).
 
+#include <filesystem>
 #include <iostream>
 #include <string>
 
@@ -13,6 +14,7 @@
 #include "commands.h"
 #include "massprops/report/atomic_file.h"
 #include "massprops/report/density_map.h"
+#include "massprops/report/picture.h"
 #include "massprops/version.h"
 
 namespace massprops::cli {
@@ -33,6 +35,11 @@ int BatchMain(int argc, char** argv) {
       ->check(app::Positive())
       ->capture_default_str();
   app.add_flag("--summary", b.summary_json, "Print the summary as JSON on stdout");
+  std::string picture_format = "svg";
+  app.add_option("--pictures", b.pictures,
+                 "Draw each file's result into this folder (as massprops --picture): STEM.svg, or STEM-INDEX.svg "
+                 "where stems repeat; each record names its picture");
+  app.add_option("--picture-format", picture_format, "Pictures as svg or png")->check(CLI::IsMember({"svg", "png"}));
   AddArguments(app, a);
   if (const int status = app::ParseArguments(app, argc, argv); status >= 0) return status;
   auto bad = [](const std::string& what) {
@@ -53,11 +60,21 @@ int BatchMain(int argc, char** argv) {
       return bad(e.what());
     }
   }
+  if (!b.pictures.empty()) {
+    if (picture_format == "png" && !report::CanRasterize())
+      return bad("--picture-format png: this build has no librsvg");
+    std::error_code ec;
+    if (std::filesystem::exists(b.pictures, ec) && !std::filesystem::is_directory(b.pictures, ec)) {
+      return bad("--pictures: '" + b.pictures + "' exists and is not a folder");
+    }
+    b.picture_extension = "." + picture_format;
+  }
   b.input = a.files[0];
   b.output = a.output;
   b.quiet = a.quiet;
   b.threads_given = app.count("--threads") > 0;
   b.load = ToLoadOptions(a, app);
+  if (!b.pictures.empty()) b.load.full_check = true;  // the streamed STL pass keeps no surface to draw
   if (!a.density_map.empty()) {
     try {
       b.load.part_masses = report::ReadDensityMap(a.density_map);

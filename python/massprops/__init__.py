@@ -55,8 +55,10 @@ class Result:
     in such a result; else None).
     """
 
-    def __init__(self, record):
+    def __init__(self, record, redo=None, part_of=False):
         self._record = record
+        self._redo = redo  # (path, part or None) -> draws the picture (Result.picture)
+        self._part_of = part_of
         a = _np.asarray
         self.volume = record["volume"]
         self.mass = record["mass"]
@@ -73,7 +75,7 @@ class Result:
         self.model = record["model"]
         self.source = record["file"]
         self.part = record.get("part")
-        self.parts = [Result(p) for p in record.get("parts", [])]
+        self.parts = [Result(p, redo, True) for p in record.get("parts", [])]
         self.brep = record.get("brep")  # CAD files: the other side of mesh vs exact B-rep, and the differences
         self.density_source = record.get("density_source")
         estimate = record.get("estimate")
@@ -86,6 +88,18 @@ class Result:
         """The inertia tensor about a point (3,) in the input's axes, metres (parallel-axis theorem)."""
         d = self.center_of_mass - _np.asarray(point, dtype=float)
         return self.inertia_com + self.mass * (d @ d * _np.eye(3) - _np.outer(d, d))
+
+    def picture(self, path):
+        """Draws this result into ``path`` (.svg or .png), as ``massprops FILE --picture PATH``: four
+        views, the center of mass, the principal axes, the equivalent-inertia ellipsoid and the
+        bounding box. The solid is read and computed again from where it came from (the file, or
+        the arrays) with the same options; a Result rebuilt from a record (unpickled) cannot."""
+        import os
+
+        redo = getattr(self, "_redo", None)
+        if redo is None:
+            raise ValueError("this Result was rebuilt from a record: load the file again to draw it")
+        redo(os.fspath(path), self.part if self._part_of else None)
 
     def to_dict(self):
         """The command's JSON object for this result (a deep copy)."""
@@ -109,7 +123,12 @@ class Result:
 
 def load(path, **options):
     """Reads, checks and integrates a mesh file, as the ``massprops`` command does."""
-    return Result(_json.loads(_core.load(str(path), **options)))
+    path = str(path)
+
+    def redo(out, part):
+        _core.load(path, _picture=out, **({"_picture_part": part} if part else {}), **options)
+
+    return Result(_json.loads(_core.load(path, **options)), redo)
 
 
 def fill(path, output=None, *, density=1000.0, densities=None, keep_mass=False, source="collision",
@@ -185,8 +204,13 @@ def mass_properties(vertices, faces=None, *, name="<arrays>", **options):
         raise ValueError(f"vertices must be numbers, not {v.dtype}")
     float32 = v.dtype == _np.float32
     indices, offsets = _faces_to_arrays(faces)
-    return Result(_json.loads(_core.solve_arrays(_np.ascontiguousarray(v, dtype=_np.float64), indices, offsets,
-                                                 float32, name, **options)))
+    v = _np.ascontiguousarray(v, dtype=_np.float64)
+
+    def redo(out, part):
+        _core.solve_arrays(v, indices, offsets, float32, name, _picture=out,
+                           **({"_picture_part": part} if part else {}), **options)
+
+    return Result(_json.loads(_core.solve_arrays(v, indices, offsets, float32, name, **options)), redo)
 
 
 def body(result):

@@ -21,6 +21,7 @@
 #include "massprops/isolation.h"
 #include "massprops/load.h"
 #include "massprops/report/format.h"
+#include "massprops/report/picture.h"
 #include "massprops/report/record.h"
 #include "massprops/robot.h"
 #include "massprops/robot_model.h"
@@ -173,17 +174,47 @@ std::string ToJson(const SolidResult& r) {
   return report::FormatJson({r}, f);
 }
 
-// Runs `solve` without the GIL (errors become OSError or ValueError) and returns its JSON.
+// Result.picture(): the keywords `_picture` (the output path) and `_picture_part` (a part's name,
+// or none for the whole), taken out of the options. The mesh is then read whole (the streamed STL
+// pass keeps no surface to draw).
+struct PictureRequest {
+  std::string path, part;
+};
+PictureRequest TakePicture(const py::kwargs& kw) {
+  PictureRequest p;
+  for (const char* key : {"_picture", "_picture_part"}) {
+    if (!kw.contains(key)) continue;
+    (std::string(key) == "_picture" ? p.path : p.part) = py::cast<std::string>(kw[key]);
+    PyDict_DelItemString(kw.ptr(), key);
+  }
+  return p;
+}
+
+// Runs `solve` without the GIL (errors become OSError or ValueError) and returns its JSON; draws
+// the picture when one is asked for.
 template <typename Solve>
-std::string Run(const Solve& solve) {
+std::string Run(const Solve& solve, const PictureRequest& picture = {}) {
   std::optional<SolidResult> r;
-  massprops_python::RunWithoutGil([&] { r = solve(); });
+  massprops_python::RunWithoutGil([&] {
+    r = solve();
+    if (picture.path.empty()) return;
+    const SolidResult* drawn = &*r;
+    if (!picture.part.empty()) {
+      const auto it =
+          std::find_if(r->parts.begin(), r->parts.end(), [&](const SolidResult& p) { return p.part == picture.part; });
+      if (it == r->parts.end()) throw std::invalid_argument("no part '" + picture.part + "' in " + r->source);
+      drawn = &*it;
+    }
+    report::WritePicture(picture.path, *drawn);
+  });
   return ToJson(*r);
 }
 
 std::string Load(const std::string& path, const py::kwargs& kw) {
-  const LoadOptions o = ToLoadOptions(kw);
-  return Run([&] { return LoadSolid(path, o); });
+  const PictureRequest picture = TakePicture(kw);
+  LoadOptions o = ToLoadOptions(kw);
+  o.full_check = o.full_check || !picture.path.empty();
+  return Run([&] { return LoadSolid(path, o); }, picture);
 }
 
 // FillRobotDescription without the GIL: (the report as JSON, the filled document).
@@ -230,6 +261,7 @@ std::string SolveArrays(py::array_t<double, py::array::c_style | py::array::forc
                         py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> indices,
                         py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> offsets, bool float32,
                         const std::string& name, const py::kwargs& kw) {
+  const PictureRequest picture = TakePicture(kw);
   const LoadOptions o = ToLoadOptions(kw);
   if (vertices.ndim() != 2 || vertices.shape(1) != 3) throw py::value_error("vertices must have shape (n, 3)");
   const auto nv = static_cast<std::int64_t>(vertices.shape(0));
@@ -263,7 +295,7 @@ std::string SolveArrays(py::array_t<double, py::array::c_style | py::array::forc
       throw py::value_error("vertices: vertex " + std::to_string(i / 3) + " has a non-finite coordinate");
     }
   }
-  return Run([&] { return SolveMesh(std::move(m), name, o); });
+  return Run([&] { return SolveMesh(std::move(m), name, o); }, picture);
 }
 
 Vector3 Vec(const py::handle& h) {

@@ -80,7 +80,16 @@ check "merge finds a missing shard and writes nothing" $?
 "$bin" merge twice.jsonl s0.jsonl s0.jsonl s1.jsonl 2>err.txt
 [ $? -eq 1 ] && grep -q "more than one record" err.txt; check "merge finds a shard given twice" $?
 
-# 5. Arguments.
+# 5. Pictures: one per computed file, named in its record; stems that repeat get the index.
+mkdir -p twins/a twins/b && cp in/spot.obj twins/a/part.obj && cp in/spot.obj twins/b/part.obj
+"$bin" batch twins -o pics.jsonl --pictures pics --picture-format png -q
+[ $? -eq 0 ] && [ "$(grep -c '"picture":"pics/part-[01].png"' pics.jsonl)" -eq 2 ] && [ "$(ls pics | wc -l)" -eq 2 ] &&
+  [ "$(head -c 4 pics/part-0.png | tail -c 3)" = PNG ]
+check "batch --pictures draws each file, named in its record" $?
+"$bin" batch twins -o pics2.jsonl --pictures pics.jsonl 2>err.txt
+[ $? -eq 2 ] && grep -q "is not a folder" err.txt; check "--pictures must be a folder" $?
+
+# 6. Arguments.
 "$bin" batch in/spot.obj -o x.jsonl 2>err.txt
 [ $? -eq 2 ] && grep -q "not a mesh file" err.txt; check "a mesh file is not a manifest" $?
 "$bin" batch in -o y.jsonl --shard 2/2 2>err.txt

@@ -408,5 +408,18 @@ check "validate: JSON rows and a PNG" $?
 "$bin" "$tmp/open.obj" >/dev/null 2>"$tmp/err"
 grep -q "try --repair, or pass --allow-open" "$tmp/err"; check "CLI vocabulary in errors" $?
 
+# Pictures: SVG and PNG by the extension, written whole; an unknown extension, several inputs and
+# a folder as the output are refused before anything is computed.
+"$bin" "$data/meshes/t_handle.obj" --picture "$tmp/t.svg" -q >/dev/null && grep -q "<g id='view-isometric'" "$tmp/t.svg"
+check "--picture writes the SVG" $?
+"$bin" "$data/meshes/Moon.stl" --parts --picture "$tmp/m.png" -q >/dev/null && [ "$(head -c 4 "$tmp/m.png" | tail -c 3)" = PNG ]
+check "--picture writes a PNG (a binary STL, read whole)" $?
+"$bin" "$data/meshes/t_handle.obj" --picture "$tmp/t.jpg" -q >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ] && grep -q "a picture is .svg or .png" "$tmp/err" && [ ! -e "$tmp/t.jpg" ]; check "--picture .jpg refused" $?
+"$bin" "$data/meshes/t_handle.obj" "$data/meshes/spot.obj" --picture "$tmp/two.svg" -q >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ] && grep -q "draws one input" "$tmp/err"; check "--picture with two inputs refused" $?
+"$bin" "$data/meshes/t_handle.obj" --picture "$tmp" -q >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ]; check "--picture to a folder refused" $?
+
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -493,3 +493,34 @@ def test_rbsim_robot_refusals_name_the_file_and_element(tmp_path):
     done = subprocess.run([RBSIM, os.path.join(DATA, "scenes", "joints.json"), "--fill", "-q"],
                           capture_output=True, text=True)
     assert done.returncode == 2 and "--fill" in done.stderr
+
+
+def test_picture_of_a_result_marks_its_center_of_mass(tmp_path):
+    # A box turned about z: the picture's center-of-mass mark sits where the view's stated
+    # placement projects the result's center, in every view; PNG and SVG by the extension.
+    c, s = np.cos(0.4), np.sin(0.4)
+    rot = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+    corners = np.array([[x, y, z] for z in (-0.15, 0.15) for y in (-0.1, 0.1) for x in (-0.05, 0.05)])
+    vertices = corners @ rot.T + [0.3, -0.2, 0.1]
+    faces = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]]
+    r = massprops.mass_properties(vertices, faces)
+    np.testing.assert_allclose(r.center_of_mass, [0.3, -0.2, 0.1], atol=1e-15)
+    r.picture(tmp_path / "box.svg")
+    r.picture(str(tmp_path / "box.png"))
+    assert (tmp_path / "box.png").read_bytes()[1:4] == b"PNG"
+    svg = (tmp_path / "box.svg").read_text()
+    import re
+    views = re.findall(r"<g id='view-(\w+)' data-view='\w+' data-right='([^']*)' data-up='([^']*)' "
+                       r"data-scale='([^']*)' data-center='([^']*)' data-origin='([^']*)'>(.*?)</g>", svg, re.S)
+    assert [v[0] for v in views] == ["isometric", "front", "top", "right"]
+    for _, right, up, scale, center, origin, body in views:
+        right, up, center, origin = (np.array(t.split(), float) for t in (right, up, center, origin))
+        d = r.center_of_mass - origin
+        want = center + float(scale) * np.array([right @ d, -(up @ d)])
+        mark = re.search(r"<circle cx='([^']*)' cy='([^']*)' r='6' fill='#ff00ff'", body)
+        np.testing.assert_allclose([float(mark.group(1)), float(mark.group(2))], want, atol=0.01)
+    with pytest.raises(ValueError, match="a picture is .svg or .png"):
+        r.picture(tmp_path / "box.gif")
+    loaded = massprops.load(os.path.join(MESHES, "assembly_bracket.obj"), parts=True)
+    loaded.parts[0].picture(tmp_path / "part.svg")
+    assert "(part &apos;base&apos;)" in (tmp_path / "part.svg").read_text()

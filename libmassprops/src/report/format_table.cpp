@@ -34,7 +34,7 @@ std::string FormatTable(const SolidResult& r, const FormatOptions& opt) {
   std::ostringstream out;
   const ReportUnits& u = opt.units;
   for (const SolidResult& part : r.parts) out << FormatOne(part, opt) << "\n";
-  std::size_t width = 4;
+  std::size_t width = 5;  // "whole"; a shorter part name ("Moon") once made the padding negative
   for (const SolidResult& part : r.parts) width = std::max(width, part.part.size());
   auto row = [&](const std::string& name, const SolidResult& x) {
     const Vector3 c = x.mp.center_of_mass / u.Length();

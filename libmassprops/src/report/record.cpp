@@ -10,12 +10,14 @@
 #include <nlohmann/json.hpp>
 
 #include "massprops/report/format.h"
+#include "massprops/report/picture.h"
 
 namespace massprops::report {
 
 using Json = nlohmann::ordered_json;
 
-std::string ComputeRecord(const std::string& file, std::size_t index, std::size_t of, const LoadOptions& options) {
+std::string ComputeRecord(const std::string& file, std::size_t index, std::size_t of, const LoadOptions& options,
+                          const std::string& picture) {
   if (const char* fault = std::getenv("MASSPROPS_BATCH_FAULT")) {  // fault injection, for tests:
     std::string spec(fault);                                       // "crash:NAME,hang:NAME"
     for (std::size_t at = 0; at < spec.size();) {
@@ -40,6 +42,14 @@ std::string ComputeRecord(const std::string& file, std::size_t index, std::size_
     const SolidResult r = LoadSolid(file, options);
     rec["status"] = "ok";
     rec["result"] = Json::parse(FormatJsonLine(r, format));
+    if (!picture.empty()) {
+      try {
+        WritePicture(picture, r);
+        rec["picture"] = picture;
+      } catch (const std::exception& e) {
+        rec["picture_error"] = e.what();
+      }
+    }
   } catch (const LoadError& e) {
     rec["status"] = "refused";
     rec["message"] = WordedError(e, CliVocabulary());

@@ -12,8 +12,11 @@
 namespace massprops::report {
 
 /// The child's work: the record of `file` (number `index` of `of` in sorted order). Refusals and
-/// read errors are records, not exceptions.
-std::string ComputeRecord(const std::string& file, std::size_t index, std::size_t of, const LoadOptions& options);
+/// read errors are records, not exceptions. With a `picture` path, the result is also drawn there
+/// (massprops/report/picture.h) and the record names it ("picture"), or says why it could not be
+/// ("picture_error"; the mass properties stand).
+std::string ComputeRecord(const std::string& file, std::size_t index, std::size_t of, const LoadOptions& options,
+                          const std::string& picture = {});
 
 /// The record for an isolated child's outcome: its own when it finished, else one that says it
 /// crashed, timed out or failed.
