@@ -440,5 +440,49 @@ TEST(Contact, OverlapsOfPrimitivesArePushedOutPayingOnlyThePotentialEnergy) {
   EXPECT_LT(now.velocity.norm(), 1e-9);
 }
 
+// The contacts the outputs report (ContactWorld::Contacts) are the impulses the step applied: a box
+// held on an incline by static friction gets from its points together exactly what gravity takes
+// (m g h upward: the normal impulses and the friction's shares add up); a box sliding beyond it
+// gets friction μk times the normal impulse, up the slope.
+TEST(Friction, ReportedContactImpulsesBalanceGravityOrSlideAtMuK) {
+  const double h = 1e-3;
+  for (const double ratio : {0.9, 1.05}) {
+    for (const Support s : {Support::kGround, Support::kStaticMesh}) {
+      SCOPED_TRACE(std::string(Name(s)) + (ratio < 1 ? ", holding" : ", sliding"));
+      const Material m = Mat(0.6, 0.4);
+      const double theta = std::atan(ratio * m.static_friction);
+      ContactWorld w;
+      AddIncline(w, s, theta, m);
+      const Matrix3 R = InclineRotation(theta);
+      const Vector3 half(0.04, 0.03, 0.02), n = R * Vector3::UnitZ(), up_slope = R * Vector3::UnitX();
+      RigidBody b = BoxBody(half, 500);
+      b.position = R * Vector3(0.3, 0, half.z());
+      b.orientation = Quaternion(R);
+      w.AddBody(b, Collider{shape::Box{half}, Matrix3::Identity(), Vector3::Zero(), m});
+      w.AddForce(Gravity(Vector3(0, 0, -kG)));
+      Simulate(w, 200);
+      const std::vector<ContactReport> contacts = w.Contacts();
+      ASSERT_GE(contacts.size(), 3u);
+      Vector3 sum = Vector3::Zero();
+      for (const ContactReport& c : contacts) {
+        EXPECT_EQ(c.a, 0);
+        EXPECT_EQ(c.b, -1);
+        EXPECT_LT((c.normal - n).norm(), 1e-9);
+        EXPECT_LT(std::abs(n.dot(c.point)), 1e-4);  // on the incline's surface (through the origin)
+        sum += c.impulse;
+      }
+      const double weight = b.mass * kG * h;
+      const double normal = sum.dot(n), friction = sum.dot(up_slope);
+      EXPECT_NEAR(normal, weight * std::cos(theta), 1e-8 * weight);
+      if (ratio < 1) {
+        EXPECT_LT((sum - Vector3(0, 0, weight)).norm(), 1e-9 * weight) << sum.transpose();
+      } else {
+        EXPECT_NEAR(friction, m.kinetic_friction * normal, 1e-9 * weight);
+      }
+      EXPECT_FALSE(w.asleep(0));
+    }
+  }
+}
+
 }  // namespace
 }  // namespace dynamics

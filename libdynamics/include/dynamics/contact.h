@@ -180,6 +180,17 @@ struct ContactStats {
   double pushed = 0;
 };
 
+/// One contact point of the last step, as the outputs report it (ContactWorld::Contacts).
+struct ContactReport {
+  int a = -1;                         ///< the body it pushes (world().bodies() index)
+  int b = -1;                         ///< the other body; -1: a ground plane or a static body
+  Vector3 point = Vector3::Zero();    ///< world, m
+  Vector3 normal = Vector3::UnitZ();  ///< unit, from b into a
+  /// N·s on a over the step (−impulse on b): the normal impulse along the normal, plus the
+  /// point's share of its patch's friction impulse, in proportion to the points' normal impulses.
+  Vector3 impulse = Vector3::Zero();
+};
+
 /// A World with contact. It owns its world: bodies and forces are added here (each dynamic body
 /// with one collider or none), and world() reads them; static bodies and ground planes have no
 /// state.
@@ -218,6 +229,11 @@ class ContactWorld {
   /// cores). Results do not depend on it.
   void set_num_threads(int n) { world_.set_num_threads(n); }
   const ContactStats& stats() const { return stats_; }
+  /// The contact points the last step solved (none in free flight; the contacts among sleeping
+  /// bodies alone are not solved, and not reported).
+  std::vector<ContactReport> Contacts() const;
+  /// Whether body k is asleep (ContactOptions::sleeping) after the last step.
+  bool asleep(int k) const;
 
  private:
   struct Impl;

@@ -99,6 +99,7 @@ struct ContactWorld::Impl {
   contact::ContactCache cache;  // the last step's impulses: the warm start of the next
   // Scratch.
   std::vector<contact::Row> rows;
+  std::vector<contact::Patch> patches;  // the last step's, with its rows (Contacts())
   std::vector<contact::Velocities> vel;
   std::vector<contact::Velocities> before_kick;  // the velocities at the start of the step (for impacts)
   contact::BodyResponse response;
@@ -478,6 +479,7 @@ StepStatus ContactWorld::Step(double h) {
     broad[k] = {&posed[k], radius[k], reach, m.collides[k]};
   }
   m.rows.clear();
+  m.patches.clear();
   auto material_of = [&](int a, int b, const Material& ma, const Material& mb) {
     const auto it = m.pair_materials.find({std::min(a, b), std::max(a, b)});
     if (it != m.pair_materials.end()) return it->second;
@@ -607,7 +609,8 @@ StepStatus ContactWorld::Step(double h) {
                               }),
                m.rows.end());
   // 4. The impulses.
-  std::vector<contact::Patch> patches = contact::PreparePatches(m.rows, m.cache, m.vel, m.response, bounce_threshold);
+  std::vector<contact::Patch>& patches = m.patches;
+  patches = contact::PreparePatches(m.rows, m.cache, m.vel, m.response, bounce_threshold);
   const double energy_before = KineticEnergy(bodies, m.vel);
   std::vector<int> island(bodies.size());
   for (int k = 0; k < nb; ++k) island[static_cast<std::size_t>(k)] = islands.Find(k);
@@ -638,6 +641,28 @@ StepStatus ContactWorld::Step(double h) {
                      quantity + " is no longer finite";
   }
   return status;
+}
+
+std::vector<ContactReport> ContactWorld::Contacts() const {
+  const Impl& m = *impl_;
+  std::vector<ContactReport> out;
+  out.reserve(m.rows.size());
+  for (const contact::Row& r : m.rows) out.push_back({r.a, r.b, r.point, r.n, r.lambda_n * r.n});
+  for (const contact::Patch& p : m.patches) {  // the friction, shared by the patch's points
+    double sum = 0;
+    for (int i = p.first; i < p.first + p.count; ++i) sum += m.rows[static_cast<std::size_t>(i)].lambda_n;
+    const Vector3 friction = p.lambda.x() * p.t1 + p.lambda.y() * p.t2;
+    for (int i = p.first; i < p.first + p.count; ++i) {
+      const double share = sum > 0 ? m.rows[static_cast<std::size_t>(i)].lambda_n / sum : 1.0 / p.count;
+      out[static_cast<std::size_t>(i)].impulse += share * friction;
+    }
+  }
+  return out;
+}
+
+bool ContactWorld::asleep(int k) const {
+  const std::vector<bool>& a = impl_->sleep.asleep;
+  return k >= 0 && static_cast<std::size_t>(k) < a.size() && a[static_cast<std::size_t>(k)];
 }
 
 }  // namespace dynamics
