@@ -24,7 +24,7 @@ for p in "${PACKAGES[@]}"; do
   fi
 done
 
-# Node.js and npm run the Khronos glTF validator in rbsim's tests; the machine image usually has
+# Node.js and npm run the Khronos glTF validator and the browser test in rbsim's tests; the machine image usually has
 # them (not from Debian), so Debian's are installed only when there are none.
 if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then missing+=(nodejs npm); fi
 
@@ -37,9 +37,14 @@ if [ ${#missing[@]} -gt 0 ]; then
   $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-# The validator itself, from the npm registry at the version pinned in package-lock.json.
+# From the npm registry at the versions pinned in each package-lock.json: the glTF validator and
+# playwright-core (which drives Debian's chromium) for the tests, three.js and esbuild for the
+# check that the committed viewer bundle is current.
 root=$(cd "$(dirname "$0")/.." && pwd)
-if [ ! -f "$root/tests/rbsim/node_modules/gltf-validator/package.json" ]; then
-  echo "install_deps: npm ci (gltf-validator) in tests/rbsim" >&2
-  (cd "$root/tests/rbsim" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
-fi
+for pinned in tests/rbsim:gltf-validator tests/rbsim:playwright-core apps/rbsim/viewer:three apps/rbsim/viewer:esbuild; do
+  dir=${pinned%%:*} package=${pinned##*:}
+  if [ ! -f "$root/$dir/node_modules/$package/package.json" ]; then
+    echo "install_deps: npm ci in $dir ($package)" >&2
+    (cd "$root/$dir" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+  fi
+done

@@ -95,7 +95,8 @@ int main(int argc, char** argv) {
       ->check(massprops::app::Positive());
   app.add_option("--out", out_dir, "Write every output of the run into this directory (created if missing)");
   app.add_option("--outputs", outputs_text,
-                 "Which outputs, comma-separated: csv, jsonl, diagnostics, svg, png, glb "
+                 "Which outputs, comma-separated: csv, jsonl, diagnostics, svg, png, glb, contacts (contacts.jsonl, "
+                 "each step's contact points), html (run.html, a page that plays the run in a browser) "
                  "(overrides the scene; default csv,diagnostics,svg,png,glb)");
   app.add_option("--threads", threads, "Worker threads for mesh loading and large worlds (0 = all cores)")
       ->check(massprops::app::NonNegative());
@@ -234,7 +235,8 @@ int main(int argc, char** argv) {
 
   std::unique_ptr<rbsim::TrajectoryWriter> writer;
   rbsim::Recording recording;
-  const bool record = !out_dir.empty() && (plot || wants(rbsim::OutputKind::kGlb));
+  const bool record = !out_dir.empty() && (plot || wants(rbsim::OutputKind::kGlb) || wants(rbsim::OutputKind::kHtml));
+  recording.contacts = wants(rbsim::OutputKind::kHtml);
   try {
     if (!out_dir.empty()) {
       std::filesystem::create_directories(out_dir);
@@ -257,7 +259,10 @@ int main(int argc, char** argv) {
           if (writer) writer->Add(*sim, world, d);
           if (record) recording.Add(*sim, world, d);
         },
-        [&progress](double f) { progress.Fraction(f); }, &g_stop);
+        [&progress](double f) { progress.Fraction(f); }, &g_stop,
+        [&](std::int64_t step) {
+          if (writer) writer->AddStep(*sim, step);
+        });
   } catch (const std::exception& e) {
     std::cerr << "error: " << massprops::app::OneLine(scene.file) << ": " << e.what()
               << "; no output files were written\n";
@@ -280,6 +285,7 @@ int main(int argc, char** argv) {
       return staged.back().first;
     };
     if (!out_dir.empty() && wants(rbsim::OutputKind::kGlb)) rbsim::WriteGlb(stage("animation.glb"), *sim, recording);
+    if (!out_dir.empty() && wants(rbsim::OutputKind::kHtml)) rbsim::WriteHtml(stage("run.html"), *sim, recording);
     for (auto [kind, name] :
          {std::pair{rbsim::OutputKind::kPlotSvg, "plot.svg"}, std::pair{rbsim::OutputKind::kPlotPng, "plot.png"}}) {
       if (!out_dir.empty() && wants(kind)) rbsim::WritePlot(stage(name), *sim, recording);

@@ -65,6 +65,27 @@ void Recording::Add(const Simulation& sim, const dynamics::World& world, const d
   const dynamics::Diagnostics& d0 = start;
   const double e0 = std::abs(d0.total_energy) > 0 ? std::abs(d0.total_energy) : 1.0;
   energy_drift.push_back((d.total_energy - d0.total_energy) / e0);
+  kinetic.push_back(d.kinetic_energy);
+  potential.push_back(d.potential_energy);
+  if (contacts) {
+    std::vector<float> forces;
+    const double h = sim.scene.dt;
+    const Vector3 up = sim.scene.up == 'x'   ? Vector3::UnitX()
+                       : sim.scene.up == 'y' ? Vector3::UnitY()
+                                             : Vector3::UnitZ();
+    for (const dynamics::ContactReport& c : sim.physics.Contacts()) {
+      // The force on the moving body at a ground or static contact; between two bodies, on the
+      // one it pushes up (either is the contact's force: the other's is its opposite).
+      const Vector3 f = (c.b >= 0 && c.impulse.dot(up) < 0 ? -c.impulse : c.impulse) / h;
+      for (double v : {c.point.x(), c.point.y(), c.point.z(), f.x(), f.y(), f.z()}) {
+        forces.push_back(static_cast<float>(v));
+      }
+    }
+    contact_forces.push_back(std::move(forces));
+    std::vector<std::uint8_t> sleeping(bodies.size());
+    for (std::size_t b = 0; b < bodies.size(); ++b) sleeping[b] = sim.physics.asleep(static_cast<int>(b)) ? 1 : 0;
+    asleep.push_back(std::move(sleeping));
+  }
   const double l0 = d0.angular_momentum.norm();
   momentum_drift.push_back(l0 > 0 ? (d.angular_momentum.norm() - l0) / l0 : d.angular_momentum.norm());
 }
@@ -81,6 +102,7 @@ TrajectoryWriter::TrajectoryWriter(const std::string& dir, const std::vector<Out
     }
   }
   if (want(OutputKind::kJsonl)) jsonl_ = std::make_unique<AtomicFile>(dir + "/trajectory.jsonl");
+  if (want(OutputKind::kContacts)) contacts_ = std::make_unique<AtomicFile>(dir + "/contacts.jsonl");
   if (want(OutputKind::kDiagnostics)) {
     diagnostics_ = std::make_unique<AtomicFile>(dir + "/diagnostics.csv");
     diagnostics_->stream() << kDiagnosticsCsvHeader << "\n";
@@ -151,9 +173,32 @@ void TrajectoryWriter::Add(const Simulation& sim, const dynamics::World& world, 
   }
 }
 
+void TrajectoryWriter::AddStep(const Simulation& sim, std::int64_t step) {
+  if (!contacts_) return;
+  line_ = "{\"step\":" + std::to_string(step) + ",\"time\":";
+  Put(line_, sim.world().time());
+  line_ += ",\"contacts\":[";
+  bool first = true;
+  for (const dynamics::ContactReport& c : sim.physics.Contacts()) {
+    line_ += first ? "{\"a\":" : ",{\"a\":";
+    first = false;
+    line_ += JsonString(sim.bodies[static_cast<std::size_t>(c.a)].name) + ",\"b\":";
+    line_ += c.b >= 0 ? JsonString(sim.bodies[static_cast<std::size_t>(c.b)].name) : std::string("null");
+    line_ += ",\"point\":[";
+    PutList(line_, {c.point.x(), c.point.y(), c.point.z()});
+    line_ += "],\"normal\":[";
+    PutList(line_, {c.normal.x(), c.normal.y(), c.normal.z()});
+    line_ += "],\"impulse\":[";
+    PutList(line_, {c.impulse.x(), c.impulse.y(), c.impulse.z()});
+    line_ += "]}";
+  }
+  line_ += "]}\n";
+  contacts_->stream() << line_;
+}
+
 std::vector<std::string> TrajectoryWriter::Commit() {
   std::vector<std::string> paths;
-  for (auto* f : {csv_.get(), jsonl_.get(), diagnostics_.get(), joints_.get()}) {
+  for (auto* f : {csv_.get(), jsonl_.get(), diagnostics_.get(), joints_.get(), contacts_.get()}) {
     if (!f) continue;
     f->Commit();
     paths.push_back(f->path());

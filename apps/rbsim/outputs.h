@@ -3,6 +3,7 @@
 // (gnuplot, SVG/PNG) and the animated glTF binary (.glb). Every file is written under a
 // temporary name and renamed when complete.
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -19,25 +20,34 @@ struct Recording {
   /// the same side of the quaternion double cover, so that interpolation takes the short way).
   std::vector<std::vector<Eigen::Vector3f>> translations;
   std::vector<std::vector<Eigen::Vector4f>> rotations;
-  std::vector<Vector3> omega_principal;  ///< of the plotted body
-  std::vector<double> energy_drift;      ///< (E − E0) / |E0|
-  std::vector<double> momentum_drift;    ///< (|L| − |L0|) / |L0|, L about the world origin
-  dynamics::Diagnostics start;           ///< at the first sample
+  std::vector<Vector3> omega_principal;    ///< of the plotted body
+  std::vector<double> energy_drift;        ///< (E − E0) / |E0|
+  std::vector<double> momentum_drift;      ///< (|L| − |L0|) / |L0|, L about the world origin
+  std::vector<double> kinetic, potential;  ///< J
+  dynamics::Diagnostics start;             ///< at the first sample
+  /// With `contacts` set before the first sample: per sample, the last step's contact points as
+  /// (x, y, z, fx, fy, fz), the force on the first body (impulse / dt, N), and per body whether
+  /// it is asleep.
+  bool contacts = false;
+  std::vector<std::vector<float>> contact_forces;
+  std::vector<std::vector<std::uint8_t>> asleep;
 
   void Add(const Simulation& sim, const dynamics::World& world, const dynamics::Diagnostics& d);
 };
 
 /// Streams the per-sample files (trajectory.csv, trajectory.jsonl, diagnostics.csv, and joints.csv
-/// with csv when the scene has joints) into `dir`.
+/// with csv when the scene has joints) and the per-step contacts.jsonl into `dir`.
 class TrajectoryWriter {
  public:
   TrajectoryWriter(const std::string& dir, const std::vector<OutputKind>& outputs, bool joints = false);
   void Add(const Simulation& sim, const dynamics::World& world, const dynamics::Diagnostics& d);
+  /// contacts.jsonl (with the contacts output): the contacts of step `step`, just taken.
+  void AddStep(const Simulation& sim, std::int64_t step);
   /// Renames the finished files into place and returns their paths.
   std::vector<std::string> Commit();
 
  private:
-  std::unique_ptr<massprops::report::AtomicFile> csv_, jsonl_, diagnostics_, joints_;
+  std::unique_ptr<massprops::report::AtomicFile> csv_, jsonl_, diagnostics_, joints_, contacts_;
   dynamics::Diagnostics start_;
   bool started_ = false;
   std::string line_;
@@ -49,6 +59,11 @@ extern const char* const kDiagnosticsCsvHeader;
 /// joints.csv: per joint per sample, its position q1..q7 and velocity v1..v6 (as many as the
 /// joint type has, the rest empty) and the last step's impulses.
 extern const char* const kJointsCsvHeader;
+
+/// Writes the run as one self-contained HTML page that plays it offline (html.cpp): the bodies,
+/// static bodies and grounds, a time slider, the contact forces, sleeping bodies, the diagnostics.
+/// @throws std::runtime_error naming the path.
+void WriteHtml(const std::string& path, const Simulation& sim, const Recording& rec);
 
 /// Writes the bodies' meshes and their animation (one key per sample) as a glTF 2.0 binary.
 /// @throws std::runtime_error naming the path.

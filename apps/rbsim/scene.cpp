@@ -329,16 +329,18 @@ const char* OutputName(OutputKind kind) {
     case OutputKind::kPlotSvg: return "svg";
     case OutputKind::kPlotPng: return "png";
     case OutputKind::kGlb: return "glb";
+    case OutputKind::kContacts: return "contacts";
+    case OutputKind::kHtml: return "html";
   }
   return "?";
 }
 
 OutputKind ParseOutputName(const std::string& name) {
   for (OutputKind k : {OutputKind::kCsv, OutputKind::kJsonl, OutputKind::kDiagnostics, OutputKind::kPlotSvg,
-                       OutputKind::kPlotPng, OutputKind::kGlb}) {
+                       OutputKind::kPlotPng, OutputKind::kGlb, OutputKind::kContacts, OutputKind::kHtml}) {
     if (name == OutputName(k)) return k;
   }
-  throw std::invalid_argument("unknown output '" + name + "' (csv, jsonl, diagnostics, svg, png, glb)");
+  throw std::invalid_argument("unknown output '" + name + "' (csv, jsonl, diagnostics, svg, png, glb, contacts, html)");
 }
 
 std::vector<OutputKind> DefaultOutputs() {

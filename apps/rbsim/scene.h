@@ -119,7 +119,7 @@ struct RobotSpec {
   bool position_given = false;
 };
 
-enum class OutputKind { kCsv, kJsonl, kDiagnostics, kPlotSvg, kPlotPng, kGlb };
+enum class OutputKind { kCsv, kJsonl, kDiagnostics, kPlotSvg, kPlotPng, kGlb, kContacts, kHtml };
 
 struct Scene {
   std::string file;  ///< scene file ("<command line>" for the quick path)

@@ -359,7 +359,8 @@ std::int64_t SampleEvery(const Scene& scene) {
 
 RunStats Run(Simulation& sim,
              const std::function<void(const dynamics::World&, const dynamics::Diagnostics&)>& on_sample,
-             const std::function<void(double)>& on_progress, const std::atomic<bool>* stop) {
+             const std::function<void(double)>& on_progress, const std::atomic<bool>* stop,
+             const std::function<void(std::int64_t)>& on_step) {
   RunStats stats;
   const auto t0 = std::chrono::steady_clock::now();
   const std::int64_t n = StepCount(sim.scene);
@@ -401,6 +402,7 @@ RunStats Run(Simulation& sim,
       throw std::runtime_error("the run failed at t = " + Num(sim.world().time(), "%.9g") + " s: " + status.message);
     stats.max_substeps = std::max(stats.max_substeps, status.substeps);
     stats.steps = i;
+    if (on_step) on_step(i);
     if (i % every == 0 || i == n) sample();
     if (i % progress_every == 0) {
       if (on_progress) on_progress(static_cast<double>(i) / static_cast<double>(n));

@@ -78,12 +78,14 @@ std::int64_t StepCount(const Scene& scene);
 std::int64_t SampleEvery(const Scene& scene);
 
 /// Runs to the end (or until *stop becomes true), calling on_sample(world, diagnostics) at each
-/// sample and on_progress(fraction) now and then. @throws std::runtime_error when a step fails or
+/// sample, on_step(i) after step i (1, 2, ...; before that step's sample) and on_progress(fraction)
+/// now and then. @throws std::runtime_error when a step fails or
 /// the state diverges (energy, momentum or a body's state no longer finite), naming the time and
 /// the body or quantity.
 RunStats Run(Simulation& sim,
              const std::function<void(const dynamics::World&, const dynamics::Diagnostics&)>& on_sample,
-             const std::function<void(double)>& on_progress = {}, const std::atomic<bool>* stop = nullptr);
+             const std::function<void(double)>& on_progress = {}, const std::atomic<bool>* stop = nullptr,
+             const std::function<void(std::int64_t step)>& on_step = {});
 
 /// The end-of-run summary: energy and momenta at the start and end, their largest drift, and
 /// whether the physics of the scene conserves them.

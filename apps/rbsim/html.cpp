@@ -1,0 +1,175 @@
+// run.html: the run as one self-contained page (outputs.h). The page is the viewer script
+// (viewer/viewer.js with three.js, bundled once by viewer/build.mjs into the committed
+// viewer/viewer.bundle.js and linked into rbsim by viewer_bundle.S) and the run's data as JSON,
+// both inline: it opens from file:// with no module imports and no fetches.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "outputs.h"
+
+extern "C" const char rbsim_viewer_js[];      // viewer_bundle.S
+extern "C" const char rbsim_viewer_js_end[];  // one past its last byte
+
+namespace rbsim {
+namespace {
+
+using Json = nlohmann::json;
+
+std::string Base64(const void* data, std::size_t size) {
+  static const char* const kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  const auto* p = static_cast<const unsigned char*>(data);
+  std::string out;
+  out.reserve((size + 2) / 3 * 4);
+  for (std::size_t i = 0; i < size; i += 3) {
+    const std::uint32_t n = (static_cast<std::uint32_t>(p[i]) << 16) |
+                            (i + 1 < size ? static_cast<std::uint32_t>(p[i + 1]) << 8 : 0u) |
+                            (i + 2 < size ? static_cast<std::uint32_t>(p[i + 2]) : 0u);
+    out += kDigits[(n >> 18) & 63];
+    out += kDigits[(n >> 12) & 63];
+    out += i + 1 < size ? kDigits[(n >> 6) & 63] : '=';
+    out += i + 2 < size ? kDigits[n & 63] : '=';
+  }
+  return out;
+}
+
+template <typename T>
+std::string Base64(const std::vector<T>& v) {
+  return Base64(v.data(), v.size() * sizeof(T));
+}
+
+// A mesh as float32 positions and uint32 indices.
+void PutMesh(Json& j, const massprops::TriangleMesh& mesh) {
+  std::vector<float> positions;
+  positions.reserve(static_cast<std::size_t>(mesh.V.size()));
+  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) {
+    for (int k = 0; k < 3; ++k) positions.push_back(static_cast<float>(mesh.V(v, k)));
+  }
+  std::vector<std::uint32_t> indices;
+  indices.reserve(static_cast<std::size_t>(mesh.F.size()));
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) indices.push_back(static_cast<std::uint32_t>(mesh.F(f, k)));
+  }
+  j["positions"] = Base64(positions);
+  j["indices"] = Base64(indices);
+}
+
+Json Colour(const Vector3& c) { return {c.x(), c.y(), c.z()}; }
+
+// The run's data for the viewer (the page's schema; docs/rbsim.md describes it).
+Json RunData(const Simulation& sim, const Recording& rec) {
+  Json j;
+  j["version"] = 1;
+  j["title"] = std::filesystem::path(sim.scene.file).filename().string();
+  const int up = sim.scene.up == 'x' ? 0 : sim.scene.up == 'y' ? 1 : 2;
+  j["up"] = {up == 0 ? 1 : 0, up == 1 ? 1 : 0, up == 2 ? 1 : 0};
+  j["times"] = rec.times;
+  Eigen::AlignedBox3d bounds;
+  Json bodies = Json::array();
+  for (std::size_t b = 0; b < sim.bodies.size(); ++b) {
+    const SimBody& body = sim.bodies[b];
+    Json o;
+    o["name"] = body.name;
+    o["color"] = Colour(body.color);
+    PutMesh(o, body.display);
+    std::vector<float> t, q;
+    const double r = body.display.V.rows() > 0 ? body.display.V.rowwise().norm().maxCoeff() : 0.0;
+    for (std::size_t s = 0; s < rec.times.size(); ++s) {
+      const Eigen::Vector3f& x = rec.translations[b][s];
+      t.insert(t.end(), {x.x(), x.y(), x.z()});
+      const Eigen::Vector4f& r4 = rec.rotations[b][s];
+      q.insert(q.end(), {r4.x(), r4.y(), r4.z(), r4.w()});
+      bounds.extend(x.cast<double>() + Vector3::Constant(r));
+      bounds.extend(x.cast<double>() - Vector3::Constant(r));
+    }
+    o["translations"] = Base64(t);
+    o["rotations"] = Base64(q);
+    if (!rec.asleep.empty()) {
+      std::vector<std::uint8_t> a;
+      for (const auto& sample : rec.asleep) a.push_back(sample[b]);
+      o["asleep"] = Base64(a);
+    }
+    bodies.push_back(std::move(o));
+  }
+  j["bodies"] = std::move(bodies);
+  Json statics = Json::array();
+  for (const SimStatic& st : sim.statics) {
+    Json o;
+    o["name"] = st.name;
+    o["color"] = Colour(st.color);
+    PutMesh(o, st.display);
+    statics.push_back(std::move(o));
+  }
+  j["statics"] = std::move(statics);
+  if (bounds.isEmpty()) bounds.extend(Vector3::Zero());
+  j["bounds"] = {{"min", {bounds.min().x(), bounds.min().y(), bounds.min().z()}},
+                 {"max", {bounds.max().x(), bounds.max().y(), bounds.max().z()}}};
+  // Contact forces: arrows as long as a tenth of the scene for the 90th percentile of the forces.
+  if (rec.contacts) {
+    Json contacts = Json::array();
+    std::vector<double> magnitudes;
+    for (const std::vector<float>& c : rec.contact_forces) {
+      contacts.push_back(Base64(c));
+      for (std::size_t i = 0; i + 5 < c.size(); i += 6) {
+        magnitudes.push_back(Eigen::Vector3d(c[i + 3], c[i + 4], c[i + 5]).norm());
+      }
+    }
+    j["contacts"] = std::move(contacts);
+    double typical = 0;
+    if (!magnitudes.empty()) {
+      const auto at = magnitudes.begin() + static_cast<std::ptrdiff_t>(magnitudes.size() * 9 / 10);
+      std::nth_element(magnitudes.begin(), at, magnitudes.end());
+      typical = *at;
+    }
+    const double size = std::max(bounds.sizes().maxCoeff(), 1e-3);
+    j["force_scale"] = typical > 0 ? 0.1 * size / typical : 0.0;  // m per N
+  }
+  j["diagnostics"] = {{"kinetic", rec.kinetic},
+                      {"potential", rec.potential},
+                      {"energy_drift", rec.energy_drift},
+                      {"momentum_drift", rec.momentum_drift}};
+  return j;
+}
+
+// Text that may stand inside a <script> element: "</" cannot close it.
+std::string ScriptSafe(std::string text) {
+  for (std::size_t at = text.find("</"); at != std::string::npos; at = text.find("</", at + 3)) {
+    text.replace(at, 2, "<\\/");
+  }
+  return text;
+}
+
+}  // namespace
+
+void WriteHtml(const std::string& path, const Simulation& sim, const Recording& rec) {
+  const std::string viewer(rbsim_viewer_js, static_cast<std::size_t>(rbsim_viewer_js_end - rbsim_viewer_js));
+  std::string title = std::filesystem::path(sim.scene.file).filename().string();
+  std::string escaped;
+  for (const char c : title) {
+    if (c == '<') {
+      escaped += "&lt;";
+    } else if (c == '&') {
+      escaped += "&amp;";
+    } else {
+      escaped += c;
+    }
+  }
+  std::string page;
+  page += "<!DOCTYPE html>\n<html lang='en'>\n<head>\n<meta charset='utf-8'>\n<title>rbsim: " + escaped +
+          "</title>\n<meta name='viewport' content='width=device-width, initial-scale=1'>\n</head>\n<body>\n";
+  page += "<script type='application/json' id='rbsim-run'>";
+  page += ScriptSafe(RunData(sim, rec).dump(-1, ' ', false, Json::error_handler_t::replace));
+  page += "</script>\n<script>\n";
+  page += viewer;  // viewer/build.mjs made it safe inside <script>
+  page += "\n</script>\n</body>\n</html>\n";
+  massprops::report::WriteFileAtomically(path, page);
+}
+
+}  // namespace rbsim

@@ -1,0 +1,249 @@
+// rbsim's run.html in a real browser: Debian's headless Chromium, driven by playwright-core.
+//   node page_test.mjs RBSIM_BINARY
+// A scene of three coloured spheres on the ground is run with the csv, contacts and html outputs;
+// the page must load from file:// with no console error and no network request. The test sets the
+// camera through URL parameters, projects the trajectory CSV with its own pinhole camera model,
+// and finds each sphere by its colour in the screenshot within 2 px, at several times; the time
+// slider moves the scene; and the contact arrows are drawn where contacts.jsonl puts the contacts.
+// Prints 'N passed, N failed'; exits non-zero on any failure.
+import { execFileSync } from 'node:child_process';
+import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { inflateSync } from 'node:zlib';
+import { chromium } from 'playwright-core';
+
+const rbsim = process.argv[2];
+let passed = 0;
+let failed = 0;
+let largest = 0; // px: the largest distance of a found body from its projection
+function check(name, ok, detail = '') {
+  if (ok) {
+    passed += 1;
+  } else {
+    failed += 1;
+    console.log(`FAIL: ${name}${detail ? `: ${detail}` : ''}`);
+  }
+}
+
+// --- A PNG decoder (8-bit RGB or RGBA, not interlaced: what Chromium writes) ----------------
+function decodePng(buffer) {
+  let at = 8;
+  let width = 0;
+  let height = 0;
+  let channels = 0;
+  const data = [];
+  while (at < buffer.length) {
+    const length = buffer.readUInt32BE(at);
+    const type = buffer.toString('latin1', at + 4, at + 8);
+    const body = buffer.subarray(at + 8, at + 8 + length);
+    if (type === 'IHDR') {
+      width = body.readUInt32BE(0);
+      height = body.readUInt32BE(4);
+      if (body[8] !== 8 || body[12] !== 0) throw new Error('PNG: only 8-bit, non-interlaced');
+      channels = { 2: 3, 6: 4 }[body[9]];
+      if (!channels) throw new Error(`PNG: colour type ${body[9]}`);
+    } else if (type === 'IDAT') {
+      data.push(body);
+    }
+    at += 12 + length;
+  }
+  const raw = inflateSync(Buffer.concat(data));
+  const stride = width * channels;
+  const out = new Uint8Array(width * height * 3);
+  let previous = new Uint8Array(stride);
+  for (let y = 0; y < height; ++y) {
+    const filter = raw[y * (stride + 1)];
+    const line = raw.subarray(y * (stride + 1) + 1, (y + 1) * (stride + 1));
+    const row = new Uint8Array(stride);
+    for (let i = 0; i < stride; ++i) {
+      const a = i >= channels ? row[i - channels] : 0;
+      const b = previous[i];
+      const c = i >= channels ? previous[i - channels] : 0;
+      let p = 0;
+      if (filter === 1) p = a;
+      else if (filter === 2) p = b;
+      else if (filter === 3) p = (a + b) >> 1;
+      else if (filter === 4) {
+        const e = a + b - c;
+        const pa = Math.abs(e - a);
+        const pb = Math.abs(e - b);
+        const pc = Math.abs(e - c);
+        p = pa <= pb && pa <= pc ? a : pb <= pc ? b : c;
+      }
+      row[i] = (line[i] + p) & 255;
+    }
+    for (let x = 0; x < width; ++x) {
+      for (let k = 0; k < 3; ++k) out[(y * width + x) * 3 + k] = row[x * channels + k];
+    }
+    previous = row;
+  }
+  return { width, height, rgb: out };
+}
+
+// The centroid of the pixels within `tolerance` of `colour`, and their count.
+function find(image, colour, tolerance = 40, near = null, radius = Infinity) {
+  let sx = 0;
+  let sy = 0;
+  let n = 0;
+  for (let y = 0; y < image.height; ++y) {
+    for (let x = 0; x < image.width; ++x) {
+      if (near && Math.hypot(x + 0.5 - near[0], y + 0.5 - near[1]) > radius) continue;
+      const i = (y * image.width + x) * 3;
+      const d = Math.hypot(image.rgb[i] - colour[0], image.rgb[i + 1] - colour[1], image.rgb[i + 2] - colour[2]);
+      if (d > tolerance) continue;
+      sx += x + 0.5;
+      sy += y + 0.5;
+      n += 1;
+    }
+  }
+  return n ? { x: sx / n, y: sy / n, n } : { n: 0 };
+}
+
+// --- The test's own camera: a pinhole at `eye` looking at `target`, `up` up, vertical fov. -----
+function projector(eye, target, up, fovDegrees, width, height) {
+  const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+  const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+  const unit = (a) => {
+    const l = Math.hypot(...a);
+    return a.map((v) => v / l);
+  };
+  const back = unit(sub(eye, target)); // the camera looks along −back
+  const right = unit(cross(up, back));
+  const top = cross(back, right);
+  const f = 1 / Math.tan((fovDegrees * Math.PI) / 360);
+  const aspect = width / height;
+  return (p) => {
+    const d = sub(p, eye);
+    const depth = -dot(d, back);
+    const nx = (f * dot(d, right)) / depth / aspect;
+    const ny = (f * dot(d, top)) / depth;
+    return [((nx + 1) / 2) * width, ((1 - ny) / 2) * height];
+  };
+}
+
+// --- The run --------------------------------------------------------------------------------
+const dir = mkdtempSync(join(tmpdir(), 'rbsim-page-'));
+const spheres = [
+  { name: 'red', color: [1, 0, 0], position: [-0.3, 0.0, 0.05], velocity: [0.6, 0.1, 0], pixel: [255, 0, 0] },
+  { name: 'green', color: [0, 1, 0], position: [0.0, 0.25, 0.35], velocity: [0, -0.3, 0], pixel: [0, 255, 0] },
+  { name: 'blue', color: [0, 0, 1], position: [0.3, -0.15, 0.05], velocity: [-0.4, 0.5, 0], pixel: [0, 0, 255] },
+];
+const scene = {
+  description: 'Three coloured spheres on the ground (tests/rbsim/page_test.mjs)',
+  dt: 0.002,
+  duration: 1.2,
+  output_rate: 25,
+  ground: { normal: [0, 0, 1], offset: 0, material: { static_friction: 0.5, kinetic_friction: 0.4 } },
+  bodies: spheres.map((s) => ({
+    name: s.name,
+    solid: { type: 'sphere', radius: 0.05 },
+    density: 1000,
+    position: s.position,
+    velocity: s.velocity,
+    color: s.color,
+  })),
+  forces: [{ type: 'gravity', g: [0, 0, -9.81] }],
+};
+writeFileSync(join(dir, 'spheres.json'), JSON.stringify(scene));
+execFileSync(rbsim, [join(dir, 'spheres.json'), '--out', join(dir, 'out'), '--outputs', 'csv,contacts,html', '-q'], {
+  stdio: ['ignore', 'ignore', 'inherit'],
+});
+const rows = readFileSync(join(dir, 'out', 'trajectory.csv'), 'utf8').trim().split('\n').slice(1).map((l) => l.split(','));
+const times = [...new Set(rows.map((r) => r[0]))];
+const positionAt = (time, body) => {
+  const row = rows.find((r) => r[0] === time && r[1] === body);
+  return [Number(row[2]), Number(row[3]), Number(row[4])];
+};
+const steps = readFileSync(join(dir, 'out', 'contacts.jsonl'), 'utf8').trim().split('\n').map((l) => JSON.parse(l));
+
+const browser = await chromium.launch({
+  executablePath: '/usr/bin/chromium',
+  args: ['--disable-background-networking', '--disable-component-update', '--disable-sync', '--use-angle=swiftshader',
+    '--enable-unsafe-swiftshader', '--no-first-run'],
+});
+try {
+  const page = await browser.newPage({ viewport: { width: 1100, height: 700 } });
+  const problems = [];
+  page.on('console', (m) => { if (m.type() === 'error' || m.type() === 'warning') problems.push(`console ${m.type()}: ${m.text()}`); });
+  page.on('pageerror', (e) => problems.push(`page error: ${e}`));
+  const url = `file://${join(dir, 'out', 'run.html')}`;
+  page.on('request', (r) => { if (r.url().split('?')[0] !== url) problems.push(`request: ${r.url()}`); });
+
+  const eye = [0.9, -1.5, 1.0];
+  const target = [0, 0, 0.05];
+  const fov = 35;
+  const camera = `camera=${eye.join(',')}&target=${target.join(',')}&fov=${fov}`;
+  async function shoot() {
+    const frames = await page.evaluate(() => window.rbsim.frames);
+    await page.waitForFunction((n) => window.rbsim.frames > n + 1, frames);
+    const canvas = page.locator('#view canvas');
+    const box = await canvas.boundingBox();
+    return { image: decodePng(await canvas.screenshot()), box };
+  }
+  async function open(query) {
+    await page.goto(`${url}?${query}`);
+    await page.waitForFunction(() => window.rbsim && window.rbsim.frames > 2, null, { timeout: 30000 });
+    return shoot();
+  }
+  function expectBodies(shot, time, label) {
+    const project = projector(eye, target, [0, 0, 1], fov, shot.image.width, shot.image.height);
+    for (const s of spheres) {
+      const want = project(positionAt(time, s.name));
+      const got = find(shot.image, s.pixel);
+      const error = got.n ? Math.hypot(got.x - want[0], got.y - want[1]) : Infinity;
+      largest = Math.max(largest, error);
+      check(`${label}: the ${s.name} sphere at t = ${time} s within 2 px`, got.n > 50 && error <= 2,
+        `found ${got.n} px at (${got.x?.toFixed(2)}, ${got.y?.toFixed(2)}), projected (${want[0].toFixed(2)}, ${want[1].toFixed(2)})`);
+    }
+  }
+
+  // 1. Several times through the URL, each sphere where the CSV says.
+  for (const time of [times[0], times[5], times[15], times[times.length - 1]]) {
+    const shot = await open(`t=${time}&${camera}&flat=1&contacts=0`);
+    expectBodies(shot, time, 'url');
+  }
+  // 2. The slider moves the scene: dragged to a sample, the spheres are where that sample has them.
+  await open(`t=0&${camera}&flat=1&contacts=0`);
+  await page.evaluate(() => {
+    const s = document.getElementById('slider');
+    s.value = '12';
+    s.dispatchEvent(new Event('input', { bubbles: true }));
+  });
+  const moved = await shoot();
+  check('the slider sets the time', Math.abs((await page.evaluate(() => window.rbsim.time())) - Number(times[12])) < 1e-9);
+  expectBodies(moved, times[12], 'slider');
+
+  // 3. Contact arrows where the contacts are: at a time the spheres roll on the ground, arrow
+  // pixels at each contact point's projection and halfway along its force.
+  const time = times[20];
+  const shot = await open(`t=${time}&${camera}&flat=1&contacts=1`);
+  const run = JSON.parse(await page.evaluate(() => document.getElementById('rbsim-run').textContent));
+  const step = steps.find((s) => Math.abs(s.time - Number(time)) < 1e-9);
+  const project = projector(eye, target, [0, 0, 1], fov, shot.image.width, shot.image.height);
+  check('contacts at the checked time', step && step.contacts.length >= 3, JSON.stringify(step?.contacts.length));
+  for (const c of step ? step.contacts : []) {
+    const force = c.impulse.map((v) => v / scene.dt);
+    const tip = c.point.map((v, k) => v + 0.5 * force[k] * run.force_scale);
+    for (const [where, p] of [['at', c.point], ['halfway along', tip]]) {
+      const at = project(p);
+      const got = find(shot.image, [255, 212, 0], 60, at, 4);
+      check(`an arrow ${where} ${c.a}'s contact`, got.n >= 3, `${got.n} arrow px near (${at[0].toFixed(1)}, ${at[1].toFixed(1)})`);
+    }
+  }
+  const none = await open(`t=${time}&${camera}&flat=1&contacts=0`);
+  check('no arrows with contacts=0', find(none.image, [255, 212, 0], 60).n === 0);
+
+  // 4. Played: time advances.
+  await page.goto(`${url}?${camera}&speed=1`);
+  await page.waitForFunction(() => window.rbsim && window.rbsim.frames > 10, null, { timeout: 30000 });
+  check('the page plays', (await page.evaluate(() => window.rbsim.time())) > 0);
+  check('no console errors and no network requests', problems.length === 0, problems.join('; '));
+} finally {
+  await browser.close();
+  rmSync(dir, { recursive: true, force: true });
+}
+console.log(`bodies found within ${largest.toFixed(2)} px of their projections`);
+console.log(`${passed} passed, ${failed} failed`);
+process.exit(failed ? 1 : 0);
