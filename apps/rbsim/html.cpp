@@ -13,15 +13,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "html.h"
 #include "outputs.h"
 
 extern "C" const char rbsim_viewer_js[];      // viewer_bundle.S
 extern "C" const char rbsim_viewer_js_end[];  // one past its last byte
 
 namespace rbsim {
-namespace {
-
 using Json = nlohmann::json;
+namespace {
 
 std::string Base64(const void* data, std::size_t size) {
   static const char* const kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -45,22 +45,6 @@ std::string Base64(const std::vector<T>& v) {
   return Base64(v.data(), v.size() * sizeof(T));
 }
 
-// A mesh as float32 positions and uint32 indices.
-void PutMesh(Json& j, const massprops::TriangleMesh& mesh) {
-  std::vector<float> positions;
-  positions.reserve(static_cast<std::size_t>(mesh.V.size()));
-  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) {
-    for (int k = 0; k < 3; ++k) positions.push_back(static_cast<float>(mesh.V(v, k)));
-  }
-  std::vector<std::uint32_t> indices;
-  indices.reserve(static_cast<std::size_t>(mesh.F.size()));
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-    for (int k = 0; k < 3; ++k) indices.push_back(static_cast<std::uint32_t>(mesh.F(f, k)));
-  }
-  j["positions"] = Base64(positions);
-  j["indices"] = Base64(indices);
-}
-
 Json Colour(const Vector3& c) { return {c.x(), c.y(), c.z()}; }
 
 // The run's data for the viewer (the page's schema; docs/rbsim.md describes it).
@@ -75,22 +59,12 @@ Json RunData(const Simulation& sim, const Recording& rec) {
   Json bodies = Json::array();
   for (std::size_t b = 0; b < sim.bodies.size(); ++b) {
     const SimBody& body = sim.bodies[b];
-    Json o;
-    o["name"] = body.name;
-    o["color"] = Colour(body.color);
-    PutMesh(o, body.display);
-    std::vector<float> t, q;
+    Json o = ViewerBody(body.name, body.color, body.display, rec.translations[b], rec.rotations[b]);
     const double r = body.display.V.rows() > 0 ? body.display.V.rowwise().norm().maxCoeff() : 0.0;
-    for (std::size_t s = 0; s < rec.times.size(); ++s) {
-      const Eigen::Vector3f& x = rec.translations[b][s];
-      t.insert(t.end(), {x.x(), x.y(), x.z()});
-      const Eigen::Vector4f& r4 = rec.rotations[b][s];
-      q.insert(q.end(), {r4.x(), r4.y(), r4.z(), r4.w()});
+    for (const Eigen::Vector3f& x : rec.translations[b]) {
       bounds.extend(x.cast<double>() + Vector3::Constant(r));
       bounds.extend(x.cast<double>() - Vector3::Constant(r));
     }
-    o["translations"] = Base64(t);
-    o["rotations"] = Base64(q);
     if (!rec.asleep.empty()) {
       std::vector<std::uint8_t> a;
       for (const auto& sample : rec.asleep) a.push_back(sample[b]);
@@ -100,17 +74,9 @@ Json RunData(const Simulation& sim, const Recording& rec) {
   }
   j["bodies"] = std::move(bodies);
   Json statics = Json::array();
-  for (const SimStatic& st : sim.statics) {
-    Json o;
-    o["name"] = st.name;
-    o["color"] = Colour(st.color);
-    PutMesh(o, st.display);
-    statics.push_back(std::move(o));
-  }
+  for (const SimStatic& st : sim.statics) statics.push_back(ViewerStatic(st.name, st.color, st.display));
   j["statics"] = std::move(statics);
-  if (bounds.isEmpty()) bounds.extend(Vector3::Zero());
-  j["bounds"] = {{"min", {bounds.min().x(), bounds.min().y(), bounds.min().z()}},
-                 {"max", {bounds.max().x(), bounds.max().y(), bounds.max().z()}}};
+  j["bounds"] = ViewerBounds(bounds);
   // Contact forces: arrows as long as a tenth of the scene for the 90th percentile of the forces.
   if (rec.contacts) {
     Json contacts = Json::array();
@@ -138,19 +104,41 @@ Json RunData(const Simulation& sim, const Recording& rec) {
   return j;
 }
 
-// Text that may stand inside a <script> element: "</" cannot close it.
-std::string ScriptSafe(std::string text) {
-  for (std::size_t at = text.find("</"); at != std::string::npos; at = text.find("</", at + 3)) {
-    text.replace(at, 2, "<\\/");
-  }
-  return text;
-}
-
 }  // namespace
 
-void WriteHtml(const std::string& path, const Simulation& sim, const Recording& rec) {
+Json ViewerBody(const std::string& name, const Vector3& color, const massprops::TriangleMesh& mesh,
+                const std::vector<Eigen::Vector3f>& translations, const std::vector<Eigen::Vector4f>& rotations) {
+  Json o = ViewerStatic(name, color, mesh);
+  std::vector<float> t, q;
+  for (const Eigen::Vector3f& x : translations) t.insert(t.end(), {x.x(), x.y(), x.z()});
+  for (const Eigen::Vector4f& r : rotations) q.insert(q.end(), {r.x(), r.y(), r.z(), r.w()});
+  o["translations"] = Base64(t);
+  o["rotations"] = Base64(q);
+  return o;
+}
+
+Json ViewerStatic(const std::string& name, const Vector3& color, const massprops::TriangleMesh& mesh) {
+  std::vector<float> positions;
+  positions.reserve(static_cast<std::size_t>(mesh.V.size()));
+  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) {
+    for (int k = 0; k < 3; ++k) positions.push_back(static_cast<float>(mesh.V(v, k)));
+  }
+  std::vector<std::uint32_t> indices;
+  indices.reserve(static_cast<std::size_t>(mesh.F.size()));
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) indices.push_back(static_cast<std::uint32_t>(mesh.F(f, k)));
+  }
+  return {{"name", name}, {"color", Colour(color)}, {"positions", Base64(positions)}, {"indices", Base64(indices)}};
+}
+
+Json ViewerBounds(Eigen::AlignedBox3d bounds) {
+  if (bounds.isEmpty()) bounds.extend(Vector3::Zero());
+  return {{"min", {bounds.min().x(), bounds.min().y(), bounds.min().z()}},
+          {"max", {bounds.max().x(), bounds.max().y(), bounds.max().z()}}};
+}
+
+std::string ViewerPage(const std::string& title, const Json& data) {
   const std::string viewer(rbsim_viewer_js, static_cast<std::size_t>(rbsim_viewer_js_end - rbsim_viewer_js));
-  std::string title = std::filesystem::path(sim.scene.file).filename().string();
   std::string escaped;
   for (const char c : title) {
     if (c == '<') {
@@ -161,15 +149,23 @@ void WriteHtml(const std::string& path, const Simulation& sim, const Recording& 
       escaped += c;
     }
   }
+  // "</" in the JSON (a name) cannot end its element: written "<\/", the same JSON string.
+  std::string json = data.dump(-1, ' ', false, Json::error_handler_t::replace);
+  for (std::size_t at = json.find("</"); at != std::string::npos; at = json.find("</", at + 3)) {
+    json.replace(at, 2, "<\\/");
+  }
   std::string page;
-  page += "<!DOCTYPE html>\n<html lang='en'>\n<head>\n<meta charset='utf-8'>\n<title>rbsim: " + escaped +
+  page += "<!DOCTYPE html>\n<html lang='en'>\n<head>\n<meta charset='utf-8'>\n<title>" + escaped +
           "</title>\n<meta name='viewport' content='width=device-width, initial-scale=1'>\n</head>\n<body>\n";
-  page += "<script type='application/json' id='rbsim-run'>";
-  page += ScriptSafe(RunData(sim, rec).dump(-1, ' ', false, Json::error_handler_t::replace));
-  page += "</script>\n<script>\n";
+  page += "<script type='application/json' id='rbsim-run'>" + json + "</script>\n<script>\n";
   page += viewer;  // viewer/build.mjs made it safe inside <script>
   page += "\n</script>\n</body>\n</html>\n";
-  massprops::report::WriteFileAtomically(path, page);
+  return page;
+}
+
+void WriteHtml(const std::string& path, const Simulation& sim, const Recording& rec) {
+  massprops::report::WriteFileAtomically(
+      path, ViewerPage("rbsim: " + std::filesystem::path(sim.scene.file).filename().string(), RunData(sim, rec)));
 }
 
 }  // namespace rbsim

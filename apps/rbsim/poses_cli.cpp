@@ -2,7 +2,7 @@
 //
 //   rbsim poses PART [--unit U] [--density D | --mass M] [--drops N] [--height H] [--seed S]
 //                    [--ground MU_S,MU_K,E] [--material MU_S,MU_K,E] [--collision hull|mesh]
-//                    [--threads N] [--format table|json] [--out DIR]
+//                    [--threads N] [--format table|json|html] [--out DIR]
 
 #include "poses_cli.h"
 
@@ -20,6 +20,7 @@
 #include "cli.h"
 #include "dynamics/pose_part.h"
 #include "dynamics/poses.h"
+#include "html.h"
 #include "massprops/load.h"
 #include "massprops/report/atomic_file.h"
 #include "massprops/report/words.h"
@@ -61,6 +62,61 @@ std::string Vec(const Vector3& v, const char* format = "%+.4f") {
   return out;
 }
 
+// The likely poses (at most 12: the quasi-static estimate's and the drops' largest) at rest side by
+// side on the plane z = 0, in the run viewer's page: one sample, each pose a body named with its
+// share.
+std::string PosesPage(const std::string& name, const massprops::TriangleMesh& mesh, const dp::Part& part,
+                      const dp::Estimate& estimate, const dp::Tally& tally, bool have_drops) {
+  std::vector<std::size_t> order(estimate.poses.size());
+  for (std::size_t p = 0; p < order.size(); ++p) order[p] = p;
+  auto share = [&](std::size_t p) {
+    return have_drops
+               ? static_cast<double>(tally.counts[p]) / static_cast<double>(std::max<std::int64_t>(tally.drops, 1))
+               : estimate.poses[p].quasi_static;
+  };
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return share(a) > share(b); });
+  if (order.size() > 12) order.resize(12);
+  const Vector3 com = part.mass_properties.center_of_mass;
+  massprops::TriangleMesh centred = mesh;  // about the center of mass, as the schema has bodies
+  for (Eigen::Index v = 0; v < centred.V.rows(); ++v) centred.V.row(v) -= com.transpose();
+  const double size = centred.V.rows() > 0 ? 2 * centred.V.rowwise().norm().maxCoeff() : 1.0;
+  const Vector3 palette[] = {{0.85, 0.33, 0.10}, {0.00, 0.45, 0.74}, {0.47, 0.67, 0.19}, {0.49, 0.18, 0.56},
+                             {0.93, 0.69, 0.13}, {0.30, 0.75, 0.93}, {0.64, 0.08, 0.18}, {0.50, 0.50, 0.50}};
+  nlohmann::json bodies = nlohmann::json::array();
+  Eigen::AlignedBox3d bounds;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const dp::Pose& pose = estimate.poses[order[k]];
+    const Vector3 at = pose.rotation * com + pose.translation + Vector3(1.5 * size * static_cast<double>(k), 0, 0);
+    const Eigen::Quaterniond q(pose.rotation);
+    char label[96];
+    std::snprintf(label, sizeof label, "pose %zu: %s %.1f %%", order[k] + 1, have_drops ? "drops" : "quasi-static",
+                  100 * share(order[k]));
+    bodies.push_back(ViewerBody(label, palette[k % 8], centred, {at.cast<float>()},
+                                {Eigen::Vector4f(static_cast<float>(q.x()), static_cast<float>(q.y()),
+                                                 static_cast<float>(q.z()), static_cast<float>(q.w()))}));
+    bounds.extend(at + Vector3::Constant(size / 2));
+    bounds.extend(at - Vector3::Constant(size / 2));
+  }
+  // The plane under them.
+  massprops::TriangleMesh plane;
+  const double margin = size;
+  plane.V.resize(4, 3);
+  plane.V << bounds.min().x() - margin, -size - margin, 0, bounds.max().x() + margin, -size - margin, 0,
+      bounds.max().x() + margin, size + margin, 0, bounds.min().x() - margin, size + margin, 0;
+  plane.F.resize(2, 3);
+  plane.F << 0, 1, 2, 0, 2, 3;
+  nlohmann::json data;
+  data["version"] = 1;
+  data["title"] = name + ": resting poses";
+  data["up"] = {0, 0, 1};
+  data["times"] = {0.0};
+  data["bodies"] = std::move(bodies);
+  data["statics"] = nlohmann::json::array({ViewerStatic("plane", Vector3(0.8, 0.78, 0.72), plane)});
+  data["bounds"] = ViewerBounds(bounds);
+  data["diagnostics"] = {{"kinetic", {0.0}}, {"potential", {0.0}}, {"energy_drift", {0.0}}, {"momentum_drift", {0.0}}};
+  return ViewerPage("rbsim poses: " + name, data);
+}
+
 }  // namespace
 
 int PosesMain(int argc, char** argv) {
@@ -98,7 +154,9 @@ int PosesMain(int argc, char** argv) {
       ->check(massprops::app::Positive());
   app.add_option("--threads", threads, "Worker threads for the drops (0 = all cores; same results for any count)")
       ->check(massprops::app::NonNegative());
-  app.add_option("--format", format, "table or json")->check(CLI::IsMember({"table", "json"}));
+  app.add_option("--format", format,
+                 "table, json, or html (a page that shows each likely pose at rest, side by side, in a browser)")
+      ->check(CLI::IsMember({"table", "json", "html"}));
   app.add_option("--out", out_dir, "Write a picture of each pose (pose_1.svg, ...) and poses.json into this folder");
   bool quiet = false;
   app.add_flag("-q,--quiet", quiet, "Print only the result (there is no progress display)");
@@ -212,6 +270,10 @@ int PosesMain(int argc, char** argv) {
 
   if (format == "json") {
     std::cout << j.dump(2) << "\n";
+    return 0;
+  }
+  if (format == "html") {
+    std::cout << PosesPage(name, file_mesh, part, estimate, tally, have_drops);
     return 0;
   }
   std::printf("%s: %.6g kg, center of mass %s m; convex hull of %zu faces, %zu stable\n", name.c_str(),

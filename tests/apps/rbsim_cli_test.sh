@@ -193,5 +193,30 @@ wait "$pid"
 grep -q "interrupted at t =" "$tmp/err"; check "interrupted message" $?
 [ -z "$(ls -A "$tmp/int")" ]; check "interrupted run leaves no files ($(ls "$tmp/int" | tr '\n' ' '))" $?
 
+# contacts.jsonl: one line per step, each contact naming its bodies, with a point, a unit normal and
+# an impulse; the box stack's ground contacts carry its weight. run.html holds the run's data.
+"$bin" "$data/scenes/box_stack.json" --duration 0.1 --out "$tmp/c" --outputs contacts,html -q >/dev/null
+[ $? -eq 0 ]; check "contacts and html outputs" $?
+/usr/bin/python3 - "$tmp/c" <<'PY'
+import json, math, re, sys
+d = sys.argv[1]
+steps = [json.loads(l) for l in open(d + "/contacts.jsonl")]
+assert [s["step"] for s in steps] == list(range(1, 101)), len(steps)
+last = steps[-1]
+ground = [c for c in last["contacts"] if c["b"] is None]
+assert ground and all(c["a"] == "box0" for c in ground)
+assert all(abs(math.hypot(*c["normal"]) - 1) < 1e-12 for c in last["contacts"])
+weight = 10 * 500 * 0.1 ** 3 * 9.81 * 0.001  # ten boxes' weight over one step, N s
+assert abs(sum(c["impulse"][2] for c in ground) - weight) < 1e-6 * weight, sum(c["impulse"][2] for c in ground)
+page = open(d + "/run.html").read()
+run = json.loads(re.search(r"<script type='application/json' id='rbsim-run'>(.*?)</script>", page, re.S).group(1))
+assert [b["name"] for b in run["bodies"]] == [f"box{i}" for i in range(10)]
+assert len(run["times"]) == len(run["contacts"]) and run["force_scale"] > 0
+PY
+check "contacts.jsonl carries the stack's weight; run.html has the run" $?
+"$bin" poses "$data/meshes/t_handle.obj" --drops 0 --format html >"$tmp/poses.html"
+[ $? -eq 0 ] && grep -q "id='rbsim-run'" "$tmp/poses.html" && grep -q '"title":"t_handle.obj: resting poses"' "$tmp/poses.html"
+check "rbsim poses --format html" $?
+
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]

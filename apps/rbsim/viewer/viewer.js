@@ -273,7 +273,13 @@ function main() {
   showContacts.checked = options.contacts && !!contacts;
   showContacts.disabled = !contacts;
 
-  let playing = !options.paused;
+  // One sample (rbsim poses): a still scene, no clock or plots.
+  if (last === 0) {
+    for (const id of ['#play', '#slider', '#clock', '#energy', '#drift']) root.querySelector(id).style.display = 'none';
+    for (const label of root.querySelectorAll('#controls label')) label.style.display = 'none';
+    root.querySelector('#legend p').remove();
+  }
+  let playing = !options.paused && last > 0;
   let position = 0; // in samples, fractional
   const sampleAt = (t) => {
     if (t <= times[0]) return 0;
