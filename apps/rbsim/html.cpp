@@ -77,7 +77,7 @@ Json RunData(const Simulation& sim, const Recording& rec) {
   for (const SimStatic& st : sim.statics) statics.push_back(ViewerStatic(st.name, st.color, st.display));
   j["statics"] = std::move(statics);
   j["bounds"] = ViewerBounds(bounds);
-  // Contact forces: arrows as long as a tenth of the scene for the 90th percentile of the forces.
+  // Contact forces: arrows as long as a twentieth of the scene for the 90th percentile of the forces.
   if (rec.contacts) {
     Json contacts = Json::array();
     std::vector<double> magnitudes;
@@ -95,7 +95,7 @@ Json RunData(const Simulation& sim, const Recording& rec) {
       typical = *at;
     }
     const double size = std::max(bounds.sizes().maxCoeff(), 1e-3);
-    j["force_scale"] = typical > 0 ? 0.1 * size / typical : 0.0;  // m per N
+    j["force_scale"] = typical > 0 ? 0.05 * size / typical : 0.0;  // m per N
   }
   j["diagnostics"] = {{"kinetic", rec.kinetic},
                       {"potential", rec.potential},

@@ -225,7 +225,11 @@ try {
   check('contacts at the checked time', step && step.contacts.length >= 3, JSON.stringify(step?.contacts.length));
   for (const c of step ? step.contacts : []) {
     const force = c.impulse.map((v) => v / scene.dt);
-    const tip = c.point.map((v, k) => v + 0.5 * force[k] * run.force_scale);
+    // The arrow's length: force × force_scale, at most a tenth of the run's bounds (the viewer's rule).
+    const size = Math.max(...run.bounds.max.map((v, k) => v - run.bounds.min[k]));
+    const magnitude = Math.hypot(...force);
+    const length = Math.min(magnitude * run.force_scale, 0.1 * size);
+    const tip = c.point.map((v, k) => v + (0.5 * length * force[k]) / magnitude);
     for (const [where, p] of [['at', c.point], ['halfway along', tip]]) {
       const at = project(p);
       const got = find(shot.image, [255, 212, 0], 60, at, 4);

@@ -245,6 +245,7 @@ function main() {
   scene.add(arrows);
   const pool = [];
   const contacts = run.contacts ? run.contacts.map(floats) : null;
+  const typicalArrow = 0.05 * Math.max(...hi.clone().sub(lo).toArray(), 1e-3); // as rbsim sets force_scale
 
   const energy = new Plot(root.querySelector('#energy'), times, [
     { label: 'kinetic', values: run.diagnostics.kinetic, colour: '#c33' },
@@ -259,7 +260,7 @@ function main() {
   root.querySelector('#legend').innerHTML =
     named.map((b, i) => `<span class="key" style="background:#${bodies[i].colour.getHexString()}"></span>${b.name.replace(/[<&]/g, '')}`).join(' &nbsp;') +
     (run.bodies.length > named.length ? ` and ${run.bodies.length - named.length} more bodies` : '') +
-    `<p>${contacts ? `Contact forces are yellow arrows (${run.force_scale > 0 ? `${(1 / run.force_scale).toPrecision(3)} N per metre` : 'none'}); sleeping bodies are tinted blue.` : 'This run was written without contacts.'}</p>`;
+    `<p>${contacts ? `Contact forces are yellow arrows (${run.force_scale > 0 ? `${(1 / run.force_scale).toPrecision(3)} N per metre, at most twice the usual length` : 'none'}); sleeping bodies are tinted blue.` : 'This run was written without contacts.'}</p>`;
 
   const slider = root.querySelector('#slider');
   const clock = root.querySelector('#clock');
@@ -327,7 +328,8 @@ function main() {
       const c = contacts[i];
       for (let k = 0; k + 5 < c.length; k += 6) {
         const force = new Vector3(c[k + 3], c[k + 4], c[k + 5]);
-        const length = force.length() * run.force_scale;
+        // At most twice the typical arrow (an impact's force would cross the scene): longer is clamped.
+        const length = Math.min(force.length() * run.force_scale, 2 * typicalArrow);
         if (!(length > 0)) continue;
         if (used === pool.length) {
           const arrow = new ArrowHelper(new Vector3(0, 0, 1), new Vector3(), 1, ARROW_COLOUR);
@@ -342,7 +344,7 @@ function main() {
         const arrow = pool[used++];
         arrow.position.set(c[k], c[k + 1], c[k + 2]);
         arrow.setDirection(force.normalize());
-        const head = Math.min(length * 0.35, radius * 0.04);
+        const head = Math.min(length * 0.3, typicalArrow * 0.25);
         arrow.setLength(length, head, head * 0.6);
         arrow.visible = true;
       }
