@@ -211,7 +211,8 @@ int ComputeMain(int argc, char** argv) {
       p.units = format.units;
       report::WritePicture(picture, results.front(), p);
     } catch (const std::exception& e) {
-      std::cerr << "error: --picture: " << massprops::app::OneLine(e.what()) << "\n";
+      std::cerr << "error: " << massprops::app::OneLine(results.front().source)
+                << ": --picture: " << massprops::app::OneLine(e.what()) << "\n";
       return 1;
     }
   }

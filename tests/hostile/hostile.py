@@ -338,6 +338,14 @@ def main():
     for name, target in [("out_dev_null", "/dev/null"), ("out_fifo", "fifo.out"), ("out_dir", tmp),
                          ("out_input", "clean_obj.obj")]:
         run(name, ["clean_obj.obj", "-o", target], 2, r"not a regular file|is also an input")
+    # Pictures: the same rules, and an extension that says the format.
+    os.mkfifo(os.path.join(tmp, "fifo.svg"))
+    os.mkdir(os.path.join(tmp, "dir.svg"))
+    for name, target in [("picture_dev_null", "/dev/null"), ("picture_fifo", "fifo.svg"), ("picture_dir", "dir.svg"),
+                         ("picture_gif", "p.gif")]:
+        run(name, ["clean_obj.obj", "--picture", target], 2, r"--picture: .*(not a regular file|\.svg or \.png)")
+    run("picture_no_folder", ["clean_obj.obj", "--picture", "no/such/folder/p.svg"], 1,
+        r"--picture: .*no/such/folder/p.svg")
     os.mkfifo(os.path.join(tmp, "fifo.obj"))
     run("input_fifo", ["fifo.obj"], 1, r"not a regular file")
     # massprops fill: robot descriptions that are not what they claim, or are built to hurt.
