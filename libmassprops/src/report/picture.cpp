@@ -6,6 +6,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
@@ -184,10 +185,13 @@ class Drawing {
     Print("<text x='%.1f' y='%.1f' font-family='DejaVu Sans, sans-serif' font-size='13' %s>", x, y, style);
     svg_ += Escape(text) + "</text>\n";
   }
-  template <typename... Args>
-  void Print(const char* format, Args... args) {
+  // printf into the SVG.
+  __attribute__((format(printf, 2, 3))) void Print(const char* format, ...) {
     char buffer[512];
-    const int n = std::snprintf(buffer, sizeof buffer, format, args...);
+    va_list args;
+    va_start(args, format);
+    const int n = std::vsnprintf(buffer, sizeof buffer, format, args);
+    va_end(args);
     svg_.append(buffer, static_cast<std::size_t>(std::clamp(n, 0, static_cast<int>(sizeof buffer) - 1)));
   }
   std::string Length(double metres) const {
