@@ -47,7 +47,7 @@ std::string Base64(const std::vector<T>& v) {
 
 Json Colour(const Vector3& c) { return {c.x(), c.y(), c.z()}; }
 
-// The run's data for the viewer (the page's schema; docs/rbsim.md describes it).
+// The run's data for the viewer (the page's schema; docs/scenes.md, "The page: run.html", describes it).
 Json RunData(const Simulation& sim, const Recording& rec) {
   Json j;
   j["version"] = 1;

@@ -1,7 +1,7 @@
 #pragma once
 // The run viewer's page (html.cpp): the viewer script (viewer/viewer.js with three.js, bundled into
 // viewer/viewer.bundle.js and linked into rbsim) around the data of a run, as JSON in the schema of
-// docs/rbsim.md ("run.html"). rbsim's runs (WriteHtml in outputs.h) and rbsim poses build the data.
+// docs/scenes.md ("The page: run.html"). rbsim's runs (WriteHtml in outputs.h) and rbsim poses build the data.
 
 #include <string>
 #include <vector>

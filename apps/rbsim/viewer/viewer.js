@@ -1,5 +1,5 @@
 // rbsim's run viewer: plays the run that rbsim wrote into the page (<script id="rbsim-run">, the
-// schema in docs/rbsim.md) with three.js. Bundled by build.mjs into viewer.bundle.js, which rbsim
+// schema in docs/scenes.md) with three.js. Bundled by build.mjs into viewer.bundle.js, which rbsim
 // inlines into run.html: no imports or fetches at run time, so the page plays from file://.
 //
 // URL parameters (all optional): t=SECONDS (start paused there), camera=x,y,z and target=x,y,z
