@@ -6,6 +6,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build_dir=$(bash "$root/scripts/build.sh" | tail -n 1)
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$root/tests/lsan.supp:print_suppressions=0}
 # Long simulations run once, in the Release run: under the sanitizers their code runs through the
 # shorter tests of the same steps (a box resting, a ball rolling, one drop), not for minutes.
 exclude=()

@@ -239,7 +239,25 @@ try {
   const none = await open(`t=${time}&${camera}&flat=1&contacts=0`);
   check('no arrows with contacts=0', find(none.image, [255, 212, 0], 60).n === 0);
 
-  // 4. Played: time advances.
+  // 4. Sleeping bodies are tinted: a sphere left at rest on the ground with sleeping on falls
+  // asleep after half a second; at the end it is drawn in its colour mixed 55 % towards the tint.
+  const still = { ...scene, duration: 1.2, contact: { sleeping: true },
+    bodies: [{ ...scene.bodies[0], position: [0, 0, 0.05], velocity: [0, 0, 0] }] };
+  writeFileSync(join(dir, 'still.json'), JSON.stringify(still));
+  execFileSync(rbsim, [join(dir, 'still.json'), '--out', join(dir, 'still'), '--outputs', 'html', '-q'], {
+    stdio: ['ignore', 'ignore', 'inherit'],
+  });
+  const srgb = (c) => Math.round(255 * (c <= 0.0031308 ? 12.92 * c : 1.055 * c ** (1 / 2.4) - 0.055));
+  const tinted = [1 + 0.55 * (0.35 - 1), 0.55 * 0.45, 0.55 * 0.95].map(srgb);
+  await page.goto(`file://${join(dir, 'still', 'run.html')}?t=1.2&${camera}&flat=1&contacts=0`);
+  await page.waitForFunction(() => window.rbsim && window.rbsim.frames > 2, null, { timeout: 30000 });
+  const asleep = await shoot();
+  const at = projector(eye, target, [0, 0, 1], fov, asleep.image.width, asleep.image.height)([0, 0, 0.05]);
+  const found = find(asleep.image, tinted, 12, at, 30);
+  check('a sleeping body is tinted', found.n > 50 && find(asleep.image, [255, 0, 0], 40).n === 0,
+    `${found.n} px of the tint ${tinted} near (${at[0].toFixed(1)}, ${at[1].toFixed(1)})`);
+
+  // 5. Played: time advances.
   await page.goto(`${url}?${camera}&speed=1`);
   await page.waitForFunction(() => window.rbsim && window.rbsim.frames > 10, null, { timeout: 30000 });
   check('the page plays', (await page.evaluate(() => window.rbsim.time())) > 0);
