@@ -209,7 +209,13 @@ int ComputeMain(int argc, char** argv) {
     try {
       report::PictureOptions p;
       p.units = format.units;
-      report::WritePicture(picture, results.front(), p);
+      if (a.files.empty()) {  // an implicit solid has no mesh: its surface drawn by marching tetrahedra
+        SolidResult drawn = results.front();
+        drawn.loaded.mesh = ToPolygonMesh(implicit::Polygonize(*implicit::ParseShape(a.implicit, ReadSdfGridFile)));
+        report::WritePicture(picture, drawn, p);
+      } else {
+        report::WritePicture(picture, results.front(), p);
+      }
     } catch (const std::exception& e) {
       std::cerr << "error: " << massprops::app::OneLine(results.front().source)
                 << ": --picture: " << massprops::app::OneLine(e.what()) << "\n";

@@ -414,6 +414,9 @@ grep -q "try --repair, or pass --allow-open" "$tmp/err"; check "CLI vocabulary i
 check "--picture writes the SVG" $?
 "$bin" "$data/meshes/Moon.stl" --parts --picture "$tmp/m.png" -q >/dev/null && [ "$(head -c 4 "$tmp/m.png" | tail -c 3)" = PNG ]
 check "--picture writes a PNG (a binary STL, read whole)" $?
+"$bin" --implicit 'sphere(r=1)' --samples 1e4 --picture "$tmp/s.svg" -q >/dev/null && [ "$(grep -c '<polygon points' "$tmp/s.svg")" -gt 1000 ] &&
+  grep -q ">2 m</text>" "$tmp/s.svg"
+check "--picture of an implicit solid draws its surface and its 2 m box" $?
 "$bin" "$data/meshes/t_handle.obj" --picture "$tmp/t.jpg" -q >/dev/null 2>"$tmp/err"
 [ $? -eq 2 ] && grep -q "a picture is .svg or .png" "$tmp/err" && [ ! -e "$tmp/t.jpg" ]; check "--picture .jpg refused" $?
 "$bin" "$data/meshes/t_handle.obj" "$data/meshes/spot.obj" --picture "$tmp/two.svg" -q >/dev/null 2>"$tmp/err"
