@@ -264,8 +264,12 @@ void Drawing::DrawBox(const Panel& p) {
       const Vector3 a = box_.min();
       Vector3 b = a;
       b[k] = box_.max()[k];
-      const Eigen::Vector2d m = (p.Px(a) + p.Px(b)) / 2;
-      Text(m.x() + 4, m.y() + 14, std::string(1, names[k]) + " " + Length(size[k]), "fill='#333'");
+      // Beside the edge's middle, away from the box's center, so that it stands clear of the part.
+      const Eigen::Vector2d m = (p.Px(a) + p.Px(b)) / 2, away = m - p.Px(box_.center());
+      const Eigen::Vector2d at =
+          m + 14 * (away.norm() > 0 ? Eigen::Vector2d(away.normalized()) : Eigen::Vector2d(0, 1));
+      Text(at.x(), at.y() + 5, std::string(1, names[k]) + " " + Length(size[k]),
+           at.x() < m.x() - 1 ? "fill='#333' text-anchor='end'" : "fill='#333'");
     }
     return;
   }
