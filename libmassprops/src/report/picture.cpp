@@ -75,12 +75,10 @@ Surface SurfaceOf(const SolidResult& r) {
   s.v.resize(static_cast<std::size_t>(mesh.V.rows()));
   for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) s.v[static_cast<std::size_t>(i)] = k * mesh.V.row(i).transpose();
   for (std::int64_t f = 0; f < mesh.num_faces(); ++f) {
-    const std::size_t before = s.tri.size();
     SplitPolygon(mesh.indices.data() + mesh.offsets[f], mesh.face_size(f), s.tri);
     const std::int32_t part =
         static_cast<std::size_t>(f) < r.loaded.face_part.size() ? r.loaded.face_part[static_cast<std::size_t>(f)] : 0;
     s.part.resize(s.tri.size(), part);
-    (void)before;
   }
   return s;
 }
