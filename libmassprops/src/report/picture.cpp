@@ -11,7 +11,9 @@
 #include <filesystem>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <unordered_map>
+#include <vector>
 
 #include <Eigen/Eigenvalues>
 
@@ -172,7 +174,8 @@ class Drawing {
 
  private:
   void DrawSurface(const Panel& p);
-  void DrawBox(const Panel& p);
+  void DrawBoxEdges(const Panel& p, bool behind);
+  void DrawDimensions(const Panel& p);
   void DrawEllipsoid(const Panel& p);
   void DrawAxesAndCenter(const Panel& p);
   void DrawLegend(double y, double width);
@@ -182,6 +185,24 @@ class Drawing {
   void Text(double x, double y, const std::string& text, const char* style = "") {
     Print("<text x='%.1f' y='%.1f' font-family='DejaVu Sans, sans-serif' font-size='13' %s>", x, y, style);
     svg_ += Escape(text) + "</text>\n";
+  }
+  // About how wide a text is in the pictures' 13 px DejaVu Sans.
+  static double TextWidth(const std::string& text) {
+    double n = 0;
+    for (const char ch : text) n += (static_cast<unsigned char>(ch) & 0xC0) != 0x80;  // UTF-8 code points
+    return 7.8 * n;
+  }
+  static Eigen::AlignedBox2d TextBox(double x, double baseline, double width, const std::string& anchor) {
+    const double left = anchor == "end" ? x - width : anchor == "middle" ? x - width / 2 : x;
+    return {Eigen::Vector2d(left, baseline - 10), Eigen::Vector2d(left + width, baseline + 3)};
+  }
+  bool Free(const Eigen::AlignedBox2d& box) const {
+    return std::none_of(taken_.begin(), taken_.end(), [&](const Eigen::AlignedBox2d& t) { return t.intersects(box); });
+  }
+  // A text whose place no later label may take.
+  void PlaceText(double x, double baseline, const std::string& text, const std::string& anchor, const char* style) {
+    Text(x, baseline, text, ("text-anchor='" + anchor + "' " + style).c_str());
+    taken_.push_back(TextBox(x, baseline, TextWidth(text), anchor));
   }
   // printf into the SVG.
   __attribute__((format(printf, 2, 3))) void Print(const char* format, ...) {
@@ -201,6 +222,7 @@ class Drawing {
   Surface surface_;
   Eigen::AlignedBox3d box_;  // the surface's bounds, m (empty without a surface)
   std::string svg_;
+  std::vector<Eigen::AlignedBox2d> taken_;  // where labels and marks are, px
 };
 
 void Drawing::DrawSurface(const Panel& p) {
@@ -236,19 +258,38 @@ void Drawing::DrawSurface(const Panel& p) {
   }
 }
 
-void Drawing::DrawBox(const Panel& p) {
-  if (box_.isEmpty()) return;
-  const char* dashed = "stroke='#555' stroke-width='1' stroke-dasharray='5,4' fill='none'";
+// The box's corners by index (bit 0 x, bit 1 y, bit 2 z at the maximum) and its twelve edges as
+// pairs of corners that differ in one bit.
+std::array<Vector3, 8> Corners(const Eigen::AlignedBox3d& box) {
   std::array<Vector3, 8> corner;
   for (int i = 0; i < 8; ++i)
-    corner[static_cast<std::size_t>(i)] = box_.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i));
+    corner[static_cast<std::size_t>(i)] = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i));
+  return corner;
+}
+
+void Drawing::DrawBoxEdges(const Panel& p, bool behind) {
+  if (box_.isEmpty()) return;
+  const char* dashed = "stroke='#555' stroke-width='1' stroke-dasharray='5,4' fill='none'";
+  const std::array<Vector3, 8> corner = Corners(box_);
+  // The edges that meet at the corner farthest from the viewer lie behind the part: they are drawn
+  // before it, so that the part covers them, and the others after.
+  const Vector3 toward = p.view.toward();
+  double far = std::numeric_limits<double>::infinity();
+  for (const Vector3& c : corner) far = std::min(far, toward.dot(c));
+  const double tolerance = 1e-9 * box_.sizes().norm();
+  auto is_far = [&](int i) { return toward.dot(corner[static_cast<std::size_t>(i)]) <= far + tolerance; };
   for (int i = 0; i < 8; ++i) {
     for (int bit = 1; bit < 8; bit <<= 1) {
-      if ((i & bit) == 0)
+      if ((i & bit) != 0) continue;
+      if ((is_far(i) || is_far(i | bit)) == behind)
         Line(p.Px(corner[static_cast<std::size_t>(i)]), p.Px(corner[static_cast<std::size_t>(i | bit)]), dashed);
     }
   }
-  // Dimensions under and left of the box, for the axes this view shows edge-on.
+}
+
+void Drawing::DrawDimensions(const Panel& p) {
+  if (box_.isEmpty()) return;
+  const std::array<Vector3, 8> corner = Corners(box_);
   const Vector3 size = box_.sizes();
   auto axis_of = [](const Vector3& d) {
     int k = 0;
@@ -256,18 +297,36 @@ void Drawing::DrawBox(const Panel& p) {
     return std::abs(d[k]) > 0.999 ? k : -1;
   };
   const int horizontal = axis_of(p.view.right), vertical = axis_of(p.view.up);
-  if (horizontal < 0 || vertical < 0) {  // the isometric view: each edge's length beside it
+  if (horizontal < 0 || vertical < 0) {
+    // The isometric view: each length beside one of the box's outline edges along that axis, the
+    // lower one (the left one for an edge that stands upright), as a drawing dimensions a part.
     const char* names = "xyz";
+    const Eigen::Vector2d center = p.Px(box_.center());
     for (int k = 0; k < 3; ++k) {
-      const Vector3 a = box_.min();
-      Vector3 b = a;
-      b[k] = box_.max()[k];
-      // Beside the edge's middle, away from the box's center, so that it stands clear of the part.
-      const Eigen::Vector2d m = (p.Px(a) + p.Px(b)) / 2, away = m - p.Px(box_.center());
-      const Eigen::Vector2d at =
-          m + 14 * (away.norm() > 0 ? Eigen::Vector2d(away.normalized()) : Eigen::Vector2d(0, 1));
-      Text(at.x(), at.y() + 5, std::string(1, names[k]) + " " + Length(size[k]),
-           at.x() < m.x() - 1 ? "fill='#333' text-anchor='end'" : "fill='#333'");
+      const int bit = 1 << k;
+      const Eigen::Vector2d along = p.Px(corner[static_cast<std::size_t>(bit)]) - p.Px(corner[0]);
+      if (!(along.norm() > 0)) continue;
+      Eigen::Vector2d normal(-along.y(), along.x());
+      normal.normalize();
+      const bool upright = std::abs(along.x()) < 0.3 * along.norm();
+      if (upright ? normal.x() > 0 : normal.y() < 0) normal = -normal;  // left, or down (SVG's y is down)
+      Eigen::Vector2d best = center;
+      double best_reach = -std::numeric_limits<double>::infinity();
+      for (int i = 0; i < 8; ++i) {
+        if ((i & bit) != 0) continue;
+        const Eigen::Vector2d m =
+            (p.Px(corner[static_cast<std::size_t>(i)]) + p.Px(corner[static_cast<std::size_t>(i | bit)])) / 2;
+        const double reach = (m - center).dot(normal);
+        if (reach > best_reach + 1e-6) {
+          best_reach = reach;
+          best = m;
+        }
+      }
+      const std::string text = std::string(1, names[k]) + " " + Length(size[k]);
+      const Eigen::Vector2d at = best + 12 * normal;
+      const char* anchor = normal.x() < -0.3 ? "end" : normal.x() > 0.3 ? "start" : "middle";
+      const double baseline = at.y() + 5 + 6 * std::max(0.0, normal.y());
+      PlaceText(at.x(), baseline, text, anchor, "fill='#333'");
     }
     return;
   }
@@ -283,16 +342,19 @@ void Drawing::DrawBox(const Panel& p) {
   Line({x_lo, y_hi + 14}, {x_hi, y_hi + 14}, dim);
   Line({x_lo, y_hi + 9}, {x_lo, y_hi + 19}, dim);
   Line({x_hi, y_hi + 9}, {x_hi, y_hi + 19}, dim);
-  Text((x_lo + x_hi) / 2, y_hi + 30, Length(size[horizontal]), "text-anchor='middle' fill='#333'");
+  PlaceText((x_lo + x_hi) / 2, y_hi + 30, Length(size[horizontal]), "middle", "fill='#333'");
   Line({x_lo - 14, y_lo}, {x_lo - 14, y_hi}, dim);
   Line({x_lo - 19, y_lo}, {x_lo - 9, y_lo}, dim);
   Line({x_lo - 19, y_hi}, {x_lo - 9, y_hi}, dim);
   const double ym = (y_lo + y_hi) / 2;
+  const std::string text = Length(size[vertical]);
   Print(
       "<text x='%.1f' y='%.1f' font-family='DejaVu Sans, sans-serif' font-size='13' text-anchor='middle' "
       "fill='#333' transform='rotate(-90 %.1f %.1f)'>",
       x_lo - 20, ym, x_lo - 20, ym);
-  svg_ += Escape(Length(size[vertical])) + "</text>\n";
+  svg_ += Escape(text) + "</text>\n";
+  const double half = TextWidth(text) / 2;
+  taken_.emplace_back(Eigen::Vector2d(x_lo - 31, ym - half), Eigen::Vector2d(x_lo - 17, ym + half));
 }
 
 void Drawing::DrawEllipsoid(const Panel& p) {
@@ -321,20 +383,47 @@ void Drawing::DrawAxesAndCenter(const Panel& p) {
   const Vector3 k = Gyration(r_);
   const Vector3& com = r_.mp.center_of_mass;
   const Eigen::Vector2d c = p.Px(com);
+  std::array<Eigen::Vector2d, 3> ends;
   for (int i = 2; i >= 0; --i) {
     const Vector3 e = r_.principal.axes.col(i);
     const Eigen::Vector2d plus = p.Px(com + k[i] * e), minus = p.Px(com - k[i] * e);
+    ends[static_cast<std::size_t>(i)] = plus;
     char style[96];
     std::snprintf(style, sizeof style, "stroke='%s' stroke-width='2.5' stroke-linecap='round'", kAxisLine[i]);
     Line(minus, plus, style);
     Print("<circle cx='%.2f' cy='%.2f' r='5' fill='%s' stroke='white' stroke-width='1.5'/>\n", plus.x(), plus.y(),
           kAxisEnd[i]);
-    const Eigen::Vector2d away =
-        (plus - c).norm() > 1 ? Eigen::Vector2d((plus - c).normalized()) : Eigen::Vector2d(1, 0);
-    Text(plus.x() + 11 * away.x() - 4, plus.y() + 11 * away.y() + 5, std::to_string(i + 1),
-         ("fill='" + std::string(kAxisLine[i]) + "' font-weight='bold'").c_str());
   }
   Print("<circle cx='%.2f' cy='%.2f' r='6' fill='#ff00ff' stroke='white' stroke-width='2'/>\n", c.x(), c.y());
+  // The marks first, so that no number covers one; then each axis's number beside its end, away
+  // from the center of mass where that spot is free, else turned round the end until one is.
+  const Eigen::Vector2d mark(7, 7);
+  taken_.emplace_back(c - mark, c + mark);
+  for (const Eigen::Vector2d& end : ends) taken_.emplace_back(end - Eigen::Vector2d(6, 6), end + Eigen::Vector2d(6, 6));
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector2d& plus = ends[static_cast<std::size_t>(i)];
+    const Eigen::Vector2d away =
+        (plus - c).norm() > 1 ? Eigen::Vector2d((plus - c).normalized()) : Eigen::Vector2d(1, 0);
+    const std::string number = std::to_string(i + 1);
+    const std::string style = "fill='" + std::string(kAxisLine[i]) + "' font-weight='bold'";
+    Eigen::Vector2d at = plus + 12 * away;
+    bool placed = false;
+    for (const double distance : {12.0, 20.0}) {
+      for (const int turn : {0, 1, -1, 2, -2, 3, -3, 4}) {
+        const double angle = turn * kPi / 4;
+        const Eigen::Vector2d d(std::cos(angle) * away.x() - std::sin(angle) * away.y(),
+                                std::sin(angle) * away.x() + std::cos(angle) * away.y());
+        const Eigen::Vector2d q = plus + distance * d;
+        if (Free(TextBox(q.x(), q.y() + 5, TextWidth(number), "middle"))) {
+          at = q;
+          placed = true;
+          break;
+        }
+      }
+      if (placed) break;
+    }
+    PlaceText(at.x(), at.y() + 5, number, "middle", style.c_str());
+  }
 }
 
 void Drawing::DrawLegend(double y, double width) {
@@ -435,8 +524,10 @@ std::string Drawing::Svg() {
     Print("<rect x='%.1f' y='%.1f' width='%.1f' height='%.1f' fill='none' stroke='#ddd'/>\n", p.x0 + 4, p.y0 + 2,
           pw - 8, ph - 4);
     Text(p.x0 + 12, p.y0 + 20, p.view.label, "fill='#666'");
+    DrawBoxEdges(p, true);
     DrawSurface(p);
-    DrawBox(p);
+    DrawBoxEdges(p, false);
+    DrawDimensions(p);
     DrawEllipsoid(p);
     DrawAxesAndCenter(p);
     svg_ += "</g>\n";
