@@ -348,13 +348,17 @@ void Drawing::DrawDimensions(const Panel& p) {
   Line({x_lo - 19, y_hi}, {x_lo - 9, y_hi}, dim);
   const double ym = (y_lo + y_hi) / 2;
   const std::string text = Length(size[vertical]);
+  const double width = TextWidth(text);
+  if (y_hi - y_lo < width + 8) {  // too short to write along: across, left of it
+    PlaceText(x_lo - 24, ym + 5, text, "end", "fill='#333'");
+    return;
+  }
   Print(
       "<text x='%.1f' y='%.1f' font-family='DejaVu Sans, sans-serif' font-size='13' text-anchor='middle' "
       "fill='#333' transform='rotate(-90 %.1f %.1f)'>",
       x_lo - 20, ym, x_lo - 20, ym);
   svg_ += Escape(text) + "</text>\n";
-  const double half = TextWidth(text) / 2;
-  taken_.emplace_back(Eigen::Vector2d(x_lo - 31, ym - half), Eigen::Vector2d(x_lo - 17, ym + half));
+  taken_.emplace_back(Eigen::Vector2d(x_lo - 31, ym - width / 2), Eigen::Vector2d(x_lo - 17, ym + width / 2));
 }
 
 void Drawing::DrawEllipsoid(const Panel& p) {
