@@ -73,6 +73,7 @@ function style() {
     #controls input[type=range] { flex: 1; }
     #clock { font-variant-numeric: tabular-nums; min-width: 9em; }
     h1 { font-size: 15px; margin: 0 0 6px; }
+    .entry { white-space: nowrap; margin-right: 8px; }
     .key { display: inline-block; width: 10px; height: 10px; margin-right: 4px; border: 1px solid #888; }
     canvas.plot { width: 100%; height: 170px; display: block; margin: 6px 0 12px; }`;
   document.head.appendChild(css);
@@ -144,7 +145,7 @@ class Plot {
       hi += pad;
     }
     const left = 58;
-    const top = 18;
+    const top = 30; // the title, then the series' names, above the frame
     const right = w - 8;
     const bottom = h - 18;
     const x = (t) => left + ((t - t0) / Math.max(t1 - t0, 1e-12)) * (right - left);
@@ -157,7 +158,7 @@ class Plot {
     g.fillText(hi.toPrecision(3), 2, top + 8);
     g.fillText(lo.toPrecision(3), 2, bottom);
     g.fillText(`${t1.toFixed(2)} s`, right - 40, h - 4);
-    let lx = left + 4;
+    let lx = left;
     for (const s of this.series) {
       g.strokeStyle = s.colour;
       g.lineWidth = 1.5;
@@ -165,7 +166,7 @@ class Plot {
       this.times.forEach((t, i) => (i ? g.lineTo(x(t), y(s.values[i])) : g.moveTo(x(t), y(s.values[i]))));
       g.stroke();
       g.fillStyle = s.colour;
-      g.fillText(s.label, lx, top + 12);
+      g.fillText(s.label, lx, 25);
       lx += g.measureText(s.label).width + 12;
     }
     g.strokeStyle = '#d00';
@@ -258,7 +259,7 @@ function main() {
   ], 'relative drift since t = 0');
   const named = run.bodies.slice(0, 12);
   root.querySelector('#legend').innerHTML =
-    named.map((b, i) => `<span class="key" style="background:#${bodies[i].colour.getHexString()}"></span>${b.name.replace(/[<&]/g, '')}`).join(' &nbsp;') +
+    named.map((b, i) => `<span class="entry"><span class="key" style="background:#${bodies[i].colour.getHexString()}"></span>${b.name.replace(/[<&]/g, '')}</span>`).join(' ') +
     (run.bodies.length > named.length ? ` and ${run.bodies.length - named.length} more bodies` : '') +
     `<p>${contacts ? `Contact forces are yellow arrows (${run.force_scale > 0 ? `${(1 / run.force_scale).toPrecision(3)} N per metre, at most twice the usual length` : 'none'}); sleeping bodies are tinted blue.` : 'This run was written without contacts.'}</p>`;
 
