@@ -190,6 +190,8 @@ void TrajectoryWriter::AddStep(const Simulation& sim, std::int64_t step) {
     PutList(line_, {c.normal.x(), c.normal.y(), c.normal.z()});
     line_ += "],\"impulse\":[";
     PutList(line_, {c.impulse.x(), c.impulse.y(), c.impulse.z()});
+    line_ += "],\"torque\":[";
+    PutList(line_, {c.torque.x(), c.torque.y(), c.torque.z()});
     line_ += "]}";
   }
   line_ += "]}\n";

@@ -193,8 +193,8 @@ wait "$pid"
 grep -q "interrupted at t =" "$tmp/err"; check "interrupted message" $?
 [ -z "$(ls -A "$tmp/int")" ]; check "interrupted run leaves no files ($(ls "$tmp/int" | tr '\n' ' '))" $?
 
-# contacts.jsonl: one line per step, each contact naming its bodies, with a point, a unit normal and
-# an impulse; the box stack's ground contacts carry its weight. run.html holds the run's data.
+# contacts.jsonl: one line per step, each contact naming its bodies, with a point, a unit normal,
+# an impulse and a couple; the box stack's ground contacts carry its weight. run.html holds the run's data.
 "$bin" "$data/scenes/box_stack.json" --duration 0.1 --out "$tmp/c" --outputs contacts,html -q >/dev/null
 [ $? -eq 0 ]; check "contacts and html outputs" $?
 /usr/bin/python3 - "$tmp/c" <<'PY'
@@ -206,6 +206,7 @@ last = steps[-1]
 ground = [c for c in last["contacts"] if c["b"] is None]
 assert ground and all(c["a"] == "box0" for c in ground)
 assert all(abs(math.hypot(*c["normal"]) - 1) < 1e-12 for c in last["contacts"])
+assert all(len(c["torque"]) == 3 and all(math.isfinite(x) for x in c["torque"]) for c in last["contacts"])
 weight = 10 * 500 * 0.1 ** 3 * 9.81 * 0.001  # ten boxes' weight over one step, N s
 assert abs(sum(c["impulse"][2] for c in ground) - weight) < 1e-6 * weight, sum(c["impulse"][2] for c in ground)
 page = open(d + "/run.html").read()

@@ -484,5 +484,50 @@ TEST(Friction, ReportedContactImpulsesBalanceGravityOrSlideAtMuK) {
   }
 }
 
+// The reported rows carry the whole wrench of the step, turning included: a box that slides and
+// spins on a support changes its momentum by gravity's impulse plus the rows' impulses, and its
+// angular momentum about its center by Σ (point − center) × impulse + torque, the torsional
+// friction and the friction's moment among them (as the body's own state change measures them).
+TEST(Friction, ReportedContactsCarryTheStepsWholeWrench) {
+  for (const Support s : {Support::kGround, Support::kStaticBox, Support::kStaticMesh}) {
+    for (const bool holding : {false, true}) {
+      SCOPED_TRACE(std::string(Name(s)) + (holding ? ", coming to rest" : ", sliding and spinning"));
+      const Material m = Mat(0.6, 0.4);
+      ContactWorld w;
+      AddIncline(w, s, 0, m);
+      const Vector3 half(0.05, 0.03, 0.02);
+      RigidBody b = BoxBody(half, 500);
+      b.position = Vector3(0.3, 0.01, half.z());
+      b.orientation = Quaternion(Eigen::AngleAxisd(0.4, Vector3::UnitZ()));
+      // Slow enough for friction to stop it within a step, or fast enough to slide for many.
+      b.velocity = holding ? Vector3(0.002, -0.001, 0) : Vector3(0.3, -0.2, 0);
+      b.SetAngularVelocity(Vector3(0, 0, holding ? 0.02 : 6.0));
+      w.AddBody(b, Collider{shape::Box{half}, Matrix3::Identity(), Vector3::Zero(), m});
+      w.AddForce(Gravity(Vector3(0, 0, -kG)));
+      if (!holding) Simulate(w, 5);
+      const RigidBody before = w.world().bodies()[0];
+      ASSERT_TRUE(w.Step(kH).ok);
+      const RigidBody& after = w.world().bodies()[0];
+      const std::vector<ContactReport> contacts = w.Contacts();
+      ASSERT_GE(contacts.size(), 3u);
+      Vector3 impulse = Vector3::Zero(), angular = Vector3::Zero(), twist = Vector3::Zero();
+      for (const ContactReport& c : contacts) {
+        impulse += c.impulse;
+        angular += (c.point - before.position).cross(c.impulse) + c.torque;
+        twist += c.torque;
+      }
+      const double p_scale = b.mass * kG * kH;
+      EXPECT_LT((after.LinearMomentum() - before.LinearMomentum() - impulse - Vector3(0, 0, -p_scale)).norm(),
+                1e-9 * p_scale);
+      const Vector3 dL = after.angular_momentum - before.angular_momentum;
+      const double l_scale = p_scale * half.norm();
+      EXPECT_LT((dL - angular).norm(), 1e-9 * l_scale) << dL.transpose() << " vs " << angular.transpose();
+      // Friction turns it back: the z part opposes the spin, and is not zero.
+      EXPECT_LT(dL.z(), -1e-3 * l_scale);
+      EXPECT_LT(twist.dot(Vector3::UnitZ()), 0);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace dynamics

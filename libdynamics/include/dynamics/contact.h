@@ -189,6 +189,11 @@ struct ContactReport {
   /// N·s on a over the step (−impulse on b): the normal impulse along the normal, plus the
   /// point's share of its patch's friction impulse, in proportion to the points' normal impulses.
   Vector3 impulse = Vector3::Zero();
+  /// N·m·s on a over the step (−torque on b), a couple: the same share of its patch's torsional
+  /// friction, and of the moment that moves the friction from where the solver applied it (the
+  /// patch's center of pressure) to this point. A patch's rows so give exactly the wrench the step
+  /// applied: the angular impulse on a about a point c is Σ (point − c) × impulse + torque.
+  Vector3 torque = Vector3::Zero();
 };
 
 /// A World with contact. It owns its world: bodies and forces are added here (each dynamic body

@@ -647,14 +647,18 @@ std::vector<ContactReport> ContactWorld::Contacts() const {
   const Impl& m = *impl_;
   std::vector<ContactReport> out;
   out.reserve(m.rows.size());
-  for (const contact::Row& r : m.rows) out.push_back({r.a, r.b, r.point, r.n, r.lambda_n * r.n});
+  for (const contact::Row& r : m.rows) out.push_back({r.a, r.b, r.point, r.n, r.lambda_n * r.n, Vector3::Zero()});
   for (const contact::Patch& p : m.patches) {  // the friction, shared by the patch's points
     double sum = 0;
     for (int i = p.first; i < p.first + p.count; ++i) sum += m.rows[static_cast<std::size_t>(i)].lambda_n;
-    const Vector3 friction = p.lambda.x() * p.t1 + p.lambda.y() * p.t2;
+    // The solver's friction: a force at the anchor and a turn about the normal (Jacobian columns
+    // t1, t2 at the anchor and ρ n).
+    const Vector3 friction = p.lambda.x() * p.t1 + p.lambda.y() * p.t2, twist = p.rho * p.lambda.z() * p.n;
     for (int i = p.first; i < p.first + p.count; ++i) {
+      ContactReport& c = out[static_cast<std::size_t>(i)];
       const double share = sum > 0 ? m.rows[static_cast<std::size_t>(i)].lambda_n / sum : 1.0 / p.count;
-      out[static_cast<std::size_t>(i)].impulse += share * friction;
+      c.impulse += share * friction;
+      c.torque = share * (twist + (p.anchor - c.point).cross(friction));
     }
   }
   return out;
