@@ -399,7 +399,7 @@ void SetNormalBlock(Patch& p, const std::vector<Row>& rows) {
 // shared in infinitely many ways): a regularization of 10⁻⁹ of its diagonal picks the evenest
 // sharing and misses each target by 10⁻⁹ of the change. Returns false where no set solves it
 // (rounding), for the point-by-point update.
-bool UpdateNormalBlock(const Patch& p, std::vector<Row>& rows, std::vector<Velocities>& vel, Progress& progress) {
+bool UpdateNormalBlock(Patch& p, std::vector<Row>& rows, std::vector<Velocities>& vel, Progress& progress) {
   const int m = p.count;
   if (m < 2 || m > 4) return false;
   const Eigen::Matrix4d& A = p.block;
@@ -418,19 +418,26 @@ bool UpdateNormalBlock(const Patch& p, std::vector<Row>& rows, std::vector<Veloc
     for (int i = 0; i < m; ++i) {
       if (set & (1 << i)) index[k++] = i;
     }
-    double L[4][4] = {}, y[4] = {};
-    for (int i = 0; i < k; ++i) {
-      for (int j = 0; j <= i; ++j) {
-        double sum = A(index[i], index[j]) * (i == j ? 1 + 1e-9 : 1.0);
-        for (int l = 0; l < j; ++l) sum -= L[i][l] * L[j][l];
-        if (i == j) {
-          if (!(sum > 0)) return false;  // singular beyond the regularization
-          L[i][i] = std::sqrt(sum);
-        } else {
-          L[i][j] = sum / L[j][j];
+    double(&L)[4][4] = p.factor;
+    if (p.factored != set) {
+      p.factored = set;
+      p.factor_ok = false;
+      for (int i = 0; i < k; ++i) {
+        for (int j = 0; j <= i; ++j) {
+          double sum = A(index[i], index[j]) * (i == j ? 1 + 1e-9 : 1.0);
+          for (int l = 0; l < j; ++l) sum -= L[i][l] * L[j][l];
+          if (i == j) {
+            if (!(sum > 0)) return false;  // singular beyond the regularization
+            L[i][i] = std::sqrt(sum);
+          } else {
+            L[i][j] = sum / L[j][j];
+          }
         }
       }
+      p.factor_ok = true;
     }
+    if (!p.factor_ok) return false;
+    double y[4] = {};
     for (int i = 0; i < k; ++i) {
       double sum = c[index[i]];
       for (int l = 0; l < i; ++l) sum -= L[i][l] * y[l];

@@ -105,6 +105,12 @@ struct Patch {
   // Its normals' coupled response (2 to 4 points; the rest zero): A_ij, the normal velocity at
   // point i per unit normal impulse at point j.
   Eigen::Matrix4d block = Eigen::Matrix4d::Zero();
+  // The Cholesky factor of the block's rows and columns of one set of loaded points (bit i: point
+  // i), kept between sweeps, as the set rarely changes: factored is that set (-1: none yet), and
+  // factor_ok whether the block was positive definite there.
+  int factored = -1;
+  bool factor_ok = false;
+  double factor[4][4] = {};
   double mu_s = 0, mu_k = 0;
   double mu = 0;                       // the bound of this step: μs for a patch that holds, μk for one that slides
   bool sliding = false;                // did not hold last step, and slides at the start of this one
