@@ -18,15 +18,29 @@ struct World {
   std::vector<double> d;  // n·x = d on the face
 };
 
-World Place(const Polytope& p, const Posed& posed) {
-  World w;
-  w.v.reserve(p.vertices.size());
+// The working arrays of a pair's test, kept per thread so that a step's thousands of pairs do
+// not allocate: the two placed polytopes, the clipped outline (and the one being made) with each
+// corner's key, and the points found.
+struct Scratch {
+  World a, b;
+  std::vector<Vector3> poly, clipped;
+  std::vector<std::uint32_t> ids, clipped_ids;
+  std::vector<ContactPoint> found;
+};
+Scratch& ThreadScratch() {
+  thread_local Scratch scratch;
+  return scratch;
+}
+
+void Place(const Polytope& p, const Posed& posed, World& w) {
+  w.v.clear();
+  w.n.clear();
+  w.d.clear();
   for (const Vector3& x : p.vertices) w.v.push_back(posed.R * x + posed.t);
   for (std::size_t f = 0; f < p.faces.size(); ++f) {
     w.n.push_back(posed.R * p.normals[f]);
     w.d.push_back(w.n.back().dot(w.v[static_cast<std::size_t>(p.faces[f][0])]));
   }
-  return w;
 }
 
 double MinAlong(const std::vector<Vector3>& v, const Vector3& u) {
@@ -260,7 +274,7 @@ std::vector<ContactPoint> KeepFour(std::vector<ContactPoint> found) {
 // it: pi's face clipped by the reference face's sides, its corners within the margin. ref_a: pr is
 // the pair's first polytope (the normal points out of the second into the first).
 void FaceContact(const Polytope& pr, const World& wr, const Polytope& pi, const World& wi, int best_index, bool ref_a,
-                 double margin, std::vector<ContactPoint>& out) {
+                 double margin, Scratch& scratch, std::vector<ContactPoint>& out) {
   const Vector3 rn = wr.n[static_cast<std::size_t>(best_index)];
   std::size_t inc = 0;
   double most = std::numeric_limits<double>::infinity();
@@ -273,8 +287,10 @@ void FaceContact(const Polytope& pr, const World& wr, const Polytope& pi, const 
   }
   // Each point's key: the incident corner's index, or for a point the clipping made, a mix of the
   // reference side and the two points of the segment it cut (stable while the faces overlap alike).
-  std::vector<Vector3> poly;
-  std::vector<std::uint32_t> ids;
+  std::vector<Vector3>& poly = scratch.poly;
+  std::vector<std::uint32_t>& ids = scratch.ids;
+  poly.clear();
+  ids.clear();
   for (int i : pi.faces[inc]) {
     poly.push_back(wi.v[static_cast<std::size_t>(i)]);
     ids.push_back(static_cast<std::uint32_t>(i) & 0x3FFFFu);
@@ -288,8 +304,10 @@ void FaceContact(const Polytope& pr, const World& wr, const Polytope& pi, const 
     // A corner within rounding of the side (a box flush on an equal box) is kept as itself, not
     // replaced by a cut whose key would change with the rounding from step to step.
     const double on = 1e-9 * (q - p).norm();
-    std::vector<Vector3> clipped;
-    std::vector<std::uint32_t> clipped_ids;
+    std::vector<Vector3>& clipped = scratch.clipped;
+    std::vector<std::uint32_t>& clipped_ids = scratch.clipped_ids;
+    clipped.clear();
+    clipped_ids.clear();
     for (std::size_t i = 0; i < poly.size(); ++i) {
       const std::size_t j = (i + 1) % poly.size();
       const Vector3& x = poly[i];
@@ -305,26 +323,34 @@ void FaceContact(const Polytope& pr, const World& wr, const Polytope& pi, const 
                               ((static_cast<std::uint32_t>(k) * 2654435761u + ids[i] * 40503u + ids[j]) & 0x3FFFFu));
       }
     }
-    poly = std::move(clipped);
-    ids = std::move(clipped_ids);
+    poly.swap(clipped);
+    ids.swap(clipped_ids);
   }
   const double rd = wr.d[static_cast<std::size_t>(best_index)];
-  std::vector<ContactPoint> found;
+  std::vector<ContactPoint>& found = scratch.found;
+  found.clear();
   for (std::size_t i = 0; i < poly.size(); ++i) {
     const double sep = rn.dot(poly[i]) - rd;
     if (sep >= margin) continue;
     found.push_back({poly[i] - rn * (0.5 * sep), ref_a ? Vector3(-rn) : rn, sep,
                      (ref_a ? 0u : 1u << 31) | (static_cast<std::uint32_t>(best_index) & 0x7FFu) << 19 | ids[i]});
   }
-  if (found.size() > 4) found = KeepFour(std::move(found));
-  out.insert(out.end(), found.begin(), found.end());
+  if (found.size() > 4) {
+    const std::vector<ContactPoint> kept = KeepFour(found);
+    out.insert(out.end(), kept.begin(), kept.end());
+  } else {
+    out.insert(out.end(), found.begin(), found.end());
+  }
 }
 
 }  // namespace
 
 void PolytopePolytope(const Polytope& pa, const Posed& a, const Polytope& pb, const Posed& b, double margin,
                       std::vector<ContactPoint>& out) {
-  const World wa = Place(pa, a), wb = Place(pb, b);
+  Scratch& scratch = ThreadScratch();
+  World &wa = scratch.a, &wb = scratch.b;
+  Place(pa, a, wa);
+  Place(pb, b, wb);
   // Face axes: the separation of the other polytope from each face's plane.
   double best = -std::numeric_limits<double>::infinity();
   int best_kind = -1, best_index = -1;  // 0: a face of a, 1: a face of b, 2: an edge pair
@@ -408,15 +434,16 @@ void PolytopePolytope(const Polytope& pa, const Posed& a, const Polytope& pb, co
   }
   // Face contact: the reference face's polytope, and the other's face most against its normal.
   if (best_kind == 0) {
-    FaceContact(pa, wa, pb, wb, best_index, true, margin, out);
+    FaceContact(pa, wa, pb, wb, best_index, true, margin, scratch, out);
   } else {
-    FaceContact(pb, wb, pa, wa, best_index, false, margin, out);
+    FaceContact(pb, wb, pa, wa, best_index, false, margin, scratch, out);
   }
 }
 
 void SpherePolytope(const Vector3& c, double r, const Polytope& p, const Posed& posed, double margin, bool sphere_first,
                     std::uint32_t feature, std::vector<ContactPoint>& out) {
-  const World w = Place(p, posed);
+  World& w = ThreadScratch().a;
+  Place(p, posed, w);
   // Inside every face plane: out through the nearest face.
   double deepest = -std::numeric_limits<double>::infinity();
   std::size_t face = 0;
