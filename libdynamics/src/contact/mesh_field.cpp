@@ -318,7 +318,8 @@ double MeshField::Distance(const Vector3& x, Vector3* gradient) const {
   // Clamp into the grid (beyond it, see the end).
   const Vector3 top = origin + cell * Vector3(nodes[0] - 1, nodes[1] - 1, nodes[2] - 1);
   const Vector3 inside = x.cwiseMax(origin).cwiseMin(top);
-  const double outside = (x - inside).norm();
+  const double outside2 = (x - inside).squaredNorm();  // (no square root for the usual point inside)
+  const double outside = outside2 > 0 ? std::sqrt(outside2) : 0.0;
   const Vector3 g = (inside - origin) / cell;
   int i[3];
   double f[3];
