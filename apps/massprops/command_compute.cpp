@@ -211,7 +211,10 @@ int ComputeMain(int argc, char** argv) {
       p.units = format.units;
       if (a.files.empty()) {  // an implicit solid has no mesh: its surface drawn by marching tetrahedra
         SolidResult drawn = results.front();
-        drawn.loaded.mesh = ToPolygonMesh(implicit::Polygonize(*implicit::ParseShape(a.implicit, ReadSdfGridFile)));
+        const ImplicitPtr shape = implicit::ParseShape(a.implicit, ReadSdfGridFile);
+        constexpr int kResolution = 96;  // cells along the longest side
+        drawn.loaded.mesh = ToPolygonMesh(implicit::Polygonize(*shape, kResolution));
+        p.surface_cell = shape->Bounds().sizes().maxCoeff() / kResolution * MetresPerUnit(drawn.unit);
         report::WritePicture(picture, drawn, p);
       } else {
         report::WritePicture(picture, results.front(), p);

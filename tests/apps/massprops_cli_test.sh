@@ -415,8 +415,23 @@ check "--picture writes the SVG" $?
 "$bin" "$data/meshes/Moon.stl" --parts --picture "$tmp/m.png" -q >/dev/null && [ "$(head -c 4 "$tmp/m.png" | tail -c 3)" = PNG ]
 check "--picture writes a PNG (a binary STL, read whole)" $?
 "$bin" --implicit 'sphere(r=1)' --samples 1e4 --picture "$tmp/s.svg" -q >/dev/null && [ "$(grep -c '<polygon points' "$tmp/s.svg")" -gt 1000 ] &&
-  grep -q ">2 m</text>" "$tmp/s.svg"
+  grep -q ">≈ 2 m</text>" "$tmp/s.svg"
 check "--picture of an implicit solid draws its surface and its 2 m box" $?
+# The box of a polygonized surface is approximate: marked so, and within the cell it names of the
+# solid's own (a box turned 30° about z: 0.3 cos 30° + 0.2 sin 30° by 0.3 sin 30° + 0.2 cos 30°).
+"$bin" --implicit 'rotate(box(x=0.3,y=0.2,z=0.1), axis=[0,0,1], deg=30)' --samples 1e4 --picture "$tmp/rb.svg" -q >/dev/null
+/usr/bin/python3 - "$tmp/rb.svg" <<'PY'
+import math, re, sys
+svg = open(sys.argv[1], encoding="utf-8").read()
+cell = float(re.search(r"on a grid of ([0-9.e+-]+) m cells", svg).group(1))
+dims = {k: float(v) for k, v in re.findall(r">([xyz]) ≈ ([0-9.e+-]+) m<", svg)}
+c, s = math.cos(math.radians(30)), math.sin(math.radians(30))
+truth = {"x": 0.3 * c + 0.2 * s, "y": 0.3 * s + 0.2 * c, "z": 0.1}
+assert set(dims) == set("xyz"), dims
+for k in "xyz":
+    assert abs(dims[k] - truth[k]) <= cell + 1e-4 * truth[k], (k, dims[k], truth[k], cell)
+PY
+check "--picture of an implicit solid marks its box approximate, within a cell" $?
 "$bin" "$data/meshes/t_handle.obj" --picture "$tmp/t.jpg" -q >/dev/null 2>"$tmp/err"
 [ $? -eq 2 ] && grep -q "a picture is .svg or .png" "$tmp/err" && [ ! -e "$tmp/t.jpg" ]; check "--picture .jpg refused" $?
 "$bin" "$data/meshes/t_handle.obj" "$data/meshes/spot.obj" --picture "$tmp/two.svg" -q >/dev/null 2>"$tmp/err"

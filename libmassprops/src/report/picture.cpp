@@ -216,6 +216,8 @@ class Drawing {
   std::string Length(double metres) const {
     return Number(metres / o_.units.Length()) + " " + UnitName(o_.units.length);
   }
+  // A dimension of the box: approximate ("≈") when the surface drawn is.
+  std::string Dimension(double metres) const { return (o_.surface_cell > 0 ? "≈ " : "") + Length(metres); }
 
   const SolidResult& r_;
   const PictureOptions& o_;
@@ -322,7 +324,7 @@ void Drawing::DrawDimensions(const Panel& p) {
           best = m;
         }
       }
-      const std::string text = std::string(1, names[k]) + " " + Length(size[k]);
+      const std::string text = std::string(1, names[k]) + " " + Dimension(size[k]);
       const Eigen::Vector2d at = best + 12 * normal;
       const char* anchor = normal.x() < -0.3 ? "end" : normal.x() > 0.3 ? "start" : "middle";
       const double baseline = at.y() + 5 + 6 * std::max(0.0, normal.y());
@@ -342,12 +344,12 @@ void Drawing::DrawDimensions(const Panel& p) {
   Line({x_lo, y_hi + 14}, {x_hi, y_hi + 14}, dim);
   Line({x_lo, y_hi + 9}, {x_lo, y_hi + 19}, dim);
   Line({x_hi, y_hi + 9}, {x_hi, y_hi + 19}, dim);
-  PlaceText((x_lo + x_hi) / 2, y_hi + 30, Length(size[horizontal]), "middle", "fill='#333'");
+  PlaceText((x_lo + x_hi) / 2, y_hi + 30, Dimension(size[horizontal]), "middle", "fill='#333'");
   Line({x_lo - 14, y_lo}, {x_lo - 14, y_hi}, dim);
   Line({x_lo - 19, y_lo}, {x_lo - 9, y_lo}, dim);
   Line({x_lo - 19, y_hi}, {x_lo - 9, y_hi}, dim);
   const double ym = (y_lo + y_hi) / 2;
-  const std::string text = Length(size[vertical]);
+  const std::string text = Dimension(size[vertical]);
   const double width = TextWidth(text);
   if (y_hi - y_lo < width + 8) {  // too short to write along: across, left of it
     PlaceText(x_lo - 24, ym + 5, text, "end", "fill='#333'");
@@ -467,7 +469,9 @@ void Drawing::DrawLegend(double y, double width) {
   Text(58, ky + 22, "equivalent-inertia ellipsoid (uniform, same mass and principal moments)");
   Print("<line x1='%.1f' y1='%.1f' x2='%.1f' y2='%.1f' stroke='#555' stroke-width='1' stroke-dasharray='5,4'/>\n",
         560.0, ky + 18, 594.0, ky + 18);
-  Text(602, ky + 22, "bounding box");
+  Text(602, ky + 22,
+       o_.surface_cell > 0 ? "bounding box (≈: of the surface drawn on a grid of " + Length(o_.surface_cell) + " cells)"
+                           : std::string("bounding box"));
   (void)width;
 }
 
