@@ -214,7 +214,7 @@ int ComputeMain(int argc, char** argv) {
         const ImplicitPtr shape = implicit::ParseShape(a.implicit, ReadSdfGridFile);
         constexpr int kResolution = 96;  // cells along the longest side
         drawn.loaded.mesh = ToPolygonMesh(implicit::Polygonize(*shape, kResolution));
-        p.surface_cell = shape->Bounds().sizes().maxCoeff() / kResolution * MetresPerUnit(drawn.unit);
+        p.surface_tolerance = shape->Bounds().sizes().maxCoeff() / kResolution * MetresPerUnit(drawn.unit);
         report::WritePicture(picture, drawn, p);
       } else {
         report::WritePicture(picture, results.front(), p);

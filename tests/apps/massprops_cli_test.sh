@@ -423,7 +423,7 @@ check "--picture of an implicit solid draws its surface and its 2 m box" $?
 /usr/bin/python3 - "$tmp/rb.svg" <<'PY'
 import math, re, sys
 svg = open(sys.argv[1], encoding="utf-8").read()
-cell = float(re.search(r"on a grid of ([0-9.e+-]+) m cells", svg).group(1))
+cell = float(re.search(r"of the surface drawn, within about ([0-9.e+-]+) m of the solid", svg).group(1))
 dims = {k: float(v) for k, v in re.findall(r">([xyz]) ≈ ([0-9.e+-]+) m<", svg)}
 c, s = math.cos(math.radians(30)), math.sin(math.radians(30))
 truth = {"x": 0.3 * c + 0.2 * s, "y": 0.3 * s + 0.2 * c, "z": 0.1}

@@ -169,7 +169,12 @@ struct Panel {
 
 class Drawing {
  public:
-  Drawing(const SolidResult& r, const PictureOptions& o) : r_(r), o_(o) {}
+  Drawing(const SolidResult& r, const PictureOptions& o)
+      : r_(r),
+        o_(o),
+        tolerance_(o.surface_tolerance > 0 ? o.surface_tolerance
+                   : r.brep                ? r.brep->deflection * MetresPerUnit(r.unit)
+                                           : 0.0) {}
   std::string Svg();
 
  private:
@@ -217,12 +222,13 @@ class Drawing {
     return Number(metres / o_.units.Length()) + " " + UnitName(o_.units.length);
   }
   // A dimension of the box: approximate ("≈") when the surface drawn is.
-  std::string Dimension(double metres) const { return (o_.surface_cell > 0 ? "≈ " : "") + Length(metres); }
+  std::string Dimension(double metres) const { return (tolerance_ > 0 ? "≈ " : "") + Length(metres); }
 
   const SolidResult& r_;
   const PictureOptions& o_;
   Surface surface_;
   Eigen::AlignedBox3d box_;  // the surface's bounds, m (empty without a surface)
+  const double tolerance_;   // m: how far the surface drawn may be from the solid's (0: it is the solid's)
   std::string svg_;
   std::vector<Eigen::AlignedBox2d> taken_;  // where labels and marks are, px
 };
@@ -470,8 +476,8 @@ void Drawing::DrawLegend(double y, double width) {
   Print("<line x1='%.1f' y1='%.1f' x2='%.1f' y2='%.1f' stroke='#555' stroke-width='1' stroke-dasharray='5,4'/>\n",
         560.0, ky + 18, 594.0, ky + 18);
   Text(602, ky + 22,
-       o_.surface_cell > 0 ? "bounding box (≈: of the surface drawn on a grid of " + Length(o_.surface_cell) + " cells)"
-                           : std::string("bounding box"));
+       tolerance_ > 0 ? "bounding box (≈: of the surface drawn, within about " + Length(tolerance_) + " of the solid's)"
+                      : std::string("bounding box"));
   (void)width;
 }
 

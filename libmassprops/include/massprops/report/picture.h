@@ -32,10 +32,11 @@ struct PictureOptions {
   ReportUnits units;  ///< the bounding box's dimensions and the legend are given in these
   int width = 1200;   ///< px; the height follows (5:6 × width … see PictureSvg)
   std::string title;  ///< empty: the source file's name (and the part's)
-  /// m; 0: the surface drawn is the solid's own. Above 0, the surface is an approximation made on a
-  /// grid of this cell (an implicit solid polygonized): the box's dimensions are then those of the
-  /// surface drawn, printed with "≈", and the legend gives the cell.
-  double surface_cell = 0;
+  /// m; 0: the surface drawn is the solid's own (a CAD file's tessellation counts as within its
+  /// chordal deflection, BrepReport::deflection). Above 0, the surface is an approximation within
+  /// about this (an implicit solid polygonized: its grid's cell). The box's dimensions are then
+  /// those of the surface drawn, printed with "≈", and the legend gives the tolerance.
+  double surface_tolerance = 0;
 };
 
 enum class PictureFormat { kSvg, kPng };
