@@ -8,10 +8,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <string>
 #include <vector>
 
 #include "massprops/load.h"
+#include "massprops/report/picture.h"
 
 namespace massprops {
 namespace {
@@ -259,6 +261,27 @@ TEST_F(Cad, SameFileSameBits) {
   EXPECT_EQ(a.mp.volume, b.mp.volume);
   EXPECT_EQ(a.mp.inertia_com, b.mp.inertia_com);
   EXPECT_EQ(a.brep->mp.inertia_com, b.brep->mp.inertia_com);
+}
+
+// A CAD file's picture draws its tessellation: the box's dimensions are that surface's, marked
+// "≈" with the chordal deflection named, and within it of the B-rep's (a cylinder r 5, h 10 mm:
+// 10 × 10 × 10 mm).
+TEST_F(Cad, PictureBoxIsTheTessellationsMarkedApproximate) {
+  const SolidResult r = LoadSolid(File("cylinder.step"));
+  ASSERT_TRUE(r.brep);
+  const double deflection = r.brep->deflection * 1e-3;  // m
+  ASSERT_GT(deflection, 0);
+  const std::string svg = report::PictureSvg(r);
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(svg, m, std::regex("within about ([0-9.e+-]+) m of the solid")));
+  EXPECT_NEAR(std::stod(m[1].str()), deflection, 1e-3 * deflection);
+  int dimensions = 0;
+  const std::regex dimension(">[xyz] ≈ ([0-9.e+-]+) m<");
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), dimension); it != std::sregex_iterator(); ++it) {
+    EXPECT_NEAR(std::stod((*it)[1].str()), 0.01, deflection + 1e-4 * 0.01) << (*it)[0].str();
+    ++dimensions;
+  }
+  EXPECT_EQ(dimensions, 3);
 }
 
 TEST_F(Cad, AnOpenShellIsRefusedAsAnOpenMeshIs) {
