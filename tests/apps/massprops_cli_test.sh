@@ -432,6 +432,16 @@ for k in "xyz":
     assert abs(dims[k] - truth[k]) <= cell + 1e-4 * truth[k], (k, dims[k], truth[k], cell)
 PY
 check "--picture of an implicit solid marks its box approximate, within a cell" $?
+# An estimate's legend carries its error bars; repeated moments are said to leave the axes a choice
+# (a torus: I1 = I2 within the error bars; a cube: all three, exactly).
+"$bin" --implicit 'torus(R=1, r=0.25)' --samples 1e4 --picture "$tmp/tor.svg" -q >/dev/null 2>&1 &&
+  grep -q "mass [0-9.e+-]* ± [0-9.e+-]* kg" "$tmp/tor.svg" && grep -q "± one standard error" "$tmp/tor.svg" &&
+  grep -q "principal moments 1 and 2 are equal within their error bars" "$tmp/tor.svg"
+check "--picture of an estimate: error bars and the undetermined axes" $?
+printf 'v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n' >"$tmp/cube.obj"
+"$bin" "$tmp/cube.obj" --picture "$tmp/cube.svg" -q >/dev/null && grep -q "the three principal moments are equal:" "$tmp/cube.svg" &&
+  ! grep -q "±" "$tmp/cube.svg"
+check "--picture of a cube: every axis principal, no error bars" $?
 "$bin" "$data/meshes/t_handle.obj" --picture "$tmp/t.jpg" -q >/dev/null 2>"$tmp/err"
 [ $? -eq 2 ] && grep -q "a picture is .svg or .png" "$tmp/err" && [ ! -e "$tmp/t.jpg" ]; check "--picture .jpg refused" $?
 "$bin" "$data/meshes/t_handle.obj" "$data/meshes/spot.obj" --picture "$tmp/two.svg" -q >/dev/null 2>"$tmp/err"

@@ -183,6 +183,7 @@ class Drawing {
   void DrawDimensions(const Panel& p);
   void DrawEllipsoid(const Panel& p);
   void DrawAxesAndCenter(const Panel& p);
+  std::vector<std::string> LegendLines() const;
   void DrawLegend(double y, double width);
   void Line(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const char* style) {
     Print("<line x1='%.2f' y1='%.2f' x2='%.2f' y2='%.2f' %s/>\n", a.x(), a.y(), b.x(), b.y(), style);
@@ -438,28 +439,68 @@ void Drawing::DrawAxesAndCenter(const Panel& p) {
   }
 }
 
-void Drawing::DrawLegend(double y, double width) {
+// The legend's lines of numbers. A Monte-Carlo estimate's come with ± one standard error, and the
+// center of mass and the principal moments then have lines of their own.
+std::vector<std::string> Drawing::LegendLines() const {
   const ReportUnits& u = o_.units;
-  const std::string mass = Number(r_.mp.mass / u.Mass()) + " " + UnitName(u.mass);
+  const MassPropertiesEstimate* e = r_.estimate ? &*r_.estimate : nullptr;
+  auto pm = [&](double se, double unit) { return e ? " ± " + Number(se / unit) : std::string(); };
   const bool shell = r_.model == ModelKind::kShell;
-  std::string line1 = "mass " + mass;
+  std::vector<std::string> lines(1);
+  lines[0] =
+      "mass " + Number(r_.mp.mass / u.Mass()) + pm(e ? e->standard_error.mass : 0, u.Mass()) + " " + UnitName(u.mass);
   if (!shell) {
-    line1 += "  ·  volume " + Number(r_.mp.volume / u.Volume()) + " " + u.VolumeName() + "  ·  density " +
-             Number(r_.mp.density / u.Density()) + " " + u.DensityName();
+    lines[0] += "  ·  volume " + Number(r_.mp.volume / u.Volume()) + pm(e ? e->standard_error.volume : 0, u.Volume()) +
+                " " + u.VolumeName() + "  ·  density " + Number(r_.mp.density / u.Density()) + " " + u.DensityName();
   }
-  const Vector3 c = r_.mp.center_of_mass / u.Length();
-  line1 +=
-      "  ·  center of mass (" + Number(c.x()) + ", " + Number(c.y()) + ", " + Number(c.z()) + ") " + UnitName(u.length);
-  Text(16, y, line1);
+  auto triple = [](const Vector3& v) {
+    return "(" + Number(v.x()) + ", " + Number(v.y()) + ", " + Number(v.z()) + ")";
+  };
+  std::string com = "center of mass " + triple(r_.mp.center_of_mass / u.Length());
+  if (e) com += " ± " + triple(e->standard_error.center_of_mass / u.Length());
+  com += std::string(" ") + UnitName(u.length);
+  if (e) {
+    lines.push_back(com);
+  } else {
+    lines[0] += "  ·  " + com;
+  }
   const Vector3 I = r_.principal.moments / u.Inertia(), k = Gyration(r_) / u.Length();
-  std::string line2 = "principal moments";
-  for (int i = 0; i < 3; ++i) line2 += std::string(i ? "," : "") + " I" + std::to_string(i + 1) + " " + Number(I[i]);
-  line2 += std::string(" ") + UnitName(u.inertia) + "  ·  radii of gyration " + Number(k.x()) + ", " + Number(k.y()) +
-           ", " + Number(k.z()) + " " + UnitName(u.length);
-  Text(16, y + 20, line2);
+  std::string moments = "principal moments";
+  for (int i = 0; i < 3; ++i) moments += std::string(i ? "," : "") + " I" + std::to_string(i + 1) + " " + Number(I[i]);
+  if (e) moments += " ± " + triple(e->principal_moments_se / u.Inertia());
+  moments += std::string(" ") + UnitName(u.inertia) + "  ·  radii of gyration " + Number(k.x()) + ", " + Number(k.y()) +
+             ", " + Number(k.z()) + " " + UnitName(u.length);
+  lines.push_back(moments);
+  // Repeated moments have no unique axes (principal_axes.h): say that the pair drawn is a choice.
+  const Vector3& m = r_.principal.moments;
+  bool equal[2];
+  for (int i = 0; i < 2; ++i) {
+    equal[i] = m[i + 1] - m[i] <= 1e-10 * std::abs(m[2]);
+    if (e) equal[i] = equal[i] || m[i + 1] - m[i] < 3 * (e->principal_moments_se[i] + e->principal_moments_se[i + 1]);
+  }
+  const char* within = e ? " within their error bars" : "";
+  if (equal[0] && equal[1]) {
+    lines.push_back(std::string("the three principal moments are equal") + within +
+                    ": every axis through the center of mass is principal (the axes drawn are one choice)");
+  } else if (equal[0] || equal[1]) {
+    const int i = equal[0] ? 1 : 2;
+    lines.push_back("principal moments " + std::to_string(i) + " and " + std::to_string(i + 1) + " are equal" + within +
+                    ": any two perpendicular axes in their plane are principal (the pair drawn is one choice)");
+  }
+  if (e) {
+    lines.push_back("± one standard error of the " +
+                    std::string(e->method == SamplingMethod::kQuasiMonteCarlo ? "quasi-Monte-Carlo" : "Monte-Carlo") +
+                    " estimate (" + std::to_string(e->samples) + " points); the marks are drawn at the estimate");
+  }
+  return lines;
+}
+
+void Drawing::DrawLegend(double y, double width) {
+  const std::vector<std::string> lines = LegendLines();
+  for (std::size_t i = 0; i < lines.size(); ++i) Text(16, y + 20 * static_cast<double>(i), lines[i]);
   // The key.
   double x = 16;
-  const double ky = y + 44;
+  const double ky = y + 20 * static_cast<double>(lines.size() - 1) + 24;
   Print("<circle cx='%.1f' cy='%.1f' r='6' fill='#ff00ff' stroke='white' stroke-width='2'/>\n", x + 6, ky - 4);
   Text(x + 16, ky, "center of mass");
   x += 140;
@@ -488,7 +529,8 @@ std::string Drawing::Svg() {
     for (const Vector3& v : surface_.v) box_.extend(v);
     surface_ = Simplified(std::move(surface_), box_);
   }
-  const double W = std::max(o_.width, 400), header = 64, legend = 110;
+  const double W = std::max(o_.width, 400), header = 64;
+  const double legend = 90 + 20 * static_cast<double>(LegendLines().size() - 1);
   const double pw = W / 2, ph = pw * 0.72;
   const double H = header + 2 * ph + legend;
   const std::array<View, 4> views = Views();
