@@ -6,17 +6,22 @@
 
 #include <atomic>
 #include <cmath>
+#include <random>
 #include <stdexcept>
 #include <vector>
 
 #include "dynamics/contact.h"
 #include "dynamics/forces.h"
 #include "islands.h"
+#include "massprops/solids.h"
+#include "mesh_field.h"
 #include "solver.h"
 #include "workers.h"
 
 namespace dynamics::contact {
 namespace {
+
+constexpr double kDiagonalCells = 1.7320508075688772;  // a cell's diagonal, in cells
 
 constexpr double kG = 9.81;
 
@@ -134,6 +139,46 @@ TEST(Islands, SolvedInParallelGiveTheSameBits) {
   for (std::size_t i = 0; i < one.size(); ++i) {
     EXPECT_NEAR(one[i].position.z(), 0.05 + 0.1 * static_cast<double>(i % 3), 1e-6) << "body " << i;
   }
+}
+
+// The field's block table (MeshField::SurelyAbove) only ever turns away points whose φ is above
+// the threshold (checked against the field's own value at 60 000 points in and around its grid),
+// and turns away most of those a few cells off the surface, so it is worth its lookup.
+TEST(MeshFieldBlocks, SurelyAboveOnlyWherePhiIsAbove) {
+  const massprops::TriangleMesh t = massprops::solids::Torus(0.035, 0.012, 32);
+  std::vector<Vector3> v;
+  std::vector<std::array<int, 3>> f;
+  for (Eigen::Index i = 0; i < t.V.rows(); ++i) v.push_back(t.V.row(i).transpose());
+  for (Eigen::Index i = 0; i < t.F.rows(); ++i) f.push_back({t.F(i, 0), t.F(i, 1), t.F(i, 2)});
+  const shape::Mesh mesh = MakeMesh(std::move(v), std::move(f));
+  const MeshField& field = *mesh.field;
+  ASSERT_FALSE(field.block_min.empty());
+  std::mt19937_64 rng(5);
+  const Vector3 lo = field.origin - Vector3::Constant(2 * field.cell);
+  const Vector3 span = field.cell * Vector3(field.nodes[0] + 3, field.nodes[1] + 3, field.nodes[2] + 3);
+  std::uniform_real_distribution<double> u(0, 1);
+  int far = 0, far_turned = 0, turned = 0;
+  for (int i = 0; i < 60000; ++i) {
+    const Vector3 x = lo + Vector3(u(rng), u(rng), u(rng)).cwiseProduct(span);
+    const double phi = field.Distance(x, nullptr);
+    for (const double threshold : {-0.004, 0.0, 0.001, 0.004}) {
+      if (field.SurelyAbove(x, threshold)) {
+        ++turned;
+        ASSERT_GT(phi, threshold) << x.transpose();
+      }
+    }
+    // Inside the grid, 4 cells above the threshold 0: the blocks (2 cells a side) know it.
+    const Vector3 g = (x - field.origin) / field.cell;
+    const bool inside = (g.array() >= 0).all() &&
+                        (g.array() <= Eigen::Array3d(field.nodes[0] - 1, field.nodes[1] - 1, field.nodes[2] - 1)).all();
+    if (inside && phi > 4 * kDiagonalCells * field.cell) {
+      ++far;
+      far_turned += field.SurelyAbove(x, 0.0) ? 1 : 0;
+    }
+  }
+  EXPECT_GT(turned, 1000);
+  ASSERT_GT(far, 1000);
+  EXPECT_EQ(far_turned, far);
 }
 
 }  // namespace

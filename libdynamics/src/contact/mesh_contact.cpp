@@ -99,6 +99,17 @@ double DistanceOnly(const Posed& s, const Vector3& x) {
   return LocalDistance(s, s.R.transpose() * (x - s.t), unused, false);
 }
 
+// φ alone where it matters only whether it is above `threshold`: +∞ when a mesh field's blocks
+// show it is (MeshField::SurelyAbove), without reading the field's nodes; else φ as DistanceOnly.
+double DistanceOnlyUnless(const Posed& s, const Vector3& x, double threshold) {
+  const Vector3 q = s.R.transpose() * (x - s.t);
+  if (const auto* m = std::get_if<shape::Mesh>(s.shape); m != nullptr && m->field->SurelyAbove(q, threshold)) {
+    return std::numeric_limits<double>::infinity();
+  }
+  Vector3 unused = Vector3::UnitZ();
+  return LocalDistance(s, q, unused, false);
+}
+
 // Surface points of a shape for testing against a mesh's field (world), spaced about `spacing`;
 // spheres and capsules give axis points with their radius instead.
 struct Sample {
@@ -190,7 +201,7 @@ void SamplesAgainst(const Posed& from, const Posed& to, double spacing, double m
   if (const auto* m = std::get_if<shape::Mesh>(from.shape)) from_field = m->field.get();
   auto test = [&](const Vector3& p, double radius, std::size_t index) {
     if (!overlap.contains(p)) return;
-    if (!(DistanceOnly(to, p) - radius < margin)) return;
+    if (!(DistanceOnlyUnless(to, p, margin + radius) - radius < margin)) return;
     Vector3 n = Vector3::UnitZ();
     const double sep = Distance(to, p, n) - radius;
     if (from_field != nullptr) {
@@ -231,7 +242,7 @@ void SamplesAgainst(const Posed& from, const Posed& to, double spacing, double m
                         std::holds_alternative<shape::Cylinder>(*to.shape);
     for (const MeshField::Cluster& c : m->field->clusters) {
       if (local.exteriorDistance(c.centre) > c.radius) continue;
-      if (DistanceOnly(to, from.R * c.centre + from.t) > c.radius + slack) continue;
+      if (DistanceOnlyUnless(to, from.R * c.centre + from.t, c.radius + slack) > c.radius + slack) continue;
       for (int i = c.first; i < c.first + c.count; ++i) {
         const auto k = static_cast<std::size_t>(i);
         if (smooth && m->field->sample_faces[k].count > 0) continue;

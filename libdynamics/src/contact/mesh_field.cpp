@@ -356,9 +356,27 @@ double MeshField::Distance(const Vector3& x, Vector3* gradient) const {
   return std::max(mesh_box.exteriorDistance(x), value - outside);
 }
 
+bool MeshField::SurelyAbove(const Vector3& x, double threshold) const {
+  if (block_min.empty()) return false;
+  // The cell Distance would use for a point inside the grid (the same arithmetic); beyond the grid
+  // φ is not bounded by the nodes.
+  const Vector3 g = (x - origin) / cell;
+  std::size_t b[3];
+  for (int k = 0; k < 3; ++k) {
+    const int n = nodes[static_cast<std::size_t>(k)];
+    if (!(g[k] >= 0 && g[k] <= n - 1)) return false;
+    const int i = std::min(static_cast<int>(std::floor(g[k])), n - 2);
+    b[k] = static_cast<std::size_t>(i / kBlock);
+  }
+  const double least =
+      block_min[(b[2] * static_cast<std::size_t>(blocks[1]) + b[1]) * static_cast<std::size_t>(blocks[0]) + b[0]];
+  // The interpolation's rounding may leave it a few ulps under its corners: a margin far above that.
+  return least - 1e-12 * (1 + std::abs(least) + std::abs(threshold)) > threshold;
+}
+
 std::size_t MeshField::MemoryBytes() const {
-  return values.size() * sizeof(double) + samples.size() * (sizeof(Vector3) + sizeof(SampleFaces)) +
-         normals.size() * sizeof(Vector3);
+  return (values.size() + block_min.size()) * sizeof(double) +
+         samples.size() * (sizeof(Vector3) + sizeof(SampleFaces)) + normals.size() * sizeof(Vector3);
 }
 
 std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh) {
@@ -409,6 +427,38 @@ std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh) {
   for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
   work(0);
   for (auto& t : pool) t.join();
+  // Each block's least node: the nodes of its cells, kBlock + 1 along each axis (the last block's
+  // cells end at the grid's last node).
+  for (int k = 0; k < 3; ++k) {
+    const int cells = field->nodes[static_cast<std::size_t>(k)] - 1;
+    field->blocks[static_cast<std::size_t>(k)] = (cells + MeshField::kBlock - 1) / MeshField::kBlock;
+  }
+  const int bx = field->blocks[0], by = field->blocks[1], bz = field->blocks[2];
+  field->block_min.assign(static_cast<std::size_t>(bx) * static_cast<std::size_t>(by) * static_cast<std::size_t>(bz),
+                          std::numeric_limits<double>::infinity());
+  for (int z = 0; z < nz; ++z) {
+    for (int y = 0; y < ny; ++y) {
+      for (int x = 0; x < nx; ++x) {
+        const double v =
+            field->values[(static_cast<std::size_t>(z) * static_cast<std::size_t>(ny) + static_cast<std::size_t>(y)) *
+                              static_cast<std::size_t>(nx) +
+                          static_cast<std::size_t>(x)];
+        // A node is a corner of the cells on both sides of it: of the blocks holding either.
+        for (int cz = std::max(z - 1, 0); cz <= std::min(z, nz - 2); ++cz) {
+          for (int cy = std::max(y - 1, 0); cy <= std::min(y, ny - 2); ++cy) {
+            for (int cx = std::max(x - 1, 0); cx <= std::min(x, nx - 2); ++cx) {
+              double& least =
+                  field->block_min[(static_cast<std::size_t>(cz / MeshField::kBlock) * static_cast<std::size_t>(by) +
+                                    static_cast<std::size_t>(cy / MeshField::kBlock)) *
+                                       static_cast<std::size_t>(bx) +
+                                   static_cast<std::size_t>(cx / MeshField::kBlock)];
+              least = std::min(least, v);
+            }
+          }
+        }
+      }
+    }
+  }
   AddSamples(mesh, cell, *field);
   field->build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return field;

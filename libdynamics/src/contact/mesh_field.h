@@ -58,8 +58,18 @@ struct MeshField {
   double thinnest = 0;                    // the thinnest wall found (m), which bounded the cell
   double build_seconds = 0;
 
+  // Each block of kBlock³ cells' least node value (blocks x fastest): inside the grid the trilinear
+  // value is at least its cell's least corner, so most samples far from the surface are turned away
+  // by this small table without reading `values`.
+  static constexpr int kBlock = 2;
+  std::array<int, 3> blocks{};
+  std::vector<double> block_min;
+
   // φ at x (mesh frame) and its gradient (not normalized).
   double Distance(const Vector3& x, Vector3* gradient) const;
+  // True when φ at x (mesh frame) is surely above `threshold` by the blocks' bound alone (by more
+  // than rounding: then Distance(x) > threshold too); false when that is not known.
+  bool SurelyAbove(const Vector3& x, double threshold) const;
   std::size_t MemoryBytes() const;
 };
 
