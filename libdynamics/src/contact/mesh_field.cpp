@@ -324,7 +324,8 @@ double MeshField::Distance(const Vector3& x, Vector3* gradient) const {
   int i[3];
   double f[3];
   for (int k = 0; k < 3; ++k) {
-    i[k] = std::clamp(static_cast<int>(std::floor(g[k])), 0, nodes[static_cast<std::size_t>(k)] - 2);
+    // g ≥ 0 (inside is clamped to the grid): truncation is the floor, without a call into libm.
+    i[k] = std::clamp(static_cast<int>(g[k]), 0, nodes[static_cast<std::size_t>(k)] - 2);
     f[k] = g[k] - i[k];
   }
   auto at = [&](int a, int b, int c) {
@@ -358,14 +359,15 @@ double MeshField::Distance(const Vector3& x, Vector3* gradient) const {
 
 bool MeshField::SurelyAbove(const Vector3& x, double threshold) const {
   if (block_min.empty()) return false;
-  // The cell Distance would use for a point inside the grid (the same arithmetic); beyond the grid
-  // φ is not bounded by the nodes.
-  const Vector3 g = (x - origin) / cell;
+  // The cell Distance uses for a point inside the grid, or (rounding at a cell's face) its
+  // neighbour across that face, whose block holds the face's nodes, which then carry all but ~10⁻¹⁶
+  // of the value; beyond the grid φ is not bounded by the nodes.
+  const Vector3 g = (x - origin) * inverse_cell;
   std::size_t b[3];
   for (int k = 0; k < 3; ++k) {
     const int n = nodes[static_cast<std::size_t>(k)];
     if (!(g[k] >= 0 && g[k] <= n - 1)) return false;
-    const int i = std::min(static_cast<int>(std::floor(g[k])), n - 2);
+    const int i = std::min(static_cast<int>(g[k]), n - 2);
     b[k] = static_cast<std::size_t>(i / kBlock);
   }
   const double least =
@@ -397,6 +399,7 @@ std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh) {
   auto count_nodes = [&](double h) { return ((box.sizes() / h).array().ceil() + 1 + 2 * kPad).prod(); };
   while (count_nodes(cell) > kMaxNodes) cell *= 1.1;
   field->cell = cell;
+  field->inverse_cell = 1 / cell;
   for (int k = 0; k < 3; ++k)
     field->nodes[static_cast<std::size_t>(k)] = static_cast<int>(std::ceil(box.sizes()[k] / cell)) + 1 + 2 * kPad;
   field->origin = box.min() - Vector3::Constant(kPad * cell);

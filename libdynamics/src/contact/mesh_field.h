@@ -37,6 +37,7 @@ inline constexpr double kFlatEdge = 0.035;  // 2°
 struct MeshField {
   Vector3 origin = Vector3::Zero();  // node (0, 0, 0)
   double cell = 0;
+  double inverse_cell = 0;       // 1 / cell (SurelyAbove's bound; Distance divides)
   std::array<int, 3> nodes{};    // along x, y, z
   std::vector<double> values;    // x fastest
   std::vector<Vector3> samples;  // in clusters of nearby samples (consecutive)
