@@ -430,35 +430,28 @@ std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh) {
   for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
   work(0);
   for (auto& t : pool) t.join();
-  // Each block's least node: the nodes of its cells, kBlock + 1 along each axis (the last block's
-  // cells end at the grid's last node).
-  for (int k = 0; k < 3; ++k) {
-    const int cells = field->nodes[static_cast<std::size_t>(k)] - 1;
-    field->blocks[static_cast<std::size_t>(k)] = (cells + MeshField::kBlock - 1) / MeshField::kBlock;
-  }
+  // Each block's least node: block b holds cells [b K, b K + K) and so nodes [b K, b K + K] (K =
+  // kBlock; the last block's stop at the grid's last node).
+  constexpr int K = MeshField::kBlock;
+  for (int k = 0; k < 3; ++k)
+    field->blocks[static_cast<std::size_t>(k)] = (field->nodes[static_cast<std::size_t>(k)] - 1 + K - 1) / K;
   const int bx = field->blocks[0], by = field->blocks[1], bz = field->blocks[2];
-  field->block_min.assign(static_cast<std::size_t>(bx) * static_cast<std::size_t>(by) * static_cast<std::size_t>(bz),
-                          std::numeric_limits<double>::infinity());
-  for (int z = 0; z < nz; ++z) {
-    for (int y = 0; y < ny; ++y) {
-      for (int x = 0; x < nx; ++x) {
-        const double v =
-            field->values[(static_cast<std::size_t>(z) * static_cast<std::size_t>(ny) + static_cast<std::size_t>(y)) *
-                              static_cast<std::size_t>(nx) +
-                          static_cast<std::size_t>(x)];
-        // A node is a corner of the cells on both sides of it: of the blocks holding either.
-        for (int cz = std::max(z - 1, 0); cz <= std::min(z, nz - 2); ++cz) {
-          for (int cy = std::max(y - 1, 0); cy <= std::min(y, ny - 2); ++cy) {
-            for (int cx = std::max(x - 1, 0); cx <= std::min(x, nx - 2); ++cx) {
-              double& least =
-                  field->block_min[(static_cast<std::size_t>(cz / MeshField::kBlock) * static_cast<std::size_t>(by) +
-                                    static_cast<std::size_t>(cy / MeshField::kBlock)) *
-                                       static_cast<std::size_t>(bx) +
-                                   static_cast<std::size_t>(cx / MeshField::kBlock)];
-              least = std::min(least, v);
-            }
+  auto node = [&](int x, int y, int z) {
+    return field->values[(static_cast<std::size_t>(z) * static_cast<std::size_t>(ny) + static_cast<std::size_t>(y)) *
+                             static_cast<std::size_t>(nx) +
+                         static_cast<std::size_t>(x)];
+  };
+  field->block_min.reserve(static_cast<std::size_t>(bx) * static_cast<std::size_t>(by) * static_cast<std::size_t>(bz));
+  for (int z0 = 0; z0 < bz * K; z0 += K) {
+    for (int y0 = 0; y0 < by * K; y0 += K) {
+      for (int x0 = 0; x0 < bx * K; x0 += K) {
+        double least = std::numeric_limits<double>::infinity();
+        for (int z = z0; z <= std::min(z0 + K, nz - 1); ++z) {
+          for (int y = y0; y <= std::min(y0 + K, ny - 1); ++y) {
+            for (int x = x0; x <= std::min(x0 + K, nx - 1); ++x) least = std::min(least, node(x, y, z));
           }
         }
+        field->block_min.push_back(least);
       }
     }
   }
