@@ -181,6 +181,10 @@ double MassPropertiesEstimate::MaxRelativeError() const {
   return r;
 }
 
+bool MassPropertiesEstimate::MomentsIndistinct(int i) const {
+  return principal_moments[i + 1] - principal_moments[i] < 3 * (principal_moments_se[i] + principal_moments_se[i + 1]);
+}
+
 MassPropertiesEstimate EstimateMassProperties(const ImplicitSolid& solid, Scalar density,
                                               const MonteCarloOptions& opt) {
   if (!(std::isfinite(density) && density > 0))

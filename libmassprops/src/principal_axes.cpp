@@ -32,6 +32,11 @@ Vector3 PerpendicularAxis(const Vector3& u) {
 
 }  // namespace
 
+bool RepeatedMoments(const Vector3& moments, int i, double degenerate_tolerance) {
+  const double tol = degenerate_tolerance * std::max(std::fabs(moments[2]), std::fabs(moments[0]));
+  return moments[i + 1] - moments[i] <= tol;
+}
+
 PrincipalInertia ComputePrincipalInertia(const Matrix3& inertia, double degenerate_tolerance) {
   if (!inertia.allFinite()) {
     throw std::invalid_argument("ComputePrincipalInertia: the inertia tensor is not finite");
@@ -47,9 +52,8 @@ PrincipalInertia ComputePrincipalInertia(const Matrix3& inertia, double degenera
   PrincipalInertia out;
   out.moments = solver.eigenvalues();  // ascending
   const Matrix3 Q = solver.eigenvectors();
-  const double tol = degenerate_tolerance * std::max(std::fabs(out.moments[2]), std::fabs(out.moments[0]));
-  const bool same01 = out.moments[1] - out.moments[0] <= tol;
-  const bool same12 = out.moments[2] - out.moments[1] <= tol;
+  const bool same01 = RepeatedMoments(out.moments, 0, degenerate_tolerance);
+  const bool same12 = RepeatedMoments(out.moments, 1, degenerate_tolerance);
 
   Vector3 a1, a2;
   if (same01 && same12) {

@@ -56,6 +56,9 @@ struct MassPropertiesEstimate {
   bool tolerance_met = true;  ///< false when max_samples stopped an adaptive run first
   /// Largest relative standard error among the mass and the principal moments.
   double MaxRelativeError() const;
+  /// Whether principal moments i and i + 1 (i = 0 or 1) are equal within their error bars (their
+  /// gap under 3 × the sum of their standard errors): the axes in their plane are not determined.
+  bool MomentsIndistinct(int i) const;
 };
 
 /// @throws std::invalid_argument for a bad option, density or bounding box, or when no sample

@@ -27,6 +27,10 @@ struct PrincipalInertia {
   Matrix3 axes = Matrix3::Identity();  ///< columns = principal axes in frame M (R_MB)
 };
 
+/// Whether principal moments i and i + 1 (i = 0 or 1, ascending) are repeated: equal to within
+/// `degenerate_tolerance` of the largest in magnitude, so that their axes are not unique.
+bool RepeatedMoments(const Vector3& moments, int i, double degenerate_tolerance = 1e-10);
+
 /// Eigen-decomposition of a symmetric inertia tensor, with the conventions above.
 /// @throws std::invalid_argument if the tensor is not finite or not symmetric (to 1e-12 relative).
 PrincipalInertia ComputePrincipalInertia(const Matrix3& inertia, double degenerate_tolerance = 1e-10);

@@ -165,8 +165,7 @@ void Estimate(SolidResult& r, const ImplicitSolid& solid, MonteCarloOptions mc, 
                 std::to_string(e.samples) + " points" +
                 (qmc ? " in " + std::to_string(e.randomizations) + " randomizations" : "");
   for (int i = 0; i < 2; ++i) {
-    const double gap = e.principal_moments[i + 1] - e.principal_moments[i];
-    if (gap < 3 * (e.principal_moments_se[i] + e.principal_moments_se[i + 1])) {
+    if (e.MomentsIndistinct(i)) {
       Warn(r, FindingKind::kUndeterminedAxes,
            "principal moments " + std::to_string(i + 1) + " and " + std::to_string(i + 2) +
                " are equal within their error bars: the principal axes in their plane are not determined by this "

@@ -18,6 +18,8 @@
 #include <Eigen/Eigenvalues>
 
 #include "massprops/mesh.h"
+#include "massprops/monte_carlo.h"
+#include "massprops/principal_axes.h"
 #include "massprops/report/atomic_file.h"
 
 namespace massprops::report {
@@ -184,7 +186,7 @@ class Drawing {
   void DrawEllipsoid(const Panel& p);
   void DrawAxesAndCenter(const Panel& p);
   std::vector<std::string> LegendLines() const;
-  void DrawLegend(double y, double width);
+  void DrawLegend(double y, const std::vector<std::string>& lines);
   void Line(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const char* style) {
     Print("<line x1='%.2f' y1='%.2f' x2='%.2f' y2='%.2f' %s/>\n", a.x(), a.y(), b.x(), b.y(), style);
   }
@@ -472,12 +474,8 @@ std::vector<std::string> Drawing::LegendLines() const {
              ", " + Number(k.z()) + " " + UnitName(u.length);
   lines.push_back(moments);
   // Repeated moments have no unique axes (principal_axes.h): say that the pair drawn is a choice.
-  const Vector3& m = r_.principal.moments;
   bool equal[2];
-  for (int i = 0; i < 2; ++i) {
-    equal[i] = m[i + 1] - m[i] <= 1e-10 * std::abs(m[2]);
-    if (e) equal[i] = equal[i] || m[i + 1] - m[i] < 3 * (e->principal_moments_se[i] + e->principal_moments_se[i + 1]);
-  }
+  for (int i = 0; i < 2; ++i) equal[i] = RepeatedMoments(r_.principal.moments, i) || (e && e->MomentsIndistinct(i));
   const char* within = e ? " within their error bars" : "";
   if (equal[0] && equal[1]) {
     lines.push_back(std::string("the three principal moments are equal") + within +
@@ -495,8 +493,7 @@ std::vector<std::string> Drawing::LegendLines() const {
   return lines;
 }
 
-void Drawing::DrawLegend(double y, double width) {
-  const std::vector<std::string> lines = LegendLines();
+void Drawing::DrawLegend(double y, const std::vector<std::string>& lines) {
   for (std::size_t i = 0; i < lines.size(); ++i) Text(16, y + 20 * static_cast<double>(i), lines[i]);
   // The key.
   double x = 16;
@@ -519,7 +516,6 @@ void Drawing::DrawLegend(double y, double width) {
   Text(602, ky + 22,
        tolerance_ > 0 ? "bounding box (≈: of the surface drawn, within about " + Length(tolerance_) + " of the solid's)"
                       : std::string("bounding box"));
-  (void)width;
 }
 
 std::string Drawing::Svg() {
@@ -530,7 +526,8 @@ std::string Drawing::Svg() {
     surface_ = Simplified(std::move(surface_), box_);
   }
   const double W = std::max(o_.width, 400), header = 64;
-  const double legend = 90 + 20 * static_cast<double>(LegendLines().size() - 1);
+  const std::vector<std::string> legend_lines = LegendLines();
+  const double legend = 90 + 20 * static_cast<double>(legend_lines.size() - 1);
   const double pw = W / 2, ph = pw * 0.72;
   const double H = header + 2 * ph + legend;
   const std::array<View, 4> views = Views();
@@ -598,7 +595,7 @@ std::string Drawing::Svg() {
       Text(x + 16, 49, name);
     }
   }
-  DrawLegend(header + 2 * ph + 26, W);
+  DrawLegend(header + 2 * ph + 26, legend_lines);
   svg_ += "</svg>\n";
   return std::move(svg_);
 }
