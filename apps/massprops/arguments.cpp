@@ -115,16 +115,25 @@ void AddArguments(CLI::App& app, Arguments& a) {
                  "--relative-deflection times each part's bounding-box diagonal)")
       ->check(app::Positive());
   app.add_option("--relative-deflection", a.relative_deflection,
-                 "CAD files: the chordal deflection as a fraction of each part's diagonal")
-      ->check(app::InRange(1e-6, 0.5))
-      ->capture_default_str();
+                 "CAD files: the chordal deflection as a fraction of each part's diagonal (default: 1e-3 when "
+                 "the exact B-rep is the answer and the mesh its check, 1e-4 with --tessellated)")
+      ->check(app::InRange(1e-6, 0.5));
   app.add_option("--angular-deflection", a.angular_deflection,
                  "CAD files: the largest angle in radians between the normals of neighbouring triangles")
       ->check(app::InRange(1e-3, 3.14159))
       ->capture_default_str();
   app.add_flag("--brep", a.brep,
-               "CAD files: report the exact B-rep's integrals (OpenCASCADE) as the result, the mesh's beside them "
-               "(both are always computed; the default result is the mesh's)");
+               "CAD files: the exact B-rep's integrals as the result; the default now, kept so that old commands "
+               "run (see --tessellated)");
+  app.add_flag("--tessellated", a.tessellated,
+               "CAD files: the tessellation's numbers as the result, the exact B-rep's beside them (the default "
+               "is the other way round)")
+      ->excludes("--brep");
+  app.add_option("--interference-pairs", a.interference_pairs,
+                 "CAD files: how many pairs of solids whose boxes overlap get their exact common volume "
+                 "measured (0: none)")
+      ->check(CLI::Range(0, 1000000))
+      ->capture_default_str();
   app.add_flag("-q,--quiet", a.quiet, "No progress line on stderr");
   app.add_option("-o,--output", a.output, "Write the output to this file (whole or not at all)");
 }
@@ -168,7 +177,8 @@ LoadOptions ToLoadOptions(const Arguments& a, const CLI::App& app) {
   o.cad.deflection = a.deflection;
   o.cad.relative_deflection = a.relative_deflection;
   o.cad.angular_deflection = a.angular_deflection;
-  o.brep = a.brep;
+  o.brep = !a.tessellated;
+  o.cad.interference_pairs = a.interference_pairs;
   return o;
 }
 
@@ -198,7 +208,8 @@ std::optional<std::string> CheckArguments(const Arguments& a, const CLI::App& ap
   if (a.files.empty()) {  // only --implicit: the options about mesh files would be ignored
     for (const char* flag : {"--parts", "--density-map", "--repair", "--allow-open", "--full-check",
                              "--check-self-intersections", "--path", "--reader", "--winding-number", "--hull",
-                             "--exact", "--deflection", "--relative-deflection", "--angular-deflection", "--brep"}) {
+                             "--exact", "--deflection", "--relative-deflection", "--angular-deflection", "--brep",
+                             "--tessellated", "--interference-pairs"}) {
       if (app.count(flag) > 0)
         return std::string(flag) + " applies to mesh files; --implicit shapes take no such option";
     }

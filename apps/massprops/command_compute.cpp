@@ -48,6 +48,10 @@ int ComputeMain(int argc, char** argv) {
     return app::kBadArguments;
   };
   if (const auto error = CheckArguments(a, app)) return bad(*error);
+  if (a.brep) {
+    std::cerr << "note: --brep is the default now (CAD solids are given by their exact B-rep, the tessellation "
+                 "beside it as the check); it changes nothing, and --tessellated gives the mesh's numbers\n";
+  }
   if (!picture.empty()) {
     if (a.files.size() + (a.implicit.empty() ? 0 : 1) != 1) {
       return bad("--picture draws one input; for several, massprops batch ... --pictures DIR");

@@ -20,9 +20,12 @@ the surface is a thin shell), ``wall`` (a thickness in the file's unit: a hollow
 ``parts`` (each OBJ object or group, glTF/3MF/COLLADA node on its own: ``Result.parts``; the whole
 is their composition), ``densities`` (a dict, part name or glob -> kg/m³ or ``{"mass": kg}``;
 implies ``parts``). CAD files (STEP, IGES, BREP, read by OpenCASCADE): ``deflection`` (the
-tessellation's chordal deflection in the file's unit; default ``relative_deflection`` = 1e-4 of
-each part's diagonal), ``angular_deflection`` (rad, default 0.5), ``brep`` (report the exact
-B-rep's integrals as the result); ``Result.brep`` holds the other side and the differences.
+tessellation's chordal deflection in the file's unit; default ``relative_deflection`` = 1e-3 of
+each part's diagonal, 1e-4 with ``brep=False``), ``angular_deflection`` (rad, default 0.5),
+``brep`` (True, the default: the exact B-rep's integrals are the result and the tessellation
+their check; False: the tessellation's numbers are the result), ``interference_pairs`` (how
+many overlapping pairs of solids get their common volume measured, default 100);
+``Result.brep`` holds the other side and the differences.
 
     >>> r = massprops.load("gearbox.step", deflection=0.01, parts=True)
     >>> r.to_dict()["brep"]["volume_difference"]

@@ -127,6 +127,9 @@ LoadOptions ToLoadOptions(const py::kwargs& kw) {
       o.cad.angular_deflection = number(0);
     } else if (key == "brep") {
       o.brep = py::cast<bool>(value);
+    } else if (key == "interference_pairs") {
+      o.cad.interference_pairs = py::cast<int>(value);
+      if (o.cad.interference_pairs < 0) throw py::value_error("interference_pairs must be 0 (none) or more");
     } else if (key == "check_self_intersections") {
       o.check_self_intersections = py::cast<bool>(value);
     } else if (key == "threads") {

@@ -28,14 +28,28 @@ class FileAccessError : public MeshFileError {
   using MeshFileError::MeshFileError;
 };
 
-/// How a CAD file (STEP, IGES, BREP) becomes triangles: OpenCASCADE's BRepMesh, per part.
+/// How a CAD file (STEP, IGES, BREP) is read: OpenCASCADE's exact B-rep, and its BRepMesh
+/// tessellation per part (the check mesh, or the answer when the mesh is).
 struct CadOptions {
   /// Chordal deflection (the largest distance between a triangle and the surface), in the file's
   /// unit; 0: `relative_deflection` times each part's bounding-box diagonal. Below 1e-6 of a
   /// part's diagonal it is refused (the triangles would not fit in memory).
   double deflection = 0;
-  double relative_deflection = 1e-4;
+  /// 0: chosen by the load (LoadSolid: 1e-3 when the exact B-rep is the answer and the mesh only
+  /// its check, 1e-4 when the mesh is the answer).
+  double relative_deflection = 0;
   double angular_deflection = 0.5;  ///< rad: the largest angle between neighbouring triangles' normals
+  /// Interference: how many pairs of solids whose boxes overlap get their exact common volume
+  /// (a count, so that the output does not depend on the machine's speed); 0: none.
+  int interference_pairs = 100;
+};
+
+/// The validation properties a CAD file carries for a part (STEP's geometric validation
+/// properties, written by the exporting system), in the file's unit, placed.
+struct CadFileProperties {
+  std::optional<double> volume;
+  std::optional<Vector3> centroid;
+  std::optional<double> area;
 };
 
 /// What a CAD reader knows about one part beyond its triangles.
@@ -43,12 +57,33 @@ struct CadPart {
   std::string material;  ///< the file's material name (STEP AP242), "" when it names none
   double density = 0;    ///< kg/m^3, from the file's material; 0: none
   bool solid = false;    ///< the part has solids (false: surfaces only, no exact volume)
+  std::string instance;  ///< the assembly component's name, when it has its own ("bolt:2")
   /// The exact B-rep's integrals (OpenCASCADE's Gauss integration), unit density, in the file's
   /// unit and axes, the placement applied.
   VolumeIntegrals brep;
+  double brep_area = 0;                  ///< the B-rep solids' surface area, file unit squared
   double brep_error = 0;                 ///< OpenCASCADE's estimate of their relative error
   double deflection = 0;                 ///< the chordal deflection its triangles were made with, file unit
   std::int64_t untessellated_faces = 0;  ///< B-rep faces OpenCASCADE made no triangles of (holes in the mesh)
+  std::int64_t unwelded_edges = 0;       ///< B-rep edges whose two sides were meshed differently
+  /// What was done to the B-rep to find its solids (sewing, shells made solids, turned outward).
+  std::vector<std::string> fixes;
+  CadFileProperties file;  ///< the exporting system's own numbers, when the file has them
+};
+
+/// Two CAD parts that share volume (interference), or two solids inside one part (a == b).
+struct CadOverlap {
+  std::size_t a = 0, b = 0;  ///< indices into LoadedMesh::cad_parts
+  double volume = -1;        ///< the common volume, file unit cubed; -1: the boolean failed
+};
+
+/// The interference test of a CAD file's solids (after their numbers: a slow boolean cannot lose them).
+struct CadInterference {
+  bool done = false;        ///< false: the test did not finish (`not_done` says why)
+  std::string not_done;     ///< why not
+  std::uint64_t candidates = 0;  ///< pairs whose boxes overlap
+  std::uint64_t measured = 0;    ///< of them, pairs whose common volume was computed (the budget)
+  std::vector<CadOverlap> overlaps;
 };
 
 /// What was read, and how.
@@ -69,6 +104,8 @@ struct LoadedMesh {
   std::vector<std::int32_t> face_part;
   /// CAD files: one entry per part (as part_names; one when the file names none).
   std::vector<CadPart> cad_parts;
+  std::vector<std::string> cad_notes;  ///< CAD files: what was left out of the file, and why
+  CadInterference cad_interference;    ///< CAD files: which solids share volume
 };
 
 /// Reads an OBJ (v/f records, n-gons, negative indices, several objects, `\` continuations) or an

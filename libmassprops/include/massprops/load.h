@@ -103,11 +103,13 @@ struct LoadOptions {
   /// With `parts`: densities or total masses per part, first match wins; the others take `mass`
   /// (a TotalMass there is then shared by the parts at one density). Every entry must match a part.
   std::vector<PartMass> part_masses;
-  /// CAD files (STEP, IGES, BREP): how they are tessellated.
+  /// CAD files (STEP, IGES, BREP): how they are tessellated, and the interference budget.
   CadOptions cad;
-  /// CAD files: report the exact B-rep's integrals (OpenCASCADE) as the result, the mesh's beside
-  /// them. Solid model.
-  bool brep = false;
+  /// CAD files: the exact B-rep's integrals (OpenCASCADE) are the result of every part with a
+  /// solid, and the tessellation is their check, beside them. False: the tessellation is the result
+  /// (the command's --tessellated). Options only a mesh can do (repair, hull, exact, a wall, a
+  /// shell, the winding number) make the tessellation the result, with a finding that says so.
+  bool brep = true;
   int num_threads = 0;  ///< 0: every core; the bits do not depend on it
   ProgressCallback progress;
 };
@@ -132,6 +134,12 @@ enum class FindingKind {
   kLimitedPrecision,    ///< rounding leaves fewer meaningful digits than a double holds (relative_error_bound)
   kMaterialOverridden,  ///< the file gives a part a material density other than the one used
   kNoBrep,              ///< a CAD part without a solid: the exact B-rep comparison is missing
+  kCadMeshAnswer,       ///< a CAD file's tessellation is the result: the options need a mesh
+  kCadCheck,            ///< a CAD part's check mesh is missing or open, or differs beyond its deflection
+  kCadFix,              ///< a CAD part's B-rep was changed to find its solids (sewn, made solid, turned outward)
+  kCadLeftOut,          ///< a CAD part with no solid or surface (curves, points, nothing), left out
+  kInterference,        ///< two CAD parts (or two solids in one) share volume; or the test was not done
+  kFileProperties,      ///< a CAD file's own validation properties disagree with the B-rep's
 };
 
 struct Finding {
@@ -171,7 +179,14 @@ struct BrepReport {
   double com_difference = 0;     ///< |c_mesh − c_brep| / size
   double inertia_difference = 0;  ///< ‖I_mesh − I_brep‖ / ‖I_brep‖ (Frobenius, about each one's center of mass)
   bool is_result = false;         ///< LoadOptions::brep: these are the result's numbers (mp), the mesh's in `mesh`
+  /// Whether the tessellation bounds a volume, so that `mesh` and the differences exist (the
+  /// B-rep's numbers stand either way when they are the result).
+  bool mesh_checked = true;
   MassProperties mesh;            ///< the tessellation's numbers, SI
+  /// The exporting system's own numbers (STEP validation properties), SI, when the file has them,
+  /// with their differences from the B-rep's (relative; the centroid over the part's size).
+  std::optional<double> file_volume, file_area, file_volume_difference, file_area_difference, file_com_difference;
+  std::optional<Vector3> file_centroid;
 };
 
 struct SolidResult {
@@ -249,7 +264,6 @@ enum class OptionConflict {
   kPartMassesNeedParts,  ///< densities per part without computing the parts
   kPartsNeedSolid,       ///< parts with a shell or a winding-number estimate
   kPartsNotExact,        ///< parts with exact integration
-  kBrepNeedsSolid,       ///< the B-rep result with a shell, a wall or a winding-number estimate
 };
 
 /// The first conflict among `options`, in the order of the enum, or none.

@@ -7,11 +7,13 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <mutex>
 #include <string>
 #include <vector>
 
-#include "cad_plugin.h"
+#include "cad/plugin_abi.h"
+#include "cad_reply.h"
 #include "io_internal.h"
 #include "plugins.h"
 #include "text_tokens.h"
@@ -22,7 +24,6 @@ namespace {
 
 struct Plugin {
   MasspropsCadReadFn read = nullptr;
-  MasspropsCadFreeFn free = nullptr;
   std::string error;  // why it could not be loaded
 };
 
@@ -46,8 +47,7 @@ const Plugin& LoadPlugin() {
       return;
     }
     plugin.read = reinterpret_cast<MasspropsCadReadFn>(::dlsym(handle, "massprops_cad_read"));
-    plugin.free = reinterpret_cast<MasspropsCadFreeFn>(::dlsym(handle, "massprops_cad_free"));
-    if (!plugin.read || !plugin.free) {
+    if (!plugin.read) {
       plugin.error = "the CAD plugin lacks its entry points (a mismatched build?)";
       plugin.read = nullptr;
     }
@@ -68,24 +68,23 @@ int FormatOf(const std::string& ext) {
   return -1;
 }
 
-// Our unit for the file's, when it is one of ours (else the coordinates stay in millimetres).
-std::optional<LengthUnit> UnitOfMillimetres(double mm) {
-  for (LengthUnit u : kAllLengthUnits) {
-    if (std::abs(MetresPerUnit(u) * 1000 - mm) <= 1e-12 * mm) return u;
-  }
-  return std::nullopt;
-}
+// The child's side: each message of the plugin framed (tag 0), then its status (tag 1).
+struct ChildSend {
+  const IsolatedSend* send;
+  int sent = 0;
+};
 
-std::string PluralUnitWord(LengthUnit u) {
-  switch (u) {
-    case LengthUnit::kMetre: return "metres";
-    case LengthUnit::kCentimetre: return "centimetres";
-    case LengthUnit::kMillimetre: return "millimetres";
-    case LengthUnit::kInch: return "inches";
-    case LengthUnit::kFoot: return "feet";
-    case LengthUnit::kMicrometre: return "micrometres";
+void SendFramed(void* context, const char* bytes, std::size_t size) {
+  auto* child = static_cast<ChildSend*>(context);
+  wire::Writer w;
+  w.U64(0);
+  w.Str(std::string_view(bytes, size));
+  (*child->send)(w.bytes());
+  // A test's stand-in for a boolean that never ends: the result must survive it.
+  if (++child->sent == 1) {
+    if (const char* fault = std::getenv("MASSPROPS_CAD_FAULT"); fault && std::string(fault) == "hang-after-result")
+      for (;;) ::pause();
   }
-  return UnitName(u);
 }
 
 }  // namespace
@@ -97,119 +96,60 @@ LoadedMesh ReadCadFile(const std::string& path, const CadOptions& cad) {
   const Plugin& p = LoadPlugin();
   if (p.read == nullptr) Fail(path, p.error);
   if (!(cad.deflection >= 0 && std::isfinite(cad.deflection)) ||
-      !(cad.relative_deflection >= 1e-6 && cad.relative_deflection <= 0.5) ||
+      !(cad.relative_deflection == 0 || (cad.relative_deflection >= 1e-6 && cad.relative_deflection <= 0.5)) ||
       !(cad.angular_deflection > 0 && cad.angular_deflection <= 3.2)) {
     throw std::invalid_argument(
         "the tessellation needs a finite deflection >= 0 (0: relative), a relative "
-        "deflection in [1e-6, 0.5] and an angular deflection in (0, pi] rad");
+        "deflection in [1e-6, 0.5] (0: the default) and an angular deflection in (0, pi] rad");
   }
   OpenRegularFile(path);  // a clear message for a missing file, a folder or a FIFO, before any child
   MasspropsCadOptions options{};
   options.abi = MASSPROPS_CAD_ABI;
   options.format = format;
   options.deflection = cad.deflection;
-  options.relative_deflection = cad.relative_deflection;
+  options.relative_deflection = cad.relative_deflection > 0 ? cad.relative_deflection : 1e-4;
   options.angular_deflection = cad.angular_deflection;
   options.brep_tolerance = 1e-12;
-  // The child's work: the plugin's status and bytes, as they are.
-  const auto read_in_child = [&] {
+  options.interference_pairs = cad.interference_pairs;
+  // The child's work: the plugin's messages as they come, then its status.
+  const auto read_in_child = [&](const IsolatedSend& send) {
     // Parts of OpenCASCADE print to standard output directly (BRepTools::Read's complaints): in
     // this child, standard output is not the program's, so it goes nowhere.
     const int null = ::open("/dev/null", O_WRONLY);
     if (null >= 0) ::dup2(null, STDOUT_FILENO);
-    char* out = nullptr;
-    std::size_t size = 0;
-    const std::uint64_t status = p.read(path.c_str(), &options, &out, &size);
+    ChildSend child{&send};
+    const std::uint64_t status = p.read(path.c_str(), &options, SendFramed, &child);
     wire::Writer w;
+    w.U64(1);
     w.U64(status);
-    w.Str(std::string_view(out == nullptr ? "" : out, size));
-    p.free(out);
-    return std::move(w.bytes());
+    send(w.bytes());
   };
-  // STEP parsing, tessellation and integration: 30 s plus 5 s per MB.
+  // STEP parsing, solids, tessellation and integration: 30 s plus 5 s per MB; the interference
+  // test after the result gets as long again.
   const double limit = plugins::TimeLimitSeconds(path, "MASSPROPS_CAD_TIMEOUT", 30.0, 5.0);
-  const std::string data =
-      plugins::ReadIsolated(path, "OpenCASCADE", limit, "MASSPROPS_CAD_TIMEOUT", "MASSPROPS_CAD_FAULT", read_in_child);
-  LoadedMesh mesh;
-  std::vector<double> xyz;
-  try {
-    wire::Reader outer(data);
-    const std::uint64_t status = outer.U64();
-    const std::string body = outer.Str();
-    wire::Reader r(body);
-    if (status != 0) Fail(path, body.empty() ? "the CAD plugin failed" : r.Str());
-    const std::string format_word = r.Str();
-    const std::string unit_word = r.Str();
-    const double mm_per_unit = r.F64();
-    const auto unit = UnitOfMillimetres(mm_per_unit);
-    // The readers hand out millimetres (OpenCASCADE's session unit); back to the file's unit, by
-    // division (correctly rounded: an inch file's 1 in comes back as exactly 1).
-    const double mm = format != kMasspropsCadBrep && unit ? mm_per_unit : 1.0;
-    if (format != kMasspropsCadBrep) {
-      if (unit) {
-        mesh.declared_unit = unit;
-        mesh.declared_unit_name = PluralUnitWord(*unit) + " (the " + format_word + " file's unit, '" + unit_word + "')";
-      } else {
-        mesh.declared_unit = LengthUnit::kMillimetre;
-        mesh.declared_unit_name = "millimetres (OpenCASCADE's conversion of the " + format_word + " file's unit" +
-                                  (unit_word.empty() ? "" : " '" + unit_word + "'") + ")";
-      }
-    }
-    mesh.format = io_text::Lower(format_word);
-    const std::uint64_t parts = r.U64();
-    if (parts > r.Left()) throw wire::Truncated();
-    std::vector<int> sizes;
-    for (std::uint64_t i = 0; i < parts; ++i) {
-      mesh.part_names.push_back(r.Str());
-      CadPart part;
-      part.material = r.Str();
-      part.density = r.F64();
-      part.solid = r.U64() != 0;
-      const double volume = r.F64();
-      Vector3 com;
-      for (int c = 0; c < 3; ++c) com[c] = r.F64();
-      Matrix3 inertia;
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) inertia(a, b) = r.F64();
-      part.brep_error = r.F64();
-      part.deflection = r.F64() / mm;
-      part.untessellated_faces = static_cast<std::int64_t>(r.U64());
-      // Unit density, file unit: ∫r rᵀ = C + V c cᵀ with the covariance C = tr(I)/2 𝟙 − I.
-      const double mm3 = mm * mm * mm;
-      part.brep.volume = volume / mm3;
-      com /= mm;
-      inertia /= mm3 * mm * mm;
-      const Matrix3 covariance = 0.5 * inertia.trace() * Matrix3::Identity() - inertia;
-      part.brep.first = part.brep.volume * com;
-      part.brep.second = covariance + part.brep.volume * com * com.transpose();
-      mesh.cad_parts.push_back(part);
-      const std::uint64_t triangles = r.U64();
-      if (triangles > r.Left() / 72) throw wire::Truncated();
-      const std::size_t at = xyz.size();
-      r.F64s(9 * triangles, xyz);
-      if (mm != 1.0) {
-        for (std::size_t j = at; j < xyz.size(); ++j) xyz[j] /= mm;
-      }
-      sizes.insert(sizes.end(), triangles, 3);
-      mesh.face_part.insert(mesh.face_part.end(), triangles, static_cast<std::int32_t>(i));
-    }
-    if (sizes.empty()) {
-      Fail(path,
-           "OpenCASCADE made no triangles of it (no faces: the file holds no solid or surface, only curves or "
-           "points)");
-    }
-    LoadedMesh welded = WeldCorners(path, xyz, sizes, mesh.format.c_str());
-    mesh.mesh = std::move(welded.mesh);
-    mesh.welded = welded.welded;
-  } catch (const wire::Truncated&) {
-    Fail(path, "the OpenCASCADE reader process sent a truncated result");
+  const IsolatedOutcome outcome =
+      plugins::ReadIsolatedPieces(path, "OpenCASCADE", limit, "MASSPROPS_CAD_FAULT", read_in_child);
+  std::string stopped;
+  if (outcome.end == IsolatedEnd::kTimedOut) {
+    stopped = "stopped after " + std::to_string(static_cast<long long>(limit)) + " s (MASSPROPS_CAD_TIMEOUT)";
+  } else if (outcome.end == IsolatedEnd::kCrashed) {
+    stopped = "OpenCASCADE crashed during it (signal " + std::to_string(outcome.signal) + ")";
+  } else if (outcome.end != IsolatedEnd::kFinished) {
+    stopped = "the reader process failed during it";
   }
+  std::optional<LoadedMesh> mesh = internal::DecodeCadReply(path, format == kMasspropsCadBrep, outcome.output, stopped);
+  if (!mesh) {
+    if (outcome.end != IsolatedEnd::kFinished) plugins::FailOutcome(path, "OpenCASCADE", outcome, limit, "MASSPROPS_CAD_TIMEOUT");
+    Fail(path, "the OpenCASCADE reader process sent no result");
+  }
+  // Bit-identical corners that the B-rep's topology did not join (faces that share no edge).
+  mesh->welded = MergeCoincidentVertices(mesh->mesh);
   // A file of one unnamed part names none (the pipeline names it after the file).
-  if (mesh.part_names.size() == 1 && mesh.part_names[0].empty()) {
-    mesh.part_names.clear();
-    mesh.face_part.clear();
+  if (mesh->part_names.size() == 1 && mesh->part_names[0].empty()) {
+    mesh->part_names.clear();
+    mesh->face_part.clear();
   }
-  return mesh;
+  return std::move(*mesh);
 }
 
 }  // namespace massprops

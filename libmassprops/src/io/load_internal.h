@@ -33,4 +33,25 @@ void AddBrep(SolidResult& r, const LoadOptions& opt);
 /// The whole's B-rep report from its parts' (when every part has one).
 void ComposeBrep(SolidResult& whole);
 
+/// CAD files: whether the exact B-rep is the result (LoadOptions::brep, and no option that needs a mesh).
+bool BrepIsTheAnswer(const LoadOptions& options);
+
+/// CAD files: the tessellation options for this load (the relative deflection's default: 1e-3 of
+/// the diagonal when the B-rep is the answer and the mesh its check, 1e-4 when the mesh is).
+CadOptions CadOptionsFor(const LoadOptions& options);
+
+/// CAD files: the reader's notes (parts left out) and its interference report as findings.
+void AddCadFindings(SolidResult& r);
+
+/// CAD parts with a solid: the exact B-rep's numbers as the result (unless the options need the
+/// mesh), the tessellation as their check. False when the mesh route is to be taken.
+bool SolveBrep(SolidResult& r, const LoadOptions& opt);
+
+/// load_solid.cpp's last step for any integrals: SI numbers at the density or mass, size and
+/// plausibility, principal axes, validity.
+void FinishIntegrals(SolidResult& r, const VolumeIntegrals& integrals, const LoadOptions& opt, double size);
+
+/// The bounding-box diagonal of a mesh's vertices (0 for none).
+double MeshDiagonal(const PolygonMesh& mesh);
+
 }  // namespace massprops::internal

@@ -1,6 +1,7 @@
 // Assemblies (LoadOptions::parts): each part the file names goes through the whole pipeline on
 // its own, with its own density or mass; the whole is their composition.
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -73,6 +74,11 @@ void AddTopology(MeshTopology& sum, const MeshTopology& t) {
   sum.components += t.components;
 }
 
+// Whether a part without triangles still has its exact numbers: a CAD solid whose B-rep is the answer.
+bool HasExactSolid(const LoadedMesh& part, const LoadOptions& opt) {
+  return part.cad_parts.size() == 1 && part.cad_parts.front().solid && BrepIsTheAnswer(opt);
+}
+
 }  // namespace
 
 SolidResult SolveParts(SolidResult r, const LoadOptions& given, std::chrono::steady_clock::time_point t0) {
@@ -113,6 +119,15 @@ SolidResult SolveParts(SolidResult r, const LoadOptions& given, std::chrono::ste
     part.source = r.source + " (part '" + names[p] + "')";
     part.part = names[p];
     part.loaded = ExtractPart(loaded, static_cast<std::int32_t>(p));
+    if (part.loaded.mesh.num_faces() == 0 && !HasExactSolid(part.loaded, part_opt)) {
+      // Nothing to integrate: an empty group, a product of curves or points, a tessellation with
+      // no triangles. Named and left out, never integrated as nothing.
+      Warn(r, FindingKind::kCadLeftOut, "part '" + names[p] + "' has no faces (" +
+                                            (part.loaded.cad_parts.empty() ? std::string("an empty group")
+                                                                           : "OpenCASCADE made no triangles of it") +
+                                            "): left out of the whole");
+      continue;
+    }
     if (opt.progress) opt.progress(("part '" + names[p] + "'").c_str());
     part = Solve(std::move(part), part_opt, std::chrono::steady_clock::now());
     part.source = r.source;
@@ -124,6 +139,7 @@ SolidResult SolveParts(SolidResult r, const LoadOptions& given, std::chrono::ste
     }
     r.parts.push_back(std::move(part));
   }
+  if (r.parts.empty()) throw LoadError(r.source + ": no part has faces to integrate");
   if (shared_mass) {
     // The parts without an entry share what the total mass leaves them, at one density.
     const double rest = std::get<TotalMass>(opt.mass).value - mapped_mass;
@@ -133,9 +149,8 @@ SolidResult SolveParts(SolidResult r, const LoadOptions& given, std::chrono::ste
                                   Fixed(mapped_mass) + " kg are mapped)");
     }
     const double density = rest / unmapped_volume;
-    for (std::size_t p = 0; p < names.size(); ++p) {
-      SolidResult& part = r.parts[p];
-      if (MatchPart(opt.part_masses, names[p]) != nullptr) continue;
+    for (SolidResult& part : r.parts) {
+      if (MatchPart(opt.part_masses, part.part) != nullptr) continue;
       part.mp = AtDensity(part.mp, density);  // solved at 1 kg/m^3
       if (part.hull) part.hull->mp = AtDensity(part.hull->mp, density);
       if (part.brep) {
@@ -179,7 +194,10 @@ SolidResult SolveParts(SolidResult r, const LoadOptions& given, std::chrono::ste
   r.path_used = "the composition of " + std::to_string(r.parts.size()) + (r.parts.size() == 1 ? " part" : " parts") +
                 " (" + paths + ")";
   r.mp = Combine(mps);
-  r.size_m = (loaded.mesh.V.colwise().maxCoeff() - loaded.mesh.V.colwise().minCoeff()).norm() * MetresPerUnit(r.unit);
+  r.size_m = MeshDiagonal(loaded.mesh) * MetresPerUnit(r.unit);
+  if (!(r.size_m > 0)) {
+    for (const SolidResult& part : r.parts) r.size_m = std::max(r.size_m, part.size_m);
+  }
   CheckPlausible(r, {opt.unit_stated, opt.mass});
   ComposeBrep(r);
   r.principal = ComputePrincipalInertia(r.mp.inertia_com);

@@ -533,8 +533,10 @@ SolidResult LoadSolid(const std::string& file, const LoadOptions& given) {
     return r;
   }
   Stage(given, "reading");
-  r.loaded = given.reader == Reader::kAssimp && !IsCadFile(file) ? ReadMeshFileWithAssimp(file)
-                                                                 : ReadMeshFile(file, given.cad);
+  const bool cad = IsCadFile(file);
+  r.loaded = given.reader == Reader::kAssimp && !cad ? ReadMeshFileWithAssimp(file)
+                                                     : ReadMeshFile(file, internal::CadOptionsFor(given));
+  if (cad) internal::AddCadFindings(r);
   if (!given.parts && internal::MaterialsDiffer(r.loaded, given)) {
     // A CAD file whose parts are of different materials: one density would be wrong for the whole.
     LoadOptions as_parts = given;
@@ -546,6 +548,18 @@ SolidResult LoadSolid(const std::string& file, const LoadOptions& given) {
     Warn(r, FindingKind::kMaterialOverridden,
          "the file gives its parts different materials, which these options cannot compute part by part: the "
          "whole is computed at the one density stated or the default");
+  }
+  if (!given.parts && r.loaded.cad_parts.size() > 1) {
+    // A CAD assembly is the composition of its part instances, as every CAD system's mass
+    // properties give it: parts that touch or interfere are each counted once, and interference
+    // is reported on its own. Without `parts` the whole is printed alone.
+    LoadOptions as_parts = given;
+    as_parts.parts = true;
+    if (!FindOptionConflict(as_parts)) {
+      SolidResult whole = internal::SolveParts(std::move(r), as_parts, t0);
+      whole.parts.clear();
+      return whole;
+    }
   }
   return given.parts ? internal::SolveParts(std::move(r), given, t0) : internal::Solve(std::move(r), given, t0);
 }
@@ -577,7 +591,6 @@ std::optional<OptionConflict> FindOptionConflict(const LoadOptions& o) {
   if (!o.part_masses.empty() && !o.parts) return OptionConflict::kPartMassesNeedParts;
   if (o.parts && !solid && !wall) return OptionConflict::kPartsNeedSolid;
   if (o.parts && o.exact) return OptionConflict::kPartsNotExact;
-  if (o.brep && !solid) return OptionConflict::kBrepNeedsSolid;
   return std::nullopt;
 }
 
@@ -595,9 +608,6 @@ std::string DescribeConflict(OptionConflict conflict) {
       return "densities per part need the parts to be computed (LoadOptions::parts)";
     case OptionConflict::kPartsNeedSolid:
       return "parts are computed as solids or walls, not as shells or winding-number estimates";
-    case OptionConflict::kBrepNeedsSolid:
-      return "the B-rep result is the exact solid's: it goes with the solid model, not a shell, a wall or a "
-             "winding-number estimate";
     case OptionConflict::kPartsNotExact:
       return "certified results are for one solid: the composition of parts is not certified (run the exact "
              "integration without parts)";
@@ -610,6 +620,10 @@ namespace internal {
 SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_clock::time_point t0) {
   LoadOptions opt = ResolveUnit(r, given);  // the unit the file declares, unless one is stated
   ApplyFileMaterial(r, opt);                // and the density its material gives, unless one is stated
+  if (SolveBrep(r, opt)) {
+    r.seconds = SecondsSince(t0);
+    return r;
+  }
   if (opt.repair) {
     Stage(opt, "repairing (CGAL)");
     RepairedMesh repaired = RequireGeometrySteps("the repair").repair(r.loaded.mesh, RepairOptions{});
@@ -700,6 +714,12 @@ SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_c
   r.seconds = SecondsSince(t0);
   return r;
 }
+
+void FinishIntegrals(SolidResult& r, const VolumeIntegrals& integrals, const LoadOptions& opt, double size) {
+  Finish(r, integrals, opt, size);
+}
+
+double MeshDiagonal(const PolygonMesh& mesh) { return mesh.V.rows() == 0 ? 0.0 : Diagonal(mesh); }
 
 }  // namespace internal
 

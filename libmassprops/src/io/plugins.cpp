@@ -64,24 +64,21 @@ double TimeLimitSeconds(const std::string& path, const char* env_var, double bas
   return base + (ec ? 0.0 : per_megabyte * static_cast<double>(bytes) / 1e6);
 }
 
-std::string ReadIsolated(const std::string& path, const std::string& who, double limit, const char* timeout_env,
-                         const char* fault_env, const std::function<std::string()>& work) {
-  IsolatedOutcome outcome;
-  try {
-    RunIsolated(
-        1, 1, limit,
-        [&](std::size_t) {
-          if (const char* fault = std::getenv(fault_env)) {
-            if (std::string(fault) == "crash") ::kill(::getpid(), SIGKILL);
-            if (std::string(fault) == "hang")
-              for (;;) ::pause();
-          }
-          return work();
-        },
-        [&](std::size_t, IsolatedOutcome&& o) { outcome = std::move(o); });
-  } catch (const std::runtime_error& e) {
-    Fail(path, "cannot start the " + who + " reader process (" + e.what() + ")");
+namespace {
+
+// The faults a test may inject before the work (MASSPROPS_*_FAULT=crash|hang).
+void InjectFault(const char* fault_env) {
+  if (const char* fault = std::getenv(fault_env)) {
+    if (std::string(fault) == "crash") ::kill(::getpid(), SIGKILL);
+    if (std::string(fault) == "hang")
+      for (;;) ::pause();
   }
+}
+
+}  // namespace
+
+void FailOutcome(const std::string& path, const std::string& who, const IsolatedOutcome& outcome, double limit,
+                 const char* timeout_env) {
   if (outcome.end == IsolatedEnd::kTimedOut) {
     Fail(path, who + " did not finish reading it within " + std::to_string(static_cast<long long>(limit)) +
                    " s and was stopped (a malformed file can make " + who + " loop; " + timeout_env +
@@ -92,8 +89,42 @@ std::string ReadIsolated(const std::string& path, const std::string& who, double
     Fail(path, who + " crashed while reading it (signal " + std::to_string(sig) + ", " + ::strsignal(sig) +
                    "); the file is probably malformed, and no result is given for it");
   }
-  if (outcome.end != IsolatedEnd::kFinished) Fail(path, "the " + who + " reader process failed");
+  Fail(path, "the " + who + " reader process failed");
+}
+
+std::string ReadIsolated(const std::string& path, const std::string& who, double limit, const char* timeout_env,
+                         const char* fault_env, const std::function<std::string()>& work) {
+  IsolatedOutcome outcome;
+  try {
+    RunIsolated(
+        1, 1, limit,
+        [&](std::size_t) {
+          InjectFault(fault_env);
+          return work();
+        },
+        [&](std::size_t, IsolatedOutcome&& o) { outcome = std::move(o); });
+  } catch (const std::runtime_error& e) {
+    Fail(path, "cannot start the " + who + " reader process (" + e.what() + ")");
+  }
+  if (outcome.end != IsolatedEnd::kFinished) FailOutcome(path, who, outcome, limit, timeout_env);
   return std::move(outcome.output);
+}
+
+IsolatedOutcome ReadIsolatedPieces(const std::string& path, const std::string& who, double limit,
+                                   const char* fault_env, const std::function<void(const IsolatedSend&)>& work) {
+  IsolatedOutcome outcome;
+  try {
+    RunIsolatedStreaming(
+        1, 1, limit,
+        [&](std::size_t, const IsolatedSend& send) {
+          InjectFault(fault_env);
+          work(send);
+        },
+        [&](std::size_t, IsolatedOutcome&& o) { outcome = std::move(o); });
+  } catch (const std::runtime_error& e) {
+    Fail(path, "cannot start the " + who + " reader process (" + e.what() + ")");
+  }
+  return outcome;
 }
 
 }  // namespace massprops::plugins

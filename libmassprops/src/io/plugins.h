@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "massprops/isolation.h"
+
 namespace massprops::plugins {
 
 /// The folder of the file this code was loaded from: the shared library, or the program a static
@@ -34,5 +36,16 @@ double TimeLimitSeconds(const std::string& path, const char* env_var, double bas
 /// variable `fault_env` ("crash", "hang") injects faults, for tests.
 std::string ReadIsolated(const std::string& path, const std::string& who, double seconds, const char* timeout_env,
                          const char* fault_env, const std::function<std::string()>& work);
+
+/// As ReadIsolated, for work that sends its output in pieces (`send`): each piece restarts the
+/// time limit, and what came before a crash or a stop is kept in the outcome, which is returned as
+/// it ended (FailOutcome words one that did not finish).
+IsolatedOutcome ReadIsolatedPieces(const std::string& path, const std::string& who, double seconds,
+                                   const char* fault_env, const std::function<void(const IsolatedSend&)>& work);
+
+/// The MeshFileError for an outcome that did not finish: a stop at the time limit, a crash or a
+/// failure of the reader `who`.
+[[noreturn]] void FailOutcome(const std::string& path, const std::string& who, const IsolatedOutcome& outcome,
+                              double seconds, const char* timeout_env);
 
 }  // namespace massprops::plugins

@@ -18,6 +18,7 @@ class Writer {
   void U64(std::uint64_t v) { Raw(&v, sizeof v); }
   void F64(double v) { Raw(&v, sizeof v); }
   void F64s(const double* v, std::size_t n) { Raw(v, n * sizeof(double)); }
+  void I32s(const std::int32_t* v, std::size_t n) { Raw(v, n * sizeof(std::int32_t)); }
   void Str(std::string_view s) {
     U64(s.size());
     Raw(s.data(), s.size());
@@ -56,6 +57,13 @@ class Reader {
     const std::size_t at = out.size();
     out.resize(at + n);
     Raw(out.data() + at, n * sizeof(double));
+  }
+  /// `n` 32-bit integers appended to `out`, checked as F64s.
+  void I32s(std::uint64_t n, std::vector<std::int32_t>& out) {
+    if (n > Left() / sizeof(std::int32_t)) throw Truncated();
+    const std::size_t at = out.size();
+    out.resize(at + n);
+    Raw(out.data() + at, n * sizeof(std::int32_t));
   }
   std::string Str() {
     const std::uint64_t n = U64();

@@ -131,17 +131,29 @@ Json ToJson(const SolidResult& r, const FormatOptions& opt) {
     const BrepReport& b = *r.brep;
     const MassProperties& other = b.is_result ? b.mesh : b.mp;
     const Vector3 bc = other.center_of_mass / u.Length();
-    j["brep"] = {{"result", b.is_result ? "brep" : "mesh"},
-                 {b.is_result ? "mesh" : "brep",
-                  {{"volume", other.volume / u.Volume()},
-                   {"mass", other.mass / u.Mass()},
-                   {"center_of_mass", {bc[0], bc[1], bc[2]}},
-                   {"inertia_com", Mat(other.inertia_com / u.Inertia())}}},
+    Json brep = {{"result", b.is_result ? "brep" : "mesh"},
                  {"estimated_error", b.estimated_error},
                  {"deflection", b.deflection},
-                 {"volume_difference", b.volume_difference},
-                 {"com_difference", b.com_difference},
-                 {"inertia_difference", b.inertia_difference}};
+                 {"mesh_checked", b.mesh_checked}};
+    if (!b.is_result || b.mesh_checked) {
+      brep[b.is_result ? "mesh" : "brep"] = {{"volume", other.volume / u.Volume()},
+                                             {"mass", other.mass / u.Mass()},
+                                             {"center_of_mass", {bc[0], bc[1], bc[2]}},
+                                             {"inertia_com", Mat(other.inertia_com / u.Inertia())}};
+      brep["volume_difference"] = b.volume_difference;
+      brep["com_difference"] = b.com_difference;
+      brep["inertia_difference"] = b.inertia_difference;
+    }
+    Json file = Json::object();
+    if (b.file_volume) file["volume"] = *b.file_volume / u.Volume(), file["volume_difference"] = *b.file_volume_difference;
+    if (b.file_area && b.file_area_difference) file["area_difference"] = *b.file_area_difference;
+    if (b.file_centroid && b.file_com_difference) {
+      const Vector3 fc = *b.file_centroid / u.Length();
+      file["centroid"] = {fc[0], fc[1], fc[2]};
+      file["centroid_difference"] = *b.file_com_difference;
+    }
+    if (!file.empty()) brep["file_properties"] = file;
+    j["brep"] = brep;
   }
   if (!r.density_source.empty()) j["density_source"] = r.density_source;
   Json warnings = Json::array();

@@ -200,10 +200,10 @@ std::string FormatOne(const SolidResult& r, const FormatOptions& opt) {
     out << "  principal moments            " << Num(hm[0] / ui) << "  " << Num(hm[1] / ui) << "  " << Num(hm[2] / ui)
         << "  (" << pct(hm[0], m[0]) << ", " << pct(hm[1], m[1]) << ", " << pct(hm[2], m[2]) << ")\n";
   }
-  if (r.brep) {
+  if (r.brep && (!r.brep->is_result || r.brep->mesh_checked)) {
     const BrepReport& b = *r.brep;
     const MassProperties& other = b.is_result ? b.mesh : b.mp;
-    out << (b.is_result ? "mesh            the tessellation (deflection "
+    out << (b.is_result ? "check mesh      the tessellation (deflection "
                         : "exact B-rep     OpenCASCADE's integral of the solid (")
         << (b.is_result ? FormatDouble(b.deflection, "%.3g") + " " + UnitName(r.unit) + ")"
                         : "estimated error " + FormatDouble(b.estimated_error, "%.1g") + ")")
@@ -217,6 +217,17 @@ std::string FormatOne(const SolidResult& r, const FormatOptions& opt) {
         << FormatDouble(b.com_difference, "%.2e") << " of the size, inertia "
         << FormatDouble(b.inertia_difference, "%.2e") << " (|dI|/|I|); tessellated with deflection "
         << FormatDouble(b.deflection, "%.3g") << " " << UnitName(r.unit) << "\n";
+  }
+  if (r.brep && (r.brep->file_volume || r.brep->file_area || r.brep->file_centroid)) {
+    const BrepReport& b = *r.brep;
+    out << "file's own      the exporting system's validation properties (file - B-rep):";
+    if (b.file_volume)
+      out << " volume " << Num(*b.file_volume / u.Volume()) << " " << u.VolumeName() << " ("
+          << FormatDouble(*b.file_volume_difference, "%+.2e") << ")";
+    if (b.file_area && b.file_area_difference) out << ", surface area " << FormatDouble(*b.file_area_difference, "%+.2e");
+    if (b.file_centroid && b.file_com_difference)
+      out << ", centroid " << FormatDouble(*b.file_com_difference, "%.2e") << " of the size";
+    out << "\n";
   }
   out << "physically valid  "
       << (r.validity.valid ? "yes (moments positive, I1 + I2 >= I3)" : "NO: " + r.validity.reason) << "\n";

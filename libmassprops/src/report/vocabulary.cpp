@@ -81,8 +81,6 @@ std::string WordedConflict(OptionConflict conflict, FrontEnd front_end) {
     case OptionConflict::kPartsNeedSolid:
     case OptionConflict::kPartsNotExact:
       return "--parts and --density-map compute solids (or --wall): not --shell, --winding-number or --exact";
-    case OptionConflict::kBrepNeedsSolid:
-      return "--brep reports the exact solid's integrals: not with --shell, --wall or --winding-number";
   }
   return DescribeConflict(conflict);
 }
