@@ -42,11 +42,14 @@
 #include <TDocStd_Document.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
+#include <TopoDS_Shell.hxx>
 #include <TopoDS_Compound.hxx>
 #include <XCAFApp_Application.hxx>
 #include <XCAFDoc_DocumentTool.hxx>
 #include <XCAFDoc_MaterialTool.hxx>
+#include <XCAFDoc_Centroid.hxx>
 #include <XCAFDoc_ShapeTool.hxx>
+#include <XCAFDoc_Volume.hxx>
 #include <gp_Ax2.hxx>
 #include <gp_Trsf.hxx>
 
@@ -125,6 +128,25 @@ bool WriteAssembly(const std::vector<Placed>& parts, const std::string& name, co
   return Check(writer.Write(path.c_str()) == IFSelect_RetDone, path);
 }
 
+// One product with the validation properties an exporter computed for it (STEP's
+// geometric validation properties: volume, centroid), as SolidWorks and Creo write them.
+bool WriteWithProperties(const TopoDS_Shape& shape, double volume, const gp_Pnt& centroid, const std::string& path) {
+  Handle(TDocStd_Document) doc;
+  XCAFApp_Application::GetApplication()->NewDocument("MDTV-XCAF", doc);
+  const Handle(XCAFDoc_ShapeTool) shapes = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
+  const TDF_Label label = shapes->AddShape(shape, false);
+  TDataStd_Name::Set(label, "validated");
+  XCAFDoc_Volume::Set(label, volume);
+  XCAFDoc_Centroid::Set(label, centroid);
+  STEPControl_Controller::Init();
+  Interface_Static::SetCVal("write.step.unit", "MM");
+  STEPCAFControl_Writer writer;
+  writer.SetPropsMode(true);
+  writer.SetNameMode(true);
+  if (!writer.Transfer(doc, STEPControl_AsIs)) return Check(false, path);
+  return Check(writer.Write(path.c_str()) == IFSelect_RetDone, path);
+}
+
 gp_Trsf Placement(double x, double y, double z, double degrees_about_z = 0) {
   gp_Trsf rotation, translation;
   rotation.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), degrees_about_z * M_PI / 180);
@@ -150,6 +172,62 @@ TopoDS_Shape OpenBox() {
   }
   sewing.Perform();
   return sewing.SewedShape();
+}
+
+// A box's six faces, each its own face (no shell): what an exporter that writes surfaces leaves.
+TopoDS_Shape LooseFaces() {
+  TopoDS_Compound faces;
+  BRep_Builder builder;
+  builder.MakeCompound(faces);
+  for (TopExp_Explorer e(BRepPrimAPI_MakeBox(10, 20, 30).Shape(), TopAbs_FACE); e.More(); e.Next())
+    builder.Add(faces, e.Current());
+  return faces;
+}
+
+// The shapes other systems' files hold, and assemblies as they exchange them. Closed forms in
+// cad_test.cpp's CadField tests.
+bool FieldFixtures(const std::string& dir) {
+  bool ok = true;
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(10, 20, 30).Shape();
+  TopoDS_Shell shell;
+  for (TopExp_Explorer e(box, TopAbs_SHELL); e.More(); e.Next()) shell = TopoDS::Shell(e.Current());
+  ok &= WriteStep(shell, dir + "/closed_shell.step");   // a closed shell with no solid around it
+  ok &= WriteStep(LooseFaces(), dir + "/loose_faces.step");  // six unsewn faces
+  ok &= WriteStep(box.Reversed(), dir + "/inside_out.step");  // a solid whose faces point inward
+  // A solid beside a curve set (NX's habit): one compound of a box and two edges.
+  {
+    TopoDS_Compound c;
+    BRep_Builder b;
+    b.MakeCompound(c);
+    b.Add(c, box);
+    b.Add(c, BRepBuilderAPI_MakeEdge(gp_Pnt(0, 0, 40), gp_Pnt(10, 0, 40)).Shape());
+    b.Add(c, BRepBuilderAPI_MakeEdge(gp_Pnt(0, 0, 50), gp_Pnt(0, 20, 50)).Shape());
+    ok &= WriteStep(c, dir + "/solid_and_curves.step");
+  }
+  // A bolt in a hole of its own radius: a 40 × 40 × 10 plate with a hole of radius 5, and a
+  // cylinder of radius 5, 30 long, through it. Touching, not interfering.
+  const TopoDS_Shape plate = BRepAlgoAPI_Cut(BRepPrimAPI_MakeBox(gp_Pnt(-20, -20, 0), 40, 40, 10).Shape(),
+                                             BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -1), gp_Dir(0, 0, 1)), 5, 12).Shape())
+                                 .Shape();
+  ok &= WriteAssembly({{"plate", plate, Placement(0, 0, 0)},
+                       {"bolt", BRepPrimAPI_MakeCylinder(5, 30).Shape(), Placement(0, 0, -10)}},
+                      "bolted", dir + "/bolt_in_hole.step");
+  // Two 10 × 10 × 10 blocks, the second moved by (6, 3, 0): they share 4 × 7 × 10 = 280 mm^3.
+  ok &= WriteAssembly({{"block", BRepPrimAPI_MakeBox(10, 10, 10).Shape(), Placement(0, 0, 0)},
+                       {"block", BRepPrimAPI_MakeBox(10, 10, 10).Shape(), Placement(6, 3, 0)}},
+                      "overlapping", dir + "/overlapping_blocks.step");
+  // An assembly with an empty product and a product of curves only beside a box.
+  TopoDS_Compound empty;
+  BRep_Builder().MakeCompound(empty);
+  ok &= WriteAssembly({{"box", box, Placement(0, 0, 0)},
+                       {"nothing", empty, Placement(50, 0, 0)},
+                       {"sketch", BRepBuilderAPI_MakeEdge(gp_Pnt(0, 0, 0), gp_Pnt(10, 0, 0)).Shape(), Placement(0, 50, 0)}},
+                      "with_empty", dir + "/empty_and_curve_products.step");
+  // Validation properties as the exporter wrote them: right (the box's own), and wrong (a volume
+  // 2 % larger and a centroid moved by 1 mm).
+  ok &= WriteWithProperties(box, 6000, gp_Pnt(5, 10, 15), dir + "/props_agree.step");
+  ok &= WriteWithProperties(box, 6120, gp_Pnt(6, 10, 15), dir + "/props_disagree.step");
+  return ok;
 }
 
 bool Fixtures(const std::string& dir) {
@@ -186,6 +264,7 @@ bool Fixtures(const std::string& dir) {
   // One material throughout.
   ok &= WriteAssembly({{"block", box, Placement(0, 0, 0), "steel", 7.85}}, "one", dir + "/steel_box.step");
   ok &= WriteStep(OpenBox(), dir + "/open_box.step");
+  ok &= FieldFixtures(dir);
   ok &= WriteStep(BRepBuilderAPI_MakeEdge(gp_Pnt(0, 0, 0), gp_Pnt(10, 0, 0)).Shape(), dir + "/edge_only.step");
   // The same tessellation as STEP would make at deflection 0.05 mm, as a binary STL.
   ok &= WriteStlOfTessellation(BRepPrimAPI_MakeCylinder(5, 10).Shape(), 0.05, dir + "/cylinder_0.05.stl");

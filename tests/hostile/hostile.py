@@ -413,7 +413,44 @@ def main():
         r"clean_obj.obj", env={"MASSPROPS_CAD_FAULT": "crash"})
     run("step_hang", ["plate.step", "clean_obj.obj", "--format", "csv"], 1, r"plate.step: OpenCASCADE did not finish",
         r"clean_obj.obj", env={"MASSPROPS_CAD_FAULT": "hang", "MASSPROPS_CAD_TIMEOUT": "1"})
-    run("step_brep_with_shell", ["plate.step", "--brep", "--shell", "--area-density", "1"], 2, r"--brep")
+    # --brep is the default now (a no-op with a note); a shell needs the mesh, which it says.
+    run("step_brep_with_shell", ["plate.step", "--brep", "--shell", "--area-density", "1"], 0,
+        r"--brep is the default now.*\n.*tessellation's numbers are the result, because --shell needs a mesh")
+    # The result survives an interference test that never ends: it is measured after the numbers.
+    run("step_hang_after_result", ["plate.step"], 0, r"interference not measured: stopped after 2 s",
+        r"exact B-rep", env={"MASSPROPS_CAD_FAULT": "hang-after-result", "MASSPROPS_CAD_TIMEOUT": "2"})
+    # A fixed corpus of mutated STEP texts under every option set: a clear answer or a clear
+    # refusal, never a crash (exit >= 128) or a hang.
+    def step_mutations(text):
+        lines = text.split(b"\n")
+        rng = random.Random(46)
+        out = []
+        for k in range(6):  # lines dropped
+            drop = set(rng.sample(range(len(lines)), 1 + k * 3))
+            out.append(b"\n".join(l for i, l in enumerate(lines) if i not in drop))
+        for k in range(4):  # entity references pointed elsewhere
+            mutated = re.sub(rb"#(\d+)", lambda m: b"#%d" % (int(m.group(1)) + rng.choice([0, 0, 0, 1, -1, 7])), text)
+            out.append(mutated)
+        out.append(re.sub(rb"CARTESIAN_POINT\('',\(([^,]*),", rb"CARTESIAN_POINT('',(1.E308,", text, count=3))
+        out.append(text.replace(b"MANIFOLD_SOLID_BREP", b"BREP_WITH_VOIDS", 1))
+        return out
+    option_sets = [[], ["--parts"], ["--tessellated"], ["--repair"], ["--hull", "--allow-open"],
+                   ["--shell", "--area-density", "1"], ["--format", "json", "--parts", "--allow-open"]]
+    crashed = []
+    for i, mutated in enumerate(step_mutations(plate)):
+        write("mutated_%d.step" % i, mutated)
+        for options in option_sets:
+            p = subprocess.run([binary, "mutated_%d.step" % i, "-q"] + options, cwd=tmp, capture_output=True,
+                               timeout=120, env=dict(os.environ, MASSPROPS_CAD_TIMEOUT="20"))
+            if p.returncode >= 128 or p.returncode < 0 or p.returncode not in (0, 1):
+                crashed.append("mutated_%d.step %s: exit %d" % (i, " ".join(options), p.returncode))
+            elif p.returncode == 1 and "mutated_%d.step" % i not in p.stderr.decode(errors="replace"):
+                crashed.append("mutated_%d.step %s: refused without naming the file" % (i, " ".join(options)))
+    if crashed:
+        failed += 1
+        print("FAIL: step_mutations: " + "; ".join(crashed[:5]))
+    else:
+        passed += 1
     # A glTF node with a mirroring transform (scale -1) turns its faces the other way: two boxes.
     with open(gltf) as src:
         doc = json.load(src)

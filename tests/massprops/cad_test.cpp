@@ -354,3 +354,99 @@ TEST_F(Cad, FaultsAreClearErrors) {
 
 }  // namespace
 }  // namespace massprops
+
+namespace massprops {
+namespace {
+
+bool Says(const SolidResult& r, FindingKind kind, const std::string& words = "") {
+  for (const Finding& f : r.findings) {
+    if (f.kind == kind && f.message.marked().find(words) != std::string::npos) return true;
+  }
+  return false;
+}
+
+// What other systems' files hold: each is found as the solid it is, and the fix is said.
+TEST_F(Cad, EverySolidIsFoundAndEachFixIsSaid) {
+  const Truth box = Box(10, 20, 30);
+  for (const char* name : {"closed_shell.step", "loose_faces.step", "inside_out.step", "solid_and_curves.step"}) {
+    const SolidResult r = LoadSolid(File(name));
+    ASSERT_TRUE(r.brep) << name;
+    EXPECT_TRUE(r.brep->is_result) << name;
+    EXPECT_TRUE(r.brep->mesh_checked) << name;
+    ExpectClose(r.mp, box, 1e-9, name);
+  }
+  EXPECT_TRUE(Says(LoadSolid(File("closed_shell.step")), FindingKind::kCadFix, "closed shell"));
+  EXPECT_TRUE(Says(LoadSolid(File("loose_faces.step")), FindingKind::kCadFix, "6 unsewn faces sewn"));
+  EXPECT_TRUE(Says(LoadSolid(File("solid_and_curves.step")), FindingKind::kCadLeftOut, "only curves"));
+}
+
+// The crash of --parts on a product with no faces: named and left out, never integrated.
+TEST_F(Cad, EmptyAndCurveOnlyProductsAreLeftOutUnderEveryOption) {
+  for (const bool parts : {false, true}) {
+    for (const bool brep : {true, false}) {
+      LoadOptions o;
+      o.parts = parts;
+      o.brep = brep;
+      const SolidResult r = LoadSolid(File("empty_and_curve_products.step"), o);
+      ExpectClose(r.mp, Box(10, 20, 30), brep ? 1e-9 : 1e-12, "empty_and_curve_products.step");
+      EXPECT_TRUE(Says(r, FindingKind::kCadLeftOut, "'nothing'"));
+      EXPECT_TRUE(Says(r, FindingKind::kCadLeftOut, "'sketch'"));
+      if (parts) EXPECT_EQ(r.parts.size(), 1u);
+    }
+  }
+}
+
+// A bolt in a hole of its own radius touches it: the assembly is the sum, and no interference.
+TEST_F(Cad, ABoltInAHoleOfItsRadiusIsComposedWithoutInterference) {
+  for (const bool parts : {false, true}) {
+    LoadOptions o;
+    o.parts = parts;
+    const SolidResult r = LoadSolid(File("bolt_in_hole.step"), o);
+    const double plate = (40 * 40 * 10 - kPi * 25 * 10) * 1e-9, bolt = kPi * 25 * 30 * 1e-9;
+    EXPECT_NEAR(r.mp.volume, plate + bolt, 1e-9 * (plate + bolt));
+    EXPECT_FALSE(Says(r, FindingKind::kInterference)) << (r.findings.empty() ? "" : r.findings[0].message.marked());
+    EXPECT_EQ(r.loaded.cad_interference.measured, 1u);
+    EXPECT_EQ(r.parts.size(), parts ? 2u : 0u);
+  }
+}
+
+// Two blocks sharing 4 × 7 × 10 mm: the sum counts it twice, and the warning measures it.
+TEST_F(Cad, OverlappingBlocksAreComposedWithTheirInterferenceMeasured) {
+  const SolidResult r = LoadSolid(File("overlapping_blocks.step"));
+  EXPECT_NEAR(r.mp.volume, 2e-6, 1e-15);
+  ASSERT_EQ(r.loaded.cad_interference.overlaps.size(), 1u);
+  EXPECT_NEAR(r.loaded.cad_interference.overlaps[0].volume, 280, 2.8);  // mm^3, within 1 %
+  EXPECT_TRUE(Says(r, FindingKind::kInterference, "share 2.8e-07 m^3"));
+  // With no budget it is not measured, and says so.
+  LoadOptions none;
+  none.cad.interference_pairs = 0;
+  EXPECT_TRUE(Says(LoadSolid(File("overlapping_blocks.step"), none), FindingKind::kInterference,
+                   "not measured for 1 of 1 pairs"));
+}
+
+// The exporter's own numbers beside ours: agreeing ones quietly, disagreeing ones warned.
+TEST_F(Cad, TheFilesValidationPropertiesAreAThirdOpinion) {
+  const SolidResult agree = LoadSolid(File("props_agree.step"));
+  ASSERT_TRUE(agree.brep && agree.brep->file_volume_difference);
+  EXPECT_LT(std::abs(*agree.brep->file_volume_difference), 1e-12);
+  EXPECT_LT(*agree.brep->file_com_difference, 1e-12);
+  EXPECT_FALSE(Says(agree, FindingKind::kFileProperties));
+  const SolidResult disagree = LoadSolid(File("props_disagree.step"));
+  ASSERT_TRUE(disagree.brep && disagree.brep->file_volume_difference);
+  EXPECT_NEAR(*disagree.brep->file_volume_difference, 0.02, 1e-12);
+  EXPECT_TRUE(Says(disagree, FindingKind::kFileProperties, "volume +2.00e-02"));
+}
+
+// Options that only a mesh can do make the tessellation the answer, and say so.
+TEST_F(Cad, MeshOnlyOptionsMakeTheTessellationTheAnswer) {
+  LoadOptions hull;
+  hull.hull = true;
+  const SolidResult r = LoadSolid(File("cylinder.step"), hull);
+  ASSERT_TRUE(r.brep);
+  EXPECT_FALSE(r.brep->is_result);
+  EXPECT_TRUE(Says(r, FindingKind::kCadMeshAnswer, "{hull}"));
+  EXPECT_NEAR(r.brep->deflection, 1e-4 * std::sqrt(10 * 10 + 10 * 10 + 10 * 10), 1e-9);  // the finer default
+}
+
+}  // namespace
+}  // namespace massprops

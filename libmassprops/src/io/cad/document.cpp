@@ -103,7 +103,8 @@ void Collect(const TDF_Label& label, const gp_Trsf& placement, const std::string
   }
   Instance in;
   in.name = NameOf(label);
-  if (component != in.name) in.instance = component;
+  // OpenCASCADE names an unnamed component after the label it refers to ("=>[0:1:1:2]"): no name.
+  if (component != in.name && component.rfind("=>", 0) != 0) in.instance = component;
   TopoDS_Shape shape = XCAFDoc_ShapeTool::GetShape(label);
   // A free shape may carry its own location: it is part of the placement, not of the prototype.
   const gp_Trsf own = shape.Location().Transformation();

@@ -31,6 +31,7 @@
 
 #include <BRepBndLib.hxx>
 #include <BRepGProp.hxx>
+#include <BRep_Builder.hxx>
 #include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
 #include <Message.hxx>
@@ -180,10 +181,31 @@ class Sender {
   void* context_;
 };
 
+// A file of surfaces only, spread over several parts (a surface model whose faces each came as
+// their own representation): the faces of all parts, placed, as one part, so that sewing can find
+// the solid they bound together. Unchanged when any part has a solid, or the faces bound none.
+void JoinSurfaceParts(Document& d) {
+  if (d.instances.size() < 2) return;
+  TopoDS_Compound all;
+  BRep_Builder builder;
+  builder.MakeCompound(all);
+  for (const Instance& in : d.instances) {
+    if (FindSolids(in.shape).count > 0) return;
+    builder.Add(all, in.shape.Moved(TopLoc_Location(in.placement)));
+  }
+  const SolidSet joined = FindSolids(all);
+  if (joined.count == 0) return;
+  Instance one;
+  one.name = d.instances.front().name;
+  one.shape = all;
+  d.instances = {one};
+}
+
 void Read(const char* path, const MasspropsCadOptions& o, const Sender& send) {
   // OpenCASCADE prints its progress on standard output; the child's output is its pipe only.
   Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
-  const Document d = ReadDocument(path, o.format);
+  Document d = ReadDocument(path, o.format);
+  JoinSurfaceParts(d);
   if (d.instances.empty()) throw Refusal{"the file holds no shape (no solid, shell or face)"};
   // Each prototype is found, integrated and meshed once, however many instances place it.
   std::map<const TopoDS_TShape*, std::vector<std::pair<TopLoc_Location, Prototype>>> done;

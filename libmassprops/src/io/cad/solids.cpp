@@ -13,6 +13,7 @@
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
+#include <ShapeFix_Shell.hxx>
 #include <ShapeFix_Solid.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
@@ -106,7 +107,10 @@ SolidSet FindSolids(const TopoDS_Shape& shape) {
     const TopoDS_Shape sewn = sewing.SewedShape();
     int closed = 0;
     for (TopExp_Explorer e(sewn, TopAbs_SHELL); e.More(); e.Next()) {
-      const TopoDS_Shell& shell = TopoDS::Shell(e.Current());
+      // Faces sewn from separate shells keep their own orientations: made consistent first.
+      ShapeFix_Shell orient(TopoDS::Shell(e.Current()));
+      orient.Perform();
+      const TopoDS_Shell shell = orient.Shell();
       if (BRep_Tool::IsClosed(shell)) {
         ShapeFix_Solid fix;
         c.AddSolid(fix.SolidFromShell(shell), reversed);
