@@ -206,10 +206,10 @@ std::optional<std::string> CheckArguments(const Arguments& a, const CLI::App& ap
   }
   if (conflict) return worded(*conflict);
   if (a.files.empty()) {  // only --implicit: the options about mesh files would be ignored
-    for (const char* flag : {"--parts", "--density-map", "--repair", "--allow-open", "--full-check",
-                             "--check-self-intersections", "--path", "--reader", "--winding-number", "--hull",
-                             "--exact", "--deflection", "--relative-deflection", "--angular-deflection", "--brep",
-                             "--tessellated", "--interference-pairs"}) {
+    for (const char* flag :
+         {"--parts", "--density-map", "--repair", "--allow-open", "--full-check", "--check-self-intersections",
+          "--path", "--reader", "--winding-number", "--hull", "--exact", "--deflection", "--relative-deflection",
+          "--angular-deflection", "--brep", "--tessellated", "--interference-pairs"}) {
       if (app.count(flag) > 0)
         return std::string(flag) + " applies to mesh files; --implicit shapes take no such option";
     }

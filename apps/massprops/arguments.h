@@ -52,10 +52,10 @@ struct Arguments {
   std::string output_units;
   bool parts = false;
   std::string density_map;
-  double deflection = 0;  // CAD files: chordal, in the file's unit; 0: relative to each part's size
+  double deflection = 0;           // CAD files: chordal, in the file's unit; 0: relative to each part's size
   double relative_deflection = 0;  // 0: 1e-3 when the B-rep is the answer, 1e-4 when the mesh is
   double angular_deflection = 0.5;
-  bool brep = false;        // kept, as a no-op: the exact B-rep is the answer by default
+  bool brep = false;         // kept, as a no-op: the exact B-rep is the answer by default
   bool tessellated = false;  // CAD files: the mesh is the answer
   int interference_pairs = 100;
 };

@@ -42,12 +42,12 @@
 #include <TDocStd_Document.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
-#include <TopoDS_Shell.hxx>
 #include <TopoDS_Compound.hxx>
+#include <TopoDS_Shell.hxx>
 #include <XCAFApp_Application.hxx>
+#include <XCAFDoc_Centroid.hxx>
 #include <XCAFDoc_DocumentTool.hxx>
 #include <XCAFDoc_MaterialTool.hxx>
-#include <XCAFDoc_Centroid.hxx>
 #include <XCAFDoc_ShapeTool.hxx>
 #include <XCAFDoc_Volume.hxx>
 #include <gp_Ax2.hxx>
@@ -191,8 +191,8 @@ bool FieldFixtures(const std::string& dir) {
   const TopoDS_Shape box = BRepPrimAPI_MakeBox(10, 20, 30).Shape();
   TopoDS_Shell shell;
   for (TopExp_Explorer e(box, TopAbs_SHELL); e.More(); e.Next()) shell = TopoDS::Shell(e.Current());
-  ok &= WriteStep(shell, dir + "/closed_shell.step");   // a closed shell with no solid around it
-  ok &= WriteStep(LooseFaces(), dir + "/loose_faces.step");  // six unsewn faces
+  ok &= WriteStep(shell, dir + "/closed_shell.step");         // a closed shell with no solid around it
+  ok &= WriteStep(LooseFaces(), dir + "/loose_faces.step");   // six unsewn faces
   ok &= WriteStep(box.Reversed(), dir + "/inside_out.step");  // a solid whose faces point inward
   // A solid beside a curve set (NX's habit): one compound of a box and two edges.
   {
@@ -206,12 +206,13 @@ bool FieldFixtures(const std::string& dir) {
   }
   // A bolt in a hole of its own radius: a 40 × 40 × 10 plate with a hole of radius 5, and a
   // cylinder of radius 5, 30 long, through it. Touching, not interfering.
-  const TopoDS_Shape plate = BRepAlgoAPI_Cut(BRepPrimAPI_MakeBox(gp_Pnt(-20, -20, 0), 40, 40, 10).Shape(),
-                                             BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -1), gp_Dir(0, 0, 1)), 5, 12).Shape())
-                                 .Shape();
-  ok &= WriteAssembly({{"plate", plate, Placement(0, 0, 0)},
-                       {"bolt", BRepPrimAPI_MakeCylinder(5, 30).Shape(), Placement(0, 0, -10)}},
-                      "bolted", dir + "/bolt_in_hole.step");
+  const TopoDS_Shape plate =
+      BRepAlgoAPI_Cut(BRepPrimAPI_MakeBox(gp_Pnt(-20, -20, 0), 40, 40, 10).Shape(),
+                      BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -1), gp_Dir(0, 0, 1)), 5, 12).Shape())
+          .Shape();
+  ok &= WriteAssembly(
+      {{"plate", plate, Placement(0, 0, 0)}, {"bolt", BRepPrimAPI_MakeCylinder(5, 30).Shape(), Placement(0, 0, -10)}},
+      "bolted", dir + "/bolt_in_hole.step");
   // Two 10 × 10 × 10 blocks, the second moved by (6, 3, 0): they share 4 × 7 × 10 = 280 mm^3.
   ok &= WriteAssembly({{"block", BRepPrimAPI_MakeBox(10, 10, 10).Shape(), Placement(0, 0, 0)},
                        {"block", BRepPrimAPI_MakeBox(10, 10, 10).Shape(), Placement(6, 3, 0)}},
@@ -219,10 +220,11 @@ bool FieldFixtures(const std::string& dir) {
   // An assembly with an empty product and a product of curves only beside a box.
   TopoDS_Compound empty;
   BRep_Builder().MakeCompound(empty);
-  ok &= WriteAssembly({{"box", box, Placement(0, 0, 0)},
-                       {"nothing", empty, Placement(50, 0, 0)},
-                       {"sketch", BRepBuilderAPI_MakeEdge(gp_Pnt(0, 0, 0), gp_Pnt(10, 0, 0)).Shape(), Placement(0, 50, 0)}},
-                      "with_empty", dir + "/empty_and_curve_products.step");
+  ok &= WriteAssembly(
+      {{"box", box, Placement(0, 0, 0)},
+       {"nothing", empty, Placement(50, 0, 0)},
+       {"sketch", BRepBuilderAPI_MakeEdge(gp_Pnt(0, 0, 0), gp_Pnt(10, 0, 0)).Shape(), Placement(0, 50, 0)}},
+      "with_empty", dir + "/empty_and_curve_products.step");
   // Validation properties as the exporter wrote them: right (the box's own), and wrong (a volume
   // 2 % larger and a centroid moved by 1 mm).
   ok &= WriteWithProperties(box, 6000, gp_Pnt(5, 10, 15), dir + "/props_agree.step");

@@ -79,8 +79,8 @@ struct CadOverlap {
 
 /// The interference test of a CAD file's solids (after their numbers: a slow boolean cannot lose them).
 struct CadInterference {
-  bool done = false;        ///< false: the test did not finish (`not_done` says why)
-  std::string not_done;     ///< why not
+  bool done = false;             ///< false: the test did not finish (`not_done` says why)
+  std::string not_done;          ///< why not
   std::uint64_t candidates = 0;  ///< pairs whose boxes overlap
   std::uint64_t measured = 0;    ///< of them, pairs whose common volume was computed (the budget)
   std::vector<CadOverlap> overlaps;

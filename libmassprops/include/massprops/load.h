@@ -182,7 +182,7 @@ struct BrepReport {
   /// Whether the tessellation bounds a volume, so that `mesh` and the differences exist (the
   /// B-rep's numbers stand either way when they are the result).
   bool mesh_checked = true;
-  MassProperties mesh;            ///< the tessellation's numbers, SI
+  MassProperties mesh;  ///< the tessellation's numbers, SI
   /// The exporting system's own numbers (STEP validation properties), SI, when the file has them,
   /// with their differences from the B-rep's (relative; the centroid over the part's size).
   std::optional<double> file_volume, file_area, file_volume_difference, file_area_difference, file_com_difference;

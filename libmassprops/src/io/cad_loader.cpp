@@ -139,7 +139,8 @@ LoadedMesh ReadCadFile(const std::string& path, const CadOptions& cad) {
   }
   std::optional<LoadedMesh> mesh = internal::DecodeCadReply(path, format == kMasspropsCadBrep, outcome.output, stopped);
   if (!mesh) {
-    if (outcome.end != IsolatedEnd::kFinished) plugins::FailOutcome(path, "OpenCASCADE", outcome, limit, "MASSPROPS_CAD_TIMEOUT");
+    if (outcome.end != IsolatedEnd::kFinished)
+      plugins::FailOutcome(path, "OpenCASCADE", outcome, limit, "MASSPROPS_CAD_TIMEOUT");
     Fail(path, "the OpenCASCADE reader process sent no result");
   }
   // Bit-identical corners that the B-rep's topology did not join (faces that share no edge).

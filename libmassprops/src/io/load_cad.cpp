@@ -164,9 +164,12 @@ void CompareWithFile(SolidResult& r, BrepReport& b, const CadFileProperties& fil
   }
   if (!disagree.empty()) {
     Warn(r, FindingKind::kFileProperties,
-         PartWords(r) + ": the file's own validation properties (its exporter's numbers) differ from the exact "
-                        "B-rep's beyond 1e-3: " + disagree + " (file - B-rep, relative); the file may have been "
-                        "changed after export, or its exporter computed them on an approximation");
+         PartWords(r) +
+             ": the file's own validation properties (its exporter's numbers) differ from the exact "
+             "B-rep's beyond 1e-3: " +
+             disagree +
+             " (file - B-rep, relative); the file may have been "
+             "changed after export, or its exporter computed them on an approximation");
   }
 }
 
@@ -185,20 +188,24 @@ void AddCadFindings(SolidResult& r) {
   for (const std::string& note : m.cad_notes) Warn(r, FindingKind::kCadLeftOut, note);
   const CadInterference& in = m.cad_interference;
   const auto name = [&](std::size_t i) {
-    const std::string product = i < m.part_names.size() && !m.part_names[i].empty() ? m.part_names[i] : "part " + std::to_string(i + 1);
+    const std::string product =
+        i < m.part_names.size() && !m.part_names[i].empty() ? m.part_names[i] : "part " + std::to_string(i + 1);
     const std::string& instance = m.cad_parts[i].instance;
     return "'" + (instance.empty() ? product : instance + "' ('" + product) + (instance.empty() ? "'" : "')");
   };
   const double scale = m.declared_unit ? MetresPerUnit(*m.declared_unit) : 1e-3;
   for (const CadOverlap& o : in.overlaps) {
-    const std::string who = o.a == o.b ? "two solids inside part " + name(o.a) : "parts " + name(o.a) + " and " + name(o.b);
+    const std::string who =
+        o.a == o.b ? "two solids inside part " + name(o.a) : "parts " + name(o.a) + " and " + name(o.b);
     if (o.volume < 0) {
-      Warn(r, FindingKind::kInterference, who + " may interfere: their boxes overlap, and OpenCASCADE's boolean "
-                                                "could not measure the common volume");
+      Warn(r, FindingKind::kInterference,
+           who +
+               " may interfere: their boxes overlap, and OpenCASCADE's boolean "
+               "could not measure the common volume");
     } else {
       Warn(r, FindingKind::kInterference,
-           who + " interfere: they share " + Fixed(o.volume * scale * scale * scale, "%.4g") +
-               " m^3, counted " + (o.a == o.b ? "twice in that part" : "in both") +
+           who + " interfere: they share " + Fixed(o.volume * scale * scale * scale, "%.4g") + " m^3, counted " +
+               (o.a == o.b ? "twice in that part" : "in both") +
                " (the whole is the sum of its parts, as CAD systems give it)");
     }
   }
@@ -268,11 +275,14 @@ bool SolveBrep(SolidResult& r, const LoadOptions& opt) {
                "): the B-rep may be faulty (self-intersecting or gapped faces); compare with the exporting system");
     }
   } else {
-    const std::string why = t.faces == 0 ? std::string("OpenCASCADE made no triangles of it")
-                                         : t.BoundsVolume() ? "it repeats faces" : t.Problems();
+    const std::string why = t.faces == 0       ? std::string("OpenCASCADE made no triangles of it")
+                            : t.BoundsVolume() ? "it repeats faces"
+                                               : t.Problems();
     Warn(r, FindingKind::kCadCheck,
          PartWords(r) + ": no second opinion: the check tessellation does not bound a volume (" + why +
-             (part.untessellated_faces > 0 ? "; " + std::to_string(part.untessellated_faces) + " B-rep faces were not meshed" : "") +
+             (part.untessellated_faces > 0
+                  ? "; " + std::to_string(part.untessellated_faces) + " B-rep faces were not meshed"
+                  : "") +
              "); the exact B-rep's numbers stand on OpenCASCADE's integration alone");
   }
   if (part.file.volume || part.file.area || part.file.centroid) CompareWithFile(r, b, part.file, MetresPerUnit(r.unit));

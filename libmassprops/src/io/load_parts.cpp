@@ -122,10 +122,10 @@ SolidResult SolveParts(SolidResult r, const LoadOptions& given, std::chrono::ste
     if (part.loaded.mesh.num_faces() == 0 && !HasExactSolid(part.loaded, part_opt)) {
       // Nothing to integrate: an empty group, a product of curves or points, a tessellation with
       // no triangles. Named and left out, never integrated as nothing.
-      Warn(r, FindingKind::kCadLeftOut, "part '" + names[p] + "' has no faces (" +
-                                            (part.loaded.cad_parts.empty() ? std::string("an empty group")
-                                                                           : "OpenCASCADE made no triangles of it") +
-                                            "): left out of the whole");
+      Warn(r, FindingKind::kCadLeftOut,
+           "part '" + names[p] + "' has no faces (" +
+               (part.loaded.cad_parts.empty() ? std::string("an empty group") : "OpenCASCADE made no triangles of it") +
+               "): left out of the whole");
       continue;
     }
     if (opt.progress) opt.progress(("part '" + names[p] + "'").c_str());

@@ -110,8 +110,8 @@ std::string ReadIsolated(const std::string& path, const std::string& who, double
   return std::move(outcome.output);
 }
 
-IsolatedOutcome ReadIsolatedPieces(const std::string& path, const std::string& who, double limit,
-                                   const char* fault_env, const std::function<void(const IsolatedSend&)>& work) {
+IsolatedOutcome ReadIsolatedPieces(const std::string& path, const std::string& who, double limit, const char* fault_env,
+                                   const std::function<void(const IsolatedSend&)>& work) {
   IsolatedOutcome outcome;
   try {
     RunIsolatedStreaming(

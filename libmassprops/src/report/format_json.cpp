@@ -145,7 +145,8 @@ Json ToJson(const SolidResult& r, const FormatOptions& opt) {
       brep["inertia_difference"] = b.inertia_difference;
     }
     Json file = Json::object();
-    if (b.file_volume) file["volume"] = *b.file_volume / u.Volume(), file["volume_difference"] = *b.file_volume_difference;
+    if (b.file_volume)
+      file["volume"] = *b.file_volume / u.Volume(), file["volume_difference"] = *b.file_volume_difference;
     if (b.file_area && b.file_area_difference) file["area_difference"] = *b.file_area_difference;
     if (b.file_centroid && b.file_com_difference) {
       const Vector3 fc = *b.file_centroid / u.Length();

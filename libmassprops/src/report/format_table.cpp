@@ -224,7 +224,8 @@ std::string FormatOne(const SolidResult& r, const FormatOptions& opt) {
     if (b.file_volume)
       out << " volume " << Num(*b.file_volume / u.Volume()) << " " << u.VolumeName() << " ("
           << FormatDouble(*b.file_volume_difference, "%+.2e") << ")";
-    if (b.file_area && b.file_area_difference) out << ", surface area " << FormatDouble(*b.file_area_difference, "%+.2e");
+    if (b.file_area && b.file_area_difference)
+      out << ", surface area " << FormatDouble(*b.file_area_difference, "%+.2e");
     if (b.file_centroid && b.file_com_difference)
       out << ", centroid " << FormatDouble(*b.file_com_difference, "%.2e") << " of the size";
     out << "\n";

@@ -87,8 +87,8 @@ FileProperties PropertiesOf(const TDF_Label& label) {
 
 // Depth-first over an XCAF assembly: every simple shape reached is an instance, with the product
 // of the placements on the way and the name of the component that placed it.
-void Collect(const TDF_Label& label, const gp_Trsf& placement, const std::string& component,
-             std::vector<Instance>& out, int depth) {
+void Collect(const TDF_Label& label, const gp_Trsf& placement, const std::string& component, std::vector<Instance>& out,
+             int depth) {
   if (depth > 64) throw Standard_Failure("the assembly is nested more than 64 levels deep (a cycle?)");
   if (XCAFDoc_ShapeTool::IsAssembly(label)) {
     TDF_LabelSequence components;

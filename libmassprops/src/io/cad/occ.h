@@ -65,9 +65,9 @@ SolidSet FindSolids(const TopoDS_Shape& shape);
 /// A tessellation welded through the B-rep's shared edges: nodes on one edge of two faces are one
 /// vertex, whatever rounding their faces' locations gave them.
 struct CheckMesh {
-  std::vector<double> xyz;         ///< 3 per vertex, millimetres, the prototype's frame
-  std::vector<std::int32_t> tris;  ///< 3 per triangle, outward
-  std::uint64_t untessellated = 0;  ///< faces BRepMesh left without triangles
+  std::vector<double> xyz;            ///< 3 per vertex, millimetres, the prototype's frame
+  std::vector<std::int32_t> tris;     ///< 3 per triangle, outward
+  std::uint64_t untessellated = 0;    ///< faces BRepMesh left without triangles
   std::uint64_t unmatched_edges = 0;  ///< edges whose two sides were meshed differently (not welded)
 };
 

@@ -31,9 +31,7 @@ double SignedVolume(const TopoDS_Shape& solid) {
   return props.Mass();
 }
 
-std::string Count(int n, const char* one, const char* many) {
-  return std::to_string(n) + " " + (n == 1 ? one : many);
-}
+std::string Count(int n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); }
 
 class Collector {
  public:

@@ -60,7 +60,8 @@ CheckMesh Tessellate(const TopoDS_Shape& shape, double deflection, double angula
   std::vector<int> vertex_node;
   const auto vertex = [&](const TopoDS_Vertex& v) {
     const int k = vertices.Add(v);  // 1-based; the same index for the same vertex
-    if (k > static_cast<int>(vertex_node.size())) vertex_node.push_back(nodes.Add()), points.push_back(BRep_Tool::Pnt(v));
+    if (k > static_cast<int>(vertex_node.size()))
+      vertex_node.push_back(nodes.Add()), points.push_back(BRep_Tool::Pnt(v));
     return vertex_node[static_cast<std::size_t>(k - 1)];
   };
   for (TopExp_Explorer e(shape, TopAbs_FACE); e.More(); e.Next()) {
