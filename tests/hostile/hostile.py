@@ -415,7 +415,7 @@ def main():
         r"clean_obj.obj", env={"MASSPROPS_CAD_FAULT": "hang", "MASSPROPS_CAD_TIMEOUT": "1"})
     # --brep is the default now (a no-op with a note); a shell needs the mesh, which it says.
     run("step_brep_with_shell", ["plate.step", "--brep", "--shell", "--area-density", "1"], 0,
-        r"--brep is the default now.*\n.*tessellation's numbers are the result, because --shell needs a mesh")
+        r"--brep is the default now.*\n.*tessellation's numbers are the result, because a shell \(the surface's mass\) needs a mesh")
     # The result survives an interference test that never ends: it is measured after the numbers.
     run("step_hang_after_result", ["plate.step"], 0, r"interference not measured: stopped after 2 s",
         r"exact B-rep", env={"MASSPROPS_CAD_FAULT": "hang-after-result", "MASSPROPS_CAD_TIMEOUT": "2"})

@@ -127,12 +127,12 @@ namespace {
 
 // Why the options need the tessellation as the result ("" when they do not).
 std::string MeshOnlyOption(const LoadOptions& o) {
-  if (std::holds_alternative<ShellModel>(o.model)) return "{shell}";
+  if (std::holds_alternative<ShellModel>(o.model)) return "a shell (the surface's mass)";
   if (std::holds_alternative<WallModel>(o.model)) return "{wall}";
-  if (std::holds_alternative<WindingNumberModel>(o.model)) return "{winding_number}";
+  if (std::holds_alternative<WindingNumberModel>(o.model)) return "the winding-number estimate";
   if (o.repair) return "{repair}";
-  if (o.hull) return "{hull}";
-  if (o.exact) return "{exact}";
+  if (o.hull) return "the convex hull";
+  if (o.exact) return "the exact rational integration";
   return "";
 }
 

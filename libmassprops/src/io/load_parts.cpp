@@ -194,6 +194,11 @@ SolidResult SolveParts(SolidResult r, const LoadOptions& given, std::chrono::ste
   r.path_used = "the composition of " + std::to_string(r.parts.size()) + (r.parts.size() == 1 ? " part" : " parts") +
                 " (" + paths + ")";
   r.mp = Combine(mps);
+  // One density throughout is that density, not the quotient of the sums (which rounds).
+  if (std::all_of(r.parts.begin(), r.parts.end(),
+                  [&](const SolidResult& p) { return p.mp.density == r.parts.front().mp.density; })) {
+    r.mp.density = r.parts.front().mp.density;
+  }
   r.size_m = MeshDiagonal(loaded.mesh) * MetresPerUnit(r.unit);
   if (!(r.size_m > 0)) {
     for (const SolidResult& part : r.parts) r.size_m = std::max(r.size_m, part.size_m);

@@ -54,6 +54,7 @@ Document ReadDocument(const char* path, int format);
 struct SolidSet {
   TopoDS_Compound solids;
   int count = 0;
+  std::vector<double> volumes;  ///< each solid's, mm^3 (positive), in the order of `solids`
   /// Faces left outside every solid (open surfaces): the part's geometry when it has no solid.
   TopoDS_Compound surfaces;
   bool has_surfaces = false;

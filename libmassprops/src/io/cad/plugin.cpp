@@ -69,7 +69,6 @@ Integrals Integrate(const TopoDS_Shape& solids, double tolerance) {
 struct Prototype {
   SolidSet set;
   Integrals exact;
-  std::vector<double> solid_volumes;
   CheckMesh mesh;
   double deflection = 0;
 };
@@ -102,11 +101,6 @@ Prototype MakePrototype(const TopoDS_Shape& shape, const MasspropsCadOptions& o,
   p.mesh = Tessellate(geometry, p.deflection, o.angular_deflection);
   if (p.set.count > 0) {
     p.exact = Integrate(p.set.solids, o.brep_tolerance);
-    for (TopExp_Explorer e(p.set.solids, TopAbs_SOLID); e.More(); e.Next()) {
-      GProp_GProps props;
-      BRepGProp::VolumeProperties(e.Current(), props, true);
-      p.solid_volumes.push_back(props.Mass());
-    }
   }
   return p;
 }
@@ -255,7 +249,7 @@ void Read(const char* path, const MasspropsCadOptions& o, const Sender& send) {
     for (TopExp_Explorer e(prototypes[kept[k]]->set.solids, TopAbs_SOLID); e.More(); e.Next(), ++s) {
       const double scale = std::abs(in.placement.ScaleFactor());
       solids.push_back({k, e.Current().Moved(TopLoc_Location(in.placement)),
-                        prototypes[kept[k]]->solid_volumes[s] * scale * scale * scale});
+                        prototypes[kept[k]]->set.volumes[s] * scale * scale * scale});
     }
   }
   const Interference found = MeasureInterference(solids, o.interference_pairs);

@@ -42,10 +42,12 @@ class Collector {
 
   // A solid, turned outward when its faces point inward.
   void AddSolid(TopoDS_Shape solid, int& reversed) {
-    if (SignedVolume(solid) < 0) {
+    const double volume = SignedVolume(solid);
+    if (volume < 0) {
       solid.Reverse();
       ++reversed;
     }
+    set_.volumes.push_back(std::abs(volume));
     builder_.Add(set_.solids, solid);
     ++set_.count;
   }
