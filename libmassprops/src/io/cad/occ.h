@@ -63,6 +63,9 @@ struct SolidSet {
 
 SolidSet FindSolids(const TopoDS_Shape& shape);
 
+/// The diagonal of a shape's bounding box, mm (0 for an empty shape).
+double Diagonal(const TopoDS_Shape& shape);
+
 /// A tessellation welded through the B-rep's shared edges: nodes on one edge of two faces are one
 /// vertex, whatever rounding their faces' locations gave them.
 struct CheckMesh {

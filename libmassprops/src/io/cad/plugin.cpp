@@ -25,6 +25,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <list>
 #include <map>
 #include <string>
 #include <vector>
@@ -72,12 +73,6 @@ struct Prototype {
   CheckMesh mesh;
   double deflection = 0;
 };
-
-double Diagonal(const TopoDS_Shape& shape) {
-  Bnd_Box box;
-  BRepBndLib::Add(shape, box, false);
-  return box.IsVoid() ? 0.0 : std::sqrt(box.SquareExtent());
-}
 
 Prototype MakePrototype(const TopoDS_Shape& shape, const MasspropsCadOptions& o, double mm_per_unit) {
   Prototype p;
@@ -175,34 +170,14 @@ class Sender {
   void* context_;
 };
 
-// A file of surfaces only, spread over several parts (a surface model whose faces each came as
-// their own representation): the faces of all parts, placed, as one part, so that sewing can find
-// the solid they bound together. Unchanged when any part has a solid, or the faces bound none.
-void JoinSurfaceParts(Document& d) {
-  if (d.instances.size() < 2) return;
-  TopoDS_Compound all;
-  BRep_Builder builder;
-  builder.MakeCompound(all);
-  for (const Instance& in : d.instances) {
-    if (FindSolids(in.shape).count > 0) return;
-    builder.Add(all, in.shape.Moved(TopLoc_Location(in.placement)));
-  }
-  const SolidSet joined = FindSolids(all);
-  if (joined.count == 0) return;
-  Instance one;
-  one.name = d.instances.front().name;
-  one.shape = all;
-  d.instances = {one};
-}
-
 void Read(const char* path, const MasspropsCadOptions& o, const Sender& send) {
   // OpenCASCADE prints its progress on standard output; the child's output is its pipe only.
   Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
   Document d = ReadDocument(path, o.format);
-  JoinSurfaceParts(d);
   if (d.instances.empty()) throw Refusal{"the file holds no shape (no solid, shell or face)"};
-  // Each prototype is found, integrated and meshed once, however many instances place it.
-  std::map<const TopoDS_TShape*, std::vector<std::pair<TopLoc_Location, Prototype>>> done;
+  // Each prototype is found, integrated and meshed once, however many instances place it (a list:
+  // the pointers to its entries stay valid as it grows).
+  std::map<const TopoDS_TShape*, std::list<std::pair<TopLoc_Location, Prototype>>> done;
   std::vector<const Prototype*> prototypes;
   for (const Instance& in : d.instances) {
     auto& list = done[in.shape.TShape().get()];
@@ -215,6 +190,25 @@ void Read(const char* path, const MasspropsCadOptions& o, const Sender& send) {
       p = &list.back().second;
     }
     prototypes.push_back(p);
+  }
+  // A file of surfaces only, spread over several parts (a surface model whose faces each came as
+  // their own representation): the faces of all parts, placed, as one part, so that sewing can
+  // find the solid they bound together; kept only when it does.
+  Prototype joined;
+  if (d.instances.size() > 1 &&
+      std::none_of(prototypes.begin(), prototypes.end(), [](const Prototype* p) { return p->set.count > 0; })) {
+    TopoDS_Compound all;
+    BRep_Builder builder;
+    builder.MakeCompound(all);
+    for (const Instance& in : d.instances) builder.Add(all, in.shape.Moved(TopLoc_Location(in.placement)));
+    joined = MakePrototype(all, o, d.mm_per_unit);
+    if (joined.set.count > 0) {
+      Instance one;
+      one.name = d.instances.front().name;
+      one.shape = all;
+      d.instances = {one};
+      prototypes = {&joined};
+    }
   }
   // Parts with no face at all (curves, points, an empty product) are left out, and said so.
   std::vector<std::string> notes;

@@ -64,13 +64,13 @@ class Collector {
   SolidSet set_;
 };
 
+}  // namespace
+
 double Diagonal(const TopoDS_Shape& shape) {
   Bnd_Box box;
   BRepBndLib::Add(shape, box, false);
   return box.IsVoid() ? 0.0 : std::sqrt(box.SquareExtent());
 }
-
-}  // namespace
 
 SolidSet FindSolids(const TopoDS_Shape& shape) {
   Collector c;
