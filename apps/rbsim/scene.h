@@ -50,6 +50,7 @@ struct GroundSpec {
   Vector3 normal = Vector3::UnitZ();
   double offset = 0;
   dynamics::Material material;
+  dynamics::CollisionFilter filter;
 };
 
 struct BodySpec {
@@ -135,6 +136,9 @@ struct Scene {
   std::vector<JointSpec> joints;
   std::vector<RobotSpec> robots;
   std::vector<GroundSpec> grounds;
+  /// grounds[0] is the floor a robot file run on its own gets (RobotScene): a file with floors of
+  /// its own (MJCF worldbody planes) gets those instead.
+  bool default_ground = false;
   std::vector<StaticSpec> statics;
   dynamics::ContactOptions contact;
   bool contact_given = false;  ///< the scene has a "contact" section

@@ -111,6 +111,7 @@ Scene RobotScene(const std::string& path, bool fill, bool fixed_base) {
   gravity.vector = Vector3(0, 0, -9.81);
   scene.forces.push_back(gravity);
   scene.grounds.push_back(GroundSpec{});
+  scene.default_ground = true;
   return scene;
 }
 

@@ -71,6 +71,19 @@ void AddRobot(Simulation& sim, const RobotSpec& spec, std::vector<std::string>& 
   } catch (const std::exception& e) {
     throw SceneError(where + e.what());
   }
+  if (!model.grounds.empty()) {  // the file's own floors, in place of the default one
+    if (sim.scene.default_ground) {
+      sim.scene.grounds.clear();
+      sim.scene.default_ground = false;
+    }
+    for (const massprops::RobotGround& g : model.grounds) {
+      GroundSpec ground;
+      ground.normal = g.normal;
+      ground.offset = g.offset;
+      ground.filter = {g.contype, g.conaffinity};
+      sim.scene.grounds.push_back(ground);
+    }
+  }
   dynamics::RobotOptions options = spec.options;
   try {
     if (!spec.position_given && !sim.scene.grounds.empty()) {
@@ -200,9 +213,9 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     lo = lo.cwiseMin(rb.position - Vector3::Constant(r));
     hi = hi.cwiseMax(rb.position + Vector3::Constant(r));
   }
-  for (std::size_t k = 0; k < scene.grounds.size(); ++k) {
-    const GroundSpec& g = scene.grounds[k];
-    sim.physics.AddGround({g.normal, g.offset, g.material});
+  for (std::size_t k = 0; k < sim.scene.grounds.size(); ++k) {  // (robot files may have brought their own)
+    const GroundSpec& g = sim.scene.grounds[k];
+    sim.physics.AddGround({g.normal, g.offset, g.material, g.filter});
     const Vector3 centre = 0.5 * (lo + hi);
     const Vector3 foot = centre - g.normal * (g.normal.dot(centre) - g.offset);
     const double half = 2 * std::max((hi - lo).maxCoeff(), 0.1);
@@ -258,7 +271,9 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
   }
 
   // Fields that the scene's own content makes inert are errors, not silently ignored.
-  const bool anything_collides = std::find(collides.begin(), collides.end(), true) != collides.end();
+  // (A robot's links collide with the ground at least.)
+  const bool anything_collides =
+      std::find(collides.begin(), collides.end(), true) != collides.end() || !scene.robots.empty();
   if (scene.contact_given && !anything_collides) {
     throw SceneError(scene.file +
                      ": contact: no body collides with anything (give bodies \"collision\"), so these "
@@ -326,7 +341,7 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     auto note = [](std::string& list, const char* what) { list += (list.empty() ? "" : ", ") + std::string(what); };
     sim.conservation.energy = false;
     note(sim.conservation.energy_broken_by, "contact");
-    if (!scene.grounds.empty() || !scene.statics.empty()) {
+    if (!sim.scene.grounds.empty() || !scene.statics.empty()) {
       sim.conservation.momentum = false;
       note(sim.conservation.momentum_broken_by, "ground and static bodies");
     }

@@ -57,8 +57,8 @@ TEST(Polytope, BoxOnBoxFaceToFace) {
   const shape::Box shape{Vector3(1, 1, 1)};
   const Shape s = shape;
   // Box a 0.01 into box b from above, shifted by 0.5 in x: the overlap is [−0.5, 1] × [−1, 1].
-  Posed a{&s, &box, Matrix3::Identity(), Vector3(0.5, 0, 1.99)};
-  Posed b{&s, &box, Matrix3::Identity(), Vector3::Zero()};
+  Posed a{&s, &box, Matrix3::Identity(), Vector3(0.5, 0, 1.99), {}};
+  Posed b{&s, &box, Matrix3::Identity(), Vector3::Zero(), {}};
   std::vector<ContactPoint> points;
   PolytopePolytope(box, a, box, b, 0.0, points);
   ASSERT_EQ(points.size(), 4u);
@@ -79,7 +79,7 @@ TEST(Polytope, BoxOnBoxFaceToFace) {
 TEST(Polytope, SphereOverAFace) {
   const Polytope box = BoxPolytope(Vector3(1, 1, 1));
   const Shape s = shape::Box{Vector3(1, 1, 1)};
-  const Posed b{&s, &box, Matrix3::Identity(), Vector3::Zero()};
+  const Posed b{&s, &box, Matrix3::Identity(), Vector3::Zero(), {}};
   std::vector<ContactPoint> points;
   SpherePolytope(Vector3(0.3, -0.2, 1.4), 0.5, box, b, 0.0, true, 0, points);
   ASSERT_EQ(points.size(), 1u);

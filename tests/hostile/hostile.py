@@ -365,7 +365,11 @@ def main():
     write("scene.xml", "<scene><body/></scene>")
     run("fill_unknown_root", ["fill", "scene.xml", "-o", "s.xml"], 1, r"none of <robot>")
     write("inc.xml", '<mujoco><include file="x.xml"/></mujoco>')
-    run("fill_include", ["fill", "inc.xml", "-o", "i.xml"], 1, r"is not followed")
+    run("fill_include_missing", ["fill", "inc.xml", "-o", "i.xml"], 1, r'<include file="x.xml">: .*x.xml is not a regular file')
+    write("self_inc.xml", '<mujoco><include file="self_inc.xml"/></mujoco>')
+    run("fill_include_itself", ["fill", "self_inc.xml", "-o", "i.xml"], 1, r"names a file included already")
+    write("inc_urdf.xml", '<mujoco><include file="huge.urdf"/></mujoco>')
+    run("fill_include_not_mjcf", ["fill", "inc_urdf.xml", "-o", "i.xml"], 1, r"its root is <robot>, not <mujoco>")
     run("fill_onto_itself", ["fill", "huge.urdf", "-o", "huge.urdf"], 2, r"error")
     run("input_directory", [tmp + "/"], 1, r"not a regular file|unknown mesh format|cannot")
     # assimp runs in a child process with a time limit: a crash or a hang there is that file's

@@ -36,6 +36,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -57,7 +58,20 @@ Material CombineMaterials(const Material& a, const Material& b);
 
 namespace contact {
 struct MeshField;  // the signed distance field of a mesh collider (built once, shared)
-}
+struct Polytope;   // the faces, edges and corners of a box or convex shape (built when added)
+}  // namespace contact
+
+/// MuJoCo's collision filter: two shapes may touch when (a.contype & b.conaffinity) or
+/// (b.contype & a.conaffinity) is non-zero. The default (1, 1) touches everything of the default.
+struct CollisionFilter {
+  std::uint32_t contype = 1;
+  std::uint32_t conaffinity = 1;
+  bool Touches(const CollisionFilter& other) const {
+    return ((contype & other.conaffinity) | (other.contype & conaffinity)) != 0;
+  }
+};
+
+struct Collider;
 
 /// Collision shapes, in their own frame (centred; axis of symmetry along z).
 namespace shape {
@@ -93,9 +107,20 @@ struct Mesh {
   double cell = 0;
   std::shared_ptr<const contact::MeshField> field;  ///< built by MakeMesh (or when first added)
 };
+/// Several shapes fixed to one body, each placed in the compound's frame by its collider's
+/// rotation and translation and each colliding on its own (a robot link's box, cylinders and
+/// capsules; an L of two boxes standing on its two feet, not on the face of their hull). Parts
+/// are not compounds; the compound's material applies to them all, and each part's filter is
+/// ANDed with the compound's.
+struct Compound {
+  std::vector<Collider> parts;
+  /// Each part's polytope (boxes and convex parts; null otherwise), built when the body is added.
+  std::vector<std::shared_ptr<const contact::Polytope>> polytopes;
+};
 }  // namespace shape
-using Shape = std::variant<shape::Sphere, shape::Box, shape::Capsule, shape::Cylinder, shape::Convex, shape::Mesh>;
-/// "sphere", "box", "capsule", "cylinder", "convex", "mesh".
+using Shape = std::variant<shape::Sphere, shape::Box, shape::Capsule, shape::Cylinder, shape::Convex, shape::Mesh,
+                           shape::Compound>;
+/// "sphere", "box", "capsule", "cylinder", "convex", "mesh", "compound".
 const char* ShapeName(const Shape& s);
 
 /// A convex collider from a hull as massprops gives it (massprops::ConvexHull: outward polygons,
@@ -123,17 +148,31 @@ MeshFieldInfo DescribeMeshField(const shape::Mesh& mesh);
 
 /// A shape attached to a body: placed in the body frame B by x_B = R x_S + t.
 struct Collider {
+  Collider() = default;
+  Collider(Shape shape_, const Matrix3& rotation_ = Matrix3::Identity(), const Vector3& translation_ = Vector3::Zero(),
+           const Material& material_ = {}, const CollisionFilter& filter_ = {})
+      : shape(std::move(shape_)),
+        rotation(rotation_),
+        translation(translation_),
+        material(material_),
+        filter(filter_) {}
   Shape shape;
   Matrix3 rotation = Matrix3::Identity();
   Vector3 translation = Vector3::Zero();
   Material material;
+  CollisionFilter filter;
 };
 
 /// The half-space {x : n·x ≤ offset} (n a unit normal pointing out of the ground), fixed.
 struct Ground {
+  Ground() = default;
+  Ground(const Vector3& normal_, double offset_ = 0, const Material& material_ = {},
+         const CollisionFilter& filter_ = {})
+      : normal(normal_), offset(offset_), material(material_), filter(filter_) {}
   Vector3 normal = Vector3::UnitZ();
   double offset = 0;
   Material material;
+  CollisionFilter filter;
 };
 
 struct ContactOptions {

@@ -46,7 +46,43 @@ struct Points {
   std::vector<std::array<int, 3>> triangles;
 };
 
-Points PointsOf(const massprops::RobotGeometry& g, const massprops::LoadOptions& load) {
+// A mesh collider needs a closed, oriented surface (its signed distance field); a hull needs only
+// the points. A mesh that is no solid as written (repeated faces, a hole) still gives its hull,
+// with a note naming the link and the file; as a mesh collider it is repaired, or refused.
+massprops::TriangleMesh ReadCollisionMesh(const massprops::RobotGeometry& g, const massprops::RobotMesh& m,
+                                          const massprops::LoadOptions& load, bool hull, double& metres,
+                                          std::vector<std::string>& notes) {
+  massprops::LoadOptions options = load;
+  options.mass = massprops::Density{1.0};
+  try {
+    const massprops::SolidResult r = massprops::LoadSolid(m.path, options);
+    metres = massprops::MetresPerUnit(r.unit);
+    return massprops::Triangulate(r.loaded.mesh);
+  } catch (const massprops::LoadError& e) {  // read, but no solid as it stands (a malformed file is thrown on)
+    if (!hull) {
+      if (options.repair)
+        throw std::invalid_argument(g.where + ": a mesh collider needs a closed surface: " + e.what());
+      options.repair = true;
+      try {
+        const massprops::SolidResult r = massprops::LoadSolid(m.path, options);
+        metres = massprops::MetresPerUnit(r.unit);
+        notes.push_back(g.where + ": " + m.path + " repaired for its mesh collider (" + e.what() + ")");
+        return massprops::Triangulate(r.loaded.mesh);
+      } catch (const std::exception& again) {
+        throw std::invalid_argument(g.where + ": a mesh collider needs a closed surface, and " + m.path +
+                                    " could not be repaired: " + again.what());
+      }
+    }
+    // Its points are all the hull takes.
+    const massprops::LoadedMesh read = massprops::ReadMeshFile(m.path);
+    metres = massprops::MetresPerUnit(read.declared_unit && !load.unit_stated ? *read.declared_unit : load.unit);
+    notes.push_back(g.where + ": " + e.what() + " — it collides as the convex hull of its points, which needs no more");
+    return massprops::Triangulate(read.mesh);
+  }
+}
+
+// A geometry's points (metres, its own frame) and, for a mesh, its triangles.
+Points PointsOf(const massprops::RobotGeometry& g, const RobotOptions& options, std::vector<std::string>& notes) {
   Points out;
   massprops::TriangleMesh mesh;
   double scale = 1;
@@ -55,11 +91,7 @@ Points PointsOf(const massprops::RobotGeometry& g, const massprops::LoadOptions&
     mesh = massprops::Tessellate(*p, 24);
   } else {
     const auto& m = std::get<massprops::RobotMesh>(g.shape);
-    massprops::LoadOptions options = load;
-    options.mass = massprops::Density{1.0};
-    const massprops::SolidResult r = massprops::LoadSolid(m.path, options);
-    mesh = massprops::Triangulate(r.loaded.mesh);
-    scale = massprops::MetresPerUnit(r.unit);
+    mesh = ReadCollisionMesh(g, m, options.load, !options.mesh_colliders, scale, notes);
     axes = m.scale;
   }
   for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
@@ -83,70 +115,71 @@ struct PlacedGeometry {
   Points points;
 };
 
-std::vector<PlacedGeometry> GeometriesOf(const RobotModel& model, const Group& g, const RobotOptions& options) {
+std::vector<PlacedGeometry> GeometriesOf(const RobotModel& model, const Group& g, const RobotOptions& options,
+                                         std::vector<std::string>& notes) {
   std::vector<PlacedGeometry> out;
   const Placement root_to_body = g.body_in_root.Inverse();
   for (std::size_t k = 0; k < g.links.size(); ++k) {
     for (const auto& geometry : model.links[static_cast<std::size_t>(g.links[k])].collisions) {
-      out.push_back({&geometry, root_to_body.Then(g.in_root[k]).Then(geometry.pose), PointsOf(geometry, options.load)});
+      out.push_back(
+          {&geometry, root_to_body.Then(g.in_root[k]).Then(geometry.pose), PointsOf(geometry, options, notes)});
     }
   }
   return out;
 }
 
-// The collider of a group in its body frame (none: no collision geometry).
-std::optional<Collider> ColliderOf(const RobotModel& model, const Group& g,
-                                   const std::vector<PlacedGeometry>& geometries, const RobotOptions& options,
-                                   std::vector<std::string>& notes) {
-  if (geometries.empty()) return std::nullopt;
+// One collision geometry as a collider in the body frame: a primitive as itself, a mesh as its
+// convex hull, or as the mesh itself (a signed distance field) when asked.
+Collider GeometryCollider(const PlacedGeometry& placed, const RobotOptions& options) {
   Collider c;
   c.material = options.material;
-  if (geometries.size() == 1) {
-    const PlacedGeometry& one = geometries.front();
-    c.rotation = one.pose.rotation;
-    c.translation = one.pose.translation;
-    if (const auto* p = std::get_if<massprops::Primitive>(&one.geometry->shape)) {
-      if (const auto* box = std::get_if<massprops::primitive::Box>(p)) {
-        c.shape = shape::Box{box->size / 2};
-        return c;
-      }
-      if (const auto* s = std::get_if<massprops::primitive::Sphere>(p)) {
-        c.shape = shape::Sphere{s->radius};
-        return c;
-      }
-      if (const auto* s = std::get_if<massprops::primitive::Capsule>(p)) {
-        c.shape = shape::Capsule{s->radius, s->length / 2};
-        return c;
-      }
-      if (const auto* s = std::get_if<massprops::primitive::Cylinder>(p)) {
-        c.shape = shape::Cylinder{s->radius, s->height / 2};
-        return c;
-      }
+  c.rotation = placed.pose.rotation;
+  c.translation = placed.pose.translation;
+  c.filter = {placed.geometry->contype, placed.geometry->conaffinity};
+  if (const auto* p = std::get_if<massprops::Primitive>(&placed.geometry->shape)) {
+    if (const auto* box = std::get_if<massprops::primitive::Box>(p)) {
+      c.shape = shape::Box{box->size / 2};
+      return c;
     }
-    if (options.mesh_colliders && std::holds_alternative<massprops::RobotMesh>(one.geometry->shape)) {
-      c.shape = MakeMesh(one.points.vertices, one.points.triangles);
+    if (const auto* s = std::get_if<massprops::primitive::Sphere>(p)) {
+      c.shape = shape::Sphere{s->radius};
+      return c;
+    }
+    if (const auto* s = std::get_if<massprops::primitive::Capsule>(p)) {
+      c.shape = shape::Capsule{s->radius, s->length / 2};
+      return c;
+    }
+    if (const auto* s = std::get_if<massprops::primitive::Cylinder>(p)) {
+      c.shape = shape::Cylinder{s->radius, s->height / 2};
       return c;
     }
   }
-  // The convex hull of them all, in the body frame.
-  massprops::PolygonMesh cloud;
-  std::vector<Vector3> all;
-  for (const PlacedGeometry& placed : geometries) {
-    for (const Vector3& v : placed.points.vertices) all.push_back(placed.pose.rotation * v + placed.pose.translation);
+  if (options.mesh_colliders && std::holds_alternative<massprops::RobotMesh>(placed.geometry->shape)) {
+    c.shape = MakeMesh(placed.points.vertices, placed.points.triangles);
+    return c;
   }
-  cloud.V.resize(static_cast<Eigen::Index>(all.size()), 3);
-  for (std::size_t i = 0; i < all.size(); ++i) cloud.V.row(static_cast<Eigen::Index>(i)) = all[i].transpose();
-  std::vector<int> corners(all.size());
+  // The convex hull of its points (an ellipsoid's tessellation, a mesh), in its own frame.
+  massprops::PolygonMesh cloud;
+  const std::vector<Vector3>& points = placed.points.vertices;
+  cloud.V.resize(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i) cloud.V.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+  std::vector<int> corners(points.size());
   std::iota(corners.begin(), corners.end(), 0);
   cloud.AddFace(corners);  // (the hull takes the corners of faces)
-  c.rotation.setIdentity();
-  c.translation.setZero();
   c.shape = ConvexOf(massprops::ConvexHull(cloud));
-  if (geometries.size() > 1) {
-    notes.push_back("link '" + model.links[static_cast<std::size_t>(g.root)].name + "': its " +
-                    std::to_string(geometries.size()) + " collision geometries" +
-                    (g.links.size() > 1 ? " (with the links welded to it)" : "") + " collide as their convex hull");
-  }
+  return c;
+}
+
+// The collider of a group in its body frame (none: no collision geometry): its one geometry, or
+// a compound of them all, each colliding on its own as the file gives it.
+std::optional<Collider> ColliderOf(const std::vector<PlacedGeometry>& geometries, const RobotOptions& options) {
+  if (geometries.empty()) return std::nullopt;
+  if (geometries.size() == 1) return GeometryCollider(geometries.front(), options);
+  Collider c;
+  c.material = options.material;
+  shape::Compound compound;
+  for (const PlacedGeometry& placed : geometries) compound.parts.push_back(GeometryCollider(placed, options));
+  c.shape = std::move(compound);
   return c;
 }
 
@@ -289,13 +322,11 @@ RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotO
       root_in_world[g] = options.pose;
       continue;
     }
+    // A joint to the world (URDF's "world" link, SDFormat's, an MJCF top body's) places the root
+    // where the file does, relative to the pose, whether the base is as written, fixed or floating.
     const RobotJoint& joint = model.joints[static_cast<std::size_t>(j)];
-    if (joint.parent < 0 && (fixed_base || floating_base)) {
-      root_in_world[g] = options.pose;
-    } else {
-      const Placement parent = joint.parent >= 0 ? link_in_world(joint.parent) : options.pose;
-      root_in_world[g] = parent.Then(joint.parent_to_joint).Then(joint.joint_to_child);
-    }
+    const Placement parent = joint.parent >= 0 ? link_in_world(joint.parent) : options.pose;
+    root_in_world[g] = parent.Then(joint.parent_to_joint).Then(joint.joint_to_child);
   }
   // The bodies.
   const int first_body = static_cast<int>(world.world().bodies().size());
@@ -307,8 +338,8 @@ RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotO
     b.inertia = group.moments;
     b.position = body.translation;
     b.orientation = QuaternionOf(body.rotation);
-    const std::vector<PlacedGeometry> geometries = GeometriesOf(model, group, options);
-    const std::optional<Collider> collider = ColliderOf(model, group, geometries, options, out.notes);
+    const std::vector<PlacedGeometry> geometries = GeometriesOf(model, group, options, out.notes);
+    const std::optional<Collider> collider = ColliderOf(geometries, options);
     out.bodies.push_back(collider ? world.AddBody(b, *collider) : world.AddBody(b));
     out.body_names.push_back(model.links[static_cast<std::size_t>(group.root)].name);
     out.shapes.push_back(ShapeOf(geometries));
@@ -337,8 +368,7 @@ RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotO
       // A floating base is a free body (the file's free joint to the world, or none): the same
       // motion, stepped in the body's own coordinates whatever the format.
       if (floating_base || (rj.type == RobotJointType::kFloating && !fixed_base)) continue;
-      parent_frame =
-          fixed_base ? options.pose.Then(rj.joint_to_child.Inverse()) : options.pose.Then(rj.parent_to_joint);
+      parent_frame = options.pose.Then(rj.parent_to_joint);
     }
     j.parent_frame = FrameOf(parent_frame);
     j.child_frame = FrameOf(link_in_body(rj.child).Then(rj.joint_to_child.Inverse()));

@@ -26,7 +26,7 @@
 namespace dynamics {
 
 const char* ShapeName(const Shape& s) {
-  static const char* const kNames[] = {"sphere", "box", "capsule", "cylinder", "convex", "mesh"};
+  static const char* const kNames[] = {"sphere", "box", "capsule", "cylinder", "convex", "mesh", "compound"};
   return kNames[s.index()];
 }
 
@@ -75,11 +75,18 @@ struct StaticBody {
 // finer mesh field's cell for a mesh contact, else half a percent of the smaller shape's bounding
 // radius (ra, rb; rb < 0: a ground plane). Speculative contacts keep overlaps from forming; the
 // ones that do form (bodies turning into each other within a step) are pushed out.
-double Slop(const Shape& a, double ra, const Shape* b, double rb) {
+// The finest mesh field cell of a shape (a compound's parts too); infinite without a mesh.
+double FinestCell(const Shape* s) {
   double cell = std::numeric_limits<double>::infinity();
-  for (const Shape* s : {&a, b}) {
-    if (const auto* m = s != nullptr ? std::get_if<shape::Mesh>(s) : nullptr) cell = std::min(cell, m->field->cell);
+  if (const auto* m = s != nullptr ? std::get_if<shape::Mesh>(s) : nullptr) cell = m->field->cell;
+  if (const auto* c = s != nullptr ? std::get_if<shape::Compound>(s) : nullptr) {
+    for (const Collider& part : c->parts) cell = std::min(cell, FinestCell(&part.shape));
   }
+  return cell;
+}
+
+double Slop(const Shape& a, double ra, const Shape* b, double rb) {
+  const double cell = std::min(FinestCell(&a), FinestCell(b));
   if (std::isfinite(cell)) return 0.25 * cell;
   return 0.005 * (rb > 0 ? std::min(ra, rb) : ra);
 }
@@ -175,16 +182,24 @@ void ValidateMaterial(const Material& m) {
 
 contact::Posed PoseOf(const Collider& c, const contact::Polytope* polytope, const RigidBody& b) {
   const Matrix3 R = b.Rotation();
-  return {&c.shape, polytope, R * c.rotation, b.position + R * c.translation};
+  return {&c.shape, polytope, R * c.rotation, b.position + R * c.translation, c.filter};
 }
 
 }  // namespace
 
 namespace {
-// A mesh collider's field, built here when the shape came without it.
+// A mesh collider's field, built here when the shape came without it; a compound's parts' fields
+// and polytopes.
 void BuildFieldIfMissing(Collider& c) {
   if (auto* mesh = std::get_if<shape::Mesh>(&c.shape); mesh != nullptr && mesh->field == nullptr) {
     mesh->field = contact::BuildMeshField(*mesh);
+  }
+  if (auto* compound = std::get_if<shape::Compound>(&c.shape)) {
+    compound->polytopes.clear();
+    for (Collider& part : compound->parts) {
+      BuildFieldIfMissing(part);
+      compound->polytopes.push_back(PolytopeOf(part.shape));
+    }
   }
 }
 }  // namespace
@@ -206,7 +221,7 @@ int ContactWorld::AddBody(const RigidBody& body, Collider collider) {
 
 int ContactWorld::AddBody(const RigidBody& body) {
   const int index = world_.AddBody(body);
-  impl_->colliders.push_back(Collider{shape::Sphere{1}, Matrix3::Identity(), Vector3::Zero(), Material{}});
+  impl_->colliders.push_back(Collider{shape::Sphere{1}});
   impl_->radii.push_back(1.0);
   impl_->polytopes.push_back(nullptr);
   impl_->collides.push_back(false);
@@ -228,7 +243,7 @@ void ContactWorld::AddStatic(Collider collider, const Matrix3& rotation, const V
   s.polytope = PolytopeOf(s.collider.shape);
   contact::BroadStatic broad;
   broad.posed = {nullptr, s.polytope.get(), rotation * s.collider.rotation,
-                 translation + rotation * s.collider.translation};
+                 translation + rotation * s.collider.translation, s.collider.filter};
   broad.radius = contact::BoundingRadius(s.collider.shape);
   broad.lower = broad.posed.t - Vector3::Constant(broad.radius);
   broad.upper = broad.posed.t + Vector3::Constant(broad.radius);
@@ -493,7 +508,7 @@ StepStatus ContactWorld::Step(double h) {
     for (const Ground& g : m.grounds) {
       if (g.normal.dot(posed[k].t) - g.offset - radius[k] >= broad[k].reach) continue;
       points.clear();
-      contact::CollideGround(posed[k], g.normal, g.offset, broad[k].reach, points);
+      contact::CollideGround(posed[k], g.normal, g.offset, g.filter, broad[k].reach, points);
       const int i = static_cast<int>(k);
       AppendRows(row_context, points, i, -1, KeyOfGround(static_cast<int>(&g - m.grounds.data())),
                  material_of(i, -1, m.colliders[k].material, g.material),

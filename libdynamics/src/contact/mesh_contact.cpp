@@ -73,6 +73,10 @@ double LocalDistance(const Posed& s, const Vector3& q, Vector3& n, bool want_nor
             }
           }
           return best;
+        } else if constexpr (std::is_same_v<T, shape::Compound>) {
+          // (never reached: Collide takes compounds part by part)
+          n = Vector3::UnitZ();
+          return std::numeric_limits<double>::infinity();
         } else {  // shape::Mesh
           if (!want_normal) return x.field->Distance(q, nullptr);
           Vector3 g;
@@ -177,6 +181,7 @@ Box3 WorldBox(const Posed& s) {
           for (const Vector3& v : x.vertices) h = h.cwiseMax(v.cwiseAbs());
           return h;
         }
+        if constexpr (std::is_same_v<T, shape::Compound>) return Vector3::Constant(BoundingRadius(Shape(x)));
       },
       *s.shape);
   const Vector3 extent = s.R.cwiseAbs() * half;

@@ -143,7 +143,7 @@ void CylinderPolytope(const Posed& cylinder, const Polytope& p, const Posed& pos
   const Vector3 nf = posed.R * p.normals[face];
   const double offset = nf.dot(posed.R * p.vertices[static_cast<std::size_t>(p.faces[face][0])] + posed.t);
   std::vector<ContactPoint> exact;
-  CollideGround(cylinder, nf, offset, margin, exact);
+  CollideGround(cylinder, nf, offset, CollisionFilter{~0u, ~0u}, margin, exact);
   const double slack = 1e-9 * BoundingRadius(*cylinder.shape);
   exact.erase(std::remove_if(exact.begin(), exact.end(),
                              [&](const ContactPoint& c) { return !OnFace(p, posed, face, c.point, slack); }),
@@ -158,10 +158,37 @@ void CylinderPolytope(const Posed& cylinder, const Polytope& p, const Posed& pos
 
 }  // namespace
 
+Posed PartOf(const Posed& compound, const shape::Compound& c, std::size_t k) {
+  const Collider& part = c.parts[k];
+  Posed p;
+  p.shape = &part.shape;
+  p.polytope = k < c.polytopes.size() ? c.polytopes[k].get() : nullptr;
+  p.R = compound.R * part.rotation;
+  p.t = compound.R * part.translation + compound.t;
+  p.filter = {compound.filter.contype & part.filter.contype, compound.filter.conaffinity & part.filter.conaffinity};
+  return p;
+}
+
+namespace {
+
+// The features of part k's points (out[first ...]) made distinct from the other parts' (side 0:
+// the first shape's parts, 1: the second's), so that warm starting keys each part's own points.
+void MarkPart(std::vector<ContactPoint>& out, std::size_t first, std::size_t k, int side) {
+  const std::uint32_t mark = static_cast<std::uint32_t>(k + 1) * (side == 0 ? 0x9E3779B1u : 0x85EBCA77u);
+  for (std::size_t i = first; i < out.size(); ++i) out[i].feature ^= mark;
+}
+
+}  // namespace
+
 double BoundingRadius(const Shape& s) {
   return std::visit(
       [](const auto& x) -> double {
         using T = std::decay_t<decltype(x)>;
+        if constexpr (std::is_same_v<T, shape::Compound>) {
+          double r = 0;
+          for (const Collider& part : x.parts) r = std::max(r, part.translation.norm() + BoundingRadius(part.shape));
+          return r;
+        }
         if constexpr (std::is_same_v<T, shape::Sphere>) return x.radius;
         if constexpr (std::is_same_v<T, shape::Box>) return x.half_extents.norm();
         if constexpr (std::is_same_v<T, shape::Capsule>) return x.radius + x.half_length;
@@ -197,6 +224,18 @@ void ValidateShape(const Shape& s) {
         }
         if constexpr (std::is_same_v<T, shape::Mesh>) {
           if (x.field == nullptr) throw std::invalid_argument("a mesh collider needs its field (MakeMesh builds it)");
+        }
+        if constexpr (std::is_same_v<T, shape::Compound>) {
+          if (x.parts.empty()) throw std::invalid_argument("a compound collider needs at least one part");
+          for (const Collider& part : x.parts) {
+            if (std::holds_alternative<shape::Compound>(part.shape)) {
+              throw std::invalid_argument("a compound collider's parts cannot be compounds");
+            }
+            if (!part.rotation.allFinite() || !part.translation.allFinite()) {
+              throw std::invalid_argument("a compound collider's part is placed by non-finite numbers");
+            }
+            ValidateShape(part.shape);
+          }
         }
         if (!ok) {
           throw std::invalid_argument(
@@ -238,7 +277,17 @@ void ReduceContacts(std::vector<ContactPoint>& out, std::size_t first) {
   }
 }
 
-void CollideGround(const Posed& a, const Vector3& n, double offset, double margin, std::vector<ContactPoint>& out) {
+void CollideGround(const Posed& a, const Vector3& n, double offset, const CollisionFilter& ground, double margin,
+                   std::vector<ContactPoint>& out) {
+  if (const auto* c = std::get_if<shape::Compound>(a.shape)) {
+    for (std::size_t k = 0; k < c->parts.size(); ++k) {
+      const std::size_t first = out.size();
+      CollideGround(PartOf(a, *c, k), n, offset, ground, margin, out);
+      MarkPart(out, first, k, 0);
+    }
+    return;
+  }
+  if (!a.filter.Touches(ground)) return;
   auto add = [&](const Vector3& p, std::uint32_t feature, double radius) {
     const double sep = n.dot(p) - offset - radius;
     if (sep < margin) out.push_back({p - n * (radius + 0.5 * sep), n, sep, feature});
@@ -282,6 +331,20 @@ void CollideGround(const Posed& a, const Vector3& n, double offset, double margi
 }
 
 bool Collide(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out) {
+  for (int side = 0; side < 2; ++side) {
+    const Posed& whole = side == 0 ? a : b;
+    const auto* c = std::get_if<shape::Compound>(whole.shape);
+    if (c == nullptr) continue;
+    bool ok = true;
+    for (std::size_t k = 0; k < c->parts.size(); ++k) {
+      const std::size_t first = out.size();
+      const Posed part = PartOf(whole, *c, k);
+      ok = (side == 0 ? Collide(part, b, margin, out) : Collide(a, part, margin, out)) && ok;
+      MarkPart(out, first, k, side);
+    }
+    return ok;
+  }
+  if (!a.filter.Touches(b.filter)) return true;
   const std::size_t before = out.size();
   auto flip = [&] {  // the points were made with b first: turn their normals
     for (std::size_t i = before; i < out.size(); ++i) out[i].normal = -out[i].normal;

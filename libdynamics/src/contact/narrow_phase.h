@@ -17,15 +17,17 @@ struct ContactPoint {
   std::uint32_t feature = 0;  ///< which corner, end or rim point: keys warm starting
 };
 
-struct Polytope;
-
 /// A shape in the world: x_W = R x_S + t.
 struct Posed {
   const Shape* shape = nullptr;
   const Polytope* polytope = nullptr;  ///< boxes and convex shapes
   Matrix3 R = Matrix3::Identity();
   Vector3 t = Vector3::Zero();
+  CollisionFilter filter;
 };
+
+/// Part k of a posed compound, posed in the world with its filter ANDed with the compound's.
+Posed PartOf(const Posed& compound, const shape::Compound& c, std::size_t k);
 
 /// The radius of a sphere about the shape's origin that holds it.
 double BoundingRadius(const Shape& shape);
@@ -39,9 +41,12 @@ void ValidateShape(const Shape& shape);
 inline constexpr std::size_t kMaxContactPoints = 16;
 void ReduceContacts(std::vector<ContactPoint>& out, std::size_t first);
 
-/// The shape against the half-space {x : n·x ≤ offset}.
-void CollideGround(const Posed& a, const Vector3& n, double offset, double margin, std::vector<ContactPoint>& out);
-/// Two shapes; false when this pair of kinds has no contact routine yet.
+/// The shape against the half-space {x : n·x ≤ offset} whose filter is `ground` (nothing when the
+/// filters do not touch; a compound's parts each on their own).
+void CollideGround(const Posed& a, const Vector3& n, double offset, const CollisionFilter& ground, double margin,
+                   std::vector<ContactPoint>& out);
+/// Two shapes (nothing when their filters do not touch; compounds part by part, each part's
+/// features marked with its index); false when this pair of kinds has no contact routine yet.
 bool Collide(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out);
 
 /// A mesh collider against the half-space (its vertices), and a pair of which at least one is a

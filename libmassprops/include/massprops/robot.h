@@ -33,6 +33,7 @@ const char* RobotFormatName(RobotFormat format);
 enum class GeometrySource {
   kCollision,  ///< URDF/SDF <collision>; MJCF geoms that collide (contype or conaffinity non-zero)
   kVisual,     ///< URDF/SDF <visual>; MJCF geoms that do not collide
+  kAll,        ///< MJCF: every geom, as MuJoCo's inertiafromgeom counts them; URDF/SDF: as kCollision
 };
 
 struct FillOptions {

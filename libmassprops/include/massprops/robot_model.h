@@ -15,6 +15,7 @@
 /// planar/universal/screw joints, closed loops (a link that is the child of two joints, MJCF
 /// <equality>), several joints in one MJCF body, xacro (expand it first), nested SDFormat models.
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <variant>
@@ -45,6 +46,9 @@ struct RobotGeometry {
   std::variant<Primitive, RobotMesh> shape;
   Placement pose;     ///< in the link frame
   std::string where;  ///< "link 'thigh' collision 'box'", for messages
+  /// MJCF's collision bits (contype, conaffinity; 1 and 1 in the other formats): two geometries
+  /// may touch when (a.contype & b.conaffinity) | (b.contype & a.conaffinity) is non-zero.
+  std::uint32_t contype = 1, conaffinity = 1;
 };
 
 /// Mass, center of mass (link frame) and inertia about it (link axes), SI.
@@ -77,13 +81,23 @@ struct RobotJoint {
   double damping = 0, friction = 0, stiffness = 0, rest = 0;
 };
 
+/// A plane of the file's own world (MJCF: a plane geom of the worldbody), the half-space
+/// {x : normal·x ≤ offset} in the world frame: the floor the file's robot stands on.
+struct RobotGround {
+  Vector3 normal = Vector3::UnitZ();
+  double offset = 0;
+  std::string where;                           ///< "geom 'floor'", for messages
+  std::uint32_t contype = 1, conaffinity = 1;  ///< as RobotGeometry's
+};
+
 struct RobotModel {
   std::string path;
   RobotFormat format = RobotFormat::kUrdf;
   std::string name;
   std::vector<RobotLink> links;
-  std::vector<RobotJoint> joints;  ///< each link is the child of one joint at most
-  std::vector<std::string> notes;  ///< what was read but is not simulated (actuators, armature)
+  std::vector<RobotJoint> joints;    ///< each link is the child of one joint at most
+  std::vector<RobotGround> grounds;  ///< the file's own floors (MJCF); none: the simulator's
+  std::vector<std::string> notes;    ///< what was read but is not simulated (actuators, armature)
   /// The links no joint moves from a parent link: the roots of the trees.
   std::vector<int> Roots() const;
 };

@@ -1,6 +1,7 @@
 // massprops::robot: reads a robot description, computes each link from its geometries and
 // writes the inertials back (robot.h).
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -101,7 +102,10 @@ LinkFill Compute(const Link& link, const FillOptions& options, MeshCache& meshes
     out.message = Advice(link.error);
     return out;
   }
-  if (link.geometries.empty()) {
+  // MJCF geoms of mass or density 0 collide but weigh nothing.
+  const bool weighs =
+      std::any_of(link.geometries.begin(), link.geometries.end(), [](const Geometry& g) { return !g.massless; });
+  if (!weighs) {
     out.status = LinkStatus::kNoGeometry;
     return out;
   }
@@ -109,6 +113,7 @@ LinkFill Compute(const Link& link, const FillOptions& options, MeshCache& meshes
   try {
     std::vector<MassProperties> parts;
     for (const Geometry& g : link.geometries) {
+      if (g.massless) continue;
       const MassProperties unit = UnitDensity(g, meshes, out.notes);
       if (entry != nullptr && std::holds_alternative<Density>(entry->mass)) {
         parts.push_back(AtDensity(unit, std::get<Density>(entry->mass).value));
@@ -121,6 +126,7 @@ LinkFill Compute(const Link& link, const FillOptions& options, MeshCache& meshes
       }
     }
     out.mp = Combine(parts);
+    out.geometries = static_cast<int>(parts.size());
     if (entry != nullptr && std::holds_alternative<TotalMass>(entry->mass)) {
       out.mp = WithMass(out.mp, std::get<TotalMass>(entry->mass).value);
     } else if (options.keep_mass && link.stated_mass) {
@@ -147,7 +153,6 @@ LinkFill Compute(const Link& link, const FillOptions& options, MeshCache& meshes
     return out;
   }
   out.principal = ComputePrincipalInertia(out.mp.inertia_com);
-  out.geometries = static_cast<int>(link.geometries.size());
   out.status = LinkStatus::kFilled;
   return out;
 }

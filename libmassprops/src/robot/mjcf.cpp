@@ -5,7 +5,8 @@
 // Types: sphere (the default), capsule, cylinder (size "r half-length" or fromto), box (half
 // sizes), ellipsoid (semi-axes) and mesh (an <asset><mesh file scale> under <compiler meshdir>).
 // Orientation: quat (w x y z), axisangle, euler (with <compiler angle eulerseq>), xyaxes, zaxis.
-// A geom's own mass or density attribute is its own; a mass or density of 0 removes it.
+// A geom's own mass or density attribute is its own; a mass or density of 0 makes it massless: it
+// still collides (contype/conaffinity decide with what), but adds no mass.
 
 #include <algorithm>
 #include <cctype>
@@ -25,7 +26,7 @@ namespace {
 
 struct Compiler {
   bool degrees = true;
-  bool autolimits = false;  // MuJoCo 2.2's default
+  bool autolimits = true;  // MuJoCo 3's default (2.2's was false): files are written for MuJoCo ≥ 3
   std::string eulerseq = "xyz";
   std::string meshdir;
 };
@@ -143,21 +144,22 @@ class GeomReader {
     return defaults_.Find(cls, "geom", name);
   }
 
-  // Nothing for a geom that has no mass (mass or density 0).
-  std::optional<Geometry> Read(pugi::xml_node geom, const std::string& cls, const std::string& what) const {
+  // A geom of mass or density 0 is massless: it collides (contype/conaffinity decide that) but
+  // adds nothing to the body's mass.
+  Geometry Read(pugi::xml_node geom, const std::string& cls, const std::string& what) const {
     Geometry g;
     g.where = what;
     auto attr = [&](const char* name) { return Attr(geom, cls, name); };
     if (const pugi::xml_attribute mass = attr("mass")) {
       const double m = Numbers(mass.value(), 1, what + " mass")[0];
-      if (m == 0) return std::nullopt;
-      if (!(m > 0)) throw ElementError(what + ": a negative mass");
-      g.own = TotalMass{m};
+      if (!(m >= 0)) throw ElementError(what + ": a negative mass");
+      g.massless = m == 0;
+      if (m > 0) g.own = TotalMass{m};
     } else if (const pugi::xml_attribute density = attr("density")) {
       const double rho = Numbers(density.value(), 1, what + " density")[0];
-      if (rho == 0) return std::nullopt;
-      if (!(rho > 0)) throw ElementError(what + ": a negative density");
-      g.own = Density{rho};
+      if (!(rho >= 0)) throw ElementError(what + ": a negative density");
+      g.massless = rho == 0;
+      if (rho > 0) g.own = Density{rho};
     }
     const std::string type = attr("type") ? attr("type").value() : "sphere";
     const pugi::xml_attribute fromto = attr("fromto");
@@ -251,6 +253,16 @@ class GeomReader {
   std::map<std::string, pugi::xml_node> meshes_;
 };
 
+// A contype or conaffinity attribute (MuJoCo's int, read as its 32 bits); 1 when absent.
+std::uint32_t Bits(pugi::xml_attribute a, const std::string& what) {
+  if (!a) return 1;
+  const double v = Numbers(a.value(), 1, what)[0];
+  if (!(v >= -2147483648.0 && v <= 4294967295.0) || v != std::floor(v)) {
+    throw ElementError(what + ": '" + std::string(a.value()) + "' is not a 32-bit integer");
+  }
+  return v < 0 ? static_cast<std::uint32_t>(static_cast<std::int64_t>(v)) : static_cast<std::uint32_t>(v);
+}
+
 Compiler CompilerOf(pugi::xml_node root) {
   Compiler compiler;
   for (pugi::xml_node c : root.children("compiler")) {
@@ -286,14 +298,54 @@ std::vector<std::pair<pugi::xml_node, std::string>> CollectBodies(pugi::xml_node
   return out;
 }
 
+// The worldbody's own geoms: planes are the file's floors; a height field is refused (no terrain
+// is simulated); the other shapes are noted as left out.
+void WorldGeoms(pugi::xml_node root, const Compiler& compiler, const Defaults& defaults, RobotModel& model) {
+  int k = 0, left_out = 0;
+  for (pugi::xml_node world : root.children("worldbody")) {
+    const std::string cls = world.attribute("childclass") ? world.attribute("childclass").value() : "main";
+    for (pugi::xml_node geom : world.children("geom")) {
+      ++k;
+      const std::string what = Describe(geom, k);
+      auto attr = [&](const char* name) -> pugi::xml_attribute {
+        if (const pugi::xml_attribute a = geom.attribute(name)) return a;
+        const std::string own = geom.attribute("class") ? geom.attribute("class").value() : cls;
+        return defaults.Find(own, "geom", name);
+      };
+      const std::string type = attr("type") ? attr("type").value() : "sphere";
+      const std::uint32_t contype = Bits(attr("contype"), what + " contype");
+      const std::uint32_t conaffinity = Bits(attr("conaffinity"), what + " conaffinity");
+      if (contype == 0 && conaffinity == 0) continue;  // drawn only
+      if (type == "hfield") {
+        throw ElementError("worldbody " + what +
+                           ": a height field (terrain) is not simulated: remove it, or give "
+                           "the terrain as a static mesh in a scene");
+      }
+      if (type != "plane") {
+        ++left_out;
+        continue;
+      }
+      Geometry frame;
+      PlaceBy(attr, compiler, frame, "worldbody " + what);
+      RobotGround g;
+      g.normal = frame.rotation.col(2);
+      g.offset = g.normal.dot(frame.translation);
+      g.where = what;
+      g.contype = contype;
+      g.conaffinity = conaffinity;
+      model.grounds.push_back(g);
+    }
+  }
+  if (left_out > 0) {
+    model.notes.push_back(std::to_string(left_out) +
+                          " worldbody geom(s) other than planes are not simulated (obstacles belong in a scene)");
+  }
+}
+
 }  // namespace
 
 std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options) {
   const pugi::xml_node root = doc.xml.child("mujoco");
-  if (const pugi::xml_node include = FindElement(doc.xml, "include")) {
-    throw std::runtime_error(doc.path + ": <include file=\"" + std::string(include.attribute("file").value()) +
-                             "\"> is not followed: give the file with its includes expanded");
-  }
   const Compiler compiler = CompilerOf(root);
   for (pugi::xml_node c : root.children("compiler")) {
     if (std::string(c.attribute("inertiafromgeom").value()) == "true") {
@@ -323,11 +375,14 @@ std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options) {
       const std::string what = Describe(geom, k);
       try {
         if (cls != "main" && !defaults.Has(cls)) throw ElementError(what + ": no <default class=\"" + cls + "\">");
-        const pugi::xml_attribute contype = reader.Attr(geom, cls, "contype");
-        const pugi::xml_attribute conaffinity = reader.Attr(geom, cls, "conaffinity");
-        const bool collides = (contype ? contype.as_int() : 1) != 0 || (conaffinity ? conaffinity.as_int() : 1) != 0;
-        if (collides == visual) continue;
-        if (auto g = reader.Read(geom, cls, what)) link.geometries.push_back(std::move(*g));
+        const std::uint32_t contype = Bits(reader.Attr(geom, cls, "contype"), what + " contype");
+        const std::uint32_t conaffinity = Bits(reader.Attr(geom, cls, "conaffinity"), what + " conaffinity");
+        const bool collides = contype != 0 || conaffinity != 0;  // with something: the bits decide with what
+        if (options.from != GeometrySource::kAll && collides == visual) continue;
+        Geometry g = reader.Read(geom, cls, what);
+        g.contype = contype;
+        g.conaffinity = conaffinity;
+        link.geometries.push_back(std::move(g));
       } catch (const ElementError& e) {
         link.error = e.what();
         break;
@@ -351,6 +406,7 @@ void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotMo
   if (root.child("tendon")) model.notes.push_back("<tendon>s are not simulated");
   const Compiler compiler = CompilerOf(root);
   const Defaults defaults(root);
+  WorldGeoms(root, compiler, defaults, model);
   std::map<pugi::xml_node_struct*, int> index;
   for (std::size_t k = 0; k < links.size(); ++k) index[links[k].element.internal_object()] = static_cast<int>(k);
   const double angle = compiler.degrees ? M_PI / 180 : 1.0;
@@ -450,8 +506,14 @@ void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotMo
       if (!(r[0] <= r[1])) throw ElementError(jw + ": range's lower end is above its upper");
       j.lower = r[0] * unit;
       j.upper = r[1] * unit;
-    } else if (type == "hinge") {
-      j.type = RobotJointType::kContinuous;
+    } else {
+      if (range && type != "ball") {
+        model.notes.push_back(jw + ": its range is not a limit (" +
+                              (limited == "false" ? std::string("limited=\"false\"")
+                                                  : std::string("<compiler autolimits=\"false\"> and no limited")) +
+                              ")");
+      }
+      if (type == "hinge") j.type = RobotJointType::kContinuous;
     }
     j.damping = number("damping", 0.0);
     j.friction = number("frictionloss", 0.0);

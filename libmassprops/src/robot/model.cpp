@@ -61,27 +61,62 @@ namespace {
 
 using robot::Document;
 
-// Constructs no simulator follows, refused before anything else is read.
-void Refuse(const Document& doc, RobotFormat format) {
-  const pugi::xml_node root = doc.xml.document_element();
-  for (pugi::xml_attribute a : root.attributes()) {
-    if (std::string(a.name()) == "xmlns:xacro") {
-      throw std::runtime_error(doc.path + ": a xacro file (xmlns:xacro): expand it first (xacro " + doc.path +
-                               " > robot.urdf)");
+// A xacro construct left in an expanded file: an element of the xacro namespace (<xacro:macro>,
+// <xacro:include>, ...) or a ${...} / $(...) substitution in an attribute. Null when none is left.
+std::string LeftoverXacro(pugi::xml_node root) {
+  struct Walker : pugi::xml_tree_walker {
+    std::string found;
+    bool for_each(pugi::xml_node& node) override {
+      if (node.type() != pugi::node_element) return true;
+      if (std::string(node.name()).rfind("xacro:", 0) == 0) {
+        found = "<" + std::string(node.name()) + ">";
+        return false;
+      }
+      for (const pugi::xml_attribute a : node.attributes()) {
+        const std::string v = a.value();
+        if (v.find("${") != std::string::npos || v.find("$(") != std::string::npos) {
+          found = "<" + std::string(node.name()) + " " + a.name() + "=\"" + v + "\">";
+          return false;
+        }
+      }
+      return true;
     }
+  } walker;
+  root.traverse(walker);
+  return walker.found;
+}
+
+// What the file carries that does not move a rigid body: one note per kind, with its count.
+void NoteIgnored(pugi::xml_node root, const std::vector<std::pair<const char*, const char*>>& kinds,
+                 std::vector<std::string>& notes) {
+  for (const auto& [tag, why] : kinds) {
+    const std::size_t n = robot::FindElements(root, tag).size();
+    if (n == 0) continue;
+    notes.push_back("<" + std::string(tag) + "> (" + std::to_string(n) + "): " + why + ", not simulated; ignored");
+  }
+}
+
+// Constructs no simulator follows, refused before anything else is read; what is read but does
+// not move a rigid body goes to `notes`.
+void Screen(const Document& doc, RobotFormat format, std::vector<std::string>& notes) {
+  const pugi::xml_node root = doc.xml.document_element();
+  // xmlns:xacro alone is what `xacro` leaves on an expanded file; only what it did not expand is refused.
+  if (const std::string left = LeftoverXacro(root); !left.empty()) {
+    throw std::runtime_error(doc.path + ": " + left + " is xacro, not URDF: expand the file first (xacro " + doc.path +
+                             " > robot.urdf)");
   }
   if (format == RobotFormat::kUrdf) {
-    if (const pugi::xml_node t = robot::FindElement(root, "transmission")) {
-      throw std::runtime_error(doc.path + ": <transmission name=\"" + std::string(t.attribute("name").value()) +
-                               "\"> is not simulated (drives are set per joint: a scene's motors); remove the "
-                               "<transmission> elements");
-    }
     for (const pugi::xml_node j : root.children("joint")) {
       if (j.child("mimic")) {
         throw std::runtime_error(doc.path + ": joint '" + std::string(j.attribute("name").value()) +
                                  "' has a <mimic>: coupled joints are not simulated");
       }
     }
+    NoteIgnored(root,
+                {{"transmission", "ROS control metadata (drives are a scene's motors)"},
+                 {"ros2_control", "ROS 2 control metadata (drives are a scene's motors)"},
+                 {"gazebo", "Gazebo's own settings, plugins and sensors"}},
+                notes);
   }
   if (format == RobotFormat::kMjcf) {
     if (const pugi::xml_node e = robot::FindElement(root, "equality")) {
@@ -90,6 +125,7 @@ void Refuse(const Document& doc, RobotFormat format) {
                                  ">: closed loops and equality constraints are not simulated");
       }
     }
+    NoteIgnored(root, {{"sensor", "sensors"}, {"camera", "cameras"}, {"light", "lights"}}, notes);
   }
 }
 
@@ -118,6 +154,45 @@ void CheckTree(const RobotModel& model) {
   }
 }
 
+// MuJoCo's <compiler inertiafromgeom>: "auto" (the default) gives a body without an <inertial>
+// the mass of its geoms (all of them, massless ones aside, at density 1000 unless they say
+// otherwise), "true" gives every body that, "false" none. As MuJoCo does, so that a file runs here
+// as it does there.
+void InertiaFromGeoms(const Document& doc, const RobotModelOptions& options, RobotModel& model) {
+  std::string mode = "auto";
+  for (const pugi::xml_node c : doc.xml.document_element().children("compiler")) {
+    if (const pugi::xml_attribute a = c.attribute("inertiafromgeom")) mode = a.value();
+  }
+  if (mode == "false") return;
+  const bool all = mode == "true";
+  if (!all && std::all_of(model.links.begin(), model.links.end(), [](const RobotLink& l) { return l.inertial; }))
+    return;
+  FillOptions from_geoms = options.fill_options;
+  from_geoms.from = GeometrySource::kAll;
+  from_geoms.link_masses.clear();
+  from_geoms.keep_mass = false;
+  const FillResult filled = FillRobotDescription(model.path, from_geoms);
+  int computed = 0;
+  for (std::size_t k = 0; k < model.links.size() && k < filled.links.size(); ++k) {
+    RobotLink& link = model.links[k];
+    if (link.inertial && !all) continue;
+    const LinkFill& f = filled.links[k];
+    if (f.status == LinkStatus::kFailed) {
+      throw std::runtime_error(model.path + ": body '" + link.name +
+                               "': its inertia from its geoms (MuJoCo's inertiafromgeom) could not be computed: " +
+                               f.message.Worded(options.words ? *options.words : ApiVocabulary()));
+    }
+    if (f.status != LinkStatus::kFilled) continue;
+    link.inertial = RobotInertial{f.mp.mass, f.mp.center_of_mass, f.mp.inertia_com};
+    ++computed;
+  }
+  if (computed > 0) {
+    model.notes.push_back(std::to_string(computed) + " bod" + (computed == 1 ? "y's" : "ies'") +
+                          " inertia computed from the geoms (<compiler inertiafromgeom=\"" + mode +
+                          "\">, MuJoCo's rule: density 1000 unless a geom says otherwise)");
+  }
+}
+
 }  // namespace
 
 RobotModel ReadRobotModel(const std::string& path, const RobotModelOptions& options) {
@@ -137,7 +212,7 @@ RobotModel ReadRobotModel(const std::string& path, const RobotModelOptions& opti
   RobotModel model;
   model.path = path;
   model.format = robot::FormatOf(doc);
-  Refuse(doc, model.format);
+  Screen(doc, model.format, model.notes);
   FillOptions geometry = options.fill_options;
   geometry.from = GeometrySource::kCollision;
   const std::vector<robot::Link> links = model.format == RobotFormat::kUrdf  ? robot::UrdfLinks(doc, geometry)
@@ -157,6 +232,8 @@ RobotModel ReadRobotModel(const std::string& path, const RobotModelOptions& opti
       }
       out.pose = {g.rotation, g.translation};
       out.where = "link '" + l.name + "' " + g.where;
+      out.contype = g.contype;
+      out.conaffinity = g.conaffinity;
       link.collisions.push_back(std::move(out));
     }
     model.links.push_back(std::move(link));
@@ -170,6 +247,7 @@ RobotModel ReadRobotModel(const std::string& path, const RobotModelOptions& opti
   } catch (const robot::ElementError& e) {
     throw std::runtime_error(path + ": " + e.what());
   }
+  if (model.format == RobotFormat::kMjcf && !options.fill) InertiaFromGeoms(doc, options, model);
   CheckTree(model);
   return model;
 }

@@ -2,6 +2,7 @@
 // The pieces of massprops::robot: what a link is made of, read from each format (urdf.cpp,
 // sdf.cpp, mjcf.cpp), and the helpers they share (xml.cpp). fill.cpp computes and writes.
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <variant>
@@ -25,8 +26,10 @@ struct Geometry {
   std::variant<Primitive, MeshRef> shape;
   Matrix3 rotation = Matrix3::Identity();
   Vector3 translation = Vector3::Zero();
-  std::optional<MassSpec> own;  ///< MJCF: the geom's own density or mass
-  std::string where;            ///< "collision 'base_box'", for messages
+  std::optional<MassSpec> own;                 ///< MJCF: the geom's own density or mass
+  bool massless = false;                       ///< MJCF: mass or density 0 — it collides, but adds no mass
+  std::uint32_t contype = 1, conaffinity = 1;  ///< MJCF's collision bits
+  std::string where;                           ///< "collision 'base_box'", for messages
 };
 
 struct Link {

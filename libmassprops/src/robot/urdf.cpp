@@ -70,10 +70,19 @@ Geometry ReadGeometry(pugi::xml_node element, const std::string& what, const Doc
 
 }  // namespace
 
+namespace {
+
+// A link named "world" is the world frame (URDF's convention in ROS, Gazebo, Drake, Pinocchio).
+constexpr const char* kWorldLink = "world";
+bool IsWorldLink(pugi::xml_node link) { return std::string(link.attribute("name").value()) == kWorldLink; }
+
+}  // namespace
+
 std::vector<Link> UrdfLinks(Document& doc, const FillOptions& options) {
   std::vector<Link> links;
   const char* tag = options.from == GeometrySource::kVisual ? "visual" : "collision";
   for (pugi::xml_node element : doc.xml.child("robot").children("link")) {
+    if (IsWorldLink(element)) continue;  // the world frame, not a body
     Link link;
     link.element = element;
     link.name = element.attribute("name").value();
@@ -106,8 +115,15 @@ void UrdfKinematics(const Document& doc, RobotModel& model) {
   const pugi::xml_node root = doc.xml.child("robot");
   model.name = root.attribute("name").value();
   std::map<std::string, int> index;
+  index.emplace(kWorldLink, -1);  // ROS's, Gazebo's, Drake's and Pinocchio's world frame
   std::size_t k = 0;
   for (pugi::xml_node element : root.children("link")) {
+    if (IsWorldLink(element)) {
+      if (element.child("inertial") || element.child("collision")) {
+        model.notes.push_back("link 'world' is the world frame: its inertial and collision are ignored");
+      }
+      continue;
+    }
     RobotLink& link = model.links.at(k);
     if (!index.emplace(link.name, static_cast<int>(k)).second) {
       throw ElementError("two links are named '" + link.name + "'");
@@ -148,10 +164,13 @@ void UrdfKinematics(const Document& doc, RobotModel& model) {
     };
     j.parent = link_of("parent");
     j.child = link_of("child");
+    if (j.child < 0) throw ElementError(what + ": <child link=\"world\">: the world frame cannot be a child");
     Geometry origin;
     ReadOrigin(element, origin, what);
     j.parent_to_joint = {origin.rotation, origin.translation};
-    if (const pugi::xml_node axis = element.child("axis")) {
+    // Fixed and floating joints have no axis (the URDF specification): one of zeros is harmless there.
+    const bool moves_along_axis = j.type != RobotJointType::kFixed && j.type != RobotJointType::kFloating;
+    if (const pugi::xml_node axis = element.child("axis"); axis && moves_along_axis) {
       const auto a = Numbers(axis.attribute("xyz").value(), 3, what + " <axis xyz>");
       const Vector3 v(a[0], a[1], a[2]);
       if (!(v.norm() > 1e-12)) throw ElementError(what + ": <axis xyz> is zero");

@@ -1,6 +1,7 @@
 // Helpers shared by the robot formats: numbers and rotations from attributes, file references,
 // and the edit that puts an inertial into a link without disturbing the rest of the file.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -230,6 +231,49 @@ void Parse(Document& doc, const std::string& path) {
   ParseText(doc, path, bytes.str());
 }
 
+namespace {
+
+// MJCF's <include file="..."/>: the children of the named file's <mujoco> take the element's
+// place, the file named relative to the main model's folder (MuJoCo's rule), includes within
+// included files too. A file included twice, or more than 256 includes, is refused.
+void ExpandIncludes(Document& doc) {
+  std::vector<std::string> seen = {fs::path(doc.path).lexically_normal().string()};
+  for (int expanded = 0;; ++expanded) {
+    const pugi::xml_node include = FindElement(doc.xml.document_element(), "include");
+    if (!include) return;
+    const std::string file = include.attribute("file").value();
+    if (file.empty()) throw std::runtime_error(doc.path + ": an <include> without a file");
+    if (expanded >= 256) throw std::runtime_error(doc.path + ": more than 256 <include>s");
+    fs::path target = file;
+    if (target.is_relative()) target = fs::path(doc.dir) / target;
+    const std::string name = target.lexically_normal().string();
+    if (std::find(seen.begin(), seen.end(), name) != seen.end()) {
+      throw std::runtime_error(doc.path + ": <include file=\"" + file + "\"> names a file included already");
+    }
+    seen.push_back(name);
+    if (!IsRegular(target)) {
+      throw std::runtime_error(doc.path + ": <include file=\"" + file + "\">: " + name + " is not a regular file");
+    }
+    pugi::xml_document included;
+    const pugi::xml_parse_result parsed = included.load_file(name.c_str(), pugi::parse_default);
+    if (!parsed) {
+      throw std::runtime_error(name + " (included by " + doc.path + "): not well-formed XML at byte " +
+                               std::to_string(parsed.offset) + " (" + parsed.description() + ")");
+    }
+    const pugi::xml_node root = included.document_element();
+    if (std::string(root.name()) != "mujoco") {
+      throw std::runtime_error(name + " (included by " + doc.path + "): its root is <" + root.name() +
+                               ">, not <mujoco>");
+    }
+    pugi::xml_node parent = include.parent();
+    for (pugi::xml_node child : root.children()) parent.insert_copy_before(child, include);
+    parent.remove_child(include);
+    doc.notes.push_back("<include file=\"" + file + "\"> followed (" + name + ")");
+  }
+}
+
+}  // namespace
+
 void ParseText(Document& doc, const std::string& path, std::string text) {
   doc.path = path;
   doc.dir = std::filesystem::path(path).parent_path().string();
@@ -242,6 +286,7 @@ void ParseText(Document& doc, const std::string& path, std::string text) {
     throw std::runtime_error(path + ": not well-formed XML at byte " + std::to_string(parsed.offset) + " (" +
                              parsed.description() + ")");
   }
+  if (std::string(doc.xml.document_element().name()) == "mujoco") ExpandIncludes(doc);
 }
 
 }  // namespace massprops::robot

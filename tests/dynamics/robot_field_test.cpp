@@ -1,0 +1,228 @@
+// Robot descriptions as vendors publish them (tests/robot/field/, written in the habits of the
+// SolidWorks exporter and of ROS packages): what does not move a rigid body is read past with one
+// note per kind, the URDF "world" link is the world frame, a collision mesh that is no solid still
+// gives its hull. A pendulum hinged to the world swings at its elliptic-integral half period.
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "dynamics/contact.h"
+#include "dynamics/robot.h"
+#include "massprops/robot_model.h"
+
+namespace {
+
+using dynamics::ContactWorld;
+using massprops::Matrix3;
+using massprops::Vector3;
+
+const std::string kField = std::string(MASSPROPS_DATA_DIR) + "/../tests/robot/field/";
+constexpr double kG = 9.81;
+
+std::string Write(const std::string& name, const std::string& text) {
+  const std::string path = (std::filesystem::temp_directory_path() / name).string();
+  std::ofstream(path) << text;
+  return path;
+}
+
+bool AnyContains(const std::vector<std::string>& notes, const std::string& words) {
+  for (const std::string& n : notes) {
+    if (n.find(words) != std::string::npos) return true;
+  }
+  return false;
+}
+
+ContactWorld WorldWithGravity(bool ground) {
+  dynamics::World w(dynamics::Integrator::kImplicitMidpoint);
+  w.AddForce(dynamics::Gravity(Vector3(0, 0, -kG)));
+  ContactWorld world(std::move(w));
+  if (ground) world.AddGround({});
+  return world;
+}
+
+TEST(RobotField, ControlMetadataZeroAxesAndXacroNamespaceAreReadPast) {
+  const massprops::RobotModel m = massprops::ReadRobotModel(kField + "arm_on_world.urdf");
+  ASSERT_EQ(m.links.size(), 3u);  // base_link, upper_arm, lidar_link: "world" is no link
+  // One note per kind, with its count.
+  EXPECT_TRUE(AnyContains(m.notes, "<transmission> (1)"));
+  EXPECT_TRUE(AnyContains(m.notes, "<gazebo> (3)"));
+  EXPECT_TRUE(AnyContains(m.notes, "<ros2_control> (1)"));
+  int from_world = 0;
+  for (const massprops::RobotJoint& j : m.joints) from_world += j.parent < 0;
+  EXPECT_EQ(from_world, 1);
+}
+
+TEST(RobotField, XacroLeftUnexpandedIsRefusedNamingIt) {
+  const std::string head = R"(<?xml version="1.0"?>
+<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+)";
+  for (const auto& [body, words] : std::vector<std::pair<std::string, std::string>>{
+           {R"(<xacro:include filename="$(find r)/urdf/leg.xacro"/>)", "<xacro:include> is xacro"},
+           {R"(<link name="a"><inertial><mass value="${m}"/></inertial></link>)", "<mass value=\"${m}\">"}}) {
+    const std::string path = Write("xacro_left.urdf", head + body + "</robot>");
+    try {
+      massprops::ReadRobotModel(path);
+      ADD_FAILURE() << body << " was read";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("expand"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// The bar hinged to the world (pendulum_on_world.urdf) released from horizontal: its next turning
+// point comes after half the period of a pendulum of amplitude π/2,
+// T/2 = 2 √(I_pivot / (m g d)) K(1/√2).
+TEST(RobotField, PendulumHingedToTheWorldLinkSwingsAtItsHalfPeriod) {
+  const massprops::RobotModel m = massprops::ReadRobotModel(kField + "pendulum_on_world.urdf");
+  ASSERT_EQ(m.links.size(), 1u);
+  ContactWorld world = WorldWithGravity(false);
+  const dynamics::RobotInWorld added = dynamics::AddRobot(world, m);
+  ASSERT_EQ(added.bodies.size(), 1u);
+  const int hinge = added.joint_of.at(0);
+  ASSERT_GE(hinge, 0);
+  // The hinge 1 m up, the bar's center 0.25 m out along x.
+  EXPECT_LT((world.world().bodies()[0].position - Vector3(0.25, 0, 1)).norm(), 1e-15);
+  const double mass = 2.0, d = 0.25, i_pivot = 0.0419333333333333 + mass * d * d;
+  const double k_of_inverse_sqrt2 = 1.8540746773013719;  // K(1/√2), the complete elliptic integral of the first kind
+  const double half_period = 2 * std::sqrt(i_pivot / (mass * kG * d)) * k_of_inverse_sqrt2;
+  const double h = 1e-4;
+  double t_turn = 0, v_before = 0;
+  for (int s = 0; s < 20000 && t_turn == 0; ++s) {
+    const dynamics::StepStatus st = world.Step(h);
+    ASSERT_TRUE(st.ok) << st.message;
+    const double v = world.world().joint_state(hinge).velocity[0];
+    if (s > 10 && v_before > 0 && v <= 0) t_turn = world.world().time() - h * v / (v - v_before);
+    v_before = v;
+  }
+  ASSERT_GT(t_turn, 0);
+  EXPECT_NEAR(t_turn / half_period - 1, 0, 3e-5) << t_turn << " s vs " << half_period << " s";
+  EXPECT_NEAR(world.world().joint_state(hinge).position[0], M_PI, 1e-3);
+}
+
+// The arm bolted to the world by the file's fixed joint: its base stays where the file puts it
+// (0.5 m up), under as-written, fixed and floating bases alike for the placement; its upper arm
+// swings. The base's collision mesh repeats three faces: its hull needs only the points.
+TEST(RobotField, ArmBoltedToTheWorldStaysAndAMeshWithRepeatedFacesIsAHull) {
+  const massprops::RobotModel m = massprops::ReadRobotModel(kField + "arm_on_world.urdf");
+  ContactWorld world = WorldWithGravity(true);
+  const dynamics::RobotInWorld added = dynamics::AddRobot(world, m);
+  EXPECT_TRUE(AnyContains(added.notes, "bracket_repeated.stl")) << ::testing::PrintToString(added.notes);
+  EXPECT_TRUE(AnyContains(added.notes, "link 'base_link'"));
+  ASSERT_EQ(added.bodies.size(), 2u);  // the lidar welded to the base
+  const Vector3 base = world.world().bodies()[0].position;
+  EXPECT_NEAR(base.z(), 0.5 - 0.04 * 0.1 / 2.5, 1e-12);  // the lidar's 0.1 kg 4 cm below
+  for (int s = 0; s < 500; ++s) ASSERT_TRUE(world.Step(1e-3).ok);
+  EXPECT_LT((world.world().bodies()[0].position - base).norm(), 1e-12);
+  EXPECT_LT(world.world().bodies()[1].position.z(), 0.55 - 0.02);  // the arm swung down from horizontal
+  // The same placement with the base fixed or floating by option.
+  for (const auto base_option : {dynamics::RobotOptions::Base::kFixed, dynamics::RobotOptions::Base::kFloating}) {
+    ContactWorld other = WorldWithGravity(false);
+    dynamics::RobotOptions options;
+    options.base = base_option;
+    dynamics::AddRobot(other, m, options);
+    EXPECT_LT((other.world().bodies()[0].position - base).norm(), 1e-15);
+  }
+}
+
+// An MJCF package as MuJoCo Menagerie ships one: scene.xml includes the robot (resolved from the
+// main file's folder) and adds a floor, lights and a skybox; the robot's collision geoms have
+// mass 0 and density 0, their bodies' <inertial>s the mass. The collision geoms still collide:
+// dropped limp, the biped lands on the file's own floor (2 cm below z = 0) and stays on it.
+TEST(RobotField, MjcfSceneIncludesItsRobotAndMasslessGeomsLandOnItsFloor) {
+  const massprops::RobotModel m = massprops::ReadRobotModel(kField + "mjcf/scene.xml");
+  ASSERT_EQ(m.links.size(), 5u);
+  EXPECT_TRUE(AnyContains(m.notes, "<include file=\"biped.xml\"> followed"));
+  EXPECT_TRUE(AnyContains(m.notes, "<camera> (1)"));
+  EXPECT_TRUE(AnyContains(m.notes, "<light> (2)"));
+  ASSERT_EQ(m.grounds.size(), 1u);
+  EXPECT_TRUE(m.grounds[0].normal.isApprox(Vector3::UnitZ()));
+  EXPECT_DOUBLE_EQ(m.grounds[0].offset, -0.02);
+  // Every collision geom is there (not the visual one), the joint ranges are limits (autolimits).
+  std::size_t geoms = 0;
+  for (const massprops::RobotLink& l : m.links) geoms += l.collisions.size();
+  EXPECT_EQ(geoms, 7u);
+  for (const massprops::RobotJoint& j : m.joints) {
+    if (j.type == massprops::RobotJointType::kRevolute) {
+      EXPECT_TRUE(j.lower && j.upper) << j.name;
+    }
+  }
+  ContactWorld world = WorldWithGravity(false);
+  for (const massprops::RobotGround& g : m.grounds)
+    world.AddGround({g.normal, g.offset, {}, {g.contype, g.conaffinity}});
+  const dynamics::RobotInWorld added = dynamics::AddRobot(world, m);
+  for (int s = 0; s < 2000; ++s) ASSERT_TRUE(world.Step(1e-3).ok);
+  // Limp, it folds onto the floor: the pelvis box (5 cm half height) no lower than on its face.
+  for (std::size_t k = 0; k < added.bodies.size(); ++k) {
+    const Vector3 p = world.world().bodies()[static_cast<std::size_t>(added.bodies[k])].position;
+    EXPECT_GT(p.z(), -0.02) << added.body_names[k];
+    EXPECT_LT(p.z(), 0.7) << added.body_names[k];
+  }
+  EXPECT_GT(world.world().bodies()[0].position.z(), -0.02 + 0.05 - 0.005);
+}
+
+// One link, three collision boxes: it collides as the three boxes (a compound), not as their
+// hull. Set over a hurdle narrower than the gap between its legs and lower than them, the staple
+// stands on its feet on the ground; its hull could only lie on the hurdle.
+TEST(RobotField, ALinksBoxesCollideEachOnItsOwn) {
+  const massprops::RobotModel m = massprops::ReadRobotModel(kField + "staple.urdf");
+  ContactWorld world = WorldWithGravity(true);
+  world.AddStatic({dynamics::shape::Box{Vector3(0.08, 0.05, 0.05)}}, Matrix3::Identity(), Vector3(0, 0, 0.05));
+  dynamics::RobotOptions options;
+  options.pose.translation = Vector3(0, 0, 0.005);
+  const dynamics::RobotInWorld added = dynamics::AddRobot(world, m, options);
+  ASSERT_EQ(added.bodies.size(), 1u);
+  EXPECT_EQ(std::string(dynamics::ShapeName(dynamics::Shape(dynamics::shape::Compound{}))), "compound");
+  for (int s = 0; s < 1000; ++s) ASSERT_TRUE(world.Step(1e-3).ok);
+  const dynamics::RigidBody& b = world.world().bodies()[0];
+  // Its center of mass 0.13667 m above its feet, the feet on the ground (within the contact's
+  // slop, half a percent of its size), upright.
+  EXPECT_NEAR(b.position.z(), 0.1366666666666667, 1e-3);
+  EXPECT_LT(b.velocity.norm(), 1e-3);
+}
+
+TEST(RobotField, MjcfCollisionBitsDecideWhatTouches) {
+  const massprops::RobotModel m = massprops::ReadRobotModel(kField + "mjcf/masks.xml");
+  // No <inertial>s: MuJoCo's inertiafromgeom="auto" takes each body's from its geom, a solid
+  // sphere of 1 kg and radius 0.1 m: I = 2/5 m r².
+  ASSERT_TRUE(m.links[0].inertial.has_value());
+  EXPECT_DOUBLE_EQ(m.links[0].inertial->mass, 1.0);
+  EXPECT_NEAR(m.links[0].inertial->inertia(0, 0), 0.4 * 0.01, 1e-15);
+  EXPECT_TRUE(AnyContains(m.notes, "inertiafromgeom"));
+  ContactWorld world = WorldWithGravity(false);
+  for (const massprops::RobotGround& g : m.grounds)
+    world.AddGround({g.normal, g.offset, {}, {g.contype, g.conaffinity}});
+  const dynamics::RobotInWorld added = dynamics::AddRobot(world, m);
+  ASSERT_EQ(added.bodies.size(), 4u);
+  for (int s = 0; s < 1000; ++s) ASSERT_TRUE(world.Step(1e-3).ok);
+  auto z = [&](const char* name) {
+    for (std::size_t k = 0; k < added.bodies.size(); ++k) {
+      if (added.body_names[k] == name)
+        return world.world().bodies()[static_cast<std::size_t>(added.bodies[k])].position.z();
+    }
+    ADD_FAILURE() << name;
+    return 0.0;
+  };
+  EXPECT_NEAR(z("ball"), 0.1, 1e-3);
+  EXPECT_LT(z("ghost"), -2.0);  // through the ball and the floor: free fall from 0.5 m for 1 s
+  EXPECT_NEAR(z("other_ball"), 0.1, 1e-3);
+  EXPECT_NEAR(z("lander"), 0.3, 2e-3);  // on the ball
+}
+
+TEST(RobotField, AWorldLinkCannotBeAChild) {
+  const std::string path = Write("world_child.urdf", R"(<robot name="r"><link name="world"/>
+<link name="a"><inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+<joint name="j" type="fixed"><parent link="a"/><child link="world"/></joint></robot>)");
+  try {
+    massprops::ReadRobotModel(path);
+    ADD_FAILURE() << "read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("joint 'j': <child link=\"world\">"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
