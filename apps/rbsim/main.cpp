@@ -305,6 +305,7 @@ int main(int argc, char** argv) {
     std::error_code ec;
     std::filesystem::remove_all(staging, ec);
   }
+  for (const std::string& f : stats.fell_through) std::cerr << "warning: " << massprops::app::OneLine(f) << "\n";
   std::cout << rbsim::Summary(*sim, stats);
   if (out_dir.empty()) {
     std::cout << "  (no --out DIR: no trajectory, plot or .glb written)\n";

@@ -122,6 +122,7 @@ void AddRobot(Simulation& sim, const RobotSpec& spec, std::vector<std::string>& 
       body.principal.moments = rb.inertia;
       body.source = spec.path + " (" + massprops::RobotFormatName(model.format) + (spec.fill ? ", filled" : "") + ")";
       body.display = added.shapes[k];
+      body.collides = added.shapes[k].F.rows() > 0;
       for (Eigen::Index v = 0; v < body.display.V.rows(); ++v) {
         body.display.V.row(v) = (in_link.rotation * body.display.V.row(v).transpose()).transpose();
       }
@@ -183,6 +184,7 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     } catch (const std::exception& e) {
       throw SceneError(where + ": " + e.what());
     }
+    body.collides = collides.back();
     body.display = std::move(built.display);  // the collider is made: the outputs keep the mesh
     sim.bodies.push_back(std::move(body));
   }
@@ -372,6 +374,31 @@ std::int64_t SampleEvery(const Scene& scene) {
   return std::max<std::int64_t>(1, std::llround(every));
 }
 
+namespace {
+
+// Bodies with a collider below every ground by more than their size at the end of the run.
+std::vector<std::string> FellThrough(const Simulation& sim) {
+  std::vector<std::string> out;
+  if (sim.scene.grounds.empty()) return out;
+  for (std::size_t k = 0; k < sim.bodies.size(); ++k) {
+    const SimBody& body = sim.bodies[k];
+    if (!body.collides) continue;
+    const Vector3 p = sim.world().bodies()[k].position;
+    const double size = body.display.V.rows() > 0 ? 2 * body.display.V.rowwise().norm().maxCoeff() : 0.0;
+    double least = std::numeric_limits<double>::infinity();  // how far below the nearest ground
+    for (const GroundSpec& g : sim.scene.grounds) least = std::min(least, g.offset - g.normal.dot(p));
+    if (least > size) {
+      out.push_back("body '" + body.name + "' ended the run " + Num(least, "%.3g") +
+                    " m below the ground (it is " + Num(size, "%.3g") +
+                    " m across): it passed through; a collider that touches nothing of the ground's (MJCF "
+                    "contype/conaffinity), or a step too long for its speed");
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 RunStats Run(Simulation& sim,
              const std::function<void(const dynamics::World&, const dynamics::Diagnostics&)>& on_sample,
              const std::function<void(double)>& on_progress, const std::atomic<bool>* stop,
@@ -428,6 +455,7 @@ RunStats Run(Simulation& sim,
     }
   }
   stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  stats.fell_through = FellThrough(sim);
   return stats;
 }
 
@@ -471,6 +499,7 @@ std::string Summary(const Simulation& sim, const RunStats& stats) {
   out << "  (start, end: E, |p| and |L| (L about the world origin); drift: (E - E0)/|E0|, |p - p0|/|p0|, |L - "
          "L0|/|L0|)\n";
   out << "  L end " << vec(e.angular_momentum) << "\n";
+  for (const std::string& f : stats.fell_through) out << "  warning: " << f << "\n";
   if (sim.contact) {
     out << "  contact: up to " << stats.max_contacts << " points in a step, deepest overlap "
         << Num(stats.max_penetration, "%.3g") << " m, " << Num(stats.dissipated_by_contact, "%.6g")

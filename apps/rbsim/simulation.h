@@ -22,6 +22,7 @@ struct SimBody {
   massprops::TriangleMesh display;        ///< metres, mesh axes, relative to the center of mass
   Vector3 color = Vector3(0.8, 0.8, 0.8);
   std::string source;  ///< "spot.obj (unit m)" or "cone r=0.1 h=0.3"
+  bool collides = false;  ///< it has a collider
 };
 
 /// How one body is reported: the pose of its mesh (not of its principal frame).
@@ -70,6 +71,9 @@ struct RunStats {
   int max_contacts = 0;              ///< most contact points in a step
   double max_penetration = 0;        ///< m, the deepest overlap seen
   double dissipated_by_contact = 0;  ///< J, kinetic energy the contact impulses removed
+  /// Bodies with a collider that ended the run below every ground by more than their size:
+  /// through the floor, never silently (one message each).
+  std::vector<std::string> fell_through;
 };
 
 /// Steps = ceil(duration / dt) (the last step lands on or just past the duration); a sample is

@@ -219,5 +219,20 @@ check "contacts.jsonl carries the stack's weight; run.html has the run" $?
 [ $? -eq 0 ] && grep -q "id='rbsim-run'" "$tmp/poses.html" && grep -q '"title":"t_handle.obj: resting poses"' "$tmp/poses.html"
 check "rbsim poses --format html" $?
 
+# Robot files as vendors publish them: an MJCF scene that includes its robot stands on the file's
+# own floor (2 cm below z = 0, no second ground); a body whose collision bits touch nothing of the
+# floor falls through it with a warning, never silently.
+field="$data/../tests/robot/field"
+"$bin" "$field/mjcf/scene.xml" --duration 1 -q >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 0 ] && grep -q '<include file="biped.xml"> followed' "$tmp/err" && ! grep -q "below the ground" "$tmp/err"
+check "rbsim scene.xml: included robot on the file's floor" $?
+"$bin" "$field/mjcf/masks.xml" --duration 1 -q >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 0 ] && grep -q "warning: body 'masks/ghost' ended the run .* m below the ground" "$tmp/err" \
+  && grep -q "warning: body 'masks/ghost'" "$tmp/out" && [ "$(grep -c "below the ground" "$tmp/err")" -eq 1 ]
+check "rbsim: a body through the floor is warned of" $?
+"$bin" "$field/arm_on_world.urdf" --duration 0.5 -q >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 0 ] && grep -q "<transmission> (1)" "$tmp/err" && grep -q "bracket_repeated.stl" "$tmp/err"
+check "rbsim: a vendor URDF with transmissions, a world link and a repeated-face STL runs" $?
+
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]

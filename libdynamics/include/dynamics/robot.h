@@ -10,9 +10,9 @@
 ///   dynamics::RobotInWorld dog = dynamics::AddRobot(world, model, options);
 ///
 /// Links joined by fixed joints are one body (their inertials combined, as simulators lump
-/// them); a body's collider is its links' one collision geometry as it is (box, sphere, capsule,
-/// cylinder; a mesh as its convex hull, or as the mesh itself on request), or the convex hull of
-/// all of them when there are several. Joints keep their type, axis, limits, damping, friction,
+/// them); a body's collider is its links' collision geometries, each as it is (box, sphere,
+/// capsule, cylinder; a mesh as its convex hull, or as the mesh itself on request) and each with
+/// its collision bits: a compound when there are several. Joints keep their type, axis, limits, damping, friction,
 /// spring; a motor per joint comes from the options, its effort bounded by the file's effort
 /// limit when the motor names none.
 
@@ -28,8 +28,9 @@
 namespace dynamics {
 
 struct RobotOptions {
-  /// The root link's frame in the world (with a joint to the world as written: the frame the
-  /// file places that joint in).
+  /// The root link's frame in the world. A root the file joins to the world (URDF's "world"
+  /// link, SDFormat's, an MJCF top body) is placed where the file puts it relative to this frame,
+  /// whatever the base.
   massprops::Placement pose;
   enum class Base {
     kAsWritten,  ///< URDF, SDFormat: floating unless joined to "world"; MJCF: as its top bodies' joints say
