@@ -65,6 +65,11 @@ int main(int argc, char** argv) {
   app.add_flag("--fill", fill, "Robot file: compute every link's inertial from its geometry first (as massprops fill)")
       ->needs(scene_opt);
   app.add_flag("--fixed-base", fixed_base, "Robot file: weld its root link to the world")->needs(scene_opt);
+  std::string keyframe;
+  app.add_option("--keyframe", keyframe,
+                 "Robot file (MJCF): start from this <key>: its qpos places the robot and its joints, its ctrl "
+                 "drives the actuators")
+      ->needs(scene_opt);
   auto* mesh_opt =
       app.add_option("--mesh", mesh, "Quick path: spin this one mesh torque-free (no scene file)")->excludes(scene_opt);
   std::vector<std::string> units;
@@ -116,13 +121,13 @@ int main(int argc, char** argv) {
   try {
     const std::string extension = std::filesystem::path(scene_file).extension().string();
     const bool robot_file = !scene_file.empty() && extension != ".json" && std::filesystem::is_regular_file(scene_file);
-    if ((fill || fixed_base) && !robot_file) {
-      std::cerr << "error: --fill, --fixed-base: for a robot file (URDF, SDFormat, MJCF), not a scene\n";
+    if ((fill || fixed_base || !keyframe.empty()) && !robot_file) {
+      std::cerr << "error: --fill, --fixed-base, --keyframe: for a robot file (URDF, SDFormat, MJCF), not a scene\n";
       return massprops::app::kBadArguments;
     }
     if (robot_file) {
       massprops::DetectRobotFormat(scene_file);  // names the file when it is no robot description
-      scene = rbsim::RobotScene(scene_file, fill, fixed_base);
+      scene = rbsim::RobotScene(scene_file, fill, fixed_base, keyframe);
     } else if (!scene_file.empty()) {
       scene = rbsim::LoadScene(scene_file, warnings);
     } else {

@@ -157,8 +157,9 @@ std::vector<JointSpec> ReadJoints(const nlohmann::json& joints, const std::strin
 /// Reads the scene's "robots" array (files relative to base_dir). @throws SceneError.
 std::vector<RobotSpec> ReadRobots(const nlohmann::json& robots, const std::string& file, const std::string& base_dir,
                                   std::vector<std::string>& warnings);
-/// A robot file given on the command line: on the ground, dropped from 1 cm, for `duration`.
-Scene RobotScene(const std::string& path, bool fill, bool fixed_base);
+/// A robot file given on the command line: on the ground, dropped from 1 cm (or placed by the MJCF
+/// keyframe named, which also sets its joints and controls), for `duration`.
+Scene RobotScene(const std::string& path, bool fill, bool fixed_base, const std::string& keyframe = "");
 
 /// Parses and validates a scene. `base_dir` resolves relative mesh paths. Non-fatal findings
 /// (a non-unit quaternion, an output rate above 1/dt, ...) are appended to `warnings`.

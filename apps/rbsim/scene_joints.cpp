@@ -94,6 +94,7 @@ JointSpec ReadJoint(const json& j, const std::string& path, const std::string& f
   only_one_dof("friction");
   only_one_dof("spring");
   only_one_dof("motor");
+  only_one_dof("armature");
   if (const json* l = f.Get("limits")) {
     Fields o(*l, f.Path("limits"), file);
     if (auto x = Angle(o, "lower", revolute)) jt.limits.lower = *x;
@@ -109,6 +110,7 @@ JointSpec ReadJoint(const json& j, const std::string& path, const std::string& f
   }
   jt.damping = f.Number("damping", 0.0, "non-negative");
   jt.friction = f.Number("friction", 0.0, "non-negative");
+  jt.armature = f.Number("armature", 0.0, "non-negative");  // kg·m² or kg, on the mass matrix's diagonal
   if (const json* sp = f.Get("spring")) {
     Fields o(*sp, f.Path("spring"), file);
     jt.stiffness = o.RequiredNumber("stiffness", "non-negative");

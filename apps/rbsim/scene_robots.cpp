@@ -72,6 +72,7 @@ RobotSpec ReadRobot(const json& j, const std::string& path, const std::string& f
       r.options.motors[it.key()] = ReadMotor(o, true);
     }
   }
+  r.options.keyframe = f.String("keyframe", "");  // an MJCF <key>'s name: qpos, qvel, ctrl
   const std::string collision = f.String("collision", "hull", {"hull", "mesh"});
   r.options.mesh_colliders = collision == "mesh";
   r.options.material = ReadMaterial(f);
@@ -92,7 +93,7 @@ std::vector<RobotSpec> ReadRobots(const json& robots, const std::string& file, c
   return out;
 }
 
-Scene RobotScene(const std::string& path, bool fill, bool fixed_base) {
+Scene RobotScene(const std::string& path, bool fill, bool fixed_base, const std::string& keyframe) {
   Scene scene;
   scene.file = std::filesystem::absolute(path).lexically_normal().string();  // its messages name the file
   scene.duration = 3.0;
@@ -104,6 +105,7 @@ Scene RobotScene(const std::string& path, bool fill, bool fixed_base) {
   r.name = std::filesystem::path(path).stem().string();
   r.fill = fill;
   r.options.base = fixed_base ? dynamics::RobotOptions::Base::kFixed : dynamics::RobotOptions::Base::kAsWritten;
+  r.options.keyframe = keyframe;
   scene.robots.push_back(std::move(r));
   ForceSpec gravity;
   gravity.kind = ForceKind::kGravity;

@@ -86,7 +86,8 @@ void AddRobot(Simulation& sim, const RobotSpec& spec, std::vector<std::string>& 
   }
   dynamics::RobotOptions options = spec.options;
   try {
-    if (!spec.position_given && !sim.scene.grounds.empty()) {
+    // (A keyframe places the robot as the file does.)
+    if (!spec.position_given && options.keyframe.empty() && !sim.scene.grounds.empty()) {
       // Where its lowest point is with the root at the origin (a scratch world), then raised.
       dynamics::ContactWorld scratch;
       const dynamics::RobotInWorld trial = dynamics::AddRobot(scratch, model, options);

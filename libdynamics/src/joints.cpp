@@ -104,10 +104,12 @@ void CheckJoint(const Joint& j, int num_bodies, const std::vector<Joint>& existi
   non_negative(j.damping, "damping");
   non_negative(j.friction, "friction");
   non_negative(j.stiffness, "stiffness");
+  non_negative(j.armature, "armature");
   non_negative(j.motor.kp, "motor kp");
   non_negative(j.motor.kd, "motor kd");
   if (!std::isfinite(j.rest_position)) fail("the spring's rest position must be finite");
   if (!std::isfinite(j.motor.target)) fail("the motor's target must be finite");
+  if (!std::isfinite(j.motor.target_velocity)) fail("the motor's target velocity must be finite");
   if (!(j.motor.max_effort > 0)) fail("the motor's max effort must be > 0 (got " + number(j.motor.max_effort) + ")");
   if (std::isnan(j.limits.lower) || std::isnan(j.limits.upper) || !(j.limits.lower <= j.limits.upper)) {
     fail("limits must have lower <= upper (got " + number(j.limits.lower) + ", " + number(j.limits.upper) + ")");
@@ -116,8 +118,9 @@ void CheckJoint(const Joint& j, int num_bodies, const std::vector<Joint>& existi
     fail("restitution must be in [0, 1] (got " + number(j.limits.restitution) + ")");
   }
   const bool has_limits = std::isfinite(j.limits.lower) || std::isfinite(j.limits.upper);
-  if (!one_dof && (has_limits || j.friction > 0 || j.stiffness > 0 || j.motor.mode != JointMotor::Mode::kOff)) {
-    fail(std::string("limits, friction, springs and motors act on revolute and prismatic joints, not on a ") +
+  if (!one_dof && (has_limits || j.friction > 0 || j.stiffness > 0 || j.armature > 0 ||
+                   j.motor.mode != JointMotor::Mode::kOff)) {
+    fail(std::string("limits, friction, springs, armature and motors act on revolute and prismatic joints, not on a ") +
          JointTypeName(j.type) + " joint");
   }
   if (j.damping > 0 && !(one_dof || j.type == JointType::kSpherical)) {

@@ -227,7 +227,10 @@ Diagnostics World::Diagnose() const {
     d.angular_momentum += b.AngularMomentumAbout(Vector3::Zero());
   }
   for (const auto& f : forces_) d.potential_energy += f->PotentialEnergy(bodies_);
-  if (articulation_) d.potential_energy += articulation_->SpringEnergy();
+  if (articulation_) {
+    d.potential_energy += articulation_->SpringEnergy();
+    d.kinetic_energy += articulation_->ArmatureEnergy();
+  }
   d.total_energy = d.kinetic_energy + d.potential_energy;
   return d;
 }

@@ -3,10 +3,12 @@
 // note per kind, the URDF "world" link is the world frame, a collision mesh that is no solid still
 // gives its hull. A pendulum hinged to the world swings at its elliptic-integral half period.
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -211,6 +213,81 @@ TEST(RobotField, MjcfCollisionBitsDecideWhatTouches) {
   EXPECT_LT(z("ghost"), -2.0);  // through the ball and the floor: free fall from 0.5 m for 1 s
   EXPECT_NEAR(z("other_ball"), 0.1, 1e-3);
   EXPECT_NEAR(z("lander"), 0.3, 2e-3);  // on the ball
+}
+
+// MJCF armature (from the joint defaults): a hinged bar's small-amplitude period is
+// 2π √((I_pivot + a) / (m g d)) (1 + θ0²/16 + 11 θ0⁴/3072), and the world's energy counts ½ a θ̇²:
+// swung from 1 rad it stays constant, where leaving the term out would lose a quarter of the
+// swing's energy at the bottom.
+TEST(RobotField, ArmatureAddsToTheHingesInertiaAndItsEnergyIsCounted) {
+  const massprops::RobotModel m = massprops::ReadRobotModel(kField + "mjcf/armature_pendulum.xml");
+  ASSERT_EQ(m.joints.size(), 1u);
+  EXPECT_DOUBLE_EQ(m.joints[0].armature, 0.05);
+  const double mass = 2, d = 0.25, a = 0.05, i_pivot = 0.0419333333333333 + mass * d * d;
+  for (const double theta0 : {0.01, 1.0}) {
+    ContactWorld world = WorldWithGravity(false);
+    dynamics::RobotOptions options;
+    options.positions["hinge"] = theta0;
+    const dynamics::RobotInWorld added = dynamics::AddRobot(world, m, options);
+    const int hinge = added.joint_of.at(0);
+    const double e0 = world.world().Diagnose().total_energy;
+    double worst = 0, v_before = 0;
+    std::vector<double> turns;  // the times θ̇ crosses zero downwards (θ at its top)
+    const double h = 1e-4;
+    for (int s = 0; s < 50000; ++s) {
+      ASSERT_TRUE(world.Step(h).ok);
+      worst = std::max(worst, std::abs(world.world().Diagnose().total_energy - e0));
+      const double v = world.world().joint_state(hinge).velocity[0];
+      if (s > 0 && v_before > 0 && v <= 0) turns.push_back(world.world().time() - h * v / (v - v_before));
+      v_before = v;
+    }
+    if (theta0 == 0.01) {
+      ASSERT_GE(turns.size(), 3u);
+      const double period = (turns.back() - turns.front()) / static_cast<double>(turns.size() - 1);
+      const double want = 2 * M_PI * std::sqrt((i_pivot + a) / (mass * kG * d)) *
+                          (1 + theta0 * theta0 / 16 + 11 * std::pow(theta0, 4) / 3072);
+      EXPECT_NEAR(period / want - 1, 0, 3e-5) << period << " s vs " << want << " s";
+    } else {
+      const double swing = mass * kG * d * (1 - std::cos(theta0));
+      EXPECT_LT(worst, 1e-6 * swing) << "energy drift " << worst << " J of a swing of " << swing << " J";
+    }
+  }
+}
+
+// MJCF actuators as MuJoCo defines them, driven by a keyframe's ctrl: a motor holds a bar level
+// with gear ctrl = −m g d; a velocity actuator turns a damped wheel at kv ctrl / (kv + c); a
+// general actuator with an affine bias moves its pendulum as the position servo it equals.
+TEST(RobotField, MjcfActuatorsDriveTheirJointsAsMuJoCoDefinesThem) {
+  const massprops::RobotModel m = massprops::ReadRobotModel(kField + "mjcf/actuators.xml");
+  ASSERT_EQ(m.actuators.size(), 4u);
+  ASSERT_EQ(m.keyframes.size(), 1u);
+  ContactWorld world = WorldWithGravity(false);
+  dynamics::RobotOptions options;
+  options.keyframe = "start";
+  const dynamics::RobotInWorld added = dynamics::AddRobot(world, m, options);
+  auto state = [&](std::size_t joint) { return world.world().joint_state(added.joint_of.at(joint)); };
+  for (int s = 0; s < 3000; ++s) ASSERT_TRUE(world.Step(1e-3).ok);
+  EXPECT_NEAR(state(0).position[0], 0, 1e-9);  // held level
+  EXPECT_NEAR(state(1).velocity[0], 50 * 2 / (50 + 0.5), 1e-6);
+  // (to rounding: the two pendulums hang at different places, so their sums round differently)
+  EXPECT_NEAR(state(2).position[0], state(3).position[0], 1e-12);
+  EXPECT_NEAR(state(2).velocity[0], state(3).velocity[0], 1e-12);
+  EXPECT_GT(state(2).position[0], 0.1);  // it moved toward 0.5 rad, against gravity
+  // Without the keyframe, ctrl is 0: the motor is limp and the bar falls.
+  ContactWorld limp = WorldWithGravity(false);
+  const dynamics::RobotInWorld limp_added = dynamics::AddRobot(limp, m);
+  for (int s = 0; s < 300; ++s) ASSERT_TRUE(limp.Step(1e-3).ok);
+  EXPECT_GT(limp.world().joint_state(limp_added.joint_of.at(0)).position[0], 0.1);
+  // A keyframe the file has not is refused, naming those it has.
+  dynamics::RobotOptions missing;
+  missing.keyframe = "home";
+  ContactWorld other = WorldWithGravity(false);
+  try {
+    dynamics::AddRobot(other, m, missing);
+    ADD_FAILURE() << "added";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("no keyframe named 'home' (it has: start)"), std::string::npos) << e.what();
+  }
 }
 
 TEST(RobotField, AWorldLinkCannotBeAChild) {

@@ -60,15 +60,18 @@ struct JointLimits {
 
 /// A drive on the joint's coordinate. kVelocity holds q̇ at `target` with an effort of at most
 /// `max_effort` (an impulse solved with the limits and friction, so the rate is held exactly when
-/// the load is below the limit). kPosition is a PD servo, effort = kp (target − q) − kd q̇, clipped
-/// to ±max_effort.
+/// the load is below the limit). kPosition is a PD servo, effort = kp (target − q) + kd
+/// (target_velocity − q̇), clipped to ±max_effort (with kp = 0 a damper toward a rate: MuJoCo's
+/// velocity actuator). kEffort is a constant effort, `target` clipped to ±max_effort (MuJoCo's
+/// motor).
 struct JointMotor {
-  enum class Mode { kOff, kVelocity, kPosition };
+  enum class Mode { kOff, kVelocity, kPosition, kEffort };
   Mode mode = Mode::kOff;
-  double target = 0;  ///< rad/s or m/s (velocity); rad or m (position)
+  double target = 0;  ///< rad/s or m/s (velocity); rad or m (position); N·m or N (effort)
   double max_effort = std::numeric_limits<double>::infinity();
-  double kp = 0;  ///< N·m/rad or N/m
-  double kd = 0;  ///< N·m·s/rad or N·s/m
+  double kp = 0;               ///< N·m/rad or N/m
+  double kd = 0;               ///< N·m·s/rad or N·s/m
+  double target_velocity = 0;  ///< position: the rate kd drives toward, rad/s or m/s
 };
 
 struct Joint {
@@ -84,6 +87,10 @@ struct Joint {
   double friction = 0;       ///< Coulomb: the joint sticks while the other efforts stay below this, N·m or N
   double stiffness = 0;      ///< spring effort −k (q − rest), N·m/rad or N/m
   double rest_position = 0;  ///< the spring's rest position
+  /// Added to the joint's diagonal of the mass matrix, kg·m² or kg (revolute and prismatic): a
+  /// motor's rotor reflected through its gearbox (MJCF's armature). Its kinetic energy ½ a q̇² is
+  /// counted in the world's energy; it carries no momentum of the bodies'.
+  double armature = 0;
   JointMotor motor;
   /// Initial position and velocity (sizes from the table; empty: zero, identity quaternion).
   /// Adding the joint places the child (and everything hanging from it) accordingly.

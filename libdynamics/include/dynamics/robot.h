@@ -39,7 +39,10 @@ struct RobotOptions {
   };
   Base base = Base::kAsWritten;
   std::map<std::string, double> positions;   ///< initial joint positions by joint name (rad, m)
-  std::map<std::string, JointMotor> motors;  ///< by joint name
+  std::map<std::string, JointMotor> motors;  ///< by joint name (they win over the file's actuators)
+  /// An MJCF keyframe's name: its qpos (a free root's pose, the joints' positions), the hinges' and
+  /// sliders' qvel and the actuators' ctrl (empty: q = 0, ctrl = 0, actuators limp or holding 0).
+  std::string keyframe;
   bool mesh_colliders = false;               ///< meshes collide as meshes (signed distance fields), not hulls
   Material material;
   massprops::LoadOptions load;  ///< how collision meshes are read

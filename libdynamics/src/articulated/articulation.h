@@ -111,6 +111,8 @@ class Articulation {
   JointState State(int joint) const;
   /// Σ ½ k (q − rest)² over the joints' springs, J.
   double SpringEnergy() const;
+  /// ½ Σ a q̇² of the joints' armatures (kinetic energy no body carries).
+  double ArmatureEnergy() const;
 
  private:
   bool MidpointStep(const std::vector<std::unique_ptr<Force>>& forces, double t, double h,

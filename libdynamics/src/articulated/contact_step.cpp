@@ -65,7 +65,8 @@ bool Articulation::ContactKick(const std::vector<std::unique_ptr<Force>>& forces
     for (int k = 0; k < n.nv; ++k) {
       double damping = j.damping, stiffness = n.nv == 1 ? j.stiffness : 0.0;
       if (n.nv == 1 && j.motor.mode == JointMotor::Mode::kPosition &&
-          std::abs(j.motor.kp * (j.motor.target - q_[n.q]) - j.motor.kd * v_[n.v]) < j.motor.max_effort) {
+          std::abs(j.motor.kp * (j.motor.target - q_[n.q]) + j.motor.kd * (j.motor.target_velocity - v_[n.v])) <
+              j.motor.max_effort) {
         damping += j.motor.kd;
         stiffness += j.motor.kp;
       }

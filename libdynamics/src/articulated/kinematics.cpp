@@ -287,6 +287,7 @@ bool Articulation::Configure(const Eigen::VectorXd& q, Configuration& c) const {
     if (ni.nv == 1) {  // hinges and sliders: one column, fixed-size products
       const Vector6 F = c.composite[i] * c.frames[i].S.col(0);
       c.M(ni.v, ni.v) = c.frames[i].S.col(0).dot(F);
+      if (ni.joint >= 0) c.M(ni.v, ni.v) += joints_[static_cast<std::size_t>(ni.joint)].armature;
       for (int j = ni.parent; j >= 0; j = nodes_[static_cast<std::size_t>(j)].parent) {
         const Node& nj = nodes_[static_cast<std::size_t>(j)];
         const MotionColumns& Sj = c.frames[static_cast<std::size_t>(j)].S;
@@ -374,8 +375,11 @@ void Articulation::MomentumRate(const std::vector<std::unique_ptr<Force>>& force
     const double qi = q[nd.q], vi = v[nd.v];
     double effort = -j.stiffness * (qi - j.rest_position) - j.damping * vi;
     if (j.motor.mode == JointMotor::Mode::kPosition) {
-      const double servo = j.motor.kp * (j.motor.target - qi) - j.motor.kd * vi;
+      const double servo = j.motor.kp * (j.motor.target - qi) + j.motor.kd * (j.motor.target_velocity - vi);
       effort += std::clamp(servo, -j.motor.max_effort, j.motor.max_effort);
+    }
+    if (j.motor.mode == JointMotor::Mode::kEffort) {
+      effort += std::clamp(j.motor.target, -j.motor.max_effort, j.motor.max_effort);
     }
     rate[nd.v] += effort;
   }
@@ -429,6 +433,16 @@ JointState Articulation::State(int joint) const {
   s.limit_impulse = limit_impulse_[static_cast<std::size_t>(joint)];
   s.drive_impulse = drive_impulse_[static_cast<std::size_t>(joint)];
   return s;
+}
+
+double Articulation::ArmatureEnergy() const {
+  double e = 0;
+  for (const Node& n : nodes_) {
+    if (n.joint < 0 || n.nv != 1) continue;
+    const double vi = v_[n.v];
+    e += 0.5 * joints_[static_cast<std::size_t>(n.joint)].armature * vi * vi;
+  }
+  return e;
 }
 
 double Articulation::SpringEnergy() const {

@@ -202,6 +202,98 @@ massprops::TriangleMesh ShapeOf(const std::vector<PlacedGeometry>& geometries) {
   return mesh;
 }
 
+// A keyframe's state per model joint: q and q̇ (empty: not given), and the actuators' controls.
+struct KeyState {
+  std::vector<std::vector<double>> q, v;
+  std::vector<double> ctrl;
+};
+
+int PositionSize(massprops::RobotJointType t) {
+  switch (t) {
+    case massprops::RobotJointType::kFixed: return 0;
+    case massprops::RobotJointType::kFloating: return 7;
+    case massprops::RobotJointType::kBall: return 4;
+    default: return 1;
+  }
+}
+int VelocitySize(massprops::RobotJointType t) {
+  return t == massprops::RobotJointType::kFloating ? 6 : t == massprops::RobotJointType::kBall ? 3 : PositionSize(t);
+}
+
+// The keyframe `name` split over the joints in MuJoCo's order (the model's joints are in body
+// order, as MuJoCo's qpos is). @throws std::invalid_argument for a missing key or sizes that do
+// not match the robot.
+KeyState KeyframeState(const RobotModel& model, const std::string& name) {
+  KeyState s;
+  s.q.resize(model.joints.size());
+  s.v.resize(model.joints.size());
+  s.ctrl.assign(model.actuators.size(), 0.0);
+  if (name.empty()) return s;
+  const auto it = std::find_if(model.keyframes.begin(), model.keyframes.end(),
+                               [&](const massprops::RobotKeyframe& k) { return k.name == name; });
+  if (it == model.keyframes.end()) {
+    std::string names;
+    for (const auto& k : model.keyframes) names += (names.empty() ? "" : ", ") + k.name;
+    throw std::invalid_argument(model.path + ": no keyframe named '" + name + "' (" +
+                                (names.empty() ? std::string("the file has none") : "it has: " + names) + ")");
+  }
+  std::size_t nq = 0, nv = 0;
+  for (const RobotJoint& j : model.joints) nq += PositionSize(j.type), nv += VelocitySize(j.type);
+  auto check = [&](const std::vector<double>& x, std::size_t n, const char* what) {
+    if (!x.empty() && x.size() != n) {
+      throw std::invalid_argument(model.path + ": keyframe '" + name + "': " + what + " has " +
+                                  std::to_string(x.size()) + " numbers; the robot's joints take " +
+                                  std::to_string(n));
+    }
+  };
+  check(it->qpos, nq, "qpos");
+  check(it->qvel, nv, "qvel");
+  check(it->ctrl, model.actuators.size(), "ctrl");
+  std::size_t at_q = 0, at_v = 0;
+  for (std::size_t k = 0; k < model.joints.size(); ++k) {
+    const auto n = static_cast<std::size_t>(PositionSize(model.joints[k].type));
+    const auto m = static_cast<std::size_t>(VelocitySize(model.joints[k].type));
+    if (!it->qpos.empty()) s.q[k].assign(it->qpos.begin() + at_q, it->qpos.begin() + at_q + n);
+    if (!it->qvel.empty()) s.v[k].assign(it->qvel.begin() + at_v, it->qvel.begin() + at_v + m);
+    at_q += n, at_v += m;
+  }
+  if (!it->ctrl.empty()) s.ctrl = it->ctrl;
+  return s;
+}
+
+// A joint drive from an MJCF actuator at control `ctrl` (robot_model.h's general form): a PD servo
+// where the bias pulls back, a damper toward a rate where only the velocity does, else a constant
+// effort. None (a note) for a bias that pushes away, which no servo here follows.
+std::optional<JointMotor> ActuatorMotor(const massprops::RobotActuator& a, double ctrl, const std::string& path,
+                                        std::vector<std::string>& notes) {
+  if (a.ctrlrange) ctrl = std::clamp(ctrl, a.ctrlrange->first, a.ctrlrange->second);
+  const double g = a.gear, kp = -g * g * a.bias[1], kd = -g * g * a.bias[2], constant = g * (a.gain * ctrl + a.bias[0]);
+  if (kp < 0 || kd < 0) {
+    notes.push_back(path + ": actuator '" + a.name + "': a bias that pushes away from its target is not simulated");
+    return std::nullopt;
+  }
+  JointMotor m;
+  if (kp > 0) {
+    m.mode = JointMotor::Mode::kPosition;
+    m.kp = kp, m.kd = kd, m.target = constant / kp;
+  } else if (kd > 0) {
+    m.mode = JointMotor::Mode::kPosition;
+    m.kd = kd, m.target_velocity = constant / kd;
+  } else {
+    m.mode = JointMotor::Mode::kEffort;
+    m.target = constant;
+  }
+  if (a.forcerange) {
+    m.max_effort = std::abs(g) * std::max(std::abs(a.forcerange->first), std::abs(a.forcerange->second));
+    if (a.forcerange->first != -a.forcerange->second) {
+      notes.push_back(path + ": actuator '" + a.name + "': its force range is taken as ±" +
+                      std::to_string(m.max_effort / std::abs(g)) + " (symmetric)");
+    }
+    if (!(m.max_effort > 0)) return std::nullopt;  // a zero range: no force
+  }
+  return m;
+}
+
 }  // namespace
 
 RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotOptions& options) {
@@ -328,6 +420,16 @@ RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotO
     const Placement parent = joint.parent >= 0 ? link_in_world(joint.parent) : options.pose;
     root_in_world[g] = parent.Then(joint.parent_to_joint).Then(joint.joint_to_child);
   }
+  // A keyframe's free-joint pose places its root, as MuJoCo's qpos does (x y z, w x y z in the world).
+  const KeyState key = KeyframeState(model, options.keyframe);
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const int j = joint_above[static_cast<std::size_t>(groups[g].root)];
+    if (j < 0 || model.joints[static_cast<std::size_t>(j)].type != RobotJointType::kFloating) continue;
+    const std::vector<double>& q = key.q[static_cast<std::size_t>(j)];
+    if (q.size() != 7) continue;
+    const Quaternion turn = Quaternion(q[3], q[4], q[5], q[6]).normalized();
+    root_in_world[g] = options.pose.Then(Placement{turn.toRotationMatrix(), Vector3(q[0], q[1], q[2])});
+  }
   // The bodies.
   const int first_body = static_cast<int>(world.world().bodies().size());
   for (std::size_t g = 0; g < groups.size(); ++g) {
@@ -388,9 +490,24 @@ RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotO
     j.friction = rj.friction;
     j.stiffness = rj.stiffness;
     j.rest_position = rj.rest;
+    j.armature = rj.armature;
+    // The keyframe's state (hinges, sliders and balls; a scene's positions win).
+    const std::vector<double>& key_q = key.q[k];
+    if (!key_q.empty() && (HasOneCoordinate(j.type) || j.type == JointType::kSpherical)) j.position = key_q;
+    if (!key.v[k].empty() && HasOneCoordinate(j.type)) j.velocity = key.v[k];
     if (const auto it = options.motors.find(rj.name); it != options.motors.end()) {
       j.motor = it->second;
       if (!std::isfinite(j.motor.max_effort) && rj.effort > 0) j.motor.max_effort = rj.effort;
+    } else {
+      // The file's actuator on this joint (MJCF), at the keyframe's control (0 without one).
+      for (std::size_t a = 0; a < model.actuators.size(); ++a) {
+        if (model.actuators[a].joint != static_cast<int>(k)) continue;
+        if (j.motor.mode != JointMotor::Mode::kOff) {
+          out.notes.push_back(model.path + ": joint '" + rj.name + "' has several actuators: the first drives it");
+          break;
+        }
+        if (const auto motor = ActuatorMotor(model.actuators[a], key.ctrl[a], model.path, out.notes)) j.motor = *motor;
+      }
     }
     if (const auto it = options.positions.find(rj.name); it != options.positions.end()) {
       if (!HasOneCoordinate(j.type)) {

@@ -18,6 +18,7 @@
 /// URDF's "world" link is the world frame; MJCF files are read as MuJoCo 3 reads them
 /// (<include>, autolimits, inertiafromgeom, worldbody floors, contype/conaffinity).
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -82,6 +83,7 @@ struct RobotJoint {
   double effort = 0;                   ///< N·m or N; 0: not stated
   double velocity = 0;                 ///< rad/s or m/s; 0: not stated
   double damping = 0, friction = 0, stiffness = 0, rest = 0;
+  double armature = 0;  ///< kg·m² or kg, on the joint's diagonal of the mass matrix (MJCF)
 };
 
 /// A plane of the file's own world (MJCF: a plane geom of the worldbody), the half-space
@@ -93,6 +95,25 @@ struct RobotGround {
   std::uint32_t contype = 1, conaffinity = 1;  ///< as RobotGeometry's
 };
 
+/// An MJCF actuator on a joint, in MuJoCo's general form: force = gain ctrl + bias[0] + bias[1]
+/// (gear q) + bias[2] (gear q̇), clamped to `forcerange` when given, acting on the joint as
+/// gear force. position: gain kp, bias (0, −kp, −kv); velocity: gain kv, bias (0, 0, −kv);
+/// motor: gain 1, no bias; general: its gainprm[0] and biasprm[0..2] (fixed gain, affine bias).
+struct RobotActuator {
+  std::string name;
+  int joint = -1;  ///< index in RobotModel::joints
+  double gear = 1, gain = 1;
+  std::array<double, 3> bias{};
+  std::optional<std::pair<double, double>> ctrlrange, forcerange;  ///< when limited
+};
+
+/// An MJCF keyframe, in MuJoCo's order (joints in body order; a free joint's qpos is x y z and a
+/// quaternion w x y z in the world, a ball's a quaternion, a hinge's or slide's one number).
+struct RobotKeyframe {
+  std::string name;
+  std::vector<double> qpos, qvel, ctrl;  ///< empty: not given
+};
+
 struct RobotModel {
   std::string path;
   RobotFormat format = RobotFormat::kUrdf;
@@ -100,6 +121,8 @@ struct RobotModel {
   std::vector<RobotLink> links;
   std::vector<RobotJoint> joints;    ///< each link is the child of one joint at most
   std::vector<RobotGround> grounds;  ///< the file's own floors (MJCF); none: the simulator's
+  std::vector<RobotActuator> actuators;  ///< MJCF <actuator>s on joints
+  std::vector<RobotKeyframe> keyframes;  ///< MJCF <keyframe><key>s
   std::vector<std::string> notes;    ///< what was read but is not simulated (actuators, armature)
   /// The links no joint moves from a parent link: the roots of the trees.
   std::vector<int> Roots() const;

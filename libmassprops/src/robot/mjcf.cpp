@@ -342,6 +342,146 @@ void WorldGeoms(pugi::xml_node root, const Compiler& compiler, const Defaults& d
   }
 }
 
+// An optional range "lo hi" that `limited` (true, false, or auto: given means limited, MuJoCo 3)
+// makes a limit.
+std::optional<std::pair<double, double>> Range(pugi::xml_attribute limited, pugi::xml_attribute range,
+                                               const std::string& what) {
+  const std::string l = limited ? limited.value() : "auto";
+  if (!range || l == "false") return std::nullopt;
+  const auto r = Numbers(range.value(), 2, what);
+  if (!(r[0] <= r[1])) throw ElementError(what + ": its lower end is above its upper");
+  return std::pair<double, double>{r[0], r[1]};
+}
+
+// <actuator>: position, velocity, motor and general (fixed gain, affine or no bias) on joints, in
+// MuJoCo's general form (robot_model.h). The others, and those on tendons or sites, are noted and
+// kept as placeholders, so that keyframes' ctrl stays aligned with the file's actuators.
+void Actuators(pugi::xml_node root, const Defaults& defaults, RobotModel& model) {
+  int k = 0;
+  std::vector<std::string> left_out;
+  for (pugi::xml_node section : root.children("actuator")) {
+    for (pugi::xml_node a : section.children()) {
+      if (a.type() != pugi::node_element) continue;
+      ++k;
+      const std::string kind = a.name(), what = "<" + kind + "> " + Describe(a, k);
+      const std::string cls = a.attribute("class") ? a.attribute("class").value() : "main";
+      auto attr = [&](const char* name) -> pugi::xml_attribute {
+        if (const pugi::xml_attribute own = a.attribute(name)) return own;
+        return defaults.Find(cls, kind.c_str(), name);
+      };
+      auto number = [&](const char* name, double fallback) {
+        const pugi::xml_attribute v = attr(name);
+        return v ? Numbers(v.value(), 1, what + " " + name)[0] : fallback;
+      };
+      RobotActuator act;
+      act.name = a.attribute("name") ? a.attribute("name").value() : Describe(a, k);
+      const std::string joint = attr("joint").value();
+      const auto it = std::find_if(model.joints.begin(), model.joints.end(),
+                                   [&](const RobotJoint& j) { return j.name == joint; });
+      const bool supported = kind == "position" || kind == "velocity" || kind == "motor" || kind == "general";
+      if (joint.empty() || it == model.joints.end() || !supported ||
+          !(it->type == RobotJointType::kRevolute || it->type == RobotJointType::kContinuous ||
+            it->type == RobotJointType::kPrismatic)) {
+        left_out.push_back(act.name);
+        model.actuators.push_back(act);  // joint -1: a placeholder
+        continue;
+      }
+      if (const pugi::xml_attribute g = attr("gear")) {
+        std::vector<double> gear;
+        for (std::size_t n = 6; n >= 1 && gear.empty(); --n) {
+          try {
+            gear = Numbers(g.value(), n, what + " gear");
+          } catch (const ElementError&) {
+            if (n == 1) throw;
+          }
+        }
+        act.gear = gear[0];
+      }
+      if (kind == "position") {
+        const double kp = number("kp", 1.0), kv = number("kv", 0.0);
+        act.gain = kp;
+        act.bias = {0, -kp, -kv};
+      } else if (kind == "velocity") {
+        const double kv = number("kv", 1.0);
+        act.gain = kv;
+        act.bias = {0, 0, -kv};
+      } else if (kind == "motor") {
+        act.gain = 1;
+      } else {
+        const std::string gaintype = attr("gaintype") ? attr("gaintype").value() : "fixed";
+        const std::string biastype = attr("biastype") ? attr("biastype").value() : "none";
+        if (gaintype != "fixed" || (biastype != "none" && biastype != "affine")) {
+          left_out.push_back(act.name + " (gaintype " + gaintype + ", biastype " + biastype + ")");
+          model.actuators.push_back(RobotActuator{act.name, -1, 1, 1, {}, {}, {}});
+          continue;
+        }
+        auto first = [&](const char* name, std::size_t n, double fallback) {
+          std::vector<double> v(n, 0.0);
+          v[0] = fallback;
+          if (const pugi::xml_attribute p = attr(name)) {
+            std::vector<double> all;
+            for (std::size_t m = 10; m >= 1 && all.empty(); --m) {
+              try {
+                all = Numbers(p.value(), m, what + " " + name);
+              } catch (const ElementError&) {
+                if (m == 1) throw;
+              }
+            }
+            for (std::size_t i = 0; i < n && i < all.size(); ++i) v[i] = all[i];
+          }
+          return v;
+        };
+        act.gain = first("gainprm", 1, 1.0)[0];
+        if (biastype == "affine") {
+          const auto b = first("biasprm", 3, 0.0);
+          act.bias = {b[0], b[1], b[2]};
+        }
+      }
+      act.joint = static_cast<int>(it - model.joints.begin());
+      act.ctrlrange = Range(attr("ctrllimited"), attr("ctrlrange"), what + " ctrlrange");
+      act.forcerange = Range(attr("forcelimited"), attr("forcerange"), what + " forcerange");
+      model.actuators.push_back(act);
+    }
+  }
+  if (!left_out.empty()) {
+    std::string names;
+    for (const std::string& n : left_out) names += (names.empty() ? "" : ", ") + n;
+    model.notes.push_back(std::to_string(left_out.size()) +
+                          " actuator(s) not simulated (on tendons or sites, of other kinds, or on ball and free "
+                          "joints): " +
+                          names);
+  }
+}
+
+// <keyframe><key name qpos qvel ctrl>.
+void Keyframes(pugi::xml_node root, RobotModel& model) {
+  int k = 0;
+  for (pugi::xml_node section : root.children("keyframe")) {
+    for (pugi::xml_node key : section.children("key")) {
+      ++k;
+      RobotKeyframe f;
+      f.name = key.attribute("name") ? key.attribute("name").value() : "key #" + std::to_string(k);
+      auto numbers = [&](const char* name) {
+        std::vector<double> out;
+        const pugi::xml_attribute a = key.attribute(name);
+        if (!a) return out;
+        const std::string text = a.value();
+        std::size_t count = 0;
+        for (std::size_t i = 0; i < text.size();) {  // count the blank-separated words
+          while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+          if (i < text.size()) ++count;
+          while (i < text.size() && !std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+        }
+        return count == 0 ? out : Numbers(text, count, "<key> '" + f.name + "' " + name);
+      };
+      f.qpos = numbers("qpos");
+      f.qvel = numbers("qvel");
+      f.ctrl = numbers("ctrl");
+      model.keyframes.push_back(std::move(f));
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options) {
@@ -402,7 +542,6 @@ void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotMo
       throw ElementError("<compiler coordinate=\"global\"> is not followed: give local coordinates");
     }
   }
-  if (root.child("actuator")) model.notes.push_back("<actuator>s are not simulated: set motors per joint in the scene");
   if (root.child("tendon")) model.notes.push_back("<tendon>s are not simulated");
   const Compiler compiler = CompilerOf(root);
   const Defaults defaults(root);
@@ -520,9 +659,16 @@ void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotMo
     j.stiffness = number("stiffness", 0.0);
     j.rest = number("springref", 0.0) * unit;
     if (number("ref", 0.0) != 0) throw ElementError(jw + ": a non-zero ref is not followed");
-    if (number("armature", 0.0) != 0) model.notes.push_back(jw + ": its armature is not simulated");
+    j.armature = number("armature", 0.0);
+    if (!(j.armature >= 0)) throw ElementError(jw + ": a negative armature");
+    if (j.type == RobotJointType::kBall && j.armature > 0) {
+      model.notes.push_back(jw + ": armature on a ball joint is not simulated");
+      j.armature = 0;
+    }
     model.joints.push_back(j);
   }
+  Actuators(root, defaults, model);
+  Keyframes(root, model);
 }
 
 void WriteMjcfInertial(Link& link, const MassProperties& mp, const PrincipalInertia& principal) {
