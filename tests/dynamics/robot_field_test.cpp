@@ -290,6 +290,24 @@ TEST(RobotField, MjcfActuatorsDriveTheirJointsAsMuJoCoDefinesThem) {
   }
 }
 
+// A collision mesh that cannot be read at all is named by its link and geometry, and the file by
+// its path, once.
+TEST(RobotField, AnUnreadableCollisionMeshIsNamedByItsLink) {
+  const std::string path = Write("unreadable_mesh.urdf", R"(<robot name="r"><link name="a"><inertial>
+<mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>
+<collision><geometry><mesh filename=")" + kField + R"(package.xml"/></geometry></collision></link></robot>)");
+  ContactWorld world;
+  try {
+    dynamics::AddRobot(world, massprops::ReadRobotModel(path));
+    ADD_FAILURE() << "added";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("link 'a' collision #1: "), std::string::npos) << what;
+    EXPECT_NE(what.find("package.xml"), std::string::npos) << what;
+    EXPECT_EQ(what.find(path), std::string::npos) << what;  // the robot file is named by the caller
+  }
+}
+
 TEST(RobotField, AWorldLinkCannotBeAChild) {
   const std::string path = Write("world_child.urdf", R"(<robot name="r"><link name="world"/>
 <link name="a"><inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>

@@ -81,6 +81,19 @@ massprops::TriangleMesh ReadCollisionMesh(const massprops::RobotGeometry& g, con
   }
 }
 
+// As ReadCollisionMesh, every other fault named by the link and geometry as well as the file.
+massprops::TriangleMesh ReadCollisionMeshNamed(const massprops::RobotGeometry& g, const massprops::RobotMesh& m,
+                                               const massprops::LoadOptions& load, bool hull, double& metres,
+                                               std::vector<std::string>& notes) {
+  try {
+    return ReadCollisionMesh(g, m, load, hull, metres, notes);
+  } catch (const std::invalid_argument&) {
+    throw;  // (named already)
+  } catch (const std::exception& e) {
+    throw std::invalid_argument(g.where + ": " + e.what());
+  }
+}
+
 // A geometry's points (metres, its own frame) and, for a mesh, its triangles.
 Points PointsOf(const massprops::RobotGeometry& g, const RobotOptions& options, std::vector<std::string>& notes) {
   Points out;
@@ -91,7 +104,7 @@ Points PointsOf(const massprops::RobotGeometry& g, const RobotOptions& options, 
     mesh = massprops::Tessellate(*p, 24);
   } else {
     const auto& m = std::get<massprops::RobotMesh>(g.shape);
-    mesh = ReadCollisionMesh(g, m, options.load, !options.mesh_colliders, scale, notes);
+    mesh = ReadCollisionMeshNamed(g, m, options.load, !options.mesh_colliders, scale, notes);
     axes = m.scale;
   }
   for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
