@@ -389,8 +389,8 @@ std::vector<std::string> FellThrough(const Simulation& sim) {
     double least = std::numeric_limits<double>::infinity();  // how far below the nearest ground
     for (const GroundSpec& g : sim.scene.grounds) least = std::min(least, g.offset - g.normal.dot(p));
     if (least > size) {
-      out.push_back("body '" + body.name + "' ended the run " + Num(least, "%.3g") +
-                    " m below the ground (it is " + Num(size, "%.3g") +
+      out.push_back("body '" + body.name + "' ended the run " + Num(least, "%.3g") + " m below the ground (it is " +
+                    Num(size, "%.3g") +
                     " m across): it passed through; a collider that touches nothing of the ground's (MJCF "
                     "contype/conaffinity), or a step too long for its speed");
     }

@@ -21,7 +21,7 @@ struct SimBody {
   massprops::PrincipalInertia principal;  ///< axes = R_MB (computed once, by the pipeline)
   massprops::TriangleMesh display;        ///< metres, mesh axes, relative to the center of mass
   Vector3 color = Vector3(0.8, 0.8, 0.8);
-  std::string source;  ///< "spot.obj (unit m)" or "cone r=0.1 h=0.3"
+  std::string source;     ///< "spot.obj (unit m)" or "cone r=0.1 h=0.3"
   bool collides = false;  ///< it has a collider
 };
 

@@ -118,8 +118,8 @@ void CheckJoint(const Joint& j, int num_bodies, const std::vector<Joint>& existi
     fail("restitution must be in [0, 1] (got " + number(j.limits.restitution) + ")");
   }
   const bool has_limits = std::isfinite(j.limits.lower) || std::isfinite(j.limits.upper);
-  if (!one_dof && (has_limits || j.friction > 0 || j.stiffness > 0 || j.armature > 0 ||
-                   j.motor.mode != JointMotor::Mode::kOff)) {
+  if (!one_dof &&
+      (has_limits || j.friction > 0 || j.stiffness > 0 || j.armature > 0 || j.motor.mode != JointMotor::Mode::kOff)) {
     fail(std::string("limits, friction, springs, armature and motors act on revolute and prismatic joints, not on a ") +
          JointTypeName(j.type) + " joint");
   }

@@ -43,7 +43,7 @@ struct RobotOptions {
   /// An MJCF keyframe's name: its qpos (a free root's pose, the joints' positions), the hinges' and
   /// sliders' qvel and the actuators' ctrl (empty: q = 0, ctrl = 0, actuators limp or holding 0).
   std::string keyframe;
-  bool mesh_colliders = false;               ///< meshes collide as meshes (signed distance fields), not hulls
+  bool mesh_colliders = false;  ///< meshes collide as meshes (signed distance fields), not hulls
   Material material;
   massprops::LoadOptions load;  ///< how collision meshes are read
 };

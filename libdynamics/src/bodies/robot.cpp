@@ -255,8 +255,7 @@ KeyState KeyframeState(const RobotModel& model, const std::string& name) {
   auto check = [&](const std::vector<double>& x, std::size_t n, const char* what) {
     if (!x.empty() && x.size() != n) {
       throw std::invalid_argument(model.path + ": keyframe '" + name + "': " + what + " has " +
-                                  std::to_string(x.size()) + " numbers; the robot's joints take " +
-                                  std::to_string(n));
+                                  std::to_string(x.size()) + " numbers; the robot's joints take " + std::to_string(n));
     }
   };
   check(it->qpos, nq, "qpos");

@@ -119,11 +119,11 @@ struct RobotModel {
   RobotFormat format = RobotFormat::kUrdf;
   std::string name;
   std::vector<RobotLink> links;
-  std::vector<RobotJoint> joints;    ///< each link is the child of one joint at most
-  std::vector<RobotGround> grounds;  ///< the file's own floors (MJCF); none: the simulator's
+  std::vector<RobotJoint> joints;        ///< each link is the child of one joint at most
+  std::vector<RobotGround> grounds;      ///< the file's own floors (MJCF); none: the simulator's
   std::vector<RobotActuator> actuators;  ///< MJCF <actuator>s on joints
   std::vector<RobotKeyframe> keyframes;  ///< MJCF <keyframe><key>s
-  std::vector<std::string> notes;    ///< what was read but is not simulated (actuators, armature)
+  std::vector<std::string> notes;        ///< what was read but is not simulated (actuators, armature)
   /// The links no joint moves from a parent link: the roots of the trees.
   std::vector<int> Roots() const;
 };

@@ -376,8 +376,8 @@ void Actuators(pugi::xml_node root, const Defaults& defaults, RobotModel& model)
       RobotActuator act;
       act.name = a.attribute("name") ? a.attribute("name").value() : Describe(a, k);
       const std::string joint = attr("joint").value();
-      const auto it = std::find_if(model.joints.begin(), model.joints.end(),
-                                   [&](const RobotJoint& j) { return j.name == joint; });
+      const auto it =
+          std::find_if(model.joints.begin(), model.joints.end(), [&](const RobotJoint& j) { return j.name == joint; });
       const bool supported = kind == "position" || kind == "velocity" || kind == "motor" || kind == "general";
       if (joint.empty() || it == model.joints.end() || !supported ||
           !(it->type == RobotJointType::kRevolute || it->type == RobotJointType::kContinuous ||
