@@ -12,7 +12,8 @@ bash "$root/scripts/install_deps.sh"
 build=$root/build-fuzz
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_COMPILER="$(command -v clang++ || command -v clang++-14)" -DMASSPROPS_BUILD_FUZZERS=ON -DMASSPROPS_BUILD_TESTS=OFF \
-  -DMASSPROPS_BUILD_APPS=ON -DMASSPROPS_BUILD_BENCH=OFF -DMASSPROPS_WITH_CAD=OFF >/dev/null
+  -DMASSPROPS_BUILD_APPS=ON -DMASSPROPS_BUILD_BENCH=OFF -DMASSPROPS_BUILD_PYTHON=OFF -DMASSPROPS_WITH_CAD=OFF \
+  -DMASSPROPS_WITH_CGAL=OFF -DMASSPROPS_WITH_ASSIMP=OFF >/dev/null  # the parsers need neither: CGAL's units take minutes here
 cmake --build "$build" --target mesh_parsers_fuzzer scene_parser_fuzzer
 corpus=$build/corpus
 mkdir -p "$corpus"

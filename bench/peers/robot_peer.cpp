@@ -12,6 +12,10 @@
 //   robot_peer --bench   steps per second (h = 1 ms, medians of three runs) of the quadruped
 //                        settling on the ground and of a 7-DOF arm draped over a table, ours
 //                        against MuJoCo's Euler
+//   robot_peer --joints FILE.xml KEY SECONDS TOL
+//                        any MJCF file as it is, from its keyframe KEY ('' for none): every
+//                        hinge's and slide's angle and rate after SECONDS in both engines; exit 1
+//                        when any differs by more than TOL
 
 #include <algorithm>
 #include <chrono>
@@ -262,6 +266,62 @@ int Bench() {
   return 0;
 }
 
+// Any MJCF file read as it is by both engines (its own floor, if any: no other is added), from the
+// keyframe named (or the file's q = 0, ctrl = 0): every hinge's and slide's angle and rate after
+// `seconds`, ours (implicit midpoint, 1 ms) beside MuJoCo's (Euler at 0.1 ms: its actuators' gains
+// are explicit there). A settled state does not depend on the integrator: they must agree within
+// `tolerance` (rad, rad/s) for every joint.
+int Joints(const std::string& path, const std::string& keyframe, double seconds, double tolerance) {
+  const massprops::RobotModel model = massprops::ReadRobotModel(path);
+  dynamics::World w(dynamics::Integrator::kImplicitMidpoint);
+  w.AddForce(dynamics::Gravity(Vector3(0, 0, -9.81)));
+  dynamics::ContactWorld ours(std::move(w));
+  for (const massprops::RobotGround& g : model.grounds) {
+    ours.AddGround({g.normal, g.offset, {}, {g.contype, g.conaffinity}});
+  }
+  dynamics::RobotOptions options;
+  options.keyframe = keyframe;
+  const dynamics::RobotInWorld added = dynamics::AddRobot(ours, model, options);
+  char error[1000] = "";
+  mjModel* m = mj_loadXML(path.c_str(), nullptr, error, sizeof error);
+  if (!m) throw std::runtime_error(std::string("MuJoCo refused the model: ") + error);
+  mjData* d = mj_makeData(m);
+  if (!keyframe.empty()) {
+    const int key = mj_name2id(m, mjOBJ_KEY, keyframe.c_str());
+    if (key < 0) throw std::runtime_error("MuJoCo's model has no keyframe '" + keyframe + "'");
+    mj_resetDataKeyframe(m, d, key);
+  }
+  m->opt.timestep = 1e-4;
+  const long steps = std::lround(seconds / 1e-3);
+  for (long s = 0; s < steps; ++s) {
+    const dynamics::StepStatus st = ours.Step(1e-3);
+    if (!st.ok) throw std::runtime_error("ours: " + st.message);
+  }
+  for (long s = 0; s < 10 * steps; ++s) mj_step(m, d);
+  std::printf("%s%s%s after %g s: each joint, ours (implicit midpoint, 1 ms) and MuJoCo 2.2 (Euler, 0.1 ms)\n",
+              path.c_str(), keyframe.empty() ? "" : ", keyframe ", keyframe.c_str(), seconds);
+  std::printf("  %-14s %14s %14s %14s %14s\n", "joint", "q ours", "q MuJoCo", "rate ours", "rate MuJoCo");
+  double worst = 0;
+  for (std::size_t k = 0; k < model.joints.size(); ++k) {
+    const massprops::RobotJoint& j = model.joints[k];
+    const bool one = j.type == massprops::RobotJointType::kRevolute ||
+                     j.type == massprops::RobotJointType::kContinuous ||
+                     j.type == massprops::RobotJointType::kPrismatic;
+    if (!one || added.joint_of[k] < 0) continue;
+    const int id = mj_name2id(m, mjOBJ_JOINT, j.name.c_str());
+    if (id < 0) throw std::runtime_error("MuJoCo's model has no joint '" + j.name + "'");
+    const dynamics::JointState st = ours.world().joint_state(added.joint_of[k]);
+    const double q = d->qpos[m->jnt_qposadr[id]], v = d->qvel[m->jnt_dofadr[id]];
+    std::printf("  %-14s %14.6f %14.6f %14.6f %14.6f\n", j.name.c_str(), st.position[0], q, st.velocity[0], v);
+    worst = std::max({worst, std::abs(st.position[0] - q), std::abs(st.velocity[0] - v)});
+  }
+  mj_deleteData(d);
+  mj_deleteModel(m);
+  const bool ok = worst <= tolerance;
+  std::printf("%s: largest difference %.2e (tolerance %.2e)\n", ok ? "agree" : "DISAGREE", worst, tolerance);
+  return ok ? 0 : 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -269,10 +329,11 @@ int main(int argc, char** argv) {
   try {
     if (mode == "--check") return Check();
     if (mode == "--bench") return Bench();
+    if (mode == "--joints" && argc == 6) return Joints(argv[2], argv[3], std::stod(argv[4]), std::stod(argv[5]));
   } catch (const std::exception& e) {
     std::cerr << "robot_peer: " << e.what() << "\n";
     return 1;
   }
-  std::cerr << "usage: robot_peer --check | --bench\n";
+  std::cerr << "usage: robot_peer --check | --bench | --joints FILE.xml KEYFRAME|'' SECONDS TOLERANCE\n";
   return 2;
 }
