@@ -712,6 +712,20 @@ def main():
                 ("robot_pose_cycle.sdf", '<sdf version="1.7"><model name="m"><link name="a"><pose relative_to="b">0 0 0 0 '
                  '0 0</pose></link><link name="b"><pose relative_to="a">0 0 0 0 0 0</pose></link></model></sdf>', 1,
                  r"<pose relative_to> form a cycle"),
+                # MJCF as MuJoCo 3 reads it: every new path refuses by name, never crashes.
+                ("robot_bad_contype.xml", '<mujoco><worldbody><body name="b"><freejoint/><geom type="sphere" size="0.1" '
+                 'contype="1.5"/></body></worldbody></mujoco>', 1, r"contype: '1.5' is not a 32-bit integer"),
+                ("robot_hfield.xml", '<mujoco><worldbody><geom name="terrain" type="hfield"/><body name="b"><freejoint/>'
+                 '<geom type="sphere" size="0.1"/></body></worldbody></mujoco>', 1, r"geom 'terrain': a height field"),
+                ("robot_key_nan.xml", '<mujoco><worldbody><body name="b"><joint name="h" type="hinge"/><geom '
+                 'type="sphere" size="0.1"/></body></worldbody><keyframe><key name="k" qpos="nan"/></keyframe>'
+                 '</mujoco>', 1, r"<key> 'k' qpos: 'nan' is not"),
+                ("robot_actuator_nowhere.xml", '<mujoco><worldbody><body name="b"><joint name="h" type="hinge"/><geom '
+                 'type="sphere" size="0.1"/></body></worldbody><actuator><motor joint="ghost"/><position joint="h" '
+                 'gear="1 0 0 0 0 0 7"/></actuator></mujoco>', 1, r"gear: "),
+                ("robot_negative_armature.xml", '<mujoco><worldbody><body name="b"><joint name="h" type="hinge" '
+                 'armature="-1"/><geom type="sphere" size="0.1"/></body></worldbody></mujoco>', 1,
+                 r"joint 'h': a negative armature"),
                 ("robot_long_chain.urdf", '<robot name="r">' + "".join('<link name="l%d">%s</link>' % (i, link)
                  for i in range(300)) + "".join('<joint name="j%d" type="revolute"><parent link="l%d"/><child '
                  'link="l%d"/><origin xyz="0 0 -0.1"/><axis xyz="0 1 0"/></joint>' % (i, i, i + 1) for i in range(299)) +
@@ -719,6 +733,14 @@ def main():
             write(name, text)
             run(name, [name, "--duration", "0.002"], status, (re.escape(name) + ": (.|\n)*" if status else "") + err_re,
                 program=rbsim)
+        write("robot_key_sizes.xml", '<mujoco><worldbody><body name="b"><joint name="h" type="hinge"/><geom '
+              'type="sphere" size="0.1"/></body></worldbody><keyframe><key name="k" qpos="1 2 3"/></keyframe></mujoco>')
+        run("robot_key_sizes", ["robot_key_sizes.xml", "--keyframe", "k", "--duration", "0.002"], 1,
+            r"keyframe 'k': qpos has 3 numbers; the robot's joints take 1", program=rbsim)
+        run("robot_key_missing", ["robot_key_sizes.xml", "--keyframe", "home", "--duration", "0.002"], 1,
+            r"no keyframe named 'home' \(it has: k\)", program=rbsim)
+        run("robot_keyframe_on_scene", [tmp + "/nothing.json", "--keyframe", "k"], 2,
+            r"--keyframe", program=rbsim)
         # rbsim poses: a part that cannot rest (open, flat) exits 1 naming the file; bad numbers exit 2.
         write("flat_part.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 3 2 4\nf 1 3 2\nf 3 4 2\n")
         for name, args, status, err_re in [
