@@ -44,6 +44,6 @@ int main(int argc, char** argv) {
       run(s);
     }
   }
-  std::cout << runs << " inputs ran through the parsers without a crash\n";
+  std::cout << runs << " inputs ran through the target without a crash\n";
   return 0;
 }
