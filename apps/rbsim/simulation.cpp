@@ -132,7 +132,11 @@ void AddRobot(Simulation& sim, const RobotSpec& spec, std::vector<std::string>& 
   } catch (const SceneError&) {
     throw;
   } catch (const std::exception& e) {
-    throw SceneError((alone ? spec.path + ": " : where) + e.what());
+    // The file named once: AddRobot's messages start with it already.
+    const std::string own = spec.path + ": ";
+    std::string what = e.what();
+    if (what.rfind(own, 0) == 0) what = what.substr(own.size());
+    throw SceneError((alone ? own : where + own) + what);
   }
 }
 

@@ -234,5 +234,10 @@ check "rbsim: a body through the floor is warned of" $?
 [ $? -eq 0 ] && grep -q "<transmission> (1)" "$tmp/err" && grep -q "bracket_repeated.stl" "$tmp/err"
 check "rbsim: a vendor URDF with transmissions, a world link and a repeated-face STL runs" $?
 
+printf '<robot name="r"><link name="a"><inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link><link name="b"/><joint name="j" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/></joint></robot>' >"$tmp/massless.urdf"
+"$bin" "$tmp/massless.urdf" --duration 0.01 -q >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 1 ] && [ "$(grep -o "massless.urdf" "$tmp/err" | wc -l)" -eq 1 ] && grep -q "link 'b' has no mass" "$tmp/err"
+check "rbsim: a robot's fault names its file once" $?
+
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]
