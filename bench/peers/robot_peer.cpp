@@ -14,8 +14,9 @@
 //                        against MuJoCo's Euler
 //   robot_peer --joints FILE.xml KEY SECONDS TOL
 //                        any MJCF file as it is, from its keyframe KEY ('' for none): every
-//                        hinge's and slide's angle and rate after SECONDS in both engines; exit 1
-//                        when any differs by more than TOL
+//                        hinge's and slide's angle and rate after SECONDS in both engines, and a
+//                        free root's height; exit 1 when an angle or rate differs by more than
+//                        TOL or the height by more than 1 cm
 
 #include <algorithm>
 #include <chrono>
@@ -315,9 +316,18 @@ int Joints(const std::string& path, const std::string& keyframe, double seconds,
     std::printf("  %-14s %14.6f %14.6f %14.6f %14.6f\n", j.name.c_str(), st.position[0], q, st.velocity[0], v);
     worst = std::max({worst, std::abs(st.position[0] - q), std::abs(st.velocity[0] - v)});
   }
+  // A free root's center of mass: within 1 cm (MuJoCo's soft contacts sink a few millimetres).
+  bool height_ok = true;
+  if (!model.joints.empty() && model.joints.front().type == massprops::RobotJointType::kFloating && m->nbody > 1) {
+    const double ours_z = ours.world().bodies()[static_cast<std::size_t>(added.bodies.front())].position.z();
+    const double mj_z = d->xipos[3 * 1 + 2];
+    height_ok = std::abs(ours_z - mj_z) < 0.01;
+    std::printf("  %-14s %14.6f %14.6f   (center of mass height, m; within 1 cm: %s)\n",
+                model.links.front().name.c_str(), ours_z, mj_z, height_ok ? "yes" : "NO");
+  }
   mj_deleteData(d);
   mj_deleteModel(m);
-  const bool ok = worst <= tolerance;
+  const bool ok = worst <= tolerance && height_ok;
   std::printf("%s: largest difference %.2e (tolerance %.2e)\n", ok ? "agree" : "DISAGREE", worst, tolerance);
   return ok ? 0 : 1;
 }

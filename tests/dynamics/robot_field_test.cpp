@@ -134,7 +134,9 @@ TEST(RobotField, ArmBoltedToTheWorldStaysAndAMeshWithRepeatedFacesIsAHull) {
 // An MJCF package as MuJoCo Menagerie ships one: scene.xml includes the robot (resolved from the
 // main file's folder) and adds a floor, lights and a skybox; the robot's collision geoms have
 // mass 0 and density 0, their bodies' <inertial>s the mass. The collision geoms still collide:
-// dropped limp, the biped lands on the file's own floor (2 cm below z = 0) and stays on it.
+// dropped from the file's pose (its servos holding ctrl 0), the biped lands on the file's own
+// floor (2 cm below z = 0) and stays on it; from its keyframe "stand" it stands, its pelvis where
+// straight legs put it (MuJoCo reading the same file: ctest robot_stands_mujoco).
 TEST(RobotField, MjcfSceneIncludesItsRobotAndMasslessGeomsLandOnItsFloor) {
   const massprops::RobotModel m = massprops::ReadRobotModel(kField + "mjcf/scene.xml");
   ASSERT_EQ(m.links.size(), 5u);
@@ -158,13 +160,26 @@ TEST(RobotField, MjcfSceneIncludesItsRobotAndMasslessGeomsLandOnItsFloor) {
     world.AddGround({g.normal, g.offset, {}, {g.contype, g.conaffinity}});
   const dynamics::RobotInWorld added = dynamics::AddRobot(world, m);
   for (int s = 0; s < 2000; ++s) ASSERT_TRUE(world.Step(1e-3).ok);
-  // Limp, it folds onto the floor: the pelvis box (5 cm half height) no lower than on its face.
+  // On the floor, standing or fallen: the pelvis box (5 cm half height) no lower than on its face.
   for (std::size_t k = 0; k < added.bodies.size(); ++k) {
     const Vector3 p = world.world().bodies()[static_cast<std::size_t>(added.bodies[k])].position;
     EXPECT_GT(p.z(), -0.02) << added.body_names[k];
     EXPECT_LT(p.z(), 0.7) << added.body_names[k];
   }
   EXPECT_GT(world.world().bodies()[0].position.z(), -0.02 + 0.05 - 0.005);
+  // From "stand": the feet on the floor, the pelvis 0.05 + 0.3 + 0.3 + 0.01 above its bottom.
+  ContactWorld standing = WorldWithGravity(false);
+  for (const massprops::RobotGround& g : m.grounds) standing.AddGround({g.normal, g.offset, {}, {g.contype, g.conaffinity}});
+  dynamics::RobotOptions stand;
+  stand.keyframe = "stand";
+  const dynamics::RobotInWorld biped = dynamics::AddRobot(standing, m, stand);
+  for (int s = 0; s < 2000; ++s) ASSERT_TRUE(standing.Step(1e-3).ok);
+  EXPECT_NEAR(standing.world().bodies()[static_cast<std::size_t>(biped.bodies[0])].position.z(), -0.02 + 0.66, 1e-3);
+  for (int j : biped.joint_of) {
+    if (j >= 0 && standing.world().joints()[static_cast<std::size_t>(j)].type == dynamics::JointType::kRevolute) {
+      EXPECT_NEAR(standing.world().joint_state(j).position[0], 0, 1e-3);
+    }
+  }
 }
 
 // One link, three collision boxes: it collides as the three boxes (a compound), not as their
