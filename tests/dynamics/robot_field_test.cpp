@@ -169,7 +169,8 @@ TEST(RobotField, MjcfSceneIncludesItsRobotAndMasslessGeomsLandOnItsFloor) {
   EXPECT_GT(world.world().bodies()[0].position.z(), -0.02 + 0.05 - 0.005);
   // From "stand": the feet on the floor, the pelvis 0.05 + 0.3 + 0.3 + 0.01 above its bottom.
   ContactWorld standing = WorldWithGravity(false);
-  for (const massprops::RobotGround& g : m.grounds) standing.AddGround({g.normal, g.offset, {}, {g.contype, g.conaffinity}});
+  for (const massprops::RobotGround& g : m.grounds)
+    standing.AddGround({g.normal, g.offset, {}, {g.contype, g.conaffinity}});
   dynamics::RobotOptions stand;
   stand.keyframe = "stand";
   const dynamics::RobotInWorld biped = dynamics::AddRobot(standing, m, stand);
