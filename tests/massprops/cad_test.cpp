@@ -147,6 +147,28 @@ TEST_F(Cad, StepUnitIsTheFilesAndBothResultsAgreeOnABox) {
   EXPECT_EQ(overridden.findings[0].kind, FindingKind::kUnitOverridden);
 }
 
+// The same block written by hand in other systems' habits (tests/cad/field/make_blocks.py: Creo's
+// AP203 CONFIG_CONTROL_DESIGN, and an AP242 header with its edges the other way round; inches by
+// CONVERSION_BASED_UNIT): the file's unit, the exact B-rep as the answer, the closed form, and the
+// numbers of the OpenCASCADE-written block to rounding.
+TEST_F(Cad, StepTextFromOtherSystemsGivesTheClosedForm) {
+  const SolidResult occ = LoadSolid(File("box_inches.step"));
+  const double in = 0.0254, m = 1000 * 6 * in * in * in;
+  const Matrix3 inertia = Vector3(m * (4 + 9) / 12, m * (1 + 9) / 12, m * (1 + 4) / 12).asDiagonal() * in * in;
+  for (const char* name : {"block_ap203.stp", "block_ap242.stp"}) {
+    const SolidResult r = LoadSolid(std::string(MASSPROPS_DATA_DIR) + "/../tests/cad/field/" + name);
+    EXPECT_EQ(r.unit, LengthUnit::kInch) << name;
+    EXPECT_EQ(r.unit_source, UnitSource::kFile) << name;
+    ASSERT_TRUE(r.brep) << name;
+    EXPECT_TRUE(r.brep->is_result) << name;
+    EXPECT_NEAR(r.mp.volume, 6 * in * in * in, 1e-12 * r.mp.volume) << name;
+    EXPECT_LE((r.mp.center_of_mass - Vector3(0.5, 1, 1.5) * in).norm(), 1e-14) << name;
+    EXPECT_LE((r.mp.inertia_com - inertia).norm(), 1e-12 * inertia.norm()) << name;
+    EXPECT_NEAR(r.mp.volume, occ.mp.volume, 1e-13 * occ.mp.volume) << name;
+    for (const Finding& f : r.findings) ADD_FAILURE() << name << ": " << f.message.marked();
+  }
+}
+
 // |ΔV| ≤ 1.5 × area × deflection, and ΔV shrinks in proportion to the deflection.
 TEST_F(Cad, MeshErrorIsBoundedByTheDeflectionAndShrinksWithIt) {
   for (const std::string name : {"sphere.step", "torus.step", "cylinder.step", "drilled.step"}) {
@@ -167,7 +189,8 @@ TEST_F(Cad, MeshErrorIsBoundedByTheDeflectionAndShrinksWithIt) {
       log_e.push_back(std::log(dv));
     }
     double md = 0, me = 0;
-    for (std::size_t i = 0; i < log_d.size(); ++i) md += log_d[i] / log_d.size(), me += log_e[i] / log_e.size();
+    const auto n = static_cast<double>(log_d.size());
+    for (std::size_t i = 0; i < log_d.size(); ++i) md += log_d[i] / n, me += log_e[i] / n;
     double sxy = 0, sxx = 0;
     for (std::size_t i = 0; i < log_d.size(); ++i) {
       sxy += (log_d[i] - md) * (log_e[i] - me);
@@ -391,7 +414,9 @@ TEST_F(Cad, EmptyAndCurveOnlyProductsAreLeftOutUnderEveryOption) {
       ExpectClose(r.mp, Box(10, 20, 30), brep ? 1e-9 : 1e-12, "empty_and_curve_products.step");
       EXPECT_TRUE(Says(r, FindingKind::kCadLeftOut, "'nothing'"));
       EXPECT_TRUE(Says(r, FindingKind::kCadLeftOut, "'sketch'"));
-      if (parts) EXPECT_EQ(r.parts.size(), 1u);
+      if (parts) {
+        EXPECT_EQ(r.parts.size(), 1u);
+      }
     }
   }
 }
