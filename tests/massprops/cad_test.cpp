@@ -169,6 +169,32 @@ TEST_F(Cad, StepTextFromOtherSystemsGivesTheClosedForm) {
   }
 }
 
+// An AP203 assembly in millimetres of two parts whose representations declare different units
+// (tests/cad/field/make_blocks.py mixed): the 1 × 2 × 3 in block placed at x = 100 mm, a 10 × 20 ×
+// 30 mm block at the origin. Composed in millimetres, as the sum of the two closed forms, with and
+// without --parts.
+TEST_F(Cad, PartsInDifferentUnitsAreComposedInOne) {
+  const std::string path = std::string(MASSPROPS_DATA_DIR) + "/../tests/cad/field/mixed_units_assembly.stp";
+  const double v_in = 6 * 25.4 * 25.4 * 25.4, v_mm = 6000;  // mm³
+  const Vector3 c_in(100 + 12.7, 25.4, 38.1), c_mm(5, 10, 15);
+  const Vector3 com = (v_in * c_in + v_mm * c_mm) / (v_in + v_mm) * kMm;
+  for (const bool parts : {false, true}) {
+    LoadOptions o;
+    o.parts = parts;
+    const SolidResult r = LoadSolid(path, o);
+    EXPECT_EQ(r.unit, LengthUnit::kMillimetre);
+    EXPECT_NEAR(r.mp.volume, (v_in + v_mm) * 1e-9, 1e-12 * r.mp.volume);
+    EXPECT_LE((r.mp.center_of_mass - com).norm(), 1e-14);
+    if (parts) {
+      ASSERT_EQ(r.parts.size(), 2u);
+      EXPECT_EQ(r.parts[0].part, "INCH_BLOCK");
+      EXPECT_NEAR(r.parts[0].mp.volume, v_in * 1e-9, 1e-12 * v_in * 1e-9);
+      EXPECT_EQ(r.parts[1].part, "MM_BLOCK");
+      EXPECT_NEAR(r.parts[1].mp.volume, v_mm * 1e-9, 1e-12 * v_mm * 1e-9);
+    }
+  }
+}
+
 // |ΔV| ≤ 1.5 × area × deflection, and ΔV shrinks in proportion to the deflection.
 TEST_F(Cad, MeshErrorIsBoundedByTheDeflectionAndShrinksWithIt) {
   for (const std::string name : {"sphere.step", "torus.step", "cylinder.step", "drilled.step"}) {
