@@ -188,6 +188,7 @@ TEST_F(Cad, PartsInDifferentUnitsAreComposedInOne) {
     if (parts) {
       ASSERT_EQ(r.parts.size(), 2u);
       EXPECT_EQ(r.parts[0].part, "INCH_BLOCK");
+      EXPECT_EQ(r.parts[0].instance, "INCH_BLOCK:1");  // the component's own name (its NAUO's)
       EXPECT_NEAR(r.parts[0].mp.volume, v_in * 1e-9, 1e-12 * v_in * 1e-9);
       EXPECT_EQ(r.parts[1].part, "MM_BLOCK");
       EXPECT_NEAR(r.parts[1].mp.volume, v_mm * 1e-9, 1e-12 * v_mm * 1e-9);

@@ -225,7 +225,8 @@ struct SolidResult {
   /// whole's mass properties are their composition; its topology their sums; its findings
   /// theirs, each naming its part.
   std::vector<SolidResult> parts;
-  std::string part;  ///< the part's name, in a result of `parts`
+  std::string part;      ///< the part's name, in a result of `parts`
+  std::string instance;  ///< CAD assemblies: the component's own name ("bolt:2"), when it has one
 };
 
 /// An input the pipeline refuses: what() names the file, the fault and (with the C++ option

@@ -119,6 +119,7 @@ SolidResult SolveParts(SolidResult r, const LoadOptions& given, std::chrono::ste
     part.source = r.source + " (part '" + names[p] + "')";
     part.part = names[p];
     part.loaded = ExtractPart(loaded, static_cast<std::int32_t>(p));
+    if (!part.loaded.cad_parts.empty()) part.instance = part.loaded.cad_parts.front().instance;
     if (part.loaded.mesh.num_faces() == 0 && !HasExactSolid(part.loaded, part_opt)) {
       // Nothing to integrate: an empty group, a product of curves or points, a tessellation with
       // no triangles. Named and left out, never integrated as nothing.

@@ -161,6 +161,7 @@ Json ToJson(const SolidResult& r, const FormatOptions& opt) {
   for (const Finding& f : r.findings) warnings.push_back(Worded(f.message, WordsOf(opt)));
   j["warnings"] = warnings;
   if (r.part.empty()) j.erase("part");
+  if (!r.instance.empty()) j["instance"] = r.instance;
   if (!r.parts.empty()) {
     Json parts = Json::array();
     for (const SolidResult& part : r.parts) parts.push_back(ToJson(part, opt));

@@ -34,8 +34,12 @@ std::string FormatTable(const SolidResult& r, const FormatOptions& opt) {
   std::ostringstream out;
   const ReportUnits& u = opt.units;
   for (const SolidResult& part : r.parts) out << FormatOne(part, opt) << "\n";
+  // A part's row: its name, and a CAD component's own name beside it ("pin [pin:2]").
+  auto label = [](const SolidResult& part) {
+    return part.instance.empty() || part.instance == part.part ? part.part : part.part + " [" + part.instance + "]";
+  };
   std::size_t width = 5;  // "whole"; a shorter part name ("Moon") once made the padding negative
-  for (const SolidResult& part : r.parts) width = std::max(width, part.part.size());
+  for (const SolidResult& part : r.parts) width = std::max(width, label(part).size());
   auto row = [&](const std::string& name, const SolidResult& x) {
     const Vector3 c = x.mp.center_of_mass / u.Length();
     const Vector3 m = x.principal.moments / u.Inertia();
@@ -49,7 +53,7 @@ std::string FormatTable(const SolidResult& r, const FormatOptions& opt) {
       << (u.IsSi() ? std::string("kg m^2") : std::string(UnitName(u.inertia))) << "):\n";
   out << "  part" << std::string(width - 4, ' ') << "          mass        volume  center of mass"
       << std::string(30, ' ') << "principal moments\n";
-  for (const SolidResult& part : r.parts) row(part.part, part);
+  for (const SolidResult& part : r.parts) row(label(part), part);
   row(std::string(width > 5 ? width - 5 : 0, ' ') + "whole", r);
   out << "\n" << FormatOne(r, opt);
   return out.str();
@@ -79,7 +83,10 @@ std::string FormatOne(const SolidResult& r, const FormatOptions& opt) {
     out << "file            " << r.source << "  (" << r.loaded.format << ", " << t.faces
         << " triangles, closed and consistently oriented: every edge matched by its reverse)\n";
   }
-  if (!r.part.empty()) out << "part            " << r.part << "\n";
+  if (!r.part.empty()) {
+    out << "part            " << r.part << (r.instance.empty() || r.instance == r.part ? "" : " [" + r.instance + "]")
+        << "\n";
+  }
   if (!r.parts.empty()) {
     out << "parts           " << r.parts.size() << ", each computed on its own; the whole is their composition\n";
   }
