@@ -12,9 +12,11 @@
 
 #include <gtest/gtest.h>
 
+#include "dynamics/bodies.h"
 #include "dynamics/contact.h"
 #include "dynamics/robot.h"
 #include "massprops/robot_model.h"
+#include "massprops/wording.h"
 
 namespace {
 
@@ -322,6 +324,22 @@ TEST(RobotField, AnUnreadableCollisionMeshIsNamedByItsLink) {
     EXPECT_NE(what.find("package.xml"), std::string::npos) << what;
     EXPECT_EQ(what.find(path), std::string::npos) << what;  // the robot file is named by the caller
   }
+}
+
+// A body made from a CAD file (rbsim's scenes, BodyBuilder): its mass properties are the exact
+// B-rep's, its display and collision mesh the tessellation, both in the file's own unit (inches
+// here, with no unit stated).
+TEST(RobotField, ACadBodyTakesTheBrepsInertiaAndTheFilesUnit) {
+  dynamics::BodyBuilder builder(massprops::ApiVocabulary());
+  dynamics::BodyShape shape;
+  shape.source = dynamics::MeshSource{kField + "../../cad/field/block_ap203.stp", false, false};
+  std::vector<dynamics::BodyWarning> warnings;
+  const dynamics::BuiltShape built = builder.Load(shape, warnings);
+  const double in = 0.0254, m = 1000 * 6 * in * in * in;
+  EXPECT_NEAR(built.mp.volume, 6 * in * in * in, 1e-12 * built.mp.volume);
+  EXPECT_NEAR(built.mp.inertia_com(0, 0), m * (4 + 9) * in * in / 12, 1e-12 * m * in * in);
+  const Vector3 extent = built.display.V.colwise().maxCoeff() - built.display.V.colwise().minCoeff();
+  EXPECT_LT((extent - Vector3(1, 2, 3) * in).norm(), 1e-12) << extent.transpose();
 }
 
 TEST(RobotField, AWorldLinkCannotBeAChild) {

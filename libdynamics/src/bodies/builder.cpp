@@ -54,13 +54,14 @@ BuiltShape LoadMesh(const MeshSource& m, const BodyShape& s, const massprops::Vo
   BuiltShape out;
   out.mp = r.mp;
   out.principal = r.principal;
-  const double scale = massprops::MetresPerUnit(s.unit);
+  // The unit the file was read in: the stated one, else the file's own (a STEP in inches, a 3MF).
+  const double scale = massprops::MetresPerUnit(r.unit);
   out.display = massprops::Triangulate(r.loaded.mesh);
   for (Eigen::Index i = 0; i < out.display.V.rows(); ++i) {
     out.display.V.row(i) = (scale * out.display.V.row(i).transpose() - r.mp.center_of_mass).transpose();
   }
   out.source =
-      m.path + " (unit " + massprops::UnitName(s.unit) + ", " + std::to_string(out.display.F.rows()) + " triangles)";
+      m.path + " (unit " + massprops::UnitName(r.unit) + ", " + std::to_string(out.display.F.rows()) + " triangles)";
   return out;
 }
 
