@@ -221,16 +221,17 @@ struct KeyState {
   std::vector<double> ctrl;
 };
 
-int PositionSize(massprops::RobotJointType t) {
+// The simulator's joint type of a file's joint type.
+JointType JointTypeOf(massprops::RobotJointType t) {
   switch (t) {
-    case massprops::RobotJointType::kFixed: return 0;
-    case massprops::RobotJointType::kFloating: return 7;
-    case massprops::RobotJointType::kBall: return 4;
-    default: return 1;
+    case RobotJointType::kFixed: return JointType::kFixed;
+    case RobotJointType::kRevolute:
+    case RobotJointType::kContinuous: return JointType::kRevolute;
+    case RobotJointType::kPrismatic: return JointType::kPrismatic;
+    case RobotJointType::kBall: return JointType::kSpherical;
+    case RobotJointType::kFloating: return JointType::kFree;
   }
-}
-int VelocitySize(massprops::RobotJointType t) {
-  return t == massprops::RobotJointType::kFloating ? 6 : t == massprops::RobotJointType::kBall ? 3 : PositionSize(t);
+  return JointType::kFixed;
 }
 
 // The keyframe `name` split over the joints in MuJoCo's order (the model's joints are in body
@@ -251,7 +252,10 @@ KeyState KeyframeState(const RobotModel& model, const std::string& name) {
                                 (names.empty() ? std::string("the file has none") : "it has: " + names) + ")");
   }
   std::size_t nq = 0, nv = 0;
-  for (const RobotJoint& j : model.joints) nq += PositionSize(j.type), nv += VelocitySize(j.type);
+  for (const RobotJoint& j : model.joints) {
+    nq += static_cast<std::size_t>(JointPositionSize(JointTypeOf(j.type)));
+    nv += static_cast<std::size_t>(JointVelocitySize(JointTypeOf(j.type)));
+  }
   auto check = [&](const std::vector<double>& x, std::size_t n, const char* what) {
     if (!x.empty() && x.size() != n) {
       throw std::invalid_argument(model.path + ": keyframe '" + name + "': " + what + " has " +
@@ -263,8 +267,8 @@ KeyState KeyframeState(const RobotModel& model, const std::string& name) {
   check(it->ctrl, model.actuators.size(), "ctrl");
   std::size_t at_q = 0, at_v = 0;
   for (std::size_t k = 0; k < model.joints.size(); ++k) {
-    const auto n = static_cast<std::size_t>(PositionSize(model.joints[k].type));
-    const auto m = static_cast<std::size_t>(VelocitySize(model.joints[k].type));
+    const auto n = static_cast<std::size_t>(JointPositionSize(JointTypeOf(model.joints[k].type)));
+    const auto m = static_cast<std::size_t>(JointVelocitySize(JointTypeOf(model.joints[k].type)));
     if (!it->qpos.empty()) s.q[k].assign(it->qpos.begin() + at_q, it->qpos.begin() + at_q + n);
     if (!it->qvel.empty()) s.v[k].assign(it->qvel.begin() + at_v, it->qvel.begin() + at_v + m);
     at_q += n, at_v += m;
@@ -487,14 +491,7 @@ RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotO
     j.parent_frame = FrameOf(parent_frame);
     j.child_frame = FrameOf(link_in_body(rj.child).Then(rj.joint_to_child.Inverse()));
     j.axis = rj.axis;
-    switch (rj.type) {
-      case RobotJointType::kFixed: j.type = JointType::kFixed; break;
-      case RobotJointType::kRevolute:
-      case RobotJointType::kContinuous: j.type = JointType::kRevolute; break;
-      case RobotJointType::kPrismatic: j.type = JointType::kPrismatic; break;
-      case RobotJointType::kBall: j.type = JointType::kSpherical; break;
-      case RobotJointType::kFloating: j.type = JointType::kFree; break;
-    }
+    j.type = JointTypeOf(rj.type);
     if (rj.parent < 0 && fixed_base) j.type = JointType::kFixed;
     if (rj.lower) j.limits.lower = *rj.lower;
     if (rj.upper) j.limits.upper = *rj.upper;

@@ -188,16 +188,16 @@ contact::Posed PoseOf(const Collider& c, const contact::Polytope* polytope, cons
 }  // namespace
 
 namespace {
-// A mesh collider's field, built here when the shape came without it; a compound's parts' fields
-// and polytopes.
-void BuildFieldIfMissing(Collider& c) {
+// What a shape needs before it collides: a mesh collider's field, built here when the shape came
+// without it; a compound's parts' fields and polytopes.
+void PrepareShape(Collider& c) {
   if (auto* mesh = std::get_if<shape::Mesh>(&c.shape); mesh != nullptr && mesh->field == nullptr) {
     mesh->field = contact::BuildMeshField(*mesh);
   }
   if (auto* compound = std::get_if<shape::Compound>(&c.shape)) {
     compound->polytopes.clear();
     for (Collider& part : compound->parts) {
-      BuildFieldIfMissing(part);
+      PrepareShape(part);
       compound->polytopes.push_back(PolytopeOf(part.shape));
     }
   }
@@ -205,7 +205,7 @@ void BuildFieldIfMissing(Collider& c) {
 }  // namespace
 
 int ContactWorld::AddBody(const RigidBody& body, Collider collider) {
-  BuildFieldIfMissing(collider);
+  PrepareShape(collider);
   contact::ValidateShape(collider.shape);
   ValidateMaterial(collider.material);
   auto polytope = PolytopeOf(collider.shape);
@@ -231,7 +231,7 @@ int ContactWorld::AddBody(const RigidBody& body) {
 }
 
 void ContactWorld::AddStatic(Collider collider, const Matrix3& rotation, const Vector3& translation) {
-  BuildFieldIfMissing(collider);
+  PrepareShape(collider);
   contact::ValidateShape(collider.shape);
   ValidateMaterial(collider.material);
   if (!rotation.allFinite() || std::abs(rotation.determinant() - 1) > 1e-9 ||

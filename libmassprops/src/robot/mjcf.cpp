@@ -62,6 +62,14 @@ class Defaults {
   std::map<std::string, pugi::xml_node> classes_;
 };
 
+// One to `most` numbers (MuJoCo reads as many of a size, a gear or a gain as it needs); none or
+// more than `most` is refused as a list of one.
+std::vector<double> OneTo(const std::string& text, std::size_t most, const std::string& what) {
+  std::vector<double> v = NumberList(text, what, 1);
+  if (v.empty() || v.size() > most) return Numbers(text, 1, what);  // (throws, naming the count)
+  return v;
+}
+
 // The rotation an euler attribute describes (MuJoCo: lower-case axes rotate with the frame,
 // upper-case axes stay fixed).
 Matrix3 FromEuler(const std::vector<double>& a, const Compiler& c, const std::string& what) {
@@ -164,17 +172,7 @@ class GeomReader {
     const std::string type = attr("type") ? attr("type").value() : "sphere";
     const pugi::xml_attribute fromto = attr("fromto");
     std::vector<double> size;
-    if (const pugi::xml_attribute s = attr("size")) {
-      const std::string text = s.value();
-      for (std::size_t n = 3; n >= 1; --n) {  // MuJoCo reads as many as the type needs
-        try {
-          size = Numbers(text, n, what + " size");
-          break;
-        } catch (const ElementError&) {
-          if (n == 1) throw;
-        }
-      }
-    }
+    if (const pugi::xml_attribute s = attr("size")) size = OneTo(s.value(), 3, what + " size");
     auto need = [&](std::size_t n) {
       if (size.size() < n) throw ElementError(what + ": a " + type + " needs " + std::to_string(n) + " sizes");
       for (std::size_t i = 0; i < n; ++i) {
@@ -386,17 +384,7 @@ void Actuators(pugi::xml_node root, const Defaults& defaults, RobotModel& model)
         model.actuators.push_back(act);  // joint -1: a placeholder
         continue;
       }
-      if (const pugi::xml_attribute g = attr("gear")) {
-        std::vector<double> gear;
-        for (std::size_t n = 6; n >= 1 && gear.empty(); --n) {
-          try {
-            gear = Numbers(g.value(), n, what + " gear");
-          } catch (const ElementError&) {
-            if (n == 1) throw;
-          }
-        }
-        act.gear = gear[0];
-      }
+      if (const pugi::xml_attribute g = attr("gear")) act.gear = OneTo(g.value(), 6, what + " gear")[0];
       if (kind == "position") {
         const double kp = number("kp", 1.0), kv = number("kv", 0.0);
         act.gain = kp;
@@ -419,14 +407,7 @@ void Actuators(pugi::xml_node root, const Defaults& defaults, RobotModel& model)
           std::vector<double> v(n, 0.0);
           v[0] = fallback;
           if (const pugi::xml_attribute p = attr(name)) {
-            std::vector<double> all;
-            for (std::size_t m = 10; m >= 1 && all.empty(); --m) {
-              try {
-                all = Numbers(p.value(), m, what + " " + name);
-              } catch (const ElementError&) {
-                if (m == 1) throw;
-              }
-            }
+            const std::vector<double> all = OneTo(p.value(), 10, what + " " + name);
             for (std::size_t i = 0; i < n && i < all.size(); ++i) v[i] = all[i];
           }
           return v;
@@ -462,17 +443,8 @@ void Keyframes(pugi::xml_node root, RobotModel& model) {
       RobotKeyframe f;
       f.name = key.attribute("name") ? key.attribute("name").value() : "key #" + std::to_string(k);
       auto numbers = [&](const char* name) {
-        std::vector<double> out;
         const pugi::xml_attribute a = key.attribute(name);
-        if (!a) return out;
-        const std::string text = a.value();
-        std::size_t count = 0;
-        for (std::size_t i = 0; i < text.size();) {  // count the blank-separated words
-          while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
-          if (i < text.size()) ++count;
-          while (i < text.size() && !std::isspace(static_cast<unsigned char>(text[i]))) ++i;
-        }
-        return count == 0 ? out : Numbers(text, count, "<key> '" + f.name + "' " + name);
+        return a ? NumberList(a.value(), "<key> '" + f.name + "' " + name) : std::vector<double>();
       };
       f.qpos = numbers("qpos");
       f.qvel = numbers("qvel");

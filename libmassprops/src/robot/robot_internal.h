@@ -104,6 +104,10 @@ void WriteMjcfInertial(Link& link, const MassProperties& mp, const PrincipalIner
 
 /// Exactly `n` numbers, blank-separated. @throws ElementError naming `what`.
 std::vector<double> Numbers(const std::string& text, std::size_t n, const std::string& what);
+/// As many finite numbers as `text` holds, blank-separated (MJCF's size, gear, gainprm, a key's
+/// qpos: MuJoCo reads what it needs). @throws ElementError naming `what` for a word that is no
+/// finite number (`expected`, when not 0, the count the message speaks of).
+std::vector<double> NumberList(const std::string& text, const std::string& what, std::size_t expected = 0);
 /// One finite, positive number. @throws ElementError naming `what`.
 double Positive(const std::string& text, const std::string& what);
 /// R = Rz(yaw) Ry(pitch) Rx(roll): URDF and SDFormat's fixed-axis roll, pitch, yaw.

@@ -19,6 +19,14 @@ namespace massprops::robot {
 namespace fs = std::filesystem;
 
 std::vector<double> Numbers(const std::string& text, std::size_t n, const std::string& what) {
+  std::vector<double> out = NumberList(text, what, n);
+  if (out.size() != n) {
+    throw ElementError(what + ": expected " + std::to_string(n) + " numbers, got '" + text + "'");
+  }
+  return out;
+}
+
+std::vector<double> NumberList(const std::string& text, const std::string& what, std::size_t expected) {
   std::vector<double> out;
   const char* p = text.c_str();
   while (true) {
@@ -27,13 +35,11 @@ std::vector<double> Numbers(const std::string& text, std::size_t n, const std::s
     char* end = nullptr;
     const double v = std::strtod(p, &end);
     if (end == p || !std::isfinite(v) || (*end != 0 && *end != ' ' && *end != '\t' && *end != '\n' && *end != '\r')) {
-      throw ElementError(what + ": '" + text + "' is not a list of " + std::to_string(n) + " finite numbers");
+      throw ElementError(what + ": '" + text + "' is not a list of " +
+                         (expected > 0 ? std::to_string(expected) + " " : std::string()) + "finite numbers");
     }
     out.push_back(v);
     p = end;
-  }
-  if (out.size() != n) {
-    throw ElementError(what + ": expected " + std::to_string(n) + " numbers, got '" + text + "'");
   }
   return out;
 }
