@@ -3,13 +3,18 @@
 //
 //   {"faces": F, "parts": P, "read_s": ..., "mesh_s": ..., "brep_s": ...}
 //
+//   cad_stages FILE.step [--mesh REL]
+//
 // read: STEPCAFControl_Reader into an XCAF document (names, placements, materials), as our plugin
-// reads; mesh: BRepMesh at 1e-4 of each free shape's diagonal, angular 0.5, one thread; brep:
+// reads; mesh: BRepMesh at REL of each free shape's diagonal (default 1e-3, the check mesh's; 0
+// skips it: the plain program that reads and integrates), angular 0.5; brep:
 // BRepGProp::VolumeProperties with a relative error target of 1e-12 (the integration alone).
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <string>
 
 #include <BRepBndLib.hxx>
 #include <BRepGProp.hxx>
@@ -35,8 +40,11 @@ double Since(std::chrono::steady_clock::time_point t0) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::fprintf(stderr, "usage: cad_stages FILE.step\n");
+  double relative = 1e-3;
+  if (argc == 4 && std::string(argv[2]) == "--mesh") {
+    relative = std::atof(argv[3]);
+  } else if (argc != 2) {
+    std::fprintf(stderr, "usage: cad_stages FILE.step [--mesh RELATIVE_DEFLECTION]\n");
     return 2;
   }
   Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
@@ -61,11 +69,11 @@ int main(int argc, char** argv) {
   int faces = 0, parts = 0;
   t0 = std::chrono::steady_clock::now();
   for (Standard_Integer i = 1; i <= simple.Length(); ++i) {
-    if (!XCAFDoc_ShapeTool::IsSimpleShape(simple(i))) continue;
+    if (relative <= 0 || !XCAFDoc_ShapeTool::IsSimpleShape(simple(i))) continue;
     const TopoDS_Shape s = XCAFDoc_ShapeTool::GetShape(simple(i));
     Bnd_Box box;
     BRepBndLib::Add(s, box, false);
-    BRepMesh_IncrementalMesh mesher(s, 1e-4 * std::sqrt(box.SquareExtent()), false, 0.5, false);
+    BRepMesh_IncrementalMesh mesher(s, relative * std::sqrt(box.SquareExtent()), false, 0.5, false);
   }
   const double mesh_s = Since(t0);
   t0 = std::chrono::steady_clock::now();

@@ -3,7 +3,7 @@
 // an open shell, a file with no solid, and the STL of a part's own tessellation.
 //
 //   make_cad DIR              the test set (see Fixtures below)
-//   make_cad --bench DIR      a part of about 10^3 faces and an assembly of 100 parts
+//   make_cad --bench DIR      a part of about 10^3 faces, a 1 MB B-spline solid, an assembly of 100 parts
 //
 // Dimensions are in millimetres (OpenCASCADE's unit) unless a file says otherwise.
 
@@ -19,6 +19,7 @@
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepBuilderAPI_Sewing.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
@@ -27,6 +28,9 @@
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
+#include <BRepBuilderAPI_MakeSolid.hxx>
+#include <BRepLib.hxx>
+#include <Geom_BSplineSurface.hxx>
 #include <IGESControl_Controller.hxx>
 #include <IGESControl_Writer.hxx>
 #include <Interface_Static.hxx>
@@ -37,6 +41,9 @@
 #include <STEPControl_Controller.hxx>
 #include <STEPControl_Writer.hxx>
 #include <StlAPI_Writer.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColgp_Array2OfPnt.hxx>
 #include <TCollection_HAsciiString.hxx>
 #include <TDataStd_Name.hxx>
 #include <TDocStd_Document.hxx>
@@ -273,6 +280,42 @@ bool Fixtures(const std::string& dir) {
   return ok;
 }
 
+// A single solid whose side is one B-spline surface of 144 x 100 poles (about 1 MB of STEP, as a
+// CAD system writes a knurled or lobed part): bicubic, periodic around, clamped along its height,
+// five lobes that twist as they rise; its first and last rows of poles are planar, so the two
+// ends are planar B-spline curves, capped by plane faces.
+TopoDS_Shape LobedSpline() {
+  const int around = 144, rows = 100, degree = 3;
+  TColgp_Array2OfPnt poles(1, around, 1, rows);
+  for (int i = 1; i <= around; ++i) {
+    const double t = 2 * M_PI * (i - 1) / around;
+    for (int j = 1; j <= rows; ++j) {
+      const double z = 0.5 * (j - 1), twist = 0.05 * (j - 1);
+      const double r = 10 + 1.5 * std::sin(5 * t + twist) + 0.2 * std::sin(23 * t);
+      poles.SetValue(i, j, gp_Pnt(r * std::cos(t), r * std::sin(t), z));
+    }
+  }
+  TColStd_Array1OfReal u_knots(1, around + 1), v_knots(1, rows - degree + 1);
+  TColStd_Array1OfInteger u_mults(1, around + 1), v_mults(1, rows - degree + 1);
+  for (int k = 1; k <= around + 1; ++k) u_knots.SetValue(k, k - 1), u_mults.SetValue(k, 1);
+  for (int k = 1; k <= rows - degree + 1; ++k) v_knots.SetValue(k, k - 1), v_mults.SetValue(k, 1);
+  v_mults.SetValue(1, degree + 1), v_mults.SetValue(rows - degree + 1, degree + 1);
+  Handle(Geom_BSplineSurface) side = new Geom_BSplineSurface(poles, u_knots, v_knots, u_mults, v_mults, degree,
+                                                             degree, Standard_True, Standard_False);
+  Standard_Real u0, u1, v0, v1;
+  side->Bounds(u0, u1, v0, v1);
+  BRepBuilderAPI_Sewing sewing(1e-6);
+  sewing.Add(BRepBuilderAPI_MakeFace(side, 1e-7).Face());
+  for (double v : {v0, v1}) {
+    const TopoDS_Wire rim = BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(side->VIso(v)).Edge()).Wire();
+    sewing.Add(BRepBuilderAPI_MakeFace(rim, Standard_True).Face());
+  }
+  sewing.Perform();
+  TopoDS_Solid solid = BRepBuilderAPI_MakeSolid(TopoDS::Shell(sewing.SewedShape())).Solid();
+  BRepLib::OrientClosedSolid(solid);
+  return solid;
+}
+
 bool Bench(const std::string& dir) {
   bool ok = true;
   // A part of about 10^3 faces: a plate with a 17 × 17 grid of holes, square ones (4 faces each)
@@ -291,6 +334,7 @@ bool Bench(const std::string& dir) {
   }
   const TopoDS_Shape part = BRepAlgoAPI_Cut(BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 156, 156, 10).Shape(), tools).Shape();
   ok &= WriteStep(part, dir + "/plate_1k_faces.step");
+  ok &= WriteStep(LobedSpline(), dir + "/spline_1mb.step");
   std::vector<Placed> parts;
   for (int i = 0; i < 100; ++i) {
     const std::string name = "part" + std::to_string(i % 10);

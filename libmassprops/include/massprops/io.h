@@ -42,6 +42,9 @@ struct CadOptions {
   /// Interference: how many pairs of solids whose boxes overlap get their exact common volume
   /// (a count, so that the output does not depend on the machine's speed); 0: none.
   int interference_pairs = 100;
+  /// Threads that mesh and integrate the parts (0: every core); the same triangles for any count.
+  /// LoadSolid takes it from LoadOptions::num_threads.
+  int num_threads = 0;
 };
 
 /// The validation properties a CAD file carries for a part (STEP's geometric validation

@@ -6,6 +6,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <mutex>
@@ -111,6 +112,7 @@ LoadedMesh ReadCadFile(const std::string& path, const CadOptions& cad) {
   options.angular_deflection = cad.angular_deflection;
   options.brep_tolerance = 1e-12;
   options.interference_pairs = cad.interference_pairs;
+  options.threads = std::max(0, cad.num_threads);
   // The child's work: the plugin's messages as they come, then its status.
   const auto read_in_child = [&](const IsolatedSend& send) {
     // Parts of OpenCASCADE print to standard output directly (BRepTools::Read's complaints): in

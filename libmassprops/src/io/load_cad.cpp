@@ -180,6 +180,7 @@ bool BrepIsTheAnswer(const LoadOptions& o) { return o.brep && MeshOnlyOption(o).
 CadOptions CadOptionsFor(const LoadOptions& o) {
   CadOptions cad = o.cad;
   if (cad.relative_deflection == 0) cad.relative_deflection = BrepIsTheAnswer(o) ? 1e-3 : 1e-4;
+  cad.num_threads = o.num_threads;
   return cad;
 }
 

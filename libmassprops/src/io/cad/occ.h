@@ -75,8 +75,9 @@ struct CheckMesh {
   std::uint64_t unmatched_edges = 0;  ///< edges whose two sides were meshed differently (not welded)
 };
 
-/// Meshes `shape` (one thread: the same triangles every run) at `deflection` (mm).
-CheckMesh Tessellate(const TopoDS_Shape& shape, double deflection, double angular_deflection);
+/// Meshes `shape` at `deflection` (mm). In parallel, BRepMesh discretizes each edge and then each
+/// face on its own, so the triangles are the same for any thread count.
+CheckMesh Tessellate(const TopoDS_Shape& shape, double deflection, double angular_deflection, bool parallel);
 
 /// Two solids that share volume: the instances (or, a == b, two solids inside one instance) and
 /// the common volume, mm^3.

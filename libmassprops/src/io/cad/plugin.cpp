@@ -22,12 +22,14 @@
 // (count; per overlap the two part indices and the common volume, -1 when the boolean failed).
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
-#include <list>
+#include <exception>
 #include <map>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <BRepBndLib.hxx>
@@ -46,6 +48,32 @@
 
 namespace massprops::cad {
 namespace {
+
+// Runs task(0 .. count-1) on up to `threads` threads (0: every core). A task's exception is
+// rethrown after all have ended, the first task's first, so that the message is the same every run.
+template <class Task>
+void RunInParallel(std::size_t count, int threads, const Task& task) {
+  std::size_t workers = threads > 0 ? static_cast<std::size_t>(threads) : std::thread::hardware_concurrency();
+  workers = std::max<std::size_t>(1, std::min(workers, count));
+  std::vector<std::exception_ptr> failed(count);
+  std::atomic<std::size_t> next{0};
+  const auto work = [&] {
+    for (std::size_t t = next++; t < count; t = next++) {
+      try {
+        task(t);
+      } catch (...) {
+        failed[t] = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
+  for (const std::exception_ptr& e : failed) {
+    if (e) std::rethrow_exception(e);
+  }
+}
 
 // The exact integrals of a set of solids, unit density, millimetres.
 struct Integrals {
@@ -74,7 +102,7 @@ struct Prototype {
   double deflection = 0;
 };
 
-Prototype MakePrototype(const TopoDS_Shape& shape, const MasspropsCadOptions& o, double mm_per_unit) {
+Prototype MakePrototype(const TopoDS_Shape& shape, const MasspropsCadOptions& o, double mm_per_unit, bool parallel) {
   Prototype p;
   p.set = FindSolids(shape);
   const TopoDS_Shape& geometry = p.set.count > 0 ? static_cast<const TopoDS_Shape&>(p.set.solids) : p.set.surfaces;
@@ -93,10 +121,24 @@ Prototype MakePrototype(const TopoDS_Shape& shape, const MasspropsCadOptions& o,
                   p.deflection / unit, diagonal / unit);
     throw Refusal{text};
   }
-  p.mesh = Tessellate(geometry, p.deflection, o.angular_deflection);
-  if (p.set.count > 0) {
-    p.exact = Integrate(p.set.solids, o.brep_tolerance);
+  if (p.set.count == 0) {
+    p.mesh = Tessellate(geometry, p.deflection, o.angular_deflection, parallel);
+    return p;
   }
+  // The integral reads the surfaces, the mesher writes triangulations: on two threads they run
+  // side by side (OpenCASCADE's B-spline evaluation keeps no cache in the shared geometry).
+  if (!parallel) {
+    p.mesh = Tessellate(geometry, p.deflection, o.angular_deflection, false);
+    p.exact = Integrate(p.set.solids, o.brep_tolerance);
+    return p;
+  }
+  RunInParallel(2, 2, [&](std::size_t task) {
+    if (task == 0) {
+      p.exact = Integrate(p.set.solids, o.brep_tolerance);
+    } else {
+      p.mesh = Tessellate(geometry, p.deflection, o.angular_deflection, true);
+    }
+  });
   return p;
 }
 
@@ -175,22 +217,36 @@ void Read(const char* path, const MasspropsCadOptions& o, const Sender& send) {
   Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
   Document d = ReadDocument(path, o.format);
   if (d.instances.empty()) throw Refusal{"the file holds no shape (no solid, shell or face)"};
-  // Each prototype is found, integrated and meshed once, however many instances place it (a list:
-  // the pointers to its entries stay valid as it grows).
-  std::map<const TopoDS_TShape*, std::list<std::pair<TopLoc_Location, Prototype>>> done;
-  std::vector<const Prototype*> prototypes;
-  for (const Instance& in : d.instances) {
-    auto& list = done[in.shape.TShape().get()];
-    const Prototype* p = nullptr;
-    for (const auto& entry : list) {
-      if (entry.first.IsEqual(in.shape.Location())) p = &entry.second;
+  // Each prototype is found, integrated and meshed once, however many instances place it; the
+  // prototypes are made in parallel (each shape's with all its locations in one task, since they
+  // share faces and so triangulations), each on its own, so the bits do not depend on the order.
+  std::vector<Prototype> made;
+  std::vector<std::size_t> prototype_of;  // per instance
+  std::vector<std::vector<std::size_t>> tasks;  // per shape: its prototypes, in order of first use
+  {
+    std::map<const TopoDS_TShape*, std::size_t> task_of;
+    std::vector<std::pair<const Instance*, std::size_t>> first_use;  // per prototype
+    for (const Instance& in : d.instances) {
+      const auto [t, is_new] = task_of.emplace(in.shape.TShape().get(), tasks.size());
+      if (is_new) tasks.emplace_back();
+      std::size_t found = first_use.size();
+      for (std::size_t k : tasks[t->second]) {
+        if (first_use[k].first->shape.Location().IsEqual(in.shape.Location())) found = k;
+      }
+      if (found == first_use.size()) {
+        first_use.emplace_back(&in, t->second);
+        tasks[t->second].push_back(found);
+      }
+      prototype_of.push_back(found);
     }
-    if (p == nullptr) {
-      list.emplace_back(in.shape.Location(), MakePrototype(in.shape, o, d.mm_per_unit));
-      p = &list.back().second;
-    }
-    prototypes.push_back(p);
+    made.resize(first_use.size());
+    const bool parallel = o.threads != 1;
+    RunInParallel(tasks.size(), o.threads, [&](std::size_t t) {
+      for (std::size_t k : tasks[t]) made[k] = MakePrototype(first_use[k].first->shape, o, d.mm_per_unit, parallel);
+    });
   }
+  std::vector<const Prototype*> prototypes;
+  for (std::size_t k : prototype_of) prototypes.push_back(&made[k]);
   // A file of surfaces only, spread over several parts (a surface model whose faces each came as
   // their own representation): the faces of all parts, placed, as one part, so that sewing can
   // find the solid they bound together; kept only when it does.
@@ -201,7 +257,7 @@ void Read(const char* path, const MasspropsCadOptions& o, const Sender& send) {
     BRep_Builder builder;
     builder.MakeCompound(all);
     for (const Instance& in : d.instances) builder.Add(all, in.shape.Moved(TopLoc_Location(in.placement)));
-    joined = MakePrototype(all, o, d.mm_per_unit);
+    joined = MakePrototype(all, o, d.mm_per_unit, o.threads != 1);
     if (joined.set.count > 0) {
       Instance one;
       one.name = d.instances.front().name;

@@ -7,7 +7,7 @@
 extern "C" {
 
 /// Bumped whenever the options or the messages' layout change: a plugin of another build is refused.
-#define MASSPROPS_CAD_ABI 3
+#define MASSPROPS_CAD_ABI 4
 
 enum MasspropsCadFormat { kMasspropsCadStep = 0, kMasspropsCadIges = 1, kMasspropsCadBrep = 2 };
 
@@ -21,6 +21,9 @@ struct MasspropsCadOptions {
   /// How many pairs of solids whose boxes overlap get their exact common volume computed (a count,
   /// not a time, so that the output does not depend on the machine); 0: none.
   int interference_pairs;
+  /// Threads for meshing and integrating the parts (0: every core, 1: one); the same triangles
+  /// and the same bits for any count.
+  int threads;
 };
 
 /// Hands one message (wire.h layout, described in cad/plugin.cpp) to the loader.

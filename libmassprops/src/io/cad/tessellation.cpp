@@ -48,9 +48,8 @@ class UnionFind {
 
 }  // namespace
 
-CheckMesh Tessellate(const TopoDS_Shape& shape, double deflection, double angular_deflection) {
-  // One thread: the same triangles every time.
-  BRepMesh_IncrementalMesh mesher(shape, deflection, false, angular_deflection, false);
+CheckMesh Tessellate(const TopoDS_Shape& shape, double deflection, double angular_deflection, bool parallel) {
+  BRepMesh_IncrementalMesh mesher(shape, deflection, false, angular_deflection, parallel);
   CheckMesh m;
   UnionFind nodes;
   std::vector<gp_Pnt> points;
