@@ -18,8 +18,10 @@
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
-#include <BRepBuilderAPI_Sewing.hxx>
+#include <BRepBuilderAPI_MakeSolid.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
+#include <BRepBuilderAPI_Sewing.hxx>
+#include <BRepLib.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
@@ -28,8 +30,6 @@
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
-#include <BRepBuilderAPI_MakeSolid.hxx>
-#include <BRepLib.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <IGESControl_Controller.hxx>
 #include <IGESControl_Writer.hxx>
@@ -300,8 +300,8 @@ TopoDS_Shape LobedSpline() {
   for (int k = 1; k <= around + 1; ++k) u_knots.SetValue(k, k - 1), u_mults.SetValue(k, 1);
   for (int k = 1; k <= rows - degree + 1; ++k) v_knots.SetValue(k, k - 1), v_mults.SetValue(k, 1);
   v_mults.SetValue(1, degree + 1), v_mults.SetValue(rows - degree + 1, degree + 1);
-  Handle(Geom_BSplineSurface) side = new Geom_BSplineSurface(poles, u_knots, v_knots, u_mults, v_mults, degree,
-                                                             degree, Standard_True, Standard_False);
+  Handle(Geom_BSplineSurface) side =
+      new Geom_BSplineSurface(poles, u_knots, v_knots, u_mults, v_mults, degree, degree, Standard_True, Standard_False);
   Standard_Real u0, u1, v0, v1;
   side->Bounds(u0, u1, v0, v1);
   BRepBuilderAPI_Sewing sewing(1e-6);

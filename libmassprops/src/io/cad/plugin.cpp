@@ -221,7 +221,7 @@ void Read(const char* path, const MasspropsCadOptions& o, const Sender& send) {
   // prototypes are made in parallel (each shape's with all its locations in one task, since they
   // share faces and so triangulations), each on its own, so the bits do not depend on the order.
   std::vector<Prototype> made;
-  std::vector<std::size_t> prototype_of;  // per instance
+  std::vector<std::size_t> prototype_of;        // per instance
   std::vector<std::vector<std::size_t>> tasks;  // per shape: its prototypes, in order of first use
   {
     std::map<const TopoDS_TShape*, std::size_t> task_of;
