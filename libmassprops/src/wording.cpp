@@ -9,9 +9,13 @@ struct Marker {
   const char* name;
   Option option;
 };
-constexpr Marker kMarkers[] = {{"repair", Option::kRepair}, {"allow_open", Option::kAllowOpen},
-                               {"unit", Option::kUnit},     {"full_check", Option::kFullCheck},
-                               {"wall", Option::kWall},     {"brep", Option::kBrep}};
+constexpr Marker kMarkers[] = {{"repair", Option::kRepair},
+                               {"allow_open", Option::kAllowOpen},
+                               {"unit", Option::kUnit},
+                               {"full_check", Option::kFullCheck},
+                               {"wall", Option::kWall},
+                               {"brep", Option::kBrep},
+                               {"winding_number", Option::kWindingNumber}};
 
 }  // namespace
 
@@ -24,6 +28,7 @@ const Vocabulary& ApiVocabulary() {
       case Option::kFullCheck: return "LoadOptions::full_check = true";
       case Option::kWall: return "WallModel";
       case Option::kBrep: return "LoadOptions::brep = true";
+      case Option::kWindingNumber: return "LoadOptions::model = WindingNumberModel";
     }
     return "?";
   };

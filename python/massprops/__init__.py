@@ -55,7 +55,9 @@ class Result:
     right-handed), surface_area, physically_valid, warnings (list of str), mesh (dict: the mesh
     report), unit, model, standard_errors (dict of arrays, or None when the result is exact),
     parts (a list of Result, one per part, with ``parts=True``; else empty), part (the part's name
-    in such a result; else None).
+    in such a result; else None), instance (a CAD assembly component's own name, "bolt:2"; else
+    None), declared_unit (the length unit a CAD part's own representation declares, as the file
+    names it, "INCH"; the numbers are SI all the same; else None).
     """
 
     def __init__(self, record, redo=None, part_of=False):
@@ -78,6 +80,8 @@ class Result:
         self.model = record["model"]
         self.source = record["file"]
         self.part = record.get("part")
+        self.instance = record.get("instance")
+        self.declared_unit = record.get("declared_unit")
         self.parts = [Result(p, redo, True) for p in record.get("parts", [])]
         self.brep = record.get("brep")  # CAD files: the other side of mesh vs exact B-rep, and the differences
         self.density_source = record.get("density_source")

@@ -25,6 +25,8 @@ class Result:
     model: str
     source: str
     part: Optional[str]
+    instance: Optional[str]
+    declared_unit: Optional[str]
     parts: List["Result"]
     brep: Optional[Dict[str, Any]]
     density_source: Optional[str]

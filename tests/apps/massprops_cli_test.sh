@@ -406,7 +406,7 @@ check "validate: JSON rows and a PNG" $?
 
 # Advice in messages is worded in the command line's vocabulary.
 "$bin" "$tmp/open.obj" >/dev/null 2>"$tmp/err"
-grep -q "try --repair, or pass --allow-open" "$tmp/err"; check "CLI vocabulary in errors" $?
+grep -q "try --repair (it fills holes.*--winding-number for an estimate with error bars, or pass --allow-open" "$tmp/err"; check "CLI vocabulary in errors" $?
 
 # Pictures: SVG and PNG by the extension, written whole; an unknown extension, several inputs and
 # a folder as the output are refused before anything is computed.

@@ -36,6 +36,7 @@ std::string TetrahedronReply(std::uint64_t status = 0) {
   result.Str("tet");
   result.Str("tet:1");
   result.Str("steel");
+  result.Str("INCH");  // the part's own declared unit
   result.F64(7850);
   result.U64(1);  // solids
   result.F64(v);
@@ -86,6 +87,7 @@ TEST(CadReply, ARealReplyDecodesIntoItsSolidInTheFilesUnit) {
   ASSERT_EQ(mesh->cad_parts.size(), 1u);
   const CadPart& p = mesh->cad_parts[0];
   EXPECT_EQ(p.instance, "tet:1");
+  EXPECT_EQ(p.unit, "INCH");
   EXPECT_EQ(p.density, 7850);
   EXPECT_NEAR(p.brep.volume, 1.0 / 6, 1e-15);  // one cubic inch over six
   EXPECT_NEAR(p.brep.first[0], 1.0 / 24, 1e-15);

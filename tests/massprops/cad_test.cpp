@@ -3,6 +3,7 @@
 // error against the bound its deflection implies, units, assemblies, materials and faults.
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstdlib>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "massprops/load.h"
+#include "massprops/report/format.h"
 #include "massprops/report/picture.h"
 
 namespace massprops {
@@ -192,6 +194,16 @@ TEST_F(Cad, PartsInDifferentUnitsAreComposedInOne) {
       EXPECT_NEAR(r.parts[0].mp.volume, v_in * 1e-9, 1e-12 * v_in * 1e-9);
       EXPECT_EQ(r.parts[1].part, "MM_BLOCK");
       EXPECT_NEAR(r.parts[1].mp.volume, v_mm * 1e-9, 1e-12 * v_mm * 1e-9);
+      // Each part's own declared unit, from its representation's context, in its row and JSON.
+      ASSERT_EQ(r.parts[0].loaded.cad_parts.size(), 1u);
+      EXPECT_EQ(r.parts[0].loaded.cad_parts[0].unit, "INCH");
+      EXPECT_EQ(r.parts[1].loaded.cad_parts[0].unit, "MILLIMETRE");
+      const std::string table = report::FormatTable(r, report::FormatOptions{});
+      EXPECT_NE(table.find("INCH_BLOCK [INCH_BLOCK:1] (declared in INCH)"), std::string::npos) << table;
+      EXPECT_NE(table.find("MM_BLOCK [MM_BLOCK:1] (declared in MILLIMETRE)"), std::string::npos) << table;
+      const nlohmann::json j = nlohmann::json::parse(report::FormatJsonLine(r, report::FormatOptions{}));
+      EXPECT_EQ(j["parts"][0]["declared_unit"], "INCH");
+      EXPECT_EQ(j["parts"][1]["declared_unit"], "MILLIMETRE");
     }
   }
 }

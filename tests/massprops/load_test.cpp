@@ -410,12 +410,15 @@ TEST(LoadSolid, TypedFindingsAndErrorsWordedPerFrontEnd) {
     FAIL() << "an open mesh was accepted";
   } catch (const LoadError& e) {
     EXPECT_THAT(e.text(), HasSubstr("open mesh: 3 boundary edges in 1 hole"));
-    EXPECT_THAT(e.text(), HasSubstr("try {repair}, or pass {allow_open} to compute anyway"));
+    EXPECT_THAT(e.text(), HasSubstr("try {repair} (it fills holes"));
+    EXPECT_THAT(e.text(), HasSubstr("{winding_number} for an estimate with error bars, or pass {allow_open}"));
     EXPECT_THAT(e.what(), HasSubstr("LoadOptions::allow_open = true"));
     const Vocabulary cli = [](Option o, std::string_view) -> std::string {
-      return o == Option::kRepair ? "--repair" : "--allow-open";
+      return o == Option::kRepair ? "--repair" : o == Option::kWindingNumber ? "--winding-number" : "--allow-open";
     };
-    EXPECT_THAT(WordedError(e, cli), HasSubstr("try --repair, or pass --allow-open"));
+    EXPECT_THAT(WordedError(e, cli), HasSubstr("try --repair (it fills holes"));
+    EXPECT_THAT(WordedError(e, cli),
+                HasSubstr("--winding-number for an estimate with error bars, or pass --allow-open"));
   }
   LoadOptions allow;
   allow.allow_open = true;

@@ -4,11 +4,14 @@
 #include "massprops/repair.h"
 
 #include <cmath>
+#include <fstream>
+#include <string>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "massprops/io.h"
+#include "massprops/load.h"
 #include "massprops/mesh_topology.h"
 #include "massprops/solids.h"
 #include "test_utils.h"
@@ -275,6 +278,164 @@ TEST(Repair, AClosedMeshKeepsItsPolygons) {
   const MassProperties exact = solids::RegularPrismProperties(1000, 1.0, 0.1, 1.0);
   EXPECT_NEAR(mp.mass, exact.mass, 1e-12 * exact.mass);
   EXPECT_NEAR(mp.inertia_com(2, 2), exact.inertia_com(2, 2), 1e-12 * exact.inertia_com(2, 2));
+}
+
+// Broken meshes as CAD systems export them (tests/massprops/field/make_broken.py writes them:
+// ASCII STL, CR LF, %e normals), held to closed forms or to their intact twin.
+std::string Field(const std::string& name) {
+  return std::string(MASSPROPS_DATA_DIR) + "/../tests/massprops/field/" + name;
+}
+
+SolidResult Repaired(const std::string& name) {
+  LoadOptions o;
+  o.repair = true;
+  o.unit = LengthUnit::kMillimetre;
+  o.unit_stated = true;
+  return LoadSolid(Field(name), o);
+}
+
+bool Says(const SolidResult& r, FindingKind kind, const std::string& words) {
+  for (const Finding& f : r.findings) {
+    if (f.kind == kind && f.message.marked().find(words) != std::string::npos) return true;
+  }
+  return false;
+}
+
+// A box [x0, x0 + a] × [0, b] × [0, c] mm at 1000 kg/m³: mass, center and inertia in SI.
+MassProperties BoxMm(double x0, double a, double b, double c) {
+  MassProperties mp = ComputeMassProperties(solids::Box(Vector3(a, b, c) * 1e-3), 1000.0);
+  mp.center_of_mass += Vector3(x0 + a / 2, b / 2, c / 2) * 1e-3;
+  return mp;
+}
+
+void ExpectBox(const SolidResult& r, const MassProperties& box) {
+  EXPECT_NEAR(r.mp.volume, box.volume, 1e-12 * box.volume);
+  EXPECT_LE((r.mp.center_of_mass - box.center_of_mass).norm(), 1e-12 * 0.03);
+  EXPECT_LE((r.mp.inertia_com - box.inertia_com).norm(), 1e-12 * box.inertia_com.norm());
+  EXPECT_EQ(r.relative_error_bound, 0);  // exact: nothing ambiguous was filled
+}
+
+TEST(RepairField, APlanarHoleIsFilledExactly) {
+  // A cube missing one triangle of its top, and missing the whole top (a quad's two triangles).
+  for (const char* name : {"cube_missing_triangle.stl", "cube_missing_quad.stl"}) {
+    LoadOptions plain;
+    plain.unit = LengthUnit::kMillimetre;
+    plain.unit_stated = true;
+    try {
+      LoadSolid(Field(name), plain);
+      ADD_FAILURE() << name << ": an open mesh was computed";
+    } catch (const LoadError& e) {
+      EXPECT_THAT(e.text(), ::testing::HasSubstr("try {repair} (it fills holes")) << name;
+      EXPECT_THAT(e.text(), ::testing::HasSubstr("{winding_number} for an estimate with error bars")) << name;
+    }
+    const SolidResult r = Repaired(name);
+    ASSERT_TRUE(r.repair) << name;
+    EXPECT_EQ(r.repair->filled_holes, 1) << name;
+    EXPECT_EQ(r.repair->planar_holes, 1) << name;
+    EXPECT_EQ(r.repair->fill_volume_bound, 0) << name;
+    EXPECT_TRUE(Says(r, FindingKind::kRepaired, "filled 1 hole (all planar, filled exactly")) << name;
+    ExpectBox(r, BoxMm(0, 10, 10, 10));
+  }
+  EXPECT_EQ(Repaired("cube_missing_triangle.stl").repair->largest_hole, 3);
+  EXPECT_EQ(Repaired("cube_missing_quad.stl").repair->largest_hole, 4);
+}
+
+TEST(RepairField, ANonPlanarHoleIsFilledWithinItsReportedBound) {
+  LoadOptions plain;
+  plain.unit = LengthUnit::kMillimetre;
+  plain.unit_stated = true;
+  const SolidResult intact = LoadSolid(Field("sphere_intact.stl"), plain);
+  const SolidResult r = Repaired("sphere_with_hole.stl");
+  ASSERT_TRUE(r.repair);
+  EXPECT_EQ(r.repair->filled_holes, 1);
+  EXPECT_EQ(r.repair->planar_holes, 0);
+  EXPECT_EQ(r.repair->largest_hole, 6);
+  const double bound = r.relative_error_bound;
+  EXPECT_GT(bound, 1e-6);
+  EXPECT_LT(bound, 1e-2);
+  EXPECT_TRUE(Says(r, FindingKind::kRepaired, "none planar"));
+  // The intact sphere's own triangles are one fill within the slab: ours is within the bound of it.
+  EXPECT_LE(std::abs(r.mp.volume - intact.mp.volume), bound * intact.mp.volume);
+  EXPECT_LE((r.mp.center_of_mass - intact.mp.center_of_mass).norm(), bound * intact.size_m);
+  EXPECT_LE((r.mp.inertia_com - intact.mp.inertia_com).norm(), bound * intact.principal.moments.maxCoeff());
+  EXPECT_GT(std::abs(r.mp.volume - intact.mp.volume), 0);  // not the same surface: the bound is used
+}
+
+TEST(RepairField, AFillMoreAmbiguousThanOnePercentIsRefused) {
+  // The sphere less every triangle with a corner beyond x = 6 mm: a hole whose rim zigzags over
+  // the mesh's rows, a slab millimetres thick under a patch of 10² mm²: no glitch to fill.
+  const LoadedMesh in = ReadMeshFile(Field("sphere_intact.stl"));
+  const std::string path = ::testing::TempDir() + "/sphere_cut.obj";
+  {
+    std::ofstream obj(path);
+    obj.precision(17);
+    for (Eigen::Index v = 0; v < in.mesh.V.rows(); ++v) {
+      obj << "v " << in.mesh.V(v, 0) << " " << in.mesh.V(v, 1) << " " << in.mesh.V(v, 2) << "\n";
+    }
+    for (std::int64_t f = 0; f < in.mesh.num_faces(); ++f) {
+      bool cut = false;
+      std::string line = "f";
+      for (std::int64_t c = in.mesh.offsets[f]; c < in.mesh.offsets[f + 1]; ++c) {
+        const std::int32_t v = in.mesh.indices[static_cast<std::size_t>(c)];
+        cut = cut || (in.mesh.V(v, 0) > 6 && in.mesh.V(v, 1) > 0);
+        line += " " + std::to_string(v + 1);
+      }
+      if (!cut) obj << line << "\n";
+    }
+  }
+  LoadOptions o;
+  o.repair = true;
+  o.unit = LengthUnit::kMillimetre;
+  o.unit_stated = true;
+  try {
+    LoadSolid(path, o);
+    ADD_FAILURE() << "an ambiguous fill was given as the answer";
+  } catch (const LoadError& e) {
+    EXPECT_THAT(e.text(), ::testing::HasSubstr("over the 1 % the repair accepts"));
+    EXPECT_THAT(e.text(), ::testing::HasSubstr("{winding_number} estimates the solid with error bars"));
+  }
+}
+
+TEST(RepairField, ReversedRepeatsAreAnInternalWallAndSameDirectionRepeatsOneFace) {
+  // Two boxes exported closed each, touching at x = 10 mm: their union, 30 × 10 × 10 mm.
+  const SolidResult walls = Repaired("two_boxes_shared_face.stl");
+  ASSERT_TRUE(walls.repair);
+  EXPECT_EQ(walls.repair->internal_walls, 4);  // the shared face's two triangles, in each box
+  EXPECT_EQ(walls.repair->repeated_faces, 0);
+  EXPECT_TRUE(Says(walls, FindingKind::kRepaired, "removed 4 faces that each repeat another reversed"));
+  ExpectBox(walls, BoxMm(0, 30, 10, 10));
+  // Every face written twice in the same direction: one of each kept.
+  const SolidResult twice = Repaired("cube_every_face_twice.stl");
+  ASSERT_TRUE(twice.repair);
+  EXPECT_EQ(twice.repair->repeated_faces, 12);
+  EXPECT_EQ(twice.repair->internal_walls, 0);
+  EXPECT_TRUE(Says(twice, FindingKind::kRepaired, "removed 12 repeated faces"));
+  ExpectBox(twice, BoxMm(0, 10, 10, 10));
+}
+
+TEST(RepairField, ADoubleSidedSurfaceKeepsOneSide) {
+  // Every face in a reversed pair is a surface written with both sides, not walls between
+  // bodies: one side is kept and oriented outward (removing both would leave nothing).
+  PolygonMesh box = ToPolygonMesh(Triangulate(solids::Box(Vector3(1, 2, 3))));
+  const std::int64_t n = box.num_faces();
+  for (std::int64_t f = 0; f < n; ++f) {
+    const std::int32_t* c = box.indices.data() + box.offsets[f];
+    box.AddFace(std::vector<int>{c[0], c[2], c[1]});
+  }
+  const RepairedMesh out = RepairMesh(box);
+  EXPECT_EQ(out.report.internal_walls, 0);
+  EXPECT_EQ(out.report.repeated_faces, n);
+  EXPECT_TRUE(AnalyzeTopology(out.mesh).BoundsVolume());
+  EXPECT_TRUE(NearRel(ComputeMassProperties(out.mesh, 1.0).volume, 6.0, 1e-14));
+}
+
+TEST(RepairField, AGoodMeshIsUnchangedBitForBit) {
+  const LoadedMesh in = ReadMeshFile(Field("sphere_intact.stl"));
+  const RepairedMesh once = RepairMesh(in.mesh);
+  const RepairedMesh twice = RepairMesh(once.mesh);
+  EXPECT_TRUE(twice.mesh.V == once.mesh.V);
+  EXPECT_EQ(twice.mesh.indices, once.mesh.indices);
+  EXPECT_EQ(twice.report.filled_holes + twice.report.removed_faces + twice.report.welded_vertices, 0);
 }
 
 }  // namespace

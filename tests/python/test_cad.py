@@ -106,3 +106,15 @@ def test_batch_reads_step_files_beside_meshes(tmp_path):
     assert abs(plate["volume"] * 1e9 - PLATE_V) <= 1e-9 * PLATE_V
     assert [p["part"] for p in records["fixture_assembly.step"]["result"]["parts"]] == ["base", "post", "pin", "pin"]
     assert "brep" not in records["spot.obj"]["result"]
+
+
+def test_parts_carry_their_component_name_and_declared_unit():
+    # An AP203 assembly whose two blocks declare inches and millimetres (written in Creo's habits
+    # by tests/cad/field/make_blocks.py): composed in SI as the sum of the closed forms.
+    path = os.path.join(os.path.dirname(__file__), "..", "cad", "field", "mixed_units_assembly.stp")
+    r = massprops.load(path, parts=True)
+    assert [(p.part, p.instance, p.declared_unit) for p in r.parts] == [
+        ("INCH_BLOCK", "INCH_BLOCK:1", "INCH"), ("MM_BLOCK", "MM_BLOCK:1", "MILLIMETRE")]
+    inch = 0.0254
+    assert r.parts[0].volume == pytest.approx(6 * inch ** 3, rel=1e-12)
+    assert r.volume == pytest.approx(6 * inch ** 3 + 6e-6, rel=1e-12)

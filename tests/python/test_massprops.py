@@ -79,7 +79,7 @@ def test_warnings_name_python_keywords():
 def test_bad_input_raises_with_the_commands_message(tmp_path):
     with pytest.raises(ValueError, match=r"ellipe0\.003\.off: the signed volume is negative.*faces point inward"):
         massprops.load(os.path.join(MESHES, "ellipe0.003.off"))
-    with pytest.raises(ValueError, match=r"inconsistent orientation.*try repair=True, or pass allow_open=True"):
+    with pytest.raises(ValueError, match=r"inconsistent orientation.*try repair=True \(it fills holes.*winding_number=True for an estimate with error bars, or pass allow_open=True"):
         massprops.load(os.path.join(MESHES, "blobby-shuffled.off"))
     with pytest.raises(OSError, match="cannot open the file"):
         massprops.load(os.path.join(MESHES, "no_such_file.obj"))

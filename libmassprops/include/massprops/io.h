@@ -61,6 +61,9 @@ struct CadPart {
   double density = 0;    ///< kg/m^3, from the file's material; 0: none
   bool solid = false;    ///< the part has solids (false: surfaces only, no exact volume)
   std::string instance;  ///< the assembly component's name, when it has its own ("bolt:2")
+  /// The length unit the part's own representation declares, as the file names it ("INCH"),
+  /// "" when not known; its coordinates are in the file's unit (LoadedMesh) all the same.
+  std::string unit;
   /// The exact B-rep's integrals (OpenCASCADE's Gauss integration), unit density, in the file's
   /// unit and axes, the placement applied.
   VolumeIntegrals brep;

@@ -140,6 +140,7 @@ enum class FindingKind {
   kCadLeftOut,          ///< a CAD part with no solid or surface (curves, points, nothing), left out
   kInterference,        ///< two CAD parts (or two solids in one) share volume; or the test was not done
   kFileProperties,      ///< a CAD file's own validation properties disagree with the B-rep's
+  kRepaired,            ///< the repair removed repeated faces or internal walls, or filled holes
 };
 
 struct Finding {

@@ -18,8 +18,24 @@ struct RepairOptions {
 
 /// What RepairMesh changed.
 struct RepairReport {
-  std::int64_t welded_vertices = 0;       ///< vertices merged into another within the tolerance
-  std::int64_t removed_faces = 0;         ///< degenerate or duplicate faces dropped
+  std::int64_t welded_vertices = 0;  ///< vertices merged into another within the tolerance
+  std::int64_t removed_faces = 0;    ///< degenerate or duplicate faces dropped
+  /// Of removed_faces: faces repeating another in the same direction (one of them kept).
+  std::int64_t repeated_faces = 0;
+  /// Of removed_faces: faces of internal walls, a face repeated in both directions (every copy
+  /// removed): where two bodies, each exported closed, touch; they merge into their union.
+  std::int64_t internal_walls = 0;
+  /// Holes filled (border cycles closed with triangles on their own corners): how many, how many
+  /// of them planar (filled exactly: any triangulation of a planar polygon adds the same
+  /// integrals), and the largest's number of edges.
+  std::int64_t filled_holes = 0;
+  std::int64_t planar_holes = 0;
+  std::int64_t largest_hole = 0;
+  /// How far another fill could move the volume (mesh units³): per hole, the thickness of the slab
+  /// between the two planes that hold its boundary times the patch's area (any fill within the
+  /// slab differs from ours by at most that); summed. 0 when nothing was filled.
+  double fill_volume_bound = 0;
+  std::int64_t unfilled_holes = 0;        ///< border cycles CGAL could not triangulate
   bool reoriented = false;                ///< face orientations were made consistent
   std::int64_t split_vertices = 0;        ///< vertices duplicated to orient non-manifold fans
   std::int64_t stitched_edges = 0;        ///< border edge pairs stitched together
@@ -38,12 +54,15 @@ struct RepairedMesh {
   RepairReport report;
 };
 
-/// Tolerance weld (linear: a hash grid) and removal of repeated polygons; when the mesh then bounds
+/// Tolerance weld (linear: a hash grid) and repeated polygons: copies in the same direction keep
+/// one, a pair of reversed copies (an internal wall between two bodies) is removed whole, unless
+/// every face is in such a pair (a double-sided surface: one side kept). When the mesh then bounds
 /// a volume as it is (closed, manifold edges, consistent, shells outward and cavities inward),
 /// that is the result. Otherwise CGAL, on the polygons: repair_polygon_soup (duplicate points and
 /// faces, degenerate faces), orient_polygon_soup (consistent orientation),
-/// polygon_soup_to_polygon_mesh, stitch_borders, and — when the result is closed —
-/// orient_to_bound_a_volume (every shell outward, nested cavities inward).
+/// polygon_soup_to_polygon_mesh, stitch_borders, triangulate_hole on each border cycle left (on its
+/// own corners, minimal area), and — when the result is closed — orient_to_bound_a_volume (every
+/// shell outward, nested cavities inward).
 RepairedMesh RepairMesh(const PolygonMesh& mesh, const RepairOptions& options = {});
 
 /// The union of a mesh's closed shells (CGAL corefinement), for shells that overlap: the outward

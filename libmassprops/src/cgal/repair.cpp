@@ -11,7 +11,10 @@
 #include <stdexcept>
 #include <vector>
 
+#include <Eigen/Eigenvalues>
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -20,6 +23,7 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/stitch_borders.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/Surface_mesh.h>
 
 #include "from_surface_mesh.h"
@@ -67,12 +71,35 @@ Mesh ToCgal(const PolygonMesh& mesh) {
 
 PolygonMesh FromCgal(Mesh& mesh) { return cgal_internal::FromSurfaceMesh(mesh); }
 
-// The mesh with its corners renumbered through `map` (the weld), polygons whose corners are those
-// of an earlier polygon of more than three corners dropped (counted in `dropped`; CGAL's soup
-// repair finds repeated triangles), and the vertices no face uses removed (the others keep their
-// order).
-PolygonMesh WeldedWithoutDuplicates(const PolygonMesh& input, const std::vector<std::int32_t>& map,
-                                    std::int64_t& dropped) {
+// How polygon g's corners run against f's, both of n corners and the same corner set: +1 as the
+// same cycle, -1 reversed, 0 neither (a polygon that repeats a corner).
+int Direction(const std::int32_t* f, const std::int32_t* g, int n) {
+  for (int k = 0; k < n; ++k) {
+    if (g[k] != f[0]) continue;
+    bool same = true, reversed = true;
+    for (int i = 0; i < n; ++i) {
+      same = same && f[i] == g[(k + i) % n];
+      reversed = reversed && f[i] == g[(k - i + n) % n];
+    }
+    if (same) return 1;
+    if (reversed) return -1;
+  }
+  return 0;
+}
+
+// What became of repeated polygons.
+struct Repeats {
+  std::int64_t repeated = 0;  // copies of a kept polygon, dropped
+  std::int64_t walls = 0;     // polygons of internal walls (repeated in both directions), all dropped
+};
+
+// The mesh with its corners renumbered through `map` (the weld) and its repeated polygons (the
+// same corners after the weld) resolved: copies in the same direction keep the first; when a
+// polygon comes in both directions, all its copies go (the internal wall where two bodies, each
+// exported closed, touch: without it their shells are one, their union) — unless every polygon is
+// in such a pair, a double-sided surface, which keeps one side. The vertices no face uses are
+// removed (the others keep their order).
+PolygonMesh WeldedWithoutRepeats(const PolygonMesh& input, const std::vector<std::int32_t>& map, Repeats& repeats) {
   const std::int64_t nf = input.num_faces();
   // Each corner after the weld; and each polygon's sorted corners, hashed (equal hashes are
   // compared in full).
@@ -80,8 +107,8 @@ PolygonMesh WeldedWithoutDuplicates(const PolygonMesh& input, const std::vector<
   for (std::size_t c = 0; c < mapped.size(); ++c) mapped[c] = map[static_cast<std::size_t>(input.indices[c])];
   std::vector<std::int32_t> sorted = mapped;
   std::vector<std::pair<std::uint64_t, std::int64_t>> keys;
+  keys.reserve(static_cast<std::size_t>(nf));
   for (std::int64_t f = 0; f < nf; ++f) {
-    if (input.face_size(f) <= 3) continue;
     std::int32_t* b = sorted.data() + input.offsets[f];
     std::int32_t* e = sorted.data() + input.offsets[f + 1];
     std::sort(b, e);
@@ -90,26 +117,47 @@ PolygonMesh WeldedWithoutDuplicates(const PolygonMesh& input, const std::vector<
     keys.emplace_back(h ^ (h >> 29), f);
   }
   std::sort(keys.begin(), keys.end());
-  std::vector<char> drop(static_cast<std::size_t>(nf), 0);
-  auto same = [&](std::int64_t f, std::int64_t g) {
+  enum : char { kKeep = 0, kRepeated = 1, kWall = 2 };
+  std::vector<char> drop(static_cast<std::size_t>(nf), kKeep);
+  std::vector<std::int64_t> wall_firsts;  // the first polygon of each wall (kept if all are walls)
+  const auto same_corners = [&](std::int64_t f, std::int64_t g) {
     return input.face_size(f) == input.face_size(g) &&
            std::equal(sorted.begin() + input.offsets[f], sorted.begin() + input.offsets[f + 1],
                       sorted.begin() + input.offsets[g]);
   };
+  std::vector<char> seen(static_cast<std::size_t>(nf), 0);
+  std::vector<std::int64_t> group;
   for (std::size_t i = 0; i < keys.size();) {
     std::size_t j = i;
     while (j < keys.size() && keys[j].first == keys[i].first) ++j;
-    for (std::size_t a = i; a < j; ++a) {  // faces in increasing order: an earlier equal one wins
-      if (drop[static_cast<std::size_t>(keys[a].second)]) continue;
+    for (std::size_t a = i; a < j; ++a) {  // faces in increasing order: the earliest is kept
+      const std::int64_t f = keys[a].second;
+      if (seen[static_cast<std::size_t>(f)]) continue;
+      group.assign(1, f);
       for (std::size_t b = a + 1; b < j; ++b) {
-        if (!drop[static_cast<std::size_t>(keys[b].second)] && same(keys[a].second, keys[b].second)) {
-          drop[static_cast<std::size_t>(keys[b].second)] = 1;
-          ++dropped;
-        }
+        const std::int64_t g = keys[b].second;
+        if (!seen[static_cast<std::size_t>(g)] && same_corners(f, g))
+          group.push_back(g), seen[static_cast<std::size_t>(g)] = 1;
+      }
+      if (group.size() == 1) continue;
+      bool reversed = false;
+      for (std::size_t k = 1; k < group.size(); ++k) {
+        reversed = reversed || Direction(mapped.data() + input.offsets[f], mapped.data() + input.offsets[group[k]],
+                                         input.face_size(f)) < 0;
+      }
+      if (reversed) wall_firsts.push_back(f);
+      for (std::size_t k = reversed ? 0 : 1; k < group.size(); ++k) {
+        drop[static_cast<std::size_t>(group[k])] = reversed ? kWall : kRepeated;
       }
     }
     i = j;
   }
+  if (std::count(drop.begin(), drop.end(), kWall) == nf) {
+    for (std::int64_t f : wall_firsts) drop[static_cast<std::size_t>(f)] = kKeep;  // a double-sided surface
+    for (char& d : drop) d = d == kWall ? kRepeated : d;
+  }
+  repeats.walls = static_cast<std::int64_t>(std::count(drop.begin(), drop.end(), kWall));
+  repeats.repeated = static_cast<std::int64_t>(std::count(drop.begin(), drop.end(), kRepeated));
   std::vector<std::int32_t> renumber(static_cast<std::size_t>(input.V.rows()), -1);
   for (std::int64_t f = 0; f < nf; ++f) {
     if (drop[static_cast<std::size_t>(f)]) continue;
@@ -151,6 +199,51 @@ bool BoundsVolumeAsItIs(const PolygonMesh& mesh, double volume) {
   return AnalyzeShells(mesh).problem.empty();
 }
 
+// Closes each border cycle with triangles on its own corners (CGAL's triangulate_hole: a 2D
+// constrained Delaunay triangulation in the fitted plane when the corners lie near one, else the
+// minimal-area one). A planar hole (its corners within `flat` of one plane) is filled exactly; a
+// non-planar one adds its ambiguity, the thickness of the slab that holds its corners times the
+// patch's area, to the report's bound.
+void FillHoles(Mesh& mesh, double flat, RepairReport& rep) {
+  std::vector<Mesh::Halfedge_index> cycles;
+  PMP::extract_boundary_cycles(mesh, std::back_inserter(cycles));
+  for (const Mesh::Halfedge_index h : cycles) {
+    std::vector<Vector3> ring;
+    for (const Mesh::Halfedge_index e : CGAL::halfedges_around_face(h, mesh)) {
+      const Point& p = mesh.point(mesh.target(e));
+      ring.emplace_back(p.x(), p.y(), p.z());
+    }
+    if (ring.size() < 3) continue;
+    Vector3 center = Vector3::Zero();
+    for (const Vector3& p : ring) center += p;
+    center /= static_cast<double>(ring.size());
+    Matrix3 scatter = Matrix3::Zero();
+    for (const Vector3& p : ring) scatter += (p - center) * (p - center).transpose();
+    const Vector3 normal = Eigen::SelfAdjointEigenSolver<Matrix3>(scatter).eigenvectors().col(0);
+    double low = 0, high = 0;
+    for (const Vector3& p : ring)
+      low = std::min(low, normal.dot(p - center)), high = std::max(high, normal.dot(p - center));
+    const bool planar = high - low <= flat;
+    std::vector<Mesh::Face_index> patch;
+    // The cubic search space is for small holes only (time grows as the cube of the edges).
+    PMP::triangulate_hole(mesh, h, std::back_inserter(patch),
+                          PMP::parameters::do_not_use_cubic_algorithm(ring.size() > 100));
+    if (patch.empty()) {
+      ++rep.unfilled_holes;
+      continue;
+    }
+    double area = 0;
+    for (const Mesh::Face_index f : patch) area += PMP::face_area(f, mesh);
+    ++rep.filled_holes;
+    rep.largest_hole = std::max(rep.largest_hole, static_cast<std::int64_t>(ring.size()));
+    if (planar) {
+      ++rep.planar_holes;
+    } else {
+      rep.fill_volume_bound += (high - low) * area;
+    }
+  }
+}
+
 }  // namespace
 
 RepairedMesh RepairMesh(const PolygonMesh& input, const RepairOptions& options) {
@@ -158,14 +251,16 @@ RepairedMesh RepairMesh(const PolygonMesh& input, const RepairOptions& options) 
   RepairReport& rep = out.report;
   rep.volume_before = SignedVolume(input.V, Fans(input));
 
-  // 1. Tolerance weld, and polygons with the corners of an earlier one (in either orientation)
-  // dropped while they are polygons: a quad and its reverse make different fans, which CGAL would
-  // not see as duplicates.
+  // 1. Tolerance weld, and repeated polygons resolved while they are polygons (a quad and its
+  // reverse make different fans) and before CGAL, whose soup repair keeps one of a reversed pair.
   const double diag = input.V.rows() > 0 ? (input.V.colwise().maxCoeff() - input.V.colwise().minCoeff()).norm() : 0.0;
   const std::vector<std::int32_t> map =
       internal::WeldWithinTolerance(input.V, options.weld_tolerance * diag, rep.welded_vertices);
-  std::int64_t duplicate_polygons = 0;
-  PolygonMesh welded = WeldedWithoutDuplicates(input, map, duplicate_polygons);
+  Repeats repeats;
+  PolygonMesh welded = WeldedWithoutRepeats(input, map, repeats);
+  rep.repeated_faces = repeats.repeated;
+  rep.internal_walls = repeats.walls;
+  const std::int64_t duplicate_polygons = repeats.repeated + repeats.walls;
   const double welded_volume = SignedVolume(welded.V, Fans(welded));
 
   // 2. When the welded mesh already bounds a volume — closed, manifold edges, consistent, every
@@ -215,6 +310,7 @@ RepairedMesh RepairMesh(const PolygonMesh& input, const RepairOptions& options) 
   Mesh mesh;
   PMP::polygon_soup_to_polygon_mesh(points, polys, mesh);
   rep.stitched_edges = static_cast<std::int64_t>(PMP::stitch_borders(mesh));
+  if (!CGAL::is_closed(mesh) && !mesh.is_empty()) FillHoles(mesh, options.weld_tolerance * diag, rep);
   if (CGAL::is_closed(mesh) && !mesh.is_empty()) {
     mesh = ToCgal(FromCgal(mesh));
     PMP::orient_to_bound_a_volume(mesh);

@@ -58,6 +58,7 @@ void ReadPart(wire::Reader& r, const std::string& path, double mm, std::size_t i
   CadPart part;
   part.instance = r.Str();
   part.material = r.Str();
+  part.unit = r.Str();
   part.density = r.F64();
   if (!(part.density >= 0 && std::isfinite(part.density))) Malformed(path, "a density that is not a number >= 0");
   part.solid = r.U64() > 0;

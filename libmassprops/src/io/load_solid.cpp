@@ -227,7 +227,8 @@ bool TryStreamedStl(SolidResult& r, const std::string& file, const LoadOptions& 
   throw LoadError(r.source + ": " + std::to_string(t.duplicate_faces + t.reversed_duplicate_faces) +
                   " faces repeat the corners of another face (" + std::to_string(t.reversed_duplicate_faces) +
                   " of them reversed): the surface is there twice, and its volume and inertia would count it "
-                  "twice or cancel it; remove the duplicates ({repair} does)");
+                  "twice or cancel it; {repair} resolves them (a face repeated reversed is the internal wall "
+                  "where two bodies touch: both copies go, and the bodies unite; same-direction copies keep one)");
 }
 
 // "; 288 of its boundary corners lie within 1e-9 of the part's size from another: unwelded corners
@@ -262,9 +263,73 @@ void RefuseOpen(const SolidResult& r, const LoadOptions& opt, bool wall) {
                                            " of the B-rep's faces: another deflection may mesh them, or {allow_open} "
                                            "with {brep} reports the B-rep's own numbers)"
                                      : "") +
+                  (opt.repair && r.repair && r.repair->unfilled_holes > 0
+                       ? " (" + std::to_string(r.repair->unfilled_holes) + " holes could not be triangulated)"
+                       : "") +
                   ". The mesh does not bound a solid, so its mass properties are not defined; " +
-                  (opt.repair ? "close the holes in a modelling tool, " : "try {repair}, ") +
-                  "or pass {allow_open} to compute anyway");
+                  (opt.repair ? "close the holes in a modelling tool, "
+                              : "try {repair} (it fills holes: planar ones exactly, others within a stated bound), ") +
+                  "{winding_number} for an estimate with error bars, or pass {allow_open} to compute anyway (no "
+                  "bound)");
+}
+
+// What the repair changed that the numbers rest on, said with its counts; and the ambiguity of
+// filling non-planar holes, as a bound on every number (relative_error_bound), refused past 1 %.
+// Another fill of a hole within the slab that holds its boundary adds or removes at most
+// dV = thickness × patch area; that much mass at most R (the farthest corner) from the center of
+// mass moves it by at most dc = dV · 2R / (V − dV), and the inertia by at most ρ dV R² about the
+// old center plus M dc² for the shift, against the largest principal moment.
+void AddRepairFindings(SolidResult& r, const LoadOptions& opt) {
+  if (!r.repair) return;
+  const RepairReport& rep = *r.repair;
+  if (rep.internal_walls > 0) {
+    Warn(r, FindingKind::kRepaired,
+         "{repair} removed " + std::to_string(rep.internal_walls) +
+             " faces that each repeat another reversed: internal walls where bodies exported closed each touch; "
+             "the bodies are computed as their union");
+  }
+  if (rep.repeated_faces > 0) {
+    Warn(r, FindingKind::kRepaired,
+         "{repair} removed " + std::to_string(rep.repeated_faces) +
+             " repeated faces (copies of another face in the same direction; one of each kept)");
+  }
+  if (rep.filled_holes == 0) return;
+  const std::string planar = rep.planar_holes == rep.filled_holes ? "all planar, filled exactly"
+                             : rep.planar_holes == 0              ? "none planar"
+                                                     : std::to_string(rep.planar_holes) + " planar, filled exactly";
+  std::string filled = "{repair} filled " + std::to_string(rep.filled_holes) +
+                       (rep.filled_holes == 1 ? " hole (" : " holes (") + planar + "; the largest has " +
+                       std::to_string(rep.largest_hole) + " edges)";
+  if (!(rep.fill_volume_bound > 0) || !(r.mp.volume > 0)) {
+    Warn(r, FindingKind::kRepaired, filled);
+    return;
+  }
+  const double m = MetresPerUnit(opt.unit);
+  const double dv = rep.fill_volume_bound * m * m * m, v = r.mp.volume;
+  double reach = 0;  // R: the farthest corner from the center of mass, m
+  for (Eigen::Index i = 0; i < r.loaded.mesh.V.rows(); ++i) {
+    reach = std::max(reach, (r.loaded.mesh.V.row(i).transpose() * m - r.mp.center_of_mass).norm());
+  }
+  const double dc = dv < v ? dv * 2 * reach / (v - dv) : reach;
+  const double largest_moment = r.principal.moments.maxCoeff();
+  const double inertia =
+      largest_moment > 0 ? (r.mp.density * dv * reach * reach + r.mp.mass * dc * dc) / largest_moment : 1.0;
+  const double bound = std::max({dv / v, r.size_m > 0 ? dc / r.size_m : 1.0, inertia});
+  if (bound > 1e-2) {
+    throw LoadError(r.source + ": after {repair}: " + std::to_string(rep.filled_holes - rep.planar_holes) +
+                    " of the holes filled are not planar (the largest hole has " + std::to_string(rep.largest_hole) +
+                    " edges): another fill within the slab that holds each hole's boundary could change the numbers "
+                    "by up to " +
+                    Fixed(100 * std::min(bound, 1e6), "%.2g") +
+                    " %, over the 1 % the repair accepts; {winding_number} estimates the solid with error bars, or "
+                    "close the holes in a modelling tool");
+  }
+  Warn(r, FindingKind::kRepaired,
+       filled +
+           "; the non-planar ones are ambiguous: another fill within the slab that holds each hole's "
+           "boundary could change the volume by " +
+           Fixed(dv / v, "%.1g") + " relative, and every number by at most " + Fixed(bound, "%.1g") + " relative");
+  if (bound > 1e-9) r.relative_error_bound = std::max(r.relative_error_bound, bound);
 }
 
 void IntegrateShell(SolidResult& r, const ShellModel& shell, const LoadOptions& opt) {
@@ -708,6 +773,7 @@ SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_c
   } else {
     IntegrateSolid(r, opt);
   }
+  AddRepairFindings(r, opt);
   if (opt.hull) AddHull(r, surface, opt);
   if (opt.exact) Certify(r, opt);
   if (!wall) AddBrep(r, opt);

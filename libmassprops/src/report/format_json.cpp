@@ -162,6 +162,9 @@ Json ToJson(const SolidResult& r, const FormatOptions& opt) {
   j["warnings"] = warnings;
   if (r.part.empty()) j.erase("part");
   if (!r.instance.empty()) j["instance"] = r.instance;
+  if (!r.part.empty() && !r.loaded.cad_parts.empty() && !r.loaded.cad_parts.front().unit.empty()) {
+    j["declared_unit"] = r.loaded.cad_parts.front().unit;  // the part's own, as the file names it
+  }
   if (!r.parts.empty()) {
     Json parts = Json::array();
     for (const SolidResult& part : r.parts) parts.push_back(ToJson(part, opt));

@@ -34,9 +34,19 @@ std::string FormatTable(const SolidResult& r, const FormatOptions& opt) {
   std::ostringstream out;
   const ReportUnits& u = opt.units;
   for (const SolidResult& part : r.parts) out << FormatOne(part, opt) << "\n";
-  // A part's row: its name, and a CAD component's own name beside it ("pin [pin:2]").
-  auto label = [](const SolidResult& part) {
-    return part.instance.empty() || part.instance == part.part ? part.part : part.part + " [" + part.instance + "]";
+  // A part's row: its name, and a CAD component's own name beside it ("pin [pin:2]"); when the
+  // parts declare different units, each its own ("in INCH"), the numbers all in the output's.
+  const auto declared = [](const SolidResult& part) {
+    return part.loaded.cad_parts.empty() ? std::string() : part.loaded.cad_parts.front().unit;
+  };
+  const bool mixed_units = std::any_of(r.parts.begin(), r.parts.end(), [&](const SolidResult& part) {
+    return declared(part) != declared(r.parts.front());
+  });
+  auto label = [&](const SolidResult& part) {
+    std::string text =
+        part.instance.empty() || part.instance == part.part ? part.part : part.part + " [" + part.instance + "]";
+    if (mixed_units && !declared(part).empty()) text += " (declared in " + declared(part) + ")";
+    return text;
   };
   std::size_t width = 5;  // "whole"; a shorter part name ("Moon") once made the padding negative
   for (const SolidResult& part : r.parts) width = std::max(width, label(part).size());
@@ -112,9 +122,10 @@ std::string FormatOne(const SolidResult& r, const FormatOptions& opt) {
     out << "precision       the file's coordinates are 32-bit floats (~7 significant digits)\n";
   }
   if (r.relative_error_bound > 0) {
-    out << "precision       rounding leaves these numbers good to about "
-        << FormatDouble(r.relative_error_bound, "%.1g") << " relative (printed to " << digits + 1
-        << " significant digits)\n";
+    const bool filled = r.repair && r.repair->fill_volume_bound > 0;
+    out << "precision       " << (filled ? "the filled holes' ambiguity" : "rounding")
+        << " leaves these numbers good to about " << FormatDouble(r.relative_error_bound, "%.1g")
+        << " relative (printed to " << digits + 1 << " significant digits)\n";
   }
   out << "units           file coordinates in " << UnitName(r.unit) << " (" << MetresPerUnit(r.unit) << " m each"
       << (r.unit_source == UnitSource::kFile ? ", declared by the file" : "") << "), results in "

@@ -14,6 +14,7 @@ std::string CommandLine(Option option, std::string_view value) {
     case Option::kFullCheck: return "--full-check";
     case Option::kWall: return "--wall";
     case Option::kBrep: return "--brep";
+    case Option::kWindingNumber: return "--winding-number";
   }
   return "?";
 }
@@ -27,6 +28,7 @@ std::string Scene(Option option, std::string_view value) {
     case Option::kFullCheck: return "(always done in scenes)";
     case Option::kWall: return "wall";
     case Option::kBrep: return "(the massprops command's --brep)";
+    case Option::kWindingNumber: return "(the massprops command's --winding-number)";
   }
   return "?";
 }
@@ -39,6 +41,7 @@ std::string Poses(Option option, std::string_view value) {
     case Option::kFullCheck: return "(always done by rbsim poses)";
     case Option::kWall: return "(not in rbsim poses)";
     case Option::kBrep: return "(massprops --brep)";
+    case Option::kWindingNumber: return "(massprops --winding-number)";
   }
   return "?";
 }
@@ -51,6 +54,7 @@ std::string Python(Option option, std::string_view value) {
     case Option::kFullCheck: return "full_check=True";
     case Option::kWall: return "wall=...";
     case Option::kBrep: return "brep=True";
+    case Option::kWindingNumber: return "winding_number=True";
   }
   return "?";
 }

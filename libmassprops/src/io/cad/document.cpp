@@ -15,6 +15,20 @@
 #include <IGESData_IGESModel.hxx>
 #include <STEPCAFControl_Reader.hxx>
 #include <Standard_Failure.hxx>
+#include <StepBasic_ConversionBasedUnitAndLengthUnit.hxx>
+#include <StepBasic_HArray1OfNamedUnit.hxx>
+#include <StepBasic_Product.hxx>
+#include <StepBasic_ProductDefinition.hxx>
+#include <StepBasic_ProductDefinitionFormation.hxx>
+#include <StepBasic_SiUnitAndLengthUnit.hxx>
+#include <StepData_StepModel.hxx>
+#include <StepGeom_GeomRepContextAndGlobUnitAssCtxAndGlobUncertaintyAssCtx.hxx>
+#include <StepGeom_GeometricRepresentationContextAndGlobalUnitAssignedContext.hxx>
+#include <StepRepr_CharacterizedDefinition.hxx>
+#include <StepRepr_PropertyDefinition.hxx>
+#include <StepRepr_Representation.hxx>
+#include <StepRepr_RepresentedDefinition.hxx>
+#include <StepShape_ShapeDefinitionRepresentation.hxx>
 #include <TColStd_SequenceOfAsciiString.hxx>
 #include <TDataStd_Name.hxx>
 #include <TDataStd_TreeNode.hxx>
@@ -132,6 +146,61 @@ void Collect(const TDF_Label& label, const gp_Trsf& placement, const std::string
   out.push_back(in);
 }
 
+// The length unit of a STEP representation context, as the file names it: a conversion-based
+// unit's name ("INCH"), or an SI unit with its prefix ("MILLIMETRE"); "" when it declares none.
+std::string LengthUnitWord(const Handle(StepRepr_RepresentationContext) & context) {
+  Handle(StepBasic_HArray1OfNamedUnit) units;
+  if (const auto a = Handle(StepGeom_GeomRepContextAndGlobUnitAssCtxAndGlobUncertaintyAssCtx)::DownCast(context)) {
+    units = a->Units();
+  } else if (const auto b =
+                 Handle(StepGeom_GeometricRepresentationContextAndGlobalUnitAssignedContext)::DownCast(context)) {
+    units = b->Units();
+  }
+  if (units.IsNull()) return "";
+  for (Standard_Integer i = units->Lower(); i <= units->Upper(); ++i) {
+    const Handle(StepBasic_NamedUnit)& unit = units->Value(i);
+    if (const auto c = Handle(StepBasic_ConversionBasedUnitAndLengthUnit)::DownCast(unit)) {
+      return c->Name().IsNull() ? "" : c->Name()->ToCString();
+    }
+    if (const auto si = Handle(StepBasic_SiUnitAndLengthUnit)::DownCast(unit)) {
+      if (si->Name() != StepBasic_sunMetre) continue;
+      if (!si->HasPrefix()) return "METRE";
+      switch (si->Prefix()) {
+        case StepBasic_spMilli: return "MILLIMETRE";
+        case StepBasic_spCenti: return "CENTIMETRE";
+        case StepBasic_spDeci: return "DECIMETRE";
+        case StepBasic_spMicro: return "MICROMETRE";
+        case StepBasic_spKilo: return "KILOMETRE";
+        default: return "";
+      }
+    }
+  }
+  return "";
+}
+
+// Each product's declared length unit, by product name: the context of the representation its
+// SHAPE_DEFINITION_REPRESENTATION uses (a name given two units maps to "").
+std::map<std::string, std::string> ProductUnits(const Handle(StepData_StepModel) & model) {
+  std::map<std::string, std::string> units;
+  if (model.IsNull()) return units;
+  for (Standard_Integer i = 1; i <= model->NbEntities(); ++i) {
+    const auto sdr = Handle(StepShape_ShapeDefinitionRepresentation)::DownCast(model->Value(i));
+    if (sdr.IsNull() || sdr->UsedRepresentation().IsNull()) continue;
+    const Handle(StepRepr_PropertyDefinition) property = sdr->Definition().PropertyDefinition();
+    if (property.IsNull()) continue;
+    const Handle(StepBasic_ProductDefinition) definition = property->Definition().ProductDefinition();
+    if (definition.IsNull() || definition->Formation().IsNull() || definition->Formation()->OfProduct().IsNull()) {
+      continue;
+    }
+    const Handle(TCollection_HAsciiString) name = definition->Formation()->OfProduct()->Name();
+    const std::string word = LengthUnitWord(sdr->UsedRepresentation()->ContextOfItems());
+    if (name.IsNull() || word.empty()) continue;
+    const auto [it, added] = units.emplace(name->ToCString(), word);
+    if (!added && it->second != word) it->second.clear();
+  }
+  return units;
+}
+
 // Reads a STEP or IGES file into an XCAF document (names, placements, materials).
 template <typename CafReader>
 Handle(TDocStd_Document) Transfer(CafReader& reader, const char* path) {
@@ -179,6 +248,11 @@ Document ReadStep(const char* path) {
     }
   }
   CollectInstances(doc, d);
+  const std::map<std::string, std::string> units = ProductUnits(reader.ChangeReader().StepModel());
+  for (Instance& in : d.instances) {
+    const auto it = units.find(in.name);
+    if (it != units.end()) in.unit_word = it->second;
+  }
   return d;
 }
 

@@ -33,6 +33,9 @@ struct Instance {
   std::string name;      ///< the product's name
   std::string instance;  ///< the assembly component's own label ("" when it has none or is the product)
   std::string material;
+  /// The length unit the product's own representation declares, as the file names it ("INCH");
+  /// "" when not known. OpenCASCADE has converted its coordinates to millimetres already.
+  std::string unit_word;
   double density = 0;  // kg/m^3
   TopoDS_Shape shape;
   gp_Trsf placement;

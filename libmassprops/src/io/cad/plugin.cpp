@@ -12,7 +12,7 @@
 //
 // Message 1, the result (wire.h): format word, the file's unit word ("" when it names none),
 // millimetres per file unit (0: unknown), the notes about the file (count, strings), the number of
-// parts, then per part: product name, instance name, material name, density (kg/m^3, 0: none),
+// parts, then per part: product name, instance name, material name, declared unit word, density (kg/m^3, 0: none),
 // solids (count), volume, center of mass (3), inertia about it (9, row-major), error estimate,
 // surface area, deflection used, faces left untessellated, edges left unwelded, the fixes (count,
 // strings), the file's own properties (flags: 1 volume, 2 centroid, 4 area; volume, centroid (3),
@@ -163,6 +163,7 @@ void WritePart(const Instance& in, const Prototype& p, const MasspropsCadOptions
   w.Str(in.name);
   w.Str(in.instance);
   w.Str(in.material);
+  w.Str(in.unit_word);
   w.F64(in.density);
   w.U64(static_cast<std::uint64_t>(p.set.count));
   w.F64(exact.volume);
