@@ -308,6 +308,29 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
     if (!(length > 0) || !std::isfinite(length)) return centroid;
     return Vector3(centroid - (1e-7 * size / length) * n);
   };
+  // Samples of face f for the crossing test: behind its first triangle's centroid, behind the
+  // midpoints of that triangle's edges (pulled 1e-3 of the way toward the centroid, off the edges
+  // that neighbouring faces share) and behind the polygon's corner average. A crossing can hide
+  // from centroids alone: two 64-gon prisms crossed at right angles through their middles have
+  // every side triangle's centroid a third of the way up, outside the other prism, while the
+  // middle of each side face lies inside it.
+  auto behind_points = [&](std::int64_t f) {
+    std::vector<Vector3> points{behind_face(f)};
+    const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
+    const Vector3 a = mesh.V.row(idx[0]).transpose(), b = mesh.V.row(idx[1]).transpose(),
+                  c = mesh.V.row(idx[2]).transpose();
+    const Vector3 centroid = (a + b + c) / 3.0;
+    const Vector3 shift = behind_face(f) - centroid;
+    for (const Vector3& m : {Vector3((a + b) / 2), Vector3((b + c) / 2), Vector3((c + a) / 2)}) {
+      points.push_back(m + 1e-3 * (centroid - m) + shift);
+    }
+    if (mesh.face_size(f) > 3) {
+      Vector3 average = Vector3::Zero();
+      for (int k = 0; k < mesh.face_size(f); ++k) average += mesh.V.row(idx[k]).transpose();
+      points.push_back(average / mesh.face_size(f) + shift);
+    }
+    return points;
+  };
   // Closedness per shell, and a probe point per shell (just behind its first face).
   const std::size_t ns = report.shells.size();
   std::vector<Vector3> probe(ns);
@@ -377,13 +400,15 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
       // Boxes apart: every sample is outside t, none inside.
       if (!box[s].intersects(box[t])) continue;
       bool in = false, out = false;
-      for (std::size_t k = 0; k < count; ++k) {
+      for (std::size_t k = 0; k < count && !(in && out); ++k) {
         const double spread = std::fmod(0.6180339887498949 * static_cast<double>(k), 1.0);
         const auto at =
             std::min(faces.size() - 1, static_cast<std::size_t>(spread * static_cast<double>(faces.size())));
-        const double w = std::fabs(winding(t, behind_face(faces[at])));
-        in = in || w > 0.75;
-        out = out || w < 0.25;
+        for (const Vector3& x : behind_points(faces[at])) {
+          const double w = std::fabs(winding(t, x));
+          in = in || w > 0.75;
+          out = out || w < 0.25;
+        }
       }
       if (in && out) report.crossing = {static_cast<int>(t), static_cast<int>(s)};
     }

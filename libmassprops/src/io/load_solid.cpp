@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 
 #include "geometry_steps_internal.h"
@@ -680,6 +681,28 @@ std::string DescribeConflict(OptionConflict conflict) {
   return "?";
 }
 
+namespace {
+
+// Overlapping shells CGAL cannot unite (a shell that intersects itself): their union is where
+// the generalized winding number is at least 1/2 (2 inside both, 1 inside one), estimated with
+// error bars, the route said.
+void EstimateUnion(SolidResult& r, const LoadOptions& opt, const std::string& why) {
+  r.model = ModelKind::kWindingNumber;
+  TriangleMesh tri = Triangulate(r.loaded.mesh);
+  tri.V *= MetresPerUnit(opt.unit);
+  Warn(r, FindingKind::kOverlappingShells,
+       r.shells.problem + "; CGAL could not unite them (" + why +
+           "), so their union is estimated as the solid where the winding number is at least 1/2, with error "
+           "bars");
+  r.shells = ShellReport{};
+  Stage(opt, "building the winding-number hierarchy");
+  const auto* wn = std::get_if<WindingNumberModel>(&opt.model);
+  Estimate(r, *implicit::WindingNumberSolid(tri), wn ? wn->sampling : MonteCarloOptions{}, opt.mass, opt.unit_stated,
+           opt.num_threads, opt.progress);
+}
+
+}  // namespace
+
 namespace internal {
 
 SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_clock::time_point t0) {
@@ -756,7 +779,16 @@ SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_c
       // Overlapping shells: their union is the solid they describe together.
       Stage(opt, "uniting the overlapping shells (CGAL)");
       std::int64_t united = 0;
-      r.loaded.mesh = RequireGeometrySteps("the union of overlapping shells").union_of_shells(r.loaded.mesh, united);
+      try {
+        if (std::getenv("MASSPROPS_UNION_FAULT") != nullptr) {  // tests: the fallback, forced
+          throw std::runtime_error("the union was made to fail (MASSPROPS_UNION_FAULT)");
+        }
+        r.loaded.mesh = RequireGeometrySteps("the union of overlapping shells").union_of_shells(r.loaded.mesh, united);
+      } catch (const std::runtime_error& e) {
+        EstimateUnion(r, opt, e.what());
+        r.seconds = SecondsSince(t0);
+        return r;
+      }
       r.repair->united_shells = united;
       r.repair->volume_after = SignedVolumeOf(r.loaded.mesh);
       r.topology = AnalyzeTopology(r.loaded.mesh);
