@@ -697,8 +697,8 @@ void EstimateUnion(SolidResult& r, const LoadOptions& opt, const std::string& wh
   r.shells = ShellReport{};
   Stage(opt, "building the winding-number hierarchy");
   const auto* wn = std::get_if<WindingNumberModel>(&opt.model);
-  Estimate(r, *implicit::WindingNumberSolid(tri), wn ? wn->sampling : WindingNumberSampling(), opt.mass, opt.unit_stated,
-           opt.num_threads, opt.progress);
+  Estimate(r, *implicit::WindingNumberSolid(tri), wn ? wn->sampling : WindingNumberSampling(), opt.mass,
+           opt.unit_stated, opt.num_threads, opt.progress);
 }
 
 }  // namespace
