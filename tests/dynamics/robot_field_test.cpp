@@ -217,7 +217,9 @@ TEST(RobotField, MjcfCollisionBitsDecideWhatTouches) {
   for (const massprops::RobotGround& g : m.grounds)
     world.AddGround({g.normal, g.offset, {}, {g.contype, g.conaffinity}});
   const dynamics::RobotInWorld added = dynamics::AddRobot(world, m);
-  ASSERT_EQ(added.bodies.size(), 4u);
+  ASSERT_EQ(added.bodies.size(), 6u);
+  ASSERT_EQ(m.excluded.size(), 1u);
+  EXPECT_TRUE(AnyContains(m.notes, "1 <contact><pair>(s) are not simulated"));
   for (int s = 0; s < 1000; ++s) ASSERT_TRUE(world.Step(1e-3).ok);
   auto z = [&](const char* name) {
     for (std::size_t k = 0; k < added.bodies.size(); ++k) {
@@ -231,6 +233,10 @@ TEST(RobotField, MjcfCollisionBitsDecideWhatTouches) {
   EXPECT_LT(z("ghost"), -2.0);  // through the ball and the floor: free fall from 0.5 m for 1 s
   EXPECT_NEAR(z("other_ball"), 0.1, 1e-3);
   EXPECT_NEAR(z("lander"), 0.3, 2e-3);  // on the ball
+  EXPECT_NEAR(z("third_ball"), 0.1, 1e-3);
+  EXPECT_NEAR(z("dropper"), 0.1, 1e-3);  // excluded from the ball: through it, onto the floor
+  EXPECT_THROW(world.ExcludePair(0, 0), std::invalid_argument);
+  EXPECT_THROW(world.ExcludePair(0, 6), std::invalid_argument);
 }
 
 // MJCF armature (from the joint defaults): a hinged bar's small-amplitude period is

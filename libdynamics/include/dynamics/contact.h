@@ -260,6 +260,9 @@ class ContactWorld {
   void AddForce(std::unique_ptr<Force> force) { world_.AddForce(std::move(force)); }
   /// A joint (World::AddJoint): its bodies then step in joint coordinates, through contact too.
   int AddJoint(const Joint& joint) { return world_.AddJoint(joint); }
+  /// Bodies a and b never touch each other (MJCF's <contact><exclude>); each still touches the
+  /// rest. @throws std::invalid_argument unless a and b are two different bodies of the world.
+  void ExcludePair(int a, int b);
   /// The material of contacts between bodies a and b (-1: the ground and static bodies).
   void SetPairMaterial(int a, int b, const Material& material);
 

@@ -544,6 +544,11 @@ RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotO
       world.AddJoint(weld);
     }
   }
+  // The file's excluded pairs (MJCF <contact><exclude>), between the bodies their links became.
+  for (const auto& [l1, l2] : model.excluded) {
+    const int a = out.body_of_link[static_cast<std::size_t>(l1)], b = out.body_of_link[static_cast<std::size_t>(l2)];
+    if (a != b) world.ExcludePair(a, b);
+  }
   return out;
 }
 

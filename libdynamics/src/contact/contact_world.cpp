@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
@@ -103,6 +104,7 @@ struct ContactWorld::Impl {
   std::vector<contact::BroadStatic> static_broad;  // each static body posed in the world, with its bounds
   std::vector<Ground> grounds;
   std::map<std::pair<int, int>, Material> pair_materials;
+  std::set<std::pair<int, int>> excluded;  // body pairs that never touch (ExcludePair), (min, max)
   contact::ContactCache cache;  // the last step's impulses: the warm start of the next
   // Scratch.
   std::vector<contact::Row> rows;
@@ -264,6 +266,15 @@ void ContactWorld::AddGround(Ground ground) {
   ground.offset /= len;
   ground.normal /= len;
   impl_->grounds.push_back(ground);
+}
+
+void ContactWorld::ExcludePair(int a, int b) {
+  const int n = static_cast<int>(world_.bodies().size());
+  if (a < 0 || b < 0 || a >= n || b >= n || a == b) {
+    throw std::invalid_argument("ContactWorld::ExcludePair: bodies " + std::to_string(a) + " and " +
+                                std::to_string(b) + " are not two of the world's " + std::to_string(n) + " bodies");
+  }
+  impl_->excluded.insert({std::min(a, b), std::max(a, b)});
 }
 
 void ContactWorld::SetPairMaterial(int a, int b, const Material& material) {
@@ -517,6 +528,13 @@ StepStatus ContactWorld::Step(double h) {
   }
   const std::vector<contact::BroadStatic>& statics = m.static_broad;
   std::vector<contact::Candidate> candidates = contact::FindCandidates(broad, statics);
+  if (!m.excluded.empty()) {
+    candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
+                                    [&](const contact::Candidate& p) {
+                                      return p.b >= 0 && m.excluded.count({std::min(p.a, p.b), std::max(p.a, p.b)});
+                                    }),
+                     candidates.end());
+  }
   if (jointed != nullptr) {
     const contact::Coupling& c = m.coupling;
     candidates.erase(std::remove_if(candidates.begin(), candidates.end(),

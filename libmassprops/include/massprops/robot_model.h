@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -123,6 +124,8 @@ struct RobotModel {
   std::vector<RobotGround> grounds;      ///< the file's own floors (MJCF); none: the simulator's
   std::vector<RobotActuator> actuators;  ///< MJCF <actuator>s on joints
   std::vector<RobotKeyframe> keyframes;  ///< MJCF <keyframe><key>s
+  /// MJCF <contact><exclude body1 body2>: pairs of links (indices into `links`) that never touch.
+  std::vector<std::pair<int, int>> excluded;
   std::vector<std::string> notes;        ///< what was read but is not simulated (actuators, armature)
   /// The links no joint moves from a parent link: the roots of the trees.
   std::vector<int> Roots() const;

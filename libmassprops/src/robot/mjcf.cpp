@@ -8,6 +8,7 @@
 // A geom's own mass or density attribute is its own; a mass or density of 0 makes it massless: it
 // still collides (contype/conaffinity decide with what), but adds no mass.
 
+#include <array>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -505,6 +506,37 @@ std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options) {
   return links;
 }
 
+// <contact>: each <exclude body1 body2> a pair of links that never touch; <pair>s are noted
+// (their geoms collide by their contype/conaffinity bits alone here).
+void ContactFilters(const pugi::xml_node& root, const std::vector<Link>& links, RobotModel& model) {
+  std::map<std::string, int> by_name;
+  for (std::size_t k = 0; k < links.size(); ++k) by_name.emplace(links[k].name, static_cast<int>(k));
+  int pairs = 0;
+  for (pugi::xml_node contact : root.children("contact")) {
+    int k = 0;
+    for (pugi::xml_node exclude : contact.children("exclude")) {
+      ++k;
+      std::array<int, 2> ends{};
+      for (int e = 0; e < 2; ++e) {
+        const char* key = e == 0 ? "body1" : "body2";
+        const std::string name = exclude.attribute(key).value();
+        const auto it = by_name.find(name);
+        if (it == by_name.end()) {
+          throw ElementError("<contact> exclude #" + std::to_string(k) + ": " + key + "=\"" + name +
+                             "\" names no body");
+        }
+        ends[static_cast<std::size_t>(e)] = it->second;
+      }
+      if (ends[0] != ends[1]) model.excluded.emplace_back(ends[0], ends[1]);
+    }
+    for (pugi::xml_node pair = contact.child("pair"); pair; pair = pair.next_sibling("pair")) ++pairs;
+  }
+  if (pairs > 0) {
+    model.notes.push_back(std::to_string(pairs) +
+                          " <contact><pair>(s) are not simulated: their geoms collide by contype/conaffinity alone");
+  }
+}
+
 void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotModel& model) {
   const pugi::xml_node root = doc.xml.child("mujoco");
   model.name = root.attribute("model").value();
@@ -641,6 +673,7 @@ void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotMo
   }
   Actuators(root, defaults, model);
   Keyframes(root, model);
+  ContactFilters(root, links, model);
 }
 
 void WriteMjcfInertial(Link& link, const MassProperties& mp, const PrincipalInertia& principal) {
