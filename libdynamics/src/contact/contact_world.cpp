@@ -6,8 +6,8 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <set>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -105,7 +105,7 @@ struct ContactWorld::Impl {
   std::vector<Ground> grounds;
   std::map<std::pair<int, int>, Material> pair_materials;
   std::set<std::pair<int, int>> excluded;  // body pairs that never touch (ExcludePair), (min, max)
-  contact::ContactCache cache;  // the last step's impulses: the warm start of the next
+  contact::ContactCache cache;             // the last step's impulses: the warm start of the next
   // Scratch.
   std::vector<contact::Row> rows;
   std::vector<contact::Patch> patches;  // the last step's, with its rows (Contacts())
@@ -271,8 +271,8 @@ void ContactWorld::AddGround(Ground ground) {
 void ContactWorld::ExcludePair(int a, int b) {
   const int n = static_cast<int>(world_.bodies().size());
   if (a < 0 || b < 0 || a >= n || b >= n || a == b) {
-    throw std::invalid_argument("ContactWorld::ExcludePair: bodies " + std::to_string(a) + " and " +
-                                std::to_string(b) + " are not two of the world's " + std::to_string(n) + " bodies");
+    throw std::invalid_argument("ContactWorld::ExcludePair: bodies " + std::to_string(a) + " and " + std::to_string(b) +
+                                " are not two of the world's " + std::to_string(n) + " bodies");
   }
   impl_->excluded.insert({std::min(a, b), std::max(a, b)});
 }

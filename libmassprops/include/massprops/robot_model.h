@@ -126,7 +126,7 @@ struct RobotModel {
   std::vector<RobotKeyframe> keyframes;  ///< MJCF <keyframe><key>s
   /// MJCF <contact><exclude body1 body2>: pairs of links (indices into `links`) that never touch.
   std::vector<std::pair<int, int>> excluded;
-  std::vector<std::string> notes;        ///< what was read but is not simulated (actuators, armature)
+  std::vector<std::string> notes;  ///< what was read but is not simulated (actuators, armature)
   /// The links no joint moves from a parent link: the roots of the trees.
   std::vector<int> Roots() const;
 };

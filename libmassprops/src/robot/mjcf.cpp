@@ -8,8 +8,8 @@
 // A geom's own mass or density attribute is its own; a mass or density of 0 makes it massless: it
 // still collides (contype/conaffinity decide with what), but adds no mass.
 
-#include <array>
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
