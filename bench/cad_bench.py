@@ -14,35 +14,21 @@ Markdown table, with massprops' time over the plain program's as the ratio (the 
 and without the interference test. --quick: one run each (a smoke run). Exits non-zero if the
 command's B-rep volume and the mesh's differ by more than the bound the deflection implies.
 """
-import argparse
 import json
 import os
 import statistics
 import subprocess
 import sys
 import tempfile
-import time
 
-
-def timed(cmd):
-    t0 = time.perf_counter()
-    out = subprocess.run(cmd, capture_output=True, text=True)
-    elapsed = time.perf_counter() - t0
-    if out.returncode != 0:
-        raise SystemExit(f"{' '.join(cmd)} exited with {out.returncode}: {out.stderr}")
-    return elapsed, out.stdout
+from bench_common import arguments, timed
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--build", default="build")
-    ap.add_argument("--repeat", type=int, default=9)
-    ap.add_argument("--quick", action="store_true")
-    a = ap.parse_args()
-    repeat = 1 if a.quick else a.repeat
-    cli = os.path.join(a.build, "apps", "massprops")
-    stages = os.path.join(a.build, "bench", "cad_stages")
-    make = os.path.join(a.build, "tests", "make_cad")
+    build, repeat, quick = arguments(9)
+    cli = os.path.join(build, "apps", "massprops")
+    stages = os.path.join(build, "bench", "cad_stages")
+    make = os.path.join(build, "tests", "make_cad")
     failed = False
     with tempfile.TemporaryDirectory() as tmp:
         subprocess.run([make, "--bench", tmp], check=True)
@@ -55,7 +41,7 @@ def main():
             quiet = cmd + ["--interference-pairs", "0"]
             plain = [stages, path, "--mesh", "0"]
             timed(cmd)  # warm
-            ours, alone, base, read, mesh, brep = [], [], [], [], [], []
+            ours, alone, base = [], [], []
             for _ in range(repeat):
                 t, out = timed(cmd)
                 ours.append(t)

@@ -13,7 +13,6 @@ file's and over `cat`'s. --quick: the 10^4 sphere only, one run (a smoke run). E
 route's volume is off the intact sphere's by more than its own stated bound (the repair's
 relative_error_bound, the winding number's 4 standard errors) plus the holes' own share.
 """
-import argparse
 import json
 import math
 import os
@@ -22,7 +21,8 @@ import struct
 import subprocess
 import sys
 import tempfile
-import time
+
+from bench_common import arguments, timed
 
 
 def sphere(r, around, rows, holes=()):
@@ -50,24 +50,10 @@ def write_stl(path, triangles):
     return len(tris)
 
 
-def timed(cmd, stdout=subprocess.PIPE):
-    t0 = time.perf_counter()
-    out = subprocess.run(cmd, stdout=stdout, stderr=subprocess.PIPE, text=True)
-    elapsed = time.perf_counter() - t0
-    if out.returncode != 0:
-        raise SystemExit(f"{' '.join(cmd)} exited with {out.returncode}: {out.stderr}")
-    return elapsed, out.stdout
-
-
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--build", default="build")
-    ap.add_argument("--repeat", type=int, default=5)
-    ap.add_argument("--quick", action="store_true")
-    a = ap.parse_args()
-    repeat = 1 if a.quick else a.repeat
-    cli = os.path.join(a.build, "apps", "massprops")
-    sizes = [(100, 50)] if a.quick else [(100, 50), (1000, 500)]
+    build, repeat, quick = arguments(5)
+    cli = os.path.join(build, "apps", "massprops")
+    sizes = [(100, 50)] if quick else [(100, 50), (1000, 500)]
     failed = False
     rows = []
     m = statistics.median
