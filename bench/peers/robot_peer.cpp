@@ -12,6 +12,10 @@
 //   robot_peer --bench   steps per second (h = 1 ms, medians of three runs) of the quadruped
 //                        settling on the ground and of a 7-DOF arm draped over a table, ours
 //                        against MuJoCo's Euler
+//   robot_peer --bench --file FILE.xml
+//                        any MJCF file as it is (its floor, its placement), limp: steps per second
+//                        over 3 s of falling and resting in each engine, when each comes to rest
+//                        and where it rests the root
 //   robot_peer --joints FILE.xml KEY SECONDS TOL
 //                        any MJCF file as it is, from its keyframe KEY ('' for none): every
 //                        hinge's and slide's angle and rate after SECONDS in both engines, and a
@@ -52,6 +56,7 @@ struct Setup {
   bool ground = true;                       ///< else a table
   double base_z = 0;                        ///< the root body's height at the start
   std::map<std::string, double> positions;  ///< initial joint positions
+  bool file_floor = false;                  ///< the file brings its floor and places the robot
 };
 
 std::string Slurp(const std::string& path) {
@@ -124,6 +129,14 @@ Setup Arm() {
   return s;
 }
 
+/// Any MJCF file as it is, with its own floor, placed where it places itself.
+Setup FromFile(const std::string& path) {
+  Setup s;
+  s.path = s.mujoco_path = path;
+  s.file_floor = true;
+  return s;
+}
+
 struct Ours {
   dynamics::ContactWorld world;
   int base = 0;
@@ -131,16 +144,21 @@ struct Ours {
     dynamics::World w(dynamics::Integrator::kImplicitMidpoint);
     w.AddForce(dynamics::Gravity(Vector3(0, 0, -9.81)));
     world = dynamics::ContactWorld(std::move(w));
-    if (s.ground) {
+    const massprops::RobotModel model = massprops::ReadRobotModel(s.path);
+    if (s.file_floor) {
+      for (const massprops::RobotGround& g : model.grounds) {
+        world.AddGround({g.normal, g.offset, {}, {g.contype, g.conaffinity}});
+      }
+    } else if (s.ground) {
       world.AddGround({});
     } else {
       world.AddStatic({dynamics::shape::Box{kTableHalf}, massprops::Matrix3::Identity(), Vector3::Zero(), {}},
                       massprops::Matrix3::Identity(), kTableCentre);
     }
     dynamics::RobotOptions options;
-    options.pose.translation = Vector3(0, 0, s.base_z);
+    if (!s.file_floor) options.pose.translation = Vector3(0, 0, s.base_z);
     options.positions = s.positions;
-    base = dynamics::AddRobot(world, massprops::ReadRobotModel(s.path), options).bodies.front();
+    base = dynamics::AddRobot(world, model, options).bodies.front();
   }
   void Step() {
     const dynamics::StepStatus st = world.Step(1e-3);
@@ -163,7 +181,7 @@ struct MuJoCo {
     m = mj_loadXML(s.mujoco_path.c_str(), nullptr, error, sizeof error);
     if (!m) throw std::runtime_error(std::string("MuJoCo refused the model: ") + error);
     d = mj_makeData(m);
-    if (s.ground) d->qpos[2] = s.base_z;  // the free joint's position
+    if (s.ground && !s.file_floor) d->qpos[2] = s.base_z;  // the free joint's position
     for (const auto& [name, q] : s.positions) {
       const int j = mj_name2id(m, mjOBJ_JOINT, name.c_str());
       if (j < 0) throw std::runtime_error("MuJoCo's model has no joint '" + name + "'");
@@ -254,6 +272,28 @@ double StepsPerSecond(const Setup& s, int steps) {
   });
 }
 
+// Steps per second of one MJCF file as it is (its floor, its placement), limp, falling and coming
+// to rest: the first and the last of `seconds`, and where each engine rests it.
+int BenchFile(const std::string& path, double seconds) {
+  const Setup s = FromFile(path);
+  const int steps = static_cast<int>(std::lround(seconds / 1e-3));
+  Ours ours(s);
+  MuJoCo mj(s);
+  const auto [ours_rest, ours_z] = Settle(ours, seconds);
+  const auto [mj_rest, mj_z] = Settle(mj, seconds);
+  std::printf("%s: %d bodies in MuJoCo, limp, h = 1 ms for %g s\n", path.c_str(), mj.m->nbody - 1, seconds);
+  std::printf(
+      "  at rest after: ours %.3f s, MuJoCo %.3f s (-1: not at rest); root's center of mass at the end: "
+      "ours %.4f m, MuJoCo %.4f m\n",
+      ours_rest, mj_rest, ours_z, mj_z);
+  const double o = StepsPerSecond<Ours>(s, steps), m = StepsPerSecond<MuJoCo>(s, steps);
+  std::printf(
+      "  steps/s (medians of 3 runs of %d steps, the fall and the rest): ours %.0f, MuJoCo Euler %.0f, "
+      "MuJoCo / ours %.2f\n",
+      steps, o, m, m / o);
+  return 0;
+}
+
 int Bench() {
   const Setup q = Quadruped(), a = Arm();
   std::printf("h = 1 ms, steps/s (medians of 3 runs of 3000 steps: the fall, the landing and rest)\n");
@@ -338,12 +378,14 @@ int main(int argc, char** argv) {
   const std::string mode = argc > 1 ? argv[1] : "";
   try {
     if (mode == "--check") return Check();
-    if (mode == "--bench") return Bench();
+    if (mode == "--bench" && argc == 2) return Bench();
+    if (mode == "--bench" && argc == 4 && std::string(argv[2]) == "--file") return BenchFile(argv[3], 3.0);
     if (mode == "--joints" && argc == 6) return Joints(argv[2], argv[3], std::stod(argv[4]), std::stod(argv[5]));
   } catch (const std::exception& e) {
     std::cerr << "robot_peer: " << e.what() << "\n";
     return 1;
   }
-  std::cerr << "usage: robot_peer --check | --bench | --joints FILE.xml KEYFRAME|'' SECONDS TOLERANCE\n";
+  std::cerr << "usage: robot_peer --check | --bench [--file FILE.xml] | --joints FILE.xml KEYFRAME|'' SECONDS "
+               "TOLERANCE\n";
   return 2;
 }
