@@ -278,6 +278,24 @@ TEST(RobotField, ArmatureAddsToTheHingesInertiaAndItsEnergyIsCounted) {
   }
 }
 
+// A keyframe's free-joint qvel, in MuJoCo's convention (the frame's linear velocity in the world,
+// its angular velocity in its own axes): the center of mass 0.1 m off the frame flies the
+// parabola from v + ω × r, and the spin about the axis of symmetry stays.
+TEST(RobotField, AKeyframesFreeJointVelocityThrowsTheRoot) {
+  const massprops::RobotModel m = massprops::ReadRobotModel(kField + "mjcf/thrown.xml");
+  ContactWorld world = WorldWithGravity(false);
+  dynamics::RobotOptions options;
+  options.keyframe = "throw";
+  const dynamics::RobotInWorld added = dynamics::AddRobot(world, m, options);
+  const double t = 0.5;
+  for (int s = 0; s < 500; ++s) ASSERT_TRUE(world.Step(1e-3).ok);
+  const dynamics::RigidBody& b = world.world().bodies()[static_cast<std::size_t>(added.bodies.front())];
+  // The center of mass starts at (0.1, 0, 1) moving at v + ω × r = (1, 0.3, 2).
+  const Vector3 expected(0.1 + 1 * t, 0.3 * t, 1 + 2 * t - kG * t * t / 2);
+  EXPECT_LE((b.position - expected).norm(), 1e-9) << b.position.transpose();
+  EXPECT_LE((b.AngularVelocity() - Vector3(0, 0, 3)).norm(), 1e-12);
+}
+
 // MJCF actuators as MuJoCo defines them, driven by a keyframe's ctrl: a motor holds a bar level
 // with gear ctrl = −m g d; a velocity actuator turns a damped wheel at kv ctrl / (kv + c); a
 // general actuator with an affine bias moves its pendulum as the position servo it equals.

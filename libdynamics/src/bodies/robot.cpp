@@ -456,6 +456,16 @@ RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotO
     b.inertia = group.moments;
     b.position = body.translation;
     b.orientation = QuaternionOf(body.rotation);
+    // A keyframe's free-joint qvel, as MuJoCo's: the root frame's velocity in the world, then its
+    // angular velocity in its own axes; the center of mass moves with the frame.
+    const int above = joint_above[static_cast<std::size_t>(group.root)];
+    if (above >= 0 && model.joints[static_cast<std::size_t>(above)].type == RobotJointType::kFloating &&
+        key.v[static_cast<std::size_t>(above)].size() == 6) {
+      const std::vector<double>& v = key.v[static_cast<std::size_t>(above)];
+      const Vector3 omega = root_in_world[g].rotation * Vector3(v[3], v[4], v[5]);
+      b.velocity = Vector3(v[0], v[1], v[2]) + omega.cross(body.translation - root_in_world[g].translation);
+      b.SetAngularVelocity(omega);
+    }
     const std::vector<PlacedGeometry> geometries = GeometriesOf(model, group, options, out.notes);
     const std::optional<Collider> collider = ColliderOf(geometries, options);
     out.bodies.push_back(collider ? world.AddBody(b, *collider) : world.AddBody(b));
