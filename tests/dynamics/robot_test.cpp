@@ -167,9 +167,10 @@ TEST(Robot, RefusesWhatItCannotSimulate) {
                                        R"(<joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>
 <joint name="j2" type="fixed"><parent link="a"/><child link="b"/></joint></robot>)"),
                 "closed loop");
+  // Several hinges in one body are read (robot_multi_hinge_mujoco); a free joint beside another is not.
   ExpectRefused(Write("two_joints.xml", R"(<mujoco><worldbody><body name="b"><inertial mass="1" diaginertia="1 1 1"/>
-<joint name="x" type="hinge"/><joint name="y" type="hinge"/></body></worldbody></mujoco>)"),
-                "body 'b' has 2 joints");
+<freejoint name="x"/><joint name="y" type="hinge"/></body></worldbody></mujoco>)"),
+                "joint 'x': a free joint below another body, or beside other joints");
   ExpectRefused(
       Write("equality.xml", R"(<mujoco><worldbody/><equality><connect body1="a" anchor="0 0 0"/></equality></mujoco>)"),
       "closed loops");

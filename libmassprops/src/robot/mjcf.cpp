@@ -537,6 +537,84 @@ void ContactFilters(const pugi::xml_node& root, const std::vector<Link>& links, 
   }
 }
 
+// One MJCF <joint>/<freejoint> of body `body` (named `name`) read into a joint: its type, its anchor
+// and axis in the body's frame (parent_to_joint is the anchor, joint_to_child its inverse), limits,
+// damping, friction, stiffness and armature. The parent, child and the body's placement are the
+// caller's.
+RobotJoint MjcfJoint(const pugi::xml_node& e, const pugi::xml_node& body, const Defaults& defaults,
+                     const Compiler& compiler, double angle, const std::string& name, RobotModel& model) {
+  RobotJoint j;
+  j.name = name;
+  const std::string cls = e.attribute("class")           ? e.attribute("class").value()
+                          : body.attribute("childclass") ? body.attribute("childclass").value()
+                                                         : "main";
+  auto attr = [&](const char* a) -> pugi::xml_attribute {
+    if (const pugi::xml_attribute own = e.attribute(a)) return own;
+    return defaults.Find(cls, "joint", a);
+  };
+  if (e.attribute("name")) j.name = e.attribute("name").value();
+  const std::string jw = "joint '" + j.name + "'";
+  const std::string type = std::string(e.name()) == "freejoint" ? "free"
+                           : attr("type")                       ? attr("type").value()
+                                                                : "hinge";
+  if (type == "free") {
+    j.type = RobotJointType::kFloating;
+    return j;
+  }
+  j.type = type == "hinge"   ? RobotJointType::kRevolute
+           : type == "slide" ? RobotJointType::kPrismatic
+           : type == "ball"  ? RobotJointType::kBall
+                             : throw ElementError(jw + ": type \"" + type + "\" is not simulated");
+  Vector3 pos = Vector3::Zero();
+  if (const pugi::xml_attribute p = attr("pos")) {
+    const auto v = Numbers(p.value(), 3, jw + " pos");
+    pos = Vector3(v[0], v[1], v[2]);
+  }
+  j.parent_to_joint = Placement{Matrix3::Identity(), pos};
+  j.joint_to_child = Placement{Matrix3::Identity(), -pos};
+  if (const pugi::xml_attribute a = attr("axis")) {
+    const auto v = Numbers(a.value(), 3, jw + " axis");
+    const Vector3 axis(v[0], v[1], v[2]);
+    if (!(axis.norm() > 1e-12)) throw ElementError(jw + ": a zero axis");
+    j.axis = axis.normalized();
+  } else {
+    j.axis = Vector3::UnitZ();
+  }
+  const double unit = j.type == RobotJointType::kRevolute ? angle : 1.0;
+  auto number = [&](const char* a, double fallback) {
+    const pugi::xml_attribute v = attr(a);
+    return v ? Numbers(v.value(), 1, jw + " " + a)[0] : fallback;
+  };
+  const std::string limited = attr("limited") ? attr("limited").value() : "auto";
+  const pugi::xml_attribute range = attr("range");
+  if (range && (limited == "true" || (limited == "auto" && compiler.autolimits)) && type != "ball") {
+    const auto r = Numbers(range.value(), 2, jw + " range");
+    if (!(r[0] <= r[1])) throw ElementError(jw + ": range's lower end is above its upper");
+    j.lower = r[0] * unit;
+    j.upper = r[1] * unit;
+  } else {
+    if (range && type != "ball") {
+      model.notes.push_back(jw + ": its range is not a limit (" +
+                            (limited == "false" ? std::string("limited=\"false\"")
+                                                : std::string("<compiler autolimits=\"false\"> and no limited")) +
+                            ")");
+    }
+    if (type == "hinge") j.type = RobotJointType::kContinuous;
+  }
+  j.damping = number("damping", 0.0);
+  j.friction = number("frictionloss", 0.0);
+  j.stiffness = number("stiffness", 0.0);
+  j.rest = number("springref", 0.0) * unit;
+  if (number("ref", 0.0) != 0) throw ElementError(jw + ": a non-zero ref is not followed");
+  j.armature = number("armature", 0.0);
+  if (!(j.armature >= 0)) throw ElementError(jw + ": a negative armature");
+  if (j.type == RobotJointType::kBall && j.armature > 0) {
+    model.notes.push_back(jw + ": armature on a ball joint is not simulated");
+    j.armature = 0;
+  }
+  return j;
+}
+
 void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotModel& model) {
   const pugi::xml_node root = doc.xml.child("mujoco");
   model.name = root.attribute("model").value();
@@ -584,92 +662,44 @@ void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotMo
       const std::string tag = j.name();
       if (tag == "joint" || tag == "freejoint") joints.push_back(j);
     }
-    if (joints.size() > 1) {
-      throw ElementError(what + " has " + std::to_string(joints.size()) +
-                         " joints: one joint per body is simulated (give each its own body)");
-    }
-    RobotJoint j;
-    j.parent = parent;
-    j.child = static_cast<int>(k);
-    j.name = name;
-    j.parent_to_joint = body_in_parent;
     if (joints.empty()) {
+      RobotJoint j;
+      j.parent = parent;
+      j.child = static_cast<int>(k);
       j.type = RobotJointType::kFixed;
       j.name = name + " (welded)";
+      j.parent_to_joint = body_in_parent;
       model.joints.push_back(j);
       continue;
     }
-    const pugi::xml_node e = joints.front();
-    const std::string cls = e.attribute("class")           ? e.attribute("class").value()
-                            : body.attribute("childclass") ? body.attribute("childclass").value()
-                                                           : "main";
-    auto attr = [&](const char* a) -> pugi::xml_attribute {
-      if (const pugi::xml_attribute own = e.attribute(a)) return own;
-      return defaults.Find(cls, "joint", a);
-    };
-    if (e.attribute("name")) j.name = e.attribute("name").value();
-    const std::string jw = "joint '" + j.name + "'";
-    const std::string type = std::string(e.name()) == "freejoint" ? "free"
-                             : attr("type")                       ? attr("type").value()
-                                                                  : "hinge";
-    if (type == "free") {
-      if (parent >= 0) throw ElementError(jw + ": a free joint below another body is not simulated");
-      j.type = RobotJointType::kFloating;
-      model.joints.push_back(j);
-      continue;
-    }
-    j.type = type == "hinge"   ? RobotJointType::kRevolute
-             : type == "slide" ? RobotJointType::kPrismatic
-             : type == "ball"  ? RobotJointType::kBall
-                               : throw ElementError(jw + ": type \"" + type + "\" is not simulated");
-    Vector3 pos = Vector3::Zero();
-    if (const pugi::xml_attribute p = attr("pos")) {
-      const auto v = Numbers(p.value(), 3, jw + " pos");
-      pos = Vector3(v[0], v[1], v[2]);
-    }
-    j.parent_to_joint = body_in_parent.Then(Placement{Matrix3::Identity(), pos});
-    j.joint_to_child = Placement{Matrix3::Identity(), -pos};
-    if (const pugi::xml_attribute a = attr("axis")) {
-      const auto v = Numbers(a.value(), 3, jw + " axis");
-      const Vector3 axis(v[0], v[1], v[2]);
-      if (!(axis.norm() > 1e-12)) throw ElementError(jw + ": a zero axis");
-      j.axis = axis.normalized();
-    } else {
-      j.axis = Vector3::UnitZ();
-    }
-    const double unit = j.type == RobotJointType::kRevolute ? angle : 1.0;
-    auto number = [&](const char* a, double fallback) {
-      const pugi::xml_attribute v = attr(a);
-      return v ? Numbers(v.value(), 1, jw + " " + a)[0] : fallback;
-    };
-    const std::string limited = attr("limited") ? attr("limited").value() : "auto";
-    const pugi::xml_attribute range = attr("range");
-    if (range && (limited == "true" || (limited == "auto" && compiler.autolimits)) && type != "ball") {
-      const auto r = Numbers(range.value(), 2, jw + " range");
-      if (!(r[0] <= r[1])) throw ElementError(jw + ": range's lower end is above its upper");
-      j.lower = r[0] * unit;
-      j.upper = r[1] * unit;
-    } else {
-      if (range && type != "ball") {
-        model.notes.push_back(jw + ": its range is not a limit (" +
-                              (limited == "false" ? std::string("limited=\"false\"")
-                                                  : std::string("<compiler autolimits=\"false\"> and no limited")) +
-                              ")");
+    // Several joints in one body (a hip's three hinges) act in turn, each about its own anchor and
+    // axis in the body's frame: a chain through frames that coincide with the body's at q = 0,
+    // each a link of negligible mass (1e-9 kg, 1e-15 kg m²: below every tolerance of the
+    // simulation), so that MuJoCo's composition is followed exactly in the joints' coordinates.
+    int from = parent;
+    for (std::size_t i = 0; i < joints.size(); ++i) {
+      const bool last = i + 1 == joints.size();
+      int to = static_cast<int>(k);
+      if (!last) {
+        RobotLink frame;
+        frame.name = name + " (joint frame " + std::to_string(i + 1) + ")";
+        frame.inertial = RobotInertial{1e-9, Vector3::Zero(), 1e-15 * Matrix3::Identity()};
+        model.links.push_back(std::move(frame));
+        to = static_cast<int>(model.links.size()) - 1;
       }
-      if (type == "hinge") j.type = RobotJointType::kContinuous;
+      const std::string unnamed = joints.size() > 1 ? name + " (joint " + std::to_string(i + 1) + ")" : name;
+      RobotJoint j = MjcfJoint(joints[i], body, defaults, compiler, angle, unnamed, model);
+      if (j.type == RobotJointType::kFloating && (parent >= 0 || joints.size() > 1)) {
+        throw ElementError("joint '" + j.name + "': a free joint below another body, or beside other joints, " +
+                           "is not simulated");
+      }
+      j.parent = from;
+      j.child = to;
+      const Placement before = i == 0 ? body_in_parent : Placement{};
+      j.parent_to_joint = before.Then(j.parent_to_joint);
+      model.joints.push_back(j);
+      from = to;
     }
-    j.damping = number("damping", 0.0);
-    j.friction = number("frictionloss", 0.0);
-    j.stiffness = number("stiffness", 0.0);
-    j.rest = number("springref", 0.0) * unit;
-    if (number("ref", 0.0) != 0) throw ElementError(jw + ": a non-zero ref is not followed");
-    j.armature = number("armature", 0.0);
-    if (!(j.armature >= 0)) throw ElementError(jw + ": a negative armature");
-    if (j.type == RobotJointType::kBall && j.armature > 0) {
-      model.notes.push_back(jw + ": armature on a ball joint is not simulated");
-      j.armature = 0;
-    }
-    model.joints.push_back(j);
   }
   Actuators(root, defaults, model);
   Keyframes(root, model);
