@@ -681,10 +681,10 @@ void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotMo
       const bool last = i + 1 == joints.size();
       int to = static_cast<int>(k);
       if (!last) {
-        RobotLink frame;
-        frame.name = name + " (joint frame " + std::to_string(i + 1) + ")";
-        frame.inertial = RobotInertial{1e-9, Vector3::Zero(), 1e-15 * Matrix3::Identity()};
-        model.links.push_back(std::move(frame));
+        RobotLink joint_frame;
+        joint_frame.name = name + " (joint frame " + std::to_string(i + 1) + ")";
+        joint_frame.inertial = RobotInertial{1e-9, Vector3::Zero(), 1e-15 * Matrix3::Identity()};
+        model.links.push_back(std::move(joint_frame));
         to = static_cast<int>(model.links.size()) - 1;
       }
       const std::string unnamed = joints.size() > 1 ? name + " (joint " + std::to_string(i + 1) + ")" : name;
