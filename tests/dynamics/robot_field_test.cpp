@@ -296,6 +296,29 @@ TEST(RobotField, AKeyframesFreeJointVelocityThrowsTheRoot) {
   EXPECT_LE((b.AngularVelocity() - Vector3(0, 0, 3)).norm(), 1e-12);
 }
 
+// An actuator's ranges follow <compiler autolimits> as joints' ranges do: with it (MuJoCo 3's
+// default) a ctrlrange without ctrllimited is a limit; without it, it is not, and that is noted.
+TEST(RobotField, ActuatorRangesFollowAutolimitsAsJointRangesDo) {
+  const auto model = [](const std::string& compiler) {
+    const std::string path = (std::filesystem::temp_directory_path() / "autolimits_actuator.xml").string();
+    std::ofstream(path) << "<mujoco>" << compiler << R"(<worldbody><body name="bar">
+<joint name="hinge" axis="0 1 0" range="-1 1"/><inertial mass="1" diaginertia="0.1 0.1 0.01"/></body></worldbody>
+<actuator><motor joint="hinge" gear="2" ctrlrange="-1 1" forcerange="-3 3"/></actuator></mujoco>)";
+    return massprops::ReadRobotModel(path);
+  };
+  const massprops::RobotModel on = model("");
+  ASSERT_EQ(on.actuators.size(), 1u);
+  ASSERT_TRUE(on.actuators[0].ctrlrange.has_value());
+  EXPECT_EQ(on.actuators[0].ctrlrange->second, 1.0);
+  EXPECT_TRUE(on.joints[0].upper.has_value());
+  const massprops::RobotModel off = model(R"(<compiler autolimits="false"/>)");
+  EXPECT_FALSE(off.actuators[0].ctrlrange.has_value());
+  EXPECT_FALSE(off.actuators[0].forcerange.has_value());
+  EXPECT_FALSE(off.joints[0].upper.has_value());
+  EXPECT_TRUE(AnyContains(off.notes, "ctrlrange is not a limit (<compiler autolimits=\"false\"> and no limited)"));
+  EXPECT_TRUE(AnyContains(off.notes, "its range is not a limit"));
+}
+
 // MJCF actuators as MuJoCo defines them, driven by a keyframe's ctrl: a motor holds a bar level
 // with gear ctrl = −m g d; a velocity actuator turns a damped wheel at kv ctrl / (kv + c); a
 // general actuator with an affine bias moves its pendulum as the position servo it equals.

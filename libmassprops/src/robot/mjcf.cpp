@@ -343,10 +343,21 @@ void WorldGeoms(pugi::xml_node root, const Compiler& compiler, const Defaults& d
 
 // An optional range "lo hi" that `limited` (true, false, or auto: given means limited, MuJoCo 3)
 // makes a limit.
+// An actuator's ctrlrange or forcerange as its ctrllimited/forcelimited says: "auto" (the default)
+// is a limit when <compiler autolimits> is on, as for joints' ranges; a range that is not a limit
+// is noted.
 std::optional<std::pair<double, double>> Range(pugi::xml_attribute limited, pugi::xml_attribute range,
-                                               const std::string& what) {
+                                               const std::string& what, bool autolimits,
+                                               std::vector<std::string>& notes) {
   const std::string l = limited ? limited.value() : "auto";
-  if (!range || l == "false") return std::nullopt;
+  if (!range) return std::nullopt;
+  if (l == "false" || (l == "auto" && !autolimits)) {
+    notes.push_back(what + " is not a limit (" +
+                    (l == "false" ? std::string("its limited is \"false\"")
+                                  : std::string("<compiler autolimits=\"false\"> and no limited")) +
+                    ")");
+    return std::nullopt;
+  }
   const auto r = Numbers(range.value(), 2, what);
   if (!(r[0] <= r[1])) throw ElementError(what + ": its lower end is above its upper");
   return std::pair<double, double>{r[0], r[1]};
@@ -355,7 +366,7 @@ std::optional<std::pair<double, double>> Range(pugi::xml_attribute limited, pugi
 // <actuator>: position, velocity, motor and general (fixed gain, affine or no bias) on joints, in
 // MuJoCo's general form (robot_model.h). The others, and those on tendons or sites, are noted and
 // kept as placeholders, so that keyframes' ctrl stays aligned with the file's actuators.
-void Actuators(pugi::xml_node root, const Defaults& defaults, RobotModel& model) {
+void Actuators(pugi::xml_node root, const Defaults& defaults, const Compiler& compiler, RobotModel& model) {
   int k = 0;
   std::vector<std::string> left_out;
   for (pugi::xml_node section : root.children("actuator")) {
@@ -420,8 +431,10 @@ void Actuators(pugi::xml_node root, const Defaults& defaults, RobotModel& model)
         }
       }
       act.joint = static_cast<int>(it - model.joints.begin());
-      act.ctrlrange = Range(attr("ctrllimited"), attr("ctrlrange"), what + " ctrlrange");
-      act.forcerange = Range(attr("forcelimited"), attr("forcerange"), what + " forcerange");
+      act.ctrlrange =
+          Range(attr("ctrllimited"), attr("ctrlrange"), what + " ctrlrange", compiler.autolimits, model.notes);
+      act.forcerange =
+          Range(attr("forcelimited"), attr("forcerange"), what + " forcerange", compiler.autolimits, model.notes);
       model.actuators.push_back(act);
     }
   }
@@ -701,7 +714,7 @@ void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotMo
       from = to;
     }
   }
-  Actuators(root, defaults, model);
+  Actuators(root, defaults, compiler, model);
   Keyframes(root, model);
   ContactFilters(root, links, model);
 }
