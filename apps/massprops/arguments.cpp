@@ -157,13 +157,8 @@ LoadOptions ToLoadOptions(const Arguments& a, const CLI::App& app) {
   } else if (a.wall > 0) {
     o.model = WallModel{a.wall};
   } else if (a.winding_number) {
-    // Unless a count or a tolerance is asked for, the route's own default: a tolerance of 1e-3.
-    MonteCarloOptions sampling = Sampling(a);
-    if (app.count("--samples") + app.count("--tolerance") == 0) {
-      sampling.samples = WindingNumberSampling().samples;
-      sampling.tolerance = WindingNumberSampling().tolerance;
-    }
-    o.model = WindingNumberModel{sampling};
+    o.model =
+        WindingNumberModel{WindingNumberSampling(Sampling(a), app.count("--samples") + app.count("--tolerance") > 0)};
   }
   o.path = FromName<IntegrationPath>({{"auto", IntegrationPath::kAuto},
                                       {"triangles", IntegrationPath::kTriangles},

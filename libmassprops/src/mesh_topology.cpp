@@ -315,12 +315,13 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
   // every side triangle's centroid a third of the way up, outside the other prism, while the
   // middle of each side face lies inside it.
   auto behind_points = [&](std::int64_t f) {
-    std::vector<Vector3> points{behind_face(f)};
+    const Vector3 behind = behind_face(f);
+    std::vector<Vector3> points{behind};
     const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
     const Vector3 a = mesh.V.row(idx[0]).transpose(), b = mesh.V.row(idx[1]).transpose(),
                   c = mesh.V.row(idx[2]).transpose();
     const Vector3 centroid = (a + b + c) / 3.0;
-    const Vector3 shift = behind_face(f) - centroid;
+    const Vector3 shift = behind - centroid;
     for (const Vector3& m : {Vector3((a + b) / 2), Vector3((b + c) / 2), Vector3((c + a) / 2)}) {
       points.push_back(m + 1e-3 * (centroid - m) + shift);
     }

@@ -162,14 +162,8 @@ LoadOptions ToLoadOptions(const py::kwargs& kw) {
   o.mass_stated = mass || density;
   if (shell) o.model = ShellModel{*shell};
   if (wall) o.model = WallModel{*wall};
-  if (winding_number) {
-    // Without `samples`, the route's own default (a tolerance of 1e-3); with it, that many points.
-    if (!kw.contains("samples")) {
-      sampling.samples = WindingNumberSampling().samples;
-      sampling.tolerance = WindingNumberSampling().tolerance;
-    }
-    o.model = WindingNumberModel{sampling};
-  }
+  // Without `samples`, the route's own default (a tolerance of 1e-3); with it, that many points.
+  if (winding_number) o.model = WindingNumberModel{WindingNumberSampling(sampling, kw.contains("samples"))};
   // The library's rules on which options go together (the command line checks the same ones).
   if (const auto conflict = FindOptionConflict(o)) {
     throw py::value_error(report::WordedConflict(*conflict, report::FrontEnd::kPython));

@@ -65,6 +65,16 @@ inline MonteCarloOptions WindingNumberSampling() {
   return mc;
 }
 
+/// The sampling a front end asks for (method, seed, ...), with the route's default count and
+/// tolerance unless it asked for a count or a tolerance itself.
+inline MonteCarloOptions WindingNumberSampling(MonteCarloOptions asked, bool count_or_tolerance_given) {
+  if (!count_or_tolerance_given) {
+    asked.samples = WindingNumberSampling().samples;
+    asked.tolerance = WindingNumberSampling().tolerance;
+  }
+  return asked;
+}
+
 /// The solid where the generalized winding number of the surface is at least 1/2 (holes are
 /// bridged), estimated by Monte Carlo or quasi-Monte Carlo with error bars. The sampling options'
 /// fixed_mass and num_threads are taken from LoadOptions.

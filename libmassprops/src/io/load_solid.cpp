@@ -683,22 +683,27 @@ std::string DescribeConflict(OptionConflict conflict) {
 
 namespace {
 
-// Overlapping shells CGAL cannot unite (a shell that intersects itself): their union is where
-// the generalized winding number is at least 1/2 (2 inside both, 1 inside one), estimated with
-// error bars, the route said.
-void EstimateUnion(SolidResult& r, const LoadOptions& opt, const std::string& why) {
+// The solid where the mesh's generalized winding number is at least 1/2, estimated with error
+// bars (the options' winding-number sampling, or the route's default).
+void EstimateByWindingNumber(SolidResult& r, const LoadOptions& opt) {
   r.model = ModelKind::kWindingNumber;
   TriangleMesh tri = Triangulate(r.loaded.mesh);
   tri.V *= MetresPerUnit(opt.unit);
+  Stage(opt, "building the winding-number hierarchy");
+  const auto* wn = std::get_if<WindingNumberModel>(&opt.model);
+  Estimate(r, *implicit::WindingNumberSolid(tri), wn ? wn->sampling : WindingNumberSampling(), opt.mass,
+           opt.unit_stated, opt.num_threads, opt.progress);
+}
+
+// Overlapping shells CGAL cannot unite (a shell that intersects itself): their union is where
+// the winding number is at least 1/2 (2 inside both, 1 inside one), the route said.
+void EstimateUnion(SolidResult& r, const LoadOptions& opt, const std::string& why) {
   Warn(r, FindingKind::kOverlappingShells,
        r.shells.problem + "; CGAL could not unite them (" + why +
            "), so their union is estimated as the solid where the winding number is at least 1/2, with error "
            "bars");
   r.shells = ShellReport{};
-  Stage(opt, "building the winding-number hierarchy");
-  const auto* wn = std::get_if<WindingNumberModel>(&opt.model);
-  Estimate(r, *implicit::WindingNumberSolid(tri), wn ? wn->sampling : WindingNumberSampling(), opt.mass,
-           opt.unit_stated, opt.num_threads, opt.progress);
+  EstimateByWindingNumber(r, opt);
 }
 
 }  // namespace
@@ -739,18 +744,13 @@ SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_c
              " pairs of faces intersect: where the surface passes through itself, volume is counted twice or "
              "cancelled, and the numbers are not those of a solid");
   }
-  if (const auto* wn = std::get_if<WindingNumberModel>(&opt.model)) {
+  if (std::holds_alternative<WindingNumberModel>(opt.model)) {
     // Inside is where the generalized winding number is at least 1/2: holes are bridged, so an
     // open scan gets a sensible solid; the estimate carries error bars.
-    r.model = ModelKind::kWindingNumber;
-    TriangleMesh tri = Triangulate(mesh);
-    tri.V *= MetresPerUnit(opt.unit);
     if (!r.topology.BoundsVolume()) {
       Warn(r, FindingKind::kOpenSurface, r.topology.Problems() + "; the winding number bridges the holes");
     }
-    Stage(opt, "building the winding-number hierarchy");
-    Estimate(r, *implicit::WindingNumberSolid(tri), wn->sampling, opt.mass, opt.unit_stated, opt.num_threads,
-             opt.progress);
+    EstimateByWindingNumber(r, opt);
     r.seconds = SecondsSince(t0);
     return r;
   }

@@ -24,6 +24,11 @@ int DigitsOf(const SolidResult& r) {
   return std::clamp(static_cast<int>(std::floor(-std::log10(r.relative_error_bound))) - 1, 0, 10);
 }
 
+// A part's name, and a CAD component's own name beside it when it has one ("pin [pin:2]").
+std::string PartLabel(const SolidResult& part) {
+  return part.instance.empty() || part.instance == part.part ? part.part : part.part + " [" + part.instance + "]";
+}
+
 std::string FormatOne(const SolidResult& r, const FormatOptions& opt);
 
 }  // namespace
@@ -34,8 +39,8 @@ std::string FormatTable(const SolidResult& r, const FormatOptions& opt) {
   std::ostringstream out;
   const ReportUnits& u = opt.units;
   for (const SolidResult& part : r.parts) out << FormatOne(part, opt) << "\n";
-  // A part's row: its name, and a CAD component's own name beside it ("pin [pin:2]"); when the
-  // parts declare different units, each its own ("in INCH"), the numbers all in the output's.
+  // A part's row: its label; when the parts declare different units, each its own ("declared in
+  // INCH"), the numbers all in the output's.
   const auto declared = [](const SolidResult& part) {
     return part.loaded.cad_parts.empty() ? std::string() : part.loaded.cad_parts.front().unit;
   };
@@ -43,8 +48,7 @@ std::string FormatTable(const SolidResult& r, const FormatOptions& opt) {
     return declared(part) != declared(r.parts.front());
   });
   auto label = [&](const SolidResult& part) {
-    std::string text =
-        part.instance.empty() || part.instance == part.part ? part.part : part.part + " [" + part.instance + "]";
+    std::string text = PartLabel(part);
     if (mixed_units && !declared(part).empty()) text += " (declared in " + declared(part) + ")";
     return text;
   };
@@ -94,8 +98,7 @@ std::string FormatOne(const SolidResult& r, const FormatOptions& opt) {
         << " triangles, closed and consistently oriented: every edge matched by its reverse)\n";
   }
   if (!r.part.empty()) {
-    out << "part            " << r.part << (r.instance.empty() || r.instance == r.part ? "" : " [" + r.instance + "]")
-        << "\n";
+    out << "part            " << PartLabel(r) << "\n";
   }
   if (!r.parts.empty()) {
     out << "parts           " << r.parts.size() << ", each computed on its own; the whole is their composition\n";

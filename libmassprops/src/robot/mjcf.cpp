@@ -341,8 +341,12 @@ void WorldGeoms(pugi::xml_node root, const Compiler& compiler, const Defaults& d
   }
 }
 
-// An optional range "lo hi" that `limited` (true, false, or auto: given means limited, MuJoCo 3)
-// makes a limit.
+// Why a range is not a limit, for the note: its `limited` attribute (named `attribute`) says
+// "false", or it is "auto" while <compiler autolimits> is off.
+std::string NotALimit(const std::string& attribute, const std::string& limited) {
+  return limited == "false" ? attribute + "=\"false\"" : "<compiler autolimits=\"false\"> and no " + attribute;
+}
+
 // An actuator's ctrlrange or forcerange as its ctrllimited/forcelimited says: "auto" (the default)
 // is a limit when <compiler autolimits> is on, as for joints' ranges; a range that is not a limit
 // is noted.
@@ -352,10 +356,7 @@ std::optional<std::pair<double, double>> Range(pugi::xml_attribute limited, pugi
   const std::string l = limited ? limited.value() : "auto";
   if (!range) return std::nullopt;
   if (l == "false" || (l == "auto" && !autolimits)) {
-    notes.push_back(what + " is not a limit (" +
-                    (l == "false" ? std::string("its limited is \"false\"")
-                                  : std::string("<compiler autolimits=\"false\"> and no limited")) +
-                    ")");
+    notes.push_back(what + " is not a limit (" + NotALimit(limited ? limited.name() : "limited", l) + ")");
     return std::nullopt;
   }
   const auto r = Numbers(range.value(), 2, what);
@@ -607,10 +608,7 @@ RobotJoint MjcfJoint(const pugi::xml_node& e, const pugi::xml_node& body, const 
     j.upper = r[1] * unit;
   } else {
     if (range && type != "ball") {
-      model.notes.push_back(jw + ": its range is not a limit (" +
-                            (limited == "false" ? std::string("limited=\"false\"")
-                                                : std::string("<compiler autolimits=\"false\"> and no limited")) +
-                            ")");
+      model.notes.push_back(jw + ": its range is not a limit (" + NotALimit("limited", limited) + ")");
     }
     if (type == "hinge") j.type = RobotJointType::kContinuous;
   }

@@ -22,14 +22,11 @@
 // (count; per overlap the two part indices and the common volume, -1 when the boolean failed).
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
-#include <exception>
 #include <map>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <BRepBndLib.hxx>
@@ -43,37 +40,12 @@
 #include <Standard_Failure.hxx>
 #include <TopExp_Explorer.hxx>
 
+#include "../../parallel.h"
 #include "../wire.h"
 #include "occ.h"
 
 namespace massprops::cad {
 namespace {
-
-// Runs task(0 .. count-1) on up to `threads` threads (0: every core). A task's exception is
-// rethrown after all have ended, the first task's first, so that the message is the same every run.
-template <class Task>
-void RunInParallel(std::size_t count, int threads, const Task& task) {
-  std::size_t workers = threads > 0 ? static_cast<std::size_t>(threads) : std::thread::hardware_concurrency();
-  workers = std::max<std::size_t>(1, std::min(workers, count));
-  std::vector<std::exception_ptr> failed(count);
-  std::atomic<std::size_t> next{0};
-  const auto work = [&] {
-    for (std::size_t t = next++; t < count; t = next++) {
-      try {
-        task(t);
-      } catch (...) {
-        failed[t] = std::current_exception();
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
-  for (const std::exception_ptr& e : failed) {
-    if (e) std::rethrow_exception(e);
-  }
-}
 
 // The exact integrals of a set of solids, unit density, millimetres.
 struct Integrals {
@@ -121,22 +93,13 @@ Prototype MakePrototype(const TopoDS_Shape& shape, const MasspropsCadOptions& o,
                   p.deflection / unit, diagonal / unit);
     throw Refusal{text};
   }
-  if (p.set.count == 0) {
-    p.mesh = Tessellate(geometry, p.deflection, o.angular_deflection, parallel);
-    return p;
-  }
-  // The integral reads the surfaces, the mesher writes triangulations: on two threads they run
-  // side by side (OpenCASCADE's B-spline evaluation keeps no cache in the shared geometry).
-  if (!parallel) {
-    p.mesh = Tessellate(geometry, p.deflection, o.angular_deflection, false);
-    p.exact = Integrate(p.set.solids, o.brep_tolerance);
-    return p;
-  }
-  RunInParallel(2, 2, [&](std::size_t task) {
+  // The integral reads the surfaces, the mesher writes triangulations: in parallel they run side
+  // by side (OpenCASCADE's B-spline evaluation keeps no cache in the shared geometry).
+  internal::ParallelForBlocks(p.set.count > 0 ? 2 : 1, parallel ? 2 : 1, [&](std::int64_t task) {
     if (task == 0) {
-      p.exact = Integrate(p.set.solids, o.brep_tolerance);
+      p.mesh = Tessellate(geometry, p.deflection, o.angular_deflection, parallel);
     } else {
-      p.mesh = Tessellate(geometry, p.deflection, o.angular_deflection, true);
+      p.exact = Integrate(p.set.solids, o.brep_tolerance);
     }
   });
   return p;
@@ -221,6 +184,7 @@ void Read(const char* path, const MasspropsCadOptions& o, const Sender& send) {
   // Each prototype is found, integrated and meshed once, however many instances place it; the
   // prototypes are made in parallel (each shape's with all its locations in one task, since they
   // share faces and so triangulations), each on its own, so the bits do not depend on the order.
+  const bool parallel = o.threads != 1;
   std::vector<Prototype> made;
   std::vector<std::size_t> prototype_of;        // per instance
   std::vector<std::vector<std::size_t>> tasks;  // per shape: its prototypes, in order of first use
@@ -241,9 +205,11 @@ void Read(const char* path, const MasspropsCadOptions& o, const Sender& send) {
       prototype_of.push_back(found);
     }
     made.resize(first_use.size());
-    const bool parallel = o.threads != 1;
-    RunInParallel(tasks.size(), o.threads, [&](std::size_t t) {
-      for (std::size_t k : tasks[t]) made[k] = MakePrototype(first_use[k].first->shape, o, d.mm_per_unit, parallel);
+    // Tasks in order, the lowest failing one's exception rethrown: the same message every run.
+    internal::ParallelForBlocks(static_cast<std::int64_t>(tasks.size()), o.threads, [&](std::int64_t t) {
+      for (std::size_t k : tasks[static_cast<std::size_t>(t)]) {
+        made[k] = MakePrototype(first_use[k].first->shape, o, d.mm_per_unit, parallel);
+      }
     });
   }
   std::vector<const Prototype*> prototypes;
@@ -258,7 +224,7 @@ void Read(const char* path, const MasspropsCadOptions& o, const Sender& send) {
     BRep_Builder builder;
     builder.MakeCompound(all);
     for (const Instance& in : d.instances) builder.Add(all, in.shape.Moved(TopLoc_Location(in.placement)));
-    joined = MakePrototype(all, o, d.mm_per_unit, o.threads != 1);
+    joined = MakePrototype(all, o, d.mm_per_unit, parallel);
     if (joined.set.count > 0) {
       Instance one;
       one.name = d.instances.front().name;
