@@ -57,6 +57,7 @@ struct Setup {
   double base_z = 0;                        ///< the root body's height at the start
   std::map<std::string, double> positions;  ///< initial joint positions
   bool file_floor = false;                  ///< the file brings its floor and places the robot
+  std::string keyframe;                     ///< the file's keyframe to start from ("": none)
 };
 
 std::string Slurp(const std::string& path) {
@@ -129,22 +130,25 @@ Setup Arm() {
   return s;
 }
 
-/// Any MJCF file as it is, with its own floor, placed where it places itself.
-Setup FromFile(const std::string& path) {
+/// Any MJCF file as it is, with its own floor, placed where it places itself (or its keyframe).
+Setup FromFile(const std::string& path, const std::string& keyframe = "") {
   Setup s;
   s.path = s.mujoco_path = path;
   s.file_floor = true;
+  s.keyframe = keyframe;
   return s;
 }
 
 struct Ours {
   dynamics::ContactWorld world;
+  massprops::RobotModel model;
+  dynamics::RobotInWorld added;
   int base = 0;
   explicit Ours(const Setup& s) {
     dynamics::World w(dynamics::Integrator::kImplicitMidpoint);
     w.AddForce(dynamics::Gravity(Vector3(0, 0, -9.81)));
     world = dynamics::ContactWorld(std::move(w));
-    const massprops::RobotModel model = massprops::ReadRobotModel(s.path);
+    model = massprops::ReadRobotModel(s.path);
     if (s.file_floor) {
       for (const massprops::RobotGround& g : model.grounds) {
         world.AddGround({g.normal, g.offset, {}, {g.contype, g.conaffinity}});
@@ -158,7 +162,9 @@ struct Ours {
     dynamics::RobotOptions options;
     if (!s.file_floor) options.pose.translation = Vector3(0, 0, s.base_z);
     options.positions = s.positions;
-    base = dynamics::AddRobot(world, model, options).bodies.front();
+    options.keyframe = s.keyframe;
+    added = dynamics::AddRobot(world, model, options);
+    base = added.bodies.front();
   }
   void Step() {
     const dynamics::StepStatus st = world.Step(1e-3);
@@ -182,6 +188,11 @@ struct MuJoCo {
     if (!m) throw std::runtime_error(std::string("MuJoCo refused the model: ") + error);
     d = mj_makeData(m);
     if (s.ground && !s.file_floor) d->qpos[2] = s.base_z;  // the free joint's position
+    if (!s.keyframe.empty()) {
+      const int key = mj_name2id(m, mjOBJ_KEY, s.keyframe.c_str());
+      if (key < 0) throw std::runtime_error("MuJoCo's model has no keyframe '" + s.keyframe + "'");
+      mj_resetDataKeyframe(m, d, key);
+    }
     for (const auto& [name, q] : s.positions) {
       const int j = mj_name2id(m, mjOBJ_JOINT, name.c_str());
       if (j < 0) throw std::runtime_error("MuJoCo's model has no joint '" + name + "'");
@@ -313,32 +324,17 @@ int Bench() {
 // are explicit there). A settled state does not depend on the integrator: they must agree within
 // `tolerance` (rad, rad/s) for every joint.
 int Joints(const std::string& path, const std::string& keyframe, double seconds, double tolerance) {
-  const massprops::RobotModel model = massprops::ReadRobotModel(path);
-  dynamics::World w(dynamics::Integrator::kImplicitMidpoint);
-  w.AddForce(dynamics::Gravity(Vector3(0, 0, -9.81)));
-  dynamics::ContactWorld ours(std::move(w));
-  for (const massprops::RobotGround& g : model.grounds) {
-    ours.AddGround({g.normal, g.offset, {}, {g.contype, g.conaffinity}});
-  }
-  dynamics::RobotOptions options;
-  options.keyframe = keyframe;
-  const dynamics::RobotInWorld added = dynamics::AddRobot(ours, model, options);
-  char error[1000] = "";
-  mjModel* m = mj_loadXML(path.c_str(), nullptr, error, sizeof error);
-  if (!m) throw std::runtime_error(std::string("MuJoCo refused the model: ") + error);
-  mjData* d = mj_makeData(m);
-  if (!keyframe.empty()) {
-    const int key = mj_name2id(m, mjOBJ_KEY, keyframe.c_str());
-    if (key < 0) throw std::runtime_error("MuJoCo's model has no keyframe '" + keyframe + "'");
-    mj_resetDataKeyframe(m, d, key);
-  }
+  Ours o(FromFile(path, keyframe));
+  MuJoCo mj(FromFile(path, keyframe));
+  const massprops::RobotModel& model = o.model;
+  const dynamics::RobotInWorld& added = o.added;
+  const dynamics::ContactWorld& ours = o.world;
+  mjModel* m = mj.m;
+  mjData* d = mj.d;
   m->opt.timestep = 1e-4;
   const long steps = std::lround(seconds / 1e-3);
-  for (long s = 0; s < steps; ++s) {
-    const dynamics::StepStatus st = ours.Step(1e-3);
-    if (!st.ok) throw std::runtime_error("ours: " + st.message);
-  }
-  for (long s = 0; s < 10 * steps; ++s) mj_step(m, d);
+  for (long s = 0; s < steps; ++s) o.Step();
+  for (long s = 0; s < 10 * steps; ++s) mj.Step();
   std::printf("%s%s%s after %g s: each joint, ours (implicit midpoint, 1 ms) and MuJoCo 2.2 (Euler, 0.1 ms)\n",
               path.c_str(), keyframe.empty() ? "" : ", keyframe ", keyframe.c_str(), seconds);
   std::printf("  %-14s %14s %14s %14s %14s\n", "joint", "q ours", "q MuJoCo", "rate ours", "rate MuJoCo");
@@ -365,8 +361,6 @@ int Joints(const std::string& path, const std::string& keyframe, double seconds,
     std::printf("  %-14s %14.6f %14.6f   (center of mass height, m; within 1 cm: %s)\n",
                 model.links.front().name.c_str(), ours_z, mj_z, height_ok ? "yes" : "NO");
   }
-  mj_deleteData(d);
-  mj_deleteModel(m);
   const bool ok = worst <= tolerance && height_ok;
   std::printf("%s: largest difference %.2e (tolerance %.2e)\n", ok ? "agree" : "DISAGREE", worst, tolerance);
   return ok ? 0 : 1;
