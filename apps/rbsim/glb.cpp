@@ -103,8 +103,9 @@ void WriteGlb(const std::string& path, const Simulation& sim, const Recording& r
   json samplers = json::array(), channels = json::array();
   const int time_accessor = b.AddAccessor(times, 1, "SCALAR", false, true);
 
-  // A mesh with one material: flat-shaded triangles.
-  auto add_mesh = [&](const std::string& name, const massprops::TriangleMesh& mesh, const Vector3& color) {
+  // A mesh with one material: flat-shaded triangles (see-through when alpha < 1).
+  auto add_mesh = [&](const std::string& name, const massprops::TriangleMesh& mesh, const Vector3& color,
+                      double alpha = 1.0) {
     const auto& V = mesh.V;
     const auto& F = mesh.F;
     std::vector<float> pos, nrm;
@@ -125,11 +126,13 @@ void WriteGlb(const std::string& path, const Simulation& sim, const Recording& r
     }
     const int pos_acc = b.AddAccessor(pos, 3, "VEC3", true, true);
     const int nrm_acc = b.AddAccessor(nrm, 3, "VEC3", true, false);
-    materials.push_back({{"name", name},
-                         {"pbrMetallicRoughness",
-                          {{"baseColorFactor", {color.x(), color.y(), color.z(), 1.0}},
-                           {"metallicFactor", 0.0},
-                           {"roughnessFactor", 0.6}}}});
+    json material = {{"name", name},
+                     {"pbrMetallicRoughness",
+                      {{"baseColorFactor", {color.x(), color.y(), color.z(), alpha}},
+                       {"metallicFactor", 0.0},
+                       {"roughnessFactor", 0.6}}}};
+    if (alpha < 1) material["alphaMode"] = "BLEND";
+    materials.push_back(std::move(material));
     meshes.push_back({{"name", name},
                       {"primitives", json::array({{{"attributes", {{"POSITION", pos_acc}, {"NORMAL", nrm_acc}}},
                                                    {"material", materials.size() - 1},
@@ -145,7 +148,10 @@ void WriteGlb(const std::string& path, const Simulation& sim, const Recording& r
   }
   for (std::size_t i = 0; i < sim.bodies.size(); ++i) {
     const SimBody& body = sim.bodies[i];
-    const std::size_t mesh = add_mesh(body.name, body.display, body.color);
+    // A robot link with visual geometry draws it; its collision geometry is a see-through child
+    // node ("... collider") that viewers can hide.
+    const bool visual = body.visual.F.rows() > 0;
+    const std::size_t mesh = add_mesh(body.name, visual ? body.visual : body.display, body.color);
     std::vector<float> tr, rot;
     for (const auto& t : rec.translations[i]) tr.insert(tr.end(), {t.x(), t.y(), t.z()});
     for (const auto& q : rec.rotations[i]) rot.insert(rot.end(), {q.x(), q.y(), q.z(), q.w()});
@@ -158,6 +164,11 @@ void WriteGlb(const std::string& path, const Simulation& sim, const Recording& r
                      {"mesh", mesh},
                      {"translation", {t0.x(), t0.y(), t0.z()}},
                      {"rotation", {q0.x(), q0.y(), q0.z(), q0.w()}}});
+    if (visual && body.display.F.rows() > 0) {
+      const std::size_t collider = add_mesh(body.name + " collider", body.display, body.color, 0.35);
+      nodes.back()["children"] = {node + 1};
+      nodes.push_back({{"name", body.name + " collider"}, {"mesh", collider}});
+    }
     root_children.push_back(node);
     samplers.push_back({{"input", time_accessor}, {"output", tr_acc}, {"interpolation", "LINEAR"}});
     channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", node}, {"path", "translation"}}}});

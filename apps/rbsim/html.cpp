@@ -60,7 +60,12 @@ Json RunData(const Simulation& sim, const Recording& rec) {
   for (std::size_t b = 0; b < sim.bodies.size(); ++b) {
     const SimBody& body = sim.bodies[b];
     Json o = ViewerBody(body.name, body.color, body.display, rec.translations[b], rec.rotations[b]);
-    const double r = body.display.V.rows() > 0 ? body.display.V.rowwise().norm().maxCoeff() : 0.0;
+    if (body.visual.F.rows() > 0) {  // drawn instead of the collider, which a toggle shows
+      const Json visual = ViewerStatic(body.name, body.color, body.visual);
+      o["visual"] = {{"positions", visual["positions"]}, {"indices", visual["indices"]}};
+    }
+    double r = body.display.V.rows() > 0 ? body.display.V.rowwise().norm().maxCoeff() : 0.0;
+    if (body.visual.V.rows() > 0) r = std::max(r, body.visual.V.rowwise().norm().maxCoeff());
     for (const Eigen::Vector3f& x : rec.translations[b]) {
       bounds.extend(x.cast<double>() + Vector3::Constant(r));
       bounds.extend(x.cast<double>() - Vector3::Constant(r));

@@ -118,6 +118,7 @@ struct RobotSpec {
   dynamics::RobotOptions options;  ///< pose, base, positions, motors, colliders, material
   /// No position given: the robot is raised so that its lowest point is 1 cm above the ground.
   bool position_given = false;
+  bool material_given = false;  ///< the scene states the robot's material
 };
 
 enum class OutputKind { kCsv, kJsonl, kDiagnostics, kPlotSvg, kPlotPng, kGlb, kContacts, kHtml };

@@ -75,6 +75,7 @@ RobotSpec ReadRobot(const json& j, const std::string& path, const std::string& f
   r.options.keyframe = f.String("keyframe", "");  // an MJCF <key>'s name: qpos, qvel, ctrl
   const std::string collision = f.String("collision", "hull", {"hull", "mesh"});
   r.options.mesh_colliders = collision == "mesh";
+  r.material_given = f.Has("material");
   r.options.material = ReadMaterial(f);
   f.Done();
   return r;

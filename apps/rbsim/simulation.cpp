@@ -77,14 +77,21 @@ void AddRobot(Simulation& sim, const RobotSpec& spec, std::vector<std::string>& 
       sim.scene.default_ground = false;
     }
     for (const massprops::RobotGround& g : model.grounds) {
+      const dynamics::Ground from_file = dynamics::GroundOf(g);
       GroundSpec ground;
-      ground.normal = g.normal;
-      ground.offset = g.offset;
-      ground.filter = {g.contype, g.conaffinity};
+      ground.normal = from_file.normal;
+      ground.offset = from_file.offset;
+      ground.material = from_file.material;
+      ground.filter = from_file.filter;
       sim.scene.grounds.push_back(ground);
     }
   }
   dynamics::RobotOptions options = spec.options;
+  if (spec.material_given && model.format == massprops::RobotFormat::kMjcf) {
+    warnings.push_back(sim.scene.file + ": " + spec.field +
+                       ".material: an MJCF file's geoms bring their own friction (MuJoCo's, the larger of a "
+                       "pair's); the scene's material gives only their restitution");
+  }
   try {
     // (A keyframe places the robot as the file does.)
     if (!spec.position_given && options.keyframe.empty() && !sim.scene.grounds.empty()) {
@@ -107,7 +114,13 @@ void AddRobot(Simulation& sim, const RobotSpec& spec, std::vector<std::string>& 
       if (std::isfinite(lowest)) options.pose.translation += up * (floor + 0.01 - lowest);
     }
     const dynamics::RobotInWorld added = dynamics::AddRobot(sim.physics, model, options);
-    for (const std::string& note : added.notes) warnings.push_back((alone ? spec.path + ": " : where) + note);
+    std::vector<std::string> notes = added.notes;
+    // What the pictures draw: the links' visual geometry (read only when a picture is asked for).
+    const bool drawn = std::any_of(sim.scene.outputs.begin(), sim.scene.outputs.end(),
+                                   [](OutputKind k) { return k == OutputKind::kGlb || k == OutputKind::kHtml; });
+    const std::vector<TriangleMesh> visuals =
+        drawn ? dynamics::VisualShapes(model, added, options.load, notes) : std::vector<TriangleMesh>();
+    for (const std::string& note : notes) warnings.push_back((alone ? spec.path + ": " : where) + note);
     for (std::size_t k = 0; k < added.bodies.size(); ++k) {
       const dynamics::RigidBody& rb = sim.world().bodies()[static_cast<std::size_t>(added.bodies[k])];
       SimBody body;
@@ -124,8 +137,11 @@ void AddRobot(Simulation& sim, const RobotSpec& spec, std::vector<std::string>& 
       body.source = spec.path + " (" + massprops::RobotFormatName(model.format) + (spec.fill ? ", filled" : "") + ")";
       body.display = added.shapes[k];
       body.collides = added.shapes[k].F.rows() > 0;
-      for (Eigen::Index v = 0; v < body.display.V.rows(); ++v) {
-        body.display.V.row(v) = (in_link.rotation * body.display.V.row(v).transpose()).transpose();
+      if (k < visuals.size()) body.visual = visuals[k];
+      for (TriangleMesh* m : {&body.display, &body.visual}) {
+        for (Eigen::Index v = 0; v < m->V.rows(); ++v) {
+          m->V.row(v) = (in_link.rotation * m->V.row(v).transpose()).transpose();
+        }
       }
       sim.bodies.push_back(std::move(body));
     }

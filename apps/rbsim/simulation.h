@@ -20,6 +20,9 @@ struct SimBody {
   massprops::MassProperties mp;           ///< SI, in the mesh (or solid) frame M
   massprops::PrincipalInertia principal;  ///< axes = R_MB (computed once, by the pipeline)
   massprops::TriangleMesh display;        ///< metres, mesh axes, relative to the center of mass
+  /// A robot link's visual geometry, in the frame of `display` (none: it is drawn as `display`,
+  /// its collision geometry; with one, the pictures draw it and show `display` on request).
+  massprops::TriangleMesh visual;
   Vector3 color = Vector3(0.8, 0.8, 0.8);
   std::string source;     ///< "spot.obj (unit m)" or "cone r=0.1 h=0.3"
   bool collides = false;  ///< it has a collider

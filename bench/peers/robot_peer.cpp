@@ -18,9 +18,9 @@
 //                        and where it rests the root
 //   robot_peer --joints FILE.xml KEY SECONDS TOL
 //                        any MJCF file as it is, from its keyframe KEY ('' for none): every
-//                        hinge's and slide's angle and rate after SECONDS in both engines, and a
-//                        free root's height; exit 1 when an angle or rate differs by more than
-//                        TOL or the height by more than 1 cm
+//                        hinge's and slide's angle and rate after SECONDS in both engines, and
+//                        each free root's center of mass; exit 1 when an angle or rate differs by more than
+//                        TOL or a free root's center of mass by more than 1 cm
 
 #include <algorithm>
 #include <chrono>
@@ -151,7 +151,7 @@ struct Ours {
     model = massprops::ReadRobotModel(s.path);
     if (s.file_floor) {
       for (const massprops::RobotGround& g : model.grounds) {
-        world.AddGround({g.normal, g.offset, {}, {g.contype, g.conaffinity}});
+        world.AddGround(dynamics::GroundOf(g));
       }
     } else if (s.ground) {
       world.AddGround({});
@@ -352,14 +352,20 @@ int Joints(const std::string& path, const std::string& keyframe, double seconds,
     std::printf("  %-14s %14.6f %14.6f %14.6f %14.6f\n", j.name.c_str(), st.position[0], q, st.velocity[0], v);
     worst = std::max({worst, std::abs(st.position[0] - q), std::abs(st.velocity[0] - v)});
   }
-  // A free root's center of mass: within 1 cm (MuJoCo's soft contacts sink a few millimetres).
+  // Each free root's center of mass: within 1 cm (MuJoCo's soft contacts sink a few millimetres).
   bool height_ok = true;
-  if (!model.joints.empty() && model.joints.front().type == massprops::RobotJointType::kFloating && m->nbody > 1) {
-    const double ours_z = ours.world().bodies()[static_cast<std::size_t>(added.bodies.front())].position.z();
-    const double mj_z = d->xipos[3 * 1 + 2];
-    height_ok = std::abs(ours_z - mj_z) < 0.01;
-    std::printf("  %-14s %14.6f %14.6f   (center of mass height, m; within 1 cm: %s)\n",
-                model.links.front().name.c_str(), ours_z, mj_z, height_ok ? "yes" : "NO");
+  for (const massprops::RobotJoint& j : model.joints) {
+    if (j.type != massprops::RobotJointType::kFloating || j.parent >= 0) continue;
+    const std::string& name = model.links[static_cast<std::size_t>(j.child)].name;
+    const int id = mj_name2id(m, mjOBJ_BODY, name.c_str());
+    if (id < 0) throw std::runtime_error("MuJoCo's model has no body '" + name + "'");
+    const int body = added.body_of_link[static_cast<std::size_t>(j.child)];
+    const Vector3 p = ours.world().bodies()[static_cast<std::size_t>(body)].position;
+    const Vector3 q(d->xipos[3 * id], d->xipos[3 * id + 1], d->xipos[3 * id + 2]);
+    const bool ok = (p - q).norm() < 0.01;
+    height_ok = height_ok && ok;
+    std::printf("  %-14s (%.4f, %.4f, %.4f) (%.4f, %.4f, %.4f)   (center of mass, m; within 1 cm: %s)\n",
+                name.c_str(), p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), ok ? "yes" : "NO");
   }
   const bool ok = worst <= tolerance && height_ok;
   std::printf("%s: largest difference %.2e (tolerance %.2e)\n", ok ? "agree" : "DISAGREE", worst, tolerance);

@@ -57,6 +57,29 @@ node "$validator/validate_glb.mjs" "$tmp/t/animation.glb" "$rows" 1 >"$tmp/val" 
 check "glTF validator: no errors, one key per output step" $?
 grep -q " 0 errors" "$tmp/val" || cat "$tmp/val"
 
+# 1b. A robot with visual geometry: each link's node draws its visual, with its collider as a
+# see-through child node; the validator finds no error.
+"$bin" "$data/../tests/robot/field/arm_on_world.urdf" --duration 0.5 --out "$tmp/arm" --outputs csv,glb -q \
+  >/dev/null 2>"$tmp/arm_err"
+check "arm_on_world exits 0" $?
+grep -q "link 'base_link': visual geometry not drawn" "$tmp/arm_err"; check "a missing visual mesh is a warning" $?
+rows=$(($(wc -l <"$tmp/arm/trajectory.csv") - 1))
+node "$validator/validate_glb.mjs" "$tmp/arm/animation.glb" "$((rows / 2))" 2 >"$tmp/val" 2>&1
+check "glTF validator on a robot with visuals and colliders" $?
+python3 - "$tmp/arm/animation.glb" <<'PY'
+import json, struct, sys
+b = open(sys.argv[1], "rb").read()
+n = struct.unpack_from("<I", b, 12)[0]
+doc = json.loads(b[20:20 + n])
+names = [node.get("name") for node in doc["nodes"]]
+arm = names.index("arm_on_world/upper_arm")
+child = doc["nodes"][arm]["children"][0]
+assert names[child] == "arm_on_world/upper_arm collider", names
+blend = [m for m in doc["materials"] if m.get("alphaMode") == "BLEND"]
+assert len(blend) == 2, doc["materials"]
+PY
+check ".glb: visuals drawn, colliders as see-through child nodes" $?
+
 # 2. Two bodies: one node per body in the .glb, both animated.
 "$bin" "$data/scenes/two_bodies.json" --duration 2 --out "$tmp/two" --outputs csv,glb -q >/dev/null 2>&1
 check "two_bodies exits 0" $?

@@ -133,6 +133,39 @@ TEST(RobotField, ArmBoltedToTheWorldStaysAndAMeshWithRepeatedFacesIsAHull) {
   }
 }
 
+// What is drawn: each link's <visual>s in its body's frame (the lidar's STL on the base it is
+// welded to, 4 cm below; the arm's box along its length). The base's visual mesh is missing from
+// the package: a note, not a refusal.
+TEST(RobotField, VisualsAreDrawnWhereTheirLinksAreAndAMissingOneIsANote) {
+  const massprops::RobotModel m = massprops::ReadRobotModel(kField + "arm_on_world.urdf");
+  EXPECT_TRUE(AnyContains(m.notes, "link 'base_link': visual geometry not drawn")) << ::testing::PrintToString(m.notes);
+  ContactWorld world = WorldWithGravity(false);
+  const dynamics::RobotInWorld added = dynamics::AddRobot(world, m);
+  std::vector<std::string> notes;
+  const std::vector<massprops::TriangleMesh> visuals = dynamics::VisualShapes(m, added, {}, notes);
+  ASSERT_EQ(visuals.size(), 2u);
+  auto world_box = [&](std::size_t k) {
+    const dynamics::RigidBody& b = world.world().bodies()[static_cast<std::size_t>(added.bodies[k])];
+    Eigen::AlignedBox3d box;
+    for (Eigen::Index v = 0; v < visuals[k].V.rows(); ++v) {
+      box.extend(b.orientation * Vector3(visuals[k].V.row(v).transpose()) + b.position);
+    }
+    return box;
+  };
+  EXPECT_EQ(visuals[0].F.rows(), 12);  // the lidar's cube alone
+  const Eigen::AlignedBox3d lidar = world_box(0);
+  EXPECT_LT((lidar.min() - Vector3(-0.01, -0.01, 0.45)).norm(), 1e-12);
+  EXPECT_LT((lidar.max() - Vector3(0.01, 0.01, 0.47)).norm(), 1e-12);
+  const Eigen::AlignedBox3d arm = world_box(1);  // horizontal at q = 0, from the shoulder 5 cm up
+  EXPECT_LT((arm.min() - Vector3(0, -0.025, 0.525)).norm(), 1e-12);
+  EXPECT_LT((arm.max() - Vector3(0.4, 0.025, 0.575)).norm(), 1e-12);
+  // MJCF: the geoms that collide with nothing are the visuals.
+  const massprops::RobotModel biped = massprops::ReadRobotModel(kField + "mjcf/scene.xml");
+  std::size_t drawn = 0;
+  for (const massprops::RobotLink& l : biped.links) drawn += l.visuals.size();
+  EXPECT_EQ(drawn, 1u);
+}
+
 // An MJCF package as MuJoCo Menagerie ships one: scene.xml includes the robot (resolved from the
 // main file's folder) and adds a floor, lights and a skybox; the robot's collision geoms have
 // mass 0 and density 0, their bodies' <inertial>s the mass. The collision geoms still collide:
@@ -158,8 +191,7 @@ TEST(RobotField, MjcfSceneIncludesItsRobotAndMasslessGeomsLandOnItsFloor) {
     }
   }
   ContactWorld world = WorldWithGravity(false);
-  for (const massprops::RobotGround& g : m.grounds)
-    world.AddGround({g.normal, g.offset, {}, {g.contype, g.conaffinity}});
+  for (const massprops::RobotGround& g : m.grounds) world.AddGround(dynamics::GroundOf(g));
   const dynamics::RobotInWorld added = dynamics::AddRobot(world, m);
   for (int s = 0; s < 2000; ++s) ASSERT_TRUE(world.Step(1e-3).ok);
   // On the floor, standing or fallen: the pelvis box (5 cm half height) no lower than on its face.
@@ -171,8 +203,7 @@ TEST(RobotField, MjcfSceneIncludesItsRobotAndMasslessGeomsLandOnItsFloor) {
   EXPECT_GT(world.world().bodies()[0].position.z(), -0.02 + 0.05 - 0.005);
   // From "stand": the feet on the floor, the pelvis 0.05 + 0.3 + 0.3 + 0.01 above its bottom.
   ContactWorld standing = WorldWithGravity(false);
-  for (const massprops::RobotGround& g : m.grounds)
-    standing.AddGround({g.normal, g.offset, {}, {g.contype, g.conaffinity}});
+  for (const massprops::RobotGround& g : m.grounds) standing.AddGround(dynamics::GroundOf(g));
   dynamics::RobotOptions stand;
   stand.keyframe = "stand";
   const dynamics::RobotInWorld biped = dynamics::AddRobot(standing, m, stand);
@@ -214,8 +245,7 @@ TEST(RobotField, MjcfCollisionBitsDecideWhatTouches) {
   EXPECT_NEAR(m.links[0].inertial->inertia(0, 0), 0.4 * 0.01, 1e-15);
   EXPECT_TRUE(AnyContains(m.notes, "inertiafromgeom"));
   ContactWorld world = WorldWithGravity(false);
-  for (const massprops::RobotGround& g : m.grounds)
-    world.AddGround({g.normal, g.offset, {}, {g.contype, g.conaffinity}});
+  for (const massprops::RobotGround& g : m.grounds) world.AddGround(dynamics::GroundOf(g));
   const dynamics::RobotInWorld added = dynamics::AddRobot(world, m);
   ASSERT_EQ(added.bodies.size(), 6u);
   ASSERT_EQ(m.excluded.size(), 1u);
@@ -237,6 +267,44 @@ TEST(RobotField, MjcfCollisionBitsDecideWhatTouches) {
   EXPECT_NEAR(z("dropper"), 0.1, 1e-3);  // excluded from the ball: through it, onto the floor
   EXPECT_THROW(world.ExcludePair(0, 0), std::invalid_argument);
   EXPECT_THROW(world.ExcludePair(0, 6), std::invalid_argument);
+}
+
+// Friction per geom, mixed as MuJoCo mixes it (the larger of a pair's coefficients), each geom of a
+// body with its own: pushed at v = 2 m/s on a floor of friction 0.1, a box of 0.4 stops after
+// v²/(2 μ g); a body on three spheres (front 0.6, back 0.2, 2 cm below its center of mass, 0.1 m
+// ahead and behind it) stops at the deceleration its shifted weight gives; a geom that states no
+// friction takes MuJoCo's default, 1.
+TEST(RobotField, EachGeomSlidesWithItsOwnFrictionMixedByTheLarger) {
+  const massprops::RobotModel m = massprops::ReadRobotModel(kField + "mjcf/friction.xml");
+  ASSERT_EQ(m.grounds.size(), 1u);
+  EXPECT_EQ(m.grounds[0].friction, 0.1);
+  EXPECT_EQ(m.links[0].collisions[0].friction, 0.4);  // from its class
+  EXPECT_EQ(m.links[2].collisions[0].friction, 1.0);  // MuJoCo's default
+  EXPECT_TRUE(AnyContains(m.notes, "1 geom(s) with condim 1: frictionless contact is not modelled"));
+  ContactWorld world = WorldWithGravity(false);
+  for (const massprops::RobotGround& g : m.grounds) world.AddGround(dynamics::GroundOf(g));
+  dynamics::RobotOptions options;
+  options.keyframe = "push";
+  const dynamics::RobotInWorld added = dynamics::AddRobot(world, m, options);
+  ASSERT_EQ(added.bodies.size(), 3u);
+  const double h = 1e-3, v = 2;
+  for (int s = 0; s < 800; ++s) ASSERT_TRUE(world.Step(h).ok);
+  auto body = [&](int k) -> const dynamics::RigidBody& {
+    return world.world().bodies()[static_cast<std::size_t>(added.bodies[static_cast<std::size_t>(k)])];
+  };
+  // The box: μ = max(0.4, 0.1) (the geometric mean would give 0.2 and twice the distance).
+  EXPECT_NEAR(body(0).position.x(), v * v / (2 * 0.4 * kG), 3e-3);
+  EXPECT_LT(body(0).velocity.norm(), 1e-6);
+  // The tripod: weight on the front Nf / (m g) = (d + h μb) / (2 d + h (μb − μf)).
+  const double d = 0.1, lever = 0.02, front = 0.6, back = 0.2;
+  const double nf = (d + lever * back) / (2 * d + lever * (back - front));
+  const double mu = front * nf + back * (1 - nf);  // 0.41667; 0.4 if the weight stayed even
+  EXPECT_NEAR(body(1).position.x(), v * v / (2 * mu * kG), 3e-3);
+  EXPECT_LT(body(1).velocity.norm(), 1e-6);
+  EXPECT_NEAR(body(1).position.y(), 0.5, 1e-9);  // no yaw: it slid straight
+  // The puck: μ = max(1, 0.1).
+  EXPECT_NEAR(body(2).position.x(), v * v / (2 * 1.0 * kG), 3e-3);
+  EXPECT_LT(body(2).velocity.norm(), 1e-6);
 }
 
 // MJCF armature (from the joint defaults): a hinged bar's small-amplitude period is

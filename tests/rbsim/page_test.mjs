@@ -10,6 +10,7 @@ import { execFileSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
 import { inflateSync } from 'node:zlib';
 import { chromium } from 'playwright-core';
 
@@ -261,7 +262,40 @@ try {
   check('a sleeping body is tinted', found.n > 50 && find(asleep.image, [255, 0, 0], 40).n === 0,
     `${found.n} px of the tint ${tinted} near (${at[0].toFixed(1)}, ${at[1].toFixed(1)})`);
 
-  // 5. Played: time advances.
+  // 5. A robot link is drawn as its visual geometry, its collider on request: the arm's <visual>
+  // box is drawn in the arm's colour; with colliders=1 the see-through collision shapes (the
+  // base bracket's hull, the arm's cylinder) add pixels.
+  const arm = fileURLToPath(new URL('../robot/field/arm_on_world.urdf', import.meta.url));
+  execFileSync(rbsim, [arm, '--out', join(dir, 'arm'), '--outputs', 'html', '--duration', '0.2', '-q'], {
+    stdio: ['ignore', 'ignore', 'ignore'],
+  });
+  await page.goto(`file://${join(dir, 'arm', 'run.html')}?flat=1&contacts=0&t=0`);
+  await page.waitForFunction(() => window.rbsim && window.rbsim.frames > 2, null, { timeout: 30000 });
+  check('a colliders toggle for a robot with visuals', await page.evaluate(() => {
+    const box = document.getElementById('colliders');
+    return box !== null && !box.checked;
+  }));
+  const armRun = JSON.parse(await page.evaluate(() => document.getElementById('rbsim-run').textContent));
+  const armBody = armRun.bodies.find((b) => b.name.endsWith('/upper_arm'));
+  check('the arm carries its visual geometry', armBody && armBody.visual !== undefined);
+  const visualOnly = await shoot();
+  const armPixels = find(visualOnly.image, armBody.color.map(srgb), 12).n;
+  check('the arm\'s visual box is drawn', armPixels > 300, `${armPixels} px of its colour`);
+  await page.evaluate(() => {
+    const box = document.getElementById('colliders');
+    box.checked = true;
+    box.dispatchEvent(new Event('change', { bubbles: true }));
+  });
+  const withColliders = await shoot();
+  let changed = 0;
+  for (let k = 0; k < visualOnly.image.rgb.length; k += 3) {
+    const a = visualOnly.image.rgb;
+    const b = withColliders.image.rgb;
+    if (Math.abs(a[k] - b[k]) + Math.abs(a[k + 1] - b[k + 1]) + Math.abs(a[k + 2] - b[k + 2]) > 20) changed += 1;
+  }
+  check('the colliders toggle draws the collision shapes too', changed > 200, `${changed} px changed`);
+
+  // 6. Played: time advances.
   await page.goto(`${url}?${camera}&speed=1`);
   await page.waitForFunction(() => window.rbsim && window.rbsim.frames > 10, null, { timeout: 30000 });
   check('the page plays', (await page.evaluate(() => window.rbsim.time())) > 0);

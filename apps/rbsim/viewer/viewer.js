@@ -4,7 +4,8 @@
 //
 // URL parameters (all optional): t=SECONDS (start paused there), camera=x,y,z and target=x,y,z
 // (world coordinates, m), fov=DEGREES (vertical), speed=FACTOR, trails=1, contacts=0, flat=1 (unlit
-// colours, as a test finds bodies by colour), paused=1.
+// colours, as a test finds bodies by colour), paused=1, colliders=1 (robot links that have visual
+// geometry show their collision geometry too, see-through).
 
 import {
   ArrowHelper,
@@ -56,6 +57,7 @@ function parameters() {
     trails: p.get('trails') === '1',
     contacts: p.get('contacts') !== '0',
     flat: p.get('flat') === '1',
+    colliders: p.get('colliders') === '1',
     paused: p.get('paused') === '1' || p.has('t'),
   };
 }
@@ -91,6 +93,7 @@ function layout(run) {
       <label>speed <select id="speed">${[0.1, 0.25, 0.5, 1, 2, 4].map((s) => `<option value="${s}">${s}×</option>`).join('')}</select></label>
       <label><input id="trails" type="checkbox"> trails</label>
       <label><input id="contacts" type="checkbox"> contacts</label>
+      ${run.bodies.some((b) => b.visual) ? '<label><input id="colliders" type="checkbox"> colliders</label>' : ''}
     </div>
     <div id="side">
       <h1></h1>
@@ -213,9 +216,25 @@ function main() {
   }
   for (const s of run.statics) scene.add(new Mesh(meshGeometry(s), material(s.color)));
 
+  // A body is drawn as its visual geometry when it has one (a robot link), its collision geometry
+  // then see-through on request; else as its collision geometry.
+  const seeThrough = (rgb) => {
+    const m = material(rgb);
+    m.transparent = true;
+    m.opacity = 0.35;
+    m.depthWrite = false;
+    return m;
+  };
   const bodies = run.bodies.map((b) => {
-    const mesh = new Mesh(meshGeometry(b), material(b.color));
-    mesh.matrixAutoUpdate = true;
+    const mesh = new Group();
+    const shown = new Mesh(meshGeometry(b.visual || b), material(b.color));
+    mesh.add(shown);
+    let collider = null;
+    if (b.visual) {
+      collider = new Mesh(meshGeometry(b), seeThrough(b.color));
+      collider.visible = options.colliders;
+      mesh.add(collider);
+    }
     scene.add(mesh);
     const translations = floats(b.translations);
     const rotations = floats(b.rotations);
@@ -225,7 +244,7 @@ function main() {
     const line = new Line(trail, new LineBasicMaterial({ color: new Color(...b.color).multiplyScalar(0.6) }));
     line.visible = options.trails;
     scene.add(line);
-    return { mesh, translations, rotations, asleep, trail, line, colour: new Color(...b.color) };
+    return { mesh, shown, collider, translations, rotations, asleep, trail, line, colour: new Color(...b.color) };
   });
 
   // The camera: given, or looking at the run's bounds from the front-right, a little above.
@@ -269,6 +288,8 @@ function main() {
   const speed = root.querySelector('#speed');
   const trails = root.querySelector('#trails');
   const showContacts = root.querySelector('#contacts');
+  const showColliders = root.querySelector('#colliders');
+  if (showColliders) showColliders.checked = options.colliders;
   speed.value = String(options.speed);
   if (speed.value === '') speed.value = '1';
   trails.checked = options.trails;
@@ -318,8 +339,9 @@ function main() {
       qb.set(r[4 * j], r[4 * j + 1], r[4 * j + 2], r[4 * j + 3]);
       b.mesh.quaternion.slerpQuaternions(qa, qb, f);
       const sleeping = b.asleep && b.asleep[Math.round(position)] === 1;
-      b.mesh.material.color.copy(b.colour);
-      if (sleeping) b.mesh.material.color.lerp(SLEEP_TINT, 0.55);
+      b.shown.material.color.copy(b.colour);
+      if (sleeping) b.shown.material.color.lerp(SLEEP_TINT, 0.55);
+      if (b.collider) b.collider.visible = showColliders.checked;
       b.line.visible = trails.checked;
       b.trail.setDrawRange(0, i + 1);
     }
@@ -379,6 +401,7 @@ function main() {
   });
   trails.addEventListener('change', pose);
   showContacts.addEventListener('change', pose);
+  if (showColliders) showColliders.addEventListener('change', pose);
   for (const canvas of [root.querySelector('#energy'), root.querySelector('#drift')]) {
     canvas.addEventListener('click', (e) => {
       const r = canvas.getBoundingClientRect();

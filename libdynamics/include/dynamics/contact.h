@@ -51,9 +51,12 @@ struct Material {
   double static_friction = 0.6;   ///< μs: a contact sticks while |f_t| ≤ μs f_n
   double kinetic_friction = 0.5;  ///< μk ≤ μs: sliding friction
   double restitution = 0.0;       ///< e in [0, 1]: normal speed after an impact / before
+  /// MuJoCo's mixing (MJCF geoms and floors): a pair of two such surfaces takes the larger of
+  /// each coefficient instead of the geometric mean.
+  bool mix_by_maximum = false;
 };
 /// The material of a contact between surfaces a and b: the geometric mean of each friction
-/// coefficient and the larger restitution.
+/// coefficient (the larger when both mix by maximum) and the larger restitution.
 Material CombineMaterials(const Material& a, const Material& b);
 
 namespace contact {
@@ -110,10 +113,12 @@ struct Mesh {
 /// Several shapes fixed to one body, each placed in the compound's frame by its collider's
 /// rotation and translation and each colliding on its own (a robot link's box, cylinders and
 /// capsules; an L of two boxes standing on its two feet, not on the face of their hull). Parts
-/// are not compounds; the compound's material applies to them all, and each part's filter is
-/// ANDed with the compound's.
+/// are not compounds; the compound's material applies to them all unless `part_materials`, and
+/// each part's filter is ANDed with the compound's.
 struct Compound {
   std::vector<Collider> parts;
+  /// Each part touches with its own material (an MJCF link's geoms, each with its friction).
+  bool part_materials = false;
   /// Each part's polytope (boxes and convex parts; null otherwise), built when the body is added.
   std::vector<std::shared_ptr<const contact::Polytope>> polytopes;
 };

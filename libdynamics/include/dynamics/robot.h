@@ -54,10 +54,22 @@ struct RobotInWorld {
   std::vector<massprops::TriangleMesh> shapes;  ///< each body's collision geometry, body frame, metres
   /// Each body's frame (principal axes at its center of mass) in its topmost link's frame.
   std::vector<massprops::Placement> body_in_link;
-  std::vector<int> body_of_link;   ///< each link's body index in the world (lumped links share one)
-  std::vector<int> joint_of;       ///< each model joint's index in the world's joints (-1: lumped)
-  std::vector<std::string> notes;  ///< lumping, hulls, what the file has that is not simulated
+  std::vector<int> body_of_link;                   ///< each link's body index in the world (lumped links share one)
+  std::vector<massprops::Placement> link_in_body;  ///< each link's frame in its body's frame
+  std::vector<int> joint_of;                       ///< each model joint's index in the world's joints (-1: lumped)
+  std::vector<std::string> notes;                  ///< lumping, hulls, what the file has that is not simulated
 };
+
+/// Each body's visual geometry (its links' RobotLink::visuals) as triangles in its body frame,
+/// metres — for pictures, as RobotInWorld::shapes holds the colliders'. Meshes are read as they
+/// are (open, repeated faces and all: nothing is integrated); one that cannot be read is left
+/// out with a note naming the link and the file. `load` gives the unit of meshes that declare none.
+std::vector<massprops::TriangleMesh> VisualShapes(const massprops::RobotModel& model, const RobotInWorld& added,
+                                                  const massprops::LoadOptions& load, std::vector<std::string>& notes);
+
+/// A file's own floor (an MJCF worldbody plane) as a ground: its collision bits, and its friction
+/// mixed as MuJoCo mixes it (the larger of a pair's) when the file gives one.
+Ground GroundOf(const massprops::RobotGround& ground);
 
 /// @throws std::invalid_argument naming the link or joint: a massless link that a joint moves, a
 /// joint or position named in the options that the robot has not, a non-positive inertia; or as

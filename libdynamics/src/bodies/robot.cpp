@@ -94,9 +94,24 @@ massprops::TriangleMesh ReadCollisionMeshNamed(const massprops::RobotGeometry& g
   }
 }
 
+// A mesh's points in metres (`metres` per its unit) scaled by `axes`, with its triangles.
+Points PointsFrom(const massprops::TriangleMesh& mesh, double metres, const Vector3& axes) {
+  Points out;
+  for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+    out.vertices.push_back(metres * Vector3(mesh.V.row(i).transpose()).cwiseProduct(axes));
+  }
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    out.triangles.push_back(
+        {static_cast<int>(mesh.F(f, 0)), static_cast<int>(mesh.F(f, 1)), static_cast<int>(mesh.F(f, 2))});
+  }
+  if (axes.prod() < 0) {
+    for (auto& t : out.triangles) std::swap(t[1], t[2]);  // a mirroring scale turns the faces inside out
+  }
+  return out;
+}
+
 // A geometry's points (metres, its own frame) and, for a mesh, its triangles.
 Points PointsOf(const massprops::RobotGeometry& g, const RobotOptions& options, std::vector<std::string>& notes) {
-  Points out;
   massprops::TriangleMesh mesh;
   double scale = 1;
   Vector3 axes = Vector3::Ones();
@@ -107,17 +122,7 @@ Points PointsOf(const massprops::RobotGeometry& g, const RobotOptions& options, 
     mesh = ReadCollisionMeshNamed(g, m, options.load, !options.mesh_colliders, scale, notes);
     axes = m.scale;
   }
-  for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
-    out.vertices.push_back(scale * Vector3(mesh.V.row(i).transpose()).cwiseProduct(axes));
-  }
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-    out.triangles.push_back(
-        {static_cast<int>(mesh.F(f, 0)), static_cast<int>(mesh.F(f, 1)), static_cast<int>(mesh.F(f, 2))});
-  }
-  if (axes.prod() < 0) {
-    for (auto& t : out.triangles) std::swap(t[1], t[2]);  // a mirroring scale turns the faces inside out
-  }
-  return out;
+  return PointsFrom(mesh, scale, axes);
 }
 
 // A collision geometry of a group, placed in the group's body frame, with its points (each mesh
@@ -141,11 +146,21 @@ std::vector<PlacedGeometry> GeometriesOf(const RobotModel& model, const Group& g
   return out;
 }
 
+// A friction the file gives (MJCF), MuJoCo's way: one coefficient, mixed by the larger.
+Material FileFriction(double mu, double restitution) { return Material{mu, mu, restitution, true}; }
+
+// A geometry's material: the file's friction (MJCF: MuJoCo's, mixed by the larger) with the
+// options' restitution, else the options' material.
+Material MaterialOf(const massprops::RobotGeometry& geometry, const RobotOptions& options) {
+  if (!geometry.friction) return options.material;
+  return FileFriction(*geometry.friction, options.material.restitution);
+}
+
 // One collision geometry as a collider in the body frame: a primitive as itself, a mesh as its
 // convex hull, or as the mesh itself (a signed distance field) when asked.
 Collider GeometryCollider(const PlacedGeometry& placed, const RobotOptions& options) {
   Collider c;
-  c.material = options.material;
+  c.material = MaterialOf(*placed.geometry, options);
   c.rotation = placed.pose.rotation;
   c.translation = placed.pose.translation;
   c.filter = {placed.geometry->contype, placed.geometry->conaffinity};
@@ -191,7 +206,10 @@ std::optional<Collider> ColliderOf(const std::vector<PlacedGeometry>& geometries
   Collider c;
   c.material = options.material;
   shape::Compound compound;
-  for (const PlacedGeometry& placed : geometries) compound.parts.push_back(GeometryCollider(placed, options));
+  for (const PlacedGeometry& placed : geometries) {
+    compound.parts.push_back(GeometryCollider(placed, options));
+    if (placed.geometry->friction) compound.part_materials = true;
+  }
   c.shape = std::move(compound);
   return c;
 }
@@ -311,6 +329,41 @@ std::optional<JointMotor> ActuatorMotor(const massprops::RobotActuator& a, doubl
 }
 
 }  // namespace
+
+std::vector<massprops::TriangleMesh> VisualShapes(const RobotModel& model, const RobotInWorld& added,
+                                                  const massprops::LoadOptions& load, std::vector<std::string>& notes) {
+  const int first_body = added.bodies.empty() ? 0 : added.bodies.front();
+  std::vector<std::vector<PlacedGeometry>> placed(added.bodies.size());
+  for (std::size_t l = 0; l < model.links.size() && l < added.link_in_body.size(); ++l) {
+    const auto body = static_cast<std::size_t>(added.body_of_link[l] - first_body);
+    for (const massprops::RobotGeometry& g : model.links[l].visuals) {
+      Points points;
+      try {
+        if (const auto* m = std::get_if<massprops::RobotMesh>(&g.shape)) {
+          const massprops::LoadedMesh file = massprops::ReadMeshFile(m->path);
+          const double metres =
+              massprops::MetresPerUnit(file.declared_unit && !load.unit_stated ? *file.declared_unit : load.unit);
+          points = PointsFrom(massprops::Triangulate(file.mesh), metres, m->scale);
+        } else {
+          points = PointsFrom(massprops::Tessellate(std::get<massprops::Primitive>(g.shape), 24), 1, Vector3::Ones());
+        }
+      } catch (const std::exception& e) {
+        notes.push_back(g.where + ": not drawn: " + e.what());
+        continue;
+      }
+      placed[body].push_back({&g, added.link_in_body[l].Then(g.pose), std::move(points)});
+    }
+  }
+  std::vector<massprops::TriangleMesh> out;
+  for (const std::vector<PlacedGeometry>& p : placed) out.push_back(ShapeOf(p));
+  return out;
+}
+
+Ground GroundOf(const massprops::RobotGround& ground) {
+  Ground g(ground.normal, ground.offset, {}, {ground.contype, ground.conaffinity});
+  if (ground.friction) g.material = FileFriction(*ground.friction, 0);
+  return g;
+}
 
 RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotOptions& options) {
   const std::size_t nl = model.links.size();
@@ -480,6 +533,7 @@ RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotO
     const Group& g = groups[static_cast<std::size_t>(group_of[static_cast<std::size_t>(link)])];
     return g.body_in_root.Inverse().Then(g.in_root[index_in_group(link)]);
   };
+  for (std::size_t l = 0; l < nl; ++l) out.link_in_body.push_back(link_in_body(static_cast<int>(l)));
   // The joints.
   out.joint_of.assign(model.joints.size(), -1);
   for (std::size_t k = 0; k < model.joints.size(); ++k) {

@@ -150,6 +150,10 @@ ContactWorld::ContactWorld(ContactWorld&&) noexcept = default;
 ContactWorld& ContactWorld::operator=(ContactWorld&&) noexcept = default;
 
 Material CombineMaterials(const Material& a, const Material& b) {
+  if (a.mix_by_maximum && b.mix_by_maximum) {
+    return Material{std::max(a.static_friction, b.static_friction), std::max(a.kinetic_friction, b.kinetic_friction),
+                    std::max(a.restitution, b.restitution), true};
+  }
   return Material{std::sqrt(a.static_friction * b.static_friction), std::sqrt(a.kinetic_friction * b.kinetic_friction),
                   std::max(a.restitution, b.restitution)};
 }
@@ -181,6 +185,13 @@ void ValidateMaterial(const Material& m) {
   }
   if (!(m.restitution >= 0 && m.restitution <= 1)) throw std::invalid_argument("restitution must lie in [0, 1]");
 }
+// The collider's material and, when its parts touch with their own, theirs.
+void ValidateMaterials(const Collider& c) {
+  ValidateMaterial(c.material);
+  if (const auto* compound = std::get_if<shape::Compound>(&c.shape); compound != nullptr && compound->part_materials) {
+    for (const Collider& part : compound->parts) ValidateMaterial(part.material);
+  }
+}
 
 contact::Posed PoseOf(const Collider& c, const contact::Polytope* polytope, const RigidBody& b) {
   const Matrix3 R = b.Rotation();
@@ -209,7 +220,7 @@ void PrepareShape(Collider& c) {
 int ContactWorld::AddBody(const RigidBody& body, Collider collider) {
   PrepareShape(collider);
   contact::ValidateShape(collider.shape);
-  ValidateMaterial(collider.material);
+  ValidateMaterials(collider);
   auto polytope = PolytopeOf(collider.shape);
   const int index = world_.AddBody(body);
   impl_->radii.push_back(contact::BoundingRadius(collider.shape));
@@ -235,7 +246,7 @@ int ContactWorld::AddBody(const RigidBody& body) {
 void ContactWorld::AddStatic(Collider collider, const Matrix3& rotation, const Vector3& translation) {
   PrepareShape(collider);
   contact::ValidateShape(collider.shape);
-  ValidateMaterial(collider.material);
+  ValidateMaterials(collider);
   if (!rotation.allFinite() || std::abs(rotation.determinant() - 1) > 1e-9 ||
       !(rotation.transpose() * rotation).isApprox(Matrix3::Identity(), 1e-9) || !translation.allFinite()) {
     throw std::invalid_argument("a static body's placement needs a rotation and a finite translation");
@@ -331,9 +342,28 @@ struct RowContext {
 // A row for each contact point between body a and b (-1: a ground or static body); key_b names b
 // in the rows' keys: b itself, KeyOfStatic or KeyOfGround (distinct, so that the warm start and
 // the friction state of a body on a ground never pass to the same body on a static body).
+// The materials of a pair's contacts: the pair's own (ContactWorld::SetPairMaterial), else its
+// colliders' combined, else — at a point on a compound's part that touches with its own — that
+// part's combined with the other side's.
+struct PairMaterials {
+  const Material* pair = nullptr;  ///< SetPairMaterial's, which wins
+  const Material* a = nullptr;
+  const Material* b = nullptr;
+  Material combined;  ///< CombineMaterials(*a, *b)
+  const Material& At(const contact::ContactPoint& p, Material& scratch) const {
+    if (pair != nullptr) return *pair;
+    if (p.material_a == nullptr && p.material_b == nullptr) return combined;
+    scratch =
+        CombineMaterials(p.material_a != nullptr ? *p.material_a : *a, p.material_b != nullptr ? *p.material_b : *b);
+    return scratch;
+  }
+};
+
 void AppendRows(const RowContext& c, const std::vector<contact::ContactPoint>& points, int a, int b, int key_b,
-                const Material& mat, double slop, std::vector<contact::Row>& rows, ContactStats& stats) {
+                const PairMaterials& materials, double slop, std::vector<contact::Row>& rows, ContactStats& stats) {
+  Material scratch;
   for (const contact::ContactPoint& p : points) {
+    const Material& mat = materials.At(p, scratch);
     contact::Row r;
     r.slop = slop;
     r.a = a;
@@ -507,9 +537,13 @@ StepStatus ContactWorld::Step(double h) {
   m.rows.clear();
   m.patches.clear();
   auto material_of = [&](int a, int b, const Material& ma, const Material& mb) {
+    PairMaterials out;
     const auto it = m.pair_materials.find({std::min(a, b), std::max(a, b)});
-    if (it != m.pair_materials.end()) return it->second;
-    return CombineMaterials(ma, mb);
+    if (it != m.pair_materials.end()) out.pair = &it->second;
+    out.a = &ma;
+    out.b = &mb;
+    if (out.pair == nullptr) out.combined = CombineMaterials(ma, mb);
+    return out;
   };
   const RowContext row_context{bodies, m.vel, m.before_kick, h, bounce_threshold};
   std::vector<contact::ContactPoint> points;

@@ -173,9 +173,14 @@ namespace {
 
 // The features of part k's points (out[first ...]) made distinct from the other parts' (side 0:
 // the first shape's parts, 1: the second's), so that warm starting keys each part's own points.
-void MarkPart(std::vector<ContactPoint>& out, std::size_t first, std::size_t k, int side) {
+// Each point also gets the part's material when the compound's parts touch with their own.
+void MarkPart(std::vector<ContactPoint>& out, std::size_t first, const shape::Compound& c, std::size_t k, int side) {
   const std::uint32_t mark = static_cast<std::uint32_t>(k + 1) * (side == 0 ? 0x9E3779B1u : 0x85EBCA77u);
-  for (std::size_t i = first; i < out.size(); ++i) out[i].feature ^= mark;
+  const Material* own = c.part_materials ? &c.parts[k].material : nullptr;
+  for (std::size_t i = first; i < out.size(); ++i) {
+    out[i].feature ^= mark;
+    if (own != nullptr) (side == 0 ? out[i].material_a : out[i].material_b) = own;
+  }
 }
 
 }  // namespace
@@ -283,7 +288,7 @@ void CollideGround(const Posed& a, const Vector3& n, double offset, const Collis
     for (std::size_t k = 0; k < c->parts.size(); ++k) {
       const std::size_t first = out.size();
       CollideGround(PartOf(a, *c, k), n, offset, ground, margin, out);
-      MarkPart(out, first, k, 0);
+      MarkPart(out, first, *c, k, 0);
     }
     return;
   }
@@ -340,7 +345,7 @@ bool Collide(const Posed& a, const Posed& b, double margin, std::vector<ContactP
       const std::size_t first = out.size();
       const Posed part = PartOf(whole, *c, k);
       ok = (side == 0 ? Collide(part, b, margin, out) : Collide(a, part, margin, out)) && ok;
-      MarkPart(out, first, k, side);
+      MarkPart(out, first, *c, k, side);
     }
     return ok;
   }

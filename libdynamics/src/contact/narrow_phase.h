@@ -15,6 +15,10 @@ struct ContactPoint {
   Vector3 normal;             ///< unit, from the second shape into the first
   double separation = 0;      ///< m, negative when overlapping
   std::uint32_t feature = 0;  ///< which corner, end or rim point: keys warm starting
+  /// The material of the first and second shape's part the point is on, when that part of a
+  /// compound touches with its own (shape::Compound::part_materials); null: the collider's.
+  const Material* material_a = nullptr;
+  const Material* material_b = nullptr;
 };
 
 /// A shape in the world: x_W = R x_S + t.

@@ -709,20 +709,24 @@ std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& ca
     const auto pair = std::pair{std::get<0>(rows[first].key), std::get<1>(rows[first].key)};
     std::size_t last = first;
     while (last < rows.size() && std::pair{std::get<0>(rows[last].key), std::get<1>(rows[last].key)} == pair) ++last;
-    // Its patches: each row joins the first patch whose first normal agrees with its own; the
-    // rows are reordered patch by patch.
-    std::vector<Vector3> normals;
+    // Its patches: each row joins the first patch whose first normal agrees with its own and
+    // whose friction is its own (a compound's parts may differ); the rows are reordered patch by
+    // patch.
+    std::vector<const Row*> leaders;  // each patch's first row
     std::vector<int> patch_of;
     for (std::size_t i = first; i < last; ++i) {
       std::size_t k = 0;
-      while (k < normals.size() && normals[k].dot(rows[i].n) < same) ++k;
-      if (k == normals.size()) normals.push_back(rows[i].n);
+      while (k < leaders.size() && (leaders[k]->n.dot(rows[i].n) < same || leaders[k]->mu_s != rows[i].mu_s ||
+                                    leaders[k]->mu_k != rows[i].mu_k)) {
+        ++k;
+      }
+      if (k == leaders.size()) leaders.push_back(&rows[i]);
       patch_of.push_back(static_cast<int>(k));
     }
     sorted.clear();
     const auto found = cache.patches.find(pair);
     std::vector<char> used(found != cache.patches.end() ? found->second.size() : 0, 0);
-    for (std::size_t k = 0; k < normals.size(); ++k) {
+    for (std::size_t k = 0; k < leaders.size(); ++k) {
       Patch p;
       p.first = static_cast<int>(first + sorted.size());
       Vector3 sum = Vector3::Zero();
@@ -743,7 +747,7 @@ std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& ca
     }
     std::copy(sorted.begin(), sorted.end(), rows.begin() + static_cast<std::ptrdiff_t>(first));
     // Each patch's anchor, effective masses, warm start and friction state.
-    for (std::size_t k = patches.size() - normals.size(); k < patches.size(); ++k) {
+    for (std::size_t k = patches.size() - leaders.size(); k < patches.size(); ++k) {
       Patch& p = patches[k];
       Vector3& anchor = p.anchor;
       Outline(rows, p, anchor, p.rho);

@@ -54,6 +54,10 @@ struct RobotGeometry {
   /// MJCF's collision bits (contype, conaffinity; 1 and 1 in the other formats): two geometries
   /// may touch when (a.contype & b.conaffinity) | (b.contype & a.conaffinity) is non-zero.
   std::uint32_t contype = 1, conaffinity = 1;
+  /// MJCF: the sliding friction MuJoCo gives it (its own or its class's `friction`, else 1; 0 for
+  /// condim 1), mixed with the other side's by taking the larger (MuJoCo's rule). None (URDF,
+  /// SDFormat): the simulator's material.
+  std::optional<double> friction;
 };
 
 /// Mass, center of mass (link frame) and inertia about it (link axes), SI.
@@ -67,6 +71,9 @@ struct RobotLink {
   std::string name;
   std::optional<RobotInertial> inertial;  ///< none: the file gives no mass (URDF: massless)
   std::vector<RobotGeometry> collisions;
+  /// What is drawn (URDF/SDFormat <visual>s, MJCF geoms that collide with nothing), for pictures;
+  /// a visual that cannot be read is left out with a note.
+  std::vector<RobotGeometry> visuals;
 };
 
 enum class RobotJointType { kFixed, kRevolute, kContinuous, kPrismatic, kBall, kFloating };
@@ -94,6 +101,7 @@ struct RobotGround {
   double offset = 0;
   std::string where;                           ///< "geom 'floor'", for messages
   std::uint32_t contype = 1, conaffinity = 1;  ///< as RobotGeometry's
+  std::optional<double> friction;              ///< as RobotGeometry's
 };
 
 /// An MJCF actuator on a joint, in MuJoCo's general form: force = gain ctrl + bias[0] + bias[1]

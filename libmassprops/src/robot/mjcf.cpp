@@ -13,6 +13,7 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -262,6 +263,51 @@ std::uint32_t Bits(pugi::xml_attribute a, const std::string& what) {
   return v < 0 ? static_cast<std::uint32_t>(static_cast<std::int64_t>(v)) : static_cast<std::uint32_t>(v);
 }
 
+// A geom's sliding friction as MuJoCo takes it: the first number of its `friction` (its own or
+// its class's), else MuJoCo's default 1. What this leaves out is counted in `surface` for one note
+// each: `condim` other than 3 (a contact takes the larger condim of its two geoms: frictionless
+// only when both say 1; 4 and 6 add torsional and rolling coefficients) and `priority` (one geom's
+// coefficients over the other's).
+struct SurfaceCounts {
+  int frictionless = 0, torsional = 0, priority = 0;
+};
+double Friction(const std::function<pugi::xml_attribute(const char*)>& attr, const std::string& what,
+                SurfaceCounts& surface) {
+  if (const pugi::xml_attribute c = attr("condim")) {
+    const double condim = Numbers(c.value(), 1, what + " condim")[0];
+    if (condim != 1 && condim != 3 && condim != 4 && condim != 6) {
+      throw ElementError(what + ": condim \"" + std::string(c.value()) + "\" is not 1, 3, 4 or 6");
+    }
+    if (condim == 1) ++surface.frictionless;
+    if (condim > 3) ++surface.torsional;
+  }
+  if (const pugi::xml_attribute p = attr("priority"); p && std::string(p.value()) != "0") ++surface.priority;
+  if (const pugi::xml_attribute f = attr("friction")) {
+    const std::vector<double> mu = NumberList(f.value(), what + " friction", 1);
+    if (mu.empty() || !(mu[0] >= 0)) throw ElementError(what + ": friction needs a non-negative first number");
+    return mu[0];
+  }
+  return 1;
+}
+
+void NoteSurfaces(const SurfaceCounts& surface, std::vector<std::string>& notes) {
+  if (surface.frictionless > 0) {
+    notes.push_back(std::to_string(surface.frictionless) +
+                    " geom(s) with condim 1: frictionless contact is not modelled; they take their friction, as "
+                    "MuJoCo does against a geom of condim 3");
+  }
+  if (surface.torsional > 0) {
+    notes.push_back(std::to_string(surface.torsional) +
+                    " geom(s) with condim 4 or 6: their torsional and rolling coefficients are not modelled (a "
+                    "contact patch's torsion follows its extent and the sliding coefficient)");
+  }
+  if (surface.priority > 0) {
+    notes.push_back(std::to_string(surface.priority) +
+                    " geom(s) with a priority: not modelled; a pair takes the larger friction, MuJoCo's rule "
+                    "between equal priorities");
+  }
+}
+
 Compiler CompilerOf(pugi::xml_node root) {
   Compiler compiler;
   for (pugi::xml_node c : root.children("compiler")) {
@@ -301,6 +347,7 @@ std::vector<std::pair<pugi::xml_node, std::string>> CollectBodies(pugi::xml_node
 // is simulated); the other shapes are noted as left out.
 void WorldGeoms(pugi::xml_node root, const Compiler& compiler, const Defaults& defaults, RobotModel& model) {
   int k = 0, left_out = 0;
+  SurfaceCounts surface;
   for (pugi::xml_node world : root.children("worldbody")) {
     const std::string cls = world.attribute("childclass") ? world.attribute("childclass").value() : "main";
     for (pugi::xml_node geom : world.children("geom")) {
@@ -332,9 +379,11 @@ void WorldGeoms(pugi::xml_node root, const Compiler& compiler, const Defaults& d
       g.where = what;
       g.contype = contype;
       g.conaffinity = conaffinity;
+      g.friction = Friction(attr, "worldbody " + what, surface);
       model.grounds.push_back(g);
     }
   }
+  NoteSurfaces(surface, model.notes);
   if (left_out > 0) {
     model.notes.push_back(std::to_string(left_out) +
                           " worldbody geom(s) other than planes are not simulated (obstacles belong in a scene)");
@@ -489,6 +538,7 @@ std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options) {
     for (auto& b : CollectBodies(world)) bodies.push_back(std::move(b));
   }
   std::vector<Link> links;
+  SurfaceCounts surface;
   for (const auto& [body, childclass] : bodies) {
     Link link;
     link.element = body;
@@ -509,6 +559,7 @@ std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options) {
         Geometry g = reader.Read(geom, cls, what);
         g.contype = contype;
         g.conaffinity = conaffinity;
+        g.friction = Friction([&](const char* name) { return reader.Attr(geom, cls, name); }, what, surface);
         link.geometries.push_back(std::move(g));
       } catch (const ElementError& e) {
         link.error = e.what();
@@ -517,6 +568,7 @@ std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options) {
     }
     links.push_back(std::move(link));
   }
+  NoteSurfaces(surface, doc.simulation_notes);
   return links;
 }
 
@@ -630,6 +682,7 @@ void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotMo
   const pugi::xml_node root = doc.xml.child("mujoco");
   model.name = root.attribute("model").value();
   model.notes.insert(model.notes.end(), doc.notes.begin(), doc.notes.end());
+  model.notes.insert(model.notes.end(), doc.simulation_notes.begin(), doc.simulation_notes.end());
   for (pugi::xml_node c : root.children("compiler")) {
     if (std::string(c.attribute("coordinate").value()) == "global") {
       throw ElementError("<compiler coordinate=\"global\"> is not followed: give local coordinates");

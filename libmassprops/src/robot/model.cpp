@@ -193,6 +193,53 @@ void InertiaFromGeoms(const Document& doc, const RobotModelOptions& options, Rob
   }
 }
 
+// A link's geometries in the model's form.
+std::vector<RobotGeometry> GeometriesOf(const robot::Link& l) {
+  std::vector<RobotGeometry> out;
+  for (const robot::Geometry& g : l.geometries) {
+    RobotGeometry r;
+    if (const auto* p = std::get_if<Primitive>(&g.shape)) {
+      r.shape = *p;
+    } else {
+      const auto& m = std::get<robot::MeshRef>(g.shape);
+      r.shape = RobotMesh{m.path, m.scale};
+    }
+    r.pose = {g.rotation, g.translation};
+    r.where = "link '" + l.name + "' " + g.where;
+    r.contype = g.contype;
+    r.conaffinity = g.conaffinity;
+    r.friction = g.friction;
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+// Each link's visual geometries (for pictures only): a link whose visuals cannot be read (a mesh
+// file that is missing, a shape not understood) is drawn without them, with a note.
+void ReadVisuals(Document& doc, const FillOptions& fill, RobotModel& model) {
+  const std::size_t notes = doc.notes.size(), simulation_notes = doc.simulation_notes.size();
+  FillOptions visual = fill;
+  visual.from = GeometrySource::kVisual;
+  const std::vector<robot::Link> links = model.format == RobotFormat::kUrdf  ? robot::UrdfLinks(doc, visual)
+                                         : model.format == RobotFormat::kSdf ? robot::SdfLinks(doc, visual)
+                                                                             : robot::MjcfLinks(doc, visual);
+  doc.notes.resize(notes);  // (the collision pass noted the file already)
+  doc.simulation_notes.resize(simulation_notes);
+  int left_out = 0;
+  for (std::size_t k = 0; k < links.size() && k < model.links.size(); ++k) {
+    model.links[k].visuals = GeometriesOf(links[k]);
+    if (!links[k].error.empty()) {
+      ++left_out;
+      if (left_out <= 3) {
+        model.notes.push_back("link '" + links[k].name + "': visual geometry not drawn: " + links[k].error);
+      }
+    }
+  }
+  if (left_out > 3) {
+    model.notes.push_back(std::to_string(left_out - 3) + " more links' visual geometry not drawn");
+  }
+}
+
 }  // namespace
 
 RobotModel ReadRobotModel(const std::string& path, const RobotModelOptions& options) {
@@ -222,22 +269,10 @@ RobotModel ReadRobotModel(const std::string& path, const RobotModelOptions& opti
     if (!l.error.empty()) throw std::runtime_error(path + ": link '" + l.name + "': " + l.error);
     RobotLink link;
     link.name = l.name;
-    for (const robot::Geometry& g : l.geometries) {
-      RobotGeometry out;
-      if (const auto* p = std::get_if<Primitive>(&g.shape)) {
-        out.shape = *p;
-      } else {
-        const auto& m = std::get<robot::MeshRef>(g.shape);
-        out.shape = RobotMesh{m.path, m.scale};
-      }
-      out.pose = {g.rotation, g.translation};
-      out.where = "link '" + l.name + "' " + g.where;
-      out.contype = g.contype;
-      out.conaffinity = g.conaffinity;
-      link.collisions.push_back(std::move(out));
-    }
+    link.collisions = GeometriesOf(l);
     model.links.push_back(std::move(link));
   }
+  ReadVisuals(doc, options.fill_options, model);
   try {
     switch (model.format) {
       case RobotFormat::kUrdf: robot::UrdfKinematics(doc, model); break;

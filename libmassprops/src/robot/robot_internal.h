@@ -29,6 +29,7 @@ struct Geometry {
   std::optional<MassSpec> own;                 ///< MJCF: the geom's own density or mass
   bool massless = false;                       ///< MJCF: mass or density 0 — it collides, but adds no mass
   std::uint32_t contype = 1, conaffinity = 1;  ///< MJCF's collision bits
+  std::optional<double> friction;              ///< MJCF: the sliding friction MuJoCo gives it
   std::string where;                           ///< "collision 'base_box'", for messages
 };
 
@@ -47,6 +48,7 @@ struct Document {
   std::string text;  ///< the file's bytes
   pugi::xml_document xml;
   std::vector<std::string> notes;
+  std::vector<std::string> simulation_notes;  ///< for a simulator only (ReadRobotModel), not `massprops fill`
 };
 
 /// A fault in one element, with the element named; caught per link.
