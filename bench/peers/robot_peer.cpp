@@ -364,8 +364,8 @@ int Joints(const std::string& path, const std::string& keyframe, double seconds,
     const Vector3 q(d->xipos[3 * id], d->xipos[3 * id + 1], d->xipos[3 * id + 2]);
     const bool ok = (p - q).norm() < 0.01;
     height_ok = height_ok && ok;
-    std::printf("  %-14s (%.4f, %.4f, %.4f) (%.4f, %.4f, %.4f)   (center of mass, m; within 1 cm: %s)\n",
-                name.c_str(), p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), ok ? "yes" : "NO");
+    std::printf("  %-14s (%.4f, %.4f, %.4f) (%.4f, %.4f, %.4f)   (center of mass, m; within 1 cm: %s)\n", name.c_str(),
+                p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), ok ? "yes" : "NO");
   }
   const bool ok = worst <= tolerance && height_ok;
   std::printf("%s: largest difference %.2e (tolerance %.2e)\n", ok ? "agree" : "DISAGREE", worst, tolerance);
