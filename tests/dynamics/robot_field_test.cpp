@@ -249,7 +249,7 @@ TEST(RobotField, MjcfCollisionBitsDecideWhatTouches) {
   const dynamics::RobotInWorld added = dynamics::AddRobot(world, m);
   ASSERT_EQ(added.bodies.size(), 6u);
   ASSERT_EQ(m.excluded.size(), 1u);
-  EXPECT_TRUE(AnyContains(m.notes, "1 <contact><pair>(s) are not simulated"));
+  EXPECT_TRUE(AnyContains(m.notes, "1 <contact><pair>(s) between geoms of one body (or two floors)"));
   for (int s = 0; s < 1000; ++s) ASSERT_TRUE(world.Step(1e-3).ok);
   auto z = [&](const char* name) {
     for (std::size_t k = 0; k < added.bodies.size(); ++k) {
@@ -305,6 +305,28 @@ TEST(RobotField, EachGeomSlidesWithItsOwnFrictionMixedByTheLarger) {
   // The puck: μ = max(1, 0.1).
   EXPECT_NEAR(body(2).position.x(), v * v / (2 * 1.0 * kG), 3e-3);
   EXPECT_LT(body(2).velocity.norm(), 1e-6);
+}
+
+// <contact><pair>: a pair's geoms touch whatever their bits (a box of bits 0 and 0 paired with
+// the floor lands on it; unpaired, it falls through), and each geom of a body collides with its
+// own bits (two spheres of 2 and 2 touch a floor of 3 and 3).
+TEST(RobotField, PairedGeomsTouchWhateverTheirBits) {
+  const massprops::RobotModel m = massprops::ReadRobotModel(kField + "mjcf/pairs.xml");
+  EXPECT_TRUE(AnyContains(m.notes, "1 <contact><pair>(s) give their own friction"))
+      << ::testing::PrintToString(m.notes);
+  ASSERT_EQ(m.links[0].collisions.size(), 1u);  // paired: a collision geom despite its bits
+  EXPECT_EQ(m.links[1].collisions.size(), 0u);  // unpaired: drawn only
+  EXPECT_EQ(m.links[1].visuals.size(), 2u);
+  ContactWorld world = WorldWithGravity(false);
+  for (const massprops::RobotGround& g : m.grounds) world.AddGround(dynamics::GroundOf(g));
+  const dynamics::RobotInWorld added = dynamics::AddRobot(world, m);
+  for (int s = 0; s < 600; ++s) ASSERT_TRUE(world.Step(1e-3).ok);
+  auto z = [&](int k) {
+    return world.world().bodies()[static_cast<std::size_t>(added.bodies[static_cast<std::size_t>(k)])].position.z();
+  };
+  EXPECT_NEAR(z(0), 0.02, 1e-3);
+  EXPECT_LT(z(1), 0.2 - 0.5 * kG * 0.6 * 0.6 + 1e-6);  // free fall for 0.6 s
+  EXPECT_NEAR(z(2), 0.03, 1e-3);
 }
 
 // MJCF armature (from the joint defaults): a hinged bar's small-amplitude period is

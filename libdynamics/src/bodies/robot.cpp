@@ -205,6 +205,7 @@ std::optional<Collider> ColliderOf(const std::vector<PlacedGeometry>& geometries
   if (geometries.size() == 1) return GeometryCollider(geometries.front(), options);
   Collider c;
   c.material = options.material;
+  c.filter = {~0u, ~0u};  // every bit: each part's own decide (a part's filter is ANDed with this)
   shape::Compound compound;
   for (const PlacedGeometry& placed : geometries) {
     compound.parts.push_back(GeometryCollider(placed, options));

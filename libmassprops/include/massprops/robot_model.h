@@ -100,6 +100,7 @@ struct RobotGround {
   Vector3 normal = Vector3::UnitZ();
   double offset = 0;
   std::string where;                           ///< "geom 'floor'", for messages
+  std::string name;                            ///< the geom's name attribute
   std::uint32_t contype = 1, conaffinity = 1;  ///< as RobotGeometry's
   std::optional<double> friction;              ///< as RobotGeometry's
 };

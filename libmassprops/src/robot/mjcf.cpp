@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -343,11 +344,25 @@ std::vector<std::pair<pugi::xml_node, std::string>> CollectBodies(pugi::xml_node
   return out;
 }
 
+// The geoms named by <contact><pair>s: they collide even when their bits say nothing (MuJoCo
+// collides a pair's geoms whatever their contype and conaffinity).
+std::set<std::string> PairedGeoms(pugi::xml_node root) {
+  std::set<std::string> out;
+  for (pugi::xml_node contact : root.children("contact")) {
+    for (pugi::xml_node pair : contact.children("pair")) {
+      out.insert(pair.attribute("geom1").value());
+      out.insert(pair.attribute("geom2").value());
+    }
+  }
+  return out;
+}
+
 // The worldbody's own geoms: planes are the file's floors; a height field is refused (no terrain
 // is simulated); the other shapes are noted as left out.
 void WorldGeoms(pugi::xml_node root, const Compiler& compiler, const Defaults& defaults, RobotModel& model) {
   int k = 0, left_out = 0;
   SurfaceCounts surface;
+  const std::set<std::string> paired = PairedGeoms(root);
   for (pugi::xml_node world : root.children("worldbody")) {
     const std::string cls = world.attribute("childclass") ? world.attribute("childclass").value() : "main";
     for (pugi::xml_node geom : world.children("geom")) {
@@ -361,7 +376,7 @@ void WorldGeoms(pugi::xml_node root, const Compiler& compiler, const Defaults& d
       const std::string type = attr("type") ? attr("type").value() : "sphere";
       const std::uint32_t contype = Bits(attr("contype"), what + " contype");
       const std::uint32_t conaffinity = Bits(attr("conaffinity"), what + " conaffinity");
-      if (contype == 0 && conaffinity == 0) continue;  // drawn only
+      if (contype == 0 && conaffinity == 0 && !paired.count(geom.attribute("name").value())) continue;  // drawn only
       if (type == "hfield") {
         throw ElementError("worldbody " + what +
                            ": a height field (terrain) is not simulated: remove it, or give "
@@ -377,6 +392,7 @@ void WorldGeoms(pugi::xml_node root, const Compiler& compiler, const Defaults& d
       g.normal = frame.rotation.col(2);
       g.offset = g.normal.dot(frame.translation);
       g.where = what;
+      g.name = geom.attribute("name").value();
       g.contype = contype;
       g.conaffinity = conaffinity;
       g.friction = Friction(attr, "worldbody " + what, surface);
@@ -539,6 +555,7 @@ std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options) {
   }
   std::vector<Link> links;
   SurfaceCounts surface;
+  const std::set<std::string> paired = PairedGeoms(root);
   for (const auto& [body, childclass] : bodies) {
     Link link;
     link.element = body;
@@ -554,11 +571,13 @@ std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options) {
         if (cls != "main" && !defaults.Has(cls)) throw ElementError(what + ": no <default class=\"" + cls + "\">");
         const std::uint32_t contype = Bits(reader.Attr(geom, cls, "contype"), what + " contype");
         const std::uint32_t conaffinity = Bits(reader.Attr(geom, cls, "conaffinity"), what + " conaffinity");
-        const bool collides = contype != 0 || conaffinity != 0;  // with something: the bits decide with what
+        // With something (the bits decide with what), or with its <pair>s.
+        const bool collides = contype != 0 || conaffinity != 0 || paired.count(geom.attribute("name").value()) > 0;
         if (options.from != GeometrySource::kAll && collides == visual) continue;
         Geometry g = reader.Read(geom, cls, what);
         g.contype = contype;
         g.conaffinity = conaffinity;
+        g.name = geom.attribute("name").value();
         g.friction = Friction([&](const char* name) { return reader.Attr(geom, cls, name); }, what, surface);
         link.geometries.push_back(std::move(g));
       } catch (const ElementError& e) {
@@ -572,12 +591,92 @@ std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options) {
   return links;
 }
 
-// <contact>: each <exclude body1 body2> a pair of links that never touch; <pair>s are noted
-// (their geoms collide by their contype/conaffinity bits alone here).
+// <contact><pair geom1 geom2>s: each pair's geoms touch whatever their own bits say, as in MuJoCo.
+// Each geom2 gets a collision bit that no geom of the file uses in its conaffinity, and each geom1
+// paired with it the same bit in its contype: (g1.contype & g2.conaffinity) then holds for the
+// pair and for nothing else. A pair's own friction, condim and solver settings are noted (its
+// geoms' are mixed); pairs past the bits left, or within one link, are noted as not simulated.
+void ContactPairs(const pugi::xml_node& root, const std::vector<Link>& links, RobotModel& model) {
+  struct Ref {
+    std::uint32_t* contype;
+    std::uint32_t* conaffinity;
+    int link;  // -1: a floor
+  };
+  std::map<std::string, Ref> geoms;
+  for (std::size_t k = 0; k < links.size() && k < model.links.size(); ++k) {
+    for (std::size_t i = 0; i < links[k].geometries.size() && i < model.links[k].collisions.size(); ++i) {
+      const std::string& name = links[k].geometries[i].name;
+      RobotGeometry& g = model.links[k].collisions[i];
+      if (!name.empty()) geoms.emplace(name, Ref{&g.contype, &g.conaffinity, static_cast<int>(k)});
+    }
+  }
+  for (RobotGround& g : model.grounds) {
+    if (!g.name.empty()) geoms.emplace(g.name, Ref{&g.contype, &g.conaffinity, -1});
+  }
+  std::uint32_t used = 0;
+  for (const auto& [name, ref] : geoms) used |= *ref.contype | *ref.conaffinity;
+  std::map<std::string, std::uint32_t> bit_of;  // each geom2's pair bit
+  int k = 0, dropped = 0, same_link = 0, own_settings = 0;
+  for (pugi::xml_node contact : root.children("contact")) {
+    for (pugi::xml_node pair : contact.children("pair")) {
+      ++k;
+      std::array<Ref, 2> ends{};
+      for (int e = 0; e < 2; ++e) {
+        const char* key = e == 0 ? "geom1" : "geom2";
+        const std::string name = pair.attribute(key).value();
+        const auto it = geoms.find(name);
+        if (it == geoms.end()) {
+          throw ElementError("<contact> pair #" + std::to_string(k) + ": " + key + "=\"" + name +
+                             "\" names no geom of a body or worldbody plane");
+        }
+        ends[static_cast<std::size_t>(e)] = it->second;
+      }
+      for (const char* a : {"friction", "condim", "solref", "solimp", "margin", "gap", "solreffriction"}) {
+        if (pair.attribute(a)) {
+          ++own_settings;
+          break;
+        }
+      }
+      if (ends[0].link == ends[1].link) {
+        ++same_link;
+        continue;
+      }
+      const std::string geom2 = pair.attribute("geom2").value();
+      auto bit = bit_of.find(geom2);
+      if (bit == bit_of.end()) {
+        const std::uint32_t free = ~used;
+        if (free == 0) {
+          ++dropped;
+          continue;
+        }
+        const std::uint32_t b = free & (~free + 1);  // the lowest bit left
+        used |= b;
+        bit = bit_of.emplace(geom2, b).first;
+        *ends[1].conaffinity |= b;
+      }
+      *ends[0].contype |= bit->second;
+    }
+  }
+  if (same_link > 0) {
+    model.notes.push_back(std::to_string(same_link) +
+                          " <contact><pair>(s) between geoms of one body (or two floors) are not simulated");
+  }
+  if (dropped > 0) {
+    model.notes.push_back(std::to_string(dropped) +
+                          " <contact><pair>(s) are not simulated: the 32 collision bits are all in use");
+  }
+  if (own_settings > 0) {
+    model.notes.push_back(std::to_string(own_settings) +
+                          " <contact><pair>(s) give their own friction, condim or solver settings: not modelled (the "
+                          "geoms' frictions are mixed, the larger wins)");
+  }
+}
+
+// <contact>: each <exclude body1 body2> a pair of links that never touch; each <pair> two geoms
+// that do (ContactPairs).
 void ContactFilters(const pugi::xml_node& root, const std::vector<Link>& links, RobotModel& model) {
   std::map<std::string, int> by_name;
   for (std::size_t k = 0; k < links.size(); ++k) by_name.emplace(links[k].name, static_cast<int>(k));
-  int pairs = 0;
   for (pugi::xml_node contact : root.children("contact")) {
     int k = 0;
     for (pugi::xml_node exclude : contact.children("exclude")) {
@@ -595,12 +694,8 @@ void ContactFilters(const pugi::xml_node& root, const std::vector<Link>& links, 
       }
       if (ends[0] != ends[1]) model.excluded.emplace_back(ends[0], ends[1]);
     }
-    for (pugi::xml_node pair = contact.child("pair"); pair; pair = pair.next_sibling("pair")) ++pairs;
   }
-  if (pairs > 0) {
-    model.notes.push_back(std::to_string(pairs) +
-                          " <contact><pair>(s) are not simulated: their geoms collide by contype/conaffinity alone");
-  }
+  ContactPairs(root, links, model);
 }
 
 // One MJCF <joint>/<freejoint> of body `body` (named `name`) read into a joint: its type, its anchor

@@ -30,6 +30,7 @@ struct Geometry {
   bool massless = false;                       ///< MJCF: mass or density 0 — it collides, but adds no mass
   std::uint32_t contype = 1, conaffinity = 1;  ///< MJCF's collision bits
   std::optional<double> friction;              ///< MJCF: the sliding friction MuJoCo gives it
+  std::string name;                            ///< MJCF: the geom's name attribute (for <contact><pair>)
   std::string where;                           ///< "collision 'base_box'", for messages
 };
 
