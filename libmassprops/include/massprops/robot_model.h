@@ -12,11 +12,12 @@
 /// a quaternion (ball) or nothing (fixed).
 ///
 /// What cannot be simulated is refused, naming the element: mimic joints, planar/universal/screw
-/// joints, closed loops (a link that is the child of two joints, MJCF <equality>), several joints
-/// in one MJCF body, xacro left unexpanded, nested SDFormat models. What does not move a rigid
+/// joints, closed loops (a link that is the child of two joints, MJCF <equality>), xacro left
+/// unexpanded, nested SDFormat models. What does not move a rigid
 /// body (transmissions, Gazebo blocks, sensors, cameras, lights) is noted, one note per kind.
 /// URDF's "world" link is the world frame; MJCF files are read as MuJoCo 3 reads them
-/// (<include>, autolimits, inertiafromgeom, worldbody floors, contype/conaffinity).
+/// (<include>, autolimits, inertiafromgeom, worldbody floors, contype/conaffinity, <contact>
+/// pairs and excludes, friction per geom).
 
 #include <array>
 #include <cstdint>
