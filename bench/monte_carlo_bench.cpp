@@ -41,7 +41,7 @@ BENCHMARK(BM_Points)->ArgsProduct({{0, 1, 2}, {1, 2}})->Unit(benchmark::kMillise
 
 void BM_ErrorPerSecond(benchmark::State& state) {
   const ImplicitPtr sphere = Solid(0);
-  const double truth = 4 * M_PI / 3;
+  const double truth = 4 * massprops::kPi / 3;
   double ss = 0;
   int runs = 0;
   for (auto _ : state) {

@@ -22,7 +22,7 @@ struct Panel {
 
 // An orthographic view: world → camera (x right, y up, z towards the viewer).
 Matrix3 Camera(double azimuth_degrees, double elevation_degrees) {
-  const double a = azimuth_degrees * M_PI / 180, e = elevation_degrees * M_PI / 180;
+  const double a = azimuth_degrees * massprops::kPi / 180, e = elevation_degrees * massprops::kPi / 180;
   const Vector3 toward(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e));  // to the viewer
   const Vector3 right = Vector3::UnitZ().cross(toward).normalized();
   const Vector3 up = toward.cross(right);
@@ -132,8 +132,8 @@ void WritePosePicture(const std::string& path, const massprops::TriangleMesh& me
   Draw(svg, mesh, rest, marked, Camera(-60, 20), Panel{0, w, h}, true, {});
   // The second view looks at the resting face from outside, tilted a little for depth.
   const Vector3 n = pose.normal;
-  const double azimuth = std::atan2(n.y(), n.x()) * 180 / M_PI + 15;
-  const double elevation = std::clamp(std::asin(std::clamp(n.z(), -1.0, 1.0)) * 180 / M_PI + 15, -89.0, 89.0);
+  const double azimuth = std::atan2(n.y(), n.x()) * 180 / massprops::kPi + 15;
+  const double elevation = std::clamp(std::asin(std::clamp(n.z(), -1.0, 1.0)) * 180 / massprops::kPi + 15, -89.0, 89.0);
   Draw(svg, mesh, file, marked, Camera(azimuth, elevation), Panel{w, w, h}, false, face);
   svg << "</svg>\n";
   massprops::report::WriteFileAtomically(path, svg.str());

@@ -178,10 +178,21 @@ Quaternion ReadOrientation(Fields& f, const std::string& key, std::vector<std::s
     if (!o.Has("axis")) o.Fail("axis", "is required (with angle_deg or angle)");
     if (!(axis.norm() > 0)) o.Fail("axis", "must not be the zero vector");
     if (o.Has("angle_deg") == o.Has("angle")) o.Fail("give exactly one of angle_deg and angle (radians)");
-    // Whole turns dropped first, so that an angle of 1e308 degrees is a rotation, not an overflow.
-    const double angle = o.Has("angle") ? std::fmod(o.Number("angle", 0), 2 * M_PI)
-                                        : std::fmod(o.Number("angle_deg", 0), 360.0) * M_PI / 180.0;
-    o.Get(o.Has("angle") ? "angle_deg" : "angle");  // both are known keys
+    // An angle so large that its own rounding exceeds a microdegree names no rotation: refused.
+    // Smaller ones lose their whole turns first (exactly: fmod rounds nothing).
+    const bool radians = o.Has("angle");
+    const char* name = radians ? "angle" : "angle_deg";
+    const double given = o.Number(name, 0);
+    const double microdegree = radians ? 1e-6 * massprops::kPi / 180.0 : 1e-6;
+    const double rounding = std::nextafter(std::abs(given), HUGE_VAL) - std::abs(given);
+    if (rounding > microdegree) {
+      o.Fail(name, Num(given) + " is too large to name an angle: its own rounding is " + Num(rounding) +
+                       (radians ? " rad" : " degrees") + ", more than a microdegree; give it modulo " +
+                       (radians ? "2 pi" : "360"));
+    }
+    const double angle =
+        radians ? std::fmod(given, 2 * massprops::kPi) : std::fmod(given, 360.0) * massprops::kPi / 180.0;
+    o.Get(radians ? "angle_deg" : "angle");  // both are known keys
     o.Done();
     return Quaternion(Eigen::AngleAxisd(angle, axis.normalized()));
   }

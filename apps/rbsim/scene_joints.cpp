@@ -20,7 +20,7 @@ int BodyIndex(Fields& f, const std::string& key, const json& v, const std::vecto
 
 namespace {
 
-constexpr double kDegree = M_PI / 180.0;
+constexpr double kDegree = massprops::kPi / 180.0;
 
 /// A number given as `key` (SI) or `key_deg` (degrees, revolute joints only).
 std::optional<double> Angle(Fields& f, const std::string& key, bool revolute) {

@@ -17,7 +17,7 @@ using nlohmann::json;
 
 namespace {
 
-constexpr double kDegree = M_PI / 180.0;
+constexpr double kDegree = massprops::kPi / 180.0;
 
 // {"joint": number, ...} in SI (`key`) or degrees (`key_deg`), into `out`.
 void ReadPositions(Fields& f, const std::string& key, double unit, std::map<std::string, double>& out) {

@@ -39,7 +39,7 @@ using peers::Vector3;
 double DampingRatio(double e) {
   if (e <= 0) return 1.0;
   const double l = std::log(e);
-  return -l / std::sqrt(M_PI * M_PI + l * l);
+  return -l / std::sqrt(massprops::kPi * massprops::kPi + l * l);
 }
 
 // solref for a restitution e at step h (above).
@@ -50,7 +50,7 @@ std::string Solref(double e, double h) {
   if (zeta > 0) {
     x << "0.02 " << zeta;
   } else {
-    const double omega = M_PI / (10 * h);
+    const double omega = massprops::kPi / (10 * h);
     x << -omega * omega << " -1e-12";
   }
   return x.str();

@@ -72,7 +72,7 @@ class TransformedSolid final : public ImplicitSolid {
     if (!R_.isIdentity(0)) {
       const Eigen::AngleAxisd aa(R_);
       s = "rotate(" + s + ", axis=[" + Num(aa.axis().x()) + ", " + Num(aa.axis().y()) + ", " + Num(aa.axis().z()) +
-          "], deg=" + Num(aa.angle() * 180 / M_PI) + ")";
+          "], deg=" + Num(aa.angle() * 180 / kPi) + ")";
     }
     if (!t_.isZero(0)) s = "move(" + s + ", x=" + Num(t_.x()) + ", y=" + Num(t_.y()) + ", z=" + Num(t_.z()) + ")";
     return s;

@@ -369,7 +369,7 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
         omega += SolidAngle(a, mesh.V.row(idx[k]).transpose() - x, mesh.V.row(idx[k + 1]).transpose() - x);
       }
     }
-    return omega / (4.0 * M_PI);
+    return omega / (4.0 * kPi);
   };
   // Nesting: winding number of shell t at the probe of shell s; the innermost container wins
   // (the one with the smallest |volume|).

@@ -193,7 +193,7 @@ class Parser {
         const Vector3 axis = vec("axis");
         const Scalar deg = num("deg");
         if (!(axis.norm() > 0)) Fail("rotate: the axis is zero");
-        out = Transformed(shapes[0], Eigen::AngleAxisd(deg * M_PI / 180.0, axis.normalized()).toRotationMatrix(),
+        out = Transformed(shapes[0], Eigen::AngleAxisd(deg * kPi / 180.0, axis.normalized()).toRotationMatrix(),
                           Vector3::Zero());
       } else if (name == "scale") {
         shapes_exactly(1);

@@ -10,8 +10,6 @@
 namespace massprops::solids {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 void Require(bool ok, const char* what) {
   if (!ok) throw std::invalid_argument(what);
 }

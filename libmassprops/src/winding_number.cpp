@@ -30,7 +30,7 @@ namespace massprops::implicit {
 namespace {
 
 constexpr int kLeafSize = 8;
-constexpr double kFourPi = 4.0 * M_PI;
+constexpr double kFourPi = 4.0 * kPi;
 
 // What the far field of a node's triangles is: their dipole (Barill et al.), about `center`.
 struct Dipole {

@@ -29,7 +29,7 @@ RigidBody BoxBody(const Vector3& half, double density, const Vector3& x, const Q
 
 RigidBody SphereBody(double r, double density, const Vector3& x) {
   RigidBody b;
-  b.mass = density * 4.0 / 3 * M_PI * r * r * r;
+  b.mass = density * 4.0 / 3 * massprops::kPi * r * r * r;
   b.inertia = Vector3::Constant(0.4 * b.mass * r * r);
   b.position = x;
   return b;
@@ -62,7 +62,7 @@ std::unique_ptr<Force> TiltedGravity(double theta) {
 }
 
 TEST(Contact, BlockSlidesDownAnInclineAtTheKineticRate) {
-  const double theta = 30 * M_PI / 180, mu_s = 0.3, mu_k = 0.2;
+  const double theta = 30 * massprops::kPi / 180, mu_s = 0.3, mu_k = 0.2;
   ContactWorld w;
   const Vector3 half(0.1, 0.05, 0.025);
   w.AddBody(BoxBody(half, 500, Vector3(0, 0, half.z())),
@@ -80,7 +80,7 @@ TEST(Contact, BlockSlidesDownAnInclineAtTheKineticRate) {
 
 TEST(Contact, BlockSticksOnAnInclineWithinStaticFriction) {
   // tan 30° = 0.577 < μs = 0.7: no creep. The incline is a tilted ground plane this time.
-  const double theta = 30 * M_PI / 180;
+  const double theta = 30 * massprops::kPi / 180;
   ContactWorld w;
   const Vector3 n(-std::sin(theta), 0, std::cos(theta));
   const Vector3 half(0.1, 0.05, 0.025);
@@ -96,7 +96,7 @@ TEST(Contact, BlockSticksOnAnInclineWithinStaticFriction) {
 }
 
 TEST(Contact, SphereRollsWithoutSlipping) {
-  const double theta = 20 * M_PI / 180, r = 0.1;
+  const double theta = 20 * massprops::kPi / 180, r = 0.1;
   ContactWorld w;
   w.AddBody(SphereBody(r, 1000, Vector3(0, 0, r)),
             Collider{shape::Sphere{r}, Matrix3::Identity(), Vector3::Zero(), Mat(0.5, 0.5)});
@@ -111,14 +111,14 @@ TEST(Contact, SphereRollsWithoutSlipping) {
 }
 
 TEST(Contact, CylinderRollsWithoutSlipping) {
-  const double theta = 15 * M_PI / 180, r = 0.05, half_length = 0.1;
+  const double theta = 15 * massprops::kPi / 180, r = 0.05, half_length = 0.1;
   ContactWorld w;
   RigidBody b;
-  b.mass = 1000 * M_PI * r * r * 2 * half_length;
+  b.mass = 1000 * massprops::kPi * r * r * 2 * half_length;
   const double across = b.mass * (3 * r * r + 4 * half_length * half_length) / 12;
   b.inertia = Vector3(across, across, 0.5 * b.mass * r * r);
   b.position = Vector3(0, 0, r);
-  b.orientation = Quaternion(Eigen::AngleAxisd(M_PI / 2, Vector3::UnitX()));  // axis along y
+  b.orientation = Quaternion(Eigen::AngleAxisd(massprops::kPi / 2, Vector3::UnitX()));  // axis along y
   w.AddBody(b, Collider{shape::Cylinder{r, half_length}, Matrix3::Identity(), Vector3::Zero(), Mat(0.5, 0.5)});
   w.AddGround({Vector3::UnitZ(), 0, Mat(0.5, 0.5)});
   w.AddForce(TiltedGravity(theta));
@@ -244,7 +244,7 @@ TEST(Contact, FinelyFacetedHullRestsFlatOnAtMostSixteenPoints) {
   const double r = 0.05, half = 0.02;
   shape::Convex prism;
   for (int i = 0; i < n; ++i) {
-    const double a = 2 * M_PI * i / n;
+    const double a = 2 * massprops::kPi * i / n;
     prism.vertices.emplace_back(r * std::cos(a), r * std::sin(a), -half);
     prism.vertices.emplace_back(r * std::cos(a), r * std::sin(a), half);
   }
@@ -258,7 +258,7 @@ TEST(Contact, FinelyFacetedHullRestsFlatOnAtMostSixteenPoints) {
     }
   }
   RigidBody b;
-  b.mass = 1000 * M_PI * r * r * 2 * half;
+  b.mass = 1000 * massprops::kPi * r * r * 2 * half;
   b.inertia = b.mass * Vector3(r * r / 4 + half * half / 3, r * r / 4 + half * half / 3, r * r / 2);
   b.position = Vector3(0, 0, half);
   ContactWorld w;
@@ -421,7 +421,7 @@ TEST(Contact, FastSmallBodiesDoNotTunnel) {
 
 // A sphere on a ramp that is a static box turned by θ: the closed form of the rolling sphere.
 TEST(Contact, SphereRollsDownAStaticRamp) {
-  const double theta = 20 * M_PI / 180, r = 0.05;
+  const double theta = 20 * massprops::kPi / 180, r = 0.05;
   const Matrix3 R = Eigen::AngleAxisd(-theta, Vector3::UnitY()).toRotationMatrix();  // its +x rises
   const Vector3 n = R * Vector3::UnitZ();
   ContactWorld w;
@@ -478,7 +478,7 @@ TEST(Contact, CylinderOnATableUnderABox) {
     w.AddStatic(Collider{shape::Box{Vector3(0.5, 0.5, 0.05)}, Matrix3::Identity(), Vector3::Zero(), Mat(0.6, 0.5)},
                 Matrix3::Identity(), Vector3(0, 0, -0.05));
     RigidBody c;
-    c.mass = 1000 * M_PI * 0.05 * 0.05 * 0.2;
+    c.mass = 1000 * massprops::kPi * 0.05 * 0.05 * 0.2;
     c.inertia = Vector3(c.mass * (3 * 0.05 * 0.05 + 0.04) / 12, c.mass * (3 * 0.05 * 0.05 + 0.04) / 12,
                         0.5 * c.mass * 0.05 * 0.05);
     c.position = Vector3(0, 0, 0.1);

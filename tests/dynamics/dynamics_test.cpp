@@ -456,7 +456,7 @@ TEST(Worlds, BodyFrameTorqueTurnsWithTheBody) {
   // torque has turned with it.
   World w;
   RigidBody b = Body(Vector3(1, 2, 3), Vector3::Zero());
-  b.orientation = Quaternion(Eigen::AngleAxisd(M_PI / 2, Vector3::UnitZ()));
+  b.orientation = Quaternion(Eigen::AngleAxisd(massprops::kPi / 2, Vector3::UnitZ()));
   w.AddBody(b);
   w.AddForce(BodyFrameTorque(0, Vector3(1, 0, 0)));
   w.Step(1e-3);
@@ -512,7 +512,7 @@ TEST(Worlds, SameBitsForAnyThreadCount) {
 TEST(Bodies, FromMassPropertiesOfAMesh) {
   // A 1×2×3 box turned by 30° about z: principal axes recovered, moments ascending.
   massprops::PolygonMesh box = massprops::solids::Box(Vector3(1, 2, 3));
-  const Matrix3 R = Eigen::AngleAxisd(M_PI / 6, Vector3::UnitZ()).toRotationMatrix();
+  const Matrix3 R = Eigen::AngleAxisd(massprops::kPi / 6, Vector3::UnitZ()).toRotationMatrix();
   box.V = (box.V * R.transpose()).rowwise() + Eigen::RowVector3d(4, 5, 6);
   const RigidBody b = BodyFromMassProperties(massprops::ComputeMassProperties(box, 500.0)).body;
   EXPECT_NEAR(b.mass, 3000.0, 1e-9);

@@ -284,7 +284,7 @@ std::vector<Slider> Sliders(const Material& m) {
   shape::Convex hull;
   for (const double z : {-0.01, 0.01}) {
     for (int k = 0; k < 8; ++k) {
-      const double phi = k * M_PI / 4 + M_PI / 8;
+      const double phi = k * massprops::kPi / 4 + massprops::kPi / 8;
       hull.vertices.emplace_back(0.03 * std::cos(phi), 0.03 * std::sin(phi), z);
     }
   }
@@ -302,7 +302,7 @@ std::vector<Slider> Sliders(const Material& m) {
     if ((hull.vertices[t[1]] - hull.vertices[t[0]]).cross(hull.vertices[t[2]] - hull.vertices[t[0]]).dot(c) < 0)
       std::swap(t[1], t[2]);
   }
-  const Matrix3 along_x = Eigen::AngleAxisd(M_PI / 2, Vector3::UnitY()).toRotationMatrix();
+  const Matrix3 along_x = Eigen::AngleAxisd(massprops::kPi / 2, Vector3::UnitY()).toRotationMatrix();
   return {{"box", Collider{shape::Box{half}, Matrix3::Identity(), Vector3::Zero(), m}, half.z()},
           {"hull", Collider{hull, Matrix3::Identity(), Vector3::Zero(), m}, 0.01},
           {"capsule", Collider{shape::Capsule{0.01, 0.03}, along_x, Vector3::Zero(), m}, 0.01}};
@@ -330,7 +330,7 @@ TEST(Friction, SlidingOverAStaticMeshsInternalEdgesIsSlidingOnItsFace) {
       const double travelled = (now.position - b.position).dot(-(R * Vector3::UnitX()));
       SCOPED_TRACE(std::string(slider.name) + ", diagonals seeded " + std::to_string(seed));
       EXPECT_NEAR(travelled, 0.5 * a, 0.01 * 0.5 * a);
-      EXPECT_LT(now.orientation.angularDistance(b.orientation), M_PI / 180);
+      EXPECT_LT(now.orientation.angularDistance(b.orientation), massprops::kPi / 180);
     }
   }
 }
@@ -340,14 +340,14 @@ TEST(Friction, SlidingOverAStaticMeshsInternalEdgesIsSlidingOnItsFace) {
 TEST(Friction, SlidingAcrossATessellatedFloorStopsAtTheClosedFormDistance) {
   const Material m = Mat(0.4, 0.3);
   const shape::Mesh floor = Slab(0.6, 0.6, 0.1, 20, 20, 11);
-  const Vector3 direction(std::cos(M_PI / 6), std::sin(M_PI / 6), 0);
+  const Vector3 direction(std::cos(massprops::kPi / 6), std::sin(massprops::kPi / 6), 0);
   const double v0 = 2, d = v0 * v0 / (2 * m.kinetic_friction * kG);
   for (const Slider& slider : Sliders(m)) {
     ContactWorld w;
     w.AddStatic(Collider{floor, Matrix3::Identity(), Vector3::Zero(), m});
     RigidBody b = BoxBody(Vector3(0.03, 0.02, 0.01), 500);
     b.position = Vector3(-0.4, -0.25, slider.lift);
-    b.orientation = Quaternion(Eigen::AngleAxisd(M_PI / 6, Vector3::UnitZ()));  // x along the sliding
+    b.orientation = Quaternion(Eigen::AngleAxisd(massprops::kPi / 6, Vector3::UnitZ()));  // x along the sliding
     b.velocity = v0 * direction;
     w.AddBody(b, slider.collider);
     w.AddForce(Gravity(Vector3(0, 0, -kG)));
@@ -355,7 +355,7 @@ TEST(Friction, SlidingAcrossATessellatedFloorStopsAtTheClosedFormDistance) {
     const RigidBody& now = w.world().bodies()[0];
     SCOPED_TRACE(slider.name);
     EXPECT_NEAR((now.position - b.position).dot(direction), d, 0.01 * d);
-    EXPECT_LT(now.orientation.angularDistance(b.orientation), M_PI / 180);
+    EXPECT_LT(now.orientation.angularDistance(b.orientation), massprops::kPi / 180);
     EXPECT_LT(now.velocity.norm(), 1e-9);
   }
 }
@@ -363,17 +363,18 @@ TEST(Friction, SlidingAcrossATessellatedFloorStopsAtTheClosedFormDistance) {
 // A cylinder rolls down a static box ramp and a static mesh ramp at a = (2/3) g sin θ (1 %).
 TEST(Friction, CylinderRollsDownStaticRampsAtTwoThirdsGSinTheta) {
   const Material m = Mat(0.5, 0.5);
-  const double theta = 15 * M_PI / 180, r = 0.03, half_length = 0.05;
+  const double theta = 15 * massprops::kPi / 180, r = 0.03, half_length = 0.05;
   for (const Support s : {Support::kGround, Support::kStaticBox, Support::kStaticMesh}) {
     ContactWorld w;
     AddIncline(w, s, theta, m);
     const Matrix3 R = InclineRotation(theta);
     RigidBody b;
-    b.mass = 1000 * M_PI * r * r * 2 * half_length;
+    b.mass = 1000 * massprops::kPi * r * r * 2 * half_length;
     const double across = b.mass * (3 * r * r + 4 * half_length * half_length) / 12;
     b.inertia = Vector3(across, across, 0.5 * b.mass * r * r);
     b.position = R * Vector3(0.8, 0, r);
-    b.orientation = Quaternion(R * Eigen::AngleAxisd(M_PI / 2, Vector3::UnitX()).toRotationMatrix());  // axis across
+    b.orientation =
+        Quaternion(R * Eigen::AngleAxisd(massprops::kPi / 2, Vector3::UnitX()).toRotationMatrix());  // axis across
     w.AddBody(b, Collider{shape::Cylinder{r, half_length}, Matrix3::Identity(), Vector3::Zero(), m});
     w.AddForce(Gravity(Vector3(0, 0, -kG)));
     Simulate(w, 700);
@@ -404,7 +405,7 @@ TEST(Contact, CapsuleLyingAcrossABoxEdgeRestsOnIt) {
   b.mass = 0.1;
   b.inertia = Vector3(b.mass * half_length * half_length / 3, b.mass * half_length * half_length / 3, 1e-6);
   b.position = Vector3(0.2, 0, r);
-  b.orientation = Quaternion(Eigen::AngleAxisd(M_PI / 2, Vector3::UnitY()));  // axis along x
+  b.orientation = Quaternion(Eigen::AngleAxisd(massprops::kPi / 2, Vector3::UnitY()));  // axis along x
   w.AddBody(b, Collider{shape::Capsule{r, half_length}, Matrix3::Identity(), Vector3::Zero(), m});
   w.AddForce(Gravity(Vector3(0, 0, -kG)));
   Simulate(w, 1000);

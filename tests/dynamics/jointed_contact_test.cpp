@@ -307,7 +307,7 @@ TEST(JointedContact, SelfCollisionIsSwitchable) {
     if (self) {
       // The ball (0.45 m from the hinge) meets the bar's end face (x = -0.2 ... its corner) before
       // half a turn: it never gets past pi.
-      EXPECT_LT(turned, M_PI);
+      EXPECT_LT(turned, massprops::kPi);
       EXPECT_GT(turned, 2.5);
     } else {
       EXPECT_GT(turned, 4.0);  // through the bar and on

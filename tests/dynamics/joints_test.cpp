@@ -131,7 +131,7 @@ struct MeshPendulum {
 };
 
 TEST(Joints, MeshPendulumPeriodAtLargeAmplitude) {
-  const double theta0 = 2 * M_PI / 3;
+  const double theta0 = 2 * massprops::kPi / 3;
   {
     MeshPendulum p(theta0, Integrator::kImplicitMidpoint);
     double separation = 0;
@@ -257,7 +257,7 @@ TEST(Joints, DoublePendulumEnergyHasNoSecularDrift) {
 // u̇² = f(u) = (1 − u²)(α − βu) − (b − au)², nutating between the roots u1 < u2 of f in [−1, 1],
 // with period 2 ∫ du / √f.
 TEST(Joints, LagrangeTopNutatesBetweenTheRootsAtThePeriodByQuadrature) {
-  const double m = 1.0, l = 0.1, I1 = 0.002, I3 = 0.004, spin = 30.0, theta0 = M_PI / 3;
+  const double m = 1.0, l = 0.1, I1 = 0.002, I3 = 0.004, spin = 30.0, theta0 = massprops::kPi / 3;
   const double I1p = I1 + m * l * l;
   const double u0 = std::cos(theta0);
   const double a = I3 * spin / I1p, beta = 2 * m * kG * l / I1p;
@@ -278,10 +278,10 @@ TEST(Joints, LagrangeTopNutatesBetweenTheRootsAtThePeriodByQuadrature) {
   double quad = 0;  // (4/√β) ∫₀^{π/2} ds / √(u3 − u1 − (u2 − u1) sin² s), trapezoid over the period
   const int N = 256;
   for (int k = 0; k < N; ++k) {
-    const double s = 2 * M_PI * k / N;
+    const double s = 2 * massprops::kPi * k / N;
     quad += 1.0 / std::sqrt(u3 - u1 - (u2 - u1) * std::sin(s) * std::sin(s));
   }
-  const double T_nut = 4 / std::sqrt(beta) * (quad * 2 * M_PI / N) / 4;
+  const double T_nut = 4 / std::sqrt(beta) * (quad * 2 * massprops::kPi / N) / 4;
   // The same by the complete elliptic integral (a check of the quadrature).
   const double T_K = 4 / std::sqrt(beta * (u3 - u1)) * boost::math::ellint_1(std::sqrt((u2 - u1) / (u3 - u1)));
   ASSERT_NEAR(T_nut / T_K, 1, 1e-13);
@@ -357,10 +357,10 @@ TEST(Joints, HingeStopsOnItsLimitWithoutOvershoot) {
     const double L = 0.4;
     w.AddBody(Box(1.0, 0.02, 0.02, L, Vector3(0, 0, -L / 2)));
     Joint j = Hinge(w, -1, 0, Vector3::Zero(), Vector3::UnitX());
-    j.limits.lower = M_PI / 6;
-    j.limits.upper = M_PI;
+    j.limits.lower = massprops::kPi / 6;
+    j.limits.upper = massprops::kPi;
     j.limits.restitution = e;
-    j.position = {M_PI / 2};
+    j.position = {massprops::kPi / 2};
     w.AddJoint(j);
     w.AddForce(dynamics::Gravity(Vector3(0, 0, -kG)));
     double lowest = 10, arrival = 0, departure = 0, prev_v = 0;
@@ -446,7 +446,7 @@ TEST(Joints, SpringOscillatesAtItsNaturalFrequencyAndKeepsItsEnergy) {
   });
   ASSERT_GE(c.times.size(), 6u);
   const double T = (c.times.back() - c.times.front()) / static_cast<double>(c.times.size() - 1);
-  EXPECT_NEAR(T / (2 * M_PI * std::sqrt(a.I / k)), 1, 1e-6);
+  EXPECT_NEAR(T / (2 * massprops::kPi * std::sqrt(a.I / k)), 1, 1e-6);
   EXPECT_LT(drift, 1e-12 * 0.5 * k * 0.3 * 0.3 + 1e-15);  // potential energy ½ k (q − rest)² counted
   EXPECT_TRUE(a.w.Conserves().energy);
 }
@@ -498,10 +498,10 @@ TEST(Joints, PositionServoFollowsTheSecondOrderResponse) {
     if (a.q() > peak) peak = a.q(), peak_time = a.w.time();
     largest_effort = std::max(largest_effort, std::fabs(kp * (target - a.q()) - kd * a.v()));
   });
-  const double overshoot = std::exp(-M_PI * zeta / std::sqrt(1 - zeta * zeta));
+  const double overshoot = std::exp(-massprops::kPi * zeta / std::sqrt(1 - zeta * zeta));
   const double wd = std::sqrt(kp / a.I) * std::sqrt(1 - zeta * zeta);
   EXPECT_NEAR(((peak - target) / target) / overshoot, 1, 0.01);
-  EXPECT_NEAR(peak_time / (M_PI / wd), 1, 0.01);
+  EXPECT_NEAR(peak_time / (massprops::kPi / wd), 1, 0.01);
   EXPECT_LT(largest_effort, max_effort);
   EXPECT_NEAR(a.q(), target, 1e-6);
 }

@@ -72,8 +72,8 @@ TEST(MeshContact, FieldDistancesAreTheMeshsOwn) {
   const massprops::TriangleMesh m = massprops::solids::Sphere(r, 16);
   const MeshBody b = FromMesh(m, 1000, Vector3::Zero());
   const MeshFieldInfo info = DescribeMeshField(b.shape);
-  EXPECT_NEAR(info.cell, 2 * r / 64, 1e-3 * r);      // 64 cells along the longest side
-  const double sag = r * (1 - std::cos(M_PI / 16));  // how far the facets lie inside the sphere
+  EXPECT_NEAR(info.cell, 2 * r / 64, 1e-3 * r);                // 64 cells along the longest side
+  const double sag = r * (1 - std::cos(massprops::kPi / 16));  // how far the facets lie inside the sphere
   ContactWorld w;  // the field is reached through contacts: a small probe sphere at points
   int checked = 0;
   for (double d : {-0.03, -0.02, -0.01, -0.004}) {
@@ -100,7 +100,7 @@ TEST(MeshContact, FieldDistancesAreTheMeshsOwn) {
 }
 
 TEST(MeshContact, MeshBoxSlidesDownAnInclineAtTheKineticRate) {
-  const double theta = 30 * M_PI / 180, mu_s = 0.3, mu_k = 0.2;
+  const double theta = 30 * massprops::kPi / 180, mu_s = 0.3, mu_k = 0.2;
   const Vector3 half(0.1, 0.05, 0.025);
   const MeshBody b = FromMesh(massprops::Triangulate(massprops::solids::Box(2 * half)), 500, Vector3(0, 0, half.z()));
   ContactWorld w;
@@ -120,7 +120,7 @@ TEST(MeshContact, MeshBoxSlidesDownAnInclineAtTheKineticRate) {
 // sphere for the first 0.1 s, before the losses add up.
 TEST(MeshContact, MeshBoxSticksOnAnInclineWithinStaticFriction) {
   // tan 30° = 0.577 < μs = 0.7: no creep, as the box primitive.
-  const double theta = 30 * M_PI / 180;
+  const double theta = 30 * massprops::kPi / 180;
   const Vector3 half(0.1, 0.05, 0.025);
   const MeshBody b = FromMesh(massprops::Triangulate(massprops::solids::Box(2 * half)), 500, Vector3(0, 0, half.z()));
   ContactWorld w;
@@ -162,7 +162,7 @@ TEST(MeshContact, StackOfTenMeshBoxesStands) {
 }
 
 TEST(MeshContact, MeshSphereRollsAsTheSamePolyhedronDoes) {
-  const double theta = 20 * M_PI / 180, r = 0.1;
+  const double theta = 20 * massprops::kPi / 180, r = 0.1;
   const massprops::TriangleMesh m = massprops::solids::Sphere(r, 32);
   const MeshBody b = FromMesh(m, 1000, Vector3(0, 0, r));
   shape::Convex polyhedron{b.shape.vertices, b.shape.triangles};
@@ -335,7 +335,7 @@ TEST(MeshContact, CupStandsAndHoldsABall) {
   w.AddGround({Vector3::UnitZ(), 0, Mat(0.6, 0.5)});
   RigidBody ball;
   const double r = 0.015;
-  ball.mass = 1000 * 4.0 / 3 * M_PI * r * r * r;
+  ball.mass = 1000 * 4.0 / 3 * massprops::kPi * r * r * r;
   ball.inertia = Vector3::Constant(0.4 * ball.mass * r * r);
   ball.position = Vector3(0.01, 0.005, 0.2);
   w.AddBody(ball, Of(shape::Sphere{r}, Mat(0.6, 0.5, 0.3)));
@@ -345,7 +345,7 @@ TEST(MeshContact, CupStandsAndHoldsABall) {
   const RigidBody& c = w.world().bodies()[0];
   const RigidBody& b = w.world().bodies()[1];
   const double tilt = std::acos(std::min(1.0, (c.Rotation() * cup.mesh_to_body.rotation.transpose()).col(2).z()));
-  EXPECT_LT(tilt, M_PI / 180) << "tilted";
+  EXPECT_LT(tilt, massprops::kPi / 180) << "tilted";
   EXPECT_LT((c.position - cb.position).head<2>().norm(), 1e-3) << "drifted";
   const Vector3 in_cup = cup.mesh_to_body.Inverse().Apply(c.Rotation().transpose() * (b.position - c.position));
   EXPECT_LT(std::abs(in_cup.x()), 0.05) << "the ball left the cup";

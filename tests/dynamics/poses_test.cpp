@@ -15,7 +15,7 @@
 namespace dynamics::poses {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using massprops::kPi;
 
 // A convex solid given by its corners, as triangles, each turned to face away from the centroid.
 struct Solid {

@@ -105,7 +105,7 @@ TEST(RobotField, PendulumHingedToTheWorldLinkSwingsAtItsHalfPeriod) {
   }
   ASSERT_GT(t_turn, 0);
   EXPECT_NEAR(t_turn / half_period - 1, 0, 3e-5) << t_turn << " s vs " << half_period << " s";
-  EXPECT_NEAR(world.world().joint_state(hinge).position[0], M_PI, 1e-3);
+  EXPECT_NEAR(world.world().joint_state(hinge).position[0], massprops::kPi, 1e-3);
 }
 
 // The arm bolted to the world by the file's fixed joint: its base stays where the file puts it
@@ -358,7 +358,7 @@ TEST(RobotField, ArmatureAddsToTheHingesInertiaAndItsEnergyIsCounted) {
     if (theta0 == 0.01) {
       ASSERT_GE(turns.size(), 3u);
       const double period = (turns.back() - turns.front()) / static_cast<double>(turns.size() - 1);
-      const double want = 2 * M_PI * std::sqrt((i_pivot + a) / (mass * kG * d)) *
+      const double want = 2 * massprops::kPi * std::sqrt((i_pivot + a) / (mass * kG * d)) *
                           (1 + theta0 * theta0 / 16 + 11 * std::pow(theta0, 4) / 3072);
       EXPECT_NEAR(period / want - 1, 0, 3e-5) << period << " s vs " << want << " s";
     } else {

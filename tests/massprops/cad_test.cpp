@@ -20,8 +20,9 @@
 namespace massprops {
 namespace {
 
+using massprops::kPi;
+
 namespace fs = std::filesystem;
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kMm = 1e-3;
 
 class Cad : public ::testing::Test {

@@ -73,7 +73,7 @@ TEST(ReferenceFrames, AboutAPointAndInOtherAxes) {
   EXPECT_TRUE(NearRel(I(2, 2), m * (1 + 4) / 3, 1e-14));
   EXPECT_TRUE(NearRel(I(0, 1), -m * 1 * 2 / 4, 1e-14));
   ReferenceFrame turned;
-  turned.axes = RotationFromEulerZYX(M_PI / 2, 0, 0);
+  turned.axes = RotationFromEulerZYX(massprops::kPi / 2, 0, 0);
   const Matrix3 T = InertiaInFrame(box, turned);  // about the center of mass
   EXPECT_TRUE(NearRel(T(0, 0), box.inertia_com(1, 1), 1e-14));
   EXPECT_TRUE(NearRel(T(1, 1), box.inertia_com(0, 0), 1e-14));
@@ -211,7 +211,7 @@ TEST(LoadSolid, StreamedAndCheckedPathsAgree) {
   EXPECT_TRUE(NearRel(streamed.mp.inertia_com(2, 2), checked.mp.inertia_com(2, 2), 1e-13));
   EXPECT_NEAR(streamed.mp.center_of_mass.norm(), checked.mp.center_of_mass.norm(), 1e-14);
   // Within the tessellation's error of the torus, V = 2π²Ra² (from below).
-  const double exact = 2 * M_PI * M_PI * 2.0 * 0.25;
+  const double exact = 2 * massprops::kPi * massprops::kPi * 2.0 * 0.25;
   EXPECT_LT(checked.mp.volume, exact);
   EXPECT_GT(checked.mp.volume, exact * (1 - 1e-3));
   // Just below the threshold, the default path is the checked one.

@@ -104,10 +104,10 @@ TEST(Implicit, CsgAndTransformsAgainstClosedForms) {
   // Union of disjoint parts and an intersection with a known answer (a half sphere).
   const ImplicitPtr u = implicit::ParseShape("union(move(sphere(r=1), x=-2), move(sphere(r=1), x=2))");
   const MassPropertiesEstimate eu = EstimateMassProperties(*u, 1.0, Qmc(1 << 20));
-  EXPECT_NEAR(eu.value.volume, 8 * M_PI / 3, 4.5 * eu.standard_error.volume);
+  EXPECT_NEAR(eu.value.volume, 8 * massprops::kPi / 3, 4.5 * eu.standard_error.volume);
   const ImplicitPtr half = implicit::ParseShape("intersection(sphere(r=1), move(box(x=2, y=2, z=1), z=0.5))");
   const MassPropertiesEstimate eh = EstimateMassProperties(*half, 1.0, Qmc(1 << 20));
-  EXPECT_NEAR(eh.value.volume, 2 * M_PI / 3, 4.5 * eh.standard_error.volume);
+  EXPECT_NEAR(eh.value.volume, 2 * massprops::kPi / 3, 4.5 * eh.standard_error.volume);
   EXPECT_NEAR(eh.value.center_of_mass.z(), 3.0 / 8, 4.5 * eh.standard_error.center_of_mass.z());
 }
 
@@ -129,7 +129,7 @@ TEST(Implicit, SignedDistanceGridOfASphere) {
   }
   const ImplicitPtr g = implicit::ParseShape("grid(file=\"" + path + "\")", ReadSdfGridFile);
   const MassPropertiesEstimate e = EstimateMassProperties(*g, 1.0, Qmc(1 << 18));
-  EXPECT_NEAR(e.value.volume / (4 * M_PI / 3), 1.0, 2e-3);
+  EXPECT_NEAR(e.value.volume / (4 * massprops::kPi / 3), 1.0, 2e-3);
   EXPECT_LT(e.value.center_of_mass.norm(), 1e-3);
   {
     std::ofstream out(path);
@@ -156,7 +156,7 @@ TEST(Implicit, SignedDistanceGridOfASphere) {
 // Over 200 seeds the reported 95 % interval of the volume covers the truth 90–99 % of the time.
 TEST(Estimators, CalibrationOfTheReportedIntervals) {
   const ImplicitPtr sphere = implicit::Sphere(1.0);
-  const double truth = 4 * M_PI / 3;
+  const double truth = 4 * massprops::kPi / 3;
   for (bool qmc : {false, true}) {
     int covered = 0;
     for (std::uint64_t seed = 1; seed <= 200; ++seed) {
@@ -172,7 +172,7 @@ TEST(Estimators, CalibrationOfTheReportedIntervals) {
 // Log-log slope of the RMS volume error against N: −1/2 for MC, about −2/3 for scrambled Sobol.
 TEST(Estimators, MeasuredConvergenceRates) {
   const ImplicitPtr sphere = implicit::Sphere(1.0);
-  const double truth = 4 * M_PI / 3;
+  const double truth = 4 * massprops::kPi / 3;
   for (bool qmc : {false, true}) {
     std::vector<double> logn, logerr;
     for (int p = 10; p <= 18; p += 2) {
@@ -308,7 +308,7 @@ TEST(Estimators, ToleranceIsMetByAddingSamples) {
 TEST(Implicit, PolygonizedSurfaceIsClosedAndNearTheSolid) {
   const ImplicitPtr s = implicit::ParseShape("difference(box(x=2, y=2, z=2), sphere(r=0.7))");
   const TriangleMesh m = implicit::Polygonize(*s, 40);
-  const double truth = 8 - 4 * M_PI / 3 * 0.343;
+  const double truth = 8 - 4 * massprops::kPi / 3 * 0.343;
   IntegrationOptions a, b;
   a.reference = Vector3(0, 0, 0);
   b.reference = Vector3(3, -5, 7);

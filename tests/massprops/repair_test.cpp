@@ -241,7 +241,8 @@ TEST(SelfIntersections, TiltedCapsAsAWholeAndFansWithinABudget) {
   const int n = 100000;
   PolygonMesh cone;
   cone.V.resize(n + 1, 3);
-  for (int i = 0; i < n; ++i) cone.V.row(i) << std::cos(2 * M_PI * i / n), std::sin(2 * M_PI * i / n), 0.0;
+  for (int i = 0; i < n; ++i)
+    cone.V.row(i) << std::cos(2 * massprops::kPi * i / n), std::sin(2 * massprops::kPi * i / n), 0.0;
   cone.V.row(n) << 0, 0, 1;
   std::vector<int> base(n);
   for (int i = 0; i < n; ++i) base[static_cast<std::size_t>(i)] = n - 1 - i;
@@ -441,7 +442,7 @@ TEST(RepairField, InterpenetratingShellsAreUnitedAndTheFallbackEstimatesTheUnion
   const SolidResult united = LoadSolid(path, o);
   ASSERT_TRUE(united.repair);
   EXPECT_EQ(united.repair->united_shells, 1);
-  const double steinmetz = (2 * M_PI * r * r * h - 16 * r * r * r / 3) * 1e-9;
+  const double steinmetz = (2 * massprops::kPi * r * r * h - 16 * r * r * r / 3) * 1e-9;
   EXPECT_NEAR(united.mp.volume, steinmetz, 2e-3 * steinmetz);
   ASSERT_EQ(setenv("MASSPROPS_UNION_FAULT", "1", 1), 0);
   const SolidResult estimated = LoadSolid(path, o);

@@ -95,7 +95,7 @@ TEST(Shell, SameBitsForAnyThreadCountAndIndependentOfPlacement) {
   const MassProperties four = Shell(ToPolygonMesh(sphere), 1.0, 4);
   EXPECT_TRUE(testing::SameBits(one, four));
   // Thin spherical shell r = 1: area 4π, I = 2/3 m r²; tessellation error O(1/n²).
-  EXPECT_TRUE(NearRel(one.surface_area, 4 * M_PI, 2e-4));
+  EXPECT_TRUE(NearRel(one.surface_area, 4 * massprops::kPi, 2e-4));
   EXPECT_TRUE(NearRel(one.inertia_com(0, 0), 8.37758040957278, 4e-4));
   // Moved 3·10⁴ away: the same numbers (integrated about the bounding-box centre).
   TriangleMesh far = sphere;

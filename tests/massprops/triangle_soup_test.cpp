@@ -270,7 +270,7 @@ TEST(TriangleSoup, ShellsOfCutMeshes) {
     for (int k = 0; k < 3; ++k) {
       const Vector3 p = torus.V.row(torus.F(f, k));
       const double phi = std::atan2(p.y(), p.x());
-      drop = drop || std::abs(phi) < 1e-9 || std::abs(std::abs(phi) - M_PI) < 1e-9;
+      drop = drop || std::abs(phi) < 1e-9 || std::abs(std::abs(phi) - massprops::kPi) < 1e-9;
     }
     if (!drop) keep.push_back(f);
   }

@@ -199,7 +199,7 @@ TEST(Simulation, JointExampleMeshPendulumHasTheEllipticPeriod) {
   EXPECT_LT((sim.world().bodies()[1].position - (shoulder + at(1.2, 0.25))).norm(), 1e-15);
   EXPECT_LT((sim.world().bodies()[2].position - (shoulder + at(1.2, 0.5) + at(1.2 - 1.6, 0.2))).norm(), 1e-15);
   // Hanging, the center of mass sits d = 5 cm below the pivot; released at 120°.
-  const double d = 0.05, theta0 = 2 * M_PI / 3;
+  const double d = 0.05, theta0 = 2 * massprops::kPi / 3;
   // (The joint has turned the body about x already: I_xx is the same.)
   const double I = b.WorldInertia()(0, 0) + b.mass * d * d;
   const double T = 4 * std::sqrt(I / (b.mass * 9.81 * d)) * std::comp_ellint_1(std::sin(theta0 / 2));
@@ -275,9 +275,10 @@ TEST(Scene, AVanishingOutputRateSamplesTheFirstAndLastStatesOnly) {
   EXPECT_EQ(samples, 2);
 }
 
-// Orientations at the edge of double precision are rotations, not errors: a quaternion whose
-// norm overflows is normalized (it was called "zero"), an angle of 1e308 degrees turns by its
-// remainder of whole turns (the state was "not finite").
+// Orientations at the edge of double precision: a quaternion whose norm overflows is normalized
+// (it was called "zero"); an angle of 1e308 degrees names no rotation (its own rounding is
+// 2e292 degrees) and is refused naming the field, while 4e9 degrees (rounding 5e-7) turns by its
+// remainder of whole turns.
 TEST(Scene, OrientationsBeyondDoublePrecisionAreStillRotations) {
   std::vector<std::string> w;
   const rbsim::Scene s = Parse(OneBody(std::string(kBox) + R"(, "orientation": [1e300, 1e300, 0, 0])"), &w);
@@ -285,9 +286,13 @@ TEST(Scene, OrientationsBeyondDoublePrecisionAreStillRotations) {
   EXPECT_THAT(w[0], HasSubstr("norm 1.41421e+300; normalized"));
   EXPECT_NEAR(s.bodies[0].orientation.w(), std::sqrt(0.5), 1e-15);
   EXPECT_NEAR(s.bodies[0].orientation.x(), std::sqrt(0.5), 1e-15);
+  EXPECT_THAT(ErrorOf(OneBody(std::string(kBox) + R"(, "orientation": {"axis": [0, 0, 1], "angle_deg": 1e308})")),
+              HasSubstr("bodies[0].orientation.angle_deg: 1e+308 is too large to name an angle"));
+  EXPECT_THAT(ErrorOf(OneBody(std::string(kBox) + R"(, "orientation": {"axis": [0, 0, 1], "angle": 1e9})")),
+              HasSubstr("bodies[0].orientation.angle: 1e+09 is too large to name an angle"));
   const rbsim::Scene t =
-      Parse(OneBody(std::string(kBox) + R"(, "orientation": {"axis": [0, 0, 1], "angle_deg": 1e308})"), &w);
-  const double turn = std::fmod(1e308, 360.0) * M_PI / 180;
+      Parse(OneBody(std::string(kBox) + R"(, "orientation": {"axis": [0, 0, 1], "angle_deg": 4e9})"), &w);
+  const double turn = std::fmod(4e9, 360.0) * massprops::kPi / 180;
   EXPECT_NEAR(
       t.bodies[0].orientation.angularDistance(Eigen::Quaterniond(Eigen::AngleAxisd(turn, Eigen::Vector3d::UnitZ()))), 0,
       1e-12);
@@ -424,7 +429,7 @@ TEST(Simulation, ContactExamples) {
   };
   {
     auto [sim, stats] = run("incline_roll");
-    const double a = 9.81 * std::sin(20 * M_PI / 180) / 1.4;
+    const double a = 9.81 * std::sin(20 * massprops::kPi / 180) / 1.4;
     EXPECT_NEAR(sim->world().bodies()[0].velocity.norm(), a * 1.0, 1e-3 * a);
     EXPECT_LT(stats.max_penetration, 1e-12);
   }

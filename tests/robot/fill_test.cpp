@@ -52,22 +52,22 @@ Body Box(double rho, const Vector3& size, const Matrix3& R, const Vector3& t) {
   return Placed(m, Vector3(b * b + c * c, a * a + c * c, a * a + b * b) * (m / 12), R, t);
 }
 Body Cylinder(double rho, double r, double h, const Matrix3& R, const Vector3& t) {
-  const double m = rho * M_PI * r * r * h;
+  const double m = rho * massprops::kPi * r * r * h;
   return Placed(m, Vector3(m * (3 * r * r + h * h) / 12, m * (3 * r * r + h * h) / 12, m * r * r / 2), R, t);
 }
 Body Sphere(double rho, double r, const Vector3& t) {
-  const double m = rho * 4.0 / 3 * M_PI * r * r * r;
+  const double m = rho * 4.0 / 3 * massprops::kPi * r * r * r;
   return Placed(m, Vector3::Constant(0.4 * m * r * r), Matrix3::Identity(), t);
 }
 // Cylinder part of length L between two hemispheres (each a hemisphere's 2/5 m r² about its flat
 // face, moved to the capsule's center).
 Body Capsule(double rho, double r, double L, const Matrix3& R, const Vector3& t) {
-  const double mc = rho * M_PI * r * r * L, ms = rho * 4.0 / 3 * M_PI * r * r * r;
+  const double mc = rho * massprops::kPi * r * r * L, ms = rho * 4.0 / 3 * massprops::kPi * r * r * r;
   const double across = mc * (L * L / 12 + r * r / 4) + ms * (0.4 * r * r + L * L / 4 + 3 * L * r / 8);
   return Placed(mc + ms, Vector3(across, across, mc * r * r / 2 + ms * 0.4 * r * r), R, t);
 }
 Body Ellipsoid(double rho, const Vector3& s, const Matrix3& R, const Vector3& t) {
-  const double m = rho * 4.0 / 3 * M_PI * s.prod();
+  const double m = rho * 4.0 / 3 * massprops::kPi * s.prod();
   return Placed(m, Vector3(s[1] * s[1] + s[2] * s[2], s[0] * s[0] + s[2] * s[2], s[0] * s[0] + s[1] * s[1]) * (m / 5),
                 R, t);
 }
@@ -115,7 +115,7 @@ void ExpectCommon(const FillResult& r) {
   const std::string handle = DataPath("robots/meshes/t_handle.obj"), spot = DataPath("meshes/spot.obj");
   Expect(r, "base_link", Box(1000, {0.2, 0.2, 0.1}, Rpy(0, 0, 0.3), {0, 0, 0.05}));
   Expect(r, "upper_arm", Mesh(handle, 1000, {2, 1, 0.5}, Rpy(0.5, -0.2, 1.0), {0.01, 0.02, 0.3}));
-  Expect(r, "hand", Mesh(spot, 1000, {0.1, 0.1, 0.1}, Rpy(M_PI / 2, 0, 0), {0, 0, 0.05}));
+  Expect(r, "hand", Mesh(spot, 1000, {0.1, 0.1, 0.1}, Rpy(massprops::kPi / 2, 0, 0), {0, 0, 0.05}));
 }
 
 TEST(Fill, Urdf) {
@@ -141,7 +141,7 @@ TEST(Fill, Sdf) {
   ExpectCommon(r);  // the T-handle's pose in degrees: the same rotation to rounding
   Expect(r, "forearm", Sum({Cylinder(1000, 0.03, 0.25, kI, {0, 0, 0.125}), Sphere(1000, 0.04, {0, 0, 0.3})}));
   Expect(r, "sensor",
-         Sum({Capsule(1000, 0.02, 0.06, Rpy(0, M_PI / 2, 0), Vector3::Zero()),
+         Sum({Capsule(1000, 0.02, 0.06, Rpy(0, massprops::kPi / 2, 0), Vector3::Zero()),
               Ellipsoid(1000, {0.01, 0.02, 0.03}, kI, {0.07, 0, 0})}));
   Expect(r, "tag_plate", Box(1000, {0.1, 0.1, 1e-9}, Rpy(0.3, 0.4, 0.5), {0.02, 0, 0}), 1e-9);
 }

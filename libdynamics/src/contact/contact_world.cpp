@@ -48,7 +48,7 @@ std::shared_ptr<const contact::Polytope> PolytopeOf(const Shape& s) {
     std::vector<Vector3> v;
     for (const double z : {cylinder->half_length, -cylinder->half_length}) {
       for (int i = 0; i < kSides; ++i) {
-        const double phi = 2 * M_PI * i / kSides;
+        const double phi = 2 * massprops::kPi * i / kSides;
         v.emplace_back(cylinder->radius * std::cos(phi), cylinder->radius * std::sin(phi), z);
       }
     }

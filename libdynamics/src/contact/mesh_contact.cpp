@@ -276,7 +276,8 @@ void SamplesAgainst(const Posed& from, const Posed& to, double spacing, double m
         test(centre + c->radius * radial.normalized(), 0, id);
       } else if (i == 0 || i == k) {
         for (int q = 0; q < 4; ++q) {
-          test(centre + c->radius * (std::cos(q * M_PI / 2) * from.R.col(0) + std::sin(q * M_PI / 2) * from.R.col(1)),
+          test(centre + c->radius * (std::cos(q * massprops::kPi / 2) * from.R.col(0) +
+                                     std::sin(q * massprops::kPi / 2) * from.R.col(1)),
                0, id + static_cast<std::size_t>(q));
         }
       }

@@ -139,7 +139,7 @@ void CylinderPolytope(const Posed& cylinder, const Polytope& p, const Posed& pos
       face = f;
     }
   }
-  if (best < std::cos(8 * M_PI / 180)) return;
+  if (best < std::cos(8 * massprops::kPi / 180)) return;
   const Vector3 nf = posed.R * p.normals[face];
   const double offset = nf.dot(posed.R * p.vertices[static_cast<std::size_t>(p.faces[face][0])] + posed.t);
   std::vector<ContactPoint> exact;
@@ -316,7 +316,7 @@ void CollideGround(const Posed& a, const Vector3& n, double offset, const Collis
             if (across.norm() < 1e-3) {
               // A cap (nearly) flat on the plane: four rim points keep it from rocking.
               for (std::uint32_t k = 0; k < 4; ++k) {
-                const double phi = k * M_PI / 2;
+                const double phi = k * massprops::kPi / 2;
                 add(centre + x.radius * (std::cos(phi) * a.R.col(0) + std::sin(phi) * a.R.col(1)), 2 + cap * 4 + k, 0);
               }
             } else {

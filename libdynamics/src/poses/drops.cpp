@@ -14,7 +14,7 @@
 namespace dynamics::poses {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using massprops::kPi;
 
 std::uint64_t SplitMix64(std::uint64_t x) {
   x += 0x9E3779B97F4A7C15ULL;

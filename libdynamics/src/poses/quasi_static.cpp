@@ -14,7 +14,7 @@
 namespace dynamics::poses {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using massprops::kPi;
 
 // Solid angle of the triangle (a, b, c) seen from the origin (Van Oosterom and Strackee, IEEE
 // Trans. Biomed. Eng. 30(2), 1983), positive for a counter-clockwise triangle seen from outside.

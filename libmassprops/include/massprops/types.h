@@ -18,4 +18,7 @@ using VertexMatrix = Eigen::Matrix<Scalar, Eigen::Dynamic, 3, Eigen::RowMajor>;
 /// #F×3 zero-based vertex indices of triangles, counter-clockwise seen from outside.
 using FaceMatrix = Eigen::Matrix<std::int32_t, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
+/// π, the project's one definition (C++17 has no std::numbers; kPi is POSIX, not C++).
+inline constexpr Scalar kPi = 3.14159265358979323846;
+
 }  // namespace massprops

@@ -25,7 +25,6 @@
 namespace massprops::report {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // More triangles than this are clustered onto a grid before they are drawn (a picture of 10^6
 // sub-pixel triangles would be a 100 MB SVG that looks the same).
 constexpr std::size_t kMaxDrawnTriangles = 12000;

@@ -84,7 +84,7 @@ Matrix3 FromEuler(const std::vector<double>& a, const Compiler& c, const std::st
     if (lower != 'x' && lower != 'y' && lower != 'z') throw ElementError(what + ": bad <compiler eulerseq>");
     const Vector3 u = lower == 'x' ? Vector3::UnitX() : lower == 'y' ? Vector3::UnitY() : Vector3::UnitZ();
     const Matrix3 ri =
-        Eigen::AngleAxisd(a[static_cast<std::size_t>(i)] * (c.degrees ? M_PI / 180 : 1.0), u).toRotationMatrix();
+        Eigen::AngleAxisd(a[static_cast<std::size_t>(i)] * (c.degrees ? kPi / 180 : 1.0), u).toRotationMatrix();
     r = axis == lower ? Matrix3(r * ri) : Matrix3(ri * r);
   }
   return r;
@@ -112,7 +112,7 @@ void PlaceBy(const Attr& attr, const Compiler& compiler, Geometry& g, const std:
     const auto v = Numbers(aa.value(), 4, what + " axisangle");
     const Vector3 axis(v[0], v[1], v[2]);
     if (!(axis.norm() > 1e-12)) throw ElementError(what + ": axisangle has a zero axis");
-    g.rotation = Eigen::AngleAxisd(v[3] * (compiler.degrees ? M_PI / 180 : 1.0), axis.normalized()).toRotationMatrix();
+    g.rotation = Eigen::AngleAxisd(v[3] * (compiler.degrees ? kPi / 180 : 1.0), axis.normalized()).toRotationMatrix();
   }
   if (const pugi::xml_attribute e = attr("euler")) {
     g.rotation = FromEuler(Numbers(e.value(), 3, what + " euler"), compiler, what);
@@ -789,7 +789,7 @@ void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotMo
   WorldGeoms(root, compiler, defaults, model);
   std::map<pugi::xml_node_struct*, int> index;
   for (std::size_t k = 0; k < links.size(); ++k) index[links[k].element.internal_object()] = static_cast<int>(k);
-  const double angle = compiler.degrees ? M_PI / 180 : 1.0;
+  const double angle = compiler.degrees ? kPi / 180 : 1.0;
   for (std::size_t k = 0; k < links.size(); ++k) {
     const pugi::xml_node body = links[k].element;
     const std::string name = links[k].name, what = "body '" + name + "'";

@@ -37,7 +37,7 @@ Placement PoseOf(pugi::xml_node pose, const std::string& what) {
     throw ElementError(what + ": <pose rotation_format=\"" + format + "\"> is not euler_rpy or quat_xyzw");
   }
   const auto v = Numbers(pose.text().get(), 6, what + " <pose>");
-  const double unit = pose.attribute("degrees").as_bool() ? M_PI / 180 : 1.0;
+  const double unit = pose.attribute("degrees").as_bool() ? kPi / 180 : 1.0;
   out.translation = Vector3(v[0], v[1], v[2]);
   out.rotation = FromRollPitchYaw(v[3] * unit, v[4] * unit, v[5] * unit);
   return out;
