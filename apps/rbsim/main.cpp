@@ -30,8 +30,8 @@
 #include "outputs.h"
 #include "poses_cli.h"
 #include "progress.h"
-#include "scene.h"
-#include "simulation.h"
+#include "scene/scene.h"
+#include "scene/simulation.h"
 
 namespace {
 

@@ -9,9 +9,12 @@
 #include <vector>
 
 #include "massprops/report/atomic_file.h"
-#include "simulation.h"
+#include "scene/simulation.h"
 
 namespace rbsim {
+
+// The scene library's types (Scene, Simulation, ...) as the command's own: rbsim only formats them.
+using namespace ::scene;  // NOLINT(google-build-using-namespace)
 
 /// What the plot and the .glb need, kept in memory at the output rate.
 struct Recording {

@@ -95,7 +95,7 @@ int main(int argc, char** argv) {
     bodies.push_back(std::move(body));
     return bodies.back().get();
   };
-  for (const rbsim::GroundSpec& g : scene.grounds) {
+  for (const scene::GroundSpec& g : scene.grounds) {
     btTransform identity;
     identity.setIdentity();
     add(std::make_unique<btStaticPlaneShape>(Bt(g.normal), g.offset), 0, btVector3(0, 0, 0), identity, g.material);

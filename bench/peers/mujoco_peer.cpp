@@ -92,7 +92,7 @@ std::string Mjcf(const peers::PeerScene& s) {
   const dynamics::Material ground = !s.grounds.empty()   ? s.grounds[0].material
                                     : !s.statics.empty() ? s.statics[0].material
                                                          : dynamics::Material{};
-  for (const rbsim::GroundSpec& g : s.grounds) {
+  for (const scene::GroundSpec& g : s.grounds) {
     x << "    <geom type='plane' size='0 0 1' pos='" << V(g.normal * g.offset) << "' zaxis='" << V(g.normal)
       << "' friction='0 0.005 0.0001' solref='" << Solref(g.material.restitution, s.dt) << "'/>\n";
   }

@@ -11,13 +11,13 @@
 #include "massprops/repair.h"
 #include "massprops/report/atomic_file.h"
 #include "outputs.h"
-#include "simulation.h"
+#include "scene/simulation.h"
 
 namespace peers {
 
 PeerScene LoadPeerScene(const std::string& path, double dt) {
   std::vector<std::string> warnings;
-  rbsim::Scene scene = rbsim::LoadScene(path, warnings);
+  scene::Scene scene = scene::LoadScene(path, warnings);
   if (dt > 0) scene.dt = dt;
   auto refuse = [&](const std::string& what) {
     return std::runtime_error(path + ": " + what +
@@ -32,28 +32,28 @@ PeerScene LoadPeerScene(const std::string& path, double dt) {
   out.duration = scene.duration;
   out.output_rate = scene.output_rate;
   out.grounds = scene.grounds;
-  out.steps = rbsim::StepCount(scene);
-  out.sample_every = rbsim::SampleEvery(scene);
-  for (const rbsim::ForceSpec& f : scene.forces) {
-    if (f.kind != rbsim::ForceKind::kGravity || !f.bodies.empty()) {
-      throw refuse(f.field + " (" + rbsim::ForceName(f.kind) + ")");
+  out.steps = scene::StepCount(scene);
+  out.sample_every = scene::SampleEvery(scene);
+  for (const scene::ForceSpec& f : scene.forces) {
+    if (f.kind != scene::ForceKind::kGravity || !f.bodies.empty()) {
+      throw refuse(f.field + " (" + scene::ForceName(f.kind) + ")");
     }
     out.gravity += f.vector;
   }
-  const rbsim::Simulation sim = rbsim::BuildSimulation(scene, warnings, 1);
+  const scene::Simulation sim = scene::BuildSimulation(scene, warnings, 1);
   // Static bodies: drawn in the world after the ground planes' two shades each.
   for (std::size_t k = 0; k < scene.statics.size(); ++k) {
-    const rbsim::StaticSpec& spec = scene.statics[k];
+    const scene::StaticSpec& spec = scene.statics[k];
     const massprops::TriangleMesh& drawn = sim.statics[2 * scene.grounds.size() + k].display;
     PeerStatic st;
     st.name = spec.name;
     st.material = spec.collision.material;
     const bool box_solid = spec.shape.solid() && std::holds_alternative<massprops::primitive::Box>(*spec.shape.solid());
-    if (spec.collision.kind == rbsim::CollisionKind::kHull) {
+    if (spec.collision.kind == scene::CollisionKind::kHull) {
       st.box = false;
       const massprops::PolygonMesh hull = massprops::ConvexHull(massprops::ToPolygonMesh(drawn));
       for (Eigen::Index v = 0; v < hull.V.rows(); ++v) st.hull.push_back(hull.V.row(v).transpose());
-    } else if (box_solid && spec.collision.kind == rbsim::CollisionKind::kAuto) {
+    } else if (box_solid && spec.collision.kind == scene::CollisionKind::kAuto) {
       // Its box in its own axes, from the drawn corners (world) turned back.
       const Matrix3 R = spec.orientation.toRotationMatrix();
       Eigen::AlignedBox<double, 3> local;
@@ -67,10 +67,10 @@ PeerScene LoadPeerScene(const std::string& path, double dt) {
     out.statics.push_back(st);
   }
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    const rbsim::BodySpec& spec = scene.bodies[i];
+    const scene::BodySpec& spec = scene.bodies[i];
     namespace pr = massprops::primitive;
-    const rbsim::SimBody& sb = sim.bodies[i];
-    const rbsim::BodyState s = rbsim::StateOf(sb, sim.world().bodies()[i]);
+    const scene::SimBody& sb = sim.bodies[i];
+    const scene::BodyState s = scene::StateOf(sb, sim.world().bodies()[i]);
     PeerBody b;
     b.name = spec.name;
     b.mass = sb.mp.mass;
@@ -79,7 +79,7 @@ PeerScene LoadPeerScene(const std::string& path, double dt) {
     b.omega = s.omega_world;
     b.material = spec.collision.material;
     b.principal_axes = sb.principal.axes;
-    if (spec.collision.kind == rbsim::CollisionKind::kHull) {
+    if (spec.collision.kind == scene::CollisionKind::kHull) {
       // The hull in the principal frame, where the inertia is diagonal: x_B = R_MBᵀ (x_M − com).
       b.kind = PeerBody::Kind::kHull;
       b.frame = sb.principal.axes;
@@ -93,7 +93,7 @@ PeerScene LoadPeerScene(const std::string& path, double dt) {
     }
     const massprops::Primitive* solid = spec.shape.solid();
     if (solid == nullptr) throw refuse(spec.field + " (a mesh or implicit shape colliding as other than its hull)");
-    if (spec.collision.kind != rbsim::CollisionKind::kAuto) throw refuse(spec.field + ".collision");
+    if (spec.collision.kind != scene::CollisionKind::kAuto) throw refuse(spec.field + ".collision");
     namespace pr = massprops::primitive;
     const double scale = massprops::MetresPerUnit(spec.shape.unit);
     if (const auto* box = std::get_if<pr::Box>(solid)) {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "dynamics/contact.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 namespace peers {
 
@@ -51,7 +51,7 @@ struct PeerScene {
   std::string file;
   double dt = 1e-3, duration = 1, output_rate = 60;
   Vector3 gravity = Vector3::Zero();
-  std::vector<rbsim::GroundSpec> grounds;
+  std::vector<scene::GroundSpec> grounds;
   std::vector<PeerStatic> statics;
   std::vector<PeerBody> bodies;
   std::int64_t steps = 0, sample_every = 1;  ///< as rbsim takes them (StepCount, SampleEvery)

@@ -9,20 +9,20 @@
 
 #include "massprops/version.h"
 #include "peer_scene.h"
-#include "simulation.h"
+#include "scene/simulation.h"
 
 int main(int argc, char** argv) {
   peers::PeerArgs args;
   peers::PeerScene scene;  // the same subset as the peers run
   if (const int status = peers::StartPeer(argc, argv, "rbsim_peer", args, scene); status >= 0) return status;
   std::vector<std::string> warnings;
-  rbsim::Scene full = rbsim::LoadScene(args.scene, warnings);
+  scene::Scene full = scene::LoadScene(args.scene, warnings);
   if (args.dt > 0) full.dt = args.dt;
-  rbsim::Simulation sim = rbsim::BuildSimulation(full, warnings, args.threads);
+  scene::Simulation sim = scene::BuildSimulation(full, warnings, args.threads);
   peers::TrajectoryCsv csv;
   auto sample = [&] {
     for (std::size_t i = 0; i < sim.bodies.size(); ++i) {
-      const rbsim::BodyState s = rbsim::StateOf(sim.bodies[i], sim.world().bodies()[i]);
+      const scene::BodyState s = scene::StateOf(sim.bodies[i], sim.world().bodies()[i]);
       csv.Add(sim.world().time(), scene.bodies[i], s.position, s.orientation, s.velocity, s.omega_world);
     }
   };

@@ -16,8 +16,8 @@
 #include "massprops/solids.h"
 #include "massprops/text.h"
 #include "outputs.h"
-#include "scene.h"
-#include "simulation.h"
+#include "scene/scene.h"
+#include "scene/simulation.h"
 #include "test_utils.h"
 
 namespace {
@@ -29,9 +29,9 @@ using nlohmann::json;
 using ::testing::HasSubstr;
 
 // Parses a scene given as JSON text (meshes relative to data/scenes), returning the warnings.
-rbsim::Scene Parse(const std::string& text, std::vector<std::string>* warnings = nullptr) {
+scene::Scene Parse(const std::string& text, std::vector<std::string>* warnings = nullptr) {
   std::vector<std::string> w;
-  rbsim::Scene s = rbsim::ParseScene(json::parse(text), "test.json", DataPath("scenes"), w);
+  scene::Scene s = scene::ParseSceneText(text, "test.json", DataPath("scenes"), w);
   if (warnings) *warnings = w;
   return s;
 }
@@ -40,9 +40,9 @@ rbsim::Scene Parse(const std::string& text, std::vector<std::string>* warnings =
 std::string ErrorOf(const std::string& text) {
   try {
     std::vector<std::string> w;
-    rbsim::Scene s = Parse(text);
-    rbsim::BuildSimulation(s, w);
-  } catch (const rbsim::SceneError& e) {
+    scene::Scene s = Parse(text);
+    scene::BuildSimulation(s, w);
+  } catch (const scene::SceneError& e) {
     return e.what();
   }
   return "(accepted)";
@@ -184,10 +184,10 @@ TEST(Scene, JointErrorsNameTheJointsField) {
 // through the scene (anchor and axis in the world, the mesh through massprops), and joints.csv.
 TEST(Simulation, JointExampleMeshPendulumHasTheEllipticPeriod) {
   std::vector<std::string> w;
-  rbsim::Scene scene = rbsim::LoadScene(DataPath("scenes/joints.json"), w);
+  scene::Scene scene = scene::LoadScene(DataPath("scenes/joints.json"), w);
   scene.duration = 6;
   scene.output_rate = 1000;
-  rbsim::Simulation sim = rbsim::BuildSimulation(scene, w);
+  scene::Simulation sim = scene::BuildSimulation(scene, w);
   const dynamics::RigidBody& b = sim.world().bodies()[0];
   ASSERT_EQ(sim.world().joints().size(), 4u);
   // The double pendulum starts where its angles put it: the shoulder at 1.2 rad, the elbow at
@@ -208,8 +208,8 @@ TEST(Simulation, JointExampleMeshPendulumHasTheEllipticPeriod) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("rbsim_joints_" + std::to_string(::getpid()));
   fs::create_directories(dir);
-  rbsim::TrajectoryWriter writer(dir.string(), {rbsim::OutputKind::kCsv}, true);
-  rbsim::Run(sim, [&](const dynamics::World& world, const dynamics::Diagnostics& diag) {
+  rbsim::TrajectoryWriter writer(dir.string(), {scene::OutputKind::kCsv}, true);
+  scene::Run(sim, [&](const dynamics::World& world, const dynamics::Diagnostics& diag) {
     writer.Add(sim, world, diag);
     const double q = world.joint_state(0).position[0];
     if (diag.time > 0 && q_prev > 0 && q <= 0)
@@ -243,7 +243,7 @@ TEST(Scene, OpenMeshIsRefusedUnlessRepairedOrAllowed) {
   EXPECT_THAT(msg, HasSubstr("\"repair\": true"));  // the advice names scene keys, not flags
   EXPECT_THAT(msg, HasSubstr("\"allow_open\": true"));
   std::vector<std::string> w;
-  EXPECT_NO_THROW(rbsim::BuildSimulation(Parse(OneBody(R"("mesh": ")" + path + R"(", "allow_open": true)")), w));
+  EXPECT_NO_THROW(scene::BuildSimulation(Parse(OneBody(R"("mesh": ")" + path + R"(", "allow_open": true)")), w));
   EXPECT_THAT(w.at(0), HasSubstr("computed anyway"));
 }
 
@@ -255,9 +255,9 @@ TEST(Scene, InvalidJsonNamesTheLine) {
   }
   std::vector<std::string> w;
   try {
-    rbsim::LoadScene(path, w);
+    scene::LoadScene(path, w);
     FAIL() << "accepted";
-  } catch (const rbsim::SceneError& e) {
+  } catch (const scene::SceneError& e) {
     EXPECT_THAT(e.what(), HasSubstr(path + ": line 4: not valid JSON"));
   }
 }
@@ -266,12 +266,12 @@ TEST(Scene, InvalidJsonNamesTheLine) {
 // states only (it sampled every step: llround overflowed).
 TEST(Scene, AVanishingOutputRateSamplesTheFirstAndLastStatesOnly) {
   std::vector<std::string> w;
-  rbsim::Scene s = Parse(OneBody(kBox), &w);
+  scene::Scene s = Parse(OneBody(kBox), &w);
   s.output_rate = 1e-30;
   s.duration = 0.01;
-  rbsim::Simulation sim = rbsim::BuildSimulation(s, w, 1);
+  scene::Simulation sim = scene::BuildSimulation(s, w, 1);
   int samples = 0;
-  rbsim::Run(sim, [&](const dynamics::World&, const dynamics::Diagnostics&) { ++samples; });
+  scene::Run(sim, [&](const dynamics::World&, const dynamics::Diagnostics&) { ++samples; });
   EXPECT_EQ(samples, 2);
 }
 
@@ -281,7 +281,7 @@ TEST(Scene, AVanishingOutputRateSamplesTheFirstAndLastStatesOnly) {
 // remainder of whole turns.
 TEST(Scene, OrientationsBeyondDoublePrecisionAreStillRotations) {
   std::vector<std::string> w;
-  const rbsim::Scene s = Parse(OneBody(std::string(kBox) + R"(, "orientation": [1e300, 1e300, 0, 0])"), &w);
+  const scene::Scene s = Parse(OneBody(std::string(kBox) + R"(, "orientation": [1e300, 1e300, 0, 0])"), &w);
   ASSERT_EQ(w.size(), 1u);
   EXPECT_THAT(w[0], HasSubstr("norm 1.41421e+300; normalized"));
   EXPECT_NEAR(s.bodies[0].orientation.w(), std::sqrt(0.5), 1e-15);
@@ -290,7 +290,7 @@ TEST(Scene, OrientationsBeyondDoublePrecisionAreStillRotations) {
               HasSubstr("bodies[0].orientation.angle_deg: 1e+308 is too large to name an angle"));
   EXPECT_THAT(ErrorOf(OneBody(std::string(kBox) + R"(, "orientation": {"axis": [0, 0, 1], "angle": 1e9})")),
               HasSubstr("bodies[0].orientation.angle: 1e+09 is too large to name an angle"));
-  const rbsim::Scene t =
+  const scene::Scene t =
       Parse(OneBody(std::string(kBox) + R"(, "orientation": {"axis": [0, 0, 1], "angle_deg": 4e9})"), &w);
   const double turn = std::fmod(4e9, 360.0) * massprops::kPi / 180;
   EXPECT_NEAR(
@@ -300,7 +300,7 @@ TEST(Scene, OrientationsBeyondDoublePrecisionAreStillRotations) {
 
 TEST(Scene, NonUnitQuaternionIsNormalizedWithAWarning) {
   std::vector<std::string> w;
-  const rbsim::Scene s = Parse(OneBody(std::string(kBox) + R"(, "orientation": [2, 0, 0, 2])"), &w);
+  const scene::Scene s = Parse(OneBody(std::string(kBox) + R"(, "orientation": [2, 0, 0, 2])"), &w);
   ASSERT_EQ(w.size(), 1u);
   EXPECT_THAT(w[0], HasSubstr("bodies[0].orientation: the quaternion has norm 2.82843; normalized"));
   EXPECT_NEAR(s.bodies[0].orientation.w(), std::sqrt(0.5), 1e-15);
@@ -312,7 +312,7 @@ TEST(Scene, ExampleScenesAreValid) {
        {"t_handle", "heavy_top", "tumbling_spot", "hanging_spring", "two_bodies", "csg_part", "box_stack",
         "incline_roll", "dominoes", "spot_on_table", "pile", "ring_on_peg", "pile_in_bin", "joints", "quadruped"}) {
     std::vector<std::string> w;
-    EXPECT_NO_THROW(rbsim::BuildSimulation(rbsim::LoadScene(DataPath(std::string("scenes/") + name + ".json"), w), w))
+    EXPECT_NO_THROW(scene::BuildSimulation(scene::LoadScene(DataPath(std::string("scenes/") + name + ".json"), w), w))
         << name;
     EXPECT_TRUE(w.empty()) << name << ": " << (w.empty() ? "" : w[0]);
   }
@@ -332,18 +332,18 @@ TEST(Simulation, THandleFollowsTheExactTorqueFreeFlow) {
   for (auto [integrator, omega_tol, angle_tol] : {Case{dynamics::Integrator::kExactSplitting, 2e-6, 2e-6},
                                                   Case{dynamics::Integrator::kImplicitMidpoint, 1e-4, 3e-3}}) {
     std::vector<std::string> w;
-    rbsim::Scene scene = rbsim::LoadScene(DataPath("scenes/t_handle.json"), w);
+    scene::Scene scene = scene::LoadScene(DataPath("scenes/t_handle.json"), w);
     scene.duration = 8;
     scene.integrator = integrator;
-    rbsim::Simulation sim = rbsim::BuildSimulation(scene, w);
+    scene::Simulation sim = scene::BuildSimulation(scene, w);
     const dynamics::RigidBody& b0 = sim.world().bodies()[0];
     // The scene's ω = (10, 0.01, 0.01) in the mesh axes; the crossbar (mesh x) is the intermediate axis.
     ASSERT_TRUE(massprops::testing::MatrixNearRel(b0.BodyAngularVelocity(), Vector3(0.01, 10, -0.01), 1e-12, 10));
     const dynamics::ExactFreeRotation exact(b0.inertia, b0.BodyAngularVelocity(), b0.orientation);
     ASSERT_LT(exact.FlipInterval(), 4.0);  // two flips or more within the run
     double worst_omega = 0, worst_angle = 0;
-    rbsim::Run(sim, [&](const dynamics::World& world, const dynamics::Diagnostics& d) {
-      const rbsim::BodyState s = rbsim::StateOf(sim.bodies[0], world.bodies()[0]);
+    scene::Run(sim, [&](const dynamics::World& world, const dynamics::Diagnostics& d) {
+      const scene::BodyState s = scene::StateOf(sim.bodies[0], world.bodies()[0]);
       worst_omega = std::max(worst_omega, (s.omega_principal - exact.Omega(d.time)).norm() / 10.0);
       worst_angle = std::max(worst_angle, world.bodies()[0].orientation.angularDistance(exact.Orientation(d.time)));
     });
@@ -358,7 +358,7 @@ TEST(Simulation, THandleFollowsTheExactTorqueFreeFlow) {
 // above the center of mass, the spring stretched by m g / k. This checks the mesh-coordinate →
 // body-frame conversion of force points and the scene's orientation handling.
 TEST(Simulation, HangingBoxSettlesToStaticEquilibrium) {
-  rbsim::Scene s = Parse(R"({
+  scene::Scene s = Parse(R"({
     "dt": 0.002, "duration": 60,
     "bodies": [{"name": "b", "solid": {"type": "box", "size": [0.2, 0.1, 0.05]}, "density": 500,
                 "orientation": {"axis": [1, 2, 3], "angle_deg": 40}, "position": [0.1, 0, -0.3]}],
@@ -368,10 +368,10 @@ TEST(Simulation, HangingBoxSettlesToStaticEquilibrium) {
                {"type": "angular_damping", "body": "b", "c": 0.01},
                {"type": "linear_damping", "c": 0.5}]})");
   std::vector<std::string> w;
-  rbsim::Simulation sim = rbsim::BuildSimulation(s, w);
-  rbsim::Run(sim, [](const dynamics::World&, const dynamics::Diagnostics&) {});
+  scene::Simulation sim = scene::BuildSimulation(s, w);
+  scene::Run(sim, [](const dynamics::World&, const dynamics::Diagnostics&) {});
   const dynamics::RigidBody& b = sim.world().bodies()[0];
-  const rbsim::BodyState st = rbsim::StateOf(sim.bodies[0], b);
+  const scene::BodyState st = scene::StateOf(sim.bodies[0], b);
   const Vector3 corner = st.position + st.orientation * Vector3(0.1, 0.05, 0.025);
   const double m = 500 * 0.2 * 0.1 * 0.05;
   EXPECT_LT(b.velocity.norm(), 1e-6);
@@ -387,13 +387,13 @@ TEST(Simulation, SpringsHoldTheCenterOfMassUnlessAPointIsGiven) {
       (0.08 * 0.02 * 0.02 * 0.01 - 0.02 * 0.06 * 0.02 * 0.03) / (0.08 * 0.02 * 0.02 + 0.02 * 0.06 * 0.02);
   auto run = [&](const std::string& point) {
     std::vector<std::string> w;
-    rbsim::Simulation sim = rbsim::BuildSimulation(
+    scene::Simulation sim = scene::BuildSimulation(
         Parse(R"({"dt": 0.001, "duration": 0.2, "bodies": [{"name": "t", "mesh": "../meshes/t_handle.obj"}],
                   "forces": [{"type": "spring", "body": "t", "k": 500, "anchor": [0, )" +
               massprops::ExactDecimal(com_y) + R"(, 0])" + point + "}]}"),
         w);
     double moved = 0;  // largest distance of the center of mass from its start
-    rbsim::Run(sim, [&](const dynamics::World& world, const dynamics::Diagnostics&) {
+    scene::Run(sim, [&](const dynamics::World& world, const dynamics::Diagnostics&) {
       moved = std::max(moved, (world.bodies()[0].position - Vector3(0, com_y, 0)).norm());
     });
     return moved;
@@ -404,10 +404,10 @@ TEST(Simulation, SpringsHoldTheCenterOfMassUnlessAPointIsGiven) {
 
 TEST(Simulation, TwoBodyExampleConservesMomentaAndEnergy) {
   std::vector<std::string> w;
-  rbsim::Simulation sim = rbsim::BuildSimulation(rbsim::LoadScene(DataPath("scenes/two_bodies.json"), w), w);
+  scene::Simulation sim = scene::BuildSimulation(scene::LoadScene(DataPath("scenes/two_bodies.json"), w), w);
   EXPECT_TRUE(sim.conservation.energy);
   EXPECT_TRUE(sim.conservation.momentum);
-  const rbsim::RunStats stats = rbsim::Run(sim, [](const dynamics::World&, const dynamics::Diagnostics&) {});
+  const scene::RunStats stats = scene::Run(sim, [](const dynamics::World&, const dynamics::Diagnostics&) {});
   EXPECT_LT(stats.max_drift.linear_momentum, 1e-12);
   EXPECT_LT(stats.max_drift.angular_momentum, 1e-12);
   EXPECT_LT(stats.max_drift.energy, 1e-3);  // second order, bounded (symplectic splitting)
@@ -420,11 +420,11 @@ TEST(Simulation, TwoBodyExampleConservesMomentaAndEnergy) {
 TEST(Simulation, ContactExamples) {
   std::vector<std::string> w;
   auto run = [&](const char* name) {
-    auto sim = std::make_unique<rbsim::Simulation>(
-        rbsim::BuildSimulation(rbsim::LoadScene(DataPath(std::string("scenes/") + name + ".json"), w), w));
+    auto sim = std::make_unique<scene::Simulation>(
+        scene::BuildSimulation(scene::LoadScene(DataPath(std::string("scenes/") + name + ".json"), w), w));
     EXPECT_TRUE(sim->contact) << name;
     EXPECT_FALSE(sim->conservation.energy) << name;
-    const rbsim::RunStats stats = rbsim::Run(*sim, [](const dynamics::World&, const dynamics::Diagnostics&) {});
+    const scene::RunStats stats = scene::Run(*sim, [](const dynamics::World&, const dynamics::Diagnostics&) {});
     return std::make_pair(std::move(sim), stats);
   };
   {
@@ -458,14 +458,14 @@ TEST(Simulation, ContactExamples) {
 // g sin θ instead of rolling at 5/7 of it.
 TEST(Simulation, PairMaterialOverridesTheBodies) {
   std::vector<std::string> w;
-  rbsim::Scene s = Parse(R"({"dt": 0.001, "duration": 0.5,
+  scene::Scene s = Parse(R"({"dt": 0.001, "duration": 0.5,
     "ground": {"normal": [0, 0, 1], "material": {"friction": 0.5}},
     "bodies": [{"name": "ball", "solid": {"type": "sphere", "radius": 0.05}, "position": [0, 0, 0.05],
                 "material": {"friction": 0.5}}],
     "pairs": [{"bodies": ["ball", "ground"], "material": {"friction": 0}}],
     "forces": [{"type": "gravity", "g": [2, 0, -9]}]})");
-  rbsim::Simulation sim = rbsim::BuildSimulation(s, w);
-  rbsim::Run(sim, [](const dynamics::World&, const dynamics::Diagnostics&) {});
+  scene::Simulation sim = scene::BuildSimulation(s, w);
+  scene::Run(sim, [](const dynamics::World&, const dynamics::Diagnostics&) {});
   EXPECT_NEAR(sim.world().bodies()[0].velocity.x(), 2 * 0.5, 1e-9);
   EXPECT_NEAR(sim.world().bodies()[0].AngularVelocity().norm(), 0, 1e-12);
 }
@@ -474,7 +474,7 @@ TEST(Simulation, SceneFramesOfTheInitialAngularVelocity) {
   // A box turned 90° about z: ω given in its body (mesh) axes along x is world y.
   for (auto [frame, want] : {std::pair{"world", Vector3(1, 0, 0)}, std::pair{"body", Vector3(0, 1, 0)}}) {
     std::vector<std::string> w;
-    rbsim::Simulation sim = rbsim::BuildSimulation(
+    scene::Simulation sim = scene::BuildSimulation(
         Parse(OneBody(std::string(kBox) + R"(, "orientation": {"axis": [0, 0, 1], "angle_deg": 90},
                       "angular_velocity": [1, 0, 0], "angular_velocity_frame": ")" +
                       frame + "\"")),
@@ -485,8 +485,8 @@ TEST(Simulation, SceneFramesOfTheInitialAngularVelocity) {
 
 TEST(Simulation, ImplicitBodyHasItsClosedFormInertiaWithinTheEstimate) {
   std::vector<std::string> w;
-  const rbsim::Simulation sim =
-      rbsim::BuildSimulation(Parse(OneBody(R"x("implicit": "torus(R=0.2, r=0.05)", "density": 1000)x")), w);
+  const scene::Simulation sim =
+      scene::BuildSimulation(Parse(OneBody(R"x("implicit": "torus(R=0.2, r=0.05)", "density": 1000)x")), w);
   const massprops::MassProperties truth = massprops::solids::TorusProperties(0.2, 0.05, 1000);
   const auto& rb = sim.world().bodies()[0];
   EXPECT_NEAR(rb.mass, truth.mass, 5e-4 * truth.mass);  // tolerance 1e-4 relative standard error
@@ -498,12 +498,12 @@ TEST(Simulation, ImplicitBodyHasItsClosedFormInertiaWithinTheEstimate) {
 
 TEST(Outputs, GlbHeaderChunksAndOneKeyPerSample) {
   std::vector<std::string> w;
-  rbsim::Scene scene = rbsim::LoadScene(DataPath("scenes/two_bodies.json"), w);
+  scene::Scene scene = scene::LoadScene(DataPath("scenes/two_bodies.json"), w);
   scene.duration = 1;
-  rbsim::Simulation sim = rbsim::BuildSimulation(scene, w);
+  scene::Simulation sim = scene::BuildSimulation(scene, w);
   rbsim::Recording rec;
   const auto stats =
-      rbsim::Run(sim, [&](const dynamics::World& world, const dynamics::Diagnostics& d) { rec.Add(sim, world, d); });
+      scene::Run(sim, [&](const dynamics::World& world, const dynamics::Diagnostics& d) { rec.Add(sim, world, d); });
   const std::string path = ::testing::TempDir() + "/two.glb";
   rbsim::WriteGlb(path, sim, rec);
   std::ifstream in(path, std::ios::binary);
@@ -549,15 +549,15 @@ TEST(Scene, PileInABinSettlesInsideIt) {
   GTEST_SKIP() << "a long simulation: run in the Release build";
 #endif
   std::vector<std::string> w;
-  const rbsim::Scene scene = rbsim::LoadScene(DataPath("scenes/pile_in_bin.json"), w);
-  rbsim::Simulation sim = rbsim::BuildSimulation(scene, w, 2);
+  const scene::Scene scene = scene::LoadScene(DataPath("scenes/pile_in_bin.json"), w);
+  scene::Simulation sim = scene::BuildSimulation(scene, w, 2);
   ASSERT_EQ(sim.world().bodies().size(), 50u);
   double total_mass = 0;
   for (const auto& b : sim.world().bodies()) total_mass += b.mass;
   double energy = sim.world().Diagnose().total_energy;
   const double start = energy;
   double deepest = 0;
-  const std::int64_t steps = rbsim::StepCount(scene);
+  const std::int64_t steps = scene::StepCount(scene);
   for (std::int64_t i = 0; i < steps; ++i) {
     const dynamics::StepStatus s = sim.physics.Step(scene.dt);
     ASSERT_TRUE(s.ok) << s.message;

@@ -10,9 +10,9 @@
 #include "dynamics/contact.h"
 #include "dynamics/world.h"
 #include "massprops/principal_axes.h"
-#include "scene.h"
+#include "scene/scene.h"
 
-namespace rbsim {
+namespace scene {
 
 /// A body of the scene with what the outputs need besides its dynamic state.
 struct SimBody {
@@ -98,4 +98,4 @@ RunStats Run(Simulation& sim,
 /// whether the physics of the scene conserves them.
 std::string Summary(const Simulation& sim, const RunStats& stats);
 
-}  // namespace rbsim
+}  // namespace scene

@@ -9,9 +9,9 @@
 #include <nlohmann/json.hpp>
 
 #include "json_fields.h"
-#include "scene.h"
+#include "scene/scene.h"
 
-namespace rbsim {
+namespace scene {
 
 using json_fields::Fields;
 using nlohmann::json;
@@ -164,4 +164,4 @@ std::vector<JointSpec> ReadJoints(const json& joints, const std::string& file, c
   return out;
 }
 
-}  // namespace rbsim
+}  // namespace scene

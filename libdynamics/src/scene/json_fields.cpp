@@ -4,7 +4,7 @@
 
 #include "massprops/text.h"
 
-namespace rbsim::json_fields {
+namespace scene::json_fields {
 namespace {
 
 // Levenshtein distance, for "did you mean" on unknown keys and names.
@@ -52,4 +52,4 @@ std::string TypeName(const json& j) {
 
 std::string Num(double v) { return massprops::FormatDouble(v, "%.6g"); }
 
-}  // namespace rbsim::json_fields
+}  // namespace scene::json_fields

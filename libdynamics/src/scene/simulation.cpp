@@ -1,4 +1,4 @@
-#include "simulation.h"
+#include "scene/simulation.h"
 
 #include <algorithm>
 #include <chrono>
@@ -17,7 +17,7 @@
 #include "massprops/report/words.h"
 #include "massprops/text.h"
 
-namespace rbsim {
+namespace scene {
 namespace {
 
 using dynamics::BuiltShape;
@@ -529,4 +529,4 @@ std::string Summary(const Simulation& sim, const RunStats& stats) {
   return out.str();
 }
 
-}  // namespace rbsim
+}  // namespace scene

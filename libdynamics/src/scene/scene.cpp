@@ -1,4 +1,4 @@
-#include "scene.h"
+#include "scene/scene.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,7 +14,7 @@
 #include "json_fields.h"
 #include "massprops/io.h"
 
-namespace rbsim {
+namespace scene {
 namespace {
 
 using nlohmann::json;
@@ -544,6 +544,23 @@ std::string MeshFileProblem(const std::filesystem::path& path) {
   return "not found";
 }
 
+Scene ParseSceneText(const std::string& text, const std::string& file, const std::string& base_dir,
+                     std::vector<std::string>& warnings) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    // e.byte is the 1-based offset of the fault; turn it into a line number.
+    const std::size_t upto = std::min<std::size_t>(e.byte, text.size());
+    const long line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(upto), '\n');
+    throw SceneError(file + ": line " + std::to_string(line) + ": not valid JSON (" + e.what() + ")");
+  } catch (const json::out_of_range& e) {  // a number beyond double precision (1e400)
+    throw SceneError(file + ": a number is beyond double precision: " +
+                     std::string(e.what()).substr(std::string(e.what()).find(']') + 2));
+  }
+  return ParseScene(j, file, base_dir, warnings);
+}
+
 Scene LoadScene(const std::string& path, std::vector<std::string>& warnings) {
   std::error_code ec;
   if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
@@ -553,21 +570,8 @@ Scene LoadScene(const std::string& path, std::vector<std::string>& warnings) {
   if (!in) throw SceneError(path + ": cannot open the scene file");
   std::stringstream text;
   text << in.rdbuf();
-  json j;
-  try {
-    j = json::parse(text.str());
-  } catch (const json::parse_error& e) {
-    // e.byte is the 1-based offset of the fault; turn it into a line number.
-    const std::string s = text.str();
-    const std::size_t upto = std::min<std::size_t>(e.byte, s.size());
-    const long line = 1 + std::count(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(upto), '\n');
-    throw SceneError(path + ": line " + std::to_string(line) + ": not valid JSON (" + e.what() + ")");
-  } catch (const json::out_of_range& e) {  // a number beyond double precision (1e400)
-    throw SceneError(path + ": a number is beyond double precision: " +
-                     std::string(e.what()).substr(std::string(e.what()).find(']') + 2));
-  }
   const std::string base = std::filesystem::path(path).parent_path().string();
-  return ParseScene(j, path, base.empty() ? "." : base, warnings);
+  return ParseSceneText(text.str(), path, base.empty() ? "." : base, warnings);
 }
 
-}  // namespace rbsim
+}  // namespace scene

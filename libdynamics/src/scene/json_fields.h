@@ -10,9 +10,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scene.h"
+#include "scene/scene.h"
 
-namespace rbsim::json_fields {
+namespace scene::json_fields {
 
 using nlohmann::json;
 
@@ -133,9 +133,18 @@ class Fields {
   std::vector<std::string> known_;
 };
 
-}  // namespace rbsim::json_fields
+}  // namespace scene::json_fields
 
-namespace rbsim {
+namespace scene {
+/// Parses and validates a scene's JSON (ParseSceneText after parsing). @throws SceneError.
+Scene ParseScene(const nlohmann::json& json, const std::string& file, const std::string& base_dir,
+                 std::vector<std::string>& warnings);
+/// Reads the scene's "joints" array (the bodies already read). @throws SceneError.
+std::vector<JointSpec> ReadJoints(const nlohmann::json& joints, const std::string& file,
+                                  const std::vector<BodySpec>& bodies);
+/// Reads the scene's "robots" array (files relative to base_dir). @throws SceneError.
+std::vector<RobotSpec> ReadRobots(const nlohmann::json& robots, const std::string& file, const std::string& base_dir,
+                                  std::vector<std::string>& warnings);
 /// A rotation given as a quaternion [w, x, y, z] (normalized, with a warning) or as
 /// {"axis": [...], "angle"/"angle_deg": ...}; identity when absent.
 Quaternion ReadOrientation(json_fields::Fields& f, const std::string& key, std::vector<std::string>& warnings);
@@ -143,4 +152,4 @@ Quaternion ReadOrientation(json_fields::Fields& f, const std::string& key, std::
 dynamics::Material ReadMaterial(json_fields::Fields& f);
 /// A joint motor {"mode", "target" (or "target_deg"), "max_effort", "kp", "kd"}.
 dynamics::JointMotor ReadMotor(json_fields::Fields& o, bool degrees_allowed);
-}  // namespace rbsim
+}  // namespace scene

@@ -1,15 +1,14 @@
 #pragma once
-// rbsim scenes: what a scene file (JSON) or the command line describes, validated before anything
-// runs. The schema is documented in the README ("rbsim scenes"); every error names the scene
-// file, the field (JSON path) and what is wrong.
+// Scenes (target massprops::scene): what a scene file (JSON) or rbsim's command line describes,
+// typed and validated before anything runs. The schema is in docs/scenes.md; every error names the
+// scene file, the field (JSON path) and what is wrong. Building and running a simulation from a
+// scene: scene/simulation.h.
 
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json_fwd.hpp>
 
 #include "dynamics/bodies.h"
 #include "dynamics/contact.h"
@@ -21,7 +20,7 @@
 #include "massprops/primitive.h"
 #include "massprops/units.h"
 
-namespace rbsim {
+namespace scene {
 
 using massprops::Matrix3;
 using massprops::Vector3;
@@ -151,22 +150,16 @@ struct Scene {
   std::vector<PairMaterial> pairs;
 };
 
-/// Reads the scene's "joints" array (the bodies already read). @throws SceneError.
-std::vector<JointSpec> ReadJoints(const nlohmann::json& joints, const std::string& file,
-                                  const std::vector<BodySpec>& bodies);
-
-/// Reads the scene's "robots" array (files relative to base_dir). @throws SceneError.
-std::vector<RobotSpec> ReadRobots(const nlohmann::json& robots, const std::string& file, const std::string& base_dir,
-                                  std::vector<std::string>& warnings);
 /// A robot file given on the command line: on the ground, dropped from 1 cm (or placed by the MJCF
 /// keyframe named, which also sets its joints and controls), for `duration`.
 Scene RobotScene(const std::string& path, bool fill, bool fixed_base, const std::string& keyframe = "");
 
-/// Parses and validates a scene. `base_dir` resolves relative mesh paths. Non-fatal findings
-/// (a non-unit quaternion, an output rate above 1/dt, ...) are appended to `warnings`.
-/// @throws SceneError naming `file`, the field and the fault.
-Scene ParseScene(const nlohmann::json& json, const std::string& file, const std::string& base_dir,
-                 std::vector<std::string>& warnings);
+/// Parses and validates a scene given as JSON text. `base_dir` resolves relative mesh paths.
+/// Non-fatal findings (a non-unit quaternion, an output rate above 1/dt, ...) are appended to
+/// `warnings`. @throws SceneError naming `file` (and the line, for JSON that does not parse), the
+/// field and the fault.
+Scene ParseSceneText(const std::string& text, const std::string& file, const std::string& base_dir,
+                     std::vector<std::string>& warnings);
 /// The checks of dt, duration and output_rate (ParseScene runs them; run them again after
 /// changing those fields). @throws SceneError naming the file and the field.
 void CheckTiming(const Scene& scene, std::vector<std::string>& warnings);
@@ -182,4 +175,4 @@ OutputKind ParseOutputName(const std::string& name);  // throws std::invalid_arg
 /// The default outputs: csv, diagnostics, svg plot, png plot, glb.
 std::vector<OutputKind> DefaultOutputs();
 
-}  // namespace rbsim
+}  // namespace scene

@@ -8,9 +8,9 @@
 #include <nlohmann/json.hpp>
 
 #include "json_fields.h"
-#include "scene.h"
+#include "scene/scene.h"
 
-namespace rbsim {
+namespace scene {
 
 using json_fields::Fields;
 using nlohmann::json;
@@ -118,4 +118,4 @@ Scene RobotScene(const std::string& path, bool fill, bool fixed_base, const std:
   return scene;
 }
 
-}  // namespace rbsim
+}  // namespace scene
