@@ -42,5 +42,7 @@ void RunWithoutGil(const Work& work) {
 
 /// massprops._core.resting_poses (poses.cpp).
 void BindPoses(pybind11::module_& m);
+/// massprops.dynamics.load_scene (scenes.cpp), on the dynamics submodule.
+void BindScenes(pybind11::module_& dyn);
 
 }  // namespace massprops_python
