@@ -443,7 +443,12 @@ py::dict AddRobot(dynamics::ContactWorld& w, const std::string& path, const py::
   options.material = material;
   dynamics::RobotInWorld added;
   try {
-    added = dynamics::AddRobot(w, massprops::ReadRobotModel(path, read), options);
+    const massprops::RobotModel model = massprops::ReadRobotModel(path, read);
+    // No position: set down 1 cm above the world's ground, as rbsim and scenes do.
+    if (position.is_none()) {
+      options.pose = dynamics::PlaceAboveGround(model, options, w.grounds(), dynamics::kSetDownClearance);
+    }
+    added = dynamics::AddRobot(w, model, options);
   } catch (const massprops::FileAccessError& e) {
     throw py::value_error(e.what());
   } catch (const std::runtime_error& e) {

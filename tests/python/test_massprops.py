@@ -442,6 +442,21 @@ def test_robots_stand_alike_from_urdf_and_mjcf():
     assert a.joint_state(knee)["position"][0] == pytest.approx(-0.8, abs=0.1)
 
 
+def test_add_robot_without_position_is_set_down_as_scenes_do():
+    """Without a position, add_robot sets the robot down with its lowest point 1 cm above the
+    world's ground, as rbsim and scenes do (dynamics.PlaceAboveGround): the same world as
+    load_scene of the robot file, bit for bit."""
+    path = os.path.join(DATA, "robots", "quadruped", "quadruped.urdf")
+    world = massprops.dynamics.ContactWorld()
+    world.add_ground()
+    world.add_gravity((0, 0, -9.81))
+    world.add_robot(path)
+    s = massprops.dynamics.load_scene(path)
+    assert [list(b.position) for b in world.bodies] == [list(b.position) for b in s["world"].bodies]
+    lowest = min(b.position[2] for b in world.bodies)
+    assert 0.01 < lowest < 0.2
+
+
 def test_robot_errors_name_the_element():
     world = massprops.dynamics.ContactWorld()
     robots = os.path.join(os.path.dirname(MESHES), "robots", "quadruped")

@@ -281,6 +281,8 @@ class ContactWorld {
   /// cores). Results do not depend on it.
   void set_num_threads(int n) { world_.set_num_threads(n); }
   const ContactStats& stats() const { return stats_; }
+  /// The ground planes, in the order added.
+  const std::vector<Ground>& grounds() const;
   /// The contact points the last step solved (none in free flight; the contacts among sleeping
   /// bodies alone are not solved, and not reported).
   std::vector<ContactReport> Contacts() const;

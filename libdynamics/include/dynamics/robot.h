@@ -60,6 +60,18 @@ struct RobotInWorld {
   std::vector<std::string> notes;                  ///< lumping, hulls, what the file has that is not simulated
 };
 
+/// How high above the ground rbsim, scenes and Python's add_robot set down a robot given no
+/// position (m).
+inline constexpr double kSetDownClearance = 0.01;
+
+/// Where a robot is set down: `options.pose` raised along the first ground's normal so that the
+/// robot's lowest collision point (at its initial joint positions) is `clearance` above the highest
+/// of the grounds parallel to that one. rbsim, scenes and Python's add_robot set a robot given no
+/// position 1 cm above the ground this way. The pose as given when a keyframe places the robot or
+/// there is no ground. @throws as AddRobot.
+massprops::Placement PlaceAboveGround(const massprops::RobotModel& model, const RobotOptions& options,
+                                      const std::vector<Ground>& grounds, double clearance);
+
 /// Each body's visual geometry (its links' RobotLink::visuals) as triangles in its body frame,
 /// metres — for pictures, as RobotInWorld::shapes holds the colliders'. Meshes are read as they
 /// are (open, repeated faces and all: nothing is integrated); one that cannot be read is left

@@ -5,6 +5,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 
@@ -358,6 +359,30 @@ std::vector<massprops::TriangleMesh> VisualShapes(const RobotModel& model, const
   std::vector<massprops::TriangleMesh> out;
   for (const std::vector<PlacedGeometry>& p : placed) out.push_back(ShapeOf(p));
   return out;
+}
+
+massprops::Placement PlaceAboveGround(const RobotModel& model, const RobotOptions& options,
+                                      const std::vector<Ground>& grounds, double clearance) {
+  if (!options.keyframe.empty() || grounds.empty()) return options.pose;
+  // Where its lowest point is at the pose as given (a scratch world), then raised.
+  ContactWorld scratch;
+  const RobotInWorld trial = AddRobot(scratch, model, options);
+  const Vector3 up = grounds.front().normal;
+  double floor = -std::numeric_limits<double>::infinity();
+  for (const Ground& g : grounds) {
+    if (g.normal.isApprox(up)) floor = std::max(floor, g.offset);
+  }
+  double lowest = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < trial.bodies.size(); ++k) {
+    const RigidBody& b = scratch.world().bodies()[static_cast<std::size_t>(trial.bodies[k])];
+    const massprops::TriangleMesh& m = trial.shapes[k];
+    for (Eigen::Index v = 0; v < m.V.rows(); ++v) {
+      lowest = std::min(lowest, up.dot(b.orientation * Vector3(m.V.row(v).transpose()) + b.position));
+    }
+  }
+  massprops::Placement pose = options.pose;
+  if (std::isfinite(lowest)) pose.translation += up * (floor + clearance - lowest);
+  return pose;
 }
 
 Ground GroundOf(const massprops::RobotGround& ground) {

@@ -288,6 +288,8 @@ void ContactWorld::ExcludePair(int a, int b) {
   impl_->excluded.insert({std::min(a, b), std::max(a, b)});
 }
 
+const std::vector<Ground>& ContactWorld::grounds() const { return impl_->grounds; }
+
 void ContactWorld::SetPairMaterial(int a, int b, const Material& material) {
   ValidateMaterial(material);
   impl_->pair_materials[{std::min(a, b), std::max(a, b)}] = material;

@@ -93,25 +93,10 @@ void AddRobot(Simulation& sim, const RobotSpec& spec, std::vector<std::string>& 
                        "pair's); the scene's material gives only their restitution");
   }
   try {
-    // (A keyframe places the robot as the file does.)
-    if (!spec.position_given && options.keyframe.empty() && !sim.scene.grounds.empty()) {
-      // Where its lowest point is with the root at the origin (a scratch world), then raised.
-      dynamics::ContactWorld scratch;
-      const dynamics::RobotInWorld trial = dynamics::AddRobot(scratch, model, options);
-      double lowest = std::numeric_limits<double>::infinity();
-      const Vector3 up = sim.scene.grounds.front().normal;
-      double floor = -std::numeric_limits<double>::infinity();
-      for (const GroundSpec& g : sim.scene.grounds) {
-        if (g.normal.isApprox(up)) floor = std::max(floor, g.offset);
-      }
-      for (std::size_t k = 0; k < trial.bodies.size(); ++k) {
-        const dynamics::RigidBody& b = scratch.world().bodies()[static_cast<std::size_t>(trial.bodies[k])];
-        const TriangleMesh& m = trial.shapes[k];
-        for (Eigen::Index v = 0; v < m.V.rows(); ++v) {
-          lowest = std::min(lowest, up.dot(b.orientation * Vector3(m.V.row(v).transpose()) + b.position));
-        }
-      }
-      if (std::isfinite(lowest)) options.pose.translation += up * (floor + 0.01 - lowest);
+    if (!spec.position_given) {  // 1 cm above the ground (a keyframe places it as the file does)
+      std::vector<dynamics::Ground> grounds;
+      for (const GroundSpec& g : sim.scene.grounds) grounds.push_back({g.normal, g.offset, g.material, g.filter});
+      options.pose = dynamics::PlaceAboveGround(model, options, grounds, dynamics::kSetDownClearance);
     }
     const dynamics::RobotInWorld added = dynamics::AddRobot(sim.physics, model, options);
     std::vector<std::string> notes = added.notes;
