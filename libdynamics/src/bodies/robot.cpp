@@ -391,12 +391,10 @@ Ground GroundOf(const massprops::RobotGround& ground) {
   return g;
 }
 
-RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotOptions& options) {
-  const std::size_t nl = model.links.size();
-  RobotInWorld out;
-  out.notes = model.notes;
-  if (nl == 0) throw std::invalid_argument(model.path + ": the robot has no links");
-  // Every joint the options name is the robot's.
+namespace {
+
+// Every joint the options name is the robot's. @throws std::invalid_argument naming it.
+void CheckNamedJoints(const RobotModel& model, const RobotOptions& options) {
   auto check_named = [&](const std::string& name, const char* what) {
     if (std::none_of(model.joints.begin(), model.joints.end(), [&](const RobotJoint& j) { return j.name == name; })) {
       throw std::invalid_argument(model.path + ": " + what + " names the joint '" + name +
@@ -405,139 +403,168 @@ RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotO
   };
   for (const auto& entry : options.positions) check_named(entry.first, "positions");
   for (const auto& entry : options.motors) check_named(entry.first, "motors");
-  // The joint above each link, and the groups of links welded by fixed joints between links.
-  std::vector<int> joint_above(nl, -1);
-  for (std::size_t k = 0; k < model.joints.size(); ++k)
-    joint_above[static_cast<std::size_t>(model.joints[k].child)] = static_cast<int>(k);
-  auto welded = [&](int link) {
+}
+
+// The links lumped into bodies: the joint above each link, the links in an order where parents
+// come first, and the groups of links welded by fixed joints between links.
+struct Lumping {
+  std::vector<int> joint_above;  // each link's joint (-1: none)
+  std::vector<int> order;        // parents first
+  std::vector<int> group_of;     // each link's group
+  std::vector<Group> groups;
+
+  // Whether a link is welded to its parent link (and so lumped into its group).
+  bool Welded(const RobotModel& model, int link) const {
     const int j = joint_above[static_cast<std::size_t>(link)];
     return j >= 0 && model.joints[static_cast<std::size_t>(j)].type == RobotJointType::kFixed &&
            model.joints[static_cast<std::size_t>(j)].parent >= 0;
-  };
-  std::vector<int> group_of(nl, -1);
-  std::vector<Group> groups;
-  // Links in an order where parents come first.
-  std::vector<int> order;
+  }
+  std::size_t IndexInGroup(int link) const {
+    const Group& g = groups[static_cast<std::size_t>(group_of[static_cast<std::size_t>(link)])];
+    return static_cast<std::size_t>(std::find(g.links.begin(), g.links.end(), link) - g.links.begin());
+  }
+  // A link's frame in its body's frame.
+  Placement LinkInBody(int link) const {
+    const Group& g = groups[static_cast<std::size_t>(group_of[static_cast<std::size_t>(link)])];
+    return g.body_in_root.Inverse().Then(g.in_root[IndexInGroup(link)]);
+  }
+};
+
+// Phase 1: links in parent-first order, lumped into groups by fixed joints between links.
+// @throws std::invalid_argument for joints that form a loop.
+Lumping LumpLinks(const RobotModel& model) {
+  const std::size_t nl = model.links.size();
+  Lumping out;
+  out.joint_above.assign(nl, -1);
+  for (std::size_t k = 0; k < model.joints.size(); ++k)
+    out.joint_above[static_cast<std::size_t>(model.joints[k].child)] = static_cast<int>(k);
   std::vector<char> placed(nl, 0);
-  while (order.size() < nl) {
-    const std::size_t before = order.size();
+  while (out.order.size() < nl) {
+    const std::size_t before = out.order.size();
     for (std::size_t i = 0; i < nl; ++i) {
       if (placed[i]) continue;
-      const int j = joint_above[i];
+      const int j = out.joint_above[i];
       const int parent = j >= 0 ? model.joints[static_cast<std::size_t>(j)].parent : -1;
       if (parent < 0 || placed[static_cast<std::size_t>(parent)]) {
         placed[i] = 1;
-        order.push_back(static_cast<int>(i));
+        out.order.push_back(static_cast<int>(i));
       }
     }
-    if (order.size() == before) throw std::invalid_argument(model.path + ": its joints form a loop");
+    if (out.order.size() == before) throw std::invalid_argument(model.path + ": its joints form a loop");
   }
-  for (const int link : order) {
+  out.group_of.assign(nl, -1);
+  for (const int link : out.order) {
     const auto l = static_cast<std::size_t>(link);
-    if (welded(link)) {
-      const RobotJoint& j = model.joints[static_cast<std::size_t>(joint_above[l])];
-      const int g = group_of[static_cast<std::size_t>(j.parent)];
-      Group& group = groups[static_cast<std::size_t>(g)];
+    if (out.Welded(model, link)) {
+      const RobotJoint& j = model.joints[static_cast<std::size_t>(out.joint_above[l])];
+      const int g = out.group_of[static_cast<std::size_t>(j.parent)];
+      Group& group = out.groups[static_cast<std::size_t>(g)];
       const auto at = std::find(group.links.begin(), group.links.end(), j.parent) - group.links.begin();
       group.in_root.push_back(
           group.in_root[static_cast<std::size_t>(at)].Then(j.parent_to_joint).Then(j.joint_to_child));
       group.links.push_back(link);
-      group_of[l] = g;
+      out.group_of[l] = g;
     } else {
       Group group;
       group.root = link;
       group.links = {link};
       group.in_root = {Placement{}};
-      group_of[l] = static_cast<int>(groups.size());
-      groups.push_back(group);
+      out.group_of[l] = static_cast<int>(out.groups.size());
+      out.groups.push_back(group);
     }
   }
-  // Each group's mass, center of mass and inertia; its principal frame.
-  for (Group& g : groups) {
-    for (std::size_t k = 0; k < g.links.size(); ++k) {
-      const auto& inertial = model.links[static_cast<std::size_t>(g.links[k])].inertial;
-      if (!inertial) continue;
-      const Placement& p = g.in_root[k];
-      const Vector3 c = p.rotation * inertial->center_of_mass + p.translation;
-      g.com = (g.mass * g.com + inertial->mass * c) / (g.mass + inertial->mass);
-      g.mass += inertial->mass;
-    }
-    const std::string name = model.links[static_cast<std::size_t>(g.root)].name;
-    if (!(g.mass > 0)) {
-      throw std::invalid_argument(model.path + ": link '" + name +
-                                  "' has no mass (no inertial, nor any link welded to it): give it an inertial, or "
-                                  "compute them from the geometry (--fill)");
-    }
-    for (std::size_t k = 0; k < g.links.size(); ++k) {
-      const auto& inertial = model.links[static_cast<std::size_t>(g.links[k])].inertial;
-      if (!inertial) continue;
-      const Placement& p = g.in_root[k];
-      const Vector3 d = p.rotation * inertial->center_of_mass + p.translation - g.com;
-      g.inertia += p.rotation * inertial->inertia * p.rotation.transpose() +
-                   inertial->mass * (d.squaredNorm() * Matrix3::Identity() - d * d.transpose());
-    }
-    const Eigen::SelfAdjointEigenSolver<Matrix3> eig(g.inertia);
-    g.moments = eig.eigenvalues();
-    Matrix3 axes = eig.eigenvectors();
-    if (axes.determinant() < 0) axes.col(2) = -axes.col(2);
-    if (!(g.moments.minCoeff() > 0) || !g.moments.allFinite()) {
-      throw std::invalid_argument(model.path + ": link '" + name +
-                                  "' has an inertia that is not positive definite (principal moments " +
-                                  std::to_string(g.moments.x()) + ", " + std::to_string(g.moments.y()) + ", " +
-                                  std::to_string(g.moments.z()) + " kg·m²)");
-    }
-    g.body_in_root = Placement{axes, g.com};
+  return out;
+}
+
+// Phase 2: a group's mass, center of mass and inertia (its links' inertials combined); its
+// principal frame. @throws std::invalid_argument for a group without mass or a tensor that is not
+// positive definite.
+void CombineInertials(const RobotModel& model, Group& g) {
+  for (std::size_t k = 0; k < g.links.size(); ++k) {
+    const auto& inertial = model.links[static_cast<std::size_t>(g.links[k])].inertial;
+    if (!inertial) continue;
+    const Placement& p = g.in_root[k];
+    const Vector3 c = p.rotation * inertial->center_of_mass + p.translation;
+    g.com = (g.mass * g.com + inertial->mass * c) / (g.mass + inertial->mass);
+    g.mass += inertial->mass;
   }
-  // Where each group's root link is at q = 0, and how the root attaches to the world.
-  const bool fixed_base = options.base == RobotOptions::Base::kFixed;
-  const bool floating_base = options.base == RobotOptions::Base::kFloating;
+  const std::string name = model.links[static_cast<std::size_t>(g.root)].name;
+  if (!(g.mass > 0)) {
+    throw std::invalid_argument(model.path + ": link '" + name +
+                                "' has no mass (no inertial, nor any link welded to it): give it an inertial, or "
+                                "compute them from the geometry (--fill)");
+  }
+  for (std::size_t k = 0; k < g.links.size(); ++k) {
+    const auto& inertial = model.links[static_cast<std::size_t>(g.links[k])].inertial;
+    if (!inertial) continue;
+    const Placement& p = g.in_root[k];
+    const Vector3 d = p.rotation * inertial->center_of_mass + p.translation - g.com;
+    g.inertia += p.rotation * inertial->inertia * p.rotation.transpose() +
+                 inertial->mass * (d.squaredNorm() * Matrix3::Identity() - d * d.transpose());
+  }
+  const Eigen::SelfAdjointEigenSolver<Matrix3> eig(g.inertia);
+  g.moments = eig.eigenvalues();
+  Matrix3 axes = eig.eigenvectors();
+  if (axes.determinant() < 0) axes.col(2) = -axes.col(2);
+  if (!(g.moments.minCoeff() > 0) || !g.moments.allFinite()) {
+    throw std::invalid_argument(model.path + ": link '" + name +
+                                "' has an inertia that is not positive definite (principal moments " +
+                                std::to_string(g.moments.x()) + ", " + std::to_string(g.moments.y()) + ", " +
+                                std::to_string(g.moments.z()) + " kg·m²)");
+  }
+  g.body_in_root = Placement{axes, g.com};
+}
+
+// Phase 3: where each group's root link is at q = 0. A joint to the world (URDF's "world" link,
+// SDFormat's, an MJCF top body's) places the root where the file does, relative to the pose,
+// whether the base is as written, fixed or floating; a keyframe's free-joint pose places its root
+// as MuJoCo's qpos does (x y z, w x y z in the world).
+std::vector<Placement> PlaceRoots(const RobotModel& model, const RobotOptions& options, const Lumping& lumps,
+                                  const KeyState& key) {
+  const std::vector<Group>& groups = lumps.groups;
   std::vector<Placement> root_in_world(groups.size());
-  auto index_in_group = [&](int link) {
-    const Group& g = groups[static_cast<std::size_t>(group_of[static_cast<std::size_t>(link)])];
-    return static_cast<std::size_t>(std::find(g.links.begin(), g.links.end(), link) - g.links.begin());
-  };
   auto link_in_world = [&](int link) {  // (its group's root placed already)
-    const auto g = static_cast<std::size_t>(group_of[static_cast<std::size_t>(link)]);
-    return root_in_world[g].Then(groups[g].in_root[index_in_group(link)]);
+    const auto g = static_cast<std::size_t>(lumps.group_of[static_cast<std::size_t>(link)]);
+    return root_in_world[g].Then(groups[g].in_root[lumps.IndexInGroup(link)]);
   };
-  for (const int link : order) {
+  for (const int link : lumps.order) {
     const auto l = static_cast<std::size_t>(link);
-    const auto g = static_cast<std::size_t>(group_of[l]);
+    const auto g = static_cast<std::size_t>(lumps.group_of[l]);
     if (groups[g].root != link) continue;
-    const int j = joint_above[l];
+    const int j = lumps.joint_above[l];
     if (j < 0) {
       root_in_world[g] = options.pose;
       continue;
     }
-    // A joint to the world (URDF's "world" link, SDFormat's, an MJCF top body's) places the root
-    // where the file does, relative to the pose, whether the base is as written, fixed or floating.
     const RobotJoint& joint = model.joints[static_cast<std::size_t>(j)];
     const Placement parent = joint.parent >= 0 ? link_in_world(joint.parent) : options.pose;
     root_in_world[g] = parent.Then(joint.parent_to_joint).Then(joint.joint_to_child);
   }
-  // A keyframe's free-joint pose places its root, as MuJoCo's qpos does (x y z, w x y z in the world).
-  const KeyState key = KeyframeState(model, options.keyframe);
   for (std::size_t g = 0; g < groups.size(); ++g) {
-    const int j = joint_above[static_cast<std::size_t>(groups[g].root)];
+    const int j = lumps.joint_above[static_cast<std::size_t>(groups[g].root)];
     if (j < 0 || model.joints[static_cast<std::size_t>(j)].type != RobotJointType::kFloating) continue;
     const std::vector<double>& q = key.q[static_cast<std::size_t>(j)];
     if (q.size() != 7) continue;
     const Quaternion turn = Quaternion(q[3], q[4], q[5], q[6]).normalized();
     root_in_world[g] = options.pose.Then(Placement{turn.toRotationMatrix(), Vector3(q[0], q[1], q[2])});
   }
-  // The bodies.
-  const int first_body = static_cast<int>(world.world().bodies().size());
-  for (std::size_t g = 0; g < groups.size(); ++g) {
-    const Group& group = groups[g];
+  return root_in_world;
+}
+
+// Phase 4: a body for each group, with its collider, at its root's place; a keyframe's free-joint
+// qvel, as MuJoCo's: the root frame's velocity in the world, then its angular velocity in its own
+// axes (the center of mass moves with the frame).
+void AddBodies(ContactWorld& world, const RobotModel& model, const RobotOptions& options, const Lumping& lumps,
+               const std::vector<Placement>& root_in_world, const KeyState& key, RobotInWorld& out) {
+  for (std::size_t g = 0; g < lumps.groups.size(); ++g) {
+    const Group& group = lumps.groups[g];
     const Placement body = root_in_world[g].Then(group.body_in_root);
     RigidBody b;
     b.mass = group.mass;
     b.inertia = group.moments;
     b.position = body.translation;
     b.orientation = QuaternionOf(body.rotation);
-    // A keyframe's free-joint qvel, as MuJoCo's: the root frame's velocity in the world, then its
-    // angular velocity in its own axes; the center of mass moves with the frame.
-    const int above = joint_above[static_cast<std::size_t>(group.root)];
+    const int above = lumps.joint_above[static_cast<std::size_t>(group.root)];
     if (above >= 0 && model.joints[static_cast<std::size_t>(above)].type == RobotJointType::kFloating &&
         key.v[static_cast<std::size_t>(above)].size() == 6) {
       const std::vector<double>& v = key.v[static_cast<std::size_t>(above)];
@@ -552,88 +579,122 @@ RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotO
     out.shapes.push_back(ShapeOf(geometries));
     out.body_in_link.push_back(group.body_in_root);
   }
+}
+
+// The drive of joint k: the options' motor (its effort bounded by the file's limit when it names
+// none), else the file's actuator on it (MJCF) at the keyframe's control (0 without one).
+JointMotor MotorOf(const RobotModel& model, const RobotOptions& options, std::size_t k, const KeyState& key,
+                   std::vector<std::string>& notes) {
+  const RobotJoint& rj = model.joints[k];
+  JointMotor motor;
+  if (const auto it = options.motors.find(rj.name); it != options.motors.end()) {
+    motor = it->second;
+    if (!std::isfinite(motor.max_effort) && rj.effort > 0) motor.max_effort = rj.effort;
+    return motor;
+  }
+  for (std::size_t a = 0; a < model.actuators.size(); ++a) {
+    if (model.actuators[a].joint != static_cast<int>(k)) continue;
+    if (motor.mode != JointMotor::Mode::kOff) {
+      notes.push_back(model.path + ": joint '" + rj.name + "' has several actuators: the first drives it");
+      break;
+    }
+    if (const auto m = ActuatorMotor(model.actuators[a], key.ctrl[a], model.path, notes)) motor = *m;
+  }
+  return motor;
+}
+
+// Phase 5: model joint k as the world's joint between the bodies its links became (none: a
+// floating root, a free body). @throws std::invalid_argument for positions given to a joint that
+// takes more than one number.
+std::optional<Joint> JointOf(const RobotModel& model, const RobotOptions& options, const Lumping& lumps,
+                             const RobotInWorld& out, std::size_t k, const KeyState& key,
+                             std::vector<std::string>& notes) {
+  const RobotJoint& rj = model.joints[k];
+  const bool fixed_base = options.base == RobotOptions::Base::kFixed;
+  const bool floating_base = options.base == RobotOptions::Base::kFloating;
+  Joint j;
+  j.name = rj.name;
+  j.child = out.body_of_link[static_cast<std::size_t>(rj.child)];
+  j.parent = rj.parent >= 0 ? out.body_of_link[static_cast<std::size_t>(rj.parent)] : -1;
+  Placement parent_frame;
+  if (rj.parent >= 0) {
+    parent_frame = lumps.LinkInBody(rj.parent).Then(rj.parent_to_joint);
+  } else {
+    // A floating base is a free body (the file's free joint to the world, or none): the same
+    // motion, stepped in the body's own coordinates whatever the format.
+    if (floating_base || (rj.type == RobotJointType::kFloating && !fixed_base)) return std::nullopt;
+    parent_frame = options.pose.Then(rj.parent_to_joint);
+  }
+  j.parent_frame = FrameOf(parent_frame);
+  j.child_frame = FrameOf(lumps.LinkInBody(rj.child).Then(rj.joint_to_child.Inverse()));
+  j.axis = rj.axis;
+  j.type = JointTypeOf(rj.type);
+  if (rj.parent < 0 && fixed_base) j.type = JointType::kFixed;
+  if (rj.lower) j.limits.lower = *rj.lower;
+  if (rj.upper) j.limits.upper = *rj.upper;
+  j.damping = rj.damping;
+  j.friction = rj.friction;
+  j.stiffness = rj.stiffness;
+  j.rest_position = rj.rest;
+  j.armature = rj.armature;
+  // The keyframe's state (hinges, sliders and balls; a scene's positions win).
+  const std::vector<double>& key_q = key.q[k];
+  if (!key_q.empty() && (HasOneCoordinate(j.type) || j.type == JointType::kSpherical)) j.position = key_q;
+  if (!key.v[k].empty() && HasOneCoordinate(j.type)) j.velocity = key.v[k];
+  j.motor = MotorOf(model, options, k, key, notes);
+  if (const auto it = options.positions.find(rj.name); it != options.positions.end()) {
+    if (!HasOneCoordinate(j.type)) {
+      throw std::invalid_argument(model.path + ": positions gives joint '" + rj.name + "' (" +
+                                  massprops::RobotJointTypeName(rj.type) +
+                                  ") one number; only revolute and prismatic joints take one");
+    }
+    j.position = {it->second};
+  }
+  return j;
+}
+
+// Phase 6: a root without a joint to the world, welded at the pose (a fixed base).
+void WeldRoots(ContactWorld& world, const RobotModel& model, const RobotOptions& options, const Lumping& lumps,
+               int first_body) {
+  for (std::size_t g = 0; g < lumps.groups.size(); ++g) {
+    const int root = lumps.groups[g].root;
+    if (lumps.joint_above[static_cast<std::size_t>(root)] >= 0) continue;
+    Joint weld;
+    weld.name = model.links[static_cast<std::size_t>(root)].name + " (fixed base)";
+    weld.type = JointType::kFixed;
+    weld.parent = -1;
+    weld.child = first_body + static_cast<int>(g);
+    weld.parent_frame = FrameOf(options.pose);
+    weld.child_frame = FrameOf(lumps.LinkInBody(root));
+    world.AddJoint(weld);
+  }
+}
+
+}  // namespace
+
+RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotOptions& options) {
+  const std::size_t nl = model.links.size();
+  RobotInWorld out;
+  out.notes = model.notes;
+  if (nl == 0) throw std::invalid_argument(model.path + ": the robot has no links");
+  CheckNamedJoints(model, options);
+  Lumping lumps = LumpLinks(model);
+  for (Group& g : lumps.groups) CombineInertials(model, g);
+  const KeyState key = KeyframeState(model, options.keyframe);
+  const std::vector<Placement> root_in_world = PlaceRoots(model, options, lumps, key);
+  const int first_body = static_cast<int>(world.world().bodies().size());
+  AddBodies(world, model, options, lumps, root_in_world, key, out);
   out.body_of_link.resize(nl);
-  for (std::size_t l = 0; l < nl; ++l) out.body_of_link[l] = first_body + group_of[l];
-  // A link's frame in its body's frame.
-  auto link_in_body = [&](int link) {
-    const Group& g = groups[static_cast<std::size_t>(group_of[static_cast<std::size_t>(link)])];
-    return g.body_in_root.Inverse().Then(g.in_root[index_in_group(link)]);
-  };
-  for (std::size_t l = 0; l < nl; ++l) out.link_in_body.push_back(link_in_body(static_cast<int>(l)));
-  // The joints.
+  for (std::size_t l = 0; l < nl; ++l) out.body_of_link[l] = first_body + lumps.group_of[l];
+  for (std::size_t l = 0; l < nl; ++l) out.link_in_body.push_back(lumps.LinkInBody(static_cast<int>(l)));
   out.joint_of.assign(model.joints.size(), -1);
   for (std::size_t k = 0; k < model.joints.size(); ++k) {
-    const RobotJoint& rj = model.joints[k];
-    if (welded(rj.child)) continue;  // lumped
-    Joint j;
-    j.name = rj.name;
-    j.child = out.body_of_link[static_cast<std::size_t>(rj.child)];
-    j.parent = rj.parent >= 0 ? out.body_of_link[static_cast<std::size_t>(rj.parent)] : -1;
-    Placement parent_frame;
-    if (rj.parent >= 0) {
-      parent_frame = link_in_body(rj.parent).Then(rj.parent_to_joint);
-    } else {
-      // A floating base is a free body (the file's free joint to the world, or none): the same
-      // motion, stepped in the body's own coordinates whatever the format.
-      if (floating_base || (rj.type == RobotJointType::kFloating && !fixed_base)) continue;
-      parent_frame = options.pose.Then(rj.parent_to_joint);
-    }
-    j.parent_frame = FrameOf(parent_frame);
-    j.child_frame = FrameOf(link_in_body(rj.child).Then(rj.joint_to_child.Inverse()));
-    j.axis = rj.axis;
-    j.type = JointTypeOf(rj.type);
-    if (rj.parent < 0 && fixed_base) j.type = JointType::kFixed;
-    if (rj.lower) j.limits.lower = *rj.lower;
-    if (rj.upper) j.limits.upper = *rj.upper;
-    j.damping = rj.damping;
-    j.friction = rj.friction;
-    j.stiffness = rj.stiffness;
-    j.rest_position = rj.rest;
-    j.armature = rj.armature;
-    // The keyframe's state (hinges, sliders and balls; a scene's positions win).
-    const std::vector<double>& key_q = key.q[k];
-    if (!key_q.empty() && (HasOneCoordinate(j.type) || j.type == JointType::kSpherical)) j.position = key_q;
-    if (!key.v[k].empty() && HasOneCoordinate(j.type)) j.velocity = key.v[k];
-    if (const auto it = options.motors.find(rj.name); it != options.motors.end()) {
-      j.motor = it->second;
-      if (!std::isfinite(j.motor.max_effort) && rj.effort > 0) j.motor.max_effort = rj.effort;
-    } else {
-      // The file's actuator on this joint (MJCF), at the keyframe's control (0 without one).
-      for (std::size_t a = 0; a < model.actuators.size(); ++a) {
-        if (model.actuators[a].joint != static_cast<int>(k)) continue;
-        if (j.motor.mode != JointMotor::Mode::kOff) {
-          out.notes.push_back(model.path + ": joint '" + rj.name + "' has several actuators: the first drives it");
-          break;
-        }
-        if (const auto motor = ActuatorMotor(model.actuators[a], key.ctrl[a], model.path, out.notes)) j.motor = *motor;
-      }
-    }
-    if (const auto it = options.positions.find(rj.name); it != options.positions.end()) {
-      if (!HasOneCoordinate(j.type)) {
-        throw std::invalid_argument(model.path + ": positions gives joint '" + rj.name + "' (" +
-                                    massprops::RobotJointTypeName(rj.type) +
-                                    ") one number; only revolute and "
-                                    "prismatic joints take one");
-      }
-      j.position = {it->second};
-    }
-    out.joint_of[k] = world.AddJoint(j);
-  }
-  // A root without a joint to the world, welded at the pose when asked.
-  if (fixed_base) {
-    for (std::size_t g = 0; g < groups.size(); ++g) {
-      const int root = groups[g].root;
-      if (joint_above[static_cast<std::size_t>(root)] >= 0) continue;
-      Joint weld;
-      weld.name = model.links[static_cast<std::size_t>(root)].name + " (fixed base)";
-      weld.type = JointType::kFixed;
-      weld.parent = -1;
-      weld.child = first_body + static_cast<int>(g);
-      weld.parent_frame = FrameOf(options.pose);
-      weld.child_frame = FrameOf(link_in_body(root));
-      world.AddJoint(weld);
+    if (lumps.Welded(model, model.joints[k].child)) continue;  // lumped
+    if (const std::optional<Joint> j = JointOf(model, options, lumps, out, k, key, out.notes)) {
+      out.joint_of[k] = world.AddJoint(*j);
     }
   }
+  if (options.base == RobotOptions::Base::kFixed) WeldRoots(world, model, options, lumps, first_body);
   // The file's excluded pairs (MJCF <contact><exclude>), between the bodies their links became.
   for (const auto& [l1, l2] : model.excluded) {
     const int a = out.body_of_link[static_cast<std::size_t>(l1)], b = out.body_of_link[static_cast<std::size_t>(l2)];

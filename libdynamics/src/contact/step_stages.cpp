@@ -48,8 +48,8 @@ contact::Posed PoseOf(const Collider& c, const contact::Polytope* polytope, cons
 // inertia into `response` (a jointed body's own, for its kinetic energy: impulses act on it
 // through the coupling). Returns the largest speed the forces give in one step.
 double KickBodies(const std::vector<RigidBody>& bodies, const std::vector<Wrench>* w,
-            const std::vector<internal::Vector6>* kicked, double h, std::vector<contact::Velocities>& vel,
-            std::vector<contact::Velocities>& before_kick, contact::BodyResponse& response) {
+                  const std::vector<internal::Vector6>* kicked, double h, std::vector<contact::Velocities>& vel,
+                  std::vector<contact::Velocities>& before_kick, contact::BodyResponse& response) {
   const std::size_t nb = bodies.size();
   vel.resize(nb);
   before_kick.resize(nb);
@@ -237,7 +237,6 @@ double KineticEnergy(const std::vector<RigidBody>& bodies, const std::vector<con
   return e;
 }
 
-
 }  // namespace
 
 bool Kick(const StepInput& in, Scratch& s) {
@@ -253,8 +252,7 @@ bool Kick(const StepInput& in, Scratch& s) {
     kick_speed = KickBodies(in.bodies, &context.wrenches(), nullptr, in.h, s.vel, s.before_kick, s.response);
     s.response.coupling = nullptr;
   }
-  s.bounce_threshold =
-      in.options.restitution_threshold > 0 ? in.options.restitution_threshold : 2 * kick_speed + 1e-12;
+  s.bounce_threshold = in.options.restitution_threshold > 0 ? in.options.restitution_threshold : 2 * kick_speed + 1e-12;
   return true;
 }
 
@@ -342,9 +340,10 @@ StepStatus PairRows(const StepInput& in, const Model& model, const std::vector<C
   std::vector<PairQuery> queries;
   queries.reserve(candidates.size());
   for (const Candidate& c : candidates) {
-    queries.push_back({&s.posed[static_cast<std::size_t>(c.a)],
-                       c.b >= 0 ? &s.posed[static_cast<std::size_t>(c.b)] : &statics[static_cast<std::size_t>(-1 - c.b)].posed,
-                       c.margin});
+    queries.push_back(
+        {&s.posed[static_cast<std::size_t>(c.a)],
+         c.b >= 0 ? &s.posed[static_cast<std::size_t>(c.b)] : &statics[static_cast<std::size_t>(-1 - c.b)].posed,
+         c.margin});
   }
   CollidePairs(queries, s.WorkersFor(in.threads), s.found, s.supported);
   const RowContext row_context{in.bodies, s.vel, s.before_kick, in.h, s.bounce_threshold};
@@ -363,11 +362,12 @@ StepStatus PairRows(const StepInput& in, const Model& model, const std::vector<C
     }
     const Material& mb = b >= 0 ? model.colliders[static_cast<std::size_t>(b)].material
                                 : model.statics[static_cast<std::size_t>(-1 - b)].collider.material;
-    AppendRows(row_context, s.found[c], a, b >= 0 ? b : -1, b >= 0 ? b : KeyOfStatic(-1 - b),
-               MaterialsOf(model, a, b >= 0 ? b : -1, model.colliders[ka].material, mb),
-               Slop(*s.posed[ka].shape, model.radii[ka], queries[c].b->shape,
-                    b >= 0 ? model.radii[static_cast<std::size_t>(b)] : statics[static_cast<std::size_t>(-1 - b)].radius),
-               s.rows, stats);
+    AppendRows(
+        row_context, s.found[c], a, b >= 0 ? b : -1, b >= 0 ? b : KeyOfStatic(-1 - b),
+        MaterialsOf(model, a, b >= 0 ? b : -1, model.colliders[ka].material, mb),
+        Slop(*s.posed[ka].shape, model.radii[ka], queries[c].b->shape,
+             b >= 0 ? model.radii[static_cast<std::size_t>(b)] : statics[static_cast<std::size_t>(-1 - b)].radius),
+        s.rows, stats);
   }
   return {};
 }

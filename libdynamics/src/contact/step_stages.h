@@ -55,11 +55,11 @@ struct Scratch {
   std::vector<Velocities> vel;
   std::vector<Velocities> before_kick;  // the velocities at the start of the step (for impacts)
   BodyResponse response;
-  double bounce_threshold = 0;            // impacts slower than this do not bounce
-  std::vector<Posed> posed;               // each body's collider in the world
-  std::vector<BroadBody> broad;           // and its reach in this step
-  std::unique_ptr<Workers> workers;       // kept between steps; null: one thread
-  internal::StepScratch step_scratch;     // the forces' wrenches
+  double bounce_threshold = 0;                   // impacts slower than this do not bounce
+  std::vector<Posed> posed;                      // each body's collider in the world
+  std::vector<BroadBody> broad;                  // and its reach in this step
+  std::unique_ptr<Workers> workers;              // kept between steps; null: one thread
+  internal::StepScratch step_scratch;            // the forces' wrenches
   std::vector<std::vector<ContactPoint>> found;  // each candidate pair's points
   std::vector<char> supported;                   // each candidate pair's kinds have a routine
   Coupling coupling;                             // an articulated world's bodies (a step's)
