@@ -358,24 +358,10 @@ std::vector<OutputKind> DefaultOutputs() {
   return {OutputKind::kCsv, OutputKind::kDiagnostics, OutputKind::kPlotSvg, OutputKind::kPlotPng, OutputKind::kGlb};
 }
 
-Scene ParseScene(const json& j, const std::string& file, const std::string& base_dir,
-                 std::vector<std::string>& warnings) {
-  Scene scene;
-  scene.file = file;
-  Fields f(j, "", file);
-  f.Get("description");  // free text
-  scene.dt = f.Number("dt", 1e-3, "positive");
-  scene.duration = f.Number("duration", 1.0, "positive");
-  const std::string integrator = f.String("integrator", "implicit-midpoint");
-  try {
-    scene.integrator = dynamics::ParseIntegrator(integrator);
-  } catch (const std::invalid_argument&) {
-    std::vector<std::string> names;
-    for (auto i : dynamics::kAllIntegrators) names.emplace_back(dynamics::IntegratorName(i));  // for the suggestion
-    f.Fail("integrator", "'" + integrator + "' is not one of " + Join(names) + Suggest(integrator, names));
-  }
-  scene.output_rate = f.Number("output_rate", 60.0, "positive");
-  scene.up = f.String("up", "z", {"x", "y", "z"})[0];
+namespace {
+
+// "outputs": the names given, or the defaults.
+void ReadOutputs(Fields& f, Scene& scene) {
   if (const json* o = f.Get("outputs")) {
     if (!o->is_array()) f.Fail("outputs", "must be an array of names (csv, jsonl, diagnostics, svg, png, glb)");
     for (std::size_t i = 0; i < o->size(); ++i) {
@@ -390,8 +376,11 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
   } else {
     scene.outputs = DefaultOutputs();
   }
+}
 
-  if (const json* r = f.Get("robots")) scene.robots = ReadRobots(*r, file, base_dir, warnings);
+// "bodies": each body's shape, placement, motion, colour and collision (none needed with robots).
+void ReadBodies(Fields& f, const std::string& file, const std::string& base_dir, Scene& scene,
+                std::vector<std::string>& warnings) {
   static const json kNoBodies = json::array();
   const json* bodies = f.Get("bodies");
   if (!bodies && !scene.robots.empty()) bodies = &kNoBodies;
@@ -425,6 +414,10 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
     b.Done();
     scene.bodies.push_back(std::move(body));
   }
+}
+
+// "ground": one plane or several.
+void ReadGrounds(Fields& f, const std::string& file, Scene& scene) {
   if (const json* g = f.Get("ground")) {
     if (g->is_array()) {
       for (std::size_t i = 0; i < g->size(); ++i) {
@@ -434,6 +427,11 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
       scene.grounds.push_back(ReadGround(*g, "ground", file));
     }
   }
+}
+
+// "static": fixed bodies that collide.
+void ReadStatics(Fields& f, const std::string& file, const std::string& base_dir, Scene& scene,
+                 std::vector<std::string>& warnings) {
   if (const json* st = f.Get("static")) {
     if (!st->is_array()) f.Fail("static", "must be an array of fixed bodies");
     for (std::size_t i = 0; i < st->size(); ++i) {
@@ -453,6 +451,10 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
       scene.statics.push_back(std::move(s));
     }
   }
+}
+
+// "contact": the solver's options.
+void ReadContact(Fields& f, const std::string& file, Scene& scene) {
   if (const json* c = f.Get("contact")) {
     scene.contact_given = true;
     Fields o(*c, "contact", file);
@@ -470,18 +472,10 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
     scene.contact.self_collision = o.Bool("self_collision", false);
     o.Done();
   }
-  if (const json* forces = f.Get("forces")) {
-    if (!forces->is_array()) f.Fail("forces", "must be an array");
-    for (std::size_t i = 0; i < forces->size(); ++i) {
-      scene.forces.push_back(ReadForce((*forces)[i], "forces[" + std::to_string(i) + "]", file, scene.bodies));
-    }
-  }
-  if (const json* jt = f.Get("joints")) scene.joints = ReadJoints(*jt, file, scene.bodies);
-  if ((!scene.joints.empty() || !scene.robots.empty()) && scene.integrator != dynamics::Integrator::kImplicitMidpoint &&
-      scene.integrator != dynamics::Integrator::kRK4) {
-    f.Fail("integrator", "'" + integrator + "' has no meaning for joints and robots (it steps free bodies): use " +
-                             "implicit-midpoint or rk4");
-  }
+}
+
+// "pairs": a pair of bodies' (or a body's and the ground's) own material.
+void ReadPairs(Fields& f, const std::string& file, Scene& scene) {
   if (const json* pairs = f.Get("pairs")) {
     if (!pairs->is_array()) f.Fail("pairs", "must be an array of {\"bodies\": [a, b], \"material\": {...}}");
     for (std::size_t i = 0; i < pairs->size(); ++i) {
@@ -511,6 +505,48 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
       scene.pairs.push_back(pm);
     }
   }
+}
+
+}  // namespace
+
+Scene ParseScene(const json& j, const std::string& file, const std::string& base_dir,
+                 std::vector<std::string>& warnings) {
+  Scene scene;
+  scene.file = file;
+  Fields f(j, "", file);
+  f.Get("description");  // free text
+  scene.dt = f.Number("dt", 1e-3, "positive");
+  scene.duration = f.Number("duration", 1.0, "positive");
+  const std::string integrator = f.String("integrator", "implicit-midpoint");
+  try {
+    scene.integrator = dynamics::ParseIntegrator(integrator);
+  } catch (const std::invalid_argument&) {
+    std::vector<std::string> names;
+    for (auto i : dynamics::kAllIntegrators) names.emplace_back(dynamics::IntegratorName(i));  // for the suggestion
+    f.Fail("integrator", "'" + integrator + "' is not one of " + Join(names) + Suggest(integrator, names));
+  }
+  scene.output_rate = f.Number("output_rate", 60.0, "positive");
+  scene.up = f.String("up", "z", {"x", "y", "z"})[0];
+  ReadOutputs(f, scene);
+
+  if (const json* r = f.Get("robots")) scene.robots = ReadRobots(*r, file, base_dir, warnings);
+  ReadBodies(f, file, base_dir, scene, warnings);
+  ReadGrounds(f, file, scene);
+  ReadStatics(f, file, base_dir, scene, warnings);
+  ReadContact(f, file, scene);
+  if (const json* forces = f.Get("forces")) {
+    if (!forces->is_array()) f.Fail("forces", "must be an array");
+    for (std::size_t i = 0; i < forces->size(); ++i) {
+      scene.forces.push_back(ReadForce((*forces)[i], "forces[" + std::to_string(i) + "]", file, scene.bodies));
+    }
+  }
+  if (const json* jt = f.Get("joints")) scene.joints = ReadJoints(*jt, file, scene.bodies);
+  if ((!scene.joints.empty() || !scene.robots.empty()) && scene.integrator != dynamics::Integrator::kImplicitMidpoint &&
+      scene.integrator != dynamics::Integrator::kRK4) {
+    f.Fail("integrator", "'" + integrator + "' has no meaning for joints and robots (it steps free bodies): use " +
+                             "implicit-midpoint or rk4");
+  }
+  ReadPairs(f, file, scene);
   if (const json* pb = f.Get("plot_body")) {
     scene.plot_body = BodyIndex(f, "plot_body", *pb, scene.bodies);
   }

@@ -143,19 +143,12 @@ void AddRobot(Simulation& sim, const RobotSpec& spec, std::vector<std::string>& 
 
 }  // namespace
 
-Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warnings, int threads) {
-  Simulation sim;
-  sim.scene = scene;
-  sim.physics = dynamics::ContactWorld(dynamics::World(scene.integrator), scene.contact);
-  sim.physics.set_num_threads(threads);
-  dynamics::BodyBuilder builder(massprops::report::WordsFor(massprops::report::FrontEnd::kScene), threads);
-  // Contact is on when the scene asks for it: a ground, a static body, or a body's "collision".
-  // Then box, sphere, capsule and cylinder solids collide as themselves unless they say "none";
-  // scenes without any of these run as before, bodies passing through each other.
-  bool wants_contact = !scene.grounds.empty() || !scene.statics.empty() || !scene.robots.empty();
-  for (const BodySpec& b : scene.bodies) wants_contact = wants_contact || b.collision.kind != CollisionKind::kAuto;
-  sim.contact = wants_contact;
-  std::vector<bool> collides;  // each body has a collider
+namespace {
+
+// The scene's bodies, each with its collider when the scene has contact; whether each collides.
+std::vector<bool> AddBodies(const Scene& scene, dynamics::BodyBuilder& builder, bool wants_contact, Simulation& sim,
+                            std::vector<std::string>& warnings) {
+  std::vector<bool> collides;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodySpec& spec = scene.bodies[i];
     const std::string where = scene.file + ": " + spec.field;
@@ -194,9 +187,12 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     body.display = std::move(built.display);  // the collider is made: the outputs keep the mesh
     sim.bodies.push_back(std::move(body));
   }
+  return collides;
+}
 
-  // Placed at the bodies as the scene puts them (PlaceJoint: as added, whatever joints added
-  // before have moved), then moved to their initial positions.
+// The scene's joints: placed at the bodies as the scene puts them (PlaceJoint: as added, whatever
+// joints added before have moved), then moved to their initial positions.
+void AddJoints(const Scene& scene, Simulation& sim) {
   for (const JointSpec& spec : scene.joints) {
     dynamics::Joint joint = spec.joint;
     const Vector3 anchor = spec.anchor.value_or(sim.world().body_as_added(joint.child).position);
@@ -210,10 +206,11 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
       throw SceneError(scene.file + ": " + spec.field + ": " + what);
     }
   }
+}
 
-  for (const RobotSpec& spec : scene.robots) AddRobot(sim, spec, warnings);
-
-  // Ground planes, drawn as squares four times as wide as the bodies' spread, under their centre.
+// The ground planes (the scene's, or a robot file's own), each drawn as a checkerboard four times
+// as wide as the bodies' spread, under their centre.
+void AddGrounds(Simulation& sim) {
   Vector3 lo = Vector3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (std::size_t i = 0; i < sim.bodies.size(); ++i) {
     const dynamics::RigidBody& rb = sim.world().bodies()[i];
@@ -253,6 +250,11 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
     }
     for (SimStatic& sh : shade) sim.statics.push_back(std::move(sh));
   }
+}
+
+// The static bodies, each drawn where it is.
+void AddStatics(const Scene& scene, dynamics::BodyBuilder& builder, Simulation& sim,
+                std::vector<std::string>& warnings) {
   for (const StaticSpec& st : scene.statics) {
     const std::string where = scene.file + ": " + st.field;
     try {
@@ -277,8 +279,11 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
       throw SceneError(where + ": " + e.what());
     }
   }
+}
 
-  // Fields that the scene's own content makes inert are errors, not silently ignored.
+// Fields that the scene's own content makes inert are errors, not silently ignored; pair
+// materials are set.
+void ApplyContactFields(const Scene& scene, const std::vector<bool>& collides, Simulation& sim) {
   // (A robot's links collide with the ground at least.)
   const bool anything_collides =
       std::find(collides.begin(), collides.end(), true) != collides.end() || !scene.robots.empty();
@@ -302,7 +307,10 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
   }
   for (const Scene::PairMaterial& p : scene.pairs) sim.physics.SetPairMaterial(p.a, p.b, p.material);
   if (!scene.pairs.empty()) sim.contact = true;
+}
 
+// The scene's forces, their points and vectors in the bodies' principal frames.
+void AddForces(const Scene& scene, Simulation& sim) {
   // Mesh coordinates → body (principal) coordinates, x_B = R_MBᵀ (x_M − com).
   auto to_body = [&](int b, const Vector3& p_mesh) {
     const SimBody& sb = sim.bodies[static_cast<std::size_t>(b)];
@@ -342,6 +350,10 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
         break;
     }
   }
+}
+
+// What the scene's physics conserves: the forces' report, less what contact breaks.
+void NoteConservation(const Scene& scene, Simulation& sim) {
   sim.conservation = sim.world().Conserves();
   if (sim.contact) {
     // Contact steps are dissipative (friction, restitution below 1, and the semi-implicit step
@@ -354,6 +366,30 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
       note(sim.conservation.momentum_broken_by, "ground and static bodies");
     }
   }
+}
+
+}  // namespace
+
+Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warnings, int threads) {
+  Simulation sim;
+  sim.scene = scene;
+  sim.physics = dynamics::ContactWorld(dynamics::World(scene.integrator), scene.contact);
+  sim.physics.set_num_threads(threads);
+  dynamics::BodyBuilder builder(massprops::report::WordsFor(massprops::report::FrontEnd::kScene), threads);
+  // Contact is on when the scene asks for it: a ground, a static body, or a body's "collision".
+  // Then box, sphere, capsule and cylinder solids collide as themselves unless they say "none";
+  // scenes without any of these run as before, bodies passing through each other.
+  bool wants_contact = !scene.grounds.empty() || !scene.statics.empty() || !scene.robots.empty();
+  for (const BodySpec& b : scene.bodies) wants_contact = wants_contact || b.collision.kind != CollisionKind::kAuto;
+  sim.contact = wants_contact;
+  const std::vector<bool> collides = AddBodies(scene, builder, wants_contact, sim, warnings);
+  AddJoints(scene, sim);
+  for (const RobotSpec& spec : scene.robots) AddRobot(sim, spec, warnings);
+  AddGrounds(sim);
+  AddStatics(scene, builder, sim, warnings);
+  ApplyContactFields(scene, collides, sim);
+  AddForces(scene, sim);
+  NoteConservation(scene, sim);
   return sim;
 }
 
