@@ -46,241 +46,194 @@ bool ParseVec3(const std::string& text, massprops::Vector3& out) {
   return out.allFinite();
 }
 
-}  // namespace
+// An early end of the command with its exit status, the message printed already.
+struct Exit {
+  int status;
+};
 
-int main(int argc, char** argv) {
-  if (argc > 1 && std::string(argv[1]) == "poses") return rbsim::PosesMain(argc - 1, argv + 1);
-  CLI::App app{
-      "rbsim: simulate rigid bodies made from mesh files, with trajectory, diagnostics, plot and an "
-      "animated .glb.\nScene schema: see the README (section 'rbsim scenes')."};
-  app.set_version_flag("--version", std::string("rbsim ") + massprops::kVersion);
+// The command line, as parsed.
+struct Flags {
   std::string scene_file, mesh, unit = "m", omega_text, omega_frame = "world", velocity_text, out_dir, integrator,
-                                outputs_text;
+                                outputs_text, keyframe;
   double density = 1000, mass = 0;
   std::optional<double> dt, duration, rate;
-  bool repair = false, allow_open = false, quiet = false, fill = false, fixed_base = false;
+  bool repair = false, allow_open = false, quiet = false, fill = false, fixed_base = false, unit_given = false;
   int threads = 1;
-  auto* scene_opt = app.add_option("scene", scene_file,
+};
+
+// The scene file or robot file, and what a robot file takes.
+CLI::Option* DeclareSceneFlags(CLI::App& app, Flags& f) {
+  auto* scene_opt = app.add_option("scene", f.scene_file,
                                    "Scene file (JSON), or a robot file (URDF, SDFormat, MJCF) to drop on the ground");
-  app.add_flag("--fill", fill, "Robot file: compute every link's inertial from its geometry first (as massprops fill)")
+  app.add_flag("--fill", f.fill,
+               "Robot file: compute every link's inertial from its geometry first (as massprops fill)")
       ->needs(scene_opt);
-  app.add_flag("--fixed-base", fixed_base, "Robot file: weld its root link to the world")->needs(scene_opt);
-  std::string keyframe;
-  app.add_option("--keyframe", keyframe,
+  app.add_flag("--fixed-base", f.fixed_base, "Robot file: weld its root link to the world")->needs(scene_opt);
+  app.add_option("--keyframe", f.keyframe,
                  "Robot file (MJCF): start from this <key>: its qpos places the robot and its joints, its ctrl "
                  "drives the actuators")
       ->needs(scene_opt);
-  auto* mesh_opt =
-      app.add_option("--mesh", mesh, "Quick path: spin this one mesh torque-free (no scene file)")->excludes(scene_opt);
+  return scene_opt;
+}
+
+// The quick path: one mesh spun torque-free.
+void DeclareMeshFlags(CLI::App& app, Flags& f, CLI::Option* scene_opt) {
+  auto* mesh_opt = app.add_option("--mesh", f.mesh, "Quick path: spin this one mesh torque-free (no scene file)")
+                       ->excludes(scene_opt);
   std::vector<std::string> units;
   for (massprops::LengthUnit u : massprops::kAllLengthUnits) units.emplace_back(massprops::UnitName(u));
-  app.add_option("--unit", unit, "--mesh: unit of the file's coordinates")
+  app.add_option("--unit", f.unit, "--mesh: unit of the file's coordinates")
       ->check(CLI::IsMember(units))
       ->needs(mesh_opt);
-  auto* density_opt = app.add_option("--density", density, "--mesh: density, kg/m^3")
+  auto* density_opt = app.add_option("--density", f.density, "--mesh: density, kg/m^3")
                           ->check(massprops::app::Positive())
                           ->needs(mesh_opt);
-  app.add_option("--mass", mass, "--mesh: total mass, kg")
+  app.add_option("--mass", f.mass, "--mesh: total mass, kg")
       ->check(massprops::app::Positive())
       ->excludes(density_opt)
       ->needs(mesh_opt);
-  app.add_flag("--repair", repair, "--mesh: repair the mesh first (as massprops --repair)")->needs(mesh_opt);
-  app.add_flag("--allow-open", allow_open, "--mesh: simulate even an open mesh (its inertia is then not trustworthy)")
+  app.add_flag("--repair", f.repair, "--mesh: repair the mesh first (as massprops --repair)")->needs(mesh_opt);
+  app.add_flag("--allow-open", f.allow_open, "--mesh: simulate even an open mesh (its inertia is then not trustworthy)")
       ->needs(mesh_opt);
-  app.add_option("--omega", omega_text, "--mesh: initial angular velocity wx,wy,wz in rad/s")->needs(mesh_opt);
-  app.add_option("--omega-frame", omega_frame,
+  app.add_option("--omega", f.omega_text, "--mesh: initial angular velocity wx,wy,wz in rad/s")->needs(mesh_opt);
+  app.add_option("--omega-frame", f.omega_frame,
                  "--mesh: axes of --omega: world (= the file's axes at t = 0), principal (I1 <= I2 <= I3)")
       ->check(CLI::IsMember({"world", "body", "principal"}))
       ->needs(mesh_opt);
-  app.add_option("--velocity", velocity_text, "--mesh: initial velocity vx,vy,vz in m/s")->needs(mesh_opt);
-  app.add_option("--dt", dt, "Time step, s (overrides the scene)")->check(massprops::app::Positive());
-  app.add_option("--duration", duration, "Simulated time, s (overrides the scene)")->check(massprops::app::Positive());
-  app.add_option("--integrator", integrator, "Integrator (overrides the scene): " + dynamics::IntegratorNames());
-  app.add_option("--rate", rate, "Output rate, samples per simulated second (overrides the scene)")
+  app.add_option("--velocity", f.velocity_text, "--mesh: initial velocity vx,vy,vz in m/s")->needs(mesh_opt);
+}
+
+// What overrides the scene, and where the outputs go.
+void DeclareRunFlags(CLI::App& app, Flags& f) {
+  app.add_option("--dt", f.dt, "Time step, s (overrides the scene)")->check(massprops::app::Positive());
+  app.add_option("--duration", f.duration, "Simulated time, s (overrides the scene)")
       ->check(massprops::app::Positive());
-  app.add_option("--out", out_dir, "Write every output of the run into this directory (created if missing)");
-  app.add_option("--outputs", outputs_text,
+  app.add_option("--integrator", f.integrator, "Integrator (overrides the scene): " + dynamics::IntegratorNames());
+  app.add_option("--rate", f.rate, "Output rate, samples per simulated second (overrides the scene)")
+      ->check(massprops::app::Positive());
+  app.add_option("--out", f.out_dir, "Write every output of the run into this directory (created if missing)");
+  app.add_option("--outputs", f.outputs_text,
                  "Which outputs, comma-separated: csv, jsonl, diagnostics, svg, png, glb, contacts (contacts.jsonl, "
                  "each step's contact points), html (run.html, a page that plays the run in a browser) "
                  "(overrides the scene; default csv,diagnostics,svg,png,glb)");
-  app.add_option("--threads", threads, "Worker threads for mesh loading and large worlds (0 = all cores)")
+  app.add_option("--threads", f.threads, "Worker threads for mesh loading and large worlds (0 = all cores)")
       ->check(massprops::app::NonNegative());
-  app.add_flag("-q,--quiet", quiet, "No progress bar");
-  if (const int status = massprops::app::ParseArguments(app, argc, argv); status >= 0) return status;
-  if (scene_file.empty() && mesh.empty()) {
-    std::cerr << "error: arguments: give a scene file, or --mesh FILE for the quick path (see --help)\n";
-    return massprops::app::kBadArguments;
-  }
+  app.add_flag("-q,--quiet", f.quiet, "No progress bar");
+}
 
-  std::vector<std::string> warnings;
-  auto flush_warnings = [&warnings] {
-    for (const auto& w : warnings) std::cerr << "warning: " << massprops::app::OneLine(w) << "\n";
-    warnings.clear();
-  };
+// A vector flag's three numbers. @throws Exit (2) naming the flag.
+massprops::Vector3 VectorFlag(const std::string& text, const char* flag, const char* names) {
+  massprops::Vector3 v = massprops::Vector3::Zero();
+  if (!text.empty() && !ParseVec3(text, v)) {
+    std::cerr << "error: " << flag << ": expected three finite numbers " << names << ", got '"
+              << massprops::app::OneLine(text) << "'\n";
+    throw Exit{massprops::app::kBadArguments};
+  }
+  return v;
+}
+
+// The typed scene of `--mesh`: one body spun torque-free, as a scene file with these fields would
+// give. @throws Exit for bad flags or a mesh file that is not there.
+rbsim::Scene MeshScene(const Flags& f, std::vector<std::string>& warnings) {
+  const massprops::Vector3 omega = VectorFlag(f.omega_text, "--omega", "wx,wy,wz");
+  const massprops::Vector3 velocity = VectorFlag(f.velocity_text, "--velocity", "vx,vy,vz");
   rbsim::Scene scene;
-  try {
-    const std::string extension = std::filesystem::path(scene_file).extension().string();
-    const bool robot_file = !scene_file.empty() && extension != ".json" && std::filesystem::is_regular_file(scene_file);
-    if ((fill || fixed_base || !keyframe.empty()) && !robot_file) {
-      std::cerr << "error: --fill, --fixed-base, --keyframe: for a robot file (URDF, SDFormat, MJCF), not a scene\n";
-      return massprops::app::kBadArguments;
+  scene.file = "<command line>";
+  scene.duration = f.duration ? *f.duration : 10.0;
+  // Default step: at most 1 ms and at most 0.01 rad of turn per step.
+  scene.dt = omega.stableNorm() > 0 ? std::min(1e-3, 0.01 / omega.stableNorm()) : 1e-3;
+  if (f.dt) scene.dt = *f.dt;
+  if (!f.dt && !(scene.duration / scene.dt <= 1e9)) {
+    std::cerr << "error: --omega: |omega| = " << omega.stableNorm() << " rad/s asks for steps of " << scene.dt
+              << " s (0.01 rad of turn each), " << scene.duration / scene.dt << " of them for " << scene.duration
+              << " s, more than 10^9; give a smaller --omega, or --dt and --duration\n";
+    throw Exit{massprops::app::kBadArguments};
+  }
+  scene.outputs = rbsim::DefaultOutputs();
+  const std::filesystem::path path = std::filesystem::absolute(f.mesh).lexically_normal();
+  if (const std::string problem = rbsim::MeshFileProblem(path); !problem.empty()) {
+    std::cerr << "error: --mesh: '" << massprops::app::OneLine(f.mesh) << "' " << problem << "\n";
+    throw Exit{1};
+  }
+  rbsim::BodySpec body;
+  body.name = std::filesystem::path(f.mesh).stem().string();
+  body.field = "bodies[0]";
+  body.shape.source = dynamics::MeshSource{path.string(), f.repair, f.allow_open};
+  body.shape.unit = massprops::ParseLengthUnit(f.unit);
+  body.shape.unit_stated = f.unit_given;
+  body.shape.mass = f.mass > 0 ? massprops::MassSpec(massprops::TotalMass{f.mass})
+                               : massprops::MassSpec(massprops::Density{f.density});
+  body.velocity = velocity;
+  body.angular_velocity = omega;
+  body.angular_velocity_frame = rbsim::ParseVectorFrame(f.omega_frame);
+  scene.bodies.push_back(std::move(body));
+  rbsim::CheckTiming(scene, warnings);
+  return scene;
+}
+
+// The command line's overrides of the scene, validated like the scene's own fields. @throws Exit.
+void ApplyOverrides(const Flags& f, rbsim::Scene& scene, std::vector<std::string>& warnings) {
+  if (f.dt) scene.dt = *f.dt;
+  if (f.duration) scene.duration = *f.duration;
+  if (f.rate) scene.output_rate = *f.rate;
+  if (!f.integrator.empty()) {
+    try {
+      scene.integrator = dynamics::ParseIntegrator(f.integrator);
+    } catch (const std::invalid_argument& e) {
+      std::cerr << "error: --integrator: " << massprops::app::OneLine(e.what()) << "\n";
+      throw Exit{massprops::app::kBadArguments};
     }
-    if (robot_file) {
-      massprops::DetectRobotFormat(scene_file);  // names the file when it is no robot description
-      scene = rbsim::RobotScene(scene_file, fill, fixed_base, keyframe);
-    } else if (!scene_file.empty()) {
-      scene = rbsim::LoadScene(scene_file, warnings);
-    } else {
-      massprops::Vector3 omega = massprops::Vector3::Zero(), velocity = massprops::Vector3::Zero();
-      if (!omega_text.empty() && !ParseVec3(omega_text, omega)) {
-        std::cerr << "error: --omega: expected three finite numbers wx,wy,wz, got '"
-                  << massprops::app::OneLine(omega_text) << "'\n";
-        return massprops::app::kBadArguments;
-      }
-      if (!velocity_text.empty() && !ParseVec3(velocity_text, velocity)) {
-        std::cerr << "error: --velocity: expected three finite numbers vx,vy,vz, got '"
-                  << massprops::app::OneLine(velocity_text) << "'\n";
-        return massprops::app::kBadArguments;
-      }
-      // The typed scene of one body, as a scene file with these fields would give.
-      scene.file = "<command line>";
-      scene.duration = duration ? *duration : 10.0;
-      // Default step: at most 1 ms and at most 0.01 rad of turn per step.
-      scene.dt = omega.stableNorm() > 0 ? std::min(1e-3, 0.01 / omega.stableNorm()) : 1e-3;
-      if (dt) scene.dt = *dt;
-      if (!dt && !(scene.duration / scene.dt <= 1e9)) {
-        std::cerr << "error: --omega: |omega| = " << omega.stableNorm() << " rad/s asks for steps of " << scene.dt
-                  << " s (0.01 rad of turn each), " << scene.duration / scene.dt << " of them for " << scene.duration
-                  << " s, more than 10^9; give a smaller --omega, or --dt and --duration\n";
-        return massprops::app::kBadArguments;
-      }
-      scene.outputs = rbsim::DefaultOutputs();
-      const std::filesystem::path path = std::filesystem::absolute(mesh).lexically_normal();
-      if (const std::string problem = rbsim::MeshFileProblem(path); !problem.empty()) {
-        std::cerr << "error: --mesh: '" << massprops::app::OneLine(mesh) << "' " << problem << "\n";
-        return 1;
-      }
-      rbsim::BodySpec body;
-      body.name = std::filesystem::path(mesh).stem().string();
-      body.field = "bodies[0]";
-      body.shape.source = dynamics::MeshSource{path.string(), repair, allow_open};
-      body.shape.unit = massprops::ParseLengthUnit(unit);
-      body.shape.unit_stated = app.count("--unit") > 0;
-      body.shape.mass =
-          mass > 0 ? massprops::MassSpec(massprops::TotalMass{mass}) : massprops::MassSpec(massprops::Density{density});
-      body.velocity = velocity;
-      body.angular_velocity = omega;
-      body.angular_velocity_frame = rbsim::ParseVectorFrame(omega_frame);
-      scene.bodies.push_back(std::move(body));
-      rbsim::CheckTiming(scene, warnings);
-    }
-    // Overrides, validated like the scene's own fields.
-    if (dt) scene.dt = *dt;
-    if (duration) scene.duration = *duration;
-    if (rate) scene.output_rate = *rate;
-    if (!integrator.empty()) {
+  }
+  if (!f.outputs_text.empty()) {
+    scene.outputs.clear();
+    std::stringstream list(f.outputs_text);
+    std::string name;
+    while (std::getline(list, name, ',')) {
       try {
-        scene.integrator = dynamics::ParseIntegrator(integrator);
+        scene.outputs.push_back(rbsim::ParseOutputName(name));
       } catch (const std::invalid_argument& e) {
-        std::cerr << "error: --integrator: " << massprops::app::OneLine(e.what()) << "\n";
-        return massprops::app::kBadArguments;
+        std::cerr << "error: --outputs: " << massprops::app::OneLine(e.what()) << "\n";
+        throw Exit{massprops::app::kBadArguments};
       }
     }
-    if (!outputs_text.empty()) {
-      scene.outputs.clear();
-      std::stringstream list(outputs_text);
-      std::string name;
-      while (std::getline(list, name, ',')) {
-        try {
-          scene.outputs.push_back(rbsim::ParseOutputName(name));
-        } catch (const std::invalid_argument& e) {
-          std::cerr << "error: --outputs: " << massprops::app::OneLine(e.what()) << "\n";
-          return massprops::app::kBadArguments;
-        }
-      }
-    }
-    if (dt || duration || rate) rbsim::CheckTiming(scene, warnings);
-  } catch (const std::exception& e) {
-    flush_warnings();
-    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
-    return 1;
   }
-  flush_warnings();
+  if (f.dt || f.duration || f.rate) rbsim::CheckTiming(scene, warnings);
+}
 
-  auto wants = [&scene](rbsim::OutputKind k) {
-    return std::find(scene.outputs.begin(), scene.outputs.end(), k) != scene.outputs.end();
-  };
-  const bool plot = !out_dir.empty() && (wants(rbsim::OutputKind::kPlotSvg) || wants(rbsim::OutputKind::kPlotPng));
-  if (plot && !rbsim::HaveGnuplot()) {
-    std::cerr
-        << "error: --outputs: the plot needs gnuplot, which is not on the PATH (apt-get install gnuplot-nox), or leave "
-           "svg and png out of the outputs\n";
-    return 1;
+// The scene the command line asks for: a scene file, a robot file, or --mesh. @throws Exit, or
+// SceneError and the others for a scene that cannot run.
+rbsim::Scene SceneOf(const Flags& f, std::vector<std::string>& warnings) {
+  const std::string extension = std::filesystem::path(f.scene_file).extension().string();
+  const bool robot_file =
+      !f.scene_file.empty() && extension != ".json" && std::filesystem::is_regular_file(f.scene_file);
+  if ((f.fill || f.fixed_base || !f.keyframe.empty()) && !robot_file) {
+    std::cerr << "error: --fill, --fixed-base, --keyframe: for a robot file (URDF, SDFormat, MJCF), not a scene\n";
+    throw Exit{massprops::app::kBadArguments};
   }
+  rbsim::Scene scene;
+  if (robot_file) {
+    massprops::DetectRobotFormat(f.scene_file);  // names the file when it is no robot description
+    scene = rbsim::RobotScene(f.scene_file, f.fill, f.fixed_base, f.keyframe);
+  } else if (!f.scene_file.empty()) {
+    scene = rbsim::LoadScene(f.scene_file, warnings);
+  } else {
+    scene = MeshScene(f, warnings);
+  }
+  ApplyOverrides(f, scene, warnings);
+  return scene;
+}
 
-  std::optional<rbsim::Simulation> sim;
-  try {
-    sim.emplace(rbsim::BuildSimulation(scene, warnings, threads));
-  } catch (const std::exception& e) {
-    flush_warnings();
-    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
-    return 1;
-  }
-  flush_warnings();
+bool Wants(const rbsim::Scene& scene, rbsim::OutputKind k) {
+  return std::find(scene.outputs.begin(), scene.outputs.end(), k) != scene.outputs.end();
+}
 
-  if (!out_dir.empty() && wants(rbsim::OutputKind::kGlb)) {
-    std::int64_t triangles = 0;
-    for (const auto& b : sim->bodies) triangles += b.display.F.rows();
-    if (triangles > 2000000) {
-      std::cerr
-          << "warning: the .glb will carry " << triangles << " triangles (about " << triangles * 72 / 1000000
-          << " MB of vertices); viewers may be slow: decimate the mesh for viewing, or leave glb out of --outputs\n";
-    }
-  }
-
-  std::unique_ptr<rbsim::TrajectoryWriter> writer;
-  rbsim::Recording recording;
-  const bool record = !out_dir.empty() && (plot || wants(rbsim::OutputKind::kGlb) || wants(rbsim::OutputKind::kHtml));
-  recording.contacts = wants(rbsim::OutputKind::kHtml);
-  try {
-    if (!out_dir.empty()) {
-      std::filesystem::create_directories(out_dir);
-      writer = std::make_unique<rbsim::TrajectoryWriter>(out_dir, scene.outputs, !sim->world().joints().empty());
-    }
-  } catch (const std::exception& e) {
-    std::cerr << "error: --out " << massprops::app::OneLine(out_dir) << ": " << massprops::app::OneLine(e.what())
-              << "\n";
-    return 1;
-  }
-
-  std::signal(SIGINT, OnSignal);
-  std::signal(SIGTERM, OnSignal);
-  rbsim::RunStats stats;
-  try {
-    massprops::app::Progress progress("rbsim", "", !quiet);
-    stats = rbsim::Run(
-        *sim,
-        [&](const dynamics::World& world, const dynamics::Diagnostics& d) {
-          if (writer) writer->Add(*sim, world, d);
-          if (record) recording.Add(*sim, world, d);
-        },
-        [&progress](double f) { progress.Fraction(f); }, &g_stop,
-        [&](std::int64_t step) {
-          if (writer) writer->AddStep(*sim, step);
-        });
-  } catch (const std::exception& e) {
-    std::cerr << "error: " << massprops::app::OneLine(scene.file) << ": " << e.what()
-              << "; no output files were written\n";
-    return 1;
-  }
-  if (stats.interrupted) {
-    std::cerr << "rbsim: interrupted at t = " << sim->world().time() << " s; no output files were written\n";
-    return 130;
-  }
-
-  // Whole or nothing: the .glb and the plots are made in a staging folder, the trajectory files
-  // under temporary names; only when every one succeeded are they all renamed into place.
+// Whole or nothing: the .glb, the page and the plots are made in a staging folder, the trajectory
+// files under temporary names; only when every one succeeded are they all renamed into place.
+// Returns the files written. @throws Exit (1) when one could not be written.
+std::vector<std::string> WriteOutputs(const Flags& f, const rbsim::Simulation& sim, const rbsim::Recording& recording,
+                                      rbsim::TrajectoryWriter* writer) {
   std::vector<std::string> written;
+  const std::string& out_dir = f.out_dir;
   const std::string staging = out_dir + "/.rbsim-staging-" + std::to_string(::getpid());
   try {
     std::vector<std::pair<std::string, std::string>> staged;  // (made, final)
@@ -289,11 +242,13 @@ int main(int argc, char** argv) {
       staged.emplace_back(staging + "/" + name, out_dir + "/" + name);
       return staged.back().first;
     };
-    if (!out_dir.empty() && wants(rbsim::OutputKind::kGlb)) rbsim::WriteGlb(stage("animation.glb"), *sim, recording);
-    if (!out_dir.empty() && wants(rbsim::OutputKind::kHtml)) rbsim::WriteHtml(stage("run.html"), *sim, recording);
+    const rbsim::Scene& scene = sim.scene;
+    if (!out_dir.empty() && Wants(scene, rbsim::OutputKind::kGlb))
+      rbsim::WriteGlb(stage("animation.glb"), sim, recording);
+    if (!out_dir.empty() && Wants(scene, rbsim::OutputKind::kHtml)) rbsim::WriteHtml(stage("run.html"), sim, recording);
     for (auto [kind, name] :
          {std::pair{rbsim::OutputKind::kPlotSvg, "plot.svg"}, std::pair{rbsim::OutputKind::kPlotPng, "plot.png"}}) {
-      if (!out_dir.empty() && wants(kind)) rbsim::WritePlot(stage(name), *sim, recording);
+      if (!out_dir.empty() && Wants(scene, kind)) rbsim::WritePlot(stage(name), sim, recording);
     }
     if (writer) written = writer->Commit();
     for (const auto& [from, to] : staged) {
@@ -304,18 +259,141 @@ int main(int argc, char** argv) {
     std::error_code ec;
     std::filesystem::remove_all(staging, ec);
     std::cerr << "error: " << massprops::app::OneLine(e.what()) << "; no output files were written\n";
-    return 1;
+    throw Exit{1};
   }
   if (!out_dir.empty()) {
     std::error_code ec;
     std::filesystem::remove_all(staging, ec);
   }
-  for (const std::string& f : stats.fell_through) std::cerr << "warning: " << massprops::app::OneLine(f) << "\n";
+  return written;
+}
+
+// The trajectory writer for --out (none without it). @throws Exit (1) naming the folder.
+std::unique_ptr<rbsim::TrajectoryWriter> WriterFor(const Flags& f, const rbsim::Simulation& sim) {
+  if (f.out_dir.empty()) return nullptr;
+  try {
+    std::filesystem::create_directories(f.out_dir);
+    return std::make_unique<rbsim::TrajectoryWriter>(f.out_dir, sim.scene.outputs, !sim.world().joints().empty());
+  } catch (const std::exception& e) {
+    std::cerr << "error: --out " << massprops::app::OneLine(f.out_dir) << ": " << massprops::app::OneLine(e.what())
+              << "\n";
+    throw Exit{1};
+  }
+}
+
+// Runs to the end, sampling into the writer and the recording. @throws Exit (1 failed, 130
+// interrupted).
+rbsim::RunStats RunScene(const Flags& f, rbsim::Simulation& sim, rbsim::TrajectoryWriter* writer,
+                         rbsim::Recording* recording) {
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+  rbsim::RunStats stats;
+  try {
+    massprops::app::Progress progress("rbsim", "", !f.quiet);
+    stats = rbsim::Run(
+        sim,
+        [&](const dynamics::World& world, const dynamics::Diagnostics& d) {
+          if (writer) writer->Add(sim, world, d);
+          if (recording) recording->Add(sim, world, d);
+        },
+        [&progress](double fraction) { progress.Fraction(fraction); }, &g_stop,
+        [&](std::int64_t step) {
+          if (writer) writer->AddStep(sim, step);
+        });
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << massprops::app::OneLine(sim.scene.file) << ": " << e.what()
+              << "; no output files were written\n";
+    throw Exit{1};
+  }
+  if (stats.interrupted) {
+    std::cerr << "rbsim: interrupted at t = " << sim.world().time() << " s; no output files were written\n";
+    throw Exit{130};
+  }
+  return stats;
+}
+
+// Builds, runs and writes a valid scene; the exit status.
+int Simulate(const Flags& f, const rbsim::Scene& scene, std::vector<std::string>& warnings) {
+  auto flush_warnings = [&warnings] {
+    for (const auto& w : warnings) std::cerr << "warning: " << massprops::app::OneLine(w) << "\n";
+    warnings.clear();
+  };
+  const bool plot =
+      !f.out_dir.empty() && (Wants(scene, rbsim::OutputKind::kPlotSvg) || Wants(scene, rbsim::OutputKind::kPlotPng));
+  if (plot && !rbsim::HaveGnuplot()) {
+    std::cerr
+        << "error: --outputs: the plot needs gnuplot, which is not on the PATH (apt-get install gnuplot-nox), or leave "
+           "svg and png out of the outputs\n";
+    return 1;
+  }
+  std::optional<rbsim::Simulation> sim;
+  try {
+    sim.emplace(rbsim::BuildSimulation(scene, warnings, f.threads));
+  } catch (const std::exception& e) {
+    flush_warnings();
+    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
+    return 1;
+  }
+  flush_warnings();
+  if (!f.out_dir.empty() && Wants(scene, rbsim::OutputKind::kGlb)) {
+    std::int64_t triangles = 0;
+    for (const auto& b : sim->bodies) triangles += b.display.F.rows();
+    if (triangles > 2000000) {
+      std::cerr
+          << "warning: the .glb will carry " << triangles << " triangles (about " << triangles * 72 / 1000000
+          << " MB of vertices); viewers may be slow: decimate the mesh for viewing, or leave glb out of --outputs\n";
+    }
+  }
+  std::unique_ptr<rbsim::TrajectoryWriter> writer = WriterFor(f, *sim);
+  rbsim::Recording recording;
+  const bool record =
+      !f.out_dir.empty() && (plot || Wants(scene, rbsim::OutputKind::kGlb) || Wants(scene, rbsim::OutputKind::kHtml));
+  recording.contacts = Wants(scene, rbsim::OutputKind::kHtml);
+  const rbsim::RunStats stats = RunScene(f, *sim, writer.get(), record ? &recording : nullptr);
+  const std::vector<std::string> written = WriteOutputs(f, *sim, recording, writer.get());
+  for (const std::string& fell : stats.fell_through) std::cerr << "warning: " << massprops::app::OneLine(fell) << "\n";
   std::cout << rbsim::Summary(*sim, stats);
-  if (out_dir.empty()) {
+  if (f.out_dir.empty()) {
     std::cout << "  (no --out DIR: no trajectory, plot or .glb written)\n";
   } else {
     for (const auto& p : written) std::cout << "  wrote " << p << "\n";
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "poses") return rbsim::PosesMain(argc - 1, argv + 1);
+  CLI::App app{
+      "rbsim: simulate rigid bodies made from mesh files, with trajectory, diagnostics, plot and an "
+      "animated .glb.\nScene schema: see the README (section 'rbsim scenes')."};
+  app.set_version_flag("--version", std::string("rbsim ") + massprops::kVersion);
+  Flags f;
+  DeclareMeshFlags(app, f, DeclareSceneFlags(app, f));
+  DeclareRunFlags(app, f);
+  if (const int status = massprops::app::ParseArguments(app, argc, argv); status >= 0) return status;
+  f.unit_given = app.count("--unit") > 0;
+  if (f.scene_file.empty() && f.mesh.empty()) {
+    std::cerr << "error: arguments: give a scene file, or --mesh FILE for the quick path (see --help)\n";
+    return massprops::app::kBadArguments;
+  }
+  std::vector<std::string> warnings;
+  try {
+    rbsim::Scene scene;
+    try {
+      scene = SceneOf(f, warnings);
+    } catch (const Exit&) {
+      throw;
+    } catch (const std::exception& e) {
+      for (const auto& w : warnings) std::cerr << "warning: " << massprops::app::OneLine(w) << "\n";
+      std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
+      return 1;
+    }
+    for (const auto& w : warnings) std::cerr << "warning: " << massprops::app::OneLine(w) << "\n";
+    warnings.clear();
+    return Simulate(f, scene, warnings);
+  } catch (const Exit& e) {
+    return e.status;
+  }
 }
