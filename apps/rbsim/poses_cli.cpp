@@ -119,163 +119,111 @@ std::string PosesPage(const std::string& name, const massprops::TriangleMesh& me
 
 }  // namespace
 
-int PosesMain(int argc, char** argv) {
-  CLI::App app{
-      "rbsim poses: on which face of its convex hull a part comes to rest on a plane, and how often — the "
-      "quasi-static estimate (solid angles from the center of mass and the topple graph) and N simulated drops from "
-      "uniformly random orientations, with 95 % intervals (README: 'Resting poses').",
-      "rbsim poses"};
+namespace {
+
+// The command line of `rbsim poses`, as parsed.
+struct PosesFlags {
   std::string part_file, unit = "m", ground_text = "0.6,0.5,0", material_text = "0.6,0.5,0", collision = "hull",
                          format = "table", out_dir;
   double density = 1000, mass = 0, height = 0.1, dt = 1e-3, max_time = 20;
   std::int64_t drops = 1000;
   std::uint64_t seed = 1;
   int threads = 0;
-  bool repair = false;
-  app.add_option("part", part_file, "The part: a closed mesh file")->required();
+  bool repair = false, quiet = false, unit_given = false;
+};
+
+void DeclarePosesFlags(CLI::App& app, PosesFlags& f) {
+  app.add_option("part", f.part_file, "The part: a closed mesh file")->required();
   std::vector<std::string> units;
   for (massprops::LengthUnit u : massprops::kAllLengthUnits) units.emplace_back(massprops::UnitName(u));
-  app.add_option("--unit", unit, "Unit of the file's coordinates")->check(CLI::IsMember(units));
+  app.add_option("--unit", f.unit, "Unit of the file's coordinates")->check(CLI::IsMember(units));
   auto* density_opt =
-      app.add_option("--density", density, "Density, kg/m^3 (default 1000)")->check(massprops::app::Positive());
-  app.add_option("--mass", mass, "Total mass, kg")->check(massprops::app::Positive())->excludes(density_opt);
-  app.add_flag("--repair", repair, "Repair the mesh first (as massprops --repair)");
-  app.add_option("--drops", drops, "Simulated drops (0: the quasi-static estimate only)")
+      app.add_option("--density", f.density, "Density, kg/m^3 (default 1000)")->check(massprops::app::Positive());
+  app.add_option("--mass", f.mass, "Total mass, kg")->check(massprops::app::Positive())->excludes(density_opt);
+  app.add_flag("--repair", f.repair, "Repair the mesh first (as massprops --repair)");
+  app.add_option("--drops", f.drops, "Simulated drops (0: the quasi-static estimate only)")
       ->check(CLI::Range(std::int64_t{0}, std::int64_t{100000000}));
-  app.add_option("--height", height, "Height of the part's lowest point above the plane at release, m")
+  app.add_option("--height", f.height, "Height of the part's lowest point above the plane at release, m")
       ->check(massprops::app::NonNegative());
-  app.add_option("--seed", seed, "Seed of the drops' orientations (drop k is the same for any batch or thread)");
-  app.add_option("--ground", ground_text, "The plane's material MU_S,MU_K,E (default 0.6,0.5,0)");
-  app.add_option("--material", material_text, "The part's material MU_S,MU_K,E (default 0.6,0.5,0)");
-  app.add_option("--collision", collision, "What the part collides as: its convex hull, or its mesh as it is")
+  app.add_option("--seed", f.seed, "Seed of the drops' orientations (drop k is the same for any batch or thread)");
+  app.add_option("--ground", f.ground_text, "The plane's material MU_S,MU_K,E (default 0.6,0.5,0)");
+  app.add_option("--material", f.material_text, "The part's material MU_S,MU_K,E (default 0.6,0.5,0)");
+  app.add_option("--collision", f.collision, "What the part collides as: its convex hull, or its mesh as it is")
       ->check(CLI::IsMember({"hull", "mesh"}));
-  app.add_option("--dt", dt, "Time step of the drops, s")->check(massprops::app::Positive());
-  app.add_option("--max-time", max_time, "Simulated seconds a drop may take to come to rest")
+  app.add_option("--dt", f.dt, "Time step of the drops, s")->check(massprops::app::Positive());
+  app.add_option("--max-time", f.max_time, "Simulated seconds a drop may take to come to rest")
       ->check(massprops::app::Positive());
-  app.add_option("--threads", threads, "Worker threads for the drops (0 = all cores; same results for any count)")
+  app.add_option("--threads", f.threads, "Worker threads for the drops (0 = all cores; same results for any count)")
       ->check(massprops::app::NonNegative());
-  app.add_option("--format", format,
+  app.add_option("--format", f.format,
                  "table, json, or html (a page that shows each likely pose at rest, side by side, in a browser)")
       ->check(CLI::IsMember({"table", "json", "html"}));
-  app.add_option("--out", out_dir, "Write a picture of each pose (pose_1.svg, ...) and poses.json into this folder");
-  bool quiet = false;
-  app.add_flag("-q,--quiet", quiet, "Print only the result (there is no progress display)");
-  if (const int status = massprops::app::ParseArguments(app, argc, argv); status >= 0) return status;
-  dynamics::Material ground, material;
-  std::string why;
-  if (!ParseMaterial(ground_text, ground, why)) {
-    std::cerr << "error: --ground: " << massprops::app::OneLine(why) << "\n";
-    return massprops::app::kBadArguments;
-  }
-  if (!ParseMaterial(material_text, material, why)) {
-    std::cerr << "error: --material: " << massprops::app::OneLine(why) << "\n";
-    return massprops::app::kBadArguments;
-  }
+  app.add_option("--out", f.out_dir, "Write a picture of each pose (pose_1.svg, ...) and poses.json into this folder");
+  app.add_flag("-q,--quiet", f.quiet, "Print only the result (there is no progress display)");
+}
 
-  // The part through the pipeline (the same checks as massprops), whole (full_check: the hull and
-  // the pictures need the mesh).
+// The part through the pipeline (the same checks as massprops), whole (full_check: the hull and
+// the pictures need the mesh).
+massprops::LoadOptions PartLoadOptions(const PosesFlags& f) {
   massprops::LoadOptions load;
-  if (app.count("--unit") > 0) {
-    load.unit = massprops::ParseLengthUnit(unit);
+  if (f.unit_given) {
+    load.unit = massprops::ParseLengthUnit(f.unit);
     load.unit_stated = true;
   }
-  if (mass > 0)
-    load.mass = massprops::TotalMass{mass};
+  if (f.mass > 0)
+    load.mass = massprops::TotalMass{f.mass};
   else
-    load.mass = massprops::Density{density};
-  load.repair = repair;
-  load.num_threads = threads;
-  dynamics::PosesReport report;
-  report.part = part_file;
-  report.collision = collision == "mesh" ? dynamics::PoseCollision::kMesh : dynamics::PoseCollision::kHull;
-  report.drops = drops;
-  massprops::TriangleMesh file_mesh;  // the part in its file's axes, metres
-  const std::string name = std::filesystem::path(part_file).filename().string();
-  std::vector<std::string> warnings;
-  try {
-    report.pose_part =
-        dynamics::LoadPosePart(part_file, load, report.collision, material,
-                               massprops::report::WordsFor(massprops::report::FrontEnd::kPoses), warnings, &file_mesh);
-  } catch (const std::exception& e) {
-    for (const auto& w : warnings) std::cerr << "warning: " << massprops::app::OneLine(w) << "\n";
-    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
-    return 1;
-  }
-  for (const auto& w : warnings) std::cerr << "warning: " << massprops::app::OneLine(w) << "\n";
-  const dp::Part& part = report.pose_part;
+    load.mass = massprops::Density{f.density};
+  load.repair = f.repair;
+  load.num_threads = f.threads;
+  return load;
+}
 
-  dp::DropOptions& options = report.options;
-  options.height = height;
-  options.seed = seed;
-  options.ground = ground;
-  options.dt = dt;
-  options.max_time = max_time;
-  options.threads = threads;
-  double seconds = 0;
-  try {
-    report.estimate = dp::QuasiStatic(part);
-    const auto start = std::chrono::steady_clock::now();
-    const std::vector<dp::DropOutcome> outcomes = dp::Drop(part, report.estimate, options, 0, drops);
-    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    report.tally = dp::Count(outcomes, report.estimate.poses.size());
-  } catch (const std::exception& e) {
-    std::cerr << "error: " << massprops::app::OneLine(part_file) << ": " << e.what() << "\n";
-    return 1;
+// A picture of each pose (a large mesh drawn as its convex hull: one SVG polygon a triangle) and
+// poses.json in `out_dir`.
+void WritePoseFiles(const std::string& out_dir, const std::string& name, const massprops::TriangleMesh& file_mesh,
+                    const dp::Part& part, const dp::Estimate& estimate, const nlohmann::json& j) {
+  std::filesystem::create_directories(out_dir);
+  // A picture is one SVG polygon a triangle: a large mesh is drawn as its convex hull.
+  constexpr Eigen::Index kMostTriangles = 100000;
+  const bool as_hull = file_mesh.F.rows() > kMostTriangles;
+  massprops::TriangleMesh drawn;
+  if (as_hull) {
+    drawn.V.resize(static_cast<Eigen::Index>(part.hull_vertices.size()), 3);
+    drawn.F.resize(static_cast<Eigen::Index>(part.hull_triangles.size()), 3);
+    for (std::size_t v = 0; v < part.hull_vertices.size(); ++v)
+      drawn.V.row(static_cast<Eigen::Index>(v)) = part.hull_vertices[v].transpose();
+    for (std::size_t t = 0; t < part.hull_triangles.size(); ++t)
+      for (int k = 0; k < 3; ++k) drawn.F(static_cast<Eigen::Index>(t), k) = part.hull_triangles[t][k];
   }
+  for (std::size_t p = 0; p < estimate.poses.size(); ++p) {
+    std::ostringstream title;
+    title << name << ": pose " << p + 1 << ", resting on the face with normal "
+          << Vec(estimate.poses[p].normal, "%+.3f");
+    if (as_hull) title << " (its convex hull drawn: the mesh has " << file_mesh.F.rows() << " triangles)";
+    std::vector<Vector3> outline;
+    for (int v : estimate.poses[p].outline) outline.push_back(part.hull_vertices[static_cast<std::size_t>(v)]);
+    WritePosePicture(out_dir + "/pose_" + std::to_string(p + 1) + ".svg", as_hull ? drawn : file_mesh,
+                     estimate.poses[p], outline, title.str());
+  }
+  massprops::report::WriteFileAtomically(out_dir + "/poses.json", j.dump(2) + "\n");
+}
+
+// The table: the part, the drops, each likely pose with its shares and intervals, the rest
+// transforms.
+void PrintPoses(const PosesFlags& f, const std::string& name, const dynamics::PosesReport& report,
+                const dynamics::Material& ground, const dynamics::Material& material, double seconds) {
+  const dp::Part& part = report.pose_part;
   const dp::Estimate& estimate = report.estimate;
   const dp::Tally& tally = report.tally;
-
+  const std::int64_t drops = f.drops;
+  const double height = f.height, dt = f.dt, max_time = f.max_time;
+  const std::uint64_t seed = f.seed;
+  const std::string& collision = f.collision;
   const bool have_drops = drops > 0;
   auto drop_share = [&](std::size_t p) {
     return have_drops ? static_cast<double>(tally.counts[p]) / static_cast<double>(tally.drops) : 0.0;
   };
-  nlohmann::json j = dynamics::PosesJson(report);
-  if (!out_dir.empty()) {
-    for (std::size_t p = 0; p < estimate.poses.size(); ++p)
-      j["poses"][p]["picture"] = "pose_" + std::to_string(p + 1) + ".svg";
-  }
-
-  if (!out_dir.empty()) {
-    try {
-      std::filesystem::create_directories(out_dir);
-      // A picture is one SVG polygon a triangle: a large mesh is drawn as its convex hull.
-      constexpr Eigen::Index kMostTriangles = 100000;
-      const bool as_hull = file_mesh.F.rows() > kMostTriangles;
-      massprops::TriangleMesh drawn;
-      if (as_hull) {
-        drawn.V.resize(static_cast<Eigen::Index>(part.hull_vertices.size()), 3);
-        drawn.F.resize(static_cast<Eigen::Index>(part.hull_triangles.size()), 3);
-        for (std::size_t v = 0; v < part.hull_vertices.size(); ++v)
-          drawn.V.row(static_cast<Eigen::Index>(v)) = part.hull_vertices[v].transpose();
-        for (std::size_t t = 0; t < part.hull_triangles.size(); ++t)
-          for (int k = 0; k < 3; ++k) drawn.F(static_cast<Eigen::Index>(t), k) = part.hull_triangles[t][k];
-      }
-      for (std::size_t p = 0; p < estimate.poses.size(); ++p) {
-        std::ostringstream title;
-        title << name << ": pose " << p + 1 << ", resting on the face with normal "
-              << Vec(estimate.poses[p].normal, "%+.3f");
-        if (as_hull) title << " (its convex hull drawn: the mesh has " << file_mesh.F.rows() << " triangles)";
-        std::vector<Vector3> outline;
-        for (int v : estimate.poses[p].outline) outline.push_back(part.hull_vertices[static_cast<std::size_t>(v)]);
-        WritePosePicture(out_dir + "/pose_" + std::to_string(p + 1) + ".svg", as_hull ? drawn : file_mesh,
-                         estimate.poses[p], outline, title.str());
-      }
-      massprops::report::WriteFileAtomically(out_dir + "/poses.json", j.dump(2) + "\n");
-    } catch (const std::exception& e) {
-      std::cerr << "error: --out " << massprops::app::OneLine(out_dir) << ": " << massprops::app::OneLine(e.what())
-                << "\n";
-      return 1;
-    }
-  }
-
-  if (format == "json") {
-    std::cout << j.dump(2) << "\n";
-    return 0;
-  }
-  if (format == "html") {
-    std::cout << PosesPage(name, file_mesh, part, estimate, tally, have_drops);
-    return 0;
-  }
   std::printf("%s: %.6g kg, center of mass %s m; convex hull of %zu faces, %zu stable\n", name.c_str(),
               part.mass_properties.mass, Vec(part.mass_properties.center_of_mass, "%.6g").c_str(),
               estimate.faces.normals.size(), estimate.poses.size());
@@ -327,9 +275,91 @@ int PosesMain(int argc, char** argv) {
     std::printf("  pose %-3zu R (%+.6f, %+.6f, %+.6f, %+.6f)  t %s m\n", p + 1, q.w() + 0.0, q.x() + 0.0, q.y() + 0.0,
                 q.z() + 0.0, Vec(pose.translation, "%.6g").c_str());
   }
-  if (out_dir.empty()) std::printf("(a picture of each pose: --out DIR)\n");
-  if (!out_dir.empty())
-    std::printf("  wrote %s/pose_1.svg ... pose_%zu.svg, poses.json\n", out_dir.c_str(), estimate.poses.size());
+}
+
+}  // namespace
+
+int PosesMain(int argc, char** argv) {
+  CLI::App app{
+      "rbsim poses: on which face of its convex hull a part comes to rest on a plane, and how often — the "
+      "quasi-static estimate (solid angles from the center of mass and the topple graph) and N simulated drops from "
+      "uniformly random orientations, with 95 % intervals (README: 'Resting poses').",
+      "rbsim poses"};
+  PosesFlags f;
+  DeclarePosesFlags(app, f);
+  if (const int status = massprops::app::ParseArguments(app, argc, argv); status >= 0) return status;
+  f.unit_given = app.count("--unit") > 0;
+  dynamics::Material ground, material;
+  std::string why;
+  if (!ParseMaterial(f.ground_text, ground, why)) {
+    std::cerr << "error: --ground: " << massprops::app::OneLine(why) << "\n";
+    return massprops::app::kBadArguments;
+  }
+  if (!ParseMaterial(f.material_text, material, why)) {
+    std::cerr << "error: --material: " << massprops::app::OneLine(why) << "\n";
+    return massprops::app::kBadArguments;
+  }
+  dynamics::PosesReport report;
+  report.part = f.part_file;
+  report.collision = f.collision == "mesh" ? dynamics::PoseCollision::kMesh : dynamics::PoseCollision::kHull;
+  report.drops = f.drops;
+  massprops::TriangleMesh file_mesh;  // the part in its file's axes, metres
+  const std::string name = std::filesystem::path(f.part_file).filename().string();
+  std::vector<std::string> warnings;
+  try {
+    report.pose_part =
+        dynamics::LoadPosePart(f.part_file, PartLoadOptions(f), report.collision, material,
+                               massprops::report::WordsFor(massprops::report::FrontEnd::kPoses), warnings, &file_mesh);
+  } catch (const std::exception& e) {
+    for (const auto& w : warnings) std::cerr << "warning: " << massprops::app::OneLine(w) << "\n";
+    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
+    return 1;
+  }
+  for (const auto& w : warnings) std::cerr << "warning: " << massprops::app::OneLine(w) << "\n";
+  const dp::Part& part = report.pose_part;
+  dp::DropOptions& options = report.options;
+  options.height = f.height;
+  options.seed = f.seed;
+  options.ground = ground;
+  options.dt = f.dt;
+  options.max_time = f.max_time;
+  options.threads = f.threads;
+  double seconds = 0;
+  try {
+    report.estimate = dp::QuasiStatic(part);
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<dp::DropOutcome> outcomes = dp::Drop(part, report.estimate, options, 0, f.drops);
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    report.tally = dp::Count(outcomes, report.estimate.poses.size());
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << massprops::app::OneLine(f.part_file) << ": " << e.what() << "\n";
+    return 1;
+  }
+  const dp::Estimate& estimate = report.estimate;
+  nlohmann::json j = dynamics::PosesJson(report);
+  if (!f.out_dir.empty()) {
+    for (std::size_t p = 0; p < estimate.poses.size(); ++p)
+      j["poses"][p]["picture"] = "pose_" + std::to_string(p + 1) + ".svg";
+    try {
+      WritePoseFiles(f.out_dir, name, file_mesh, part, estimate, j);
+    } catch (const std::exception& e) {
+      std::cerr << "error: --out " << massprops::app::OneLine(f.out_dir) << ": " << massprops::app::OneLine(e.what())
+                << "\n";
+      return 1;
+    }
+  }
+  if (f.format == "json") {
+    std::cout << j.dump(2) << "\n";
+    return 0;
+  }
+  if (f.format == "html") {
+    std::cout << PosesPage(name, file_mesh, part, estimate, report.tally, f.drops > 0);
+    return 0;
+  }
+  PrintPoses(f, name, report, ground, material, seconds);
+  if (f.out_dir.empty()) std::printf("(a picture of each pose: --out DIR)\n");
+  if (!f.out_dir.empty())
+    std::printf("  wrote %s/pose_1.svg ... pose_%zu.svg, poses.json\n", f.out_dir.c_str(), estimate.poses.size());
   return 0;
 }
 
