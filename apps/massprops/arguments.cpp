@@ -10,7 +10,10 @@
 
 namespace massprops::cli {
 
-void AddArguments(CLI::App& app, Arguments& a) {
+namespace {
+
+// The inputs, the Monte-Carlo routes and what the solid weighs.
+void AddInputArguments(CLI::App& app, Arguments& a) {
   app.add_option("files", a.files, "Mesh files");
   app.add_option("--implicit", a.implicit,
                  "Estimate a solid given in the shape syntax, e.g. 'torus(R=1, r=0.25)' "
@@ -45,6 +48,10 @@ void AddArguments(CLI::App& app, Arguments& a) {
                  "wall thickness (in the file's unit, --unit)")
       ->check(app::Positive())
       ->excludes(shell);
+}
+
+// The file's unit, the output format and frame, the integration path, threads and the checks.
+void AddCheckArguments(CLI::App& app, Arguments& a) {
   std::vector<std::string> units;
   for (LengthUnit u : kAllLengthUnits) units.emplace_back(UnitName(u));
   app.add_option("--unit", a.unit, "Unit of the file's coordinates")
@@ -87,6 +94,10 @@ void AddArguments(CLI::App& app, Arguments& a) {
                  "for every format (32-bit coordinates; for comparison)")
       ->check(CLI::IsMember({"auto", "assimp"}))
       ->capture_default_str();
+}
+
+// The reference point and axes, the report's units.
+void AddReportArguments(CLI::App& app, Arguments& a) {
   app.add_option("--about", a.about,
                  "Also report the inertia tensor about this point X,Y,Z (in the file's unit and axes)")
       ->delimiter(',')
@@ -104,6 +115,10 @@ void AddArguments(CLI::App& app, Arguments& a) {
   app.add_option("--output-units", a.output_units,
                  "Units of the table, JSON and CSV: si (default), mmgs (g, mm, g*mm^2), cgs, ips (lb, in, "
                  "lb*in^2), or MASS,LENGTH,INERTIA such as kg,mm,kg*mm^2");
+}
+
+// Parts, densities per part, and the CAD files' tessellation and B-rep.
+void AddPartArguments(CLI::App& app, Arguments& a) {
   app.add_flag("--parts", a.parts,
                "Each part the file names (OBJ objects or groups; glTF, 3MF, COLLADA, FBX nodes) on its own, "
                "and the whole as their composition");
@@ -134,6 +149,15 @@ void AddArguments(CLI::App& app, Arguments& a) {
                  "measured (0: none)")
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
+}
+
+}  // namespace
+
+void AddArguments(CLI::App& app, Arguments& a) {
+  AddInputArguments(app, a);
+  AddCheckArguments(app, a);
+  AddReportArguments(app, a);
+  AddPartArguments(app, a);
   app.add_flag("-q,--quiet", a.quiet, "No progress line on stderr");
   app.add_option("-o,--output", a.output, "Write the output to this file (whole or not at all)");
 }

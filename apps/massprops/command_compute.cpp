@@ -29,6 +29,166 @@
 namespace massprops::cli {
 using namespace massprops::report;  // the formats this command prints
 
+namespace {
+
+// Why --picture cannot be drawn (nothing: it can).
+std::optional<std::string> PictureProblem(const std::string& picture, const Arguments& a) {
+  if (picture.empty()) return std::nullopt;
+  if (a.files.size() + (a.implicit.empty() ? 0 : 1) != 1) {
+    return "--picture draws one input; for several, massprops batch ... --pictures DIR";
+  }
+  try {
+    report::PictureFormatOf(picture);
+    report::CheckOutputPath(picture, a.files);
+    if (report::PictureFormatOf(picture) == report::PictureFormat::kPng && !report::CanRasterize()) {
+      return "--picture: this build has no librsvg for PNG; write .svg";
+    }
+  } catch (const std::exception& e) {
+    return std::string("--picture: ") + e.what();
+  }
+  return std::nullopt;
+}
+
+// --about, --axes, --axes-euler as the frame the results are reported in (in each file's unit,
+// the one stated or the one the file declares: scaled per result). @throws std::invalid_argument
+// naming the flag.
+std::optional<ReferenceFrame> ReferenceOf(const Arguments& a) {
+  if (a.about.empty() && a.axes.empty() && a.axes_euler.empty()) return std::nullopt;
+  ReferenceFrame f;
+  for (double v : a.about) {
+    if (!std::isfinite(v)) throw std::invalid_argument("--about needs three finite numbers");
+  }
+  for (double v : a.axes) {
+    if (!std::isfinite(v)) throw std::invalid_argument("--axes needs nine finite numbers");
+  }
+  for (double v : a.axes_euler) {
+    if (!std::isfinite(v)) throw std::invalid_argument("--axes-euler needs three finite angles");
+  }
+  if (!a.about.empty()) f.point = Vector3(a.about[0], a.about[1], a.about[2]);
+  try {
+    if (!a.axes.empty()) {
+      Matrix3 r;
+      r << a.axes[0], a.axes[1], a.axes[2], a.axes[3], a.axes[4], a.axes[5], a.axes[6], a.axes[7], a.axes[8];
+      f.axes = RequireRotation(r);
+    }
+    if (!a.axes_euler.empty()) {
+      const double deg = kPi / 180;
+      f.axes = RotationFromEulerZYX(a.axes_euler[0] * deg, a.axes_euler[1] * deg, a.axes_euler[2] * deg);
+    }
+  } catch (const std::exception& e) {
+    throw std::invalid_argument(std::string("--axes: ") + e.what());
+  }
+  return f;
+}
+
+// How the results are printed. @throws std::invalid_argument naming the flag.
+report::FormatOptions FormatOf(const Arguments& a) {
+  report::FormatOptions format;
+  format.format = FromName<report::Format>({{"table", report::Format::kTable},
+                                            {"json", report::Format::kJson},
+                                            {"csv", report::Format::kCsv},
+                                            {"urdf", report::Format::kUrdf},
+                                            {"sdf", report::Format::kSdf},
+                                            {"mjcf", report::Format::kMjcf}},
+                                           a.format);
+  format.frame = a.frame == "origin" ? report::Frame::kOrigin : report::Frame::kCenterOfMass;
+  format.json_array = a.files.size() + (a.implicit.empty() ? 0 : 1) > 1;
+  if (!a.output_units.empty()) {
+    try {
+      format.units = ParseReportUnits(a.output_units);
+    } catch (const std::exception& e) {
+      throw std::invalid_argument(std::string("--output-units: ") + e.what());
+    }
+  }
+  format.reference = ReferenceOf(a);
+  return format;
+}
+
+bool IsRobotFormat(report::Format f) {
+  return f == report::Format::kUrdf || f == report::Format::kSdf || f == report::Format::kMjcf;
+}
+
+// One input's outcome: its result, or its error (one line, worded for the command line).
+struct Outcome {
+  std::optional<SolidResult> result;
+  std::string error;
+};
+
+template <typename Solve>
+Outcome Compute(const std::string& name, bool show_progress, const Solve& solve) {
+  Outcome out;
+  try {
+    app::Progress progress("massprops", name, show_progress);
+    out.result = solve([&progress](const char* stage) { progress.Stage(stage); });
+  } catch (const MeshFileError& e) {  // already names the file
+    out.error = WordedError(e, report::CliVocabulary());
+  } catch (const std::exception& e) {
+    out.error = name + ": " + e.what();
+  }
+  return out;
+}
+
+// Every input's outcome, in the order of the inputs. Several files are computed side by side, one
+// per thread, when the library says they may be (a dataset's small files gain the cores a single
+// file's stages would use); no progress line then: the lines would interleave.
+std::vector<std::pair<std::string, Outcome>> ComputeAll(const Arguments& a, const LoadOptions& options) {
+  auto load = [&](const std::string& file, bool show_progress) {
+    return Compute(file, show_progress, [&](const ProgressCallback& progress) {
+      LoadOptions o = options;
+      o.progress = progress;
+      return LoadSolid(file, o);
+    });
+  };
+  std::vector<std::pair<std::string, Outcome>> out;
+  if (a.files.size() > 1 && LoadsSideBySide(a.files, options)) {
+    std::vector<Outcome> outcomes(a.files.size());
+    std::atomic<std::size_t> next{0};
+    auto worker = [&] {
+      for (std::size_t i = next++; i < a.files.size(); i = next++) outcomes[i] = load(a.files[i], false);
+    };
+    const unsigned cores = a.threads > 0 ? static_cast<unsigned>(a.threads) : std::thread::hardware_concurrency();
+    std::vector<std::thread> pool;
+    for (unsigned t = 1; t < std::min<std::size_t>(std::max(cores, 1u), a.files.size()); ++t) pool.emplace_back(worker);
+    worker();
+    for (std::thread& t : pool) t.join();
+    for (std::size_t i = 0; i < a.files.size(); ++i) out.emplace_back(a.files[i], std::move(outcomes[i]));
+  } else {
+    for (const std::string& file : a.files) out.emplace_back(file, load(file, !a.quiet));
+  }
+  if (!a.implicit.empty()) {
+    out.emplace_back("--implicit", Compute("--implicit", !a.quiet, [&](const ProgressCallback& progress) {
+                       ImplicitOptions o;
+                       o.unit = options.unit;
+                       o.unit_stated = options.unit_stated;
+                       o.mass = options.mass;
+                       o.sampling = Sampling(a);
+                       o.num_threads = a.threads;
+                       o.progress = progress;
+                       return EstimateImplicit(*implicit::ParseShape(a.implicit, ReadSdfGridFile), o);
+                     }));
+  }
+  return out;
+}
+
+// The one result drawn (an implicit solid has no mesh: its surface drawn by marching tetrahedra).
+void DrawPicture(const std::string& picture, const Arguments& a, const SolidResult& result,
+                 const report::FormatOptions& format) {
+  report::PictureOptions p;
+  p.units = format.units;
+  if (a.files.empty()) {
+    SolidResult drawn = result;
+    const ImplicitPtr shape = implicit::ParseShape(a.implicit, ReadSdfGridFile);
+    constexpr int kResolution = 96;  // cells along the longest side
+    drawn.loaded.mesh = ToPolygonMesh(implicit::Polygonize(*shape, kResolution));
+    p.surface_tolerance = shape->Bounds().sizes().maxCoeff() / kResolution * MetresPerUnit(drawn.unit);
+    report::WritePicture(picture, drawn, p);
+  } else {
+    report::WritePicture(picture, result, p);
+  }
+}
+
+}  // namespace
+
 int ComputeMain(int argc, char** argv) {
   CLI::App app{
       "massprops: exact mass properties of the solids that mesh files bound.\n"
@@ -52,109 +212,31 @@ int ComputeMain(int argc, char** argv) {
     std::cerr << "note: --brep is the default now (CAD solids are given by their exact B-rep, the tessellation "
                  "beside it as the check); it changes nothing, and --tessellated gives the mesh's numbers\n";
   }
-  if (!picture.empty()) {
-    if (a.files.size() + (a.implicit.empty() ? 0 : 1) != 1) {
-      return bad("--picture draws one input; for several, massprops batch ... --pictures DIR");
-    }
-    try {
-      report::PictureFormatOf(picture);
-      report::CheckOutputPath(picture, a.files);
-      if (report::PictureFormatOf(picture) == report::PictureFormat::kPng && !report::CanRasterize()) {
-        return bad("--picture: this build has no librsvg for PNG; write .svg");
-      }
-    } catch (const std::exception& e) {
-      return bad(std::string("--picture: ") + e.what());
-    }
-  }
-
+  if (const auto problem = PictureProblem(picture, a)) return bad(*problem);
   report::FormatOptions format;
-  format.format = FromName<report::Format>({{"table", report::Format::kTable},
-                                            {"json", report::Format::kJson},
-                                            {"csv", report::Format::kCsv},
-                                            {"urdf", report::Format::kUrdf},
-                                            {"sdf", report::Format::kSdf},
-                                            {"mjcf", report::Format::kMjcf}},
-                                           a.format);
-  format.frame = a.frame == "origin" ? report::Frame::kOrigin : report::Frame::kCenterOfMass;
-  format.json_array = a.files.size() + (a.implicit.empty() ? 0 : 1) > 1;
   LoadOptions options = ToLoadOptions(a, app);
   if (!picture.empty()) options.full_check = true;  // the streamed STL pass keeps no surface to draw
-  if (!a.density_map.empty()) {
-    try {
-      options.part_masses = report::ReadDensityMap(a.density_map);
-    } catch (const std::exception& e) {
-      return bad(e.what());
-    }
+  try {
+    if (!a.density_map.empty()) options.part_masses = report::ReadDensityMap(a.density_map);
+    format = FormatOf(a);
+  } catch (const std::exception& e) {
+    return bad(e.what());
   }
-  if (!a.output_units.empty()) {
-    try {
-      format.units = ParseReportUnits(a.output_units);
-    } catch (const std::exception& e) {
-      return bad(std::string("--output-units: ") + e.what());
-    }
-  }
-  if (!a.about.empty() || !a.axes.empty() || !a.axes_euler.empty()) {
-    ReferenceFrame f;
-    for (double v : a.about) {
-      if (!std::isfinite(v)) return bad("--about needs three finite numbers");
-    }
-    for (double v : a.axes) {
-      if (!std::isfinite(v)) return bad("--axes needs nine finite numbers");
-    }
-    for (double v : a.axes_euler) {
-      if (!std::isfinite(v)) return bad("--axes-euler needs three finite angles");
-    }
-    // In each file's unit (the one stated, or the one the file declares): scaled per result.
-    if (!a.about.empty()) f.point = Vector3(a.about[0], a.about[1], a.about[2]);
-    try {
-      if (!a.axes.empty()) {
-        Matrix3 r;
-        r << a.axes[0], a.axes[1], a.axes[2], a.axes[3], a.axes[4], a.axes[5], a.axes[6], a.axes[7], a.axes[8];
-        f.axes = RequireRotation(r);
-      }
-      if (!a.axes_euler.empty()) {
-        const double deg = 3.14159265358979323846 / 180;
-        f.axes = RotationFromEulerZYX(a.axes_euler[0] * deg, a.axes_euler[1] * deg, a.axes_euler[2] * deg);
-      }
-    } catch (const std::exception& e) {
-      return bad(std::string("--axes: ") + e.what());
-    }
-    format.reference = f;
-  }
-  const bool robot = format.format == report::Format::kUrdf || format.format == report::Format::kSdf ||
-                     format.format == report::Format::kMjcf;
+  const bool robot = IsRobotFormat(format.format);
   if (robot && (!a.output_units.empty() || format.reference)) {
     return bad(
         "URDF, SDF and MJCF give the inertia about the center of mass in SI; --output-units, --about and "
         "--axes are for the table, JSON and CSV");
   }
-
+  // Messages and results in the order of the inputs, whatever order they were computed in.
   int failures = 0;
   std::vector<SolidResult> results;
   std::string text;
-  // One input's outcome: its result, or its error (one line, worded for the command line).
-  struct Outcome {
-    std::optional<SolidResult> result;
-    std::string error;
-  };
-  auto compute = [&](const std::string& name, bool show_progress, const auto& solve) {
-    Outcome out;
-    try {
-      app::Progress progress("massprops", name, show_progress);
-      out.result = solve([&progress](const char* stage) { progress.Stage(stage); });
-    } catch (const MeshFileError& e) {  // already names the file
-      out.error = WordedError(e, report::CliVocabulary());
-    } catch (const std::exception& e) {
-      out.error = name + ": " + e.what();
-    }
-    return out;
-  };
-  // Messages and results in the order of the inputs, whatever order they were computed in.
-  auto emit = [&](const std::string& name, Outcome&& o) {
+  for (auto& [name, o] : ComputeAll(a, options)) {
     if (!o.result) {
       ++failures;
       std::cerr << "error: " << massprops::app::OneLine(o.error) << "\n";
-      return;
+      continue;
     }
     const SolidResult& r = *o.result;
     for (const Finding& f : r.findings) {
@@ -164,65 +246,14 @@ int ComputeMain(int argc, char** argv) {
     if (format.format == report::Format::kTable) text += (text.empty() ? "" : "\n") + FormatTable(r, format);
     if (robot) text += FormatRobot(r, format.format);
     results.push_back(std::move(*o.result));
-  };
-  auto load = [&](const std::string& file, bool show_progress) {
-    return compute(file, show_progress, [&](const ProgressCallback& progress) {
-      LoadOptions o = options;
-      o.progress = progress;
-      return LoadSolid(file, o);
-    });
-  };
-  // Several files are computed side by side, one per thread, when the library says they may be (a
-  // dataset's small files gain the cores a single file's stages would use). No progress line then:
-  // the lines would interleave.
-  const bool side_by_side = a.files.size() > 1 && LoadsSideBySide(a.files, options);
-  if (side_by_side) {
-    std::vector<Outcome> outcomes(a.files.size());
-    std::atomic<std::size_t> next{0};
-    auto worker = [&] {
-      for (std::size_t i = next++; i < a.files.size(); i = next++) outcomes[i] = load(a.files[i], false);
-    };
-    const unsigned cores = a.threads > 0 ? static_cast<unsigned>(a.threads) : std::thread::hardware_concurrency();
-    std::vector<std::thread> pool;
-    for (unsigned t = 1; t < std::min<std::size_t>(std::max(cores, 1u), a.files.size()); ++t) pool.emplace_back(worker);
-    worker();
-    for (std::thread& t : pool) t.join();
-    for (std::size_t i = 0; i < a.files.size(); ++i) emit(a.files[i], std::move(outcomes[i]));
-  } else {
-    for (const std::string& file : a.files) emit(file, load(file, !a.quiet));
-  }
-  if (!a.implicit.empty()) {
-    emit("--implicit", compute("--implicit", !a.quiet, [&](const ProgressCallback& progress) {
-           ImplicitOptions o;
-           o.unit = options.unit;
-           o.unit_stated = options.unit_stated;
-           o.mass = options.mass;
-           o.sampling = Sampling(a);
-           o.num_threads = a.threads;
-           o.progress = progress;
-           return EstimateImplicit(*implicit::ParseShape(a.implicit, ReadSdfGridFile), o);
-         }));
   }
   if (format.format == report::Format::kJson && (!results.empty() || format.json_array)) {
     text = FormatJson(results, format);  // several inputs: an array, even if some (or all) failed
   }
-  if (!results.empty()) {
-    if (format.format == report::Format::kCsv) text = FormatCsv(results, format);
-  }
+  if (!results.empty() && format.format == report::Format::kCsv) text = FormatCsv(results, format);
   if (!picture.empty() && !results.empty()) {
     try {
-      report::PictureOptions p;
-      p.units = format.units;
-      if (a.files.empty()) {  // an implicit solid has no mesh: its surface drawn by marching tetrahedra
-        SolidResult drawn = results.front();
-        const ImplicitPtr shape = implicit::ParseShape(a.implicit, ReadSdfGridFile);
-        constexpr int kResolution = 96;  // cells along the longest side
-        drawn.loaded.mesh = ToPolygonMesh(implicit::Polygonize(*shape, kResolution));
-        p.surface_tolerance = shape->Bounds().sizes().maxCoeff() / kResolution * MetresPerUnit(drawn.unit);
-        report::WritePicture(picture, drawn, p);
-      } else {
-        report::WritePicture(picture, results.front(), p);
-      }
+      DrawPicture(picture, a, results.front(), format);
     } catch (const std::exception& e) {
       std::cerr << "error: " << massprops::app::OneLine(results.front().source)
                 << ": --picture: " << massprops::app::OneLine(e.what()) << "\n";
