@@ -1,3 +1,5 @@
+// The definitions of cli.h: what both commands do the same way with their arguments.
+
 #include "cli.h"
 
 #include <cctype>

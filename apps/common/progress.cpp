@@ -1,3 +1,6 @@
+// The definitions of progress.h: progress on stderr for work that takes more than a second, shared
+// by both commands.
+
 #include "progress.h"
 
 #include <cstdio>

@@ -1,3 +1,5 @@
+// The definitions of arguments.h: the options that `massprops` and `massprops batch` share.
+
 #include "arguments.h"
 
 #include <cmath>

@@ -1,3 +1,5 @@
+// The definitions of batch.h: `massprops batch` and `massprops merge`.
+
 #include "batch.h"
 
 #include <algorithm>

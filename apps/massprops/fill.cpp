@@ -1,3 +1,6 @@
+// massprops fill ROBOT -o OUT (commands.h): every link's inertial computed from its geometry, the
+// rest of the file kept.
+
 #include "commands.h"
 
 #include <iostream>

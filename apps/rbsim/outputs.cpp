@@ -1,3 +1,5 @@
+// The definitions of outputs.h: rbsim's outputs.
+
 #include "outputs.h"
 
 #include <algorithm>

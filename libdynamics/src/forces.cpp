@@ -1,3 +1,5 @@
+// The definitions of dynamics/forces.h: forces and torques acting on the bodies of a World.
+
 #include "dynamics/forces.h"
 
 #include <algorithm>

@@ -1,3 +1,7 @@
+// The definitions of dynamics/free_rigid_body.h: the exact angular velocity of the torque-free
+// rigid body, in Jacobi elliptic functions (Landau & Lifshitz, Mechanics §37), as ground truth for
+// the integrators.
+
 #include "dynamics/free_rigid_body.h"
 
 #include <algorithm>

@@ -1,3 +1,5 @@
+// The definitions of dynamics/rigid_body.h: a rigid body in the state form of the seed notes.
+
 #include "dynamics/rigid_body.h"
 
 #include <sstream>

@@ -1,3 +1,6 @@
+// The definitions of dynamics/world.h: a world of rigid bodies stepped together, with the
+// integrators of the project and energy and momentum diagnostics.
+
 #include "dynamics/world.h"
 
 #include <algorithm>

@@ -1,3 +1,6 @@
+// The definitions of massprops/composition.h: composition and transformation of mass properties
+// without re-integrating the meshes.
+
 #include "massprops/composition.h"
 
 #include <cmath>

@@ -1,3 +1,5 @@
+// The definitions of massprops/export.h: inertial elements for robot descriptions, ready to paste.
+
 #include "massprops/export.h"
 
 #include <charconv>

@@ -1,3 +1,6 @@
+// The definitions of massprops/mass_properties.h: mass properties of the solid bounded by a closed
+// polyhedral surface.
+
 #include "massprops/mass_properties.h"
 
 #include <cmath>

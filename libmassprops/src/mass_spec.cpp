@@ -1,3 +1,5 @@
+// The definitions of massprops/mass_spec.h: how much a solid weighs.
+
 #include "massprops/mass_spec.h"
 
 #include <fnmatch.h>

@@ -1,3 +1,5 @@
+// The definitions of massprops/mesh.h: mesh containers.
+
 #include "massprops/mesh.h"
 
 #include <algorithm>

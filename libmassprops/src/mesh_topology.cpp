@@ -1,3 +1,6 @@
+// Mesh topology (massprops/mesh_topology.h): boundary, non-manifold and inconsistently oriented
+// edges, holes, components, shells and their nesting.
+
 #include <algorithm>
 #include <array>
 #include <cmath>

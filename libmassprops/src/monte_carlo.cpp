@@ -1,3 +1,6 @@
+// The definitions of massprops/monte_carlo.h: Monte-Carlo and randomized quasi-Monte-Carlo mass
+// properties of implicit solids, with a standard error on every output.
+
 #include "massprops/monte_carlo.h"
 
 #include <array>

@@ -1,3 +1,5 @@
+// The definitions of massprops/primitive.h: the closed-form solids, as one list.
+
 #include "massprops/primitive.h"
 
 #include <cmath>

@@ -1,3 +1,7 @@
+// The definitions of massprops/principal_axes.h: principal moments and axes of an inertia tensor,
+// the body frame of a mesh, reference frames a report reads the tensor in, and the physical-
+// validity check of an inertia tensor.
+
 #include "massprops/principal_axes.h"
 
 #include <algorithm>

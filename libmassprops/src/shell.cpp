@@ -1,3 +1,5 @@
+// The definitions of massprops/shell.h: thin shells and walls.
+
 #include "massprops/shell.h"
 
 #include <cmath>

@@ -1,3 +1,6 @@
+// The definitions of massprops/solids.h: tessellations of simple solids and their closed-form mass
+// properties, shared by tests, benchmarks and apps.
+
 #include "massprops/solids.h"
 
 #include <algorithm>

@@ -1,3 +1,6 @@
+// The definitions of soup_faces.h: repeated faces of a triangle soup, found from 64-bit keys of
+// each triangle's corner positions.
+
 #include "soup_faces.h"
 
 #include <algorithm>

@@ -1,3 +1,5 @@
+// The definitions of soup_shells.h: shells of a triangle soup, counted as it streams.
+
 #include "soup_shells.h"
 
 #include <algorithm>

@@ -1,3 +1,5 @@
+// The definitions of massprops/text.h: numbers as text, one home for every printer of the project.
+
 #include "massprops/text.h"
 
 #include <charconv>

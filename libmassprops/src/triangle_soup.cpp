@@ -1,3 +1,7 @@
+// The definitions of massprops/triangle_soup.h: integration of a triangle soup — triangles that
+// share no vertex indices, such as the records of a binary STL file as it lies in memory — without
+// building an indexed mesh, with a streaming check that the surface is closed.
+
 #include "massprops/triangle_soup.h"
 
 #include <algorithm>

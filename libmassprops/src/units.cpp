@@ -1,3 +1,5 @@
+// The definitions of massprops/units.h: units.
+
 #include "massprops/units.h"
 
 #include <stdexcept>

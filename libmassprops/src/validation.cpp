@@ -1,3 +1,5 @@
+// The definitions of massprops/validation.h: validation a user can run.
+
 #include "massprops/validation.h"
 
 #include <cmath>

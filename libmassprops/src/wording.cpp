@@ -1,3 +1,5 @@
+// The definitions of massprops/wording.h: messages that advise an option.
+
 #include "massprops/wording.h"
 
 #include <utility>

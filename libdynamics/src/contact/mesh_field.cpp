@@ -1,3 +1,6 @@
+// The definitions of mesh_field.h: the signed distance field of a closed triangle mesh, for contact
+// (internal.
+
 #include "mesh_field.h"
 
 #include "massprops/box_tree.h"

@@ -1,3 +1,5 @@
+// The definitions of json_fields.h: reading a scene's JSON.
+
 #include "json_fields.h"
 
 #include <algorithm>

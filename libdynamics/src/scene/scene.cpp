@@ -1,3 +1,5 @@
+// The definitions of scene/scene.h: scenes (target massprops::scene).
+
 #include "scene/scene.h"
 
 #include <algorithm>

@@ -1,3 +1,5 @@
+// The definitions of scene/simulation.h: an rbsim run.
+
 #include "scene/simulation.h"
 
 #include <algorithm>

@@ -1,3 +1,5 @@
+// The definitions of tolerance_weld.h: the repair's tolerance weld (internal).
+
 #include "tolerance_weld.h"
 
 #include <algorithm>

@@ -1,3 +1,5 @@
+// A file mapped into memory read-only (mapped_file.h), for the readers that parse in place.
+
 #include <cerrno>
 #include <cstring>
 #include <string>

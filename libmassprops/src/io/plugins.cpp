@@ -1,3 +1,5 @@
+// The definitions of plugins.h: the one way massprops::io reaches code it does not link.
+
 #include "plugins.h"
 
 #include <dlfcn.h>

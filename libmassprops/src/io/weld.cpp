@@ -1,3 +1,5 @@
+// The definitions of weld.h: the weld (internal).
+
 #include "weld.h"
 
 namespace massprops {

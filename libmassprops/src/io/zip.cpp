@@ -1,3 +1,5 @@
+// The definitions of zip.h: reading entries of a zip package held in memory (3MF, zipped AMF).
+
 #include "zip.h"
 
 #include <zlib.h>

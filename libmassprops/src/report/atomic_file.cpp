@@ -1,3 +1,6 @@
+// The definitions of massprops/report/atomic_file.h: output files that are written whole or not at
+// all.
+
 #include "massprops/report/atomic_file.h"
 
 #include <cerrno>

@@ -1,3 +1,5 @@
+// The definitions of massprops/report/density_map.h: the file behind `--density-map`.
+
 #include "massprops/report/density_map.h"
 
 #include <cmath>

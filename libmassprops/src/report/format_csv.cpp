@@ -1,3 +1,5 @@
+// The CSV output (massprops/report/format.h): one row per result, the columns named once.
+
 #include <sstream>
 
 #include "massprops/report/format.h"

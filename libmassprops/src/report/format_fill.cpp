@@ -1,3 +1,6 @@
+// The report of `massprops fill` (massprops/report/format.h): each link's status, what was computed
+// and from what.
+
 #include <nlohmann/json.hpp>
 
 #include "massprops/report/format.h"

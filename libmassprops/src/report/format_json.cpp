@@ -1,3 +1,6 @@
+// The JSON output (massprops/report/format.h): every number of a result, its findings and its
+// parts.
+
 #include <cmath>
 
 #include <nlohmann/json.hpp>

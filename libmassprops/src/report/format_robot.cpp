@@ -1,3 +1,6 @@
+// A result as a robot description's <inertial> (massprops/report/format.h): URDF, SDFormat or MJCF,
+// through export.h.
+
 #include "massprops/export.h"
 #include "massprops/report/format.h"
 

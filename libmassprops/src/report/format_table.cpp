@@ -1,3 +1,5 @@
+// The table output (massprops/report/format.h): what a person reads at the terminal, parts and all.
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>

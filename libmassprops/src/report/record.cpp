@@ -1,3 +1,6 @@
+// The definitions of massprops/report/record.h: one file's record in a dataset run (massprops
+// batch, the Python module's dask.map_files).
+
 #include "massprops/report/record.h"
 
 #include <algorithm>

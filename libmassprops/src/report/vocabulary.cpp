@@ -1,3 +1,6 @@
+// The definitions of massprops/report/words.h: the one home of each front end's words for the
+// options that the library's findings advise (massprops/wording.h).
+
 #include "massprops/report/words.h"
 
 #include <string>
