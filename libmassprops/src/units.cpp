@@ -1,4 +1,4 @@
-// The definitions of massprops/units.h: units.
+// The definitions of massprops/units.h: the units of mesh coordinates (lengths) and of reports.
 
 #include "massprops/units.h"
 

@@ -1,5 +1,5 @@
 // The definitions of mesh_field.h: the signed distance field of a closed triangle mesh, for contact
-// (internal.
+// (internal).
 
 #include "mesh_field.h"
 
