@@ -97,6 +97,18 @@ void World::AddForce(std::unique_ptr<Force> force) {
   forces_.push_back(std::move(force));
 }
 
+StepStatus internal::Diverged(double time, int body, const char* quantity) {
+  StepStatus status;
+  status.ok = false;
+  status.diverged = true;
+  status.body = body;
+  std::ostringstream msg;
+  msg << "diverged at t = " << time << " s: body " << body << "'s " << quantity
+      << " is no longer finite (forces too large for this step, or an unstable integrator; reduce the time step)";
+  status.message = msg.str();
+  return status;
+}
+
 StepStatus World::Step(double h) {
   if (!(h > 0) || !std::isfinite(h)) {
     std::ostringstream msg;
@@ -107,13 +119,9 @@ StepStatus World::Step(double h) {
   if (status.ok) {
     const auto [body, quantity] = FirstNonFinite();
     if (body >= 0) {
-      status.ok = false;
-      status.diverged = true;
-      status.body = body;
-      std::ostringstream msg;
-      msg << "diverged at t = " << time_ << " s: body " << body << "'s " << quantity
-          << " is no longer finite (forces too large for this step, or an unstable integrator; reduce the time step)";
-      status.message = msg.str();
+      const int substeps = status.substeps;
+      status = internal::Diverged(time_, body, quantity);
+      status.substeps = substeps;
     }
   }
   return status;
@@ -157,23 +165,24 @@ StepStatus World::Advance(double h) {
   }
   std::vector<RigidBody>& saved = scratch_->saved;
   saved.assign(bodies_.begin(), bodies_.end());  // into kept capacity: no allocation after the first step
-  for (int substeps = 1; substeps <= 1024; substeps *= 2) {
-    bool ok = true;
-    const double dt = h / substeps;
-    for (int s = 0; s < substeps && ok; ++s) {
-      ok = info.step(context, t0 + dt * s, dt);
-      time_ = t0 + dt * (s + 1);
-    }
-    if (ok) {
-      time_ = t0 + h;
-      status.substeps = substeps;
-      return status;
-    }
-    std::copy(saved.begin(), saved.end(), bodies_.begin());
-    time_ = t0;
+  const int substeps = internal::StepWithHalving(
+      t0, h, [] {},
+      [&](double t, double dt, int s) {
+        const bool ok = info.step(context, t, dt);
+        time_ = t0 + dt * (s + 1);
+        return ok;
+      },
+      [&] {
+        std::copy(saved.begin(), saved.end(), bodies_.begin());
+        time_ = t0;
+      });
+  if (substeps > 0) {
+    time_ = t0 + h;
+    status.substeps = substeps;
+    return status;
   }
   status.ok = false;
-  status.substeps = 1024;
+  status.substeps = internal::kMostSubsteps;
   status.message = std::string("the ") + info.name +
                    " solve did not converge even with 1024 sub-steps; the angular velocity is too large for "
                    "this step (reduce the time step)";

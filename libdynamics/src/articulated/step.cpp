@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "../integrators/integrator.h"
 #include "articulation.h"
 
 namespace dynamics::internal {
@@ -25,27 +26,26 @@ StepStatus Articulation::Advance(Integrator integrator, const std::vector<std::u
   held_.clear();  // (a contact step's, when it found no contact)
   stuck_.clear();
   saved_q_ = q_, saved_v_ = v_, saved_p_ = p_;  // into kept capacity
-  for (int substeps = 1; substeps <= 1024; substeps *= 2) {
-    bool ok = true;
-    const double dt = h / substeps;
-    std::fill(limit_impulse_.begin(), limit_impulse_.end(), 0.0);
-    std::fill(drive_impulse_.begin(), drive_impulse_.end(), 0.0);
-    for (int s = 0; s < substeps && ok; ++s) {
-      ok = integrator == Integrator::kRK4 ? RK4Step(forces, t + dt * s, dt, bodies)
-                                          : MidpointStep(forces, t + dt * s, dt, bodies);
-    }
-    if (ok) {
-      status.substeps = substeps;
-      return status;
-    }
-    q_ = saved_q_, v_ = saved_v_, p_ = saved_p_;
+  const int substeps = internal::StepWithHalving(
+      t, h,
+      [&] {
+        std::fill(limit_impulse_.begin(), limit_impulse_.end(), 0.0);
+        std::fill(drive_impulse_.begin(), drive_impulse_.end(), 0.0);
+      },
+      [&](double at, double dt, int) {
+        return integrator == Integrator::kRK4 ? RK4Step(forces, at, dt, bodies) : MidpointStep(forces, at, dt, bodies);
+      },
+      [&] { q_ = saved_q_, v_ = saved_v_, p_ = saved_p_; });
+  if (substeps > 0) {
+    status.substeps = substeps;
+    return status;
   }
   if (Configure(q_, end_)) {
     Velocities(v_, end_);
     Sync(end_, bodies);
   }
   status.ok = false;
-  status.substeps = 1024;
+  status.substeps = internal::kMostSubsteps;
   status.message =
       "the joints' implicit midpoint solve did not converge even with 1024 sub-steps: springs, damping or servo "
       "gains too stiff for this step (reduce the time step), or a state beyond double precision";

@@ -255,13 +255,7 @@ StepStatus ContactWorld::Step(double h) {
   world_.set_time(world_.time() + h);
   contact::Sleep(in, m, islands, m, m, stats_);
   const auto [bad, quantity] = world_.FirstNonFinite();
-  if (bad >= 0) {
-    status.ok = false;
-    status.diverged = true;
-    status.body = bad;
-    status.message = "diverged at t = " + std::to_string(world_.time()) + " s: body " + std::to_string(bad) + "'s " +
-                     quantity + " is no longer finite";
-  }
+  if (bad >= 0) return internal::Diverged(world_.time(), bad, quantity);
   return status;
 }
 

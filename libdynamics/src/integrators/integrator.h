@@ -183,4 +183,28 @@ bool KickDriftKick(StepContext& c, double t, double h, const Rotate& rotate) {
   return true;
 }
 
+/// The most sub-steps a step is split into before it gives up.
+inline constexpr int kMostSubsteps = 1024;
+
+/// The one halving retry: the step from t0 over h as 1, 2, 4, … kMostSubsteps sub-steps of equal
+/// length until every one succeeds. Each attempt starts with begin(); sub_step(t, dt, s) takes
+/// sub-step s from t, false when it fails; restore() puts the state back after a failed attempt.
+/// Returns the sub-steps that succeeded, or 0 when even the most did not (the state restored).
+template <typename Begin, typename SubStep, typename Restore>
+int StepWithHalving(double t0, double h, const Begin& begin, const SubStep& sub_step, const Restore& restore) {
+  for (int substeps = 1; substeps <= kMostSubsteps; substeps *= 2) {
+    begin();
+    bool ok = true;
+    const double dt = h / substeps;
+    for (int s = 0; s < substeps && ok; ++s) ok = sub_step(t0 + dt * s, dt, s);
+    if (ok) return substeps;
+    restore();
+  }
+  return 0;
+}
+
+/// The one status of a step after which the state is no longer finite: `body`'s `quantity`
+/// (World::FirstNonFinite) at `time`, with what to do about it.
+StepStatus Diverged(double time, int body, const char* quantity);
+
 }  // namespace dynamics::internal
