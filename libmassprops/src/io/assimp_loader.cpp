@@ -17,6 +17,7 @@
 
 #include "io_internal.h"
 #include "plugins.h"
+#include "text_tokens.h"
 
 namespace massprops {
 namespace {
@@ -176,8 +177,7 @@ LoadedMesh ReadWithAssimp(const std::string& path) {
   const AssimpOutput read = ReadIsolated(p, path);
   if (read.face_sizes.empty()) Fail(path, "no faces found (the file holds no surface mesh)");
   LoadedMesh out = WeldCorners(path, read.xyz, read.face_sizes, "assimp");
-  std::string ext = path.substr(path.find_last_of('.') + 1);
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = io_text::FileExtension(path);
   out.format = "assimp:" + ext;
   out.float32_coordinates = true;
   out.part_names = read.part_names;

@@ -56,12 +56,6 @@ const Plugin& LoadPlugin() {
   return plugin;
 }
 
-std::string Extension(const std::string& path) {
-  const std::size_t dot = path.find_last_of('.');
-  if (dot == std::string::npos || path.find('/', dot) != std::string::npos) return "";
-  return io_text::Lower(path.substr(dot + 1));
-}
-
 int FormatOf(const std::string& ext) {
   if (ext == "step" || ext == "stp") return kMasspropsCadStep;
   if (ext == "iges" || ext == "igs") return kMasspropsCadIges;
@@ -90,10 +84,10 @@ void SendFramed(void* context, const char* bytes, std::size_t size) {
 
 }  // namespace
 
-bool IsCadFile(const std::string& path) { return FormatOf(Extension(path)) >= 0; }
+bool IsCadFile(const std::string& path) { return FormatOf(io_text::FileExtension(path)) >= 0; }
 
 LoadedMesh ReadCadFile(const std::string& path, const CadOptions& cad) {
-  const int format = FormatOf(Extension(path));
+  const int format = FormatOf(io_text::FileExtension(path));
   const Plugin& p = LoadPlugin();
   if (p.read == nullptr) Fail(path, p.error);
   if (!(cad.deflection >= 0 && std::isfinite(cad.deflection)) ||

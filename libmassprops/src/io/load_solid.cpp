@@ -186,7 +186,7 @@ double SecondsSince(std::chrono::steady_clock::time_point t0) {
 
 // Binary STL of kStreamingThreshold triangles or more, closed: integrate the records as they lie.
 bool TryStreamedStl(SolidResult& r, const std::string& file, const LoadOptions& opt) {
-  const bool stl = io_text::Lower(file.substr(file.find_last_of('.') + 1)) == "stl";
+  const bool stl = io_text::FileExtension(file) == "stl";
   // A binary STL of kStreamingThreshold triangles is at least this big; smaller files skip the
   // streamed pass instead of integrating twice.
   std::error_code size_error;

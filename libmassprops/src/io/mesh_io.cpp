@@ -42,22 +42,20 @@ LoadedMesh ParseMeshBuffer(const std::string& name, const std::string& extension
 }
 
 bool HasOwnReader(const std::string& path) {
-  const std::size_t dot = path.find_last_of('.');
-  return dot != std::string::npos && FindReader(io_text::Lower(path.substr(dot + 1))) != nullptr;
+  const std::string ext = io_text::FileExtension(path);
+  return !ext.empty() && FindReader(ext) != nullptr;
 }
 
 bool IsMeshFile(const std::string& path) {
-  const std::size_t dot = path.find_last_of('.');
-  if (dot == std::string::npos || path.find('/', dot) != std::string::npos) return false;
-  const std::string ext = io_text::Lower(path.substr(dot + 1));
+  const std::string ext = io_text::FileExtension(path);
+  if (ext.empty()) return false;
   return FindReader(ext) != nullptr || IsCadFile(path) || AssimpCanRead(ext);
 }
 
 LoadedMesh ReadMeshFile(const std::string& path) { return ReadMeshFile(path, CadOptions{}); }
 
 LoadedMesh ReadMeshFile(const std::string& path, const CadOptions& cad) {
-  const std::size_t dot = path.find_last_of('.');
-  const std::string ext = dot == std::string::npos ? "" : io_text::Lower(path.substr(dot + 1));
+  const std::string ext = io_text::FileExtension(path);
   if (FindReader(ext)) {
     const MappedFile file(path);
     return ParseMeshBuffer(path, ext, std::string_view(reinterpret_cast<const char*>(file.data()), file.size()));

@@ -24,6 +24,14 @@ inline std::string Lower(std::string s) {
   return s;
 }
 
+/// A file's extension, lower case, without its dot ("STL" → "stl"); "" when the file name has
+/// none (a dot in a folder's name is not one). The one home of this rule for the readers.
+inline std::string FileExtension(const std::string& path) {
+  const std::size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || path.find('/', dot) != std::string::npos) return "";
+  return Lower(path.substr(dot + 1));
+}
+
 inline bool IsSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
 
 inline std::string_view NextToken(std::string_view& s) {
