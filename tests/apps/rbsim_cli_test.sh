@@ -15,6 +15,10 @@ passes=0
 check() {  # check NAME EXIT-CODE-OF-THE-CONDITION
   if [ "$2" -eq 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi
 }
+glb_json() {  # glb_json FILE.glb: the JSON chunk of a binary glTF (its header is 12 bytes, the chunk's 8)
+  python3 -c 'import struct, sys; b = open(sys.argv[1], "rb").read(); n = struct.unpack_from("<I", b, 12)[0]
+sys.stdout.write(b[20:20 + n].decode())' "$1"
+}
 
 # 1. The T-handle example, 3 s: every output, whole, with the documented columns.
 "$bin" "$data/scenes/t_handle.json" --duration 3 --out "$tmp/t" --outputs csv,jsonl,diagnostics,svg,png,glb \
@@ -66,11 +70,10 @@ grep -q "link 'base_link': visual geometry not drawn" "$tmp/arm_err"; check "a m
 rows=$(($(wc -l <"$tmp/arm/trajectory.csv") - 1))
 node "$validator/validate_glb.mjs" "$tmp/arm/animation.glb" "$((rows / 2))" 2 >"$tmp/val" 2>&1
 check "glTF validator on a robot with visuals and colliders" $?
-python3 - "$tmp/arm/animation.glb" <<'PY'
-import json, struct, sys
-b = open(sys.argv[1], "rb").read()
-n = struct.unpack_from("<I", b, 12)[0]
-doc = json.loads(b[20:20 + n])
+glb_json "$tmp/arm/animation.glb" >"$tmp/arm.json"
+python3 - "$tmp/arm.json" <<'PY'
+import json, sys
+doc = json.load(open(sys.argv[1]))
 names = [node.get("name") for node in doc["nodes"]]
 arm = names.index("arm_on_world/upper_arm")
 child = doc["nodes"][arm]["children"][0]
@@ -95,11 +98,10 @@ grep -q "contact: up to" "$tmp/spot.out"; check "contact summary line" $?
 rows=$(($(wc -l <"$tmp/spot/trajectory.csv") - 1))
 node "$validator/validate_glb.mjs" "$tmp/spot/animation.glb" "$rows" 1 >"$tmp/val3" 2>&1
 check "contact scene: glb valid, the table fixed beside the animated body" $?
-python3 - "$tmp/spot/animation.glb" <<'PY'
-import json, struct, sys
-data = open(sys.argv[1], "rb").read()
-n = struct.unpack_from("<I", data, 12)[0]
-doc = json.loads(data[20:20 + n])
+glb_json "$tmp/spot/animation.glb" >"$tmp/spot.json"
+python3 - "$tmp/spot.json" <<'PY'
+import json, sys
+doc = json.load(open(sys.argv[1]))
 names = [node.get("name") for node in doc["nodes"]]
 assert "table" in names and "spot" in names, names
 PY

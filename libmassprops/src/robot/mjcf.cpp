@@ -591,6 +591,24 @@ std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options) {
   return links;
 }
 
+// The two ends of a <contact> element (its k-th `tag`), each named by an attribute of `keys` and
+// looked up in `by_name`. @throws ElementError naming the element and the end that names `nothing`.
+template <typename T>
+std::array<T, 2> Ends(const pugi::xml_node& element, const char* tag, int k, const std::array<const char*, 2>& keys,
+                      const std::map<std::string, T>& by_name, const char* nothing) {
+  std::array<T, 2> ends{};
+  for (std::size_t e = 0; e < 2; ++e) {
+    const std::string name = element.attribute(keys[e]).value();
+    const auto it = by_name.find(name);
+    if (it == by_name.end()) {
+      throw ElementError("<contact> " + std::string(tag) + " #" + std::to_string(k) + ": " + keys[e] + "=\"" + name +
+                         "\" names " + nothing);
+    }
+    ends[e] = it->second;
+  }
+  return ends;
+}
+
 // <contact><pair geom1 geom2>s: each pair's geoms touch whatever their own bits say, as in MuJoCo.
 // Each geom2 gets a collision bit that no geom of the file uses in its conaffinity, and each geom1
 // paired with it the same bit in its contype: (g1.contype & g2.conaffinity) then holds for the
@@ -620,17 +638,8 @@ void ContactPairs(const pugi::xml_node& root, const std::vector<Link>& links, Ro
   for (pugi::xml_node contact : root.children("contact")) {
     for (pugi::xml_node pair : contact.children("pair")) {
       ++k;
-      std::array<Ref, 2> ends{};
-      for (int e = 0; e < 2; ++e) {
-        const char* key = e == 0 ? "geom1" : "geom2";
-        const std::string name = pair.attribute(key).value();
-        const auto it = geoms.find(name);
-        if (it == geoms.end()) {
-          throw ElementError("<contact> pair #" + std::to_string(k) + ": " + key + "=\"" + name +
-                             "\" names no geom of a body or worldbody plane");
-        }
-        ends[static_cast<std::size_t>(e)] = it->second;
-      }
+      const std::array<Ref, 2> ends =
+          Ends(pair, "pair", k, {"geom1", "geom2"}, geoms, "no geom of a body or worldbody plane");
       for (const char* a : {"friction", "condim", "solref", "solimp", "margin", "gap", "solreffriction"}) {
         if (pair.attribute(a)) {
           ++own_settings;
@@ -681,17 +690,7 @@ void ContactFilters(const pugi::xml_node& root, const std::vector<Link>& links, 
     int k = 0;
     for (pugi::xml_node exclude : contact.children("exclude")) {
       ++k;
-      std::array<int, 2> ends{};
-      for (int e = 0; e < 2; ++e) {
-        const char* key = e == 0 ? "body1" : "body2";
-        const std::string name = exclude.attribute(key).value();
-        const auto it = by_name.find(name);
-        if (it == by_name.end()) {
-          throw ElementError("<contact> exclude #" + std::to_string(k) + ": " + key + "=\"" + name +
-                             "\" names no body");
-        }
-        ends[static_cast<std::size_t>(e)] = it->second;
-      }
+      const std::array<int, 2> ends = Ends(exclude, "exclude", k, {"body1", "body2"}, by_name, "no body");
       if (ends[0] != ends[1]) model.excluded.emplace_back(ends[0], ends[1]);
     }
   }
