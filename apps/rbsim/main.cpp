@@ -46,6 +46,12 @@ bool ParseVec3(const std::string& text, massprops::Vector3& out) {
   return out.allFinite();
 }
 
+// Prints the warnings so far, one line each, and forgets them.
+void FlushWarnings(std::vector<std::string>& warnings) {
+  for (const auto& w : warnings) std::cerr << "warning: " << massprops::app::OneLine(w) << "\n";
+  warnings.clear();
+}
+
 // An early end of the command with its exit status, the message printed already.
 struct Exit {
   int status;
@@ -203,9 +209,7 @@ void ApplyOverrides(const Flags& f, rbsim::Scene& scene, std::vector<std::string
 // The scene the command line asks for: a scene file, a robot file, or --mesh. @throws Exit, or
 // SceneError and the others for a scene that cannot run.
 rbsim::Scene SceneOf(const Flags& f, std::vector<std::string>& warnings) {
-  const std::string extension = std::filesystem::path(f.scene_file).extension().string();
-  const bool robot_file =
-      !f.scene_file.empty() && extension != ".json" && std::filesystem::is_regular_file(f.scene_file);
+  const bool robot_file = rbsim::IsRobotFile(f.scene_file);
   if ((f.fill || f.fixed_base || !f.keyframe.empty()) && !robot_file) {
     std::cerr << "error: --fill, --fixed-base, --keyframe: for a robot file (URDF, SDFormat, MJCF), not a scene\n";
     throw Exit{massprops::app::kBadArguments};
@@ -314,10 +318,6 @@ rbsim::RunStats RunScene(const Flags& f, rbsim::Simulation& sim, rbsim::Trajecto
 
 // Builds, runs and writes a valid scene; the exit status.
 int Simulate(const Flags& f, const rbsim::Scene& scene, std::vector<std::string>& warnings) {
-  auto flush_warnings = [&warnings] {
-    for (const auto& w : warnings) std::cerr << "warning: " << massprops::app::OneLine(w) << "\n";
-    warnings.clear();
-  };
   const bool plot =
       !f.out_dir.empty() && (Wants(scene, rbsim::OutputKind::kPlotSvg) || Wants(scene, rbsim::OutputKind::kPlotPng));
   if (plot && !rbsim::HaveGnuplot()) {
@@ -330,11 +330,11 @@ int Simulate(const Flags& f, const rbsim::Scene& scene, std::vector<std::string>
   try {
     sim.emplace(rbsim::BuildSimulation(scene, warnings, f.threads));
   } catch (const std::exception& e) {
-    flush_warnings();
+    FlushWarnings(warnings);
     std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
     return 1;
   }
-  flush_warnings();
+  FlushWarnings(warnings);
   if (!f.out_dir.empty() && Wants(scene, rbsim::OutputKind::kGlb)) {
     std::int64_t triangles = 0;
     for (const auto& b : sim->bodies) triangles += b.display.F.rows();
@@ -386,12 +386,11 @@ int main(int argc, char** argv) {
     } catch (const Exit&) {
       throw;
     } catch (const std::exception& e) {
-      for (const auto& w : warnings) std::cerr << "warning: " << massprops::app::OneLine(w) << "\n";
+      FlushWarnings(warnings);
       std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
       return 1;
     }
-    for (const auto& w : warnings) std::cerr << "warning: " << massprops::app::OneLine(w) << "\n";
-    warnings.clear();
+    FlushWarnings(warnings);
     return Simulate(f, scene, warnings);
   } catch (const Exit& e) {
     return e.status;

@@ -2,7 +2,6 @@
 // scene library (scene/simulation.h) into a ContactWorld ready to step — the same bodies, joints,
 // robots (placed as rbsim places them), forces and contact as `rbsim PATH`.
 
-#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,8 +19,7 @@ namespace {
 
 // A .json file is a scene; any other regular file a robot description, on a ground, as rbsim runs one.
 scene::Scene SceneOf(const std::string& path, std::vector<std::string>& warnings) {
-  const std::string extension = std::filesystem::path(path).extension().string();
-  if (extension != ".json" && std::filesystem::is_regular_file(path)) {
+  if (scene::IsRobotFile(path)) {
     return scene::RobotScene(path, /*fill=*/false, /*fixed_base=*/false);
   }
   return scene::LoadScene(path, warnings);

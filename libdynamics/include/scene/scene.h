@@ -44,13 +44,9 @@ enum class VectorFrame { kWorld, kBody, kPrincipal };
 /// "world", "body" or "principal" (the scene's and the command line's names; checked by the caller).
 VectorFrame ParseVectorFrame(const std::string& name);
 
-/// A ground plane {x : normal·x ≤ offset}.
-struct GroundSpec {
-  Vector3 normal = Vector3::UnitZ();
-  double offset = 0;
-  dynamics::Material material;
-  dynamics::CollisionFilter filter;
-};
+/// A ground plane {x : normal·x ≤ offset}, with its material and collision bits: the contact
+/// world's own.
+using GroundSpec = dynamics::Ground;
 
 struct BodySpec {
   std::string name;
@@ -150,6 +146,9 @@ struct Scene {
   std::vector<PairMaterial> pairs;
 };
 
+/// Whether `path` names a robot description rather than a scene: a regular file whose extension
+/// is not .json (rbsim's and load_scene's one rule; the root element then says which format).
+bool IsRobotFile(const std::string& path);
 /// A robot file given on the command line: on the ground, dropped from 1 cm (or placed by the MJCF
 /// keyframe named, which also sets its joints and controls), for `duration`.
 Scene RobotScene(const std::string& path, bool fill, bool fixed_base, const std::string& keyframe = "");

@@ -446,28 +446,32 @@ Islands HoldSleeping(const StepInput& in, State& state, Scratch& s, ContactCache
   return islands;
 }
 
+namespace {
+
+// When the sweeps stop: the options, with the automatic sweep count resolved.
+SolveSettings SettingsOf(const ContactOptions& o) {
+  const int sweeps = o.max_iterations > 0 ? o.max_iterations : (o.exact ? 64 : 32);
+  return {sweeps, o.speed_tolerance, o.exact, o.tolerance};
+}
+
+}  // namespace
+
 void Solve(const StepInput& in, Islands& islands, State& state, Scratch& s, ContactCache kept, ContactStats& stats) {
   const int nb = static_cast<int>(in.bodies.size());
   s.patches = PreparePatches(s.rows, state.cache, s.vel, s.response, s.bounce_threshold);
   const double energy_before = KineticEnergy(in.bodies, s.vel);
   std::vector<int> island(in.bodies.size());
   for (int k = 0; k < nb; ++k) island[static_cast<std::size_t>(k)] = islands.Find(k);
-  const ContactOptions& o = in.options;
-  const int sweeps = o.max_iterations > 0 ? o.max_iterations : (o.exact ? 64 : 32);
-  const SolveSettings settings{sweeps, o.speed_tolerance, o.exact, o.tolerance};
-  stats.iterations = SolveImpulses(s.rows, s.patches, s.vel, s.response, SupportLevels(nb, s.rows), island, settings,
-                                   s.WorkersFor(in.threads));
+  stats.iterations = SolveImpulses(s.rows, s.patches, s.vel, s.response, SupportLevels(nb, s.rows), island,
+                                   SettingsOf(in.options), s.WorkersFor(in.threads));
   state.cache = std::move(kept);
   StoreImpulses(s.rows, s.patches, state.cache);
   stats.dissipated = energy_before - KineticEnergy(in.bodies, s.vel);
 }
 
 StepStatus Drift(const StepInput& in, const Model& model, const State& state, Scratch& s, ContactStats& stats) {
-  const ContactOptions& o = in.options;
-  const int sweeps = o.max_iterations > 0 ? o.max_iterations : (o.exact ? 64 : 32);
-  const SolveSettings settings{sweeps, o.speed_tolerance, o.exact, o.tolerance};
   const int nb = static_cast<int>(in.bodies.size());
-  const std::vector<Velocities> pseudo = PushOutVelocities(s.rows, nb, in.h, settings);
+  const std::vector<Velocities> pseudo = PushOutVelocities(s.rows, nb, in.h, SettingsOf(in.options));
   return in.jointed != nullptr
              ? DriftJointed(*in.jointed, s.rows, s.patches, pseudo, model.radii, in.h, in.bodies, stats)
              : DriftBodies(in.bodies, s.vel, pseudo, state.sleep.asleep, model.radii, in.h, stats);

@@ -94,6 +94,10 @@ std::vector<RobotSpec> ReadRobots(const json& robots, const std::string& file, c
   return out;
 }
 
+bool IsRobotFile(const std::string& path) {
+  return !path.empty() && std::filesystem::path(path).extension() != ".json" && std::filesystem::is_regular_file(path);
+}
+
 Scene RobotScene(const std::string& path, bool fill, bool fixed_base, const std::string& keyframe) {
   Scene scene;
   scene.file = std::filesystem::absolute(path).lexically_normal().string();  // its messages name the file

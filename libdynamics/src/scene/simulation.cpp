@@ -78,15 +78,7 @@ void AddRobot(Simulation& sim, const RobotSpec& spec, std::vector<std::string>& 
       sim.scene.grounds.clear();
       sim.scene.default_ground = false;
     }
-    for (const massprops::RobotGround& g : model.grounds) {
-      const dynamics::Ground from_file = dynamics::GroundOf(g);
-      GroundSpec ground;
-      ground.normal = from_file.normal;
-      ground.offset = from_file.offset;
-      ground.material = from_file.material;
-      ground.filter = from_file.filter;
-      sim.scene.grounds.push_back(ground);
-    }
+    for (const massprops::RobotGround& g : model.grounds) sim.scene.grounds.push_back(dynamics::GroundOf(g));
   }
   dynamics::RobotOptions options = spec.options;
   if (spec.material_given && model.format == massprops::RobotFormat::kMjcf) {
@@ -96,9 +88,7 @@ void AddRobot(Simulation& sim, const RobotSpec& spec, std::vector<std::string>& 
   }
   try {
     if (!spec.position_given) {  // 1 cm above the ground (a keyframe places it as the file does)
-      std::vector<dynamics::Ground> grounds;
-      for (const GroundSpec& g : sim.scene.grounds) grounds.push_back({g.normal, g.offset, g.material, g.filter});
-      options.pose = dynamics::PlaceAboveGround(model, options, grounds, dynamics::kSetDownClearance);
+      options.pose = dynamics::PlaceAboveGround(model, options, sim.scene.grounds, dynamics::kSetDownClearance);
     }
     const dynamics::RobotInWorld added = dynamics::AddRobot(sim.physics, model, options);
     std::vector<std::string> notes = added.notes;
@@ -222,7 +212,7 @@ void AddGrounds(Simulation& sim) {
   }
   for (std::size_t k = 0; k < sim.scene.grounds.size(); ++k) {  // (robot files may have brought their own)
     const GroundSpec& g = sim.scene.grounds[k];
-    sim.physics.AddGround({g.normal, g.offset, g.material, g.filter});
+    sim.physics.AddGround(g);
     const Vector3 centre = 0.5 * (lo + hi);
     const Vector3 foot = centre - g.normal * (g.normal.dot(centre) - g.offset);
     const double half = 2 * std::max((hi - lo).maxCoeff(), 0.1);
