@@ -14,8 +14,8 @@
 
 #include <unistd.h>
 
-#include "massprops/io.h"
-#include "massprops/load.h"
+#include "massprops/io/load.h"
+#include "massprops/io/mesh_io.h"
 #include "massprops/mass_properties.h"
 #include "massprops/mesh_topology.h"
 #include "massprops/solids.h"

@@ -11,7 +11,7 @@
 #include <cmath>
 
 #include "dynamics/contact.h"
-#include "massprops/io.h"
+#include "massprops/io/mesh_io.h"
 #include "massprops/mass_properties.h"
 #include "massprops/solids.h"
 

@@ -11,7 +11,7 @@
 
 #include "massprops/implicit.h"
 #include "massprops/mass_properties.h"
-#include "massprops/repair.h"
+#include "massprops/repair/repair.h"
 #include "massprops/shell.h"
 #include "massprops/solids.h"
 

@@ -17,7 +17,7 @@
 
 #include <mujoco/mujoco.h>
 
-#include "massprops/load.h"
+#include "massprops/io/load.h"
 #include "massprops/primitive.h"
 
 namespace {

@@ -12,7 +12,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "massprops/load.h"
+#include "massprops/io/load.h"
 #include "massprops/monte_carlo.h"
 
 namespace massprops::cli {

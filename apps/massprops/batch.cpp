@@ -20,8 +20,9 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.h"
-#include "massprops/io.h"
-#include "massprops/isolation.h"
+#include "massprops/io/isolation.h"
+#include "massprops/io/mesh_io.h"
+#include "massprops/parallel.h"
 #include "massprops/report/atomic_file.h"
 #include "massprops/report/format.h"
 #include "massprops/report/record.h"
@@ -257,10 +258,10 @@ int RunBatch(const BatchOptions& b) {
                          b.picture_extension);
     }
   }
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  const int jobs = b.jobs > 0 ? b.jobs : static_cast<int>(cores);
+  const int cores = massprops::ThreadCount(0);
+  const int jobs = massprops::ThreadCount(b.jobs);
   LoadOptions load = b.load;
-  if (!b.threads_given) load.num_threads = std::max(1, static_cast<int>(cores) / jobs);
+  if (!b.threads_given) load.num_threads = std::max(1, cores / jobs);
   const bool tty = !b.quiet && ::isatty(STDERR_FILENO) != 0;
   const auto t0 = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };

@@ -1,6 +1,6 @@
 #pragma once
 // `massprops batch` and `massprops merge`: many files, nothing lost. Each file is computed in its
-// own child process (massprops/isolation.h), so a crash or a hang becomes that file's record;
+// own child process (massprops/io/isolation.h), so a crash or a hang becomes that file's record;
 // records are appended one whole line at a time, in file order, so an interrupted run keeps what
 // it wrote and --resume goes on from there; --shard i/n takes a deterministic slice for job arrays,
 // and merge joins the slices, checking that no file is missing or repeated.
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "massprops/load.h"
+#include "massprops/io/load.h"
 
 namespace massprops::cli {
 

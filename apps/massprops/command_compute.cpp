@@ -3,13 +3,11 @@
 // onto the library's options and prints what massprops::report makes of the results.
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <iostream>
 #include <map>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -18,7 +16,8 @@
 #include "cli.h"
 #include "commands.h"
 #include "massprops/implicit.h"
-#include "massprops/io.h"
+#include "massprops/io/mesh_io.h"
+#include "massprops/parallel.h"
 #include "massprops/report/atomic_file.h"
 #include "massprops/report/density_map.h"
 #include "massprops/report/format.h"
@@ -142,15 +141,9 @@ std::vector<std::pair<std::string, Outcome>> ComputeAll(const Arguments& a, cons
   std::vector<std::pair<std::string, Outcome>> out;
   if (a.files.size() > 1 && LoadsSideBySide(a.files, options)) {
     std::vector<Outcome> outcomes(a.files.size());
-    std::atomic<std::size_t> next{0};
-    auto worker = [&] {
-      for (std::size_t i = next++; i < a.files.size(); i = next++) outcomes[i] = load(a.files[i], false);
-    };
-    const unsigned cores = a.threads > 0 ? static_cast<unsigned>(a.threads) : std::thread::hardware_concurrency();
-    std::vector<std::thread> pool;
-    for (unsigned t = 1; t < std::min<std::size_t>(std::max(cores, 1u), a.files.size()); ++t) pool.emplace_back(worker);
-    worker();
-    for (std::thread& t : pool) t.join();
+    massprops::ParallelForBlocks(static_cast<std::int64_t>(a.files.size()), a.threads, [&](std::int64_t i) {
+      outcomes[static_cast<std::size_t>(i)] = load(a.files[static_cast<std::size_t>(i)], false);
+    });
     for (std::size_t i = 0; i < a.files.size(); ++i) out.emplace_back(a.files[i], std::move(outcomes[i]));
   } else {
     for (const std::string& file : a.files) out.emplace_back(file, load(file, !a.quiet));

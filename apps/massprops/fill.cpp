@@ -14,7 +14,7 @@
 #include "massprops/report/atomic_file.h"
 #include "massprops/report/density_map.h"
 #include "massprops/report/format.h"
-#include "massprops/robot.h"
+#include "massprops/robot/robot.h"
 #include "massprops/text.h"
 
 namespace massprops::cli {

@@ -25,7 +25,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli.h"
-#include "massprops/robot.h"
+#include "massprops/robot/robot.h"
 #include "massprops/version.h"
 #include "outputs.h"
 #include "poses_cli.h"

@@ -17,11 +17,11 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "bodies/pose_part.h"
 #include "cli.h"
-#include "dynamics/pose_part.h"
 #include "dynamics/poses.h"
 #include "html.h"
-#include "massprops/load.h"
+#include "massprops/io/load.h"
 #include "massprops/report/atomic_file.h"
 #include "massprops/report/words.h"
 #include "massprops/wording.h"
@@ -42,12 +42,8 @@ bool ParseMaterial(const std::string& text, dynamics::Material& m, std::string& 
     why = "expected three numbers MU_S,MU_K,E (static friction, kinetic friction, restitution), got '" + text + "'";
     return false;
   }
-  if (v[0] < 0 || v[1] < 0 || v[1] > v[0]) {
-    why = "the friction coefficients must be >= 0 with kinetic <= static, got '" + text + "'";
-    return false;
-  }
-  if (v[2] < 0 || v[2] > 1) {
-    why = "the restitution lies between 0 and 1, got '" + text + "'";
+  if (const auto fault = dynamics::CheckMaterial(dynamics::Material{v[0], v[1], v[2]})) {
+    why = "the " + fault->field + " " + fault->problem + ", got '" + text + "'";
     return false;
   }
   m = dynamics::Material{v[0], v[1], v[2]};
@@ -182,7 +178,7 @@ massprops::LoadOptions PartLoadOptions(const PosesFlags& f) {
 // A picture of each pose (a large mesh drawn as its convex hull: one SVG polygon a triangle) and
 // poses.json in `out_dir`.
 void WritePoseFiles(const std::string& out_dir, const std::string& name, const massprops::TriangleMesh& file_mesh,
-                    const dp::Part& part, const dp::Estimate& estimate, const nlohmann::json& j) {
+                    const dp::Part& part, const dp::Estimate& estimate, const std::string& json) {
   std::filesystem::create_directories(out_dir);
   // A picture is one SVG polygon a triangle: a large mesh is drawn as its convex hull.
   constexpr Eigen::Index kMostTriangles = 100000;
@@ -206,7 +202,7 @@ void WritePoseFiles(const std::string& out_dir, const std::string& name, const m
     WritePosePicture(out_dir + "/pose_" + std::to_string(p + 1) + ".svg", as_hull ? drawn : file_mesh,
                      estimate.poses[p], outline, title.str());
   }
-  massprops::report::WriteFileAtomically(out_dir + "/poses.json", j.dump(2) + "\n");
+  massprops::report::WriteFileAtomically(out_dir + "/poses.json", json + "\n");
 }
 
 // The table: the part, the drops, each likely pose with its shares and intervals, the rest
@@ -336,12 +332,14 @@ int PosesMain(int argc, char** argv) {
     return 1;
   }
   const dp::Estimate& estimate = report.estimate;
-  nlohmann::json j = dynamics::PosesJson(report);
   if (!f.out_dir.empty()) {
     for (std::size_t p = 0; p < estimate.poses.size(); ++p)
-      j["poses"][p]["picture"] = "pose_" + std::to_string(p + 1) + ".svg";
+      report.pictures.push_back("pose_" + std::to_string(p + 1) + ".svg");
+  }
+  const std::string json = dynamics::PosesJson(report, 2);
+  if (!f.out_dir.empty()) {
     try {
-      WritePoseFiles(f.out_dir, name, file_mesh, part, estimate, j);
+      WritePoseFiles(f.out_dir, name, file_mesh, part, estimate, json);
     } catch (const std::exception& e) {
       std::cerr << "error: --out " << massprops::app::OneLine(f.out_dir) << ": " << massprops::app::OneLine(e.what())
                 << "\n";
@@ -349,7 +347,7 @@ int PosesMain(int argc, char** argv) {
     }
   }
   if (f.format == "json") {
-    std::cout << j.dump(2) << "\n";
+    std::cout << json << "\n";
     return 0;
   }
   if (f.format == "html") {

@@ -8,7 +8,7 @@
 #include <iostream>
 #include <stdexcept>
 
-#include "massprops/repair.h"
+#include "massprops/repair/repair.h"
 #include "massprops/report/atomic_file.h"
 #include "outputs.h"
 #include "scene/simulation.h"

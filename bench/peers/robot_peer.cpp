@@ -37,9 +37,9 @@
 
 #include <mujoco/mujoco.h>
 
+#include "bodies/robot.h"
 #include "dynamics/contact.h"
-#include "dynamics/robot.h"
-#include "massprops/robot_model.h"
+#include "massprops/robot/robot_model.h"
 #include "peer_timing.h"
 
 namespace {

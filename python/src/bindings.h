@@ -6,8 +6,8 @@
 
 #include <string>
 
-#include "massprops/io.h"
-#include "massprops/load.h"
+#include "massprops/io/load.h"
+#include "massprops/io/mesh_io.h"
 
 namespace massprops_python {
 

@@ -12,19 +12,19 @@
 #include <string>
 
 #include "bindings.h"
+#include "bodies/robot.h"
 #include "dynamics/contact.h"
 #include "dynamics/forces.h"
 #include "dynamics/rigid_body.h"
-#include "dynamics/robot.h"
 #include "dynamics/world.h"
-#include "massprops/io.h"
-#include "massprops/isolation.h"
-#include "massprops/load.h"
+#include "massprops/io/isolation.h"
+#include "massprops/io/load.h"
+#include "massprops/io/mesh_io.h"
 #include "massprops/report/format.h"
 #include "massprops/report/picture.h"
 #include "massprops/report/record.h"
-#include "massprops/robot.h"
-#include "massprops/robot_model.h"
+#include "massprops/robot/robot.h"
+#include "massprops/robot/robot_model.h"
 #include "massprops/version.h"
 
 namespace py = pybind11;
@@ -381,7 +381,7 @@ int AddJoint(dynamics::World& w, const std::string& type, int child, int parent,
   }
 }
 
-// ContactWorld.add_robot: a URDF, SDFormat or MJCF file's robot (dynamics/robot.h).
+// ContactWorld.add_robot: a URDF, SDFormat or MJCF file's robot (bodies/robot.h).
 py::dict AddRobot(dynamics::ContactWorld& w, const std::string& path, const py::handle& position,
                   const py::handle& orientation, const std::string& base, bool fill, double density,
                   const py::dict& positions, const py::dict& motors, const std::string& collision,

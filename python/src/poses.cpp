@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "bindings.h"
-#include "dynamics/pose_part.h"
+#include "bodies/pose_part.h"
 #include "dynamics/poses.h"
 
 namespace py = pybind11;
@@ -20,10 +20,11 @@ namespace {
 dynamics::Material MaterialOf(const std::vector<double>& m, const char* name) {
   if (m.size() != 3)
     throw py::value_error(std::string(name) + " must be (static_friction, kinetic_friction, restitution)");
-  if (!(m[0] >= 0 && m[1] >= 0 && m[1] <= m[0] && m[2] >= 0 && m[2] <= 1)) {
-    throw py::value_error(std::string(name) + ": friction >= 0 with kinetic <= static, restitution in [0, 1]");
+  const dynamics::Material material{m[0], m[1], m[2]};
+  if (const auto fault = dynamics::CheckMaterial(material)) {
+    throw py::value_error(std::string(name) + ": " + fault->field + " " + fault->problem);
   }
-  return dynamics::Material{m[0], m[1], m[2]};
+  return material;
 }
 
 // (the report as JSON, each drop's (pose, seconds to rest): a pose index, -1 not settled, -2 at rest
@@ -71,7 +72,7 @@ py::tuple RestingPoses(const std::string& path, std::int64_t first, std::int64_t
   });
   std::vector<std::pair<int, double>> poses;
   for (const dp::DropOutcome& d : drops) poses.emplace_back(d.pose, d.time);
-  return py::make_tuple(dynamics::PosesJson(report).dump(), poses);
+  return py::make_tuple(dynamics::PosesJson(report), poses);
 }
 
 }  // namespace

@@ -167,7 +167,7 @@ check "poses: probabilities, intervals and rest transforms consistent" $?
 test -s "$tmp/poses/pose_1.svg" && test -s "$tmp/poses/poses.json" && grep -q "<polygon" "$tmp/poses/pose_1.svg"
 check "poses --out writes pictures and poses.json" $?
 "$bin" poses "$data/meshes/t_handle.obj" --ground 0.5,0.6,0 >/dev/null 2>"$tmp/err"
-[ $? -eq 2 ] && grep -q "\-\-ground: the friction coefficients" "$tmp/err"; check "poses: bad --ground exits 2" $?
+[ $? -eq 2 ] && grep -q -- "--ground: the kinetic_friction must not exceed static_friction (0.5)" "$tmp/err"; check "poses: bad --ground exits 2" $?
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n' >"$tmp/open.obj"
 "$bin" poses "$tmp/open.obj" >/dev/null 2>"$tmp/err"
 [ $? -eq 1 ] && grep -q "open.obj" "$tmp/err" && grep -q -- "try --repair" "$tmp/err" && ! grep -q "LoadOptions" "$tmp/err"

@@ -7,9 +7,9 @@
 #include <string>
 
 #include "dynamics/world.h"
-#include "massprops/load.h"
+#include "massprops/io/load.h"
 #include "massprops/primitive.h"
-#include "massprops/robot.h"
+#include "massprops/robot/robot.h"
 #include "massprops/version.h"
 
 namespace {

@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <string>
 
-#include "massprops/load.h"
+#include "massprops/io/load.h"
 
 namespace {
 

@@ -20,7 +20,7 @@
 
 #include "dynamics/joints.h"
 #include "dynamics/world.h"
-#include "massprops/io.h"
+#include "massprops/io/mesh_io.h"
 #include "massprops/mass_properties.h"
 
 namespace {

@@ -5,15 +5,17 @@
 // holds a ball dropped into it.
 
 #include <cmath>
+#include <cstring>
 #include <functional>
 
 #include <gtest/gtest.h>
 
 #include "dynamics/contact.h"
-#include "massprops/io.h"
+#include "massprops/io/mesh_io.h"
 #include "massprops/mass_properties.h"
-#include "massprops/repair.h"
+#include "massprops/repair/repair.h"
 #include "massprops/solids.h"
+#include "mesh_field.h"
 
 namespace dynamics {
 namespace {
@@ -97,6 +99,19 @@ TEST(MeshContact, FieldDistancesAreTheMeshsOwn) {
     }
   }
   EXPECT_EQ(checked, 80);
+}
+
+// The field is built on the threads asked for (ContactWorld::set_num_threads's when the world
+// builds it), and its bits do not depend on how many there were.
+TEST(MeshContact, FieldBitsAreTheSameOnOneAndTwoThreads) {
+  const massprops::TriangleMesh m = massprops::solids::Sphere(0.1, 16);
+  const shape::Mesh mesh = MeshOf(m);
+  const shape::Mesh one = MakeMesh(mesh.vertices, mesh.triangles, 0, 1);
+  const shape::Mesh two = MakeMesh(mesh.vertices, mesh.triangles, 0, 2);
+  ASSERT_FALSE(one.field->values.empty());
+  ASSERT_EQ(one.field->values.size(), two.field->values.size());
+  EXPECT_EQ(std::memcmp(one.field->values.data(), two.field->values.data(), one.field->values.size() * sizeof(double)),
+            0);
 }
 
 TEST(MeshContact, MeshBoxSlidesDownAnInclineAtTheKineticRate) {

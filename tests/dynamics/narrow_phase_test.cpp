@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "dynamics/contact.h"
+#include "narrow_phase.h"
 
 namespace {
 
@@ -65,6 +66,16 @@ TEST(NarrowPhase, EveryPairOfKindsHasARoutine) {
       EXPECT_LT(world.world().bodies()[static_cast<std::size_t>(i)].position.x(), -0.3) << a_name << " / " << b_name;
       EXPECT_GT(world.world().bodies()[static_cast<std::size_t>(j)].position.x(), 0.3) << a_name << " / " << b_name;
     }
+  }
+}
+
+// The table itself, as ContactWorld asks it when a body is added: every kind against every kind,
+// compounds through their parts.
+TEST(NarrowPhase, TheTableAnswersForEveryPairOfKinds) {
+  const auto kinds = Kinds();
+  for (const auto& [a_name, a] : kinds) {
+    for (const auto& [b_name, b] : kinds)
+      EXPECT_TRUE(dynamics::contact::SupportsPair(a, b)) << a_name << " / " << b_name;
   }
 }
 

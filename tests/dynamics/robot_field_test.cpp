@@ -12,10 +12,10 @@
 
 #include <gtest/gtest.h>
 
-#include "dynamics/bodies.h"
+#include "bodies/bodies.h"
+#include "bodies/robot.h"
 #include "dynamics/contact.h"
-#include "dynamics/robot.h"
-#include "massprops/robot_model.h"
+#include "massprops/robot/robot_model.h"
 #include "massprops/wording.h"
 
 namespace {

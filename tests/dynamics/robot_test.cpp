@@ -11,10 +11,10 @@
 
 #include <gtest/gtest.h>
 
+#include "bodies/robot.h"
 #include "dynamics/contact.h"
-#include "dynamics/robot.h"
-#include "massprops/robot.h"
-#include "massprops/robot_model.h"
+#include "massprops/robot/robot.h"
+#include "massprops/robot/robot_model.h"
 
 namespace {
 

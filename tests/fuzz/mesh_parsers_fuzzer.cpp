@@ -11,7 +11,7 @@
 
 #include "../zip_bytes.h"
 #include "massprops/implicit.h"
-#include "massprops/io.h"
+#include "massprops/io/mesh_io.h"
 #include "massprops/mass_properties.h"
 #include "massprops/mesh_topology.h"
 #include "massprops/monte_carlo.h"

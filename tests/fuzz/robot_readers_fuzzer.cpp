@@ -12,9 +12,9 @@
 
 #include <unistd.h>
 
+#include "bodies/robot.h"
 #include "dynamics/contact.h"
-#include "dynamics/robot.h"
-#include "massprops/robot_model.h"
+#include "massprops/robot/robot_model.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const std::string path =

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "cad_reply.h"
+#include "io/cad_reply.h"
+#include "io/wire.h"
 #include "massprops/mass_properties.h"
-#include "wire.h"
 
 namespace massprops {
 namespace {

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "massprops/load.h"
+#include "massprops/io/load.h"
 #include "massprops/report/format.h"
 #include "massprops/report/picture.h"
 

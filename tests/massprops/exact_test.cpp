@@ -3,13 +3,13 @@
 // moments must lie in their enclosures (checked against long-double eigenvalues); and the default
 // path must agree with the certified one to 1e-12 on every mesh in data/ the checks accept.
 
-#include "massprops/exact.h"
+#include "massprops/repair/exact.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
 
-#include "massprops/load.h"
+#include "massprops/io/load.h"
 #include "massprops/solids.h"
 #include "test_utils.h"
 

@@ -1,7 +1,7 @@
 // Mesh files: every reader path on the meshes in data/, published values for them, both
 // integration paths agreeing on real meshes, and every kind of bad input named in the error.
 
-#include "massprops/io.h"
+#include "massprops/io/mesh_io.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "massprops/composition.h"
-#include "massprops/load.h"
+#include "massprops/io/load.h"
 #include "massprops/mass_properties.h"
 #include "massprops/mesh_topology.h"
 #include "massprops/solids.h"

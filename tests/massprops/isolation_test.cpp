@@ -2,7 +2,7 @@
 // crash, a hang or a throw still ends only the item it happened on, with the outcome a child of
 // its own would give; outputs come back whole and in order whatever the number of jobs.
 
-#include "massprops/isolation.h"
+#include "massprops/io/isolation.h"
 
 #include <csignal>
 #include <cstdlib>

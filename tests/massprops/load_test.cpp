@@ -9,7 +9,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "massprops/load.h"
+#include "massprops/io/load.h"
 #include "massprops/primitive.h"
 #include "massprops/principal_axes.h"
 #include "massprops/solids.h"

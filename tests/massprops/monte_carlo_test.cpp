@@ -12,7 +12,7 @@
 
 #include "massprops/composition.h"
 #include "massprops/implicit.h"
-#include "massprops/io.h"  // ReadSdfGridFile
+#include "massprops/io/mesh_io.h"  // ReadSdfGridFile
 #include "massprops/monte_carlo.h"
 #include "massprops/principal_axes.h"
 #include "massprops/solids.h"

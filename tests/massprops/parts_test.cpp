@@ -10,7 +10,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "massprops/load.h"
+#include "massprops/io/load.h"
 #include "test_utils.h"
 
 namespace massprops {

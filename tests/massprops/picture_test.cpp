@@ -16,7 +16,7 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
-#include "massprops/load.h"
+#include "massprops/io/load.h"
 #include "massprops/report/picture.h"
 
 namespace massprops {

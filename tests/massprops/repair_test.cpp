@@ -1,7 +1,7 @@
 // CGAL-backed repair and self-intersection checks on the broken meshes in data/ (their defects
 // and reference volumes are documented in data/README.md and the shared SOURCES.md).
 
-#include "massprops/repair.h"
+#include "massprops/repair/repair.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -11,8 +11,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "massprops/io.h"
-#include "massprops/load.h"
+#include "massprops/io/load.h"
+#include "massprops/io/mesh_io.h"
 #include "massprops/mesh_topology.h"
 #include "massprops/solids.h"
 #include "test_utils.h"

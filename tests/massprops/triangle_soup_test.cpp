@@ -12,7 +12,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "massprops/io.h"
+#include "massprops/io/mesh_io.h"
 #include "massprops/mesh_topology.h"
 #include "massprops/solids.h"
 #include "test_utils.h"

@@ -2,7 +2,7 @@
 // same vertices in the same order, whatever the thread count, for corners spread over many chunks
 // and partitions.
 
-#include "weld.h"
+#include "io/weld.h"
 
 #include <gtest/gtest.h>
 

@@ -12,9 +12,9 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
-#include "massprops/io.h"
-#include "massprops/load.h"
-#include "massprops/robot.h"
+#include "massprops/io/load.h"
+#include "massprops/io/mesh_io.h"
+#include "massprops/robot/robot.h"
 #include "test_utils.h"
 
 namespace massprops {

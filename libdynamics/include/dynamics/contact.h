@@ -35,6 +35,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <variant>
@@ -58,6 +59,17 @@ struct Material {
 /// The material of a contact between surfaces a and b: the geometric mean of each friction
 /// coefficient (the larger when both mix by maximum) and the larger restitution.
 Material CombineMaterials(const Material& a, const Material& b);
+
+/// What is wrong with a material: the field ("static_friction", "kinetic_friction",
+/// "restitution") and the problem in words, without the value ("must not exceed
+/// static_friction (0.5)", "lies between 0 and 1").
+struct MaterialFault {
+  std::string field;
+  std::string problem;
+};
+/// The one check of a material (ContactWorld, scene files, `rbsim poses` and Python ask it):
+/// finite, non-negative friction coefficients with kinetic ≤ static, and a restitution in [0, 1].
+std::optional<MaterialFault> CheckMaterial(const Material& m);
 
 namespace contact {
 struct MeshField;  // the signed distance field of a mesh collider (built once, shared)
@@ -135,9 +147,11 @@ shape::Convex ConvexOf(const massprops::PolygonMesh& hull);
 /// (MakeMesh, or the first AddBody, builds it).
 shape::Mesh MeshOf(const massprops::TriangleMesh& mesh, double cell = 0);
 
-/// A mesh collider with its field built. @throws std::invalid_argument for a mesh that is not
+/// A mesh collider with its field built, on `threads` threads (0: every core; the field's bits do
+/// not depend on it). @throws std::invalid_argument for a mesh that is not
 /// closed and consistently oriented, a bad index, a non-finite vertex or a negative cell.
-shape::Mesh MakeMesh(std::vector<Vector3> vertices, std::vector<std::array<int, 3>> triangles, double cell = 0);
+shape::Mesh MakeMesh(std::vector<Vector3> vertices, std::vector<std::array<int, 3>> triangles, double cell = 0,
+                     int threads = 0);
 
 /// What a mesh collider's field holds (for people and benchmarks).
 struct MeshFieldInfo {

@@ -1,47 +1,6 @@
 #pragma once
-// Resting poses of a part file, shared by `rbsim poses` and the Python module: the part made from
-// the pipeline's result (its mesh in metres, its convex hull, its collider) and the report of both
-// estimates as JSON (one home for the schema, README "Resting poses").
+/// @file
+/// Moved to "bodies/pose_part.h" in 0.5.0 (the folders mirror the targets); this forwarding header stays for
+/// one release and then goes.
 
-#include <cstdint>
-#include <string>
-
-#include <nlohmann/json.hpp>
-
-#include "dynamics/poses.h"
-#include "massprops/load.h"
-
-namespace dynamics {
-
-enum class PoseCollision { kHull, kMesh };
-
-/// A part file through the pipeline (LoadSolid with `load`, whole: the hull needs the mesh) as a
-/// part to drop: SI mass properties, the convex hull of its mesh (CGAL), and its collider (the
-/// hull, or the mesh as it is). The pipeline's findings are appended to `warnings` and its errors
-/// rethrown, both worded in `words` (the caller's option names). `mesh` receives the mesh in
-/// metres, file axes. @throws massprops::FileAccessError for a file that cannot be read,
-/// std::invalid_argument naming the file for a part that cannot be dropped.
-dynamics::poses::Part LoadPosePart(const std::string& path, massprops::LoadOptions load, PoseCollision collision,
-                                   const dynamics::Material& material, const massprops::Vocabulary& words,
-                                   std::vector<std::string>& warnings, massprops::TriangleMesh* mesh = nullptr);
-
-/// What a run of both estimates found.
-struct PosesReport {
-  std::string part;  ///< the file, as given
-  dynamics::poses::Part pose_part;
-  dynamics::poses::Estimate estimate;
-  dynamics::poses::DropOptions options;
-  PoseCollision collision = PoseCollision::kHull;
-  std::int64_t drops = 0;
-  dynamics::poses::Tally tally;  ///< of the drops 0 … drops − 1
-};
-
-/// {"part", "mass", "center_of_mass", "hull_faces", "drops": {...}, "poses": [{"normal",
-/// "quasi_static", "height", "transform", and with drops "drops", "drop_count",
-/// "drops_interval95", "drops_simultaneous95"}]}.
-nlohmann::json PosesJson(const PosesReport& report);
-
-/// The report's material as JSON ({"static_friction", "kinetic_friction", "restitution"}).
-nlohmann::json MaterialJson(const dynamics::Material& m);
-
-}  // namespace dynamics
+#include "bodies/pose_part.h"  // IWYU pragma: export

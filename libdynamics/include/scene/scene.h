@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "dynamics/bodies.h"
+#include "bodies/bodies.h"
+#include "bodies/robot.h"
 #include "dynamics/contact.h"
-#include "dynamics/robot.h"
 #include "dynamics/world.h"
 #include "massprops/mass_properties.h"
 #include "massprops/mass_spec.h"
@@ -33,7 +33,7 @@ class SceneError : public std::runtime_error {
 };
 
 /// Where the mass properties of a body come from, and what it collides as (the body builder's
-/// types, dynamics/bodies.h).
+/// types, bodies/bodies.h).
 using ShapeSpec = dynamics::BodyShape;
 using CollisionSpec = dynamics::CollisionSpec;
 using dynamics::CollidesAsItself;

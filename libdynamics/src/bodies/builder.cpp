@@ -3,10 +3,10 @@
 #include <cstdint>
 #include <string>
 
-#include "dynamics/bodies.h"
-#include "massprops/io.h"
-#include "massprops/load.h"
-#include "massprops/repair.h"
+#include "bodies/bodies.h"
+#include "massprops/io/load.h"
+#include "massprops/io/mesh_io.h"
+#include "massprops/repair/repair.h"
 #include "massprops/text.h"
 
 namespace dynamics {

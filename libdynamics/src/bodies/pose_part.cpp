@@ -1,11 +1,13 @@
-// Resting poses of a part file: the part, and the report as JSON (dynamics/pose_part.h).
+// Resting poses of a part file: the part, and the report as JSON (bodies/pose_part.h).
 
-#include "dynamics/pose_part.h"
+#include "bodies/pose_part.h"
 
 #include <stdexcept>
 
-#include "massprops/io.h"
-#include "massprops/repair.h"
+#include <nlohmann/json.hpp>
+
+#include "massprops/io/mesh_io.h"
+#include "massprops/repair/repair.h"
 #include "massprops/wording.h"
 
 namespace dynamics {
@@ -60,12 +62,16 @@ dp::Part LoadPosePart(const std::string& path, massprops::LoadOptions load, Pose
   return part;
 }
 
+namespace {
+
 nlohmann::json MaterialJson(const dynamics::Material& m) {
   return {
       {"static_friction", m.static_friction}, {"kinetic_friction", m.kinetic_friction}, {"restitution", m.restitution}};
 }
 
-nlohmann::json PosesJson(const PosesReport& r) {
+}  // namespace
+
+std::string PosesJson(const PosesReport& r, int indent) {
   const dp::Tally& t = r.tally;
   nlohmann::json j;
   j["part"] = r.part;
@@ -95,9 +101,10 @@ nlohmann::json PosesJson(const PosesReport& r) {
       jp["drops_interval95"] = {t.binomial[p].low, t.binomial[p].high};
       jp["drops_simultaneous95"] = {t.simultaneous[p].low, t.simultaneous[p].high};
     }
+    if (p < r.pictures.size()) jp["picture"] = r.pictures[p];
     j["poses"].push_back(jp);
   }
-  return j;
+  return j.dump(indent);
 }
 
 }  // namespace dynamics

@@ -1,7 +1,7 @@
 // Robots in a world (robot.h): links lumped by fixed joints into bodies, their colliders, and the
 // joints between the bodies.
 
-#include "dynamics/robot.h"
+#include "bodies/robot.h"
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "massprops/repair.h"
+#include "massprops/repair/repair.h"
 #include "massprops/units.h"
 
 namespace dynamics {

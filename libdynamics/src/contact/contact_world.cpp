@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "dynamics/contact.h"
+#include "massprops/text.h"
 #include "mesh_field.h"
 #include "polytope.h"
 #include "step_stages.h"
@@ -85,6 +86,18 @@ ContactWorld::~ContactWorld() = default;
 ContactWorld::ContactWorld(ContactWorld&&) noexcept = default;
 ContactWorld& ContactWorld::operator=(ContactWorld&&) noexcept = default;
 
+std::optional<MaterialFault> CheckMaterial(const Material& m) {
+  auto coefficient = [](double mu) { return std::isfinite(mu) && mu >= 0; };
+  if (!coefficient(m.static_friction)) return MaterialFault{"static_friction", "must be finite and non-negative"};
+  if (!coefficient(m.kinetic_friction)) return MaterialFault{"kinetic_friction", "must be finite and non-negative"};
+  if (m.kinetic_friction > m.static_friction) {
+    return MaterialFault{"kinetic_friction", "must not exceed static_friction (" +
+                                                 massprops::FormatDouble(m.static_friction, "%.6g") + ")"};
+  }
+  if (!(m.restitution >= 0 && m.restitution <= 1)) return MaterialFault{"restitution", "lies between 0 and 1"};
+  return std::nullopt;
+}
+
 Material CombineMaterials(const Material& a, const Material& b) {
   if (a.mix_by_maximum && b.mix_by_maximum) {
     return Material{std::max(a.static_friction, b.static_friction), std::max(a.kinetic_friction, b.kinetic_friction),
@@ -115,11 +128,8 @@ shape::Mesh MeshOf(const massprops::TriangleMesh& mesh, double cell) {
 namespace {
 
 void ValidateMaterial(const Material& m) {
-  if (!(std::isfinite(m.static_friction) && m.static_friction >= 0 && std::isfinite(m.kinetic_friction) &&
-        m.kinetic_friction >= 0 && m.kinetic_friction <= m.static_friction)) {
-    throw std::invalid_argument("friction coefficients must be finite, non-negative, and kinetic <= static");
-  }
-  if (!(m.restitution >= 0 && m.restitution <= 1)) throw std::invalid_argument("restitution must lie in [0, 1]");
+  if (const auto fault = CheckMaterial(m))
+    throw std::invalid_argument("material: " + fault->field + " " + fault->problem);
 }
 // The collider's material and, when its parts touch with their own, theirs.
 void ValidateMaterials(const Collider& c) {
@@ -129,29 +139,42 @@ void ValidateMaterials(const Collider& c) {
   }
 }
 
-}  // namespace
-
-namespace {
 // What a shape needs before it collides: a mesh collider's field, built here when the shape came
-// without it; a compound's parts' fields and polytopes.
-void PrepareShape(Collider& c) {
+// without it (on the world's threads); a compound's parts' fields and polytopes.
+void PrepareShape(Collider& c, int threads) {
   if (auto* mesh = std::get_if<shape::Mesh>(&c.shape); mesh != nullptr && mesh->field == nullptr) {
-    mesh->field = contact::BuildMeshField(*mesh);
+    mesh->field = contact::BuildMeshField(*mesh, threads);
   }
   if (auto* compound = std::get_if<shape::Compound>(&c.shape)) {
     compound->polytopes.clear();
     for (Collider& part : compound->parts) {
-      PrepareShape(part);
+      PrepareShape(part, threads);
       compound->polytopes.push_back(PolytopeOf(part.shape));
     }
   }
 }
+
+// Every pair the new shape could form has a contact routine (narrow_phase.cpp's table), or the
+// shape is refused here rather than in the middle of a run.
+void RefuseUnsupportedPairs(const contact::Model& m, const Shape& s) {
+  auto check = [&](const Shape& other, const std::string& whose) {
+    if (contact::SupportsPair(s, other)) return;
+    throw std::invalid_argument(std::string("a ") + ShapeName(s) + " cannot touch the " + ShapeName(other) + " of " +
+                                whose + ": that pair of shapes has no contact routine");
+  };
+  for (std::size_t k = 0; k < m.colliders.size(); ++k) {
+    if (m.collides[k]) check(m.colliders[k].shape, "body " + std::to_string(k));
+  }
+  for (std::size_t k = 0; k < m.statics.size(); ++k)
+    check(m.statics[k].collider.shape, "static body " + std::to_string(k));
+}
 }  // namespace
 
 int ContactWorld::AddBody(const RigidBody& body, Collider collider) {
-  PrepareShape(collider);
+  PrepareShape(collider, world_.num_threads());
   contact::ValidateShape(collider.shape);
   ValidateMaterials(collider);
+  RefuseUnsupportedPairs(*impl_, collider.shape);
   auto polytope = PolytopeOf(collider.shape);
   const int index = world_.AddBody(body);
   impl_->radii.push_back(contact::BoundingRadius(collider.shape));
@@ -175,9 +198,10 @@ int ContactWorld::AddBody(const RigidBody& body) {
 }
 
 void ContactWorld::AddStatic(Collider collider, const Matrix3& rotation, const Vector3& translation) {
-  PrepareShape(collider);
+  PrepareShape(collider, world_.num_threads());
   contact::ValidateShape(collider.shape);
   ValidateMaterials(collider);
+  RefuseUnsupportedPairs(*impl_, collider.shape);
   if (!rotation.allFinite() || std::abs(rotation.determinant() - 1) > 1e-9 ||
       !(rotation.transpose() * rotation).isApprox(Matrix3::Identity(), 1e-9) || !translation.allFinite()) {
     throw std::invalid_argument("a static body's placement needs a rotation and a finite translation");

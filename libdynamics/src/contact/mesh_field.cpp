@@ -13,11 +13,11 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
 #include "massprops/implicit.h"
 #include "massprops/mesh.h"
 #include "massprops/mesh_topology.h"
+#include "massprops/parallel.h"
 
 namespace dynamics::contact {
 namespace {
@@ -384,7 +384,7 @@ std::size_t MeshField::MemoryBytes() const {
          samples.size() * (sizeof(Vector3) + sizeof(SampleFaces)) + normals.size() * sizeof(Vector3);
 }
 
-std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh) {
+std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh, int threads) {
   const auto t0 = std::chrono::steady_clock::now();
   const massprops::TriangleMesh tm = Validated(mesh);
   auto field = std::make_shared<MeshField>();
@@ -414,9 +414,9 @@ std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh) {
   field->values.resize(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz));
   // Slices of constant z side by side: each node is computed on its own, so the values are the
   // same whatever the thread count.
-  const int threads = std::max(1, std::min<int>(static_cast<int>(std::thread::hardware_concurrency()), 8));
-  auto work = [&](int first) {
-    for (int z = first; z < nz; z += threads) {
+  massprops::ParallelForBlocks(nz, threads, [&](std::int64_t slice) {
+    const auto z = static_cast<int>(slice);
+    {
       for (int y = 0; y < ny; ++y) {
         for (int x = 0; x < nx; ++x) {
           const Vector3 p = field->origin + cell * Vector3(x, y, z);
@@ -428,11 +428,7 @@ std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh) {
         }
       }
     }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
-  work(0);
-  for (auto& t : pool) t.join();
+  });
   // Each block's least node: block b holds cells [b K, b K + K) and so nodes [b K, b K + K] (K =
   // kBlock; the last block's stop at the grid's last node).
   constexpr int K = MeshField::kBlock;
@@ -467,9 +463,10 @@ std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh) {
 
 namespace dynamics {
 
-shape::Mesh MakeMesh(std::vector<Vector3> vertices, std::vector<std::array<int, 3>> triangles, double cell) {
+shape::Mesh MakeMesh(std::vector<Vector3> vertices, std::vector<std::array<int, 3>> triangles, double cell,
+                     int threads) {
   shape::Mesh mesh{std::move(vertices), std::move(triangles), cell, nullptr};
-  mesh.field = contact::BuildMeshField(mesh);
+  mesh.field = contact::BuildMeshField(mesh, threads);
   return mesh;
 }
 

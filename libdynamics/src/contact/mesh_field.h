@@ -74,8 +74,9 @@ struct MeshField {
   std::size_t MemoryBytes() const;
 };
 
+// The field, each z-slice of nodes on its own (on `threads`: 0, every core; the same bits on any).
 // @throws std::invalid_argument for fewer than 4 triangles, a bad index, a non-finite vertex, a
 // mesh that is not closed and consistently oriented, or a cell that is not finite and positive.
-std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh);
+std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh, int threads);
 
 }  // namespace dynamics::contact

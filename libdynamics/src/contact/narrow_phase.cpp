@@ -335,127 +335,164 @@ void CollideGround(const Posed& a, const Vector3& n, double offset, const Collis
       *a.shape);
 }
 
-bool Collide(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out) {
+namespace {
+
+// The pair routines, one for each pair of kinds the table below names. Each appends a's points
+// against b with normals from b into a.
+
+// A capsule's axis in the world, end to end.
+std::pair<Vector3, Vector3> Axis(const Posed& p, double half) {
+  return {p.t - p.R.col(2) * half, p.t + p.R.col(2) * half};
+}
+
+void SphereSpherePair(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out) {
+  SphereSphere(a.t, std::get<shape::Sphere>(*a.shape).radius, b.t, std::get<shape::Sphere>(*b.shape).radius, margin, 0,
+               out);
+}
+
+void SphereBoxPair(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out) {
+  SphereBox(a.t, std::get<shape::Sphere>(*a.shape).radius, b, margin, true, out);
+}
+
+void SpherePolytopePair(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out) {
+  SpherePolytope(a.t, std::get<shape::Sphere>(*a.shape).radius, *b.polytope, b, margin, true, 0, out);
+}
+
+void SphereCapsulePair(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out) {
+  const auto& y = std::get<shape::Capsule>(*b.shape);
+  const auto [q0, q1] = Axis(b, y.half_length);
+  double s, t;
+  ClosestSegmentPoints(a.t, a.t, q0, q1, s, t);
+  SphereSphere(a.t, std::get<shape::Sphere>(*a.shape).radius, q0 + (q1 - q0) * t, y.radius, margin, 0, out);
+}
+
+// Two points when the segments lie side by side (a capsule resting along another).
+void CapsuleCapsulePair(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out) {
+  const auto& x = std::get<shape::Capsule>(*a.shape);
+  const auto& y = std::get<shape::Capsule>(*b.shape);
+  const auto [p0, p1] = Axis(a, x.half_length);
+  const auto [q0, q1] = Axis(b, y.half_length);
+  double s, t;
+  ClosestSegmentPoints(p0, p1, q0, q1, s, t);
+  SphereSphere(p0 + (p1 - p0) * s, x.radius, q0 + (q1 - q0) * t, y.radius, margin, 0, out);
+}
+
+// The two end spheres against the polytope, and a sphere wherever the axis passes closest to one
+// of the polytope's edges between its ends (a capsule lying across an edge).
+void CapsulePolytopePair(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out) {
+  const auto& x = std::get<shape::Capsule>(*a.shape);
+  const auto [p0, p1] = Axis(a, x.half_length);
+  SpherePolytope(p0, x.radius, *b.polytope, b, margin, true, 0, out);
+  SpherePolytope(p1, x.radius, *b.polytope, b, margin, true, 1, out);
+  const Polytope& poly = *b.polytope;
+  std::vector<double> taken = {0.0, 1.0};
+  for (std::size_t e = 0; e < poly.edges.size(); ++e) {
+    const Vector3 q0 = b.R * poly.vertices[static_cast<std::size_t>(poly.edges[e].first)] + b.t;
+    const Vector3 q1 = b.R * poly.vertices[static_cast<std::size_t>(poly.edges[e].second)] + b.t;
+    double s, t;
+    ClosestSegmentPoints(p0, p1, q0, q1, s, t);
+    const Vector3 on_axis = p0 + (p1 - p0) * s;
+    if ((on_axis - (q0 + (q1 - q0) * t)).norm() - x.radius >= margin) continue;
+    // Points within a hundredth of the length of one taken already add nothing.
+    if (std::any_of(taken.begin(), taken.end(), [&](double u) { return std::abs(u - s) < 1e-2; })) continue;
+    taken.push_back(s);
+    SpherePolytope(on_axis, x.radius, poly, b, margin, true, 2 + static_cast<std::uint32_t>(e), out);
+  }
+}
+
+void CylinderPolytopePair(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out) {
+  CylinderPolytope(a, *b.polytope, b, margin, out);
+}
+
+void PolytopePair(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out) {
+  PolytopePolytope(*a.polytope, a, *b.polytope, b, margin, out);
+}
+
+using PairRoutine = void (*)(const Posed&, const Posed&, double, std::vector<ContactPoint>&);
+
+// A routine made for (b, a), run on (a, b): its points' normals turned.
+template <PairRoutine routine>
+void Swapped(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out) {
+  const std::size_t before = out.size();
+  routine(b, a, margin, out);
+  for (std::size_t i = before; i < out.size(); ++i) out[i].normal = -out[i].normal;
+}
+
+// The pair table, by the kinds' indices in Shape (sphere, box, capsule, cylinder, convex, mesh);
+// a cylinder is its inscribed prism where no routine of its own applies. Compounds go part by
+// part (Collide); null: no routine (ContactWorld refuses such a pair when the body is added).
+constexpr std::size_t kKinds = std::variant_size_v<Shape> - 1;  // the compound is not a kind here
+constexpr PairRoutine kMesh = CollideWithMesh;
+constexpr PairRoutine kPairTable[kKinds][kKinds] = {
+    // sphere                       box                            capsule
+    // cylinder                      convex                         mesh
+    {SphereSpherePair, SphereBoxPair, SphereCapsulePair,  //
+     SpherePolytopePair, SpherePolytopePair, kMesh},
+    {Swapped<SphereBoxPair>, PolytopePair, Swapped<CapsulePolytopePair>,  //
+     Swapped<CylinderPolytopePair>, PolytopePair, kMesh},
+    {Swapped<SphereCapsulePair>, CapsulePolytopePair, CapsuleCapsulePair,  //
+     CapsulePolytopePair, CapsulePolytopePair, kMesh},
+    {Swapped<SpherePolytopePair>, CylinderPolytopePair, Swapped<CapsulePolytopePair>,  //
+     PolytopePair, CylinderPolytopePair, kMesh},
+    {Swapped<SpherePolytopePair>, PolytopePair, Swapped<CapsulePolytopePair>,  //
+     Swapped<CylinderPolytopePair>, PolytopePair, kMesh},
+    {kMesh, kMesh, kMesh, kMesh, kMesh, kMesh},
+};
+
+// The shape's kinds: its own, or its parts' for a compound.
+template <typename F>
+void ForEachKind(const Shape& s, F&& f) {
+  if (const auto* c = std::get_if<shape::Compound>(&s)) {
+    for (const auto& part : c->parts) ForEachKind(part.shape, f);
+    return;
+  }
+  f(s.index());
+}
+
+}  // namespace
+
+bool SupportsPair(const Shape& a, const Shape& b) {
+  bool ok = true;
+  ForEachKind(
+      a, [&](std::size_t ka) { ForEachKind(b, [&](std::size_t kb) { ok = ok && kPairTable[ka][kb] != nullptr; }); });
+  return ok;
+}
+
+void Collide(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out) {
   for (int side = 0; side < 2; ++side) {
     const Posed& whole = side == 0 ? a : b;
     const auto* c = std::get_if<shape::Compound>(whole.shape);
     if (c == nullptr) continue;
-    bool ok = true;
     for (std::size_t k = 0; k < c->parts.size(); ++k) {
       const std::size_t first = out.size();
       const Posed part = PartOf(whole, *c, k);
-      ok = (side == 0 ? Collide(part, b, margin, out) : Collide(a, part, margin, out)) && ok;
+      if (side == 0) {
+        Collide(part, b, margin, out);
+      } else {
+        Collide(a, part, margin, out);
+      }
       MarkPart(out, first, *c, k, side);
     }
-    return ok;
+    return;
   }
-  if (!a.filter.Touches(b.filter)) return true;
-  const std::size_t before = out.size();
-  auto flip = [&] {  // the points were made with b first: turn their normals
-    for (std::size_t i = before; i < out.size(); ++i) out[i].normal = -out[i].normal;
-  };
-  const Shape& sa = *a.shape;
-  const Shape& sb = *b.shape;
-  if (std::holds_alternative<shape::Mesh>(sa) || std::holds_alternative<shape::Mesh>(sb)) {
-    CollideWithMesh(a, b, margin, out);
-    return true;
+  if (!a.filter.Touches(b.filter)) return;
+  const PairRoutine routine = kPairTable[a.shape->index()][b.shape->index()];
+  if (routine == nullptr) {
+    throw std::logic_error(std::string("contact between a ") + ShapeName(*a.shape) + " and a " + ShapeName(*b.shape) +
+                           " has no routine (ContactWorld refuses it when the body is added)");
   }
-  auto segment = [](const Posed& p, double half) {
-    return std::pair<Vector3, Vector3>{p.t - p.R.col(2) * half, p.t + p.R.col(2) * half};
-  };
-  if (const auto* x = std::get_if<shape::Sphere>(&sa)) {
-    if (const auto* y = std::get_if<shape::Sphere>(&sb)) {
-      SphereSphere(a.t, x->radius, b.t, y->radius, margin, 0, out);
-      return true;
-    }
-    if (std::holds_alternative<shape::Box>(sb)) {
-      SphereBox(a.t, x->radius, b, margin, true, out);
-      return true;
-    }
-    if (b.polytope != nullptr) {
-      SpherePolytope(a.t, x->radius, *b.polytope, b, margin, true, 0, out);
-      return true;
-    }
-    if (const auto* y = std::get_if<shape::Capsule>(&sb)) {
-      const auto [q0, q1] = segment(b, y->half_length);
-      double s, t;
-      ClosestSegmentPoints(a.t, a.t, q0, q1, s, t);
-      SphereSphere(a.t, x->radius, q0 + (q1 - q0) * t, y->radius, margin, 0, out);
-      return true;
-    }
-  }
-  if (const auto* x = std::get_if<shape::Capsule>(&sa)) {
-    if (const auto* y = std::get_if<shape::Capsule>(&sb)) {
-      const auto [p0, p1] = segment(a, x->half_length);
-      const auto [q0, q1] = segment(b, y->half_length);
-      // Two points when the segments lie side by side (a capsule resting along another).
-      double s, t;
-      ClosestSegmentPoints(p0, p1, q0, q1, s, t);
-      SphereSphere(p0 + (p1 - p0) * s, x->radius, q0 + (q1 - q0) * t, y->radius, margin, 0, out);
-      return true;
-    }
-    if (std::holds_alternative<shape::Sphere>(sb)) {
-      const bool ok = Collide(b, a, margin, out);
-      flip();
-      return ok;
-    }
-    if (b.polytope != nullptr) {
-      // The two end spheres against the polytope, and a sphere wherever the axis passes closest
-      // to one of the polytope's edges between its ends (a capsule lying across an edge).
-      const auto [p0, p1] = segment(a, x->half_length);
-      SpherePolytope(p0, x->radius, *b.polytope, b, margin, true, 0, out);
-      SpherePolytope(p1, x->radius, *b.polytope, b, margin, true, 1, out);
-      const Polytope& poly = *b.polytope;
-      std::vector<double> taken = {0.0, 1.0};
-      for (std::size_t e = 0; e < poly.edges.size(); ++e) {
-        const Vector3 q0 = b.R * poly.vertices[static_cast<std::size_t>(poly.edges[e].first)] + b.t;
-        const Vector3 q1 = b.R * poly.vertices[static_cast<std::size_t>(poly.edges[e].second)] + b.t;
-        double s, t;
-        ClosestSegmentPoints(p0, p1, q0, q1, s, t);
-        const Vector3 on_axis = p0 + (p1 - p0) * s;
-        if ((on_axis - (q0 + (q1 - q0) * t)).norm() - x->radius >= margin) continue;
-        // Points within a hundredth of the length of one taken already add nothing.
-        if (std::any_of(taken.begin(), taken.end(), [&](double u) { return std::abs(u - s) < 1e-2; })) continue;
-        taken.push_back(s);
-        SpherePolytope(on_axis, x->radius, poly, b, margin, true, 2 + static_cast<std::uint32_t>(e), out);
-      }
-      return true;
-    }
-  }
-  const bool poly_a = a.polytope != nullptr, poly_b = b.polytope != nullptr;
-  const bool cylinder_a = std::holds_alternative<shape::Cylinder>(sa),
-             cylinder_b = std::holds_alternative<shape::Cylinder>(sb);
-  if (poly_a && poly_b && cylinder_a != cylinder_b) {
-    if (cylinder_a) {
-      CylinderPolytope(a, *b.polytope, b, margin, out);
-    } else {
-      CylinderPolytope(b, *a.polytope, a, margin, out);
-      flip();
-    }
-    return true;
-  }
-  if (poly_a && poly_b) {
-    PolytopePolytope(*a.polytope, a, *b.polytope, b, margin, out);
-    return true;
-  }
-  if (poly_a && (std::holds_alternative<shape::Sphere>(sb) || std::holds_alternative<shape::Capsule>(sb))) {
-    const bool ok = Collide(b, a, margin, out);
-    flip();
-    return ok;
-  }
-  return false;
+  routine(a, b, margin, out);
 }
 
-void CollidePairs(const std::vector<PairQuery>& pairs, Workers* workers, std::vector<std::vector<ContactPoint>>& found,
-                  std::vector<char>& supported) {
+void CollidePairs(const std::vector<PairQuery>& pairs, Workers* workers,
+                  std::vector<std::vector<ContactPoint>>& found) {
   found.resize(pairs.size());
   for (auto& f : found) f.clear();
-  supported.assign(pairs.size(), 1);
   constexpr std::size_t kGroup = 16;
   const std::size_t groups = (pairs.size() + kGroup - 1) / kGroup;
   auto collide = [&](std::size_t g) {
     for (std::size_t c = g * kGroup; c < std::min(pairs.size(), (g + 1) * kGroup); ++c) {
-      supported[c] = Collide(*pairs[c].a, *pairs[c].b, pairs[c].margin, found[c]);
+      Collide(*pairs[c].a, *pairs[c].b, pairs[c].margin, found[c]);
     }
   };
   if (workers != nullptr && groups > 1) {

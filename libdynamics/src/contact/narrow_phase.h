@@ -49,9 +49,12 @@ void ReduceContacts(std::vector<ContactPoint>& out, std::size_t first);
 /// filters do not touch; a compound's parts each on their own).
 void CollideGround(const Posed& a, const Vector3& n, double offset, const CollisionFilter& ground, double margin,
                    std::vector<ContactPoint>& out);
-/// Two shapes (nothing when their filters do not touch; compounds part by part, each part's
-/// features marked with its index); false when this pair of kinds has no contact routine yet.
-bool Collide(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out);
+/// Whether every kind of `a` (a compound's: its parts') has a contact routine against every kind
+/// of `b`. ContactWorld asks when a body is added and refuses a pair that has none.
+bool SupportsPair(const Shape& a, const Shape& b);
+/// Two shapes, through the table of pair routines (nothing when their filters do not touch;
+/// compounds part by part, each part's features marked with its index).
+void Collide(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out);
 
 /// A mesh collider against the half-space (its vertices), and a pair of which at least one is a
 /// mesh (mesh_contact.cpp). At most 12 points a pair: the deepest, then the farthest apart.
@@ -65,10 +68,8 @@ struct PairQuery {
   double margin = 0;
 };
 class Workers;
-/// Collide on each pair: found[c] gets pair c's points, supported[c] whether its kinds have a
-/// routine. Pairs run in groups of 16 on the workers (null: on the caller), each on its own, so
-/// the result does not depend on the thread count.
-void CollidePairs(const std::vector<PairQuery>& pairs, Workers* workers, std::vector<std::vector<ContactPoint>>& found,
-                  std::vector<char>& supported);
+/// Collide on each pair: found[c] gets pair c's points. Pairs run in groups of 16 on the workers (null: on the caller),
+/// each on its own, so the result does not depend on the thread count.
+void CollidePairs(const std::vector<PairQuery>& pairs, Workers* workers, std::vector<std::vector<ContactPoint>>& found);
 
 }  // namespace dynamics::contact

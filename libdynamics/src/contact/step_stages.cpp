@@ -345,21 +345,11 @@ StepStatus PairRows(const StepInput& in, const Model& model, const std::vector<C
          c.b >= 0 ? &s.posed[static_cast<std::size_t>(c.b)] : &statics[static_cast<std::size_t>(-1 - c.b)].posed,
          c.margin});
   }
-  CollidePairs(queries, s.WorkersFor(in.threads), s.found, s.supported);
+  CollidePairs(queries, s.WorkersFor(in.threads), s.found);
   const RowContext row_context{in.bodies, s.vel, s.before_kick, in.h, s.bounce_threshold};
   for (std::size_t c = 0; c < candidates.size(); ++c) {
     const int a = candidates[c].a, b = candidates[c].b;
     const auto ka = static_cast<std::size_t>(a);
-    if (!s.supported[c]) {
-      std::ostringstream msg;
-      msg << "contact between a " << ShapeName(*s.posed[ka].shape) << " (body " << a << ") and a "
-          << ShapeName(*queries[c].b->shape)
-          << (b >= 0 ? " (body " + std::to_string(b) + ")" : std::string(" (static)")) << " is not supported yet";
-      StepStatus failure;
-      failure.ok = false;
-      failure.message = msg.str();
-      return failure;
-    }
     const Material& mb = b >= 0 ? model.colliders[static_cast<std::size_t>(b)].material
                                 : model.statics[static_cast<std::size_t>(-1 - b)].collider.material;
     AppendRows(

@@ -16,6 +16,7 @@
 #include "broad_phase.h"
 #include "dynamics/contact.h"
 #include "islands.h"
+#include "massprops/parallel.h"
 #include "narrow_phase.h"
 #include "solver.h"
 #include "workers.h"
@@ -61,13 +62,12 @@ struct Scratch {
   std::unique_ptr<Workers> workers;              // kept between steps; null: one thread
   internal::StepScratch step_scratch;            // the forces' wrenches
   std::vector<std::vector<ContactPoint>> found;  // each candidate pair's points
-  std::vector<char> supported;                   // each candidate pair's kinds have a routine
   Coupling coupling;                             // an articulated world's bodies (a step's)
   std::vector<internal::Vector6> kicked;         // their (v, ω) after the kick
 
   // The worker pool for `threads` (null for one thread).
   Workers* WorkersFor(int threads) {
-    const int n = ThreadCount(threads);
+    const int n = massprops::ThreadCount(threads);
     if (n <= 1) return nullptr;
     if (!workers || workers->threads() != n) workers = std::make_unique<Workers>(n);
     return workers.get();

@@ -4,15 +4,12 @@
 
 #include <algorithm>
 
+#include "massprops/parallel.h"
+
 namespace dynamics::contact {
 
-int ThreadCount(int requested) {
-  static const int kCores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  return requested > 0 ? requested : kCores;
-}
-
 Workers::Workers(int threads) {
-  for (int t = 1; t < ThreadCount(threads); ++t) pool_.emplace_back([this] { Work(); });
+  for (int t = 1; t < massprops::ThreadCount(threads); ++t) pool_.emplace_back([this] { Work(); });
 }
 
 Workers::~Workers() {

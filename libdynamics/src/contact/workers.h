@@ -41,7 +41,4 @@ class Workers {
   std::exception_ptr error_;
 };
 
-/// The number of threads `requested` means (0: one per core).
-int ThreadCount(int requested);
-
 }  // namespace dynamics::contact

@@ -3,11 +3,11 @@
 // table of integrators. Adding one means one file in this folder and one row in table.cpp.
 
 #include <algorithm>
-#include <atomic>
-#include <thread>
+#include <cstdint>
 #include <vector>
 
 #include "dynamics/world.h"
+#include "massprops/parallel.h"
 
 namespace dynamics::internal {
 
@@ -67,23 +67,16 @@ class StepContext {
   template <typename Fn>
   void ForEachBody(const Fn& fn) const {
     const std::size_t n = bodies.size();
-    static const int kHardwareThreads = static_cast<int>(std::thread::hardware_concurrency());
-    const int threads = num_threads_ > 0 ? num_threads_ : kHardwareThreads;
-    if (n < 4096 || threads <= 1) {  // not worth a thread
+    if (n < 4096 || massprops::ThreadCount(num_threads_) <= 1) {  // not worth a thread
       for (std::size_t i = 0; i < n; ++i) fn(i);
       return;
     }
     constexpr std::size_t kChunk = 1024;
-    std::atomic<std::size_t> next{0};
-    auto worker = [&] {
-      for (std::size_t c = next.fetch_add(1); c * kChunk < n; c = next.fetch_add(1)) {
-        for (std::size_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) fn(i);
-      }
-    };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-    worker();
-    for (auto& t : pool) t.join();
+    massprops::ParallelForBlocks(static_cast<std::int64_t>((n + kChunk - 1) / kChunk), num_threads_,
+                                 [&](std::int64_t c) {
+                                   const auto first = static_cast<std::size_t>(c) * kChunk;
+                                   for (std::size_t i = first; i < std::min(n, first + kChunk); ++i) fn(i);
+                                 });
   }
 
  private:

@@ -2,14 +2,13 @@
 // and classified by the hull face it rests on (poses.h).
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
 #include "dynamics/forces.h"
 #include "dynamics/poses.h"
+#include "massprops/parallel.h"
 
 namespace dynamics::poses {
 namespace {
@@ -115,30 +114,13 @@ std::vector<DropOutcome> Drop(const Part& part, const Estimate& estimate, const 
   collider.translation = R_MB.transpose() * (collider.translation - c);
   collider.rotation = R_MB.transpose() * collider.rotation;
   if (auto* mesh = std::get_if<shape::Mesh>(&collider.shape); mesh != nullptr && mesh->field == nullptr) {
-    *mesh = MakeMesh(std::move(mesh->vertices), std::move(mesh->triangles), mesh->cell);  // once, shared
+    *mesh = MakeMesh(std::move(mesh->vertices), std::move(mesh->triangles), mesh->cell, options.threads);  // once
   }
 
   std::vector<DropOutcome> out(static_cast<std::size_t>(count));
-  std::atomic<std::int64_t> next{0};
-  std::exception_ptr failure;
-  std::atomic<bool> failed{false};
-  auto worker = [&] {
-    for (std::int64_t i = next.fetch_add(1); i < count && !failed.load(); i = next.fetch_add(1)) {
-      try {
-        out[static_cast<std::size_t>(i)] = RunOne(part, estimate, options, placed, collider, first + i);
-      } catch (...) {
-        if (!failed.exchange(true)) failure = std::current_exception();
-      }
-    }
-  };
-  const int hardware = static_cast<int>(std::thread::hardware_concurrency());
-  const auto threads =
-      static_cast<int>(std::min<std::int64_t>(count, options.threads > 0 ? options.threads : std::max(1, hardware)));
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
+  massprops::ParallelForBlocks(count, options.threads, [&](std::int64_t i) {
+    out[static_cast<std::size_t>(i)] = RunOne(part, estimate, options, placed, collider, first + i);
+  });
   return out;
 }
 

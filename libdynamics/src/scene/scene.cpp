@@ -14,7 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "json_fields.h"
-#include "massprops/io.h"
+#include "massprops/io/mesh_io.h"
 
 namespace scene {
 namespace {
@@ -213,11 +213,8 @@ dynamics::Material ReadMaterial(Fields& f) {
   m.static_friction = o.Number("static_friction", mu >= 0 ? mu : m.static_friction, "non-negative");
   m.kinetic_friction =
       o.Number("kinetic_friction", mu >= 0 ? mu : std::min(m.kinetic_friction, m.static_friction), "non-negative");
-  if (m.kinetic_friction > m.static_friction) {
-    o.Fail("kinetic_friction", "must not exceed static_friction (" + Num(m.static_friction) + ")");
-  }
   m.restitution = o.Number("restitution", 0.0, "non-negative");
-  if (m.restitution > 1) o.Fail("restitution", "lies between 0 and 1");
+  if (const auto fault = dynamics::CheckMaterial(m)) o.Fail(fault->field, fault->problem);
   o.Done();
   return m;
 }

@@ -10,11 +10,11 @@
 #include <map>
 #include <sstream>
 
-#include "dynamics/bodies.h"
+#include "bodies/bodies.h"
+#include "bodies/robot.h"
 #include "dynamics/forces.h"
-#include "dynamics/robot.h"
 #include "massprops/implicit.h"
-#include "massprops/load.h"
+#include "massprops/io/load.h"
 #include "massprops/primitive.h"
 #include "massprops/report/words.h"
 #include "massprops/text.h"

@@ -2,8 +2,6 @@
 // child process with a time limit: assimp can crash or loop on malformed files (Debian's 5.2 hangs
 // on a PLY header cut short and segfaults on some 3MF files), and neither may take the program down.
 
-#include <dlfcn.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
@@ -11,13 +9,13 @@
 #include <cstdlib>
 #include <cstring>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <vector>
 
-#include "io_internal.h"
-#include "plugins.h"
-#include "text_tokens.h"
+#include "io/io_internal.h"
+#include "io/plugins.h"
+#include "io/text_tokens.h"
+#include "io/wire.h"
 
 namespace massprops {
 namespace {
@@ -28,40 +26,35 @@ using ReadFn = int (*)(const char*, double**, std::size_t*, int**, int**, std::s
 using FreeFn = void (*)(void*);
 
 struct Plugin {
-  void* handle = nullptr;
   CanReadFn can_read = nullptr;
   ReadFn read = nullptr;
   FreeFn free = nullptr;
   std::string error;  // why it could not be loaded
+  bool loaded() const { return error.empty(); }
 };
 
 const Plugin& LoadPlugin() {
-  static Plugin plugin;
-  static std::once_flag once;
-  std::call_once(once, [] {
-    const char* name = "libmassprops_assimp.so";
+  static const Plugin plugin = [] {
+    Plugin p;
 #ifndef MASSPROPS_WITH_ASSIMP
-    plugin.error =
+    p.error =
         "this build of massprops was configured without assimp (MASSPROPS_WITH_ASSIMP=OFF): only "
         "OBJ, STL, PLY and OFF can be read";
-    return;
+    return p;
 #endif
-    const std::vector<std::string> candidates = plugins::ModuleCandidates(name, "MASSPROPS_ASSIMP_PLUGIN");
-    std::string tried;
-    plugin.handle = plugins::Open(candidates, tried);
-    if (plugin.handle == nullptr) {
-      plugin.error = "the assimp plugin (" + std::string(name) + ") was not found (" + tried +
-                     "; set MASSPROPS_ASSIMP_PLUGIN to its path)";
-      return;
+    const plugins::Module m =
+        plugins::LoadModule({"the assimp plugin (libmassprops_assimp.so)",
+                             plugins::ModuleCandidates("libmassprops_assimp.so", "MASSPROPS_ASSIMP_PLUGIN"),
+                             "set MASSPROPS_ASSIMP_PLUGIN to its path",
+                             {"massprops_assimp_can_read", "massprops_assimp_read_parts", "massprops_assimp_free"}});
+    p.error = m.error;
+    if (m.loaded()) {
+      p.can_read = reinterpret_cast<CanReadFn>(m.entries[0]);
+      p.read = reinterpret_cast<ReadFn>(m.entries[1]);
+      p.free = reinterpret_cast<FreeFn>(m.entries[2]);
     }
-    plugin.can_read = reinterpret_cast<CanReadFn>(::dlsym(plugin.handle, "massprops_assimp_can_read"));
-    plugin.read = reinterpret_cast<ReadFn>(::dlsym(plugin.handle, "massprops_assimp_read_parts"));
-    plugin.free = reinterpret_cast<FreeFn>(::dlsym(plugin.handle, "massprops_assimp_free"));
-    if (!plugin.can_read || !plugin.read || !plugin.free) {
-      plugin.error = "the assimp plugin lacks its entry points (a mismatched build?)";
-      plugin.handle = nullptr;
-    }
-  });
+    return p;
+  }();
   return plugin;
 }
 
@@ -69,7 +62,7 @@ const Plugin& LoadPlugin() {
 
 bool AssimpCanRead(const std::string& extension) {
   const Plugin& p = LoadPlugin();
-  return p.handle != nullptr && p.can_read(extension.c_str()) != 0;
+  return p.loaded() && p.can_read(extension.c_str()) != 0;
 }
 
 namespace {
@@ -82,8 +75,8 @@ struct AssimpOutput {
   std::vector<std::string> part_names;
 };
 
-// The child's work: reads the file through the plugin and returns [status, message | corners,
-// xyz, faces, sizes] for the parent, in this process's own layout.
+// The child's work: reads the file through the plugin and returns, in wire.h's layout, its status
+// and then the message or the corners (xyz), faces (sizes, parts) and part names.
 std::string ReadInChild(const Plugin& p, const std::string& path) {
   double* xyz = nullptr;
   int* sizes = nullptr;
@@ -91,27 +84,21 @@ std::string ReadInChild(const Plugin& p, const std::string& path) {
   char* names = nullptr;
   std::size_t corners = 0, faces = 0, names_size = 0;
   char error[512] = {};
-  const std::int64_t status =
+  const int status =
       p.read(path.c_str(), &xyz, &corners, &sizes, &parts, &faces, &names, &names_size, error, sizeof error);
-  std::string out;
-  auto put = [&out](const void* data, std::size_t n) { out.append(static_cast<const char*>(data), n); };
-  put(&status, sizeof status);
+  wire::Writer w;
+  w.U64(status != 0 ? 1 : 0);
   if (status != 0) {
-    const std::uint64_t n = std::strlen(error);
-    put(&n, sizeof n);
-    put(error, n);
-  } else {
-    const std::uint64_t c = corners, f = faces;
-    put(&c, sizeof c);
-    put(xyz, 3 * corners * sizeof(double));
-    put(&f, sizeof f);
-    put(sizes, faces * sizeof(int));
-    put(parts, faces * sizeof(int));
-    const std::uint64_t n = names_size;
-    put(&n, sizeof n);
-    put(names, names_size);
+    w.Str(error);
+    return std::move(w.bytes());
   }
-  return out;
+  w.U64(corners);
+  w.F64s(xyz, 3 * corners);
+  w.U64(faces);
+  w.I32s(sizes, faces);
+  w.I32s(parts, faces);
+  w.Str(std::string_view(names, names_size));
+  return std::move(w.bytes());
 }
 
 // Runs the plugin in a child process, so that a crash or a hang inside assimp becomes this file's
@@ -122,39 +109,21 @@ AssimpOutput ReadIsolated(const Plugin& p, const std::string& path) {
   const std::string data =
       plugins::ReadIsolated(path, "assimp", plugins::TimeLimitSeconds(path, "MASSPROPS_ASSIMP_TIMEOUT", 10.0, 1.0),
                             "MASSPROPS_ASSIMP_TIMEOUT", "MASSPROPS_ASSIMP_FAULT", [&] { return ReadInChild(p, path); });
-  // Decode: the child wrote it, in this process's own layout.
-  std::size_t at = 0;
-  auto take = [&](void* dest, std::size_t n) {
-    if (data.size() - at < n) Fail(path, "the assimp reader process sent a truncated result");
-    std::memcpy(dest, data.data() + at, n);
-    at += n;
-  };
-  std::int64_t read_status = 0;
-  take(&read_status, sizeof read_status);
-  if (read_status != 0) {
-    std::uint64_t n = 0;
-    take(&n, sizeof n);
-    std::string message(n, '\0');
-    take(message.data(), n);
-    Fail(path, message);
-  }
   AssimpOutput out;
-  std::uint64_t corners = 0, faces = 0;
-  take(&corners, sizeof corners);
-  if (corners > data.size() / (3 * sizeof(double))) Fail(path, "the assimp reader process sent a truncated result");
-  out.xyz.resize(3 * corners);
-  take(out.xyz.data(), out.xyz.size() * sizeof(double));
-  take(&faces, sizeof faces);
-  if (faces > data.size() / sizeof(int)) Fail(path, "the assimp reader process sent a truncated result");
-  out.face_sizes.resize(faces);
-  take(out.face_sizes.data(), faces * sizeof(int));
-  out.face_parts.resize(faces);
-  take(out.face_parts.data(), faces * sizeof(int));
-  std::uint64_t names_size = 0;
-  take(&names_size, sizeof names_size);
-  if (names_size > data.size()) Fail(path, "the assimp reader process sent a truncated result");
-  std::string names(names_size, '\0');
-  take(names.data(), names_size);
+  std::string names;
+  try {
+    wire::Reader r(data);
+    if (r.U64() != 0) Fail(path, r.Str());
+    const std::uint64_t corners = r.U64();
+    if (corners > r.Left() / 3) throw wire::Truncated();
+    r.F64s(3 * corners, out.xyz);
+    const std::uint64_t faces = r.U64();
+    r.I32s(faces, out.face_sizes);
+    r.I32s(faces, out.face_parts);
+    names = r.Str();
+  } catch (const wire::Truncated&) {
+    Fail(path, "the assimp reader process sent a truncated result");
+  }
   for (std::size_t at_name = 0; at_name < names.size();) {
     const std::size_t end = names.find('\0', at_name);
     if (end == std::string::npos) break;
@@ -173,7 +142,7 @@ AssimpOutput ReadIsolated(const Plugin& p, const std::string& path) {
 
 LoadedMesh ReadWithAssimp(const std::string& path) {
   const Plugin& p = LoadPlugin();
-  if (p.handle == nullptr) Fail(path, p.error);
+  if (!p.loaded()) Fail(path, p.error);
   const AssimpOutput read = ReadIsolated(p, path);
   if (read.face_sizes.empty()) Fail(path, "no faces found (the file holds no surface mesh)");
   LoadedMesh out = WeldCorners(path, read.xyz, read.face_sizes, "assimp");
@@ -199,7 +168,7 @@ LoadedMesh ReadMeshFileWithAssimp(const std::string& path) { return ReadWithAssi
 
 std::string AssimpPluginStatus() {
   const Plugin& p = LoadPlugin();
-  return p.handle != nullptr ? "" : p.error;
+  return p.error;
 }
 
 }  // namespace massprops

@@ -2,23 +2,21 @@
 // BREP files through it in a child process with a time limit: OpenCASCADE can loop or crash on a
 // malformed file, and neither may take the program (or its other files) down.
 
-#include <dlfcn.h>
 #include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <mutex>
 #include <string>
 #include <vector>
 
-#include "cad/plugin_abi.h"
-#include "cad_reply.h"
-#include "io_internal.h"
-#include "plugins.h"
-#include "text_tokens.h"
-#include "wire.h"
+#include "io/cad/plugin_abi.h"
+#include "io/cad_reply.h"
+#include "io/io_internal.h"
+#include "io/plugins.h"
+#include "io/text_tokens.h"
+#include "io/wire.h"
 
 namespace massprops {
 namespace {
@@ -29,30 +27,24 @@ struct Plugin {
 };
 
 const Plugin& LoadPlugin() {
-  static Plugin plugin;
-  static std::once_flag once;
-  std::call_once(once, [] {
+  static const Plugin plugin = [] {
+    Plugin p;
 #ifndef MASSPROPS_WITH_CAD
-    plugin.error =
+    p.error =
         "this build of massprops was configured without OpenCASCADE (MASSPROPS_WITH_CAD=OFF, or its packages "
         "libocct-data-exchange-dev, libocct-modeling-algorithms-dev and libocct-ocaf-dev were missing), so STEP, "
         "IGES and BREP files cannot be read; export the part as STL or OBJ, or rebuild with OpenCASCADE";
-    return;
+    return p;
 #endif
-    const std::string name = "libmassprops_cad.so";
-    std::string tried;
-    void* handle = plugins::Open(plugins::ModuleCandidates(name, "MASSPROPS_CAD_PLUGIN"), tried);
-    if (handle == nullptr) {
-      plugin.error = "the CAD plugin (" + name + ", OpenCASCADE) was not found (" + tried +
-                     "; set MASSPROPS_CAD_PLUGIN to its path)";
-      return;
-    }
-    plugin.read = reinterpret_cast<MasspropsCadReadFn>(::dlsym(handle, "massprops_cad_read"));
-    if (!plugin.read) {
-      plugin.error = "the CAD plugin lacks its entry points (a mismatched build?)";
-      plugin.read = nullptr;
-    }
-  });
+    const plugins::Module m =
+        plugins::LoadModule({"the CAD plugin (libmassprops_cad.so, OpenCASCADE)",
+                             plugins::ModuleCandidates("libmassprops_cad.so", "MASSPROPS_CAD_PLUGIN"),
+                             "set MASSPROPS_CAD_PLUGIN to its path",
+                             {"massprops_cad_read"}});
+    p.error = m.error;
+    if (m.loaded()) p.read = reinterpret_cast<MasspropsCadReadFn>(m.entries[0]);
+    return p;
+  }();
   return plugin;
 }
 

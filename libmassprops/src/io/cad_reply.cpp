@@ -1,14 +1,14 @@
 // Decodes the CAD reader's reply (cad_reply.h): the result's parts, units and meshes, then the
 // interference report.
 
-#include "cad_reply.h"
+#include "io/cad_reply.h"
 
 #include <cmath>
 #include <vector>
 
-#include "io_internal.h"
-#include "text_tokens.h"
-#include "wire.h"
+#include "io/io_internal.h"
+#include "io/text_tokens.h"
+#include "io/wire.h"
 
 namespace massprops::internal {
 namespace {

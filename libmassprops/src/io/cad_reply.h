@@ -11,7 +11,7 @@
 #include <string>
 #include <string_view>
 
-#include "massprops/io.h"
+#include "massprops/io/mesh_io.h"
 
 namespace massprops::internal {
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <string_view>
 
-#include "io_internal.h"
-#include "zip.h"
+#include "io/io_internal.h"
+#include "io/zip.h"
 
 namespace massprops {
 namespace {

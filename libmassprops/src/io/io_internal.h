@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "massprops/io.h"
+#include "massprops/io/mesh_io.h"
 
 namespace massprops {
 

@@ -9,7 +9,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "io_internal.h"
+#include "io/io_internal.h"
 
 namespace massprops {
 

@@ -4,8 +4,8 @@
 #include <string>
 #include <string_view>
 
-#include "io_internal.h"
-#include "text_tokens.h"
+#include "io/io_internal.h"
+#include "io/text_tokens.h"
 
 namespace massprops {
 namespace {

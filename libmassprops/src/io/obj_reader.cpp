@@ -14,9 +14,9 @@
 #include <unordered_map>
 #include <vector>
 
-#include "../parallel.h"
-#include "io_internal.h"
-#include "text_tokens.h"
+#include "io/io_internal.h"
+#include "io/text_tokens.h"
+#include "massprops/parallel.h"
 
 namespace massprops {
 namespace {
@@ -266,8 +266,8 @@ LoadedMesh ParseObj(const std::string& path, std::string_view data) {
     chunks.emplace_back().text = data.substr(at, end - at);
     at = end;
   }
-  internal::ParallelForBlocks(static_cast<std::int64_t>(chunks.size()), 0,
-                              [&](std::int64_t b) { ParseChunk(chunks[static_cast<std::size_t>(b)]); });
+  ParallelForBlocks(static_cast<std::int64_t>(chunks.size()), 0,
+                    [&](std::int64_t b) { ParseChunk(chunks[static_cast<std::size_t>(b)]); });
 
   // Resolve the indices: each chunk's vertices follow those of the chunks before it.
   std::vector<std::int64_t> vert_base(chunks.size() + 1, 0), index_base(chunks.size() + 1, 0),
@@ -291,7 +291,7 @@ LoadedMesh ParseObj(const std::string& path, std::string_view data) {
   mesh.offsets[0] = 0;
   std::vector<std::size_t> range_error_line(chunks.size(), 0);
   std::vector<std::string> range_error(chunks.size());
-  internal::ParallelForBlocks(static_cast<std::int64_t>(chunks.size()), 0, [&](std::int64_t bb) {
+  ParallelForBlocks(static_cast<std::int64_t>(chunks.size()), 0, [&](std::int64_t bb) {
     const auto b = static_cast<std::size_t>(bb);
     const Chunk& c = chunks[b];
     std::size_t at = static_cast<std::size_t>(index_base[b]);
@@ -323,7 +323,7 @@ LoadedMesh ParseObj(const std::string& path, std::string_view data) {
   if (vert_base.back() == 0 || face_base.back() == 0) Fail(path, "no faces found in the OBJ file");
   AssignParts(chunks, face_base, out);
   mesh.V.resize(vert_base.back(), 3);
-  internal::ParallelForBlocks(static_cast<std::int64_t>(chunks.size()), 0, [&](std::int64_t bb) {
+  ParallelForBlocks(static_cast<std::int64_t>(chunks.size()), 0, [&](std::int64_t bb) {
     const auto b = static_cast<std::size_t>(bb);
     const std::vector<double>& v = chunks[b].verts;
     std::copy(v.begin(), v.end(), mesh.V.data() + 3 * vert_base[b]);

@@ -6,8 +6,8 @@
 #include <string_view>
 #include <vector>
 
-#include "io_internal.h"
-#include "text_tokens.h"
+#include "io/io_internal.h"
+#include "io/text_tokens.h"
 
 namespace massprops {
 

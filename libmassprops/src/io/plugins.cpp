@@ -1,6 +1,6 @@
 // The definitions of plugins.h: the one way massprops::io reaches code it does not link.
 
-#include "plugins.h"
+#include "io/plugins.h"
 
 #include <dlfcn.h>
 #include <signal.h>
@@ -11,8 +11,8 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "io_internal.h"
-#include "massprops/isolation.h"
+#include "io/io_internal.h"
+#include "massprops/io/isolation.h"
 
 namespace massprops::plugins {
 
@@ -35,6 +35,29 @@ void* Open(const std::vector<std::string>& candidates, std::string& error) {
   }
   error = "tried " + tried;
   return nullptr;
+}
+
+Module LoadModule(const ModuleSpec& spec) {
+  Module m;
+  auto resolve = [&](void* handle) {
+    m.entries.clear();
+    for (const char* name : spec.entries) {
+      void* entry = ::dlsym(handle, name);
+      if (entry == nullptr) return false;
+      m.entries.push_back(entry);
+    }
+    return true;
+  };
+  if (spec.program_first && resolve(RTLD_DEFAULT)) return m;
+  std::string tried;
+  void* handle = Open(spec.candidates, tried);
+  if (handle == nullptr) {
+    m.error = spec.what + " was not found (" + tried + "; " + spec.advice + ")";
+  } else if (!resolve(handle)) {
+    m.error = spec.what + " lacks its entry points (a mismatched build?)";
+  }
+  if (!m.error.empty()) m.entries.clear();
+  return m;
 }
 
 std::vector<std::string> ModuleCandidates(const std::string& name, const char* env_var) {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "massprops/isolation.h"
+#include "massprops/io/isolation.h"
 
 namespace massprops::plugins {
 
@@ -19,6 +19,27 @@ std::string HomeDir();
 /// libraries then bind only the functions a read calls: about 50 ms less per process). Null, with
 /// `error` saying what was tried, when none does.
 void* Open(const std::vector<std::string>& candidates, std::string& error);
+
+/// A module to load: what it is (for messages), where to look, and the entry points it must have.
+struct ModuleSpec {
+  std::string what;                     ///< "the assimp plugin (libmassprops_assimp.so)"
+  std::vector<std::string> candidates;  ///< where to look, in order (ModuleCandidates)
+  std::string advice;                   ///< how a user points at it: "set MASSPROPS_ASSIMP_PLUGIN to its path"
+  std::vector<const char*> entries;     ///< its entry points, every one required
+  bool program_first = false;           ///< look in the program (and what it links) before any file
+};
+
+/// A loaded module's entry points (in the order asked), or why it could not be loaded.
+struct Module {
+  std::vector<void*> entries;
+  std::string error;  ///< empty when loaded
+  bool loaded() const { return error.empty(); }
+};
+
+/// The one loader of modules: the program itself (when `program_first`), then the first
+/// candidate that opens; every entry point resolved, or an error naming what was tried. Callers
+/// keep the answer in a function-local static, so that each module is loaded once per process.
+Module LoadModule(const ModuleSpec& spec);
 
 /// Where a reader module `name` (libmassprops_assimp.so, ...) is looked for, in order: the path in
 /// the environment variable `env_var`, beside the library (lib/massprops/), the install layout seen

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "massprops/io.h"
+#include "massprops/io/mesh_io.h"
 
 namespace massprops {
 

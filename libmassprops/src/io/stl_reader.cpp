@@ -12,10 +12,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "io_internal.h"
+#include "io/io_internal.h"
+#include "io/text_tokens.h"
+#include "io/weld.h"
 #include "massprops/triangle_soup.h"
-#include "text_tokens.h"
-#include "weld.h"
 
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
 #error "the binary STL readers assume a little-endian host (STL stores little-endian floats)"

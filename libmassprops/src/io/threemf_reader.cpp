@@ -13,8 +13,8 @@
 #include <string_view>
 #include <vector>
 
-#include "io_internal.h"
-#include "zip.h"
+#include "io/io_internal.h"
+#include "io/zip.h"
 
 namespace massprops {
 namespace {

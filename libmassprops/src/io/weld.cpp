@@ -1,6 +1,6 @@
 // The definitions of weld.h: the weld (internal).
 
-#include "weld.h"
+#include "io/weld.h"
 
 namespace massprops {
 

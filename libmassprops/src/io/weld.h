@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
-#include "../parallel.h"
-#include "io_internal.h"
+#include "io/io_internal.h"
+#include "massprops/parallel.h"
 
 namespace massprops::weld {
 
@@ -125,7 +125,7 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
   std::vector<std::vector<std::uint64_t>> chunk_hashes(chunks);
   std::vector<std::vector<std::uint32_t>> chunk_first(chunks);
   std::vector<std::size_t> bad(chunks, n);
-  internal::ParallelForBlocks(static_cast<std::int64_t>(chunks), num_threads, [&](std::int64_t bb) {
+  ParallelForBlocks(static_cast<std::int64_t>(chunks), num_threads, [&](std::int64_t bb) {
     const auto b = static_cast<std::size_t>(bb);
     const std::size_t lo = b * kChunk, hi = std::min(n, lo + kChunk);
     detail::PositionTable table((hi - lo) / 4);
@@ -184,7 +184,7 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
   std::vector<std::uint32_t> bucket(entries);
   std::vector<PositionKey> bucket_key(entries);
   std::vector<std::uint32_t> bucket_first(entries);
-  internal::ParallelForBlocks(static_cast<std::int64_t>(chunks), num_threads, [&](std::int64_t bb) {
+  ParallelForBlocks(static_cast<std::int64_t>(chunks), num_threads, [&](std::int64_t bb) {
     const auto b = static_cast<std::size_t>(bb);  // each chunk writes its own slots
     std::size_t* cur = cursor.data() + b * parts;
     for (std::size_t e = 0; e < chunk_hashes[b].size(); ++e) {
@@ -198,7 +198,7 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
   // 3. Weld each partition's entries: its vertices, each with its first corner.
   std::vector<std::uint32_t> entry_vertex(entries);  // partition-local for now
   std::vector<std::vector<std::uint32_t>> firsts(parts);
-  internal::ParallelForBlocks(static_cast<std::int64_t>(parts), num_threads, [&](std::int64_t pb) {
+  ParallelForBlocks(static_cast<std::int64_t>(parts), num_threads, [&](std::int64_t pb) {
     const auto p = static_cast<std::size_t>(pb);
     detail::PositionTable table((begin[p + 1] - begin[p]) / 2);
     for (std::size_t i = begin[p]; i < begin[p + 1]; ++i) {
@@ -227,7 +227,7 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
     return rank_before[c >> 6] + static_cast<std::uint32_t>(__builtin_popcountll(below));
   };
   g.first_corner.resize(vertices);
-  internal::ParallelForBlocks(static_cast<std::int64_t>(parts), num_threads, [&](std::int64_t pb) {
+  ParallelForBlocks(static_cast<std::int64_t>(parts), num_threads, [&](std::int64_t pb) {
     const auto p = static_cast<std::size_t>(pb);
     std::vector<std::uint32_t> global(firsts[p].size());
     for (std::size_t v = 0; v < global.size(); ++v) {
@@ -239,7 +239,7 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
 
   // 5. Each corner's vertex, through its chunk's entry.
   g.vertex_of.resize(n);
-  internal::ParallelForBlocks(static_cast<std::int64_t>(chunks), num_threads, [&](std::int64_t bb) {
+  ParallelForBlocks(static_cast<std::int64_t>(chunks), num_threads, [&](std::int64_t bb) {
     const auto b = static_cast<std::size_t>(bb);
     const std::size_t lo = b * kChunk, hi = std::min(n, lo + kChunk);
     const std::uint32_t* ev = entry_vertex.data() + entry_base[b];

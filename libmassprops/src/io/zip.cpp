@@ -1,6 +1,6 @@
 // The definitions of zip.h: reading entries of a zip package held in memory (3MF, zipped AMF).
 
-#include "zip.h"
+#include "io/zip.h"
 
 #include <zlib.h>
 

@@ -10,9 +10,9 @@
 #include <stdexcept>
 
 #include "massprops/composition.h"
-#include "massprops/robot.h"
+#include "massprops/robot/robot.h"
 #include "massprops/text.h"
-#include "robot_internal.h"
+#include "robot/robot_internal.h"
 
 namespace massprops {
 

@@ -22,7 +22,7 @@
 #include <Eigen/Geometry>
 
 #include "massprops/export.h"
-#include "robot_internal.h"
+#include "robot/robot_internal.h"
 
 namespace massprops::robot {
 namespace {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "robot_internal.h"
+#include "robot/robot_internal.h"
 
 namespace massprops {
 

@@ -11,8 +11,8 @@
 #include <pugixml.hpp>
 
 #include "massprops/primitive.h"
-#include "massprops/robot.h"
-#include "massprops/robot_model.h"
+#include "massprops/robot/robot.h"
+#include "massprops/robot/robot_model.h"
 
 namespace massprops::robot {
 

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "massprops/export.h"
-#include "robot_internal.h"
+#include "robot/robot_internal.h"
 
 namespace massprops::robot {
 namespace {

@@ -6,7 +6,7 @@
 #include <map>
 
 #include "massprops/export.h"
-#include "robot_internal.h"
+#include "robot/robot_internal.h"
 
 namespace massprops::robot {
 namespace {

@@ -12,7 +12,7 @@
 
 #include <Eigen/Geometry>
 
-#include "robot_internal.h"
+#include "robot/robot_internal.h"
 
 namespace massprops::robot {
 

@@ -1,5 +1,5 @@
 #pragma once
-// massprops' output formats: each turns pipeline results (massprops/load.h) into text, and
+// massprops' output formats: each turns pipeline results (massprops/io/load.h) into text, and
 // computes nothing. One file per format; the Python module prints its to_dict() through the same
 // JSON formatter, so the schema has one home.
 
@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "massprops/load.h"
+#include "massprops/io/load.h"
 #include "massprops/principal_axes.h"
 #include "massprops/report/words.h"
-#include "massprops/robot.h"
+#include "massprops/robot/robot.h"
 #include "massprops/units.h"
 
 namespace massprops::report {

@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "massprops/load.h"
+#include "massprops/io/load.h"
 #include "massprops/units.h"
 
 namespace massprops::report {

@@ -6,8 +6,8 @@
 #include <cstddef>
 #include <string>
 
-#include "massprops/isolation.h"
-#include "massprops/load.h"
+#include "massprops/io/isolation.h"
+#include "massprops/io/load.h"
 
 namespace massprops::report {
 

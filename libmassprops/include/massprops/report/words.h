@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "massprops/load.h"
+#include "massprops/io/load.h"
 #include "massprops/wording.h"
 
 namespace massprops::report {

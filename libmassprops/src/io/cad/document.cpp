@@ -44,7 +44,7 @@
 #include <XCAFDoc_ShapeTool.hxx>
 #include <XCAFDoc_Volume.hxx>
 
-#include "occ.h"
+#include "io/cad/occ.h"
 
 namespace massprops::cad {
 namespace {

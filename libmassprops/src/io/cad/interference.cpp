@@ -12,7 +12,7 @@
 #include <GProp_GProps.hxx>
 #include <Standard_Failure.hxx>
 
-#include "occ.h"
+#include "io/cad/occ.h"
 
 namespace massprops::cad {
 

@@ -11,7 +11,7 @@
 #include <gp_Pnt.hxx>
 #include <gp_Trsf.hxx>
 
-#include "plugin_abi.h"
+#include "io/cad/plugin_abi.h"
 
 namespace massprops::cad {
 

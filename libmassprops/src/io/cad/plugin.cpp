@@ -40,9 +40,9 @@
 #include <Standard_Failure.hxx>
 #include <TopExp_Explorer.hxx>
 
-#include "../../parallel.h"
-#include "../wire.h"
-#include "occ.h"
+#include "io/cad/occ.h"
+#include "io/wire.h"
+#include "massprops/parallel.h"
 
 namespace massprops::cad {
 namespace {
@@ -95,7 +95,7 @@ Prototype MakePrototype(const TopoDS_Shape& shape, const MasspropsCadOptions& o,
   }
   // The integral reads the surfaces, the mesher writes triangulations: in parallel they run side
   // by side (OpenCASCADE's B-spline evaluation keeps no cache in the shared geometry).
-  internal::ParallelForBlocks(p.set.count > 0 ? 2 : 1, parallel ? 2 : 1, [&](std::int64_t task) {
+  ParallelForBlocks(p.set.count > 0 ? 2 : 1, parallel ? 2 : 1, [&](std::int64_t task) {
     if (task == 0) {
       p.mesh = Tessellate(geometry, p.deflection, o.angular_deflection, parallel);
     } else {
@@ -206,7 +206,7 @@ void Read(const char* path, const MasspropsCadOptions& o, const Sender& send) {
     }
     made.resize(first_use.size());
     // Tasks in order, the lowest failing one's exception rethrown: the same message every run.
-    internal::ParallelForBlocks(static_cast<std::int64_t>(tasks.size()), o.threads, [&](std::int64_t t) {
+    ParallelForBlocks(static_cast<std::int64_t>(tasks.size()), o.threads, [&](std::int64_t t) {
       for (std::size_t k : tasks[static_cast<std::size_t>(t)]) {
         made[k] = MakePrototype(first_use[k].first->shape, o, d.mm_per_unit, parallel);
       }

@@ -20,7 +20,7 @@
 #include <TopoDS_Shell.hxx>
 #include <TopoDS_Solid.hxx>
 
-#include "occ.h"
+#include "io/cad/occ.h"
 
 namespace massprops::cad {
 namespace {

@@ -21,7 +21,7 @@
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Vertex.hxx>
 
-#include "occ.h"
+#include "io/cad/occ.h"
 
 namespace massprops::cad {
 namespace {

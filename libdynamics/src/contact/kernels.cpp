@@ -1,0 +1,305 @@
+// The Gauss–Seidel kernels of the velocity solve: a row's normal update, a patch's normals as one
+// block, its friction (Coulomb's cone with torsion), a sweep, and shock propagation
+// (solver_internal.h).
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "../integrators/integrator.h"
+#include "solver_internal.h"
+#include "workers.h"
+
+namespace dynamics::contact {
+namespace {
+
+// One Gauss–Seidel update of a row's normal impulse: the least that keeps its normal velocity
+// at its target.
+void UpdateNormal(Row& r, std::vector<Velocities>& vel, int frozen, double mass_n, Progress& progress) {
+  const double vn = NormalSpeed(vel, r);
+  const double ln = std::max(r.lambda_n + mass_n * (r.target - vn), 0.0);
+  const double dn = ln - r.lambda_n;
+  r.lambda_n = ln;
+  ApplyNormal(vel, r, dn, frozen);
+  progress.change = std::max(progress.change, std::abs(dn));
+  progress.scale = std::max(progress.scale, ln);
+  progress.speed = std::max(progress.speed, std::abs(dn) / mass_n);
+}
+
+// The impulse nearest `target` in the metric of the response K (the one that leaves the least
+// kinetic energy) within the ball |λ| ≤ bound, over the first `dim` components: Coulomb's
+// maximal dissipation, the friction then opposing the patch's sliding at the end of the update.
+// On the ball's surface λ(ν) = (K + ν E)⁻¹ K target with ν ≥ 0 such that |λ| = bound (a
+// trust-region step: Newton on 1/|λ(ν)| − 1/bound, which is nearly linear in ν).
+Vector3 ProjectOntoBall(const Matrix3& K, const Vector3& target, double bound, int dim, double& nu_guess) {
+  if (!(bound > 0)) return Vector3::Zero();
+  Matrix3 Kd = K;
+  if (dim == 2) {
+    Kd.row(2).setZero();
+    Kd.col(2).setZero();
+    Kd(2, 2) = 1;
+  }
+  const Vector3 Kt = Kd * target;
+  // x(ν) = (K + ν E)⁻¹ K t, d|x|²/dν = −2 xᵀ (K + ν E)⁻¹ x: a 3 × 3 inverse an iteration.
+  auto at = [&](double nu, Vector3& x, double& length, double& slope) {
+    const Matrix3 inverse = (Kd + nu * Matrix3::Identity()).inverse();
+    x = inverse * Kt;
+    length = x.norm();
+    slope = -2 * x.dot(inverse * x);
+  };
+  // Newton on φ(ν) = 1/|x| − 1/bound, φ' = −½ |x|⁻³ d|x|²/dν: nearly linear and concave, so from
+  // below the root it approaches monotonically, and from above it lands below it. Started from
+  // the ν of the patch's last projection (the sweeps change it little), else from 0 (x = t).
+  double nu = nu_guess > 0 && std::isfinite(nu_guess) ? nu_guess : 0.0, length = 0, slope = 0;
+  Vector3 x;
+  at(nu, x, length, slope);
+  for (int k = 0; k < 50; ++k) {
+    const double phi = 1 / length - 1 / bound, dphi = -0.5 * slope / (length * length * length);
+    if (std::abs(phi) * bound <= 1e-12 || !(dphi > 0) || !std::isfinite(dphi)) break;
+    const double next = nu - phi / dphi;
+    nu = next > 0 ? next : nu * 1e-3;  // (ν ≥ 0: below 0 the ball holds x(0) = t already)
+    at(nu, x, length, slope);
+  }
+  nu_guess = nu;
+  if (!(length <= bound)) x *= bound / length;  // the last rounding (or a direction without response)
+  if (dim == 2) x[2] = 0;
+  return x;
+}
+
+// Moves a sliding patch's anchor to the centre of pressure of its rows' present normal impulses
+// (kinetic friction so acts where the load is, as friction distributed over the points would: a
+// sliding box does not yaw because its points are unevenly spread), carrying the friction impulse
+// already applied along: off where it was, on where it now is. (A holding patch with three or
+// more points holds the body whatever its anchor.)
+void FollowPressure(Patch& p, std::vector<Velocities>& vel, const BodyResponse& bodies, int frozen, Vector3 centre) {
+  centre += p.n * p.n.dot(p.anchor - centre);                                               // in the patch's plane
+  if ((centre - p.anchor).squaredNorm() <= std::max(1e-24, 1e-16 * p.rho * p.rho)) return;  // within 10⁻⁸ ρ
+  ApplyPatch(vel, p, -p.lambda, frozen);
+  p.ra += centre - p.anchor;
+  if (p.b >= 0) p.rb += centre - p.anchor;
+  p.anchor = centre;
+  SetPatchJacobian(p, bodies);
+  ApplyPatch(vel, p, p.lambda, frozen);
+}
+
+// One update of a patch's friction: the impulse that stops its sliding and turning, if it lies
+// within the limit μ N (the patch holds, or comes to rest in this step); else the impulse of
+// least kinetic energy on the limit (μs: a holding patch breaks away; μk: a sliding one slides,
+// opposing its sliding). With a body held still (shock propagation), only the other's response
+// counts.
+void UpdateFriction(Patch& p, const std::vector<Row>& rows, std::vector<Velocities>& vel, const BodyResponse& bodies,
+                    int frozen, Progress& progress) {
+  const bool follow = p.sliding && frozen < 0;
+  Vector3 centre = p.anchor;
+  const double N = Load(p, rows, follow ? &centre : nullptr);
+  if (follow && N > 0) FollowPressure(p, vel, bodies, frozen, centre);
+  const Matrix3 mass = frozen < 0 ? p.mass : PatchMass(frozen == p.a ? p.Kb : p.Ka, p.rho);
+  const Vector3 g = PatchVelocity(vel, p);
+  const Vector3 stop = p.lambda - mass * g;
+  const double bound = p.mu * N;
+  Vector3 lt = stop;
+  if (stop.norm() > bound) {
+    const Matrix3 K = frozen < 0 ? Matrix3(p.Ka + p.Kb) : (frozen == p.a ? p.Kb : p.Ka);
+    lt = ProjectOntoBall(K, stop, bound, p.rho > 0 ? 3 : 2, p.nu);
+  }
+  const Vector3 d = lt - p.lambda;
+  p.lambda = lt;
+  ApplyPatch(vel, p, d, frozen);
+  progress.change = std::max(progress.change, d.norm());
+  progress.scale = std::max(progress.scale, lt.norm());
+  const Matrix3 K = frozen < 0 ? Matrix3(p.Ka + p.Kb) : (frozen == p.a ? p.Kb : p.Ka);
+  progress.speed = std::max(progress.speed, (K * d).norm());
+}
+
+// A patch's normal impulses (2 to 4 points) solved together: the new impulses x ≥ 0 whose normal
+// velocities w = A x − c reach their targets (w ≥ 0), complementary (x·w = 0), with A the points'
+// coupled response — the linear complementarity problem of the patch alone, by trying the sets of
+// loaded points, the most first. Four coplanar points make A singular (a rigid face's load is
+// shared in infinitely many ways): a regularization of 10⁻⁹ of its diagonal picks the evenest
+// sharing and misses each target by 10⁻⁹ of the change. Returns false where no set solves it
+// (rounding), for the point-by-point update.
+bool UpdateNormalBlock(Patch& p, std::vector<Row>& rows, std::vector<Velocities>& vel, Progress& progress) {
+  const int m = p.count;
+  if (m < 2 || m > 4) return false;
+  const Eigen::Matrix4d& A = p.block;
+  Eigen::Vector4d c = Eigen::Vector4d::Zero(), old = Eigen::Vector4d::Zero();
+  Row* r = &rows[static_cast<std::size_t>(p.first)];
+  for (int i = 0; i < m; ++i) old[i] = r[i].lambda_n;
+  for (int i = 0; i < m; ++i) {
+    c[i] = r[i].target - NormalSpeed(vel, r[i]) + A.row(i).head(m).dot(old.head(m));
+  }
+  const double scale = c.head(m).cwiseAbs().maxCoeff();
+  Eigen::Vector4d x = Eigen::Vector4d::Zero();
+  // One set of loaded points: their impulses solve their block (Cholesky, the regularization on
+  // its diagonal), none negative, and the others' velocities reach their targets unloaded.
+  auto try_set = [&](int set) {
+    int index[4], k = 0;
+    for (int i = 0; i < m; ++i) {
+      if (set & (1 << i)) index[k++] = i;
+    }
+    double(&L)[4][4] = p.factor;
+    if (p.factored != set) {
+      p.factored = set;
+      p.factor_ok = false;
+      for (int i = 0; i < k; ++i) {
+        for (int j = 0; j <= i; ++j) {
+          double sum = A(index[i], index[j]) * (i == j ? 1 + 1e-9 : 1.0);
+          for (int l = 0; l < j; ++l) sum -= L[i][l] * L[j][l];
+          if (i == j) {
+            if (!(sum > 0)) return false;  // singular beyond the regularization
+            L[i][i] = std::sqrt(sum);
+          } else {
+            L[i][j] = sum / L[j][j];
+          }
+        }
+      }
+      p.factor_ok = true;
+    }
+    if (!p.factor_ok) return false;
+    double y[4] = {};
+    for (int i = 0; i < k; ++i) {
+      double sum = c[index[i]];
+      for (int l = 0; l < i; ++l) sum -= L[i][l] * y[l];
+      y[i] = sum / L[i][i];
+    }
+    Eigen::Vector4d trial = Eigen::Vector4d::Zero();
+    for (int i = k - 1; i >= 0; --i) {
+      double sum = y[i];
+      for (int l = i + 1; l < k; ++l) sum -= L[l][i] * trial[index[l]];
+      trial[index[i]] = sum / L[i][i];
+      if (!(trial[index[i]] >= 0)) return false;
+    }
+    for (int i = 0; i < m; ++i) {
+      if (!(set & (1 << i)) && !(A.row(i).head(m).dot(trial.head(m)) - c[i] >= -1e-9 * scale)) return false;
+    }
+    x = trial;
+    return true;
+  };
+  // The points loaded now first (the set rarely changes from sweep to sweep), then every set, the
+  // most points first.
+  static constexpr int kBySize[] = {15, 14, 13, 11, 7, 12, 10, 9, 6, 5, 3, 8, 4, 2, 1, 0};
+  int loaded = 0;
+  for (int i = 0; i < m; ++i) loaded |= old[i] > 0 ? 1 << i : 0;
+  bool solved = loaded != 0 && try_set(loaded);
+  for (const int set : kBySize) {
+    if (solved) break;
+    if (set >> m == 0 && (loaded == 0 || set != loaded)) solved = try_set(set);
+  }
+  if (!solved) return false;
+  const Eigen::Vector4d d = x - old;
+  const Eigen::Vector4d dv = A * d;
+  for (int i = 0; i < m; ++i) {
+    ApplyNormal(vel, r[i], d[i], -1);
+    r[i].lambda_n = x[i];
+    progress.change = std::max(progress.change, std::abs(d[i]));
+    progress.scale = std::max(progress.scale, x[i]);
+    progress.speed = std::max(progress.speed, std::abs(dv[i]));
+  }
+  return true;
+}
+
+}  // namespace
+
+// The patch's generalized sliding velocity: (v·t1, v·t2, ρ ω·n) at its anchor.
+Vector3 PatchVelocity(const std::vector<Velocities>& vel, const Patch& p) {
+  const Velocities& va = vel[static_cast<std::size_t>(p.a)];
+  Vector3 v = va.v;
+  Vector3 g = p.ang_a.transpose() * va.w;
+  if (p.b >= 0) {
+    const Velocities& vb = vel[static_cast<std::size_t>(p.b)];
+    v -= vb.v;
+    g -= p.ang_b.transpose() * vb.w;
+  }
+  g[0] += p.t1.dot(v);
+  g[1] += p.t2.dot(v);
+  return g;
+}
+
+void ApplyPatch(std::vector<Velocities>& vel, const Patch& p, const Vector3& d, int frozen) {
+  const Vector3 f = p.t1 * d[0] + p.t2 * d[1];
+  if (p.coupling != nullptr) {
+    p.coupling->Apply(vel, p.a, f, p.ang_a * d);
+    if (p.b >= 0) p.coupling->Apply(vel, p.b, -f, -(p.ang_b * d));
+    return;
+  }
+  if (p.a != frozen) {
+    Velocities& va = vel[static_cast<std::size_t>(p.a)];
+    va.v += p.inv_mass_a * f;
+    va.w += p.turn_a * d;
+  }
+  if (p.b >= 0 && p.b != frozen) {
+    Velocities& vb = vel[static_cast<std::size_t>(p.b)];
+    vb.v -= p.inv_mass_b * f;
+    vb.w -= p.turn_b * d;
+  }
+}
+
+// A patch's total normal impulse N, and (when `centre` is given) its centre of pressure
+// Σ λn x / N (left as it is when N = 0).
+double Load(const Patch& p, const std::vector<Row>& rows, Vector3* centre) {
+  double N = 0;
+  Vector3 weighted = Vector3::Zero();
+  for (int i = p.first; i < p.first + p.count; ++i) {
+    const Row& r = rows[static_cast<std::size_t>(i)];
+    N += r.lambda_n;
+    if (centre != nullptr) weighted += r.lambda_n * r.point;
+  }
+  if (centre != nullptr && N > 0) *centre = weighted / N;
+  return N;
+}
+
+// A sweep over the patches in `order` (forward or backward): each patch's normals (together, by
+// default; point by point in exact mode, as rbsim 0.3), then its friction.
+void Sweep(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order, bool forward, bool block,
+           std::vector<Velocities>& vel, const BodyResponse& bodies, Progress& progress) {
+  const int n = static_cast<int>(order.size());
+  for (int k = 0; k < n; ++k) {
+    Patch& p = patches[static_cast<std::size_t>(order[static_cast<std::size_t>(forward ? k : n - 1 - k)])];
+    if (block && UpdateNormalBlock(p, rows, vel, progress)) {
+      UpdateFriction(p, rows, vel, bodies, -1, progress);
+      continue;
+    }
+    for (int j = 0; j < p.count; ++j) {
+      Row& r = rows[static_cast<std::size_t>(forward ? p.first + j : p.first + p.count - 1 - j)];
+      UpdateNormal(r, vel, -1, r.mass_n, progress);
+    }
+    UpdateFriction(p, rows, vel, bodies, -1, progress);
+  }
+}
+
+// Shock propagation (Guendelman, Bridson & Fedkiw 2003): level by level from the ground up, each
+// body's contacts with the level below are solved with the lower body held still, so what the
+// iterations left of a resting stack's velocities does not survive the step.
+void PropagateShock(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order,
+                    std::vector<Velocities>& vel, const BodyResponse& bodies, const std::vector<int>& body_level,
+                    const SolveSettings& settings) {
+  constexpr int kNone = std::numeric_limits<int>::max();
+  int max_level = -1;
+  for (const int k : order) {
+    const int level = patches[static_cast<std::size_t>(k)].level;
+    if (level != kNone) max_level = std::max(max_level, level);
+  }
+  for (int level = 0; level <= max_level; ++level) {
+    for (int pass = 0; pass < settings.max_iterations; ++pass) {
+      Progress progress;
+      for (const int k : order) {
+        Patch& p = patches[static_cast<std::size_t>(k)];
+        if (p.level != level) continue;
+        const int la = body_level[static_cast<std::size_t>(p.a)];
+        const int lb = p.b >= 0 ? body_level[static_cast<std::size_t>(p.b)] : -1;
+        if (la == lb) continue;
+        const int frozen = la < lb ? p.a : p.b;
+        for (int i = p.first; i < p.first + p.count; ++i) {
+          Row& r = rows[static_cast<std::size_t>(i)];
+          const Matrix3& K = frozen == r.a ? r.Kb : r.Ka;
+          UpdateNormal(r, vel, frozen, 1.0 / r.n.dot(K * r.n), progress);
+        }
+        UpdateFriction(p, rows, vel, bodies, frozen, progress);
+      }
+      if (progress.Done(settings)) break;
+    }
+  }
+}
+
+}  // namespace dynamics::contact

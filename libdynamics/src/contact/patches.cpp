@@ -1,0 +1,235 @@
+// Contact patches: rows grouped by pair and normal, each patch's anchor and torsion radius, its
+// warm start and friction state from the last step, and the cache for the next (solver.h).
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "../integrators/integrator.h"
+#include "solver_internal.h"
+
+namespace dynamics::contact {
+namespace {
+
+// The tangent directions of a normal.
+void Tangents(const Vector3& n, Vector3& t1, Vector3& t2) {
+  const Vector3 helper = std::abs(n.x()) < 0.6 ? Vector3::UnitX() : Vector3::UnitY();
+  t1 = n.cross(helper).normalized();
+  t2 = n.cross(t1);
+}
+
+// ∫|x| over the triangle (0, P, Q) in the plane, signed by its orientation (so that a fan about
+// any point sums to the polygon's): in polar form ∫ρ(φ)³/3 dφ with ρ = d / cos φ, d the distance
+// of the edge's line.
+double EdgeMoment(const Eigen::Vector2d& P, const Eigen::Vector2d& Q) {
+  const Eigen::Vector2d e = Q - P;
+  const double len = e.norm();
+  if (!(len > 0)) return 0;
+  const Eigen::Vector2d u = e / len;
+  const double cross = u.y() * P.x() - u.x() * P.y();  // > 0: (0, P, Q) counter-clockwise
+  const double d = std::abs(cross);
+  if (!(d > 1e-15 * len)) return 0;
+  auto F = [d](double s) { return d / 6 * (s * std::hypot(d, s) + d * d * std::asinh(s / d)); };
+  return std::copysign(F(Q.dot(u)) - F(P.dot(u)), cross);
+}
+
+// The anchor (world) and torsion radius of a patch's points (rows warm-started).
+void Outline(const std::vector<Row>& rows, const Patch& p, Vector3& anchor, double& rho) {
+  std::vector<Eigen::Vector2d> q;
+  double height = 0, extent = 0, load = 0;
+  Eigen::Vector2d pressure = Eigen::Vector2d::Zero();  // Σ λn q
+  for (int i = p.first; i < p.first + p.count; ++i) {
+    const Row& r = rows[static_cast<std::size_t>(i)];
+    q.emplace_back(p.t1.dot(r.point), p.t2.dot(r.point));
+    height += p.n.dot(r.point);
+    pressure += r.lambda_n * q.back();
+    load += r.lambda_n;
+  }
+  height /= p.count;
+  // The convex outline (Andrew's monotone chain), counter-clockwise.
+  std::sort(q.begin(), q.end(),
+            [](const auto& x, const auto& y) { return x.x() < y.x() || (x.x() == y.x() && x.y() < y.y()); });
+  for (const auto& x : q) extent = std::max(extent, (x - q.front()).norm());
+  auto turn = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+  };
+  std::vector<Eigen::Vector2d> hull;
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::size_t start = hull.size();
+    for (std::size_t k = 0; k < q.size(); ++k) {
+      const Eigen::Vector2d& x = pass == 0 ? q[k] : q[q.size() - 1 - k];
+      while (hull.size() >= start + 2 && turn(hull[hull.size() - 2], hull.back(), x) <= 0) hull.pop_back();
+      hull.push_back(x);
+    }
+    hull.pop_back();
+  }
+  double area = 0;
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+  for (std::size_t k = 0; k < hull.size(); ++k) {
+    const Eigen::Vector2d& x = hull[k];
+    const Eigen::Vector2d& y = hull[(k + 1) % hull.size()];
+    const double c = x.x() * y.y() - x.y() * y.x();
+    area += c / 2;
+    centroid += (x + y) * (c / 6);
+  }
+  Eigen::Vector2d c2;
+  if (hull.size() >= 3 && area > 1e-4 * extent * extent) {
+    c2 = centroid / area;
+    double moment = 0, farthest = 0;
+    for (std::size_t k = 0; k < hull.size(); ++k) {
+      moment += EdgeMoment(hull[k] - c2, hull[(k + 1) % hull.size()] - c2);
+      farthest = std::max(farthest, (hull[k] - c2).norm());
+    }
+    rho = std::clamp(moment / area, 0.0, farthest);
+  } else if (extent > 0) {  // the points lie on a segment: its farthest pair
+    Eigen::Vector2d x = q.front(), y = q.front();
+    double best = -1;
+    for (const auto& s : q) {
+      for (const auto& t : q) {
+        if ((s - t).squaredNorm() > best) {
+          best = (s - t).squaredNorm();
+          x = s;
+          y = t;
+        }
+      }
+    }
+    c2 = (x + y) / 2;
+    rho = std::sqrt(best) / 4;
+  } else {
+    c2 = q.front();
+    rho = 0;
+  }
+  // The anchor: the centre of pressure of the last step's normal impulses (which the moments
+  // about the tangent axes determine, however the load is shared among the points), else the
+  // outline's centroid. The torsion radius is the uniform-pressure one about the centroid.
+  if (load > 0) c2 = pressure / load;
+  anchor = p.t1 * c2.x() + p.t2 * c2.y() + p.n * height;
+}
+
+}  // namespace
+
+
+
+std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& cache, const std::vector<Velocities>& vel,
+                                  const BodyResponse& bodies, double slow) {
+  const double same = std::cos(kPatchAngle);
+  // Each row's normal effective mass and warm start.
+  for (Row& r : rows) {
+    SetRowJacobian(r, bodies);
+    const auto it = cache.rows.find(r.key);
+    if (it != cache.rows.end()) r.lambda_n = it->second.lambda_n;
+  }
+  std::vector<Patch> patches;
+  patches.reserve(rows.size());
+  std::vector<Row> sorted;
+  for (std::size_t first = 0; first < rows.size();) {
+    // The pair's rows: [first, last).
+    const auto pair = std::pair{std::get<0>(rows[first].key), std::get<1>(rows[first].key)};
+    std::size_t last = first;
+    while (last < rows.size() && std::pair{std::get<0>(rows[last].key), std::get<1>(rows[last].key)} == pair) ++last;
+    // Its patches: each row joins the first patch whose first normal agrees with its own and
+    // whose friction is its own (a compound's parts may differ); the rows are reordered patch by
+    // patch.
+    std::vector<const Row*> leaders;  // each patch's first row
+    std::vector<int> patch_of;
+    for (std::size_t i = first; i < last; ++i) {
+      std::size_t k = 0;
+      while (k < leaders.size() && (leaders[k]->n.dot(rows[i].n) < same || leaders[k]->mu_s != rows[i].mu_s ||
+                                    leaders[k]->mu_k != rows[i].mu_k)) {
+        ++k;
+      }
+      if (k == leaders.size()) leaders.push_back(&rows[i]);
+      patch_of.push_back(static_cast<int>(k));
+    }
+    sorted.clear();
+    const auto found = cache.patches.find(pair);
+    std::vector<char> used(found != cache.patches.end() ? found->second.size() : 0, 0);
+    for (std::size_t k = 0; k < leaders.size(); ++k) {
+      Patch p;
+      p.first = static_cast<int>(first + sorted.size());
+      Vector3 sum = Vector3::Zero();
+      for (std::size_t i = first; i < last; ++i) {
+        if (patch_of[i - first] != static_cast<int>(k)) continue;
+        sorted.push_back(rows[i]);
+        sum += rows[i].n;
+      }
+      p.count = static_cast<int>(first + sorted.size()) - p.first;
+      const Row& r0 = sorted[static_cast<std::size_t>(p.first) - first];
+      p.a = r0.a;
+      p.b = r0.b;
+      p.mu_s = r0.mu_s;
+      p.mu_k = r0.mu_k;
+      p.n = sum.normalized();
+      Tangents(p.n, p.t1, p.t2);
+      patches.push_back(p);
+    }
+    std::copy(sorted.begin(), sorted.end(), rows.begin() + static_cast<std::ptrdiff_t>(first));
+    // Each patch's anchor, effective masses, warm start and friction state.
+    for (std::size_t k = patches.size() - leaders.size(); k < patches.size(); ++k) {
+      Patch& p = patches[k];
+      Vector3& anchor = p.anchor;
+      Outline(rows, p, anchor, p.rho);
+      const Row& r0 = rows[static_cast<std::size_t>(p.first)];
+      p.ra = anchor - (r0.point - r0.ra);
+      p.rb = p.b >= 0 ? Vector3(anchor - (r0.point - r0.rb)) : Vector3::Zero();
+      SetPatchJacobian(p, bodies);
+      SetNormalBlock(p, rows);
+      // The patch it was last step: the cached patch of one of its rows (by the rows' feature
+      // keys, as a contact is known step after step); none: a new patch.
+      std::size_t best = used.size();
+      for (int i = p.first; i < p.first + p.count && best == used.size(); ++i) {
+        const auto it = cache.rows.find(rows[static_cast<std::size_t>(i)].key);
+        if (it != cache.rows.end() && it->second.patch >= 0 && !used[static_cast<std::size_t>(it->second.patch)]) {
+          best = static_cast<std::size_t>(it->second.patch);
+        }
+      }
+      // Else (its points all new: a clipped manifold's corners move along the edges) the pair's
+      // unmatched cached patch whose normal is nearest, within kPatchAngle.
+      if (best == used.size()) {
+        for (std::size_t c = 0; c < used.size(); ++c) {
+          const double dot = found->second[c].n.dot(p.n);
+          if (!used[c] && dot >= same && (best == used.size() || dot > found->second[best].n.dot(p.n))) best = c;
+        }
+      }
+      const Vector3 g = PatchVelocity(vel, p);
+      bool stuck;
+      if (best < used.size()) {
+        used[best] = 1;
+        const CachedPatch& c = found->second[best];
+        p.lambda = Vector3(p.t1.dot(c.force), p.t2.dot(c.force), p.rho > 0 ? c.torque / p.rho : 0.0);
+        stuck = c.stuck;
+      } else {
+        stuck = g.norm() <= slow;
+      }
+      p.mu = stuck ? p.mu_s : p.mu_k;
+      // Sliding: its anchor follows the centre of pressure through the iterations.
+      p.sliding = !stuck && g.norm() > 0;
+    }
+    first = last;
+  }
+  return patches;
+}
+
+void StoreImpulses(const std::vector<Row>& rows, const std::vector<Patch>& patches, ContactCache& cache) {
+  for (const Patch& p : patches) {
+    const double N = Load(p, rows);
+    const RowKey& key = rows[static_cast<std::size_t>(p.first)].key;
+    std::vector<CachedPatch>& pair = cache.patches[{std::get<0>(key), std::get<1>(key)}];
+    // Not touching yet (a speculative contact): whether it holds is decided when it touches, by
+    // how fast it slides then.
+    int index = -1;
+    if (N > 0) {
+      // On the limit: it slides (or just broke away); inside: it holds.
+      const bool stuck = p.lambda.norm() < p.mu * N * (1 - 1e-9);
+      index = static_cast<int>(pair.size());
+      pair.push_back({p.n, p.t1 * p.lambda[0] + p.t2 * p.lambda[1], p.rho * p.lambda[2], stuck});
+    }
+    for (int i = p.first; i < p.first + p.count; ++i) {
+      const Row& r = rows[static_cast<std::size_t>(i)];
+      cache.rows[r.key] = {r.lambda_n, index};
+    }
+  }
+}
+
+}  // namespace dynamics::contact
