@@ -2,10 +2,11 @@
 # massprops batch and merge, end to end: a folder with good, refused, malformed, crashing and
 # hanging files gives one correct record per file; an interrupted output is resumed; shards merge
 # into exactly the single run's output; the records' results are the command's JSON.
-# Usage: batch_cli_test.sh MASSPROPS_BINARY DATA_DIR
+# Usage: batch_cli_test.sh MASSPROPS_BINARY DATA_DIR BATCH_FAULT_LIBRARY
 set -u
 bin=$1
 data=$2
+fault_lib=$3  # tests/fault/batch_fault.cpp: preloaded, it makes LoadSolid crash or hang on named files
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 failures=0
@@ -14,6 +15,11 @@ check() {  # check NAME CONDITION-EXIT-CODE
   if [ "$2" -eq 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi
 }
 py=/usr/bin/python3
+faulty() {  # faulty SPEC COMMAND...: COMMAND with the fault library preloaded, MASSPROPS_BATCH_FAULT=SPEC
+  local spec=$1
+  shift
+  LD_PRELOAD=$fault_lib ASAN_OPTIONS="${ASAN_OPTIONS:-}:verify_asan_link_order=0" MASSPROPS_BATCH_FAULT=$spec "$@"
+}
 
 mkdir -p "$tmp/in/sub"
 cp "$data/meshes/t_handle.obj" "$data/meshes/Moon.stl" "$data/meshes/spot.obj" "$tmp/in/"
@@ -26,9 +32,9 @@ echo "not a mesh" >"$tmp/in/notes.txt"
 cd "$tmp" || exit 1
 
 # 1. One record per file, each with the right status; a crash and a hang do not stop the run.
-MASSPROPS_BATCH_FAULT=crash:crashme "$bin" batch in -o crash.jsonl --timeout 2 -q --jobs 2
+faulty crash:crashme "$bin" batch in -o crash.jsonl --timeout 2 -q --jobs 2
 [ $? -eq 0 ]; check "batch with a crashing file exits 0" $?
-MASSPROPS_BATCH_FAULT=hang:hangme "$bin" batch in -o full.jsonl --timeout 1 -q --jobs 2 --summary >summary.json
+faulty hang:hangme "$bin" batch in -o full.jsonl --timeout 1 -q --jobs 2 --summary >summary.json
 [ $? -eq 0 ]; check "batch with a hanging file exits 0" $?
 $py - "$tmp" <<'PY'
 import json, sys
@@ -60,9 +66,9 @@ assert rec['result'] == json.load(open('single.json'))
 check "a record's result equals massprops --format json" $?
 
 # 3. Resume: an output cut in the middle of a record is finished, with the same records.
-MASSPROPS_BATCH_FAULT=hang:hangme "$bin" batch in -o ref.jsonl --timeout 1 -q --jobs 1
+faulty hang:hangme "$bin" batch in -o ref.jsonl --timeout 1 -q --jobs 1
 head -c "$(($(head -n 4 ref.jsonl | wc -c) + 40))" ref.jsonl >cut.jsonl  # 4 records and a torn fifth
-MASSPROPS_BATCH_FAULT=hang:hangme "$bin" batch in -o cut.jsonl --resume --timeout 1 -q
+faulty hang:hangme "$bin" batch in -o cut.jsonl --resume --timeout 1 -q
 [ $? -eq 0 ] && cmp -s cut.jsonl ref.jsonl; check "resume finishes a torn output into the same file" $?
 "$bin" batch in -o ref.jsonl -q 2>err.txt
 [ $? -eq 2 ] && grep -q "exists: --resume" err.txt; check "an existing output is not overwritten" $?
@@ -70,8 +76,8 @@ cmp -s ref.jsonl full.jsonl; check "same records whatever --jobs" $?
 
 # 4. Shards: a manifest in two slices, merged, is the single run; a missing shard is found.
 find in -type f \( -name '*.obj' -o -name '*.stl' -o -name '*.off' -o -name '*.gltf' \) | sort >manifest.txt
-MASSPROPS_BATCH_FAULT=hang:hangme "$bin" batch manifest.txt -o s0.jsonl --shard 0/2 --timeout 1 -q
-MASSPROPS_BATCH_FAULT=hang:hangme "$bin" batch manifest.txt -o s1.jsonl --shard 1/2 --timeout 1 -q
+faulty hang:hangme "$bin" batch manifest.txt -o s0.jsonl --shard 0/2 --timeout 1 -q
+faulty hang:hangme "$bin" batch manifest.txt -o s1.jsonl --shard 1/2 --timeout 1 -q
 "$bin" merge merged.jsonl s1.jsonl s0.jsonl
 [ $? -eq 0 ] && cmp -s merged.jsonl full.jsonl; check "shards merge into the single run's output" $?
 "$bin" merge incomplete.jsonl s0.jsonl 2>err.txt

@@ -224,6 +224,17 @@ TEXT_FAULTS = [
 ]
 
 
+def fault_env(reader, kind, **extra):
+    """The environment that reads through the stand-in plugin (tests/fault/fault_plugin.cpp) in place
+    of the real `reader` ("CAD", "ASSIMP"), injecting `kind` (crash, hang, hang-after-result) in the
+    reader's child process. ctest gives the plugin's path (MASSPROPS_FAULT_PLUGIN) and the real one's."""
+    for var in ("MASSPROPS_FAULT_PLUGIN", "MASSPROPS_FAULT_REAL_" + reader):
+        if var not in os.environ:
+            sys.exit("hostile.py: %s is not set (ctest sets it: tests/CMakeLists.txt)" % var)
+    return dict({"MASSPROPS_%s_PLUGIN" % reader: os.environ["MASSPROPS_FAULT_PLUGIN"], "MASSPROPS_TEST_FAULT": kind},
+                **extra)
+
+
 def main():
     binary = os.path.abspath(sys.argv[1])
     rbsim = os.path.abspath(sys.argv[2]) if len(sys.argv) > 2 else None
@@ -380,9 +391,9 @@ def main():
     with open(gltf, "rb") as src:
         write("box.gltf", src.read())
     run("assimp_crash", ["box.gltf", "clean_obj.obj", "--format", "csv"], 1, r"box.gltf: assimp crashed",
-        r"clean_obj.obj", env={"MASSPROPS_ASSIMP_FAULT": "crash"})
+        r"clean_obj.obj", env=fault_env("ASSIMP", "crash"))
     run("assimp_hang", ["box.gltf", "clean_obj.obj", "--format", "csv"], 1, r"box.gltf: assimp did not finish",
-        r"clean_obj.obj", env={"MASSPROPS_ASSIMP_FAULT": "hang", "MASSPROPS_ASSIMP_TIMEOUT": "1"})
+        r"clean_obj.obj", env=fault_env("ASSIMP", "hang", MASSPROPS_ASSIMP_TIMEOUT="1"))
     # PLY elements whose row counts lie: without properties (nothing to read, once looped 5e13
     # times: found by libFuzzer), and with more rows than the body has bytes.
     write("element_no_props.ply", "ply\nformat ascii 1.0\nelement junk 51200133562088\nelement vertex 3\n"
@@ -414,15 +425,15 @@ def main():
     run("step_deflection_too_fine", ["plate.step", "--deflection", "1e-9"], 1, r"plate.step: the deflection 1e-09 is "
         r"below 1e-6 of the part's diagonal")
     run("step_crash", ["plate.step", "clean_obj.obj", "--format", "csv"], 1, r"plate.step: OpenCASCADE crashed",
-        r"clean_obj.obj", env={"MASSPROPS_CAD_FAULT": "crash"})
+        r"clean_obj.obj", env=fault_env("CAD", "crash"))
     run("step_hang", ["plate.step", "clean_obj.obj", "--format", "csv"], 1, r"plate.step: OpenCASCADE did not finish",
-        r"clean_obj.obj", env={"MASSPROPS_CAD_FAULT": "hang", "MASSPROPS_CAD_TIMEOUT": "1"})
+        r"clean_obj.obj", env=fault_env("CAD", "hang", MASSPROPS_CAD_TIMEOUT="1"))
     # --brep is the default now (a no-op with a note); a shell needs the mesh, which it says.
     run("step_brep_with_shell", ["plate.step", "--brep", "--shell", "--area-density", "1"], 0,
         r"--brep is the default now.*\n.*tessellation's numbers are the result, because a shell \(the surface's mass\) needs a mesh")
     # The result survives an interference test that never ends: it is measured after the numbers.
     run("step_hang_after_result", ["plate.step"], 0, r"interference not measured: stopped after 2 s",
-        r"exact B-rep", env={"MASSPROPS_CAD_FAULT": "hang-after-result", "MASSPROPS_CAD_TIMEOUT": "2"})
+        r"exact B-rep", env=fault_env("CAD", "hang-after-result", MASSPROPS_CAD_TIMEOUT="2"))
     # A fixed corpus of mutated STEP texts under every option set: a clear answer or a clear
     # refusal, never a crash (exit >= 128) or a hang.
     def step_mutations(text):

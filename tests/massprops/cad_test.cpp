@@ -20,6 +20,15 @@
 namespace massprops {
 namespace {
 
+// Every read here goes through the stand-in plugin (tests/fault/fault_plugin.cpp), which forwards
+// to the real one unless MASSPROPS_TEST_FAULT asks for a crash or a hang: set before any read, as
+// the plugin is loaded once per process.
+const bool kThroughFaultPlugin = [] {
+  ::setenv("MASSPROPS_CAD_PLUGIN", MASSPROPS_FAULT_PLUGIN, 1);
+  ::setenv("MASSPROPS_FAULT_REAL_CAD", MASSPROPS_REAL_CAD_PLUGIN, 1);
+  return true;
+}();
+
 using massprops::kPi;
 
 namespace fs = std::filesystem;
@@ -413,12 +422,12 @@ TEST_F(Cad, FaultsAreClearErrors) {
   EXPECT_NE(cut.find("cut.step: "), std::string::npos) << cut;
   const std::string noise = ErrorOf(File("noise.igs"));
   EXPECT_NE(noise.find("noise.igs: "), std::string::npos) << noise;
-  ::setenv("MASSPROPS_CAD_FAULT", "hang", 1);
+  ::setenv("MASSPROPS_TEST_FAULT", "hang", 1);
   ::setenv("MASSPROPS_CAD_TIMEOUT", "1", 1);
   const std::string hang = ErrorOf(File("box.step"));
-  ::setenv("MASSPROPS_CAD_FAULT", "crash", 1);
+  ::setenv("MASSPROPS_TEST_FAULT", "crash", 1);
   const std::string crash = ErrorOf(File("box.step"));
-  ::unsetenv("MASSPROPS_CAD_FAULT");
+  ::unsetenv("MASSPROPS_TEST_FAULT");
   ::unsetenv("MASSPROPS_CAD_TIMEOUT");
   EXPECT_NE(hang.find("OpenCASCADE did not finish reading it within 1 s"), std::string::npos) << hang;
   EXPECT_NE(crash.find("OpenCASCADE crashed while reading it"), std::string::npos) << crash;

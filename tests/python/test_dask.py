@@ -15,6 +15,8 @@ import pytest
 DATA = os.environ.get("MASSPROPS_DATA", os.path.join(os.path.dirname(__file__), "..", "..", "data"))
 CLI = os.environ.get("MASSPROPS_CLI", "massprops")
 FAULTS = "crash:crashme,hang:hangme"  # injected into the child computing a matching file
+# The library that injects them (tests/fault/batch_fault.cpp), preloaded: ctest names it.
+FAULT_LIBRARY = os.environ.get("MASSPROPS_BATCH_FAULT_LIBRARY", "")
 
 
 @pytest.fixture(scope="module")
@@ -34,10 +36,11 @@ def dataset(tmp_path_factory):
 
 
 def batch_records(root, manifest):
+    assert os.path.exists(FAULT_LIBRARY), "MASSPROPS_BATCH_FAULT_LIBRARY (set by ctest) names no library"
     out = root / "batch.jsonl"
     if out.exists():
         out.unlink()
-    env = dict(os.environ, MASSPROPS_BATCH_FAULT=FAULTS)
+    env = dict(os.environ, MASSPROPS_BATCH_FAULT=FAULTS, LD_PRELOAD=FAULT_LIBRARY)
     subprocess.run([CLI, "batch", str(manifest), "-o", str(out), "--timeout", "1", "-q"], check=True, env=env)
     return [json.loads(line) for line in out.read_text().splitlines()]
 
@@ -56,8 +59,10 @@ def test_a_local_cluster_gives_the_batch_records_even_when_a_worker_is_killed(da
     assert statuses["hangme.obj"] == "timeout"
     assert statuses["ellipe0.003.off"] == "refused"
 
-    # Worker processes inherit the fault injection from this environment.
+    # Worker processes inherit the fault injection from this environment (the library preloaded into
+    # each new worker process).
     monkeypatch.setenv("MASSPROPS_BATCH_FAULT", FAULTS)
+    monkeypatch.setenv("LD_PRELOAD", FAULT_LIBRARY)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
                                   silence_logs=50) as cluster, distributed.Client(cluster) as client:
         pids = list(client.run(os.getpid).values())

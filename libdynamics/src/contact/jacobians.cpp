@@ -26,7 +26,6 @@ Matrix3 PointResponse(const BodyResponse& bodies, int i, const Vector3& r) {
   return InvMass(bodies, i) * Matrix3::Identity() - S * InvInertia(bodies, i) * S;
 }
 
-
 // Jointed bodies: the response of a's generalized directions Wa (columns of wrenches on a) minus
 // b's to impulses along them (+ on a, − on b): Waᵀ G_aa Wa + Wbᵀ G_bb Wb − Waᵀ G_ab Wb − Wbᵀ G_ba Wa.
 template <int N>
@@ -53,7 +52,6 @@ Matrix3 PatchMass(const Matrix3& K, double rho) {
   m.topLeftCorner<2, 2>() = K.topLeftCorner<2, 2>().inverse();
   return m;
 }
-
 
 // A row's effective masses and Jacobian.
 void SetRowJacobian(Row& r, const BodyResponse& bodies) {

@@ -109,8 +109,6 @@ void Outline(const std::vector<Row>& rows, const Patch& p, Vector3& anchor, doub
 
 }  // namespace
 
-
-
 std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& cache, const std::vector<Velocities>& vel,
                                   const BodyResponse& bodies, double slow) {
   const double same = std::cos(kPatchAngle);

@@ -108,7 +108,7 @@ std::string ReadInChild(const Plugin& p, const std::string& path) {
 AssimpOutput ReadIsolated(const Plugin& p, const std::string& path) {
   const std::string data =
       plugins::ReadIsolated(path, "assimp", plugins::TimeLimitSeconds(path, "MASSPROPS_ASSIMP_TIMEOUT", 10.0, 1.0),
-                            "MASSPROPS_ASSIMP_TIMEOUT", "MASSPROPS_ASSIMP_FAULT", [&] { return ReadInChild(p, path); });
+                            "MASSPROPS_ASSIMP_TIMEOUT", [&] { return ReadInChild(p, path); });
   AssimpOutput out;
   std::string names;
   try {

@@ -58,7 +58,6 @@ int FormatOf(const std::string& ext) {
 // The child's side: each message of the plugin framed (tag 0), then its status (tag 1).
 struct ChildSend {
   const IsolatedSend* send;
-  int sent = 0;
 };
 
 void SendFramed(void* context, const char* bytes, std::size_t size) {
@@ -67,11 +66,6 @@ void SendFramed(void* context, const char* bytes, std::size_t size) {
   w.U64(0);
   w.Str(std::string_view(bytes, size));
   (*child->send)(w.bytes());
-  // A test's stand-in for a boolean that never ends: the result must survive it.
-  if (++child->sent == 1) {
-    if (const char* fault = std::getenv("MASSPROPS_CAD_FAULT"); fault && std::string(fault) == "hang-after-result")
-      for (;;) ::pause();
-  }
 }
 
 }  // namespace
@@ -115,8 +109,7 @@ LoadedMesh ReadCadFile(const std::string& path, const CadOptions& cad) {
   // STEP parsing, solids, tessellation and integration: 30 s plus 5 s per MB; the interference
   // test after the result gets as long again.
   const double limit = plugins::TimeLimitSeconds(path, "MASSPROPS_CAD_TIMEOUT", 30.0, 5.0);
-  const IsolatedOutcome outcome =
-      plugins::ReadIsolatedPieces(path, "OpenCASCADE", limit, "MASSPROPS_CAD_FAULT", read_in_child);
+  const IsolatedOutcome outcome = plugins::ReadIsolatedPieces(path, "OpenCASCADE", limit, read_in_child);
   std::string stopped;
   if (outcome.end == IsolatedEnd::kTimedOut) {
     stopped = "stopped after " + std::to_string(static_cast<long long>(limit)) + " s (MASSPROPS_CAD_TIMEOUT)";

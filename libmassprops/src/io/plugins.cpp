@@ -89,19 +89,6 @@ double TimeLimitSeconds(const std::string& path, const char* env_var, double bas
   return base + (ec ? 0.0 : per_megabyte * static_cast<double>(bytes) / 1e6);
 }
 
-namespace {
-
-// The faults a test may inject before the work (MASSPROPS_*_FAULT=crash|hang).
-void InjectFault(const char* fault_env) {
-  if (const char* fault = std::getenv(fault_env)) {
-    if (std::string(fault) == "crash") ::kill(::getpid(), SIGKILL);
-    if (std::string(fault) == "hang")
-      for (;;) ::pause();
-  }
-}
-
-}  // namespace
-
 void FailOutcome(const std::string& path, const std::string& who, const IsolatedOutcome& outcome, double limit,
                  const char* timeout_env) {
   if (outcome.end == IsolatedEnd::kTimedOut) {
@@ -118,15 +105,11 @@ void FailOutcome(const std::string& path, const std::string& who, const Isolated
 }
 
 std::string ReadIsolated(const std::string& path, const std::string& who, double limit, const char* timeout_env,
-                         const char* fault_env, const std::function<std::string()>& work) {
+                         const std::function<std::string()>& work) {
   IsolatedOutcome outcome;
   try {
     RunIsolated(
-        1, 1, limit,
-        [&](std::size_t) {
-          InjectFault(fault_env);
-          return work();
-        },
+        1, 1, limit, [&](std::size_t) { return work(); },
         [&](std::size_t, IsolatedOutcome&& o) { outcome = std::move(o); });
   } catch (const std::runtime_error& e) {
     Fail(path, "cannot start the " + who + " reader process (" + e.what() + ")");
@@ -135,16 +118,12 @@ std::string ReadIsolated(const std::string& path, const std::string& who, double
   return std::move(outcome.output);
 }
 
-IsolatedOutcome ReadIsolatedPieces(const std::string& path, const std::string& who, double limit, const char* fault_env,
+IsolatedOutcome ReadIsolatedPieces(const std::string& path, const std::string& who, double limit,
                                    const std::function<void(const IsolatedSend&)>& work) {
   IsolatedOutcome outcome;
   try {
     RunIsolatedStreaming(
-        1, 1, limit,
-        [&](std::size_t, const IsolatedSend& send) {
-          InjectFault(fault_env);
-          work(send);
-        },
+        1, 1, limit, [&](std::size_t, const IsolatedSend& send) { work(send); },
         [&](std::size_t, IsolatedOutcome&& o) { outcome = std::move(o); });
   } catch (const std::runtime_error& e) {
     Fail(path, "cannot start the " + who + " reader process (" + e.what() + ")");

@@ -53,16 +53,16 @@ double TimeLimitSeconds(const std::string& path, const char* env_var, double bas
 
 /// Runs `work` in a forked child with a time limit and returns what it sent back. A crash, a hang
 /// or a failure inside the third-party reader `who` ("assimp", "OpenCASCADE") becomes a
-/// MeshFileError naming `path`, so that the program and its other files go on. The environment
-/// variable `fault_env` ("crash", "hang") injects faults, for tests.
+/// MeshFileError naming `path`, so that the program and its other files go on. (The tests inject
+/// crashes and hangs through a stand-in plugin, tests/fault/fault_plugin.cpp.)
 std::string ReadIsolated(const std::string& path, const std::string& who, double seconds, const char* timeout_env,
-                         const char* fault_env, const std::function<std::string()>& work);
+                         const std::function<std::string()>& work);
 
 /// As ReadIsolated, for work that sends its output in pieces (`send`): each piece restarts the
 /// time limit, and what came before a crash or a stop is kept in the outcome, which is returned as
 /// it ended (FailOutcome words one that did not finish).
 IsolatedOutcome ReadIsolatedPieces(const std::string& path, const std::string& who, double seconds,
-                                   const char* fault_env, const std::function<void(const IsolatedSend&)>& work);
+                                   const std::function<void(const IsolatedSend&)>& work);
 
 /// The MeshFileError for an outcome that did not finish: a stop at the time limit, a crash or a
 /// failure of the reader `who`.

@@ -780,9 +780,6 @@ SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_c
       Stage(opt, "uniting the overlapping shells (CGAL)");
       std::int64_t united = 0;
       try {
-        if (std::getenv("MASSPROPS_UNION_FAULT") != nullptr) {  // tests: the fallback, forced
-          throw std::runtime_error("the union was made to fail (MASSPROPS_UNION_FAULT)");
-        }
         r.loaded.mesh = RequireGeometrySteps("the union of overlapping shells").union_of_shells(r.loaded.mesh, united);
       } catch (const std::runtime_error& e) {
         EstimateUnion(r, opt, e.what());

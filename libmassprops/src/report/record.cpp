@@ -4,11 +4,8 @@
 #include "massprops/report/record.h"
 
 #include <algorithm>
-#include <csignal>
 #include <cstdlib>
 #include <cstring>
-
-#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
@@ -21,23 +18,6 @@ using Json = nlohmann::ordered_json;
 
 std::string ComputeRecord(const std::string& file, std::size_t index, std::size_t of, const LoadOptions& options,
                           const std::string& picture) {
-  if (const char* fault = std::getenv("MASSPROPS_BATCH_FAULT")) {  // fault injection, for tests:
-    std::string spec(fault);                                       // "crash:NAME,hang:NAME"
-    for (std::size_t at = 0; at < spec.size();) {
-      const std::size_t end = std::min(spec.find(',', at), spec.size());
-      const std::string f = spec.substr(at, end - at);
-      const std::size_t colon = f.find(':');
-      if (colon != std::string::npos && file.find(f.substr(colon + 1)) != std::string::npos) {
-        if (f.compare(0, colon, "crash") == 0) {
-          std::signal(SIGSEGV, SIG_DFL);  // a real crash, also under the sanitizers' handlers
-          std::raise(SIGSEGV);
-        }
-        if (f.compare(0, colon, "hang") == 0)
-          for (;;) ::pause();
-      }
-      at = end + 1;
-    }
-  }
   Json rec = {{"file", file}, {"index", index}, {"of", of}};
   FormatOptions format;
   format.format = Format::kJson;
