@@ -1,6 +1,6 @@
-// The contact step's stages on their own (internal headers in src/contact/): the worker pool, the
-// velocity solve of one patch against its closed forms, and islands solved in parallel giving the
-// same bits as one thread.
+// The contact step's stages on their own (internal headers in src/contact/): the worker pool,
+// islands solved in parallel giving the same bits as one thread, and the mesh field's blocks.
+// (The velocity solve's own tests: solver_test.cpp.)
 
 #include <gtest/gtest.h>
 
@@ -43,64 +43,6 @@ TEST(Workers, EveryItemRunsOnceAndErrorsReachTheCaller) {
     std::atomic<int> count{0};
     workers.ForEach(10, [&](std::size_t) { count.fetch_add(1); });
     EXPECT_EQ(count.load(), 10);
-  }
-}
-
-// A unit-mass cube (inertia 1/6) resting on the ground on its four bottom corners, after a kick of
-// g h downward: the normal impulses sum to m g h (the velocity is stopped), and with a sideways
-// velocity v0 beyond what μk N can stop the friction takes exactly μk N, along −v0. One solve
-// from cold (no warm start): exact mode to rounding; the default's 32 sweeps leave ~10⁻⁶ m/s of
-// the four redundant corners' shares, which a step's warm start then carries on removing.
-struct RestingCube {
-  std::vector<Row> rows;
-  std::vector<Velocities> vel{{Vector3(0, 0, -kG * 1e-3), Vector3::Zero()}};
-  BodyResponse response{{1.0}, {Matrix3::Identity() * 6.0}};
-
-  explicit RestingCube(const Vector3& slide, double mu) {
-    vel[0].v += slide;
-    for (int k = 0; k < 4; ++k) {
-      Row r;
-      r.a = 0;
-      r.b = -1;
-      r.n = Vector3::UnitZ();
-      r.ra = Vector3(k & 1 ? 0.5 : -0.5, k & 2 ? 0.5 : -0.5, -0.5);
-      r.point = r.ra;
-      r.mu_s = mu;
-      r.mu_k = mu;
-      r.key = {0, -1000, static_cast<std::uint32_t>(k)};
-      rows.push_back(r);
-    }
-  }
-};
-
-TEST(Solver, ACubeAtRestTakesItsWeightAndASlidingOneKineticFriction) {
-  for (const bool exact : {false, true}) {
-    SCOPED_TRACE(exact ? "exact" : "default");
-    SolveSettings settings;
-    settings.exact = exact;
-    settings.max_iterations = exact ? 64 : 32;
-    // At rest.
-    {
-      RestingCube c(Vector3::Zero(), 0.5);
-      std::vector<Patch> patches = PreparePatches(c.rows, ContactCache{}, c.vel, c.response, 1e-6);
-      ASSERT_EQ(patches.size(), 1u);
-      SolveImpulses(c.rows, patches, c.vel, c.response, SupportLevels(1, c.rows), {0}, settings, nullptr);
-      double N = 0;
-      for (const Row& r : c.rows) N += r.lambda_n;
-      EXPECT_NEAR(N, kG * 1e-3, exact ? 1e-12 : 1e-5 * kG * 1e-3);
-      EXPECT_LT(c.vel[0].v.norm() + c.vel[0].w.norm(), exact ? 1e-12 : 2e-6);
-    }
-    // Sliding at 1 m/s along (3, 4, 0)/5: μk N = 0.5 m g h stops 0.0049 m/s of it.
-    {
-      const Vector3 dir(0.6, 0.8, 0);
-      RestingCube c(dir, 0.5);
-      std::vector<Patch> patches = PreparePatches(c.rows, ContactCache{}, c.vel, c.response, 1e-6);
-      SolveImpulses(c.rows, patches, c.vel, c.response, SupportLevels(1, c.rows), {0}, settings, nullptr);
-      const double tol = exact ? 1e-9 : 1e-7;
-      EXPECT_NEAR(c.vel[0].v.dot(dir), 1.0 - 0.5 * kG * 1e-3, tol);
-      EXPECT_NEAR(c.vel[0].v.z(), 0, tol);
-      EXPECT_LT(c.vel[0].w.norm(), exact ? 1e-8 : 1e-6);  // friction at the centre of pressure: no yaw, no tilt
-    }
   }
 }
 

@@ -26,7 +26,8 @@ std::string FaultFor(const std::string& file) {
     const std::size_t end = std::min(spec.find(',', at), spec.size());
     const std::string item = spec.substr(at, end - at);
     const std::size_t colon = item.find(':');
-    if (colon != std::string::npos && file.find(item.substr(colon + 1)) != std::string::npos) return item.substr(0, colon);
+    if (colon != std::string::npos && file.find(item.substr(colon + 1)) != std::string::npos)
+      return item.substr(0, colon);
     at = end + 1;
   }
   return {};
@@ -46,9 +47,10 @@ SolidResult LoadSolid(const std::string& path, const LoadOptions& options) {
     for (;;) ::pause();
   using Fn = SolidResult (*)(const std::string&, const LoadOptions&);
   static const auto real = [] {
-    const char* name = "_ZN9massprops9LoadSolidERKNSt7__cxx1112basic_stringIcSt11char_traitsIcESaIcEEERKNS_11LoadOptionsE";
+    const char* name =
+        "_ZN9massprops9LoadSolidERKNSt7__cxx1112basic_stringIcSt11char_traitsIcESaIcEEERKNS_11LoadOptionsE";
     void* found = ::dlsym(RTLD_NEXT, name);  // a program linked with massprops::io
-    if (found == nullptr) {  // a Python module, which loaded massprops::io out of the global scope
+    if (found == nullptr) {                  // a Python module, which loaded massprops::io out of the global scope
       if (void* io = ::dlopen("libmassprops_io.so", RTLD_LAZY | RTLD_NOLOAD)) found = ::dlsym(io, name);
     }
     return reinterpret_cast<Fn>(found);

@@ -428,57 +428,5 @@ TEST_F(BadFiles, ThreeMfObjectsComponentsAndParts) {
   EXPECT_TRUE(MatrixNearRel(whole.center_of_mass, (b.volume * (c1 + c2) + s.volume * c3) / whole.volume, 1e-13, 1.0));
 }
 
-TEST(Shells, NestingDecidesCavityOrOverlap) {
-  // Hollow sphere with the inner shell facing inward: a valid cavity.
-  const PolygonMesh hollow = ToPolygonMesh(solids::HollowSphere(1.0, 0.5, 12));
-  const ShellReport good = AnalyzeShells(hollow);
-  ASSERT_EQ(good.shells.size(), 2u);
-  EXPECT_EQ(good.shells[0].inside_of, -1);
-  EXPECT_EQ(good.shells[1].inside_of, 0);
-  EXPECT_LT(good.shells[1].signed_volume, 0.0);
-  EXPECT_TRUE(good.problem.empty()) << good.problem;
-  // CGAL's hollow_sphere.off: both shells face outward, so the volumes overlap.
-  const ShellReport bad = AnalyzeShells(ReadMeshFile(DataPath("meshes/hollow_sphere.off")).mesh);
-  ASSERT_EQ(bad.shells.size(), 2u);
-  EXPECT_NEAR(bad.shells[0].signed_volume, 0.505952, 1e-6);  // SOURCES.md: +0.505952, +0.259048
-  EXPECT_NEAR(bad.shells[1].signed_volume, 0.259048, 1e-6);
-  EXPECT_THAT(bad.problem, HasSubstr("shell 2 of 2 lies inside shell 1 and both face outward"));
-  // Two disjoint boxes: an assembly, no nesting.
-  const PolygonMesh two = testing::WithMovedCopy(solids::Box(Vector3(1, 1, 1)), Vector3(3, 0, 0));
-  const ShellReport assembly = AnalyzeShells(two);
-  EXPECT_EQ(assembly.shells.size(), 2u);
-  EXPECT_EQ(assembly.shells[1].inside_of, -1);
-  EXPECT_TRUE(assembly.problem.empty());
-  // An inverted shell that is not inside anything.
-  PolygonMesh flipped = two;
-  for (std::int64_t f = 6; f < 12; ++f) {  // reverse every face of the second box
-    std::reverse(flipped.indices.begin() + flipped.offsets[f], flipped.indices.begin() + flipped.offsets[f + 1]);
-  }
-  const ShellReport inverted = AnalyzeShells(flipped);
-  EXPECT_THAT(inverted.problem, HasSubstr("faces inward but is not inside another shell"));
-}
-
-TEST(Topology, FindsHolesNonManifoldAndFlippedFaces) {
-  PolygonMesh box = solids::Box(Vector3(1, 1, 1));
-  PolygonMesh open = box;
-  open.indices.resize(20);
-  open.offsets.resize(6);  // drop the last quad
-  const MeshTopology t = AnalyzeTopology(open);
-  EXPECT_EQ(t.boundary_edges, 4);
-  EXPECT_THAT(t.Problems(), HasSubstr("open mesh: 4 boundary edges in 1 hole"));
-
-  PolygonMesh flipped = box;
-  std::reverse(flipped.indices.begin(), flipped.indices.begin() + 4);
-  EXPECT_EQ(AnalyzeTopology(flipped).inconsistent_edges, 4);
-
-  PolygonMesh fin = box;  // a fifth face on an existing edge
-  fin.V.conservativeResize(9, 3);
-  fin.V.row(8) << 2, 2, 2;
-  fin.AddFace(std::vector<int>{1, 3, 8});
-  EXPECT_EQ(AnalyzeTopology(fin).non_manifold_edges, 1);
-  EXPECT_EQ(AnalyzeTopology(fin).unbalanced_edges, 1);
-  EXPECT_FALSE(AnalyzeTopology(fin).BoundsVolume());
-}
-
 }  // namespace
 }  // namespace massprops
