@@ -482,7 +482,8 @@ std::vector<std::string> JointNames(const dynamics::World& w) {
   return names;
 }
 
-void BindDynamics(py::module_& m) {
+// RigidBody and the body a set of mass properties makes (dynamics/rigid_body.h).
+void BindRigidBody(py::module_& m) {
   using dynamics::RigidBody;
   py::class_<RigidBody>(m, "RigidBody", PlainType(), "A free rigid body: mass, principal moments, state (SI units).")
       .def(py::init([](double mass, const py::handle& inertia) {
@@ -543,7 +544,11 @@ void BindDynamics(py::module_& m) {
       },
       py::arg("mass"), py::arg("center_of_mass"), py::arg("inertia_com"),
       "A RigidBody from mass properties: its center of mass where given, its frame the principal axes");
+}
 
+// World: free bodies under forces, stepped by an integrator (dynamics/world.h).
+void BindWorld(py::module_& m) {
+  using dynamics::RigidBody;
   py::class_<dynamics::World>(m, "World", PlainType(), "Free rigid bodies under forces, stepped by an integrator.")
       .def(py::init(
                [](const std::string& integrator) { return dynamics::World(dynamics::ParseIntegrator(integrator)); }),
@@ -600,8 +605,10 @@ void BindDynamics(py::module_& m) {
           },
           "Energy (kinetic, potential, total) and momenta now, as a dict");
   m.def("integrators", &dynamics::IntegratorNames, "The integrators' names, for World(integrator=...)");
+}
 
-  // Contact (dynamics/contact.h).
+// Materials and colliders: the shapes contact knows (dynamics/contact.h).
+void BindColliders(py::module_& m) {
   py::class_<dynamics::Material>(m, "Material", PlainType(),
                                  "Coulomb friction (static, kinetic) and restitution of a surface.")
       .def(py::init([](double mu_s, double mu_k, double e) {
@@ -697,7 +704,11 @@ void BindDynamics(py::module_& m) {
       py::arg("material") = dynamics::Material{}, py::arg("cell") = 0.0,
       "A closed mesh collided as itself (non-convex: a ring, a cup, a bin) through a signed distance field, built "
       "here once; bodies given this same collider share it. cell: the field's cell in m (0: automatic).");
+}
 
+// ContactWorld: grounds, statics, colliders and robots, stepped with contact (dynamics/contact.h).
+void BindContactWorld(py::module_& m) {
+  using dynamics::RigidBody;
   py::class_<dynamics::ContactWorld>(m, "ContactWorld", PlainType(),
                                      "A World with ground planes, static bodies and colliders: bodies rest, slide, "
                                      "roll, bounce and stack (dynamics/contact.h).")
@@ -778,6 +789,13 @@ void BindDynamics(py::module_& m) {
             return out;
           },
           "The last step's contact statistics: contacts, iterations, max_penetration, dissipated, sleeping");
+}
+
+void BindDynamics(py::module_& m) {
+  BindRigidBody(m);
+  BindWorld(m);
+  BindColliders(m);
+  BindContactWorld(m);
 }
 
 }  // namespace

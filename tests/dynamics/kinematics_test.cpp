@@ -44,8 +44,8 @@ Joint Placed(const World& w, JointType type, int parent, int child, const Vector
 Matrix3 RotY(double t) { return Eigen::AngleAxisd(t, Vector3::UnitY()).toRotationMatrix(); }
 
 void ExpectNear(const Vector3& got, const Vector3& want, const char* what) {
-  EXPECT_LT((got - want).norm(), kTol * std::max(1.0, want.norm())) << what << ": " << got.transpose() << " against "
-                                                                    << want.transpose();
+  EXPECT_LT((got - want).norm(), kTol * std::max(1.0, want.norm()))
+      << what << ": " << got.transpose() << " against " << want.transpose();
 }
 
 // Two links hanging from the origin along −z (lengths L1, L2, centres of mass at their middles),
@@ -84,8 +84,8 @@ TEST(Kinematics, DoublePendulumPositionsVelocitiesAndKineticEnergy) {
   ExpectNear(B1.AngularVelocity(), Vector3(0, u1, 0), "first angular velocity");
   ExpectNear(B2.AngularVelocity(), Vector3(0, dphi, 0), "second angular velocity");
   const double I1 = m1 * (w * w + L1 * L1) / 12, I2 = m2 * (w * w + L2 * L2) / 12;
-  const double T = 0.5 * m1 * v1.squaredNorm() + 0.5 * I1 * u1 * u1 + 0.5 * m2 * v2.squaredNorm() +
-                   0.5 * I2 * dphi * dphi;
+  const double T =
+      0.5 * m1 * v1.squaredNorm() + 0.5 * I1 * u1 * u1 + 0.5 * m2 * v2.squaredNorm() + 0.5 * I2 * dphi * dphi;
   // The Lagrangian's form: ½(m1 a² + I1 + m2 L1²) q̇1² + m2 L1 b cos(q2) q̇1 φ̇ + ½(m2 b² + I2) φ̇².
   const double lagrangian_T = 0.5 * (m1 * a * a + I1 + m2 * L1 * L1) * u1 * u1 +
                               m2 * L1 * b * std::cos(q2) * u1 * dphi + 0.5 * (m2 * b * b + I2) * dphi * dphi;
