@@ -44,14 +44,6 @@ Eigen::Matrix<double, N, N> CoupledResponse(const Coupling& c, int a, int b, con
 
 }  // namespace
 
-// The effective mass of a patch's friction, K⁻¹ (the tangential 2 × 2 block's alone when the patch
-// has no torsion radius).
-Matrix3 PatchMass(const Matrix3& K, double rho) {
-  if (rho > 0) return K.inverse();
-  Matrix3 m = Matrix3::Zero();
-  m.topLeftCorner<2, 2>() = K.topLeftCorner<2, 2>().inverse();
-  return m;
-}
 
 // A row's effective masses and Jacobian.
 void SetRowJacobian(Row& r, const BodyResponse& bodies) {

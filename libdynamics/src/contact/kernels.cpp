@@ -202,38 +202,7 @@ bool UpdateNormalBlock(Patch& p, std::vector<Row>& rows, std::vector<Velocities>
 }  // namespace
 
 // The patch's generalized sliding velocity: (v·t1, v·t2, ρ ω·n) at its anchor.
-Vector3 PatchVelocity(const std::vector<Velocities>& vel, const Patch& p) {
-  const Velocities& va = vel[static_cast<std::size_t>(p.a)];
-  Vector3 v = va.v;
-  Vector3 g = p.ang_a.transpose() * va.w;
-  if (p.b >= 0) {
-    const Velocities& vb = vel[static_cast<std::size_t>(p.b)];
-    v -= vb.v;
-    g -= p.ang_b.transpose() * vb.w;
-  }
-  g[0] += p.t1.dot(v);
-  g[1] += p.t2.dot(v);
-  return g;
-}
 
-void ApplyPatch(std::vector<Velocities>& vel, const Patch& p, const Vector3& d, int frozen) {
-  const Vector3 f = p.t1 * d[0] + p.t2 * d[1];
-  if (p.coupling != nullptr) {
-    p.coupling->Apply(vel, p.a, f, p.ang_a * d);
-    if (p.b >= 0) p.coupling->Apply(vel, p.b, -f, -(p.ang_b * d));
-    return;
-  }
-  if (p.a != frozen) {
-    Velocities& va = vel[static_cast<std::size_t>(p.a)];
-    va.v += p.inv_mass_a * f;
-    va.w += p.turn_a * d;
-  }
-  if (p.b >= 0 && p.b != frozen) {
-    Velocities& vb = vel[static_cast<std::size_t>(p.b)];
-    vb.v -= p.inv_mass_b * f;
-    vb.w -= p.turn_b * d;
-  }
-}
 
 // A patch's total normal impulse N, and (when `centre` is given) its centre of pressure
 // Σ λn x / N (left as it is when N = 0).
