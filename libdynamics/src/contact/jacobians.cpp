@@ -44,7 +44,6 @@ Eigen::Matrix<double, N, N> CoupledResponse(const Coupling& c, int a, int b, con
 
 }  // namespace
 
-
 // A row's effective masses and Jacobian.
 void SetRowJacobian(Row& r, const BodyResponse& bodies) {
   if (bodies.coupling != nullptr) {

@@ -203,7 +203,6 @@ bool UpdateNormalBlock(Patch& p, std::vector<Row>& rows, std::vector<Velocities>
 
 // The patch's generalized sliding velocity: (v·t1, v·t2, ρ ω·n) at its anchor.
 
-
 // A patch's total normal impulse N, and (when `centre` is given) its centre of pressure
 // Σ λn x / N (left as it is when N = 0).
 double Load(const Patch& p, const std::vector<Row>& rows, Vector3* centre) {

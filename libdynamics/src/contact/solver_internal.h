@@ -37,7 +37,8 @@ inline Matrix3 PatchMass(const Matrix3& K, double rho) {
 }
 
 /// A patch's generalized impulse d at its anchor, on a and (opposite) on b; `frozen` is not moved.
-[[gnu::always_inline]] inline void ApplyPatch(std::vector<Velocities>& vel, const Patch& p, const Vector3& d, int frozen) {
+[[gnu::always_inline]] inline void ApplyPatch(std::vector<Velocities>& vel, const Patch& p, const Vector3& d,
+                                              int frozen) {
   const Vector3 f = p.t1 * d[0] + p.t2 * d[1];
   if (p.coupling != nullptr) {
     p.coupling->Apply(vel, p.a, f, p.ang_a * d);
