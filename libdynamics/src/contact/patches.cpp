@@ -115,8 +115,7 @@ std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& ca
   // Each row's normal effective mass and warm start.
   for (Row& r : rows) {
     SetRowJacobian(r, bodies);
-    const auto it = cache.rows.find(r.key);
-    if (it != cache.rows.end()) r.lambda_n = it->second.lambda_n;
+    if (const CachedRow* cached = cache.FindRow(r.key)) r.lambda_n = cached->lambda_n;
   }
   std::vector<Patch> patches;
   patches.reserve(rows.size());
@@ -141,8 +140,8 @@ std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& ca
       patch_of.push_back(static_cast<int>(k));
     }
     sorted.clear();
-    const auto found = cache.patches.find(pair);
-    std::vector<char> used(found != cache.patches.end() ? found->second.size() : 0, 0);
+    const auto found = cache.FindPatches(pair);  // (first, count)
+    std::vector<char> used(found.second, 0);
     for (std::size_t k = 0; k < leaders.size(); ++k) {
       Patch p;
       p.first = static_cast<int>(first + sorted.size());
@@ -177,24 +176,24 @@ std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& ca
       // keys, as a contact is known step after step); none: a new patch.
       std::size_t best = used.size();
       for (int i = p.first; i < p.first + p.count && best == used.size(); ++i) {
-        const auto it = cache.rows.find(rows[static_cast<std::size_t>(i)].key);
-        if (it != cache.rows.end() && it->second.patch >= 0 && !used[static_cast<std::size_t>(it->second.patch)]) {
-          best = static_cast<std::size_t>(it->second.patch);
+        const CachedRow* cached = cache.FindRow(rows[static_cast<std::size_t>(i)].key);
+        if (cached != nullptr && cached->patch >= 0 && !used[static_cast<std::size_t>(cached->patch)]) {
+          best = static_cast<std::size_t>(cached->patch);
         }
       }
       // Else (its points all new: a clipped manifold's corners move along the edges) the pair's
       // unmatched cached patch whose normal is nearest, within kPatchAngle.
       if (best == used.size()) {
         for (std::size_t c = 0; c < used.size(); ++c) {
-          const double dot = found->second[c].n.dot(p.n);
-          if (!used[c] && dot >= same && (best == used.size() || dot > found->second[best].n.dot(p.n))) best = c;
+          const double dot = found.first[c].patch.n.dot(p.n);
+          if (!used[c] && dot >= same && (best == used.size() || dot > found.first[best].patch.n.dot(p.n))) best = c;
         }
       }
       const Vector3 g = PatchVelocity(vel, p);
       bool stuck;
       if (best < used.size()) {
         used[best] = 1;
-        const CachedPatch& c = found->second[best];
+        const CachedPatch& c = found.first[best].patch;
         p.lambda = Vector3(p.t1.dot(c.force), p.t2.dot(c.force), p.rho > 0 ? c.torque / p.rho : 0.0);
         stuck = c.stuck;
       } else {
@@ -210,24 +209,78 @@ std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& ca
 }
 
 void StoreImpulses(const std::vector<Row>& rows, const std::vector<Patch>& patches, ContactCache& cache) {
-  for (const Patch& p : patches) {
-    const double N = Load(p, rows);
+  auto pair_of = [&](const Patch& p) {
     const RowKey& key = rows[static_cast<std::size_t>(p.first)].key;
-    std::vector<CachedPatch>& pair = cache.patches[{std::get<0>(key), std::get<1>(key)}];
-    // Not touching yet (a speculative contact): whether it holds is decided when it touches, by
-    // how fast it slides then.
-    int index = -1;
-    if (N > 0) {
+    return ContactCache::Pair{std::get<0>(key), std::get<1>(key)};
+  };
+  // Each touching patch's index among its pair's cached patches: after those the cache kept, in
+  // the patches' order. Not touching yet (a speculative contact): no cached patch; whether it
+  // holds is decided when it touches, by how fast it slides then.
+  std::vector<double> load(patches.size());
+  std::vector<std::size_t> by_pair(patches.size());
+  for (std::size_t k = 0; k < patches.size(); ++k) {
+    load[k] = Load(patches[k], rows);
+    by_pair[k] = k;
+  }
+  std::stable_sort(by_pair.begin(), by_pair.end(),
+                   [&](std::size_t x, std::size_t y) { return pair_of(patches[x]) < pair_of(patches[y]); });
+  std::vector<int> index(patches.size(), -1);
+  for (std::size_t at = 0; at < by_pair.size();) {
+    const ContactCache::Pair pair = pair_of(patches[by_pair[at]]);
+    int next = static_cast<int>(cache.FindPatches(pair).second);
+    for (; at < by_pair.size() && pair_of(patches[by_pair[at]]) == pair; ++at) {
+      if (load[by_pair[at]] > 0) index[by_pair[at]] = next++;
+    }
+  }
+  for (std::size_t k = 0; k < patches.size(); ++k) {
+    const Patch& p = patches[k];
+    if (index[k] >= 0) {
       // On the limit: it slides (or just broke away); inside: it holds.
-      const bool stuck = p.lambda.norm() < p.mu * N * (1 - 1e-9);
-      index = static_cast<int>(pair.size());
-      pair.push_back({p.n, p.t1 * p.lambda[0] + p.t2 * p.lambda[1], p.rho * p.lambda[2], stuck});
+      const bool stuck = p.lambda.norm() < p.mu * load[k] * (1 - 1e-9);
+      cache.AddPatch(pair_of(p), index[k], {p.n, p.t1 * p.lambda[0] + p.t2 * p.lambda[1], p.rho * p.lambda[2], stuck});
     }
     for (int i = p.first; i < p.first + p.count; ++i) {
       const Row& r = rows[static_cast<std::size_t>(i)];
-      cache.rows[r.key] = {r.lambda_n, index};
+      cache.SetRow(r.key, {r.lambda_n, index[k]});
     }
   }
+  cache.Finish();
+}
+
+const CachedRow* ContactCache::FindRow(const RowKey& key) const {
+  const auto end = rows_.begin() + static_cast<std::ptrdiff_t>(sorted_rows_);
+  const auto it = std::lower_bound(rows_.begin(), end, key, [](const auto& e, const RowKey& k) { return e.first < k; });
+  return it != end && it->first == key ? &it->second : nullptr;
+}
+
+std::pair<const ContactCache::PatchEntry*, std::size_t> ContactCache::FindPatches(const Pair& pair) const {
+  const auto end = patches_.begin() + static_cast<std::ptrdiff_t>(sorted_patches_);
+  const auto lo =
+      std::lower_bound(patches_.begin(), end, pair, [](const PatchEntry& e, const Pair& p) { return e.pair < p; });
+  const auto hi = std::upper_bound(lo, end, pair, [](const Pair& p, const PatchEntry& e) { return p < e.pair; });
+  return {lo == hi ? nullptr : &*lo, static_cast<std::size_t>(hi - lo)};
+}
+
+void ContactCache::Finish() {
+  std::stable_sort(rows_.begin(), rows_.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::size_t out = 0;
+  for (std::size_t i = 0; i < rows_.size(); ++i) {  // of equal keys, the last set
+    if (i + 1 < rows_.size() && rows_[i + 1].first == rows_[i].first) continue;
+    rows_[out++] = rows_[i];
+  }
+  rows_.resize(out);
+  auto order = [](const PatchEntry& x, const PatchEntry& y) {
+    return x.pair != y.pair ? x.pair < y.pair : x.index < y.index;
+  };
+  std::stable_sort(patches_.begin(), patches_.end(), order);
+  out = 0;
+  for (std::size_t i = 0; i < patches_.size(); ++i) {  // of a repeated (pair, index), the first
+    if (out > 0 && patches_[out - 1].pair == patches_[i].pair && patches_[out - 1].index == patches_[i].index) continue;
+    patches_[out++] = patches_[i];
+  }
+  patches_.resize(out);
+  sorted_rows_ = rows_.size();
+  sorted_patches_ = patches_.size();
 }
 
 }  // namespace dynamics::contact

@@ -4,7 +4,6 @@
 // friction, iterated from the ground up with shock propagation.
 
 #include <cstdint>
-#include <map>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -137,10 +136,37 @@ struct CachedRow {
   double lambda_n = 0;
   int patch = -1;
 };
-/// The last step's impulses: each row's, each pair's patches (the first two parts of a RowKey).
-struct ContactCache {
-  std::map<RowKey, CachedRow> rows;
-  std::map<std::pair<int, int>, std::vector<CachedPatch>> patches;
+/// The last step's impulses: each row's, each pair's patches (a pair: the first two parts of a
+/// RowKey). Flat and sorted (a step's lookups are binary searches, its building appends and one
+/// sort, with no allocation per entry): entries are added, then Finish orders them.
+class ContactCache {
+ public:
+  using Pair = std::pair<int, int>;
+  struct PatchEntry {
+    Pair pair;
+    int index = 0;  // among the pair's patches
+    CachedPatch patch;
+  };
+  /// Row `key`'s entry, or null (after Finish).
+  const CachedRow* FindRow(const RowKey& key) const;
+  /// The pair's patches, in their order (index = position), or an empty range (after Finish).
+  std::pair<const PatchEntry*, std::size_t> FindPatches(const Pair& pair) const;
+  /// Sets row `key` (of those set for one key since the last Finish, the last one counts).
+  void SetRow(const RowKey& key, const CachedRow& row) { rows_.push_back({key, row}); }
+  /// Keeps another cache's patches of a pair as they were (a pair kept twice is kept once).
+  void KeepPatches(const Pair& pair, std::pair<const PatchEntry*, std::size_t> patches) {
+    patches_.insert(patches_.end(), patches.first, patches.first + patches.second);
+  }
+  /// Appends a patch to its pair: index `index` among the pair's.
+  void AddPatch(const Pair& pair, int index, const CachedPatch& patch) { patches_.push_back({pair, index, patch}); }
+  /// Orders what was added (rows by key, the last setting of a key kept; patches by pair and
+  /// index, the first of a repeated (pair, index) kept).
+  void Finish();
+
+ private:
+  std::vector<std::pair<RowKey, CachedRow>> rows_;
+  std::vector<PatchEntry> patches_;
+  std::size_t sorted_rows_ = 0, sorted_patches_ = 0;  // the prefixes Finish ordered (the lookups' domain)
 };
 
 /// Each body's response to impulses: 0 inverse mass and inertia for a body held still (asleep).

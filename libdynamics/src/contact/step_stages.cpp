@@ -424,11 +424,9 @@ Islands HoldSleeping(const StepInput& in, State& state, Scratch& s, ContactCache
                                 const bool still = state.sleep.asleep[static_cast<std::size_t>(r.a)] &&
                                                    (r.b < 0 || state.sleep.asleep[static_cast<std::size_t>(r.b)]);
                                 if (still) {
-                                  const auto it = state.cache.rows.find(r.key);
-                                  if (it != state.cache.rows.end()) kept.rows.insert(*it);
-                                  const std::pair<int, int> pair{std::get<0>(r.key), std::get<1>(r.key)};
-                                  const auto patches = state.cache.patches.find(pair);
-                                  if (patches != state.cache.patches.end()) kept.patches.insert(*patches);
+                                  if (const CachedRow* row = state.cache.FindRow(r.key)) kept.SetRow(r.key, *row);
+                                  const ContactCache::Pair pair{std::get<0>(r.key), std::get<1>(r.key)};
+                                  kept.KeepPatches(pair, state.cache.FindPatches(pair));
                                 }
                                 return still;
                               }),
@@ -454,6 +452,7 @@ void Solve(const StepInput& in, Islands& islands, State& state, Scratch& s, Cont
   for (int k = 0; k < nb; ++k) island[static_cast<std::size_t>(k)] = islands.Find(k);
   stats.iterations = SolveImpulses(s.rows, s.patches, s.vel, s.response, SupportLevels(nb, s.rows), island,
                                    SettingsOf(in.options), s.WorkersFor(in.threads));
+  kept.Finish();
   state.cache = std::move(kept);
   StoreImpulses(s.rows, s.patches, state.cache);
   stats.dissipated = energy_before - KineticEnergy(in.bodies, s.vel);
