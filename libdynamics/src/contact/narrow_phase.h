@@ -21,6 +21,8 @@ struct ContactPoint {
   const Material* material_b = nullptr;
 };
 
+struct PlacedPolytope;
+
 /// A shape in the world: x_W = R x_S + t.
 struct Posed {
   const Shape* shape = nullptr;
@@ -28,6 +30,9 @@ struct Posed {
   Matrix3 R = Matrix3::Identity();
   Vector3 t = Vector3::Zero();
   CollisionFilter filter;
+  /// The polytope's vertices and face planes in the world, when placed once for the step (each
+  /// body's, PoseBodies); null: placed by each routine that needs them.
+  const PlacedPolytope* placed = nullptr;
 };
 
 /// Part k of a posed compound, posed in the world with its filter ANDed with the compound's.

@@ -11,18 +11,11 @@
 namespace dynamics::contact {
 namespace {
 
-// A posed polytope's vertices and face planes in the world.
-struct World {
-  std::vector<Vector3> v;
-  std::vector<Vector3> n;
-  std::vector<double> d;  // n·x = d on the face
-};
-
 // The working arrays of a pair's test, kept per thread so that a step's thousands of pairs do
 // not allocate: the two placed polytopes, the clipped outline (and the one being made) with each
 // corner's key, and the points found.
 struct Scratch {
-  World a, b;
+  PlacedPolytope a, b;
   std::vector<Vector3> poly, clipped;
   std::vector<std::uint32_t> ids, clipped_ids;
   std::vector<ContactPoint> found;
@@ -32,7 +25,9 @@ Scratch& ThreadScratch() {
   return scratch;
 }
 
-void Place(const Polytope& p, const Posed& posed, World& w) {
+}  // namespace
+
+void PlacePolytope(const Polytope& p, const Posed& posed, PlacedPolytope& w) {
   w.v.clear();
   w.n.clear();
   w.d.clear();
@@ -42,6 +37,8 @@ void Place(const Polytope& p, const Posed& posed, World& w) {
     w.d.push_back(w.n.back().dot(w.v[static_cast<std::size_t>(p.faces[f][0])]));
   }
 }
+
+namespace {
 
 double MinAlong(const std::vector<Vector3>& v, const Vector3& u) {
   double m = std::numeric_limits<double>::infinity();
@@ -273,8 +270,8 @@ std::vector<ContactPoint> KeepFour(std::vector<ContactPoint> found) {
 // The contact of a face of pr (best_index, its normal rn out of pr) with the face of pi most against
 // it: pi's face clipped by the reference face's sides, its corners within the margin. ref_a: pr is
 // the pair's first polytope (the normal points out of the second into the first).
-void FaceContact(const Polytope& pr, const World& wr, const Polytope& pi, const World& wi, int best_index, bool ref_a,
-                 double margin, Scratch& scratch, std::vector<ContactPoint>& out) {
+void FaceContact(const Polytope& pr, const PlacedPolytope& wr, const Polytope& pi, const PlacedPolytope& wi,
+                 int best_index, bool ref_a, double margin, Scratch& scratch, std::vector<ContactPoint>& out) {
   const Vector3 rn = wr.n[static_cast<std::size_t>(best_index)];
   std::size_t inc = 0;
   double most = std::numeric_limits<double>::infinity();
@@ -348,9 +345,11 @@ void FaceContact(const Polytope& pr, const World& wr, const Polytope& pi, const 
 void PolytopePolytope(const Polytope& pa, const Posed& a, const Polytope& pb, const Posed& b, double margin,
                       std::vector<ContactPoint>& out) {
   Scratch& scratch = ThreadScratch();
-  World &wa = scratch.a, &wb = scratch.b;
-  Place(pa, a, wa);
-  Place(pb, b, wb);
+  // Each body's placed once a step (Posed::placed); a compound's parts and statics here.
+  if (a.placed == nullptr) PlacePolytope(pa, a, scratch.a);
+  if (b.placed == nullptr) PlacePolytope(pb, b, scratch.b);
+  const PlacedPolytope& wa = a.placed != nullptr ? *a.placed : scratch.a;
+  const PlacedPolytope& wb = b.placed != nullptr ? *b.placed : scratch.b;
   // Face axes: the separation of the other polytope from each face's plane.
   double best = -std::numeric_limits<double>::infinity();
   int best_kind = -1, best_index = -1;  // 0: a face of a, 1: a face of b, 2: an edge pair
@@ -442,8 +441,8 @@ void PolytopePolytope(const Polytope& pa, const Posed& a, const Polytope& pb, co
 
 void SpherePolytope(const Vector3& c, double r, const Polytope& p, const Posed& posed, double margin, bool sphere_first,
                     std::uint32_t feature, std::vector<ContactPoint>& out) {
-  World& w = ThreadScratch().a;
-  Place(p, posed, w);
+  if (posed.placed == nullptr) PlacePolytope(p, posed, ThreadScratch().a);
+  const PlacedPolytope& w = posed.placed != nullptr ? *posed.placed : ThreadScratch().a;
   // Inside every face plane: out through the nearest face.
   double deepest = -std::numeric_limits<double>::infinity();
   std::size_t face = 0;

@@ -21,6 +21,15 @@ struct Polytope {
   Vector3 centroid = Vector3::Zero();
 };
 
+/// A posed polytope's vertices and face planes in the world.
+struct PlacedPolytope {
+  std::vector<Vector3> v;
+  std::vector<Vector3> n;
+  std::vector<double> d;  // n·x = d on the face
+};
+/// Places `p` as `posed` puts it (into w, whose arrays are reused).
+void PlacePolytope(const Polytope& p, const Posed& posed, PlacedPolytope& w);
+
 /// The polytope of a convex hull given as triangles (outward); coplanar triangles become one face.
 /// O(n log n) in the triangles. @throws std::invalid_argument when the triangles do not bound a
 /// closed convex solid.

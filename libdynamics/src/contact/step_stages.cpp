@@ -262,10 +262,15 @@ namespace {
 void PoseBodies(const StepInput& in, const Model& model, Scratch& s) {
   const std::size_t nb = in.bodies.size();
   s.posed.assign(nb, Posed{});
+  s.placed.resize(nb);  // (their arrays kept from step to step)
   s.broad.assign(nb, BroadBody{});
   for (std::size_t k = 0; k < nb; ++k) {
     const RigidBody& b = in.bodies[k];
     s.posed[k] = PoseOf(model.colliders[k], model.polytopes[k].get(), b);
+    if (s.posed[k].polytope != nullptr && model.collides[k]) {
+      PlacePolytope(*s.posed[k].polytope, s.posed[k], s.placed[k]);
+      s.posed[k].placed = &s.placed[k];
+    }
     const Vector3 c = s.posed[k].t - b.position;
     const double r = model.radii[k];
     const double reach = in.h * (s.vel[k].v.norm() + s.vel[k].w.norm() * (r + c.norm())) + 1e-9 * r;

@@ -18,6 +18,7 @@
 #include "islands.h"
 #include "massprops/parallel.h"
 #include "narrow_phase.h"
+#include "polytope.h"
 #include "solver.h"
 #include "workers.h"
 
@@ -58,6 +59,7 @@ struct Scratch {
   BodyResponse response;
   double bounce_threshold = 0;                   // impacts slower than this do not bounce
   std::vector<Posed> posed;                      // each body's collider in the world
+  std::vector<PlacedPolytope> placed;            // each body's polytope in the world (if it has one)
   std::vector<BroadBody> broad;                  // and its reach in this step
   std::unique_ptr<Workers> workers;              // kept between steps; null: one thread
   internal::StepScratch step_scratch;            // the forces' wrenches
