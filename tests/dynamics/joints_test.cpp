@@ -20,6 +20,7 @@
 
 #include "dynamics/joints.h"
 #include "dynamics/world.h"
+#include "joint_bodies.h"
 #include "massprops/io/mesh_io.h"
 #include "massprops/mass_properties.h"
 
@@ -35,25 +36,8 @@ using massprops::Vector3;
 
 constexpr double kG = 9.81;
 
-/// A solid box of sides a, b, c (kg, m), axes along the world's.
-RigidBody Box(double m, double a, double b, double c, const Vector3& at) {
-  RigidBody body;
-  body.mass = m;
-  body.inertia = Vector3(b * b + c * c, a * a + c * c, a * a + b * b) * (m / 12.0);
-  body.position = at;
-  return body;
-}
-
-Joint Hinge(const World& w, int parent, int child, const Vector3& anchor, const Vector3& axis,
-            JointType type = JointType::kRevolute) {
-  Joint j;
-  j.name = "j" + std::to_string(child);
-  j.type = type;
-  j.parent = parent;
-  j.child = child;
-  w.PlaceJoint(j, anchor, axis);
-  return j;
-}
+using testing::PlacedJoint;
+using testing::SolidBox;
 
 /// Runs n steps, calling each(step) after every one; fails the test on a failed step.
 void Simulate(World& w, double h, long n, const std::function<void(long)>& each = {}) {
@@ -106,7 +90,7 @@ struct MeshPendulum {
     const double d = 0.05;
     pivot = placed.body.position + Vector3(0, 0, d);
     const Vector3 axis = Vector3(1, 0.3, 0).normalized();  // not a principal axis
-    joint = Hinge(w, -1, 0, pivot, axis);
+    joint = PlacedJoint(w, -1, 0, pivot, axis);
     joint.position = {theta0};
     w.AddJoint(joint);
     w.AddForce(dynamics::Gravity(Vector3(0, 0, -kG)));
@@ -161,14 +145,14 @@ struct DoublePendulum {
   double c2() const { return L2 / 2; }
   World Make(Integrator integrator, double th1, double th2) const {
     World world(integrator);
-    world.AddBody(Box(m1, w, w, L1, Vector3(0, 0, -c1())));
-    world.AddBody(Box(m2, w, w, L2, Vector3(0, 0, -L1 - c2())));
+    world.AddBody(SolidBox(m1, w, w, L1, Vector3(0, 0, -c1())));
+    world.AddBody(SolidBox(m2, w, w, L2, Vector3(0, 0, -L1 - c2())));
     // One after the other: World::PlaceJoint places at the bodies as added, whatever the first
     // joint has moved.
-    Joint a = Hinge(world, -1, 0, Vector3::Zero(), Vector3::UnitX());
+    Joint a = PlacedJoint(world, -1, 0, Vector3::Zero(), Vector3::UnitX());
     a.position = {th1};
     world.AddJoint(a);
-    Joint b = Hinge(world, 0, 1, Vector3(0, 0, -L1), Vector3::UnitX());
+    Joint b = PlacedJoint(world, 0, 1, Vector3(0, 0, -L1), Vector3::UnitX());
     b.position = {th2 - th1};
     world.AddJoint(b);
     world.AddForce(dynamics::Gravity(Vector3(0, 0, -kG)));
@@ -294,7 +278,7 @@ TEST(Joints, LagrangeTopNutatesBetweenTheRootsAtThePeriodByQuadrature) {
     top.orientation = dynamics::Quaternion(Eigen::AngleAxisd(theta0, Vector3::UnitX()));
     top.position = top.orientation * Vector3(0, 0, l);  // tip at the origin
     w.AddBody(top);
-    Joint ball = Hinge(w, -1, 0, Vector3::Zero(), Vector3::UnitZ(), JointType::kSpherical);
+    Joint ball = PlacedJoint(w, -1, 0, Vector3::Zero(), Vector3::UnitZ(), JointType::kSpherical);
     const Vector3 spin_axis = top.orientation * Vector3::UnitZ();  // J_c's axes are the world's at t = 0
     ball.velocity = {spin * spin_axis.x(), spin * spin_axis.y(), spin * spin_axis.z()};
     w.AddJoint(ball);
@@ -336,9 +320,9 @@ TEST(Joints, LagrangeTopNutatesBetweenTheRootsAtThePeriodByQuadrature) {
 TEST(Joints, HangingChainOfTwentyStaysStill) {
   World w;
   const double L = 0.1;
-  for (int k = 0; k < 20; ++k) w.AddBody(Box(0.2, 0.02, 0.03, L, Vector3(0, 0, -(k + 0.5) * L)));
+  for (int k = 0; k < 20; ++k) w.AddBody(SolidBox(0.2, 0.02, 0.03, L, Vector3(0, 0, -(k + 0.5) * L)));
   for (int k = 0; k < 20; ++k) {
-    w.AddJoint(Hinge(w, k - 1, k, Vector3(0, 0, -k * L), k % 2 ? Vector3::UnitX() : Vector3::UnitY()));
+    w.AddJoint(PlacedJoint(w, k - 1, k, Vector3(0, 0, -k * L), k % 2 ? Vector3::UnitX() : Vector3::UnitY()));
   }
   w.AddForce(dynamics::Gravity(Vector3(0, 0, -kG)));
   double fastest = 0;
@@ -355,8 +339,8 @@ TEST(Joints, HingeStopsOnItsLimitWithoutOvershoot) {
   for (double e : {0.0, 0.5}) {
     World w;
     const double L = 0.4;
-    w.AddBody(Box(1.0, 0.02, 0.02, L, Vector3(0, 0, -L / 2)));
-    Joint j = Hinge(w, -1, 0, Vector3::Zero(), Vector3::UnitX());
+    w.AddBody(SolidBox(1.0, 0.02, 0.02, L, Vector3(0, 0, -L / 2)));
+    Joint j = PlacedJoint(w, -1, 0, Vector3::Zero(), Vector3::UnitX());
     j.limits.lower = massprops::kPi / 6;
     j.limits.upper = massprops::kPi;
     j.limits.restitution = e;
@@ -386,8 +370,9 @@ TEST(Joints, HingeStopsOnItsLimitWithoutOvershoot) {
 TEST(Joints, DampedSliderReachesTerminalSpeed) {
   World w;
   const double m = 2.0, c = 5.0, slope = 0.3;
-  w.AddBody(Box(m, 0.1, 0.1, 0.1, Vector3::Zero()));
-  Joint j = Hinge(w, -1, 0, Vector3::Zero(), Vector3(std::cos(slope), 0, -std::sin(slope)), JointType::kPrismatic);
+  w.AddBody(SolidBox(m, 0.1, 0.1, 0.1, Vector3::Zero()));
+  Joint j =
+      PlacedJoint(w, -1, 0, Vector3::Zero(), Vector3(std::cos(slope), 0, -std::sin(slope)), JointType::kPrismatic);
   j.damping = c;
   w.AddJoint(j);
   w.AddForce(dynamics::Gravity(Vector3(0, 0, -kG)));
@@ -400,8 +385,8 @@ struct Axle {
   World w;
   double I = 0;
   explicit Axle(const std::function<void(Joint&)>& setup, double torque = 0) {
-    w.AddBody(Box(1.5, 0.3, 0.2, 0.05, Vector3(0.01, 0, 0)));  // the center 1 cm off the axle
-    Joint j = Hinge(w, -1, 0, Vector3::Zero(), Vector3::UnitZ());
+    w.AddBody(SolidBox(1.5, 0.3, 0.2, 0.05, Vector3(0.01, 0, 0)));  // the center 1 cm off the axle
+    Joint j = PlacedJoint(w, -1, 0, Vector3::Zero(), Vector3::UnitZ());
     setup(j);
     w.AddJoint(j);
     w.AddForce(dynamics::Gravity(Vector3(0, 0, -kG)));
@@ -456,8 +441,8 @@ TEST(Joints, SpringOscillatesAtItsNaturalFrequencyAndKeepsItsEnergy) {
 TEST(Joints, VelocityMotorHoldsItsRateUnderALoadBelowItsLimit) {
   for (double limit : {5.0, 0.5}) {
     World w;
-    w.AddBody(Box(1.0, 0.02, 0.02, 0.3, Vector3(0, 0, -0.15)));
-    Joint j = Hinge(w, -1, 0, Vector3::Zero(), Vector3::UnitX());
+    w.AddBody(SolidBox(1.0, 0.02, 0.02, 0.3, Vector3(0, 0, -0.15)));
+    Joint j = PlacedJoint(w, -1, 0, Vector3::Zero(), Vector3::UnitX());
     j.motor.mode = dynamics::JointMotor::Mode::kVelocity;
     j.motor.target = 2.0;
     j.motor.max_effort = limit;  // gravity's largest torque: 1 · 9.81 · 0.15 = 1.47 N·m
@@ -517,7 +502,7 @@ bool SameBits(const RigidBody& a, const RigidBody& b) {
 TEST(Joints, FreeJointAloneIsTheFreeBodyBitForBit) {
   auto make = [](bool joint) {
     World w;
-    RigidBody b = Box(2.0, 0.1, 0.2, 0.3, Vector3(0.1, 0.2, 0.3));
+    RigidBody b = SolidBox(2.0, 0.1, 0.2, 0.3, Vector3(0.1, 0.2, 0.3));
     b.orientation = dynamics::Quaternion(Eigen::AngleAxisd(0.4, Vector3(1, 2, 3).normalized()));
     b.SetAngularVelocity(Vector3(3, 0.01, -0.2));
     b.velocity = Vector3(0.1, 0, 1);
@@ -545,8 +530,8 @@ TEST(Joints, FreeJointAloneIsTheFreeBodyBitForBit) {
 // swings with it as one rigid body (the composite's period).
 TEST(Joints, FixedJointsWeld) {
   World still;
-  still.AddBody(Box(1, 0.1, 0.1, 0.1, Vector3::Zero()));
-  Joint weld = Hinge(still, -1, 0, Vector3::Zero(), Vector3::UnitZ(), JointType::kFixed);
+  still.AddBody(SolidBox(1, 0.1, 0.1, 0.1, Vector3::Zero()));
+  Joint weld = PlacedJoint(still, -1, 0, Vector3::Zero(), Vector3::UnitZ(), JointType::kFixed);
   still.AddJoint(weld);
   still.AddForce(dynamics::Gravity(Vector3(0, 0, -kG)));
   Simulate(still, 1e-3, 100);
@@ -554,12 +539,12 @@ TEST(Joints, FixedJointsWeld) {
   // Two rods welded end to end hang from a hinge: a physical pendulum of length 2L.
   World w;
   const double L = 0.3, m = 0.5;
-  w.AddBody(Box(m, 0.01, 0.01, L, Vector3(0, 0, -L / 2)));
-  w.AddBody(Box(m, 0.01, 0.01, L, Vector3(0, 0, -3 * L / 2)));
-  Joint hinge = Hinge(w, -1, 0, Vector3::Zero(), Vector3::UnitX());
+  w.AddBody(SolidBox(m, 0.01, 0.01, L, Vector3(0, 0, -L / 2)));
+  w.AddBody(SolidBox(m, 0.01, 0.01, L, Vector3(0, 0, -3 * L / 2)));
+  Joint hinge = PlacedJoint(w, -1, 0, Vector3::Zero(), Vector3::UnitX());
   hinge.position = {0.2};
   w.AddJoint(hinge);
-  w.AddJoint(Hinge(w, 0, 1, Vector3(0, 0, -L), Vector3::UnitX(), JointType::kFixed));
+  w.AddJoint(PlacedJoint(w, 0, 1, Vector3(0, 0, -L), Vector3::UnitX(), JointType::kFixed));
   w.AddForce(dynamics::Gravity(Vector3(0, 0, -kG)));
   const double I = 2 * m * (2 * L) * (2 * L) / 3 + 2 * m * 0.01 * 0.01 / 12;  // a rod of 2L about its end
   const double T = 4 * std::sqrt(I / (2 * m * kG * L)) * boost::math::ellint_1(std::sin(0.1));
@@ -578,8 +563,8 @@ TEST(Joints, FixedJointsWeld) {
 TEST(Joints, FloatingBaseConservesMomentaAndAFreeBodyFallsOnItsParabola) {
   for (Integrator integrator : {Integrator::kImplicitMidpoint, Integrator::kRK4}) {
     World w(integrator);
-    w.AddBody(Box(3.0, 0.3, 0.2, 0.1, Vector3::Zero()));
-    w.AddBody(Box(0.5, 0.02, 0.02, 0.4, Vector3(0.15, 0, 0.2)));
+    w.AddBody(SolidBox(3.0, 0.3, 0.2, 0.1, Vector3::Zero()));
+    w.AddBody(SolidBox(0.5, 0.02, 0.02, 0.4, Vector3(0.15, 0, 0.2)));
     Joint base;
     base.name = "base";
     base.type = JointType::kFree;
@@ -587,7 +572,7 @@ TEST(Joints, FloatingBaseConservesMomentaAndAFreeBodyFallsOnItsParabola) {
     w.PlaceJoint(base, Vector3::Zero(), Vector3::UnitZ());
     base.velocity = {0.3, -0.2, 1.0, 0.1, 0.05, -0.02};  // ω, then v, in the base's joint axes
     w.AddJoint(base);
-    Joint arm = Hinge(w, 0, 1, Vector3(0.15, 0, 0), Vector3::UnitY());
+    Joint arm = PlacedJoint(w, 0, 1, Vector3(0.15, 0, 0), Vector3::UnitY());
     arm.velocity = {2.0};
     w.AddJoint(arm);
     ASSERT_TRUE(w.articulated());
@@ -620,12 +605,12 @@ TEST(Joints, FloatingBaseConservesMomentaAndAFreeBodyFallsOnItsParabola) {
     EXPECT_LT(worst_E, rk4 ? 1e-11 : 2e-7) << IntegratorName(integrator);
   }
   World w;
-  w.AddBody(Box(1, 0.1, 0.1, 0.4, Vector3(0, 0, -0.2)));
-  RigidBody spinner = Box(2, 0.1, 0.2, 0.3, Vector3(1, 0, 0));
+  w.AddBody(SolidBox(1, 0.1, 0.1, 0.4, Vector3(0, 0, -0.2)));
+  RigidBody spinner = SolidBox(2, 0.1, 0.2, 0.3, Vector3(1, 0, 0));
   spinner.SetAngularVelocity(Vector3(3, 1, -2));
   spinner.velocity = Vector3(0.5, 0, 2);
   w.AddBody(spinner);
-  Joint hinge = Hinge(w, -1, 0, Vector3::Zero(), Vector3::UnitX());
+  Joint hinge = PlacedJoint(w, -1, 0, Vector3::Zero(), Vector3::UnitX());
   hinge.position = {1.0};
   w.AddJoint(hinge);
   w.AddForce(dynamics::Gravity(Vector3(0, 0, -kG)));
@@ -644,9 +629,9 @@ TEST(Joints, SameBitsForAnyThreadCount) {
   for (int threads : {1, 2, 3}) {
     World w;
     w.set_num_threads(threads);
-    for (int k = 0; k < 6; ++k) w.AddBody(Box(0.3, 0.03, 0.03, 0.2, Vector3(0, 0, -(k + 0.5) * 0.2)));
+    for (int k = 0; k < 6; ++k) w.AddBody(SolidBox(0.3, 0.03, 0.03, 0.2, Vector3(0, 0, -(k + 0.5) * 0.2)));
     for (int k = 0; k < 6; ++k) {
-      Joint j = Hinge(w, k - 1, k, Vector3(0, 0, -k * 0.2), k % 3 ? Vector3::UnitX() : Vector3(0, 1, 1));
+      Joint j = PlacedJoint(w, k - 1, k, Vector3(0, 0, -k * 0.2), k % 3 ? Vector3::UnitX() : Vector3(0, 1, 1));
       if (k == 2) j.type = JointType::kSpherical, j.velocity = {1, 2, 0.5};
       w.AddJoint(j);
     }
@@ -662,10 +647,10 @@ TEST(Joints, SameBitsForAnyThreadCount) {
 
 TEST(Joints, BadJointsAreRefusedNamingTheJointAndTheFault) {
   World w;
-  w.AddBody(Box(1, 0.1, 0.1, 0.1, Vector3::Zero()));
-  w.AddBody(Box(1, 0.1, 0.1, 0.1, Vector3(0, 0, 1)));
+  w.AddBody(SolidBox(1, 0.1, 0.1, 0.1, Vector3::Zero()));
+  w.AddBody(SolidBox(1, 0.1, 0.1, 0.1, Vector3(0, 0, 1)));
   auto refused = [&](const std::function<void(Joint&)>& edit, const std::string& words) {
-    Joint j = Hinge(w, -1, 0, Vector3::Zero(), Vector3::UnitX());
+    Joint j = PlacedJoint(w, -1, 0, Vector3::Zero(), Vector3::UnitX());
     j.name = "elbow";
     edit(j);
     try {
@@ -686,15 +671,15 @@ TEST(Joints, BadJointsAreRefusedNamingTheJointAndTheFault) {
   refused([](Joint& j) { j.position = {1, 2}; }, "position has 1 numbers");
   refused([](Joint& j) { j.limits.upper = 0.5, j.position = {1.0}; }, "outside its limits");
   refused([](Joint& j) { j.type = JointType::kSpherical, j.stiffness = 1; }, "not on a spherical joint");
-  w.AddJoint(Hinge(w, -1, 0, Vector3::Zero(), Vector3::UnitX()));
+  w.AddJoint(PlacedJoint(w, -1, 0, Vector3::Zero(), Vector3::UnitX()));
   refused([](Joint&) {}, "already hangs from joint");
   // A loop: 1 hangs from 0 ... and 0 from 1 cannot be added (0 already has a parent); a loop
   // among bodies without the world:
   World loop;
-  loop.AddBody(Box(1, 0.1, 0.1, 0.1, Vector3::Zero()));
-  loop.AddBody(Box(1, 0.1, 0.1, 0.1, Vector3(0, 0, 1)));
-  loop.AddJoint(Hinge(loop, 0, 1, Vector3::Zero(), Vector3::UnitX()));
-  EXPECT_THROW(loop.AddJoint(Hinge(loop, 1, 0, Vector3::Zero(), Vector3::UnitX())), std::invalid_argument);
+  loop.AddBody(SolidBox(1, 0.1, 0.1, 0.1, Vector3::Zero()));
+  loop.AddBody(SolidBox(1, 0.1, 0.1, 0.1, Vector3(0, 0, 1)));
+  loop.AddJoint(PlacedJoint(loop, 0, 1, Vector3::Zero(), Vector3::UnitX()));
+  EXPECT_THROW(loop.AddJoint(PlacedJoint(loop, 1, 0, Vector3::Zero(), Vector3::UnitX())), std::invalid_argument);
   EXPECT_EQ(loop.joints().size(), 1u);
   // Integrators that step free bodies only refuse.
   w.set_integrator(Integrator::kExactSplitting);

@@ -10,6 +10,7 @@
 
 #include "dynamics/joints.h"
 #include "dynamics/world.h"
+#include "joint_bodies.h"
 
 namespace {
 
@@ -23,22 +24,10 @@ using massprops::Vector3;
 
 constexpr double kTol = 1e-12;
 
-RigidBody Box(double m, double a, double b, double c, const Vector3& at) {
-  RigidBody body;
-  body.mass = m;
-  body.inertia = Vector3(b * b + c * c, a * a + c * c, a * a + b * b) * (m / 12.0);
-  body.position = at;
-  return body;
-}
+constexpr auto Box = testing::SolidBox;
 
 Joint Placed(const World& w, JointType type, int parent, int child, const Vector3& anchor, const Vector3& axis) {
-  Joint j;
-  j.name = "j" + std::to_string(child);
-  j.type = type;
-  j.parent = parent;
-  j.child = child;
-  w.PlaceJoint(j, anchor, axis);
-  return j;
+  return testing::PlacedJoint(w, parent, child, anchor, axis, type);
 }
 
 Matrix3 RotY(double t) { return Eigen::AngleAxisd(t, Vector3::UnitY()).toRotationMatrix(); }
