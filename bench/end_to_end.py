@@ -1,6 +1,8 @@
 #!/usr/bin/python3
 """End-to-end speed of `massprops` on every input path, against merely reading the same files
-(`cat FILES > /dev/null`) in the same run, with numpy-stl and a plain numpy loop as baselines.
+(`cat FILES > /dev/null`) in the same run, with numpy-stl and a plain numpy loop as baselines; the
+binary STLs also against their floor (bench/stl_floor: the file streamed on two threads and the
+ten moments summed, nothing else), in the same rotation.
 
     /usr/bin/python3 bench/end_to_end.py [--build build] [--repeat 15] [--huge] [--quick]
 
@@ -37,20 +39,25 @@ def run_timed(cmd, stdout=subprocess.DEVNULL):
     return elapsed, usage.ru_maxrss / 1024
 
 
-def interleaved(cmd, files, repeat):
-    """Median command time, median cat time, median of the pairwise ratios, peak RSS."""
+def interleaved(cmd, files, repeat, floor=None):
+    """Median command time, median cat time, median of the pairwise ratios, peak RSS, and with a
+    floor command (bench/stl_floor: the stream and the ten moments, nothing else) the median of
+    the command's ratios to it, run in the same rotation (else None)."""
     cat = ["cat"] + files
     run_timed(cat)  # warm the page cache
     run_timed(cmd)
-    t_cmd, t_cat, ratios, rss = [], [], [], 0.0
+    t_cmd, t_cat, ratios, to_floor, rss = [], [], [], [], 0.0
     for _ in range(repeat):
         a, r = run_timed(cmd)
         b, _ = run_timed(cat)
         t_cmd.append(a)
         t_cat.append(b)
         ratios.append(a / b)
+        if floor:
+            to_floor.append(a / run_timed(floor, stdout=subprocess.DEVNULL)[0])
         rss = max(rss, r)
-    return statistics.median(t_cmd), statistics.median(t_cat), statistics.median(ratios), rss
+    return (statistics.median(t_cmd), statistics.median(t_cat), statistics.median(ratios), rss,
+            statistics.median(to_floor) if floor else None)
 
 
 def make(gen, n, path):
@@ -97,10 +104,11 @@ def main():
     args = ap.parse_args()
     exe = os.path.abspath(os.path.join(args.build, "apps", "massprops"))
     gen = os.path.abspath(os.path.join(args.build, "bench", "make_torus_stl"))
+    floor_exe = os.path.abspath(os.path.join(args.build, "bench", "stl_floor"))
     repeat = 3 if args.quick else args.repeat
     big = 20_000 if args.quick else 2_000_000
     ok = True
-    rows = []  # (case, target, t_cmd, t_cat, ratio, rss)
+    rows = []  # (case, target, t_cmd, t_cat, ratio, rss, ratio to the floor or None)
     with tempfile.TemporaryDirectory() as tmp:
         def path(name):
             return os.path.join(tmp, name)
@@ -116,22 +124,24 @@ def main():
             small.append(path(f"small_{i:03d}.stl"))
             make(gen, 10_000 if i % 2 == 0 else 10_100, small[-1])
 
-        def case(name, target, cmd, files):
-            t_cmd, t_cat, ratio, rss = interleaved(cmd, files, repeat)
-            rows.append((name, target, t_cmd, t_cat, ratio, rss))
+        def case(name, target, cmd, files, floor=False):
+            floor_cmd = [floor_exe, files[0]] if floor else None
+            rows.append((name, target) + interleaved(cmd, files, repeat, floor_cmd))
 
         q = ["--format", "json", "--unit", "m", "-q"]
         n = "2·10⁴" if args.quick else "2·10⁶"
-        case(f"binary STL {n} triangles, default", "≤ 1.5×", [exe, stl2m] + q, [stl2m])
+        case(f"binary STL {n} triangles, default", "≤ 3× cat, ≤ 1.5× floor", [exe, stl2m] + q, [stl2m], floor=True)
         if not args.quick:
             stl10m = path("torus_10m.stl")
             make(gen, 10_000_000, stl10m)
-            case("binary STL 10⁷ triangles, default", "≤ 1.5×", [exe, stl10m] + q, [stl10m])
+            case("binary STL 10⁷ triangles, default", "≤ 3× cat, ≤ 1.5× floor", [exe, stl10m] + q, [stl10m],
+                 floor=True)
             os.remove(stl10m)
         if args.huge:
             stl40m = path("torus_40m.stl")
             make(gen, 40_000_000, stl40m)
-            case("binary STL 4·10⁷ triangles (2 GB), default", "≤ 1.5×", [exe, stl40m] + q, [stl40m])
+            case("binary STL 4·10⁷ triangles (2 GB), default", "≤ 3× cat, ≤ 1.5× floor", [exe, stl40m] + q, [stl40m],
+                 floor=True)
             os.remove(stl40m)
         case(f"binary STL {n}, `--full-check`", "≤ 10×", [exe, stl2m, "--full-check"] + q, [stl2m])
         case(f"OBJ {n} triangles (17-digit coordinates)", "≈ 6×", [exe, obj2m] + q, [obj2m])
@@ -156,13 +166,19 @@ def main():
         if abs(v_stl - v) > 1e-5 * v:
             print(f"numpy-stl's volume {v_stl} differs from ours {v}", file=sys.stderr)
             ok = False
+        v_floor = float(subprocess.run([floor_exe, stl2m], capture_output=True, text=True, check=True).stdout)
+        if abs(v_floor - v) > 1e-9 * v:
+            print(f"the floor's volume {v_floor} differs from ours {v}", file=sys.stderr)
+            ok = False
         if volume_of(exe, obj2m) <= 0:
             ok = False
 
-    print("| case | target | `massprops` | `cat` | ratio (median of pairs) | peak RSS |")
-    print("|---|---|---|---|---|---|")
-    for name, target, t_cmd, t_cat, ratio, rss in rows:
-        print(f"| {name} | {target} | {t_cmd * 1e3:.0f} ms | {t_cat * 1e3:.1f} ms | {ratio:.1f}× | {rss:.0f} MB |")
+    print("| case | target | `massprops` | `cat` | ratio to `cat` (median of pairs) | ratio to the floor | peak RSS |")
+    print("|---|---|---|---|---|---|---|")
+    for name, target, t_cmd, t_cat, ratio, rss, to_floor in rows:
+        floor_text = f"{to_floor:.1f}×" if to_floor is not None else "–"
+        print(f"| {name} | {target} | {t_cmd * 1e3:.0f} ms | {t_cat * 1e3:.1f} ms | {ratio:.1f}× | {floor_text} | "
+              f"{rss:.0f} MB |")
     print()
     print(f"| baseline on the {n}-triangle STL (whole process) | time | `massprops` is faster by |")
     print("|---|---|---|")
