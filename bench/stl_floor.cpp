@@ -19,7 +19,7 @@
 
 namespace {
 
-constexpr std::size_t kRecord = 50;       // 12 floats and a 2-byte attribute
+constexpr std::size_t kRecord = 50;          // 12 floats and a 2-byte attribute
 constexpr std::int64_t kPerBlock = 1 << 15;  // records a block (1.6 MB)
 
 struct Moments {

@@ -60,7 +60,9 @@ TEST(NarrowPhase, EveryPairOfKindsHasARoutine) {
       for (int s = 0; s < 20; ++s) {
         const dynamics::StepStatus st = world.Step(1e-3);
         ASSERT_TRUE(st.ok) << a_name << " / " << b_name << ": " << st.message;
-        if (s == 0) EXPECT_GT(world.stats().contacts, 0) << a_name << " / " << b_name;
+        if (s == 0) {
+          EXPECT_GT(world.stats().contacts, 0) << a_name << " / " << b_name;
+        }
       }
       // Pushed apart along x, not through each other.
       EXPECT_LT(world.world().bodies()[static_cast<std::size_t>(i)].position.x(), -0.3) << a_name << " / " << b_name;

@@ -87,7 +87,9 @@ TEST(Robot, UrdfSdfAndMjcfOfOneRobotMoveTheSame) {
     // instead, the same robot moves the same.
     for (massprops::RobotLink& l : model.links) {
       for (massprops::RobotGeometry& g : l.collisions) {
-        if (std::string(file) == "quadruped.xml") EXPECT_EQ(g.friction, 1.0) << l.name;
+        if (std::string(file) == "quadruped.xml") {
+          EXPECT_EQ(g.friction, 1.0) << l.name;
+        }
         g.friction.reset();
       }
     }

@@ -153,8 +153,8 @@ class ContactCache {
   std::pair<const PatchEntry*, std::size_t> FindPatches(const Pair& pair) const;
   /// Sets row `key` (of those set for one key since the last Finish, the last one counts).
   void SetRow(const RowKey& key, const CachedRow& row) { rows_.push_back({key, row}); }
-  /// Keeps another cache's patches of a pair as they were (a pair kept twice is kept once).
-  void KeepPatches(const Pair& pair, std::pair<const PatchEntry*, std::size_t> patches) {
+  /// Keeps another cache's patches of a pair (FindPatches') as they were (kept twice: once).
+  void KeepPatches(std::pair<const PatchEntry*, std::size_t> patches) {
     patches_.insert(patches_.end(), patches.first, patches.first + patches.second);
   }
   /// Appends a patch to its pair: index `index` among the pair's.

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 #include <string>
 #include <tuple>
 
@@ -430,8 +429,7 @@ Islands HoldSleeping(const StepInput& in, State& state, Scratch& s, ContactCache
                                                    (r.b < 0 || state.sleep.asleep[static_cast<std::size_t>(r.b)]);
                                 if (still) {
                                   if (const CachedRow* row = state.cache.FindRow(r.key)) kept.SetRow(r.key, *row);
-                                  const ContactCache::Pair pair{std::get<0>(r.key), std::get<1>(r.key)};
-                                  kept.KeepPatches(pair, state.cache.FindPatches(pair));
+                                  kept.KeepPatches(state.cache.FindPatches({std::get<0>(r.key), std::get<1>(r.key)}));
                                 }
                                 return still;
                               }),
