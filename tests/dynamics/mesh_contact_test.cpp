@@ -104,10 +104,12 @@ TEST(MeshContact, FieldDistancesAreTheMeshsOwn) {
 // The field is built on the threads asked for (ContactWorld::set_num_threads's when the world
 // builds it), and its bits do not depend on how many there were.
 TEST(MeshContact, FieldBitsAreTheSameOnOneAndTwoThreads) {
-  const massprops::TriangleMesh m = massprops::solids::Sphere(0.1, 16);
+  // A coarse field (24 cells across): quick under the sanitizers, and still many slices a thread.
+  const massprops::TriangleMesh m = massprops::solids::Sphere(0.1, 8);
   const shape::Mesh mesh = MeshOf(m);
-  const shape::Mesh one = MakeMesh(mesh.vertices, mesh.triangles, 0, 1);
-  const shape::Mesh two = MakeMesh(mesh.vertices, mesh.triangles, 0, 2);
+  const double cell = 0.2 / 24;
+  const shape::Mesh one = MakeMesh(mesh.vertices, mesh.triangles, cell, 1);
+  const shape::Mesh two = MakeMesh(mesh.vertices, mesh.triangles, cell, 2);
   ASSERT_FALSE(one.field->values.empty());
   ASSERT_EQ(one.field->values.size(), two.field->values.size());
   EXPECT_EQ(std::memcmp(one.field->values.data(), two.field->values.data(), one.field->values.size() * sizeof(double)),
