@@ -271,9 +271,8 @@ StepStatus ContactWorld::Step(double h) {
     contact::Forget(m);
     return world_.Step(h);
   }
-  contact::ContactCache kept;
-  contact::Islands islands = contact::HoldSleeping(in, m, m, kept);
-  contact::Solve(in, islands, m, m, std::move(kept), stats_);
+  contact::Islands islands = contact::HoldSleeping(in, m, m);
+  contact::Solve(in, islands, m, m, stats_);
   StepStatus status = contact::Drift(in, m, m, m, stats_);
   if (!status.ok) return status;
   world_.set_time(world_.time() + h);

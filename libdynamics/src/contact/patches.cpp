@@ -216,15 +216,26 @@ void StoreImpulses(const std::vector<Row>& rows, const std::vector<Patch>& patch
   // Each touching patch's index among its pair's cached patches: after those the cache kept, in
   // the patches' order. Not touching yet (a speculative contact): no cached patch; whether it
   // holds is decided when it touches, by how fast it slides then.
-  std::vector<double> load(patches.size());
-  std::vector<std::size_t> by_pair(patches.size());
+  struct Work {
+    std::vector<double> load;
+    std::vector<std::size_t> by_pair;
+    std::vector<int> index;
+  };
+  thread_local Work work;  // kept for the thread's life: a step allocates nothing here
+  std::vector<double>& load = work.load;
+  std::vector<std::size_t>& by_pair = work.by_pair;
+  load.resize(patches.size());
+  by_pair.resize(patches.size());
   for (std::size_t k = 0; k < patches.size(); ++k) {
     load[k] = Load(patches[k], rows);
     by_pair[k] = k;
   }
-  std::stable_sort(by_pair.begin(), by_pair.end(),
-                   [&](std::size_t x, std::size_t y) { return pair_of(patches[x]) < pair_of(patches[y]); });
-  std::vector<int> index(patches.size(), -1);
+  std::sort(by_pair.begin(), by_pair.end(), [&](std::size_t x, std::size_t y) {
+    const ContactCache::Pair px = pair_of(patches[x]), py = pair_of(patches[y]);
+    return px != py ? px < py : x < y;
+  });
+  std::vector<int>& index = work.index;
+  index.assign(patches.size(), -1);
   for (std::size_t at = 0; at < by_pair.size();) {
     const ContactCache::Pair pair = pair_of(patches[by_pair[at]]);
     int next = static_cast<int>(cache.FindPatches(pair).second);
@@ -249,8 +260,9 @@ void StoreImpulses(const std::vector<Row>& rows, const std::vector<Patch>& patch
 
 const CachedRow* ContactCache::FindRow(const RowKey& key) const {
   const auto end = rows_.begin() + static_cast<std::ptrdiff_t>(sorted_rows_);
-  const auto it = std::lower_bound(rows_.begin(), end, key, [](const auto& e, const RowKey& k) { return e.first < k; });
-  return it != end && it->first == key ? &it->second : nullptr;
+  const auto it =
+      std::lower_bound(rows_.begin(), end, key, [](const RowEntry& e, const RowKey& k) { return e.key < k; });
+  return it != end && it->key == key ? &it->row : nullptr;
 }
 
 std::pair<const ContactCache::PatchEntry*, std::size_t> ContactCache::FindPatches(const Pair& pair) const {
@@ -262,17 +274,19 @@ std::pair<const ContactCache::PatchEntry*, std::size_t> ContactCache::FindPatche
 }
 
 void ContactCache::Finish() {
-  std::stable_sort(rows_.begin(), rows_.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  // std::sort with the order as the tie-break: stable, and no buffer to allocate.
+  std::sort(rows_.begin(), rows_.end(),
+            [](const RowEntry& x, const RowEntry& y) { return x.key != y.key ? x.key < y.key : x.order < y.order; });
   std::size_t out = 0;
   for (std::size_t i = 0; i < rows_.size(); ++i) {  // of equal keys, the last set
-    if (i + 1 < rows_.size() && rows_[i + 1].first == rows_[i].first) continue;
+    if (i + 1 < rows_.size() && rows_[i + 1].key == rows_[i].key) continue;
     rows_[out++] = rows_[i];
   }
   rows_.resize(out);
-  auto order = [](const PatchEntry& x, const PatchEntry& y) {
-    return x.pair != y.pair ? x.pair < y.pair : x.index < y.index;
-  };
-  std::stable_sort(patches_.begin(), patches_.end(), order);
+  std::sort(patches_.begin(), patches_.end(), [](const PatchEntry& x, const PatchEntry& y) {
+    if (x.pair != y.pair) return x.pair < y.pair;
+    return x.index != y.index ? x.index < y.index : x.order < y.order;
+  });
   out = 0;
   for (std::size_t i = 0; i < patches_.size(); ++i) {  // of a repeated (pair, index), the first
     if (out > 0 && patches_[out - 1].pair == patches_[i].pair && patches_[out - 1].index == patches_[i].index) continue;

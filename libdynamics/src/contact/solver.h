@@ -146,25 +146,44 @@ class ContactCache {
     Pair pair;
     int index = 0;  // among the pair's patches
     CachedPatch patch;
+    std::uint32_t order = 0;  // when it was added (ties in Finish's sort)
+  };
+  struct RowEntry {
+    RowKey key;
+    CachedRow row;
+    std::uint32_t order = 0;  // when it was set (the last setting of a key counts)
   };
   /// Row `key`'s entry, or null (after Finish).
   const CachedRow* FindRow(const RowKey& key) const;
   /// The pair's patches, in their order (index = position), or an empty range (after Finish).
   std::pair<const PatchEntry*, std::size_t> FindPatches(const Pair& pair) const;
   /// Sets row `key` (of those set for one key since the last Finish, the last one counts).
-  void SetRow(const RowKey& key, const CachedRow& row) { rows_.push_back({key, row}); }
+  void SetRow(const RowKey& key, const CachedRow& row) {
+    rows_.push_back({key, row, static_cast<std::uint32_t>(rows_.size())});
+  }
   /// Keeps another cache's patches of a pair (FindPatches') as they were (kept twice: once).
   void KeepPatches(std::pair<const PatchEntry*, std::size_t> patches) {
-    patches_.insert(patches_.end(), patches.first, patches.first + patches.second);
+    for (std::size_t k = 0; k < patches.second; ++k) {
+      patches_.push_back(patches.first[k]);
+      patches_.back().order = static_cast<std::uint32_t>(patches_.size() - 1);
+    }
   }
   /// Appends a patch to its pair: index `index` among the pair's.
-  void AddPatch(const Pair& pair, int index, const CachedPatch& patch) { patches_.push_back({pair, index, patch}); }
+  void AddPatch(const Pair& pair, int index, const CachedPatch& patch) {
+    patches_.push_back({pair, index, patch, static_cast<std::uint32_t>(patches_.size())});
+  }
+  /// Empties it, keeping its arrays' capacity (a step's cache reuses the one before last's).
+  void Clear() {
+    rows_.clear();
+    patches_.clear();
+    sorted_rows_ = sorted_patches_ = 0;
+  }
   /// Orders what was added (rows by key, the last setting of a key kept; patches by pair and
   /// index, the first of a repeated (pair, index) kept).
   void Finish();
 
  private:
-  std::vector<std::pair<RowKey, CachedRow>> rows_;
+  std::vector<RowEntry> rows_;
   std::vector<PatchEntry> patches_;
   std::size_t sorted_rows_ = 0, sorted_patches_ = 0;  // the prefixes Finish ordered (the lookups' domain)
 };

@@ -57,10 +57,11 @@ struct Scratch {
   std::vector<Velocities> vel;
   std::vector<Velocities> before_kick;  // the velocities at the start of the step (for impacts)
   BodyResponse response;
-  double bounce_threshold = 0;                   // impacts slower than this do not bounce
-  std::vector<Posed> posed;                      // each body's collider in the world
-  std::vector<PlacedPolytope> placed;            // each body's polytope in the world (if it has one)
-  std::vector<BroadBody> broad;                  // and its reach in this step
+  double bounce_threshold = 0;         // impacts slower than this do not bounce
+  std::vector<Posed> posed;            // each body's collider in the world
+  std::vector<PlacedPolytope> placed;  // each body's polytope in the world (if it has one)
+  ContactCache kept;             // the sleeping contacts' warm start; then the cache before last (its arrays reused)
+  std::vector<BroadBody> broad;  // and its reach in this step
   std::unique_ptr<Workers> workers;              // kept between steps; null: one thread
   internal::StepScratch step_scratch;            // the forces' wrenches
   std::vector<std::vector<ContactPoint>> found;  // each candidate pair's points
@@ -102,12 +103,13 @@ void Forget(State& state);
 
 /// 3. Islands: a sleeping island wakes as a whole when an awake body touches it; bodies still
 /// asleep are held still (no kick, as heavy as the ground), and contacts among them alone are not
-/// solved (their warm start is kept for when the island wakes: returned in `kept`).
-Islands HoldSleeping(const StepInput& in, State& state, Scratch& s, ContactCache& kept);
+/// solved (their warm start is kept for when the island wakes: in `s.kept`).
+Islands HoldSleeping(const StepInput& in, State& state, Scratch& s);
 
 /// 4. The impulses: patches, the sweeps island by island, the warm start stored for the next step
-/// (`kept` joined to it), the kinetic energy the impulses took.
-void Solve(const StepInput& in, Islands& islands, State& state, Scratch& s, ContactCache kept, ContactStats& stats);
+/// (`s.kept` joined to it; `s.kept` then holds the old cache's arrays), the kinetic energy the
+/// impulses took.
+void Solve(const StepInput& in, Islands& islands, State& state, Scratch& s, ContactStats& stats);
 
 /// 5. Position correction of overlap beyond each contact's slop, and 6. the drift (the joints'
 /// finish in an articulated world).
