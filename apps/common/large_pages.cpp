@@ -41,6 +41,10 @@ void* __libc_calloc(std::size_t k, std::size_t n);
 void* __libc_realloc(void* p, std::size_t n);
 }
 
+// Defined false by a command whose threads allocate small blocks side by side (apps/rbsim/main.cpp);
+// absent (massprops): one arena.
+extern "C" [[gnu::weak]] const bool massprops_app_one_arena;
+
 namespace {
 
 constexpr std::size_t kPage = 4096;
@@ -72,7 +76,9 @@ void* Advise(void* p, std::size_t n) {
 
 [[gnu::constructor]] void SetPolicy() {
   ::mallopt(M_MMAP_THRESHOLD, static_cast<int>(kLarge));
-  ::mallopt(M_ARENA_MAX, 1);
+  // One arena, unless the command says its threads allocate side by side (rbsim: one arena made
+  // `rbsim poses` slower on two threads than on one, every step's small blocks behind one lock).
+  if (&massprops_app_one_arena == nullptr || massprops_app_one_arena) ::mallopt(M_ARENA_MAX, 1);
   ::mallopt(M_TOP_PAD, static_cast<int>(kHeapStep));
   ::mallopt(M_TRIM_THRESHOLD, static_cast<int>(4 * kHeapStep));
   advised_top.store(reinterpret_cast<std::uintptr_t>(::sbrk(0)));

@@ -363,6 +363,10 @@ int Simulate(const Flags& f, const rbsim::Scene& scene, std::vector<std::string>
 
 }  // namespace
 
+// rbsim's threads (the drops of `rbsim poses`, the contact workers) allocate small blocks side by
+// side: each gets its own malloc arena (apps/common/large_pages.cpp).
+extern "C" const bool massprops_app_one_arena = false;
+
 int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "poses") return rbsim::PosesMain(argc - 1, argv + 1);
   CLI::App app{
