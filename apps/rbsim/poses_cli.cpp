@@ -175,10 +175,11 @@ massprops::LoadOptions PartLoadOptions(const PosesFlags& f) {
   return load;
 }
 
-// A picture of each pose (a large mesh drawn as its convex hull: one SVG polygon a triangle) and
-// poses.json in `out_dir`.
+// A picture of each pose, named as `pictures` says (a large mesh drawn as its convex hull: one SVG
+// polygon a triangle), and poses.json in `out_dir`.
 void WritePoseFiles(const std::string& out_dir, const std::string& name, const massprops::TriangleMesh& file_mesh,
-                    const dp::Part& part, const dp::Estimate& estimate, const std::string& json) {
+                    const dp::Part& part, const dp::Estimate& estimate, const std::vector<std::string>& pictures,
+                    const std::string& json) {
   std::filesystem::create_directories(out_dir);
   // A picture is one SVG polygon a triangle: a large mesh is drawn as its convex hull.
   constexpr Eigen::Index kMostTriangles = 100000;
@@ -199,8 +200,7 @@ void WritePoseFiles(const std::string& out_dir, const std::string& name, const m
     if (as_hull) title << " (its convex hull drawn: the mesh has " << file_mesh.F.rows() << " triangles)";
     std::vector<Vector3> outline;
     for (int v : estimate.poses[p].outline) outline.push_back(part.hull_vertices[static_cast<std::size_t>(v)]);
-    WritePosePicture(out_dir + "/pose_" + std::to_string(p + 1) + ".svg", as_hull ? drawn : file_mesh,
-                     estimate.poses[p], outline, title.str());
+    WritePosePicture(out_dir + "/" + pictures[p], as_hull ? drawn : file_mesh, estimate.poses[p], outline, title.str());
   }
   massprops::report::WriteFileAtomically(out_dir + "/poses.json", json + "\n");
 }
@@ -339,7 +339,7 @@ int PosesMain(int argc, char** argv) {
   const std::string json = dynamics::PosesJson(report, 2);
   if (!f.out_dir.empty()) {
     try {
-      WritePoseFiles(f.out_dir, name, file_mesh, part, estimate, json);
+      WritePoseFiles(f.out_dir, name, file_mesh, part, estimate, report.pictures, json);
     } catch (const std::exception& e) {
       std::cerr << "error: --out " << massprops::app::OneLine(f.out_dir) << ": " << massprops::app::OneLine(e.what())
                 << "\n";

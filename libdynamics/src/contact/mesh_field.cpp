@@ -416,16 +416,14 @@ std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh, int thr
   // same whatever the thread count.
   massprops::ParallelForBlocks(nz, threads, [&](std::int64_t slice) {
     const auto z = static_cast<int>(slice);
-    {
-      for (int y = 0; y < ny; ++y) {
-        for (int x = 0; x < nx; ++x) {
-          const Vector3 p = field->origin + cell * Vector3(x, y, z);
-          const double d = tree.Distance(p);
-          const bool in = winding->Value(p) < 0;
-          field->values[(static_cast<std::size_t>(z) * static_cast<std::size_t>(ny) + static_cast<std::size_t>(y)) *
-                            static_cast<std::size_t>(nx) +
-                        static_cast<std::size_t>(x)] = in ? -d : d;
-        }
+    for (int y = 0; y < ny; ++y) {
+      for (int x = 0; x < nx; ++x) {
+        const Vector3 p = field->origin + cell * Vector3(x, y, z);
+        const double d = tree.Distance(p);
+        const bool in = winding->Value(p) < 0;
+        field->values[(static_cast<std::size_t>(z) * static_cast<std::size_t>(ny) + static_cast<std::size_t>(y)) *
+                          static_cast<std::size_t>(nx) +
+                      static_cast<std::size_t>(x)] = in ? -d : d;
       }
     }
   });

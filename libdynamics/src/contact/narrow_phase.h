@@ -30,8 +30,8 @@ struct Posed {
   Matrix3 R = Matrix3::Identity();
   Vector3 t = Vector3::Zero();
   CollisionFilter filter;
-  /// The polytope's vertices and face planes in the world, when placed once for the step (each
-  /// body's, PoseBodies); null: placed by each routine that needs them.
+  /// The polytope's vertices and face planes in the world, when placed once for the step (a body
+  /// in a pair: PairRows); null: placed by each routine that needs them.
   const PlacedPolytope* placed = nullptr;
 };
 

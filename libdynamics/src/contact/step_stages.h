@@ -59,9 +59,9 @@ struct Scratch {
   BodyResponse response;
   double bounce_threshold = 0;         // impacts slower than this do not bounce
   std::vector<Posed> posed;            // each body's collider in the world
-  std::vector<PlacedPolytope> placed;  // each body's polytope in the world (if it has one)
-  ContactCache kept;             // the sleeping contacts' warm start; then the cache before last (its arrays reused)
-  std::vector<BroadBody> broad;  // and its reach in this step
+  std::vector<BroadBody> broad;        // and its reach in this step
+  std::vector<PlacedPolytope> placed;  // each body's polytope in the world (placed when in a pair)
+  ContactCache kept;  // the sleeping contacts' warm start; then the cache before last (its arrays reused)
   std::unique_ptr<Workers> workers;              // kept between steps; null: one thread
   internal::StepScratch step_scratch;            // the forces' wrenches
   std::vector<std::vector<ContactPoint>> found;  // each candidate pair's points

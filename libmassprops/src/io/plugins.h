@@ -15,11 +15,6 @@ namespace massprops::plugins {
 /// library is linked into (its realpath, so that a symlink in /usr/local/bin still leads home).
 std::string HomeDir();
 
-/// dlopen()s the first of `candidates` that loads, with lazy binding (OpenCASCADE's seventeen
-/// libraries then bind only the functions a read calls: about 50 ms less per process). Null, with
-/// `error` saying what was tried, when none does.
-void* Open(const std::vector<std::string>& candidates, std::string& error);
-
 /// A module to load: what it is (for messages), where to look, and the entry points it must have.
 struct ModuleSpec {
   std::string what;                     ///< "the assimp plugin (libmassprops_assimp.so)"
