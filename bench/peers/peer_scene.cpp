@@ -26,6 +26,8 @@ PeerScene LoadPeerScene(const std::string& path, double dt) {
                               "planes and gravity");
   };
   if (!scene.pairs.empty()) throw refuse("pair materials");
+  if (!scene.joints.empty()) throw refuse("joints");
+  if (!scene.robots.empty()) throw refuse("robots (bench/peers/robot_peer runs robots)");
   PeerScene out;
   out.file = path;
   out.dt = scene.dt;

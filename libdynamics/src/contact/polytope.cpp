@@ -31,10 +31,18 @@ void PlacePolytope(const Polytope& p, const Posed& posed, PlacedPolytope& w) {
   w.v.clear();
   w.n.clear();
   w.d.clear();
+  w.e.clear();
+  w.arc.clear();
   for (const Vector3& x : p.vertices) w.v.push_back(posed.R * x + posed.t);
   for (std::size_t f = 0; f < p.faces.size(); ++f) {
     w.n.push_back(posed.R * p.normals[f]);
     w.d.push_back(w.n.back().dot(w.v[static_cast<std::size_t>(p.faces[f][0])]));
+  }
+  for (std::size_t i = 0; i < p.edges.size(); ++i) {
+    w.e.push_back(w.v[static_cast<std::size_t>(p.edges[i].second)] - w.v[static_cast<std::size_t>(p.edges[i].first)]);
+    const Vector3& first = w.n[static_cast<std::size_t>(p.edge_faces[i].first)];
+    const Vector3& second = w.n[static_cast<std::size_t>(p.edge_faces[i].second)];
+    w.arc.push_back(second.cross(first));
   }
 }
 
@@ -383,20 +391,20 @@ void PolytopePolytope(const Polytope& pa, const Posed& a, const Polytope& pb, co
   Vector3 edge_axis = Vector3::Zero();
   std::pair<int, int> edge_pair{-1, -1};
   for (std::size_t i = 0; i < pa.edges.size(); ++i) {
-    const Vector3 ea =
-        wa.v[static_cast<std::size_t>(pa.edges[i].second)] - wa.v[static_cast<std::size_t>(pa.edges[i].first)];
+    const Vector3& ea = wa.e[i];
+    const Vector3& na = wa.n[static_cast<std::size_t>(pa.edge_faces[i].first)];
+    const Vector3& nb = wa.n[static_cast<std::size_t>(pa.edge_faces[i].second)];
+    const Vector3& bxa = wa.arc[i];
     for (std::size_t j = 0; j < pb.edges.size(); ++j) {
-      const Vector3 eb =
-          wb.v[static_cast<std::size_t>(pb.edges[j].second)] - wb.v[static_cast<std::size_t>(pb.edges[j].first)];
+      const Vector3& eb = wb.e[j];
       // Only pairs whose arcs on the Gauss map cross (Gregorius, GDC 2013) can be the axis:
-      // the others are never closer than a face axis, and skipping them makes hulls cheap.
+      // the others are never closer than a face axis, and skipping them makes hulls cheap. (b's
+      // arc is taken negated, −n_d × −n_c = n_d × n_c, its normals negated in the dot products.)
       {
-        const Vector3& na = wa.n[static_cast<std::size_t>(pa.edge_faces[i].first)];
-        const Vector3& nb = wa.n[static_cast<std::size_t>(pa.edge_faces[i].second)];
-        const Vector3 nc = -wb.n[static_cast<std::size_t>(pb.edge_faces[j].first)];
-        const Vector3 nd = -wb.n[static_cast<std::size_t>(pb.edge_faces[j].second)];
-        const Vector3 bxa = nb.cross(na), dxc = nd.cross(nc);
-        const double cba = nc.dot(bxa), dba = nd.dot(bxa), adc = na.dot(dxc), bdc = nb.dot(dxc);
+        const Vector3& nc = wb.n[static_cast<std::size_t>(pb.edge_faces[j].first)];
+        const Vector3& nd = wb.n[static_cast<std::size_t>(pb.edge_faces[j].second)];
+        const Vector3& dxc = wb.arc[j];
+        const double cba = -nc.dot(bxa), dba = -nd.dot(bxa), adc = na.dot(dxc), bdc = nb.dot(dxc);
         if (!(cba * dba < 0 && adc * bdc < 0 && cba * bdc > 0)) continue;
       }
       Vector3 u = ea.cross(eb);

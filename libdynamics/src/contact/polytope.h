@@ -21,11 +21,13 @@ struct Polytope {
   Vector3 centroid = Vector3::Zero();
 };
 
-/// A posed polytope's vertices and face planes in the world.
+/// A posed polytope's vertices, face planes and edges in the world.
 struct PlacedPolytope {
   std::vector<Vector3> v;
   std::vector<Vector3> n;
-  std::vector<double> d;  // n·x = d on the face
+  std::vector<double> d;     // n·x = d on the face
+  std::vector<Vector3> e;    // each edge, second vertex − first
+  std::vector<Vector3> arc;  // n(second face) × n(first face): the edge's arc on the Gauss map
 };
 /// Places `p` as `posed` puts it (into w, whose arrays are reused).
 void PlacePolytope(const Polytope& p, const Posed& posed, PlacedPolytope& w);
