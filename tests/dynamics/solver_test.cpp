@@ -53,9 +53,13 @@ TEST(Solver, ACubeAtRestTakesItsWeightAndASlidingOneKineticFriction) {
     // At rest.
     {
       RestingCube c(Vector3::Zero(), 0.5);
-      std::vector<Patch> patches = PreparePatches(c.rows, ContactCache{}, c.vel, c.response, 1e-6);
+      SolveScratch scratch;
+      std::vector<Patch> patches;
+      std::vector<int> levels;
+      PreparePatches(c.rows, ContactCache{}, c.vel, c.response, 1e-6, patches, scratch);
       ASSERT_EQ(patches.size(), 1u);
-      SolveImpulses(c.rows, patches, c.vel, c.response, SupportLevels(1, c.rows), {0}, settings, nullptr);
+      SupportLevels(1, c.rows, levels);
+      SolveImpulses(c.rows, patches, c.vel, c.response, levels, {0}, settings, nullptr, scratch);
       double N = 0;
       for (const Row& r : c.rows) N += r.lambda_n;
       EXPECT_NEAR(N, kG * 1e-3, exact ? 1e-12 : 1e-5 * kG * 1e-3);
@@ -65,8 +69,12 @@ TEST(Solver, ACubeAtRestTakesItsWeightAndASlidingOneKineticFriction) {
     {
       const Vector3 dir(0.6, 0.8, 0);
       RestingCube c(dir, 0.5);
-      std::vector<Patch> patches = PreparePatches(c.rows, ContactCache{}, c.vel, c.response, 1e-6);
-      SolveImpulses(c.rows, patches, c.vel, c.response, SupportLevels(1, c.rows), {0}, settings, nullptr);
+      SolveScratch scratch;
+      std::vector<Patch> patches;
+      std::vector<int> levels;
+      PreparePatches(c.rows, ContactCache{}, c.vel, c.response, 1e-6, patches, scratch);
+      SupportLevels(1, c.rows, levels);
+      SolveImpulses(c.rows, patches, c.vel, c.response, levels, {0}, settings, nullptr, scratch);
       const double tol = exact ? 1e-9 : 1e-7;
       EXPECT_NEAR(c.vel[0].v.dot(dir), 1.0 - 0.5 * kG * 1e-3, tol);
       EXPECT_NEAR(c.vel[0].v.z(), 0, tol);
@@ -104,10 +112,14 @@ TEST(Solver, TwoBodiesMeetWithTheImpulseOfTheirEffectiveMass) {
     return Matrix3(inv_m * Matrix3::Identity() - S * (inv_i * Matrix3::Identity()) * S);
   };
   const double effective = 1.0 / r.n.dot((K(1.0 / 3.0, 2.0, r.ra) + K(1.0, 5.0, r.rb)) * r.n);
-  std::vector<Patch> patches = PreparePatches(rows, ContactCache{}, vel, response, 1e-6);
+  SolveScratch scratch;
+  std::vector<Patch> patches;
+  std::vector<int> levels;
+  PreparePatches(rows, ContactCache{}, vel, response, 1e-6, patches, scratch);
   SolveSettings settings;
   settings.exact = true;
-  SolveImpulses(rows, patches, vel, response, SupportLevels(2, rows), {0, 0}, settings, nullptr);
+  SupportLevels(2, rows, levels);
+  SolveImpulses(rows, patches, vel, response, levels, {0, 0}, settings, nullptr, scratch);
   EXPECT_NEAR(rows[0].lambda_n, -before * effective, 1e-12);
   EXPECT_NEAR(normal_speed(), 0, 1e-12);
   EXPECT_LT((vel[0].v * 1.0 + vel[1].v * 3.0 - momentum).norm(), 1e-12);

@@ -7,13 +7,9 @@
 
 namespace dynamics::contact {
 
-std::vector<Candidate> FindCandidates(const std::vector<BroadBody>& bodies, const std::vector<BroadStatic>& statics) {
-  struct Interval {
-    double lo, hi;
-    int id;  // >= 0: dynamic body; < 0: -1 - static index
-  };
-  std::vector<Interval> intervals;
-  intervals.reserve(bodies.size() + statics.size());
+void FindCandidates(const std::vector<BroadBody>& bodies, const std::vector<BroadStatic>& statics,
+                    std::vector<Candidate>& candidates, std::vector<SweepInterval>& intervals) {
+  intervals.clear();
   for (std::size_t k = 0; k < bodies.size(); ++k) {
     const BroadBody& b = bodies[k];
     if (!b.collides) continue;
@@ -23,9 +19,10 @@ std::vector<Candidate> FindCandidates(const std::vector<BroadBody>& bodies, cons
   for (std::size_t s = 0; s < statics.size(); ++s) {
     intervals.push_back({statics[s].lower.x(), statics[s].upper.x(), -1 - static_cast<int>(s)});
   }
-  std::sort(intervals.begin(), intervals.end(),
-            [](const Interval& x, const Interval& y) { return x.lo < y.lo || (x.lo == y.lo && x.id < y.id); });
-  std::vector<Candidate> candidates;
+  std::sort(intervals.begin(), intervals.end(), [](const SweepInterval& x, const SweepInterval& y) {
+    return x.lo < y.lo || (x.lo == y.lo && x.id < y.id);
+  });
+  candidates.clear();
   for (std::size_t i = 0; i < intervals.size(); ++i) {
     for (std::size_t j = i + 1; j < intervals.size() && intervals[j].lo <= intervals[i].hi; ++j) {
       int a = intervals[i].id, b = intervals[j].id;
@@ -49,7 +46,6 @@ std::vector<Candidate> FindCandidates(const std::vector<BroadBody>& bodies, cons
       candidates.push_back({a, b, margin});
     }
   }
-  return candidates;
 }
 
 }  // namespace dynamics::contact

@@ -29,7 +29,15 @@ struct Candidate {
   double margin = 0;
 };
 
-/// Every candidate pair, in an order that depends only on the positions.
-std::vector<Candidate> FindCandidates(const std::vector<BroadBody>& bodies, const std::vector<BroadStatic>& statics);
+/// A shape's extent along the sweep axis (id ≥ 0: a dynamic body; < 0: the static body -1 - id).
+struct SweepInterval {
+  double lo, hi;
+  int id;
+};
+
+/// Every candidate pair into `candidates`, in an order that depends only on the positions
+/// (`intervals`: working array).
+void FindCandidates(const std::vector<BroadBody>& bodies, const std::vector<BroadStatic>& statics,
+                    std::vector<Candidate>& candidates, std::vector<SweepInterval>& intervals);
 
 }  // namespace dynamics::contact

@@ -271,7 +271,7 @@ StepStatus ContactWorld::Step(double h) {
     contact::Forget(m);
     return world_.Step(h);
   }
-  contact::Islands islands = contact::HoldSleeping(in, m, m);
+  contact::Islands& islands = contact::HoldSleeping(in, m, m);
   contact::Solve(in, islands, m, m, stats_);
   StepStatus status = contact::Drift(in, m, m, m, stats_);
   if (!status.ok) return status;

@@ -284,7 +284,8 @@ void SamplesAgainst(const Posed& from, const Posed& to, double spacing, double m
     }
     return;
   }
-  std::vector<Sample> samples;
+  thread_local std::vector<Sample> samples;  // kept per thread: a mesh pair samples every step
+  samples.clear();
   SamplesOf(from, spacing, samples);
   for (std::size_t i = 0; i < samples.size(); ++i) test(samples[i].p, samples[i].radius, i);
 }

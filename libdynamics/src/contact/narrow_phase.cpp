@@ -142,7 +142,8 @@ void CylinderPolytope(const Posed& cylinder, const Polytope& p, const Posed& pos
   if (best < std::cos(8 * massprops::kPi / 180)) return;
   const Vector3 nf = posed.R * p.normals[face];
   const double offset = nf.dot(posed.R * p.vertices[static_cast<std::size_t>(p.faces[face][0])] + posed.t);
-  std::vector<ContactPoint> exact;
+  thread_local std::vector<ContactPoint> exact;  // kept per thread
+  exact.clear();
   CollideGround(cylinder, nf, offset, CollisionFilter{~0u, ~0u}, margin, exact);
   const double slack = 1e-9 * BoundingRadius(*cylinder.shape);
   exact.erase(std::remove_if(exact.begin(), exact.end(),
@@ -254,15 +255,19 @@ void ValidateShape(const Shape& s) {
 void ReduceContacts(std::vector<ContactPoint>& out, std::size_t first) {
   const std::size_t n = out.size() - first;
   if (n <= kMaxContactPoints) return;
-  std::vector<ContactPoint> all(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
+  // Working arrays kept per thread (a mesh pair reduces its points every step).
+  thread_local std::vector<ContactPoint> all;
+  thread_local std::vector<double> gap;
+  thread_local std::vector<char> kept;
+  all.assign(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
   out.resize(first);
   std::size_t deepest = 0;
   for (std::size_t i = 1; i < n; ++i) {
     if (all[i].separation < all[deepest].separation) deepest = i;
   }
   const double floor = all[deepest].separation;
-  std::vector<double> gap(n, std::numeric_limits<double>::infinity());
-  std::vector<char> kept(n, 0);
+  gap.assign(n, std::numeric_limits<double>::infinity());
+  kept.assign(n, 0);
   std::size_t pick = deepest;
   for (std::size_t count = 0; count < kMaxContactPoints; ++count) {
     out.push_back(all[pick]);

@@ -35,8 +35,9 @@ double EdgeMoment(const Eigen::Vector2d& P, const Eigen::Vector2d& Q) {
 }
 
 // The anchor (world) and torsion radius of a patch's points (rows warm-started).
-void Outline(const std::vector<Row>& rows, const Patch& p, Vector3& anchor, double& rho) {
-  std::vector<Eigen::Vector2d> q;
+void Outline(const std::vector<Row>& rows, const Patch& p, Vector3& anchor, double& rho, SolveScratch& scratch) {
+  std::vector<Eigen::Vector2d>& q = scratch.points;
+  q.clear();
   double height = 0, extent = 0, load = 0;
   Eigen::Vector2d pressure = Eigen::Vector2d::Zero();  // Σ λn q
   for (int i = p.first; i < p.first + p.count; ++i) {
@@ -54,7 +55,8 @@ void Outline(const std::vector<Row>& rows, const Patch& p, Vector3& anchor, doub
   auto turn = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
   };
-  std::vector<Eigen::Vector2d> hull;
+  std::vector<Eigen::Vector2d>& hull = scratch.hull;
+  hull.clear();
   for (int pass = 0; pass < 2; ++pass) {
     const std::size_t start = hull.size();
     for (std::size_t k = 0; k < q.size(); ++k) {
@@ -109,17 +111,19 @@ void Outline(const std::vector<Row>& rows, const Patch& p, Vector3& anchor, doub
 
 }  // namespace
 
-std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& cache, const std::vector<Velocities>& vel,
-                                  const BodyResponse& bodies, double slow) {
+void PreparePatches(std::vector<Row>& rows, const ContactCache& cache, const std::vector<Velocities>& vel,
+                    const BodyResponse& bodies, double slow, std::vector<Patch>& patches, SolveScratch& scratch) {
   const double same = std::cos(kPatchAngle);
   // Each row's normal effective mass and warm start.
   for (Row& r : rows) {
     SetRowJacobian(r, bodies);
     if (const CachedRow* cached = cache.FindRow(r.key)) r.lambda_n = cached->lambda_n;
   }
-  std::vector<Patch> patches;
-  patches.reserve(rows.size());
-  std::vector<Row> sorted;
+  patches.clear();
+  std::vector<Row>& sorted = scratch.sorted;
+  std::vector<const Row*>& leaders = scratch.leaders;  // each patch's first row
+  std::vector<int>& patch_of = scratch.patch_of;
+  std::vector<char>& used = scratch.used;
   for (std::size_t first = 0; first < rows.size();) {
     // The pair's rows: [first, last).
     const auto pair = std::pair{std::get<0>(rows[first].key), std::get<1>(rows[first].key)};
@@ -128,8 +132,8 @@ std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& ca
     // Its patches: each row joins the first patch whose first normal agrees with its own and
     // whose friction is its own (a compound's parts may differ); the rows are reordered patch by
     // patch.
-    std::vector<const Row*> leaders;  // each patch's first row
-    std::vector<int> patch_of;
+    leaders.clear();
+    patch_of.clear();
     for (std::size_t i = first; i < last; ++i) {
       std::size_t k = 0;
       while (k < leaders.size() && (leaders[k]->n.dot(rows[i].n) < same || leaders[k]->mu_s != rows[i].mu_s ||
@@ -141,7 +145,7 @@ std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& ca
     }
     sorted.clear();
     const auto found = cache.FindPatches(pair);  // (first, count)
-    std::vector<char> used(found.second, 0);
+    used.assign(found.second, 0);
     for (std::size_t k = 0; k < leaders.size(); ++k) {
       Patch p;
       p.first = static_cast<int>(first + sorted.size());
@@ -166,7 +170,7 @@ std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& ca
     for (std::size_t k = patches.size() - leaders.size(); k < patches.size(); ++k) {
       Patch& p = patches[k];
       Vector3& anchor = p.anchor;
-      Outline(rows, p, anchor, p.rho);
+      Outline(rows, p, anchor, p.rho, scratch);
       const Row& r0 = rows[static_cast<std::size_t>(p.first)];
       p.ra = anchor - (r0.point - r0.ra);
       p.rb = p.b >= 0 ? Vector3(anchor - (r0.point - r0.rb)) : Vector3::Zero();
@@ -205,7 +209,6 @@ std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& ca
     }
     first = last;
   }
-  return patches;
 }
 
 void StoreImpulses(const std::vector<Row>& rows, const std::vector<Patch>& patches, ContactCache& cache) {

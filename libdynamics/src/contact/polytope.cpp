@@ -252,27 +252,27 @@ Polytope BoxPolytope(const Vector3& h) {
 
 namespace {
 
-// Of more than four points, four: the deepest, then each time the one farthest from those kept.
-std::vector<ContactPoint> KeepFour(std::vector<ContactPoint> found) {
-  std::vector<ContactPoint> kept;
+// Of more than four points, four (appended to out): the deepest, then each time the one farthest
+// from those kept. `found` is used up.
+void KeepFour(std::vector<ContactPoint>& found, std::vector<ContactPoint>& out) {
+  const std::size_t first = out.size();
   auto deepest = std::min_element(found.begin(), found.end(), [](const ContactPoint& x, const ContactPoint& y) {
     return x.separation < y.separation;
   });
-  kept.push_back(*deepest);
+  out.push_back(*deepest);
   found.erase(deepest);
-  while (kept.size() < 4 && !found.empty()) {
+  while (out.size() - first < 4 && !found.empty()) {
     auto far = std::max_element(found.begin(), found.end(), [&](const ContactPoint& x, const ContactPoint& y) {
       double dx = 1e300, dy = 1e300;
-      for (const ContactPoint& k : kept) {
-        dx = std::min(dx, (x.point - k.point).squaredNorm());
-        dy = std::min(dy, (y.point - k.point).squaredNorm());
+      for (std::size_t k = first; k < out.size(); ++k) {
+        dx = std::min(dx, (x.point - out[k].point).squaredNorm());
+        dy = std::min(dy, (y.point - out[k].point).squaredNorm());
       }
       return dx < dy;
     });
-    kept.push_back(*far);
+    out.push_back(*far);
     found.erase(far);
   }
-  return kept;
 }
 
 // The contact of a face of pr (best_index, its normal rn out of pr) with the face of pi most against
@@ -341,8 +341,7 @@ void FaceContact(const Polytope& pr, const PlacedPolytope& wr, const Polytope& p
                      (ref_a ? 0u : 1u << 31) | (static_cast<std::uint32_t>(best_index) & 0x7FFu) << 19 | ids[i]});
   }
   if (found.size() > 4) {
-    const std::vector<ContactPoint> kept = KeepFour(found);
-    out.insert(out.end(), kept.begin(), kept.end());
+    KeepFour(found, out);
   } else {
     out.insert(out.end(), found.begin(), found.end());
   }

@@ -7,12 +7,12 @@
 
 namespace dynamics::contact {
 
-std::vector<Velocities> PushOutVelocities(std::vector<Row>& rows, int num_bodies, double h,
-                                          const SolveSettings& settings) {
-  std::vector<Velocities> pseudo;
+void PushOutVelocities(std::vector<Row>& rows, int num_bodies, double h, const SolveSettings& settings,
+                       std::vector<Velocities>& pseudo) {
+  pseudo.clear();
   bool pushes = false;
   for (const Row& r : rows) pushes = pushes || (r.slop >= 0 && -r.separation > r.slop);
-  if (!pushes) return pseudo;
+  if (!pushes) return;
   pseudo.assign(static_cast<std::size_t>(num_bodies), {Vector3::Zero(), Vector3::Zero()});
   constexpr double kPush = 0.5;  // of the excess overlap, per step
   for (int sweep = 0; sweep < settings.max_iterations; ++sweep) {
@@ -30,7 +30,6 @@ std::vector<Velocities> PushOutVelocities(std::vector<Row>& rows, int num_bodies
     }
     if (progress.Done(settings)) break;
   }
-  return pseudo;
 }
 
 }  // namespace dynamics::contact

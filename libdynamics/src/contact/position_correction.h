@@ -11,9 +11,9 @@
 
 namespace dynamics::contact {
 
-/// The pseudo-velocities that push each row's overlap beyond its slop out by half a step's worth
-/// (empty when no row needs it). The sweeps stop by the velocity solve's rule.
-std::vector<Velocities> PushOutVelocities(std::vector<Row>& rows, int num_bodies, double h,
-                                          const SolveSettings& settings);
+/// The pseudo-velocities (into `pseudo`) that push each row's overlap beyond its slop out by half
+/// a step's worth (empty when no row needs it). The sweeps stop by the velocity solve's rule.
+void PushOutVelocities(std::vector<Row>& rows, int num_bodies, double h, const SolveSettings& settings,
+                       std::vector<Velocities>& pseudo);
 
 }  // namespace dynamics::contact

@@ -13,29 +13,34 @@
 namespace dynamics::contact {
 namespace {
 
-// An island's bodies, their kinetic energy, and a copy of its impulses and velocities to go back to.
+// An island's bodies, their kinetic energy, and a copy of its impulses and velocities to go back to
+// (in the island's working arrays).
 class IslandState {
  public:
-  IslandState(const std::vector<Patch>& patches, const std::vector<int>& order, const Coupling* coupling) {
+  IslandState(const std::vector<Patch>& patches, const std::vector<int>& order, const Coupling* coupling,
+              IslandScratch& work)
+      : w_(work) {
+    std::vector<int>& members = w_.members;
+    members.clear();
     auto add = [&](int body) {
       if (coupling == nullptr) {
-        members_.push_back(body);
+        members.push_back(body);
         return;
       }
       const auto& tree = coupling->members[static_cast<std::size_t>(coupling->tree[static_cast<std::size_t>(body)])];
-      members_.insert(members_.end(), tree.begin(), tree.end());  // all of them move
+      members.insert(members.end(), tree.begin(), tree.end());  // all of them move
     };
     for (const int k : order) {
       const Patch& p = patches[static_cast<std::size_t>(k)];
       add(p.a);
       if (p.b >= 0) add(p.b);
     }
-    std::sort(members_.begin(), members_.end());
-    members_.erase(std::unique(members_.begin(), members_.end()), members_.end());
+    std::sort(members.begin(), members.end());
+    members.erase(std::unique(members.begin(), members.end()), members.end());
   }
   double Energy(const std::vector<Velocities>& vel, const BodyResponse& bodies) const {
     double e = 0;
-    for (const int i : members_) {
+    for (const int i : w_.members) {
       const auto k = static_cast<std::size_t>(i);
       if (!(bodies.inv_mass[k] > 0)) continue;
       e += 0.5 * vel[k].v.squaredNorm() / bodies.inv_mass[k] +
@@ -45,32 +50,29 @@ class IslandState {
   }
   void Save(const std::vector<Row>& rows, const std::vector<Patch>& patches, const std::vector<int>& order,
             const std::vector<Velocities>& vel) {
-    velocities_.clear();
-    normal_.clear();
-    friction_.clear();
-    for (const int i : members_) velocities_.push_back(vel[static_cast<std::size_t>(i)]);
+    w_.velocities.clear();
+    w_.normal.clear();
+    w_.friction.clear();
+    for (const int i : w_.members) w_.velocities.push_back(vel[static_cast<std::size_t>(i)]);
     for (const int k : order) {
       const Patch& p = patches[static_cast<std::size_t>(k)];
-      friction_.push_back(p.lambda);
-      for (int i = p.first; i < p.first + p.count; ++i) normal_.push_back(rows[static_cast<std::size_t>(i)].lambda_n);
+      w_.friction.push_back(p.lambda);
+      for (int i = p.first; i < p.first + p.count; ++i) w_.normal.push_back(rows[static_cast<std::size_t>(i)].lambda_n);
     }
   }
   void Restore(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order,
                std::vector<Velocities>& vel) const {
-    for (std::size_t j = 0; j < members_.size(); ++j) vel[static_cast<std::size_t>(members_[j])] = velocities_[j];
+    for (std::size_t j = 0; j < w_.members.size(); ++j) vel[static_cast<std::size_t>(w_.members[j])] = w_.velocities[j];
     std::size_t n = 0, f = 0;
     for (const int k : order) {
       Patch& p = patches[static_cast<std::size_t>(k)];
-      p.lambda = friction_[f++];
-      for (int i = p.first; i < p.first + p.count; ++i) rows[static_cast<std::size_t>(i)].lambda_n = normal_[n++];
+      p.lambda = w_.friction[f++];
+      for (int i = p.first; i < p.first + p.count; ++i) rows[static_cast<std::size_t>(i)].lambda_n = w_.normal[n++];
     }
   }
 
  private:
-  std::vector<int> members_;
-  std::vector<Velocities> velocities_;
-  std::vector<double> normal_;
-  std::vector<Vector3> friction_;
+  IslandScratch& w_;
 };
 
 // Symmetric sweeps from the ground up, then back down (they carry a load through a stack in both
@@ -110,14 +112,14 @@ void WarmStart(const std::vector<Row>& rows, const std::vector<Patch>& patches, 
 // add kinetic energy.
 int SolveIsland(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order,
                 std::vector<Velocities>& vel, const BodyResponse& bodies, const std::vector<int>& body_level,
-                const SolveSettings& settings) {
+                const SolveSettings& settings, IslandScratch& work) {
   if (settings.exact) {
     WarmStart(rows, patches, order, vel);
     const int sweeps = Sweeps(rows, patches, order, vel, bodies, settings);
     if (sweeps == settings.max_iterations) PropagateShock(rows, patches, order, vel, bodies, body_level, settings);
     return sweeps;
   }
-  IslandState state(patches, order, bodies.coupling);
+  IslandState state(patches, order, bodies.coupling, work);
   const double kicked = state.Energy(vel, bodies);
   state.Save(rows, patches, order, vel);  // the kicked velocities, the warm start's impulses
   WarmStart(rows, patches, order, vel);
@@ -144,45 +146,56 @@ int SolveIsland(std::vector<Row>& rows, std::vector<Patch>& patches, const std::
 
 int SolveImpulses(std::vector<Row>& rows, std::vector<Patch>& patches, std::vector<Velocities>& vel,
                   const BodyResponse& bodies, const std::vector<int>& body_level, const std::vector<int>& island,
-                  const SolveSettings& settings, Workers* workers) {
+                  const SolveSettings& settings, Workers* workers, SolveScratch& scratch) {
   for (Patch& p : patches) {
     const int la = body_level[static_cast<std::size_t>(p.a)];
     p.level = p.b < 0 ? la : std::min(la, body_level[static_cast<std::size_t>(p.b)]);
     // Jointed bodies are not held still level by level (their tree moves as one).
     if (p.coupling != nullptr) p.level = std::numeric_limits<int>::max();
   }
-  std::vector<int> order(patches.size());
+  // The patches by level (their order within a level kept: a sort on (level, index)).
+  std::vector<int>& order = scratch.order;
+  order.resize(patches.size());
   std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int x, int y) {
-    return patches[static_cast<std::size_t>(x)].level < patches[static_cast<std::size_t>(y)].level;
+  std::sort(order.begin(), order.end(), [&](int x, int y) {
+    const int lx = patches[static_cast<std::size_t>(x)].level, ly = patches[static_cast<std::size_t>(y)].level;
+    return lx < ly || (lx == ly && x < y);
   });
   // Each island's patches, in that order; the islands in the order they first appear.
-  std::vector<int> group_of(island.size(), -1);
-  std::vector<std::vector<int>> groups;
+  std::vector<int>& group_of = scratch.group_of;
+  group_of.assign(island.size(), -1);
+  std::vector<std::vector<int>>& groups = scratch.groups;
+  std::size_t count = 0;
   for (const int k : order) {
     const int label = island[static_cast<std::size_t>(patches[static_cast<std::size_t>(k)].a)];
     int& g = group_of[static_cast<std::size_t>(label)];
     if (g < 0) {
-      g = static_cast<int>(groups.size());
-      groups.emplace_back();
+      g = static_cast<int>(count++);
+      if (groups.size() < count) groups.emplace_back();
+      groups[count - 1].clear();
     }
     groups[static_cast<std::size_t>(g)].push_back(k);
   }
-  // The largest islands first (the others fill in around them on several threads).
-  std::vector<std::size_t> by_size(groups.size());
+  // The largest islands first (the others fill in around them on several threads; equal sizes
+  // in the order they appeared).
+  std::vector<std::size_t>& by_size = scratch.by_size;
+  by_size.resize(count);
   std::iota(by_size.begin(), by_size.end(), std::size_t{0});
-  std::stable_sort(by_size.begin(), by_size.end(),
-                   [&](std::size_t x, std::size_t y) { return groups[x].size() > groups[y].size(); });
-  std::vector<int> sweeps(groups.size(), 0);
+  std::sort(by_size.begin(), by_size.end(), [&](std::size_t x, std::size_t y) {
+    return groups[x].size() > groups[y].size() || (groups[x].size() == groups[y].size() && x < y);
+  });
+  std::vector<int>& sweeps = scratch.sweeps;
+  sweeps.assign(count, 0);
+  if (scratch.islands.size() < count) scratch.islands.resize(count);
   auto solve = [&](std::size_t i) {
     const std::size_t g = by_size[i];
-    sweeps[g] = SolveIsland(rows, patches, groups[g], vel, bodies, body_level, settings);
+    sweeps[g] = SolveIsland(rows, patches, groups[g], vel, bodies, body_level, settings, scratch.islands[g]);
   };
   // A few small islands are not worth waking the workers for.
-  if (workers != nullptr && groups.size() > 1 && patches.size() >= 32) {
-    workers->ForEach(groups.size(), solve);
+  if (workers != nullptr && count > 1 && patches.size() >= 32) {
+    workers->ForEach(count, solve);
   } else {
-    for (std::size_t i = 0; i < groups.size(); ++i) solve(i);
+    for (std::size_t i = 0; i < count; ++i) solve(i);
   }
   return sweeps.empty() ? 0 : *std::max_element(sweeps.begin(), sweeps.end());
 }

@@ -233,14 +233,6 @@ inline void ApplyNormal(std::vector<Velocities>& vel, const Row& r, double d, in
   }
 }
 
-/// Groups the rows (consecutive by pair) into patches, reordering a pair's rows so that each
-/// patch's are consecutive; sets every row's and patch's effective masses; warm-starts them
-/// from the cache and chooses static or kinetic friction: a patch that held last step (or a new
-/// one whose anchor barely slides, within `slow`) holds while its friction stays within μs; one
-/// that slid slides at μk against its sliding until it stops.
-std::vector<Patch> PreparePatches(std::vector<Row>& rows, const ContactCache& cache, const std::vector<Velocities>& vel,
-                                  const BodyResponse& bodies, double slow);
-
 /// When the sweeps stop (ContactOptions; its automatic sweep count resolved).
 struct SolveSettings {
   int max_iterations = 32;
@@ -262,6 +254,40 @@ struct Progress {
   }
 };
 
+/// One island's working copy (its bodies, and their velocities and impulses to go back to).
+struct IslandScratch {
+  std::vector<int> members;
+  std::vector<Velocities> velocities;
+  std::vector<double> normal;
+  std::vector<Vector3> friction;
+};
+
+/// The solve's working arrays, kept from step to step: a step whose contacts are those of the
+/// step before allocates nothing.
+struct SolveScratch {
+  // PreparePatches: a pair's patch leaders, each row's patch, the cached patches taken, the rows
+  // in patch order.
+  std::vector<const Row*> leaders;
+  std::vector<int> patch_of;
+  std::vector<char> used;
+  std::vector<Row> sorted;
+  std::vector<Eigen::Vector2d> points, hull;  // a patch's points in its plane, their convex outline
+  // SolveImpulses: the patches by level, each island's group and its patches, the groups by size,
+  // each group's sweeps and working copy.
+  std::vector<int> order, group_of, sweeps;
+  std::vector<std::vector<int>> groups;
+  std::vector<std::size_t> by_size;
+  std::vector<IslandScratch> islands;
+};
+
+/// Groups the rows (consecutive by pair) into `patches`, reordering a pair's rows so that each
+/// patch's are consecutive; sets every row's and patch's effective masses; warm-starts them
+/// from the cache and chooses static or kinetic friction: a patch that held last step (or a new
+/// one whose anchor barely slides, within `slow`) holds while its friction stays within μs; one
+/// that slid slides at μk against its sliding until it stops.
+void PreparePatches(std::vector<Row>& rows, const ContactCache& cache, const std::vector<Velocities>& vel,
+                    const BodyResponse& bodies, double slow, std::vector<Patch>& patches, SolveScratch& scratch);
+
 /// Solves the impulses into `vel`, island by island (island: each body's island, by any label;
 /// the islands may be solved on several threads, with the same result): patches ordered by
 /// support level (body_level: 0 on the ground or a static body, k + 1 on level k), warm start,
@@ -271,7 +297,7 @@ struct Progress {
 class Workers;
 int SolveImpulses(std::vector<Row>& rows, std::vector<Patch>& patches, std::vector<Velocities>& vel,
                   const BodyResponse& bodies, const std::vector<int>& body_level, const std::vector<int>& island,
-                  const SolveSettings& settings, Workers* workers);
+                  const SolveSettings& settings, Workers* workers, SolveScratch& scratch);
 
 /// Adds the solved rows and patches to the cache for the next step.
 void StoreImpulses(const std::vector<Row>& rows, const std::vector<Patch>& patches, ContactCache& cache);

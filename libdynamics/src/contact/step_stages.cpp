@@ -190,11 +190,15 @@ StepStatus DriftBodies(std::vector<RigidBody>& bodies, const std::vector<contact
 
 // The drift of an articulated world: the impulses the solve found (and the push-out's) as
 // wrenches on the bodies, handed to the joints, which finish the step.
-StepStatus DriftJointed(internal::Articulation& jointed, const std::vector<contact::Row>& rows,
-                        const std::vector<contact::Patch>& patches, const std::vector<contact::Velocities>& pseudo,
-                        const std::vector<double>& radius, double h, std::vector<RigidBody>& bodies,
-                        ContactStats& stats) {
-  std::vector<Wrench> impulses(bodies.size()), pushes(bodies.size());
+StepStatus DriftJointed(internal::Articulation& jointed, Scratch& s, const std::vector<double>& radius, double h,
+                        std::vector<RigidBody>& bodies, ContactStats& stats) {
+  const std::vector<contact::Row>& rows = s.rows;
+  const std::vector<contact::Patch>& patches = s.patches;
+  const std::vector<contact::Velocities>& pseudo = s.pseudo;
+  std::vector<Wrench>& impulses = s.impulses;
+  std::vector<Wrench>& pushes = s.pushes;
+  impulses.assign(bodies.size(), Wrench{});
+  pushes.assign(bodies.size(), Wrench{});
   auto add = [](std::vector<Wrench>& w, int body, const Vector3& f, const Vector3& tau) {
     if (body < 0) return;
     w[static_cast<std::size_t>(body)].force += f;
@@ -287,7 +291,7 @@ PairMaterials MaterialsOf(const Model& model, int a, int b, const Material& ma, 
 // Each body's rows against the grounds (a body welded to the world has none).
 void GroundRows(const StepInput& in, const Model& model, Scratch& s, ContactStats& stats) {
   const RowContext row_context{in.bodies, s.vel, s.before_kick, in.h, s.bounce_threshold};
-  std::vector<ContactPoint> points;
+  std::vector<ContactPoint>& points = s.points;
   for (std::size_t k = 0; k < s.posed.size(); ++k) {
     if (!model.collides[k]) continue;
     if (in.jointed != nullptr && !s.coupling.movable[k]) continue;  // welded to the world
@@ -306,8 +310,9 @@ void GroundRows(const StepInput& in, const Model& model, Scratch& s, ContactStat
 // The pairs whose bounds meet within their reach, less the excluded pairs and, in an articulated
 // world, the pairs its joints rule out (links of one tree, unless self-collision is asked for,
 // and never a joint's parent and child; bodies welded to the world).
-std::vector<Candidate> CandidatePairs(const StepInput& in, const Model& model, const Scratch& s) {
-  std::vector<Candidate> candidates = FindCandidates(s.broad, model.static_broad);
+const std::vector<Candidate>& CandidatePairs(const StepInput& in, const Model& model, Scratch& s) {
+  std::vector<Candidate>& candidates = s.candidates;
+  FindCandidates(s.broad, model.static_broad, candidates, s.intervals);
   if (!model.excluded.empty()) {
     candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
                                     [&](const Candidate& p) {
@@ -348,8 +353,8 @@ StepStatus PairRows(const StepInput& in, const Model& model, const std::vector<C
       posed.placed = &s.placed[static_cast<std::size_t>(k)];
     }
   }
-  std::vector<PairQuery> queries;
-  queries.reserve(candidates.size());
+  std::vector<PairQuery>& queries = s.queries;
+  queries.clear();
   for (const Candidate& c : candidates) {
     queries.push_back(
         {&s.posed[static_cast<std::size_t>(c.a)],
@@ -378,7 +383,8 @@ StepStatus PairRows(const StepInput& in, const Model& model, const std::vector<C
 // and its row is left out (its response would be singular).
 void JointedRows(const StepInput& in, Scratch& s) {
   if (!s.rows.empty()) {
-    std::vector<char> touched(in.bodies.size(), 0);
+    std::vector<char>& touched = s.touched;
+    touched.assign(in.bodies.size(), 0);
     for (const Row& r : s.rows) {
       touched[static_cast<std::size_t>(r.a)] = 1;
       if (r.b >= 0) touched[static_cast<std::size_t>(r.b)] = 1;
@@ -414,17 +420,18 @@ void Forget(State& state) {
   std::fill(state.sleep.still_for.begin(), state.sleep.still_for.end(), 0.0);
 }
 
-Islands HoldSleeping(const StepInput& in, State& state, Scratch& s) {
+Islands& HoldSleeping(const StepInput& in, State& state, Scratch& s) {
   ContactCache& kept = s.kept;
   kept.Clear();
   const int nb = static_cast<int>(in.bodies.size());
-  Islands islands(nb, s.rows);
+  Islands& islands = s.islands;
+  islands.Reset(nb, s.rows);
   if (in.jointed != nullptr) {
     for (const std::vector<int>& tree : s.coupling.members) {
       for (const int k : tree) islands.Join(k, tree.front());
     }
   }
-  WakeTouched(islands, state.sleep);
+  islands.WakeTouched(state.sleep);
   for (std::size_t k = 0; k < in.bodies.size(); ++k) {
     if (state.sleep.asleep[k]) {
       s.vel[k] = {Vector3::Zero(), Vector3::Zero()};
@@ -458,12 +465,13 @@ SolveSettings SettingsOf(const ContactOptions& o) {
 
 void Solve(const StepInput& in, Islands& islands, State& state, Scratch& s, ContactStats& stats) {
   const int nb = static_cast<int>(in.bodies.size());
-  s.patches = PreparePatches(s.rows, state.cache, s.vel, s.response, s.bounce_threshold);
+  PreparePatches(s.rows, state.cache, s.vel, s.response, s.bounce_threshold, s.patches, s.solve);
   const double energy_before = KineticEnergy(in.bodies, s.vel);
-  std::vector<int> island(in.bodies.size());
-  for (int k = 0; k < nb; ++k) island[static_cast<std::size_t>(k)] = islands.Find(k);
-  stats.iterations = SolveImpulses(s.rows, s.patches, s.vel, s.response, SupportLevels(nb, s.rows), island,
-                                   SettingsOf(in.options), s.WorkersFor(in.threads));
+  s.island.resize(in.bodies.size());
+  for (int k = 0; k < nb; ++k) s.island[static_cast<std::size_t>(k)] = islands.Find(k);
+  SupportLevels(nb, s.rows, s.levels);
+  stats.iterations = SolveImpulses(s.rows, s.patches, s.vel, s.response, s.levels, s.island, SettingsOf(in.options),
+                                   s.WorkersFor(in.threads), s.solve);
   s.kept.Finish();
   std::swap(state.cache, s.kept);  // s.kept keeps the old arrays for the next step
   StoreImpulses(s.rows, s.patches, state.cache);
@@ -472,17 +480,16 @@ void Solve(const StepInput& in, Islands& islands, State& state, Scratch& s, Cont
 
 StepStatus Drift(const StepInput& in, const Model& model, const State& state, Scratch& s, ContactStats& stats) {
   const int nb = static_cast<int>(in.bodies.size());
-  const std::vector<Velocities> pseudo = PushOutVelocities(s.rows, nb, in.h, SettingsOf(in.options));
-  return in.jointed != nullptr
-             ? DriftJointed(*in.jointed, s.rows, s.patches, pseudo, model.radii, in.h, in.bodies, stats)
-             : DriftBodies(in.bodies, s.vel, pseudo, state.sleep.asleep, model.radii, in.h, stats);
+  PushOutVelocities(s.rows, nb, in.h, SettingsOf(in.options), s.pseudo);
+  return in.jointed != nullptr ? DriftJointed(*in.jointed, s, model.radii, in.h, in.bodies, stats)
+                               : DriftBodies(in.bodies, s.vel, s.pseudo, state.sleep.asleep, model.radii, in.h, stats);
 }
 
 void Sleep(const StepInput& in, const Model& model, Islands& islands, State& state, const Scratch& s,
            ContactStats& stats) {
   if (!in.options.sleeping || in.jointed != nullptr) return;
-  FallAsleep(islands, s.rows, model.collides, model.radii, in.options.sleep_speed, in.options.sleep_time, in.h,
-             in.bodies, state.sleep);
+  islands.FallAsleep(s.rows, model.collides, model.radii, in.options.sleep_speed, in.options.sleep_time, in.h,
+                     in.bodies, state.sleep);
   stats.sleeping = static_cast<int>(std::count(state.sleep.asleep.begin(), state.sleep.asleep.end(), true));
 }
 

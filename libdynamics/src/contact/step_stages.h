@@ -67,6 +67,17 @@ struct Scratch {
   std::vector<std::vector<ContactPoint>> found;  // each candidate pair's points
   Coupling coupling;                             // an articulated world's bodies (a step's)
   std::vector<internal::Vector6> kicked;         // their (v, ω) after the kick
+  // The stages' working arrays, so that a step like the one before allocates nothing.
+  std::vector<ContactPoint> points;      // one body's against one ground
+  std::vector<Candidate> candidates;     // the broad phase's pairs
+  std::vector<SweepInterval> intervals;  // and its sweep
+  std::vector<PairQuery> queries;        // the narrow phase's
+  std::vector<char> touched;             // bodies with contacts (an articulated world)
+  Islands islands;                       // the step's islands
+  std::vector<int> island, levels;       // each body's island and support level
+  SolveScratch solve;                    // the solve's
+  std::vector<Velocities> pseudo;        // the position correction's velocities (empty: none)
+  std::vector<Wrench> impulses, pushes;  // an articulated world's, per body
 
   // The worker pool for `threads` (null for one thread).
   Workers* WorkersFor(int threads) {
@@ -104,7 +115,7 @@ void Forget(State& state);
 /// 3. Islands: a sleeping island wakes as a whole when an awake body touches it; bodies still
 /// asleep are held still (no kick, as heavy as the ground), and contacts among them alone are not
 /// solved (their warm start is kept for when the island wakes: in `s.kept`).
-Islands HoldSleeping(const StepInput& in, State& state, Scratch& s);
+Islands& HoldSleeping(const StepInput& in, State& state, Scratch& s);
 
 /// 4. The impulses: patches, the sweeps island by island, the warm start stored for the next step
 /// (`s.kept` joined to it; `s.kept` then holds the old cache's arrays), the kinetic energy the

@@ -27,10 +27,11 @@ void Workers::RunItems() {
   std::unique_lock<std::mutex> lock(mutex_);
   while (next_ < count_) {
     const std::size_t i = next_++;
-    const std::function<void(std::size_t)>& fn = *job_;
+    void* const job = job_;
+    const Call call = call_;
     lock.unlock();
     try {
-      fn(i);
+      call(job, i);
     } catch (...) {
       lock.lock();
       if (!error_) error_ = std::current_exception();
@@ -56,14 +57,15 @@ void Workers::Work() {
   }
 }
 
-void Workers::ForEach(std::size_t n, const std::function<void(std::size_t)>& fn) {
+void Workers::Run(std::size_t n, void* fn, Call call) {
   if (pool_.empty() || n <= 1) {
-    for (std::size_t i = 0; i < n; ++i) fn(i);
+    for (std::size_t i = 0; i < n; ++i) call(fn, i);
     return;
   }
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    job_ = &fn;
+    job_ = fn;
+    call_ = call;
     count_ = n;
     next_ = 0;
     running_ = static_cast<int>(pool_.size());

@@ -6,9 +6,9 @@
 #include <condition_variable>
 #include <cstddef>
 #include <exception>
-#include <functional>
 #include <mutex>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 namespace dynamics::contact {
@@ -23,17 +23,25 @@ class Workers {
 
   int threads() const { return static_cast<int>(pool_.size()) + 1; }
   /// fn(i) for every i in [0, n), on the caller and the workers; returns when all are done.
-  /// Rethrows the first exception an item threw.
-  void ForEach(std::size_t n, const std::function<void(std::size_t)>& fn);
+  /// Rethrows the first exception an item threw. (fn is called through a pointer: nothing is
+  /// allocated to hand it over.)
+  template <class F>
+  void ForEach(std::size_t n, F&& fn) {
+    using Fn = std::remove_reference_t<F>;
+    Run(n, const_cast<void*>(static_cast<const void*>(&fn)), [](void* f, std::size_t i) { (*static_cast<Fn*>(f))(i); });
+  }
 
  private:
+  using Call = void (*)(void*, std::size_t);
+  void Run(std::size_t n, void* fn, Call call);
   void Work();
   void RunItems();
 
   std::vector<std::thread> pool_;
   std::mutex mutex_;
   std::condition_variable wake_, finished_;
-  const std::function<void(std::size_t)>* job_ = nullptr;
+  void* job_ = nullptr;  // the present job's callable, called through call_
+  Call call_ = nullptr;
   std::size_t count_ = 0, next_ = 0;
   int running_ = 0;  // workers still on the present job
   unsigned long generation_ = 0;
