@@ -105,9 +105,12 @@ struct Cylinder {
 };
 /// A convex polytope: its vertices and the triangles of its surface, outward (the convex hull of
 /// a mesh, massprops::ConvexHull, or a mesh that is convex). Coplanar triangles act as one face.
+/// Its faces, edges and corners are built when it is first added, or once by MakeConvex; copies
+/// share them (a thousand drops of one part build them once).
 struct Convex {
   std::vector<Vector3> vertices;
   std::vector<std::array<int, 3>> triangles;
+  std::shared_ptr<const contact::Polytope> polytope = nullptr;  ///< built by MakeConvex (or when first added)
 };
 /// A closed, consistently oriented triangle mesh collided as it is — a ring that goes around a
 /// peg, a cup that holds a ball, a bin — through a signed distance field: the surface samples of
@@ -152,6 +155,10 @@ shape::Mesh MeshOf(const massprops::TriangleMesh& mesh, double cell = 0);
 /// closed and consistently oriented, a bad index, a non-finite vertex or a negative cell.
 shape::Mesh MakeMesh(std::vector<Vector3> vertices, std::vector<std::array<int, 3>> triangles, double cell = 0,
                      int threads = 0);
+
+/// A convex collider with its faces, edges and corners built. @throws std::invalid_argument when
+/// the triangles do not bound a closed convex solid.
+shape::Convex MakeConvex(std::vector<Vector3> vertices, std::vector<std::array<int, 3>> triangles);
 
 /// What a mesh collider's field holds (for people and benchmarks).
 struct MeshFieldInfo {

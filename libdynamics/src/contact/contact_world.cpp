@@ -32,6 +32,7 @@ std::shared_ptr<const contact::Polytope> PolytopeOf(const Shape& s) {
     return std::make_shared<contact::Polytope>(contact::BoxPolytope(box->half_extents));
   }
   if (const auto* convex = std::get_if<shape::Convex>(&s)) {
+    if (convex->polytope != nullptr) return convex->polytope;
     return std::make_shared<contact::Polytope>(contact::MakePolytope(convex->vertices, convex->triangles));
   }
   if (const auto* cylinder = std::get_if<shape::Cylinder>(&s)) {

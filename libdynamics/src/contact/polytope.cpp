@@ -506,3 +506,13 @@ void SpherePolytope(const Vector3& c, double r, const Polytope& p, const Posed& 
 }
 
 }  // namespace dynamics::contact
+
+namespace dynamics {
+
+shape::Convex MakeConvex(std::vector<Vector3> vertices, std::vector<std::array<int, 3>> triangles) {
+  shape::Convex convex{std::move(vertices), std::move(triangles)};
+  convex.polytope = std::make_shared<contact::Polytope>(contact::MakePolytope(convex.vertices, convex.triangles));
+  return convex;
+}
+
+}  // namespace dynamics
