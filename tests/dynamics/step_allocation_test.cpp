@@ -89,8 +89,8 @@ TEST(StepAllocation, ASettledStepAllocatesNothing) {
   EXPECT_EQ(Allocations("box_stack.json", 2, 300, 20), 0);
   EXPECT_EQ(Allocations("dominoes.json", 1, 300, 20), 0);       // falling: contacts come and go
   EXPECT_EQ(Allocations("spot_on_table.json", 2, 300, 20), 0);  // a mesh body (its field) on a static box
-#if !defined(__SANITIZE_ADDRESS__)  // 1500 steps to settle: the Release run only
-  EXPECT_EQ(Allocations("pile.json", 2, 1500, 20), 0);  // 50 boxes and 50 spheres, settled
+#if !defined(__SANITIZE_ADDRESS__)                              // 1500 steps to settle: the Release run only
+  EXPECT_EQ(Allocations("pile.json", 2, 1500, 20), 0);          // 50 boxes and 50 spheres, settled
 #endif
 }
 
