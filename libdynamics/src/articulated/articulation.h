@@ -147,14 +147,14 @@ class Articulation {
   bool EnsureMomenta();
   /// Places node i (its frame in c) from its parent's frame and q.
   void PlaceNode(int i, const Eigen::VectorXd& q, Configuration& c) const;
-  /// Node `node`'s Jacobian in c: its body's (v, ω) = Φ u (6 × nv).
-  Eigen::MatrixXd BodyJacobian(const Configuration& c, int node) const;
+  /// Node `node`'s Jacobian in c: its body's (v, ω) = Φ u (6 × nv), into P (`path`: working).
+  void BodyJacobian(const Configuration& c, int node, Eigen::MatrixXd& path, Eigen::MatrixXd& P) const;
   /// Σ Φᵀ w over the bodies' wrenches (force, torque about the centre), at the contact step's start.
   Eigen::VectorXd GeneralizedImpulse(const std::vector<Wrench>& w) const;
 
   std::vector<Joint> joints_;
   std::vector<Node> nodes_;
-  std::vector<int> node_of_joint_;
+  std::vector<int> node_of_joint_, node_of_body_;
   std::vector<RigidBody> inertias_;  ///< mass and principal moments of each body (the rest unused)
   Eigen::VectorXd q_, v_, p_;
   std::vector<double> limit_impulse_, drive_impulse_;  ///< per joint, last step
@@ -179,6 +179,10 @@ class Articulation {
   /// Dofs ContactKick holds on a stop (-1 the lower, +1 the upper; Impulses leaves their stops),
   /// and those the last contact step left pressed on one (held again in the next).
   std::vector<signed char> held_, stuck_;
+  /// Respond's working arrays (a step like the one before allocates nothing): the touched bodies'
+  /// Jacobians Φ, M⁻¹ Φᵀ, and a Jacobian's path columns.
+  mutable std::vector<Eigen::MatrixXd> phi_, solved_;
+  mutable Eigen::MatrixXd path_;
 };
 
 }  // namespace dynamics::internal

@@ -9,10 +9,10 @@
 
 namespace dynamics::internal {
 
-Eigen::MatrixXd Articulation::BodyJacobian(const Configuration& c, int node) const {
+void Articulation::BodyJacobian(const Configuration& c, int node, Eigen::MatrixXd& J, Eigen::MatrixXd& P) const {
   // V = Σ S u over the path from the world (the columns of the node and its ancestors), then the
   // (v, ω) of the centre: v = v_O + ω × x = v_O − [x]× ω.
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(6, v_.size());
+  J.setZero(6, v_.size());
   for (int i = node; i >= 0; i = nodes_[static_cast<std::size_t>(i)].parent) {
     const Node& n = nodes_[static_cast<std::size_t>(i)];
     if (n.nv > 0) J.middleCols(n.v, n.nv) = c.frames[static_cast<std::size_t>(i)].S;
@@ -20,10 +20,9 @@ Eigen::MatrixXd Articulation::BodyJacobian(const Configuration& c, int node) con
   const Vector3& x = c.frames[static_cast<std::size_t>(node)].x;
   Matrix3 X;
   X << 0, -x.z(), x.y(), x.z(), 0, -x.x(), -x.y(), x.x(), 0;
-  Eigen::MatrixXd P(6, v_.size());
+  P.resize(6, v_.size());
   P.topRows<3>() = J.bottomRows<3>() - X * J.topRows<3>();
   P.bottomRows<3>() = J.topRows<3>();
-  return P;
 }
 
 Eigen::VectorXd Articulation::GeneralizedImpulse(const std::vector<Wrench>& w) const {
@@ -131,11 +130,11 @@ void Articulation::Classify(contact::Coupling& c) const {
 void Articulation::Respond(contact::Coupling& c, const std::vector<char>& touched) const {
   const std::size_t nb = inertias_.size();
   c.slot.assign(nb, 0);
-  c.members.assign(static_cast<std::size_t>(*std::max_element(c.tree.begin(), c.tree.end()) + 1), {});
-  std::vector<int> node_of_body(nb);
+  // (The arrays of the last step's trees kept: cleared, not freed.)
+  c.members.resize(static_cast<std::size_t>(*std::max_element(c.tree.begin(), c.tree.end()) + 1));
+  for (std::vector<int>& m : c.members) m.clear();
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
     const int body = nodes_[i].body;
-    node_of_body[static_cast<std::size_t>(body)] = static_cast<int>(i);
     if (!touched[static_cast<std::size_t>(body)]) continue;
     auto& m = c.members[static_cast<std::size_t>(c.tree[static_cast<std::size_t>(body)])];
     c.slot[static_cast<std::size_t>(body)] = static_cast<int>(m.size());
@@ -143,19 +142,21 @@ void Articulation::Respond(contact::Coupling& c, const std::vector<char>& touche
   }
   // G_jk = Φ_j M⁻¹ Φ_kᵀ among the touched bodies of each tree, M the step's effective mass (its
   // factor is the kick's; M is block-diagonal by trees, so the other trees' coordinates stay 0).
-  c.response.assign(c.members.size(), {});
+  c.response.resize(c.members.size());
   for (std::size_t t = 0; t < c.members.size(); ++t) {
     const std::vector<int>& m = c.members[t];
     std::vector<Matrix6>& G = c.response[t];
     G.assign(m.size() * m.size(), Matrix6::Zero());
     if (m.empty() || v_.size() == 0) continue;
-    std::vector<Eigen::MatrixXd> phi(m.size()), solved(m.size());
+    if (phi_.size() < m.size()) phi_.resize(m.size()), solved_.resize(m.size());
+    std::vector<Eigen::MatrixXd>& phi = phi_;
+    std::vector<Eigen::MatrixXd>& solved = solved_;
     for (std::size_t k = 0; k < m.size(); ++k) {
-      phi[k] = BodyJacobian(start_, node_of_body[static_cast<std::size_t>(m[k])]);
+      BodyJacobian(start_, node_of_body_[static_cast<std::size_t>(m[k])], path_, phi[k]);
       solved[k] = effective_.llt.solve(phi[k].transpose());
     }
     for (std::size_t j = 0; j < m.size(); ++j) {
-      for (std::size_t k = 0; k < m.size(); ++k) G[j * m.size() + k] = phi[j] * solved[k];
+      for (std::size_t k = 0; k < m.size(); ++k) G[j * m.size() + k].noalias() = phi[j] * solved[k];
     }
   }
 }

@@ -133,7 +133,8 @@ Articulation::Articulation(const std::vector<Joint>& joints, std::vector<RigidBo
       kids[static_cast<std::size_t>(parent)].push_back(b);
     }
   }
-  std::vector<int> node_of_body(static_cast<std::size_t>(nb), -1);
+  std::vector<int>& node_of_body = node_of_body_;
+  node_of_body.assign(static_cast<std::size_t>(nb), -1);
   node_of_joint_.assign(joints.size(), -1);
   int nq = 0, nv = 0;
   while (!queue.empty()) {
