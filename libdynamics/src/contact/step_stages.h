@@ -114,7 +114,8 @@ void Forget(State& state);
 
 /// 3. Islands: a sleeping island wakes as a whole when an awake body touches it; bodies still
 /// asleep are held still (no kick, as heavy as the ground), and contacts among them alone are not
-/// solved (their warm start is kept for when the island wakes: in `s.kept`).
+/// solved (their warm start is kept for when the island wakes: in `s.kept`). Returns the step's
+/// islands (`s.islands`).
 Islands& HoldSleeping(const StepInput& in, State& state, Scratch& s);
 
 /// 4. The impulses: patches, the sweeps island by island, the warm start stored for the next step
