@@ -105,12 +105,12 @@ struct Cylinder {
 };
 /// A convex polytope: its vertices and the triangles of its surface, outward (the convex hull of
 /// a mesh, massprops::ConvexHull, or a mesh that is convex). Coplanar triangles act as one face.
-/// Its faces, edges and corners are built when it is first added, or once by MakeConvex; copies
-/// share them (a thousand drops of one part build them once).
+/// Its faces, edges and corners are built by each world it is added to, unless MakeConvex built
+/// them: then every copy shares them (a thousand drops of one part build them once).
 struct Convex {
   std::vector<Vector3> vertices;
   std::vector<std::array<int, 3>> triangles;
-  std::shared_ptr<const contact::Polytope> polytope = nullptr;  ///< built by MakeConvex (or when first added)
+  std::shared_ptr<const contact::Polytope> polytope = nullptr;  ///< built by MakeConvex (null: by each world)
 };
 /// A closed, consistently oriented triangle mesh collided as it is — a ring that goes around a
 /// peg, a cup that holds a ball, a bin — through a signed distance field: the surface samples of

@@ -148,7 +148,10 @@ void Articulation::Respond(contact::Coupling& c, const std::vector<char>& touche
     std::vector<Matrix6>& G = c.response[t];
     G.assign(m.size() * m.size(), Matrix6::Zero());
     if (m.empty() || v_.size() == 0) continue;
-    if (phi_.size() < m.size()) phi_.resize(m.size()), solved_.resize(m.size());
+    if (phi_.size() < m.size()) {
+      phi_.resize(m.size());
+      solved_.resize(m.size());
+    }
     std::vector<Eigen::MatrixXd>& phi = phi_;
     std::vector<Eigen::MatrixXd>& solved = solved_;
     for (std::size_t k = 0; k < m.size(); ++k) {

@@ -211,7 +211,8 @@ void PreparePatches(std::vector<Row>& rows, const ContactCache& cache, const std
   }
 }
 
-void StoreImpulses(const std::vector<Row>& rows, const std::vector<Patch>& patches, ContactCache& cache) {
+void StoreImpulses(const std::vector<Row>& rows, const std::vector<Patch>& patches, ContactCache& cache,
+                   SolveScratch& scratch) {
   auto pair_of = [&](const Patch& p) {
     const RowKey& key = rows[static_cast<std::size_t>(p.first)].key;
     return ContactCache::Pair{std::get<0>(key), std::get<1>(key)};
@@ -219,14 +220,8 @@ void StoreImpulses(const std::vector<Row>& rows, const std::vector<Patch>& patch
   // Each touching patch's index among its pair's cached patches: after those the cache kept, in
   // the patches' order. Not touching yet (a speculative contact): no cached patch; whether it
   // holds is decided when it touches, by how fast it slides then.
-  struct Work {
-    std::vector<double> load;
-    std::vector<std::size_t> by_pair;
-    std::vector<int> index;
-  };
-  thread_local Work work;  // kept for the thread's life: a step allocates nothing here
-  std::vector<double>& load = work.load;
-  std::vector<std::size_t>& by_pair = work.by_pair;
+  std::vector<double>& load = scratch.load;
+  std::vector<std::size_t>& by_pair = scratch.by_pair;
   load.resize(patches.size());
   by_pair.resize(patches.size());
   for (std::size_t k = 0; k < patches.size(); ++k) {
@@ -237,7 +232,7 @@ void StoreImpulses(const std::vector<Row>& rows, const std::vector<Patch>& patch
     const ContactCache::Pair px = pair_of(patches[x]), py = pair_of(patches[y]);
     return px != py ? px < py : x < y;
   });
-  std::vector<int>& index = work.index;
+  std::vector<int>& index = scratch.index;
   index.assign(patches.size(), -1);
   for (std::size_t at = 0; at < by_pair.size();) {
     const ContactCache::Pair pair = pair_of(patches[by_pair[at]]);

@@ -278,6 +278,10 @@ struct SolveScratch {
   std::vector<std::vector<int>> groups;
   std::vector<std::size_t> by_size;
   std::vector<IslandScratch> islands;
+  // StoreImpulses: each patch's load, the patches by pair, each one's index among its pair's.
+  std::vector<double> load;
+  std::vector<std::size_t> by_pair;
+  std::vector<int> index;
 };
 
 /// Groups the rows (consecutive by pair) into `patches`, reordering a pair's rows so that each
@@ -300,6 +304,7 @@ int SolveImpulses(std::vector<Row>& rows, std::vector<Patch>& patches, std::vect
                   const SolveSettings& settings, Workers* workers, SolveScratch& scratch);
 
 /// Adds the solved rows and patches to the cache for the next step.
-void StoreImpulses(const std::vector<Row>& rows, const std::vector<Patch>& patches, ContactCache& cache);
+void StoreImpulses(const std::vector<Row>& rows, const std::vector<Patch>& patches, ContactCache& cache,
+                   SolveScratch& scratch);
 
 }  // namespace dynamics::contact

@@ -474,7 +474,7 @@ void Solve(const StepInput& in, Islands& islands, State& state, Scratch& s, Cont
                                    s.WorkersFor(in.threads), s.solve);
   s.kept.Finish();
   std::swap(state.cache, s.kept);  // s.kept keeps the old arrays for the next step
-  StoreImpulses(s.rows, s.patches, state.cache);
+  StoreImpulses(s.rows, s.patches, state.cache, s.solve);
   stats.dissipated = energy_before - KineticEnergy(in.bodies, s.vel);
 }
 

@@ -108,13 +108,13 @@ std::vector<DropOutcome> Drop(const Part& part, const Estimate& estimate, const 
   if (part.collider) {
     collider = *part.collider;
   } else {
-    collider.shape = MakeConvex(part.hull_vertices, part.hull_triangles);  // its polytope once for every drop
+    collider.shape = shape::Convex{part.hull_vertices, part.hull_triangles};
     collider.material = part.material;
   }
   collider.translation = R_MB.transpose() * (collider.translation - c);
   collider.rotation = R_MB.transpose() * collider.rotation;
   if (auto* convex = std::get_if<shape::Convex>(&collider.shape); convex != nullptr && convex->polytope == nullptr) {
-    *convex = MakeConvex(std::move(convex->vertices), std::move(convex->triangles));  // once
+    *convex = MakeConvex(std::move(convex->vertices), std::move(convex->triangles));  // once for every drop
   }
   if (auto* mesh = std::get_if<shape::Mesh>(&collider.shape); mesh != nullptr && mesh->field == nullptr) {
     *mesh = MakeMesh(std::move(mesh->vertices), std::move(mesh->triangles), mesh->cell, options.threads);  // once
