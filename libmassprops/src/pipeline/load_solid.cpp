@@ -367,7 +367,8 @@ void IntegrateWall(SolidResult& r, const WallModel& wall, const LoadOptions& opt
       if (crossings < 0) {
         throw std::invalid_argument(
             "the inner surface could not be checked for self-intersections (too many overlapping faces around "
-            "one corner, such as the apex of a fan of 10^5 triangles), so a wall that does not fit could not be "
+            "one corner, in a fan that folds or winds around it more than once), so a wall that does not fit could not "
+            "be "
             "told from one that does; not computed (a shell model needs no such check)");
       }
       if (crossings > 0) {
@@ -735,7 +736,8 @@ SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_c
   if (r.self_intersections < 0 && opt.check_self_intersections) {
     Warn(r, FindingKind::kSelfIntersections,
          "self-intersections not checked: the check stopped after its budget of candidate pairs (boxes of many "
-         "faces overlap around one corner, such as the apex of a large fan); the numbers are those of the surface "
+         "faces overlap around one corner, in a fan that folds or winds around it more than once); the numbers are "
+         "those of the surface "
          "as given");
   }
   if (r.self_intersections > 0) {

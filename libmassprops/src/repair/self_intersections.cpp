@@ -148,39 +148,46 @@ int Orientation(const Point& a, const Point& b, const Point& c, const Point& d) 
   return exact == CGAL::POSITIVE ? -1 : exact == CGAL::NEGATIVE ? 1 : 0;
 }
 
-// A polygon tested as a whole: its corners lie in the plane through three of them, exactly or
-// within `off_plane` (rounding: a polygon in a tilted plane cannot hold its corners exactly in it).
-struct FlatPolygon {
-  std::int64_t face = 0;
-  std::array<std::int32_t, 3> plane{};  // three corners, not collinear
-  double off_plane = 0;                 // largest distance of a corner from that plane
-  Kernel::Vector_3 unit_normal;         // of that plane, when off_plane > 0
-  std::vector<Triangle> triangles;      // its split, for the pairs decided on triangles
+// A group of triangles tested as one box against the rest: a flat polygon's split, or the fan
+// around one corner certified free of intersections within itself (a star).
+struct Group {
+  std::vector<Triangle> triangles;
+  std::vector<std::int32_t> cycle;  // its boundary in order: the polygon's corners, or the star's link
+  std::int32_t center = -1;         // a star's center, at position cycle.size() in the corner index
+  // The plane its boundary lies in (exactly, or within `off_plane`: rounding in a tilted plane).
+  bool has_plane = false;
+  std::array<std::int32_t, 3> plane{};
+  double off_plane = 0;
+  Kernel::Vector_3 unit_normal;  // of that plane, when off_plane > 0
+  int side = 0;                  // 0: the whole group lies in the plane; ±1: a star whose center is on that side
+  CGAL::Bbox_3 box;
 };
 
-// Where each vertex sits in the flat polygons: its first (polygon, position), and the rest in a
-// sorted list (a vertex is in one or two large polygons, almost always).
+constexpr int kWholeLimit = 32;  // polygons and fans of more are tested as wholes
+
+// Where each vertex sits in the groups: its first (group, position), and the rest in a
+// sorted list (a vertex is in one or two groups, almost always).
 class CornerIndex {
  public:
-  explicit CornerIndex(std::size_t vertices) : polygon_(vertices, -1), position_(vertices, -1) {}
-  void Add(std::int32_t v, std::int32_t polygon, std::int32_t position) {
-    if (polygon_[static_cast<std::size_t>(v)] < 0) {
-      polygon_[static_cast<std::size_t>(v)] = polygon;
+  explicit CornerIndex(std::size_t vertices) : group_(vertices, -1), position_(vertices, -1) {}
+  void Add(std::int32_t v, std::int32_t group, std::int32_t position) {
+    if (group_[static_cast<std::size_t>(v)] < 0) {
+      group_[static_cast<std::size_t>(v)] = group;
       position_[static_cast<std::size_t>(v)] = position;
     } else {
-      more_.push_back({v, polygon, position});
+      more_.push_back({v, group, position});
     }
   }
   void Finish() { std::sort(more_.begin(), more_.end()); }
-  // v's position among the corners of `polygon`, or -1.
-  std::int32_t Position(std::int32_t v, std::int32_t polygon) const {
-    if (polygon_[static_cast<std::size_t>(v)] == polygon) return position_[static_cast<std::size_t>(v)];
-    const auto it = std::lower_bound(more_.begin(), more_.end(), std::array<std::int32_t, 3>{v, polygon, -1});
-    return it != more_.end() && (*it)[0] == v && (*it)[1] == polygon ? (*it)[2] : -1;
+  // v's position among the corners of `group`, or -1.
+  std::int32_t Position(std::int32_t v, std::int32_t group) const {
+    if (group_[static_cast<std::size_t>(v)] == group) return position_[static_cast<std::size_t>(v)];
+    const auto it = std::lower_bound(more_.begin(), more_.end(), std::array<std::int32_t, 3>{v, group, -1});
+    return it != more_.end() && (*it)[0] == v && (*it)[1] == group ? (*it)[2] : -1;
   }
 
  private:
-  std::vector<std::int32_t> polygon_, position_;
+  std::vector<std::int32_t> group_, position_;
   std::vector<std::array<std::int32_t, 3>> more_;
 };
 
@@ -226,161 +233,399 @@ bool FindPlane(const std::vector<Point>& p, const std::int32_t* corners, int n, 
   return off_plane <= 1e-12 * size;
 }
 
-}  // namespace
+// Whether the triangle's three corners are three different vertices.
+bool Distinct(const Triangle& t) { return t[0] != t[1] && t[1] != t[2] && t[0] != t[2]; }
+
+// The link of v's fan as one cycle: for each triangle (v, a, b) in its own turning, a is followed
+// by b. False unless every link corner starts exactly one triangle and they close into one cycle.
+bool LinkCycle(const std::vector<Triangle>& tris, std::int32_t v, const std::int32_t* fan, int k,
+               std::vector<std::pair<std::int32_t, std::int32_t>>& next, std::vector<std::int32_t>& cycle) {
+  next.clear();
+  for (int i = 0; i < k; ++i) {
+    const Triangle& t = tris[static_cast<std::size_t>(fan[i])];
+    const int at = t[0] == v ? 0 : t[1] == v ? 1 : 2;
+    next.emplace_back(t[static_cast<std::size_t>((at + 1) % 3)], t[static_cast<std::size_t>((at + 2) % 3)]);
+  }
+  std::sort(next.begin(), next.end());
+  for (std::size_t i = 1; i < next.size(); ++i) {
+    if (next[i].first == next[i - 1].first) return false;
+  }
+  cycle.clear();
+  std::int32_t a = next[0].first;
+  for (int i = 0; i < k; ++i) {
+    if (i > 0 && a == cycle[0]) return false;  // a shorter cycle: more than one around v
+    cycle.push_back(a);
+    const auto it = std::lower_bound(next.begin(), next.end(), std::pair<std::int32_t, std::int32_t>{a, INT32_MIN});
+    if (it == next.end() || it->first != a) return false;  // an open fan
+    a = it->second;
+  }
+  return a == cycle[0];
+}
+
+// Whether v's fan, whose link is `cycle`, meets itself only at v and along its spokes. Seen around
+// the line L through v and a point q off every triangle's plane, each triangle (v, a_i, a_i+1)
+// sweeps an angle in (0, π) from a_i to a_i+1, in the direction the sign of orient(v, a_i, a_i+1, q)
+// gives. When all sweep the same way and wind around L exactly once, the sweeps of two triangles
+// share only a spoke's angle, and only when they are neighbours: two triangles then meet only at
+// v or along their shared spoke (a triangle meets L at v alone, and the points of one at its
+// spoke's angle are on that spoke). The winding is the number of times the link passes from one
+// side of a plane through L to the other in one sense (each sweep is under π, so it crosses that
+// plane at most once, and always on the same half of it in that sense). Exact predicates
+// throughout; q and the plane are any points in double that make no sign zero.
+bool WindsOnce(const std::vector<Point>& p, std::int32_t v, const std::vector<std::int32_t>& cycle) {
+  const Point& c = p[static_cast<std::size_t>(v)];
+  const std::size_t k = cycle.size();
+  auto a = [&](std::size_t i) -> const Point& { return p[static_cast<std::size_t>(cycle[i % k])]; };
+  Kernel::Vector_3 normal(0, 0, 0);
+  double size = 0;
+  for (std::size_t i = 0; i < k; ++i) {
+    normal = normal + CGAL::cross_product(a(i) - c, a(i + 1) - c);
+    size = std::max(size, std::sqrt((a(i) - c).squared_length()));
+  }
+  const double length = std::sqrt(normal.squared_length());
+  if (!(length > 0 && std::isfinite(length) && size > 0 && std::isfinite(size))) return false;
+  const Kernel::Vector_3 n = normal / length;
+  const Point q = c + n * size;
+  int turn = 0;
+  for (std::size_t i = 0; i < k; ++i) {
+    const int o = Orientation(c, a(i), a(i + 1), q);
+    if (o == 0 || (turn != 0 && o != turn)) return false;
+    turn = o;
+  }
+  // Planes through L: across the axis least aligned with n, then a quarter and an eighth turn on.
+  const int least = std::abs(n.x()) <= std::abs(n.y()) && std::abs(n.x()) <= std::abs(n.z()) ? 0
+                    : std::abs(n.y()) <= std::abs(n.z())                                     ? 1
+                                                                                             : 2;
+  const Kernel::Vector_3 axis(least == 0, least == 1, least == 2);
+  Kernel::Vector_3 u = CGAL::cross_product(n, axis);
+  u = u / std::sqrt(u.squared_length());
+  const Kernel::Vector_3 w = CGAL::cross_product(n, u);
+  for (const Kernel::Vector_3& d : {u, w, (u + w) / std::sqrt(2.0)}) {
+    const Point r = c + d * size;
+    int previous = Orientation(q, c, r, a(k - 1)), crossings = 0;
+    bool decided = previous != 0;
+    for (std::size_t i = 0; i < k && decided; ++i) {
+      const int s = Orientation(q, c, r, a(i));
+      decided = s != 0;
+      crossings += previous < 0 && s > 0;
+      previous = s;
+    }
+    if (decided) return crossings == 1;
+  }
+  return false;
+}
+
+// The plane a star's boundary lies in: the whole fan's, when it is flat (a cap's fan: side 0), or
+// its link's with the center strictly to one side, clear of the link's rounding (a cone's apex, a
+// sphere's pole). Without one, the star is tested triangle by triangle against the rest.
+void FindStarPlane(const std::vector<Point>& p, Group& star) {
+  std::vector<std::int32_t> corners = star.cycle;
+  corners.push_back(star.center);
+  const int k = static_cast<int>(star.cycle.size());
+  if (FindPlane(p, corners.data(), k + 1, star.plane, star.off_plane, star.unit_normal)) {
+    star.has_plane = true;
+    return;
+  }
+  if (!FindPlane(p, star.cycle.data(), k, star.plane, star.off_plane, star.unit_normal)) return;
+  const Point &a = p[std::size_t(star.plane[0])], &b = p[std::size_t(star.plane[1])],
+              &c = p[std::size_t(star.plane[2])], &v = p[std::size_t(star.center)];
+  const int o = Orientation(a, b, c, v);
+  const bool clear = star.off_plane == 0 || std::abs(star.unit_normal * (v - a)) > 4 * star.off_plane;
+  if (o != 0 && clear) {
+    star.has_plane = true;
+    star.side = o;
+  }
+}
+
+// The bounding box of a triangle.
+CGAL::Bbox_3 BoxOf(const std::vector<Point>& p, const Triangle& t) {
+  return p[std::size_t(t[0])].bbox() + p[std::size_t(t[1])].bbox() + p[std::size_t(t[2])].bbox();
+}
 
 // Pairs of triangles from one polygon are not tested: they meet only if the polygon is folded in
 // its own plane, and testing them made a large polygon's split (all coplanar, all near each other)
 // the whole cost — and a non-convex polygon's split overlaps itself where the polygon does not.
-std::int64_t CountSelfIntersections(const PolygonMesh& polygons, std::int64_t limit) {
-  std::vector<Point> points;
-  points.reserve(static_cast<std::size_t>(polygons.V.rows()));
-  for (Eigen::Index i = 0; i < polygons.V.rows(); ++i) {
-    points.emplace_back(polygons.V(i, 0), polygons.V(i, 1), polygons.V(i, 2));
+class SelfIntersectionCheck {
+ public:
+  SelfIntersectionCheck(const PolygonMesh& polygons, const SelfIntersectionOptions& options)
+      : polygons_(polygons), options_(options), corner_index_(static_cast<std::size_t>(polygons.V.rows())) {
+    points_.reserve(static_cast<std::size_t>(polygons.V.rows()));
+    for (Eigen::Index i = 0; i < polygons.V.rows(); ++i) {
+      points_.emplace_back(polygons.V(i, 0), polygons.V(i, 1), polygons.V(i, 2));
+    }
   }
-  std::vector<Triangle> tris;
-  std::vector<std::int64_t> owner;  // the polygon each triangle comes from
-  std::vector<FlatPolygon> flat;
-  CornerIndex corner_index(points.size());
-  std::vector<std::int64_t> seen_in(points.size(), -1);  // the last large polygon a vertex was seen in
-  for (std::int64_t f = 0; f < polygons.num_faces(); ++f) {
-    const std::int32_t* corners = polygons.indices.data() + polygons.offsets[f];
-    const int n = polygons.face_size(f);
-    FlatPolygon unit;
-    if (n > 32 && FindPlane(points, corners, n, unit.plane, unit.off_plane, unit.unit_normal)) {
-      bool repeated = false;  // a corner twice: the polygon touches itself, decided on triangles
-      for (int k = 0; k < n && !repeated; ++k) {
-        repeated = seen_in[static_cast<std::size_t>(corners[k])] == f;
-        seen_in[static_cast<std::size_t>(corners[k])] = f;
+
+  // The count, or -1 past the budget of candidate pairs.
+  std::int64_t Run() {
+    SplitFaces();
+    if (options_.whole_groups) CollectStars();
+    std::size_t all = tris_.size();
+    for (std::size_t g = 0; g < groups_.size(); ++g) {
+      Group& group = groups_[g];
+      all += group.triangles.size();
+      group.box = BoxOf(points_, group.triangles[0]);
+      for (const Triangle& t : group.triangles) group.box += BoxOf(points_, t);
+      for (std::size_t k = 0; k < group.cycle.size(); ++k) {
+        corner_index_.Add(group.cycle[k], static_cast<std::int32_t>(g), static_cast<std::int32_t>(k));
       }
-      if (!repeated) {
-        const auto id = static_cast<std::int32_t>(flat.size());
-        for (int k = 0; k < n; ++k) corner_index.Add(corners[k], id, k);
-        unit.face = f;
-        SplitPolygon(corners, n, unit.triangles);
-        flat.push_back(std::move(unit));
+      if (group.center >= 0) {
+        corner_index_.Add(group.center, static_cast<std::int32_t>(g), static_cast<std::int32_t>(group.cycle.size()));
+      }
+    }
+    corner_index_.Finish();
+    budget_ = kSelfIntersectionWork + 50 * static_cast<std::int64_t>(all);
+    try {
+      EnumerateBoxes();
+      DecideTrianglesAgainstGroups();
+      DecideGroupPairs();
+    } catch (const OverBudget&) {
+      return -1;
+    }
+    return count_;
+  }
+
+ private:
+  struct OverBudget {};
+
+  // Faces into triangles (tris_, with the face each comes from) or, for flat polygons of more than
+  // kWholeLimit corners, into groups.
+  void SplitFaces() {
+    std::vector<std::int64_t> seen_in(points_.size(), -1);  // the last large polygon a vertex was seen in
+    for (std::int64_t f = 0; f < polygons_.num_faces(); ++f) {
+      const std::int32_t* corners = polygons_.indices.data() + polygons_.offsets[f];
+      const int n = polygons_.face_size(f);
+      Group unit;
+      if (options_.whole_groups && n > kWholeLimit &&
+          FindPlane(points_, corners, n, unit.plane, unit.off_plane, unit.unit_normal)) {
+        bool repeated = false;  // a corner twice: the polygon touches itself, decided on triangles
+        for (int k = 0; k < n && !repeated; ++k) {
+          repeated = seen_in[static_cast<std::size_t>(corners[k])] == f;
+          seen_in[static_cast<std::size_t>(corners[k])] = f;
+        }
+        if (!repeated) {
+          unit.has_plane = true;
+          unit.cycle.assign(corners, corners + n);
+          SplitPolygon(corners, n, unit.triangles);
+          groups_.push_back(std::move(unit));
+          continue;
+        }
+      }
+      SplitPolygon(corners, n, tris_);
+      owner_.resize(tris_.size(), f);
+    }
+  }
+
+  // The fans of corners of more than kWholeLimit triangles (each a triangle face of its own), the
+  // corners of most triangles first, as groups when WindsOnce certifies them; a triangle joins one
+  // fan at most. The rest stay in tris_.
+  void CollectStars() {
+    const std::size_t nt = tris_.size();
+    auto alone = [&](std::size_t t) {
+      return (t == 0 || owner_[t - 1] != owner_[t]) && (t + 1 == nt || owner_[t + 1] != owner_[t]);
+    };
+    std::vector<std::int32_t> valence(points_.size(), 0);
+    for (std::size_t t = 0; t < nt; ++t) {
+      if (!alone(t) || !Distinct(tris_[t])) continue;
+      for (const std::int32_t c : tris_[t]) ++valence[static_cast<std::size_t>(c)];
+    }
+    std::vector<std::int32_t> centers;
+    for (std::size_t v = 0; v < points_.size(); ++v) {
+      if (valence[v] > kWholeLimit) centers.push_back(static_cast<std::int32_t>(v));
+    }
+    if (centers.empty()) return;
+    std::sort(centers.begin(), centers.end(), [&](std::int32_t x, std::int32_t y) {
+      return valence[std::size_t(x)] > valence[std::size_t(y)] ||
+             (valence[std::size_t(x)] == valence[std::size_t(y)] && x < y);
+    });
+    // Each center's triangles, in one array.
+    std::vector<std::int32_t> slot(points_.size(), -1);
+    std::vector<std::int64_t> start(centers.size() + 1, 0);
+    for (std::size_t i = 0; i < centers.size(); ++i) {
+      slot[std::size_t(centers[i])] = static_cast<std::int32_t>(i);
+      start[i + 1] = start[i] + valence[std::size_t(centers[i])];
+    }
+    std::vector<std::int32_t> fans(static_cast<std::size_t>(start.back()));
+    std::vector<std::int64_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t t = 0; t < nt; ++t) {
+      if (!alone(t) || !Distinct(tris_[t])) continue;
+      for (const std::int32_t c : tris_[t]) {
+        const std::int32_t s = slot[static_cast<std::size_t>(c)];
+        if (s >= 0) fans[static_cast<std::size_t>(fill[std::size_t(s)]++)] = static_cast<std::int32_t>(t);
+      }
+    }
+    std::vector<char> taken(nt, 0);
+    std::vector<std::pair<std::int32_t, std::int32_t>> next;
+    for (std::size_t i = 0; i < centers.size(); ++i) {
+      const std::int32_t* fan = fans.data() + start[i];
+      const int k = static_cast<int>(start[i + 1] - start[i]);
+      bool free = true;
+      for (int j = 0; j < k && free; ++j) free = !taken[static_cast<std::size_t>(fan[j])];
+      Group star;
+      star.center = centers[i];
+      if (!free || !LinkCycle(tris_, star.center, fan, k, next, star.cycle) ||
+          !WindsOnce(points_, star.center, star.cycle)) {
         continue;
       }
-    }
-    SplitPolygon(corners, n, tris);
-    owner.resize(tris.size(), f);
-  }
-  corner_index.Finish();
-  auto box_of = [&](const Triangle& t) {
-    return points[std::size_t(t[0])].bbox() + points[std::size_t(t[1])].bbox() + points[std::size_t(t[2])].bbox();
-  };
-  // The boxes of the triangles with an area (nothing to intersect otherwise), by their index.
-  auto add_boxes = [&](const std::vector<Triangle>& ts, std::vector<Box>& out) {
-    for (std::size_t i = 0; i < ts.size(); ++i) {
-      const Triangle& t = ts[i];
-      if (!CGAL::collinear(points[std::size_t(t[0])], points[std::size_t(t[1])], points[std::size_t(t[2])])) {
-        out.emplace_back(box_of(t), static_cast<std::int32_t>(i));
+      for (int j = 0; j < k; ++j) {
+        taken[static_cast<std::size_t>(fan[j])] = 1;
+        star.triangles.push_back(tris_[static_cast<std::size_t>(fan[j])]);
       }
+      FindStarPlane(points_, star);
+      groups_.push_back(std::move(star));
     }
-  };
-
-  // Boxes: triangles by index, flat polygons as -1 - their index.
-  std::vector<Box> boxes;
-  boxes.reserve(tris.size() + flat.size());
-  add_boxes(tris, boxes);
-  for (std::size_t u = 0; u < flat.size(); ++u) {
-    CGAL::Bbox_3 box = points[std::size_t(flat[u].triangles[0][0])].bbox();
-    for (const Triangle& t : flat[u].triangles) box += box_of(t);
-    boxes.emplace_back(box, -1 - static_cast<std::int32_t>(u));
+    std::size_t kept = 0;
+    for (std::size_t t = 0; t < nt; ++t) {
+      if (taken[t]) continue;
+      tris_[kept] = tris_[t];
+      owner_[kept++] = owner_[t];
+    }
+    tris_.resize(kept);
+    owner_.resize(kept);
   }
-  std::vector<const Box*> handles;
-  handles.reserve(boxes.size());
-  for (const Box& b : boxes) handles.push_back(&b);
 
-  // Whether a triangle meets a flat polygon only where they share a corner or an edge.
-  auto meets_only_at_shared = [&](const Triangle& t, std::int32_t u) {
-    const FlatPolygon& poly = flat[static_cast<std::size_t>(u)];
-    const Point &a = points[std::size_t(poly.plane[0])], &b = points[std::size_t(poly.plane[1])],
-                &c = points[std::size_t(poly.plane[2])];
+  void Spend() {
+    if (++pairs_ > budget_) throw OverBudget{};
+  }
+
+  // Whether a triangle meets group g only where they share a corner or an edge: its other corners
+  // strictly on one side of the group's plane (for a star with its center off the plane, the far
+  // side), and what it shares a corner, a boundary edge, or a flat fan's spoke.
+  bool MeetsOnlyAtShared(const Triangle& t, std::int32_t g) const {
+    const Group& group = groups_[static_cast<std::size_t>(g)];
+    if (!group.has_plane) return false;
+    const Point &a = points_[std::size_t(group.plane[0])], &b = points_[std::size_t(group.plane[1])],
+                &c = points_[std::size_t(group.plane[2])];
     std::int32_t at[3];
     int on = 0, side = 0;
     for (int k = 0; k < 3; ++k) {
-      at[on] = corner_index.Position(t[k], u);
+      at[on] = corner_index_.Position(t[k], g);
       if (at[on] >= 0) {
         ++on;
         continue;
       }
-      const int o = Orientation(a, b, c, points[std::size_t(t[k])]);
-      if (o == 0 || (side != 0 && o != side)) return false;
-      // A polygon within rounding of its plane: the corner must clear the polygon's own spread.
-      if (poly.off_plane > 0 && !(std::abs(poly.unit_normal * (points[std::size_t(t[k])] - a)) > 4 * poly.off_plane)) {
-        return false;
-      }
+      const Point& x = points_[std::size_t(t[k])];
+      const int o = Orientation(a, b, c, x);
+      if (o == 0 || (side != 0 && o != side) || (group.side != 0 && o != -group.side)) return false;
+      // A group within rounding of its plane: the corner must clear the group's own spread.
+      if (group.off_plane > 0 && !(std::abs(group.unit_normal * (x - a)) > 4 * group.off_plane)) return false;
       side = o;
     }
-    if (on <= 1) return side != 0;
-    if (on == 3) return false;
-    const auto n = static_cast<std::int32_t>(polygons.face_size(poly.face));
+    if (side == 0) return false;  // every corner shared: the same triangle, or a chord's
+    const auto n = static_cast<std::int32_t>(group.cycle.size());  // a star's center is at n
+    if (on == 0) return true;
+    if (on == 1) return at[0] < n || group.side == 0;
+    if (at[0] == n || at[1] == n) return group.side == 0;  // a flat fan's spoke: an edge of its own
     const std::int32_t d = std::abs(at[0] - at[1]);
     return d == 1 || d == n - 1;
-  };
+  }
 
-  std::int64_t count = 0;
-  // Candidate pairs are counted: past the budget the check stops undecided (a high-valence corner).
-  struct OverBudget {};
-  const std::int64_t budget = kSelfIntersectionWork + 50 * static_cast<std::int64_t>(tris.size());
-  std::int64_t pairs = 0;
-  auto spend = [&] {
-    if (++pairs > budget) throw OverBudget{};
-  };
-  std::vector<std::pair<std::int32_t, std::int32_t>> triangle_vs_polygon;  // decided on its triangles
-  std::vector<std::pair<std::int32_t, std::int32_t>> polygon_vs_polygon;
-  auto test = [&](const Box* x, const Box* y) {
-    if (count >= limit) return;
-    spend();
-    std::int32_t i = x->info(), j = y->info();
-    if (i < 0 && j < 0) {
-      polygon_vs_polygon.emplace_back(-1 - i, -1 - j);
-      return;
-    }
-    if (i < 0 || j < 0) {
-      if (i < 0) std::swap(i, j);
-      const std::int32_t u = -1 - j;  // (a flat polygon's own triangles are not among tris)
-      if (!meets_only_at_shared(tris[static_cast<std::size_t>(i)], u)) triangle_vs_polygon.emplace_back(i, u);
-      return;
-    }
-    if (owner[static_cast<std::size_t>(i)] == owner[static_cast<std::size_t>(j)]) return;
-    if (TrianglesIntersect(points, tris[static_cast<std::size_t>(i)], tris[static_cast<std::size_t>(j)])) ++count;
-  };
-  try {
-    CGAL::box_self_intersection_d(handles.begin(), handles.end(), test);
+  void Test(const Triangle& s, const Triangle& t) {
+    if (count_ < options_.limit && TrianglesIntersect(points_, s, t)) ++count_;
+  }
 
-    // What the whole-polygon test left open, triangle against triangle (in a fixed order).
-    auto decide = [&](const std::vector<Triangle>& left, const std::vector<Triangle>& right) {
-      std::vector<Box> lb, rb;
-      add_boxes(left, lb);
-      add_boxes(right, rb);
-      CGAL::box_intersection_d(lb.begin(), lb.end(), rb.begin(), rb.end(), [&](const Box& x, const Box& y) {
-        spend();
-        if (count < limit && TrianglesIntersect(points, left[std::size_t(x.info())], right[std::size_t(y.info())])) {
-          ++count;
-        }
-      });
-    };
-    std::sort(triangle_vs_polygon.begin(), triangle_vs_polygon.end(), [](const auto& p, const auto& q) {
+  // Every candidate pair of boxes: triangle pairs decided at once, a triangle against a group by
+  // the whole-group test (or remembered for its triangles), group pairs remembered.
+  void EnumerateBoxes() {
+    std::vector<Box> boxes;
+    boxes.reserve(tris_.size() + groups_.size());
+    AddBoxes(tris_, boxes);
+    for (std::size_t g = 0; g < groups_.size(); ++g)
+      boxes.emplace_back(groups_[g].box, -1 - static_cast<std::int32_t>(g));
+    std::vector<const Box*> handles;
+    handles.reserve(boxes.size());
+    for (const Box& b : boxes) handles.push_back(&b);
+    CGAL::box_self_intersection_d(handles.begin(), handles.end(), [&](const Box* x, const Box* y) {
+      if (count_ >= options_.limit) return;
+      Spend();
+      std::int32_t i = x->info(), j = y->info();
+      if (i < 0 && j < 0) {
+        group_pairs_.emplace_back(std::min(-1 - i, -1 - j), std::max(-1 - i, -1 - j));
+      } else if (i < 0 || j < 0) {
+        if (i < 0) std::swap(i, j);
+        const std::int32_t g = -1 - j;
+        if (!MeetsOnlyAtShared(tris_[static_cast<std::size_t>(i)], g)) triangle_vs_group_.emplace_back(i, g);
+      } else if (owner_[static_cast<std::size_t>(i)] != owner_[static_cast<std::size_t>(j)]) {
+        Test(tris_[static_cast<std::size_t>(i)], tris_[static_cast<std::size_t>(j)]);
+      }
+    });
+  }
+
+  // The boxes of the triangles with an area (nothing to intersect otherwise), by their index.
+  void AddBoxes(const std::vector<Triangle>& ts, std::vector<Box>& out) const {
+    for (std::size_t i = 0; i < ts.size(); ++i) {
+      const Triangle& t = ts[i];
+      if (!CGAL::collinear(points_[std::size_t(t[0])], points_[std::size_t(t[1])], points_[std::size_t(t[2])])) {
+        out.emplace_back(BoxOf(points_, t), static_cast<std::int32_t>(i));
+      }
+    }
+  }
+
+  // Every pair of a triangle from `left` and one from `right` whose boxes overlap.
+  void Decide(const std::vector<Triangle>& left, const std::vector<Triangle>& right) {
+    std::vector<Box> lb, rb;
+    AddBoxes(left, lb);
+    AddBoxes(right, rb);
+    CGAL::box_intersection_d(lb.begin(), lb.end(), rb.begin(), rb.end(), [&](const Box& x, const Box& y) {
+      Spend();
+      Test(left[std::size_t(x.info())], right[std::size_t(y.info())]);
+    });
+  }
+
+  // What the whole-group test left open, triangle against the group's triangles (by group).
+  void DecideTrianglesAgainstGroups() {
+    std::sort(triangle_vs_group_.begin(), triangle_vs_group_.end(), [](const auto& p, const auto& q) {
       return p.second < q.second || (p.second == q.second && p.first < q.first);
     });
-    for (std::size_t k = 0; k < triangle_vs_polygon.size() && count < limit;) {
-      const std::int32_t u = triangle_vs_polygon[k].second;
-      std::vector<Triangle> group;
-      for (; k < triangle_vs_polygon.size() && triangle_vs_polygon[k].second == u; ++k) {
-        group.push_back(tris[static_cast<std::size_t>(triangle_vs_polygon[k].first)]);
+    std::vector<Triangle> group;
+    for (std::size_t k = 0; k < triangle_vs_group_.size() && count_ < options_.limit;) {
+      const std::int32_t g = triangle_vs_group_[k].second;
+      group.clear();
+      for (; k < triangle_vs_group_.size() && triangle_vs_group_[k].second == g; ++k) {
+        group.push_back(tris_[static_cast<std::size_t>(triangle_vs_group_[k].first)]);
       }
-      decide(group, flat[static_cast<std::size_t>(u)].triangles);
+      Decide(group, groups_[static_cast<std::size_t>(g)].triangles);
     }
-    std::sort(polygon_vs_polygon.begin(), polygon_vs_polygon.end());
-    for (const auto& [u, w] : polygon_vs_polygon) {
-      if (count < limit)
-        decide(flat[static_cast<std::size_t>(u)].triangles, flat[static_cast<std::size_t>(w)].triangles);
-    }
-  } catch (const OverBudget&) {
-    return -1;
   }
-  return count;
+
+  // Two groups: the triangles of each that the whole-group test cannot clear against the other;
+  // only pairs of those are left (a triangle cleared against a whole group meets none of its own).
+  void DecideGroupPairs() {
+    std::sort(group_pairs_.begin(), group_pairs_.end());
+    std::vector<Triangle> left, right;
+    auto open_against = [&](std::int32_t from, std::int32_t other, std::vector<Triangle>& out) {
+      out.clear();
+      const CGAL::Bbox_3& box = groups_[static_cast<std::size_t>(other)].box;
+      for (const Triangle& t : groups_[static_cast<std::size_t>(from)].triangles) {
+        if (!CGAL::do_overlap(BoxOf(points_, t), box)) continue;
+        Spend();
+        if (!MeetsOnlyAtShared(t, other)) out.push_back(t);
+      }
+    };
+    for (const auto& [g, h] : group_pairs_) {
+      if (count_ >= options_.limit) break;
+      open_against(g, h, left);
+      if (left.empty()) continue;
+      open_against(h, g, right);
+      if (!right.empty()) Decide(left, right);
+    }
+  }
+
+  const PolygonMesh& polygons_;
+  SelfIntersectionOptions options_;
+  std::vector<Point> points_;
+  std::vector<Triangle> tris_;
+  std::vector<std::int64_t> owner_;  // the polygon each triangle comes from
+  std::vector<Group> groups_;
+  CornerIndex corner_index_;
+  std::vector<std::pair<std::int32_t, std::int32_t>> triangle_vs_group_;  // decided on its triangles
+  std::vector<std::pair<std::int32_t, std::int32_t>> group_pairs_;
+  std::int64_t count_ = 0, pairs_ = 0, budget_ = 0;
+};
+
+}  // namespace
+
+std::int64_t CountSelfIntersections(const PolygonMesh& polygons, const SelfIntersectionOptions& options) {
+  return SelfIntersectionCheck(polygons, options).Run();
 }
 
 }  // namespace massprops

@@ -79,12 +79,31 @@ PolygonMesh ConvexHull(const PolygonMesh& mesh);
 /// Number of pairs of faces that intersect other than along shared edges or vertices, counting up
 /// to `limit`: polygons are split into triangles (SplitPolygon), candidate pairs come from CGAL's
 /// box intersection, and each pair is decided with exact predicates. Triangles of the same polygon
-/// are not tested against each other. Returns −1 (not decided) when the candidate pairs exceed
-/// kSelfIntersectionWork + 50 per triangle: a corner shared by 10⁵ faces (a cone's apex, a
-/// cap's fan) makes the boxes of every two of them overlap, 5·10⁹ pairs; the check stops in seconds
-/// instead of running for hours.
+/// are not tested against each other. Two kinds of groups are tested as wholes, so that the pairs
+/// within them are never enumerated:
+/// - a polygon of more than 32 corners in one plane (exactly, or within rounding when tilted);
+/// - the fan of triangles around a corner of more than 32 triangles (a cone's apex, a cap's or a
+///   sphere's pole), when exact predicates certify it free of intersections within itself: seen
+///   around a line through the corner, every triangle turns the same way and together they wind
+///   once.
+/// A triangle is tested against a group as a whole when it touches the group's plane only at a
+/// shared corner or boundary edge, its other corners strictly on the far side. Returns −1 (not
+/// decided) when the candidate pairs still exceed kSelfIntersectionWork + 50 per triangle (boxes
+/// of many faces overlapping around one corner that cannot be certified); the check stops in
+/// seconds instead of running for hours.
 inline constexpr std::int64_t kSelfIntersectionLimit = 1000000;
 inline constexpr std::int64_t kSelfIntersectionWork = 10000000;
-std::int64_t CountSelfIntersections(const PolygonMesh& mesh, std::int64_t limit = kSelfIntersectionLimit);
+struct SelfIntersectionOptions {
+  std::int64_t limit = kSelfIntersectionLimit;  ///< stop counting here
+  /// Large flat polygons and high-valence corners' fans tested as wholes. false: every pair of
+  /// triangles (quadratic around a fan; the second algorithm of the tests).
+  bool whole_groups = true;
+};
+std::int64_t CountSelfIntersections(const PolygonMesh& mesh, const SelfIntersectionOptions& options);
+inline std::int64_t CountSelfIntersections(const PolygonMesh& mesh, std::int64_t limit = kSelfIntersectionLimit) {
+  SelfIntersectionOptions options;
+  options.limit = limit;
+  return CountSelfIntersections(mesh, options);
+}
 
 }  // namespace massprops
