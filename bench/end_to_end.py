@@ -60,6 +60,20 @@ def interleaved(cmd, files, repeat, floor=None):
             statistics.median(to_floor) if floor else None)
 
 
+def make_tilted_cone(n, path):
+    """A cone over an n-gon of unit radius in a plane tilted by 30° (its corners within rounding
+    of it), apex at height 1: the apex is a corner of n triangles (a fan), the base one n-gon."""
+    c, s = math.cos(math.pi / 6), math.sin(math.pi / 6)
+    with open(path, "w") as f:
+        for i in range(n):
+            x, y = math.cos(2 * math.pi * i / n), math.sin(2 * math.pi * i / n)
+            f.write(f"v {x!r} {c * y!r} {s * y!r}\n")
+        f.write(f"v 0 {-s!r} {c!r}\n")
+        f.write("f " + " ".join(str(n - i) for i in range(n)) + "\n")
+        for i in range(n):
+            f.write(f"f {i + 1} {(i + 1) % n + 1} {n + 1}\n")
+
+
 def make(gen, n, path):
     return int(subprocess.run([gen, str(n), path], capture_output=True, text=True, check=True).stdout)
 
@@ -147,6 +161,14 @@ def main():
         case(f"OBJ {n} triangles (17-digit coordinates)", "≈ 6×", [exe, obj2m] + q, [obj2m])
         case(f"{len(small)} binary STLs of 10⁴ triangles, one call", "≤ 2×", [exe] + small + q, small)
         case(f"binary STL {'1.5·10³' if args.quick else '1.5·10⁵'} triangles", "≤ 2×", [exe, stl150k] + q, [stl150k])
+        # A fan of 10⁶ triangles around one corner: the self-intersection check and the wall's.
+        cone = path("tilted_cone.obj")
+        cone_n = 10_000 if args.quick else 1_000_000
+        make_tilted_cone(cone_n, cone)
+        cn = "10⁴" if args.quick else "10⁶"
+        case(f"tilted cone over a {cn}-gon (OBJ), `--check-self-intersections`", "seconds",
+             [exe, cone, "--check-self-intersections"] + q, [cone])
+        case(f"same, `--wall 0.01`", "seconds", [exe, cone, "--wall", "0.01"] + q, [cone])
 
         # Baselines on the 2·10⁶ STL: whole processes, as a user would run them.
         py = "/usr/bin/python3"
@@ -171,6 +193,21 @@ def main():
             print(f"the floor's volume {v_floor} differs from ours {v}", file=sys.stderr)
             ok = False
         if volume_of(exe, obj2m) <= 0:
+            ok = False
+        # The cone: no self-intersections (it is convex), and its wall's volume is the closed form's
+        # (the pyramid less its copy scaled by 1 - t/r about the inscribed sphere's centre).
+        checked = json.loads(subprocess.run([exe, cone, "--check-self-intersections"] + q, capture_output=True,
+                                            text=True, check=True).stdout)
+        if checked["mesh"].get("self_intersections") != 0:
+            print(f"the tilted cone's self-intersection check says {checked['mesh']}", file=sys.stderr)
+            ok = False
+        apothem = math.cos(math.pi / cone_n)  # the pyramid's inscribed sphere: r = a / (a + sqrt(a² + 1))
+        scale = 1 - 0.01 * (apothem + math.sqrt(apothem ** 2 + 1)) / apothem
+        v_wall = 0.5 * cone_n * math.sin(2 * math.pi / cone_n) / 3 * (1 - scale ** 3)
+        wall = json.loads(subprocess.run([exe, cone, "--wall", "0.01"] + q, capture_output=True, text=True,
+                                         check=True).stdout)["volume"]
+        if abs(wall - v_wall) > 1e-9 * v_wall:
+            print(f"the cone's wall {wall} differs from the closed form {v_wall}", file=sys.stderr)
             ok = False
 
     print("| case | target | `massprops` | `cat` | ratio to `cat` (median of pairs) | ratio to the floor | peak RSS |")

@@ -612,12 +612,13 @@ def main():
     write("tilted_cone.obj", obj(cone_v, [tuple(reversed(range(n)))] + [(i, (i + 1) % n, n) for i in range(n)]))
     run("tilted_cone_self_intersections", ["tilted_cone.obj", "--unit", "m", "--check-self-intersections"], 0,
         r"^$", r"self-intersect +none")
-    # The wall of a right cone (height 1, base radius 1, inradius r = 1/(1 + sqrt 2)) offset by t:
-    # the cone less its copy scaled by 1 - t/r, over an n-gon's area.
-    scale = 1 - 0.01 * (1 + math.sqrt(2))
+    # The wall of a right pyramid over a regular n-gon (height 1, circumradius 1, apothem a, inradius
+    # r = a / (a + sqrt(a^2 + 1))) offset by t: the pyramid less its copy scaled by 1 - t/r.
+    apothem = math.cos(math.pi / n)
+    scale = 1 - 0.01 * (apothem + math.sqrt(apothem ** 2 + 1)) / apothem
     wall = 0.5 * n * math.sin(2 * math.pi / n) / 3 * (1 - scale ** 3)
     run("tilted_cone_wall", ["tilted_cone.obj", "--unit", "m", "--wall", "0.01", "--format", "csv"], 0, r"^$",
-        r"," + re.escape(("%.12f" % wall)[:10]))  # 0.07402843667: 8 digits of the closed form
+        r"," + re.escape(("%.12f" % wall)[:12]))  # 0.074028436683: 10 digits of the closed form
     # Every error line reads 'error: SUBJECT: message', on one line whatever the file's name holds.
     write("line\nbreak.obj", "v 0 0 0\n")
     run("newline_in_name", ["line\nbreak.obj"], 1, r"^error: line\\nbreak\.obj: no faces[^\n]*\n$")

@@ -328,7 +328,9 @@ TEST(SelfIntersections, LargeFansAgreeWithEveryPair) {
       const PolygonMesh both = Together(cone, box);
       const std::int64_t whole = CountSelfIntersections(both);
       EXPECT_EQ(whole, Pairwise(both)) << static_cast<int>(base) << " " << at.transpose();
-      if (base != ConeBase::kApex || at.z() > 0.5) EXPECT_GT(whole, 0);  // the double cone holds the others
+      if (base != ConeBase::kApex || at.z() > 0.5) {  // the double cone holds the other two
+        EXPECT_GT(whole, 0);
+      }
     }
   }
   // A fan whose link winds twice around its apex (an odd n-gon visited every second corner): the
