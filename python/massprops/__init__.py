@@ -177,12 +177,16 @@ def fill(path, output=None, *, density=1000.0, densities=None, keep_mass=False, 
 
 
 def _faces_to_arrays(faces):
-    """Faces as (indices, offsets): an (m, k) integer array, or a sequence of polygons."""
+    """Faces as (indices, offsets, face size): an (m, k) integer array (offsets None: every face
+    has k corners; int32 and int64 pass as they are, other integers become int64), or a sequence
+    of polygons."""
     if isinstance(faces, _np.ndarray) and faces.ndim == 2:
         if not _np.issubdtype(faces.dtype, _np.integer):
             raise ValueError(f"faces must be integers, not {faces.dtype}")
         m, k = faces.shape
-        return faces.reshape(-1).astype(_np.int64, copy=False), _np.arange(0, m * k + 1, k, dtype=_np.int64)
+        if faces.dtype not in (_np.int32, _np.int64):
+            faces = faces.astype(_np.int64)
+        return _np.ascontiguousarray(faces).reshape(-1), None, k
     polygons = [_np.asarray(f).reshape(-1) for f in faces]
     for i, f in enumerate(polygons):
         if f.size and not _np.issubdtype(f.dtype, _np.integer):
@@ -190,7 +194,7 @@ def _faces_to_arrays(faces):
     sizes = _np.array([f.size for f in polygons], dtype=_np.int64)
     offsets = _np.concatenate([[0], _np.cumsum(sizes)]).astype(_np.int64)
     indices = _np.concatenate(polygons).astype(_np.int64) if polygons else _np.zeros(0, dtype=_np.int64)
-    return indices, offsets
+    return indices, offsets, 0
 
 
 def mass_properties(vertices, faces=None, *, name="<arrays>", **options):
@@ -210,14 +214,14 @@ def mass_properties(vertices, faces=None, *, name="<arrays>", **options):
     if not _np.issubdtype(v.dtype, _np.floating) and not _np.issubdtype(v.dtype, _np.integer):
         raise ValueError(f"vertices must be numbers, not {v.dtype}")
     float32 = v.dtype == _np.float32
-    indices, offsets = _faces_to_arrays(faces)
+    indices, offsets, k = _faces_to_arrays(faces)
     v = _np.ascontiguousarray(v, dtype=_np.float64)
 
     def redo(out, part):
-        _core.solve_arrays(v, indices, offsets, float32, name, _picture=out,
+        _core.solve_arrays(v, indices, offsets, k, float32, name, _picture=out,
                            **({"_picture_part": part} if part else {}), **options)
 
-    return Result(_json.loads(_core.solve_arrays(v, indices, offsets, float32, name, **options)), redo)
+    return Result(_json.loads(_core.solve_arrays(v, indices, offsets, k, float32, name, **options)), redo)
 
 
 def body(result):

@@ -171,11 +171,12 @@ LoadOptions ToLoadOptions(const py::kwargs& kw) {
   return o;
 }
 
+// The result as one JSON object on one line (json.loads reads it; no copy of the result).
 std::string ToJson(const SolidResult& r) {
   report::FormatOptions f;
   f.format = report::Format::kJson;
   f.vocabulary = &massprops_python::PythonWords();
-  return report::FormatJson({r}, f);
+  return report::FormatJsonLine(r, f);
 }
 
 // Result.picture(): the keywords `_picture` (the output path) and `_picture_part` (a part's name,
@@ -198,20 +199,21 @@ PictureRequest TakePicture(const py::kwargs& kw) {
 // the picture when one is asked for.
 template <typename Solve>
 std::string Run(const Solve& solve, const PictureRequest& picture = {}) {
-  std::optional<SolidResult> r;
+  std::string json;
   massprops_python::RunWithoutGil([&] {
-    r = solve();
+    const SolidResult r = solve();
+    json = ToJson(r);
     if (picture.path.empty()) return;
-    const SolidResult* drawn = &*r;
+    const SolidResult* drawn = &r;
     if (!picture.part.empty()) {
       const auto it =
-          std::find_if(r->parts.begin(), r->parts.end(), [&](const SolidResult& p) { return p.part == picture.part; });
-      if (it == r->parts.end()) throw std::invalid_argument("no part '" + picture.part + "' in " + r->source);
+          std::find_if(r.parts.begin(), r.parts.end(), [&](const SolidResult& p) { return p.part == picture.part; });
+      if (it == r.parts.end()) throw std::invalid_argument("no part '" + picture.part + "' in " + r.source);
       drawn = &*it;
     }
     report::WritePicture(picture.path, *drawn);
   });
-  return ToJson(*r);
+  return json;
 }
 
 std::string Load(const std::string& path, const py::kwargs& kw) {
@@ -259,47 +261,106 @@ py::tuple Fill(const std::string& path, double density, const py::object& densit
   return py::make_tuple(report::FormatFillJson(path, "", r, massprops_python::PythonWords()), r.document);
 }
 
-// vertices (n, 3) float64; indices and offsets as PolygonMesh keeps them (face f has the corners
-// indices[offsets[f] .. offsets[f+1]-1]); float32: the caller's coordinates were float32.
-std::string SolveArrays(py::array_t<double, py::array::c_style | py::array::forcecast> vertices,
-                        py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> indices,
-                        py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> offsets, bool float32,
-                        const std::string& name, const py::kwargs& kw) {
-  const PictureRequest picture = TakePicture(kw);
-  const LoadOptions o = ToLoadOptions(kw);
-  if (vertices.ndim() != 2 || vertices.shape(1) != 3) throw py::value_error("vertices must have shape (n, 3)");
-  const auto nv = static_cast<std::int64_t>(vertices.shape(0));
-  if (nv > std::numeric_limits<std::int32_t>::max()) throw py::value_error("more than 2^31 vertices");
+// Face corners as the caller gave them: int32 or int64, C-contiguous (other integer dtypes are cast
+// to int64 first, a copy).
+struct Corners {
+  const void* data = nullptr;
+  bool wide = false;  // int64
+  std::int64_t size = 0;
+  std::int64_t operator[](std::int64_t i) const {
+    return wide ? static_cast<const std::int64_t*>(data)[i] : static_cast<const std::int32_t*>(data)[i];
+  }
+};
+
+// The mesh the arrays describe: checked (every corner a vertex, faces of 3 corners or more, finite
+// coordinates) while it is copied into the library's own arrays. No Python object is touched: it
+// runs without the GIL.
+LoadedMesh MeshFromArrays(const double* vertices, std::int64_t nv, const Corners& corners, const std::int64_t* offsets,
+                          std::int64_t faces, std::int64_t face_size, bool float32) {
   LoadedMesh m;
   m.format = "arrays";
   m.float32_coordinates = float32;
-  m.mesh.V = Eigen::Map<const VertexMatrix>(vertices.data(), nv, 3);
-  const auto idx = indices.unchecked<1>();
-  const auto off = offsets.unchecked<1>();
-  if (off.shape(0) < 2 || off(0) != 0 || off(off.shape(0) - 1) != idx.shape(0)) {
-    throw py::value_error("faces: offsets must run from 0 to the number of corners");
-  }
-  m.mesh.indices.resize(static_cast<std::size_t>(idx.shape(0)));
-  for (py::ssize_t i = 0; i < idx.shape(0); ++i) {
-    const std::int64_t v = idx(i);
-    if (v < 0 || v >= nv) {
-      throw py::value_error("faces: corner " + std::to_string(i) + " refers to vertex " + std::to_string(v) +
-                            ", but there are " + std::to_string(nv) + " vertices");
-    }
-    m.mesh.indices[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(v);
-  }
-  m.mesh.offsets.assign(off.data(0), off.data(0) + off.shape(0));
-  for (std::size_t f = 0; f + 1 < m.mesh.offsets.size(); ++f) {
-    if (m.mesh.offsets[f + 1] - m.mesh.offsets[f] < 3) {
-      throw py::value_error("faces: face " + std::to_string(f) + " has fewer than 3 corners");
-    }
-  }
+  m.mesh.V = Eigen::Map<const VertexMatrix>(vertices, nv, 3);
   for (Eigen::Index i = 0; i < m.mesh.V.size(); ++i) {
     if (!std::isfinite(m.mesh.V.data()[i])) {
-      throw py::value_error("vertices: vertex " + std::to_string(i / 3) + " has a non-finite coordinate");
+      throw std::invalid_argument("vertices: vertex " + std::to_string(i / 3) + " has a non-finite coordinate");
     }
   }
-  return Run([&] { return SolveMesh(std::move(m), name, o); }, picture);
+  auto& offs = m.mesh.offsets;
+  if (offsets != nullptr) {
+    offs.assign(offsets, offsets + faces + 1);
+  } else {  // every face of face_size corners
+    offs.resize(static_cast<std::size_t>(faces + 1));
+    for (std::int64_t f = 0; f <= faces; ++f) offs[static_cast<std::size_t>(f)] = f * face_size;
+  }
+  if (offs.front() != 0 || offs.back() != corners.size) {
+    throw std::invalid_argument("faces: offsets must run from 0 to the number of corners");
+  }
+  for (std::size_t f = 0; f + 1 < offs.size(); ++f) {
+    if (offs[f + 1] - offs[f] < 3) {
+      throw std::invalid_argument("faces: face " + std::to_string(f) + " has fewer than 3 corners");
+    }
+  }
+  // Corners into int32, checked in one pass (no zero fill first).
+  std::unique_ptr<std::int32_t[]> narrow(new std::int32_t[static_cast<std::size_t>(corners.size)]);
+  bool all_in_range = true;
+  for (std::int64_t i = 0; i < corners.size; ++i) {
+    const std::int64_t v = corners[i];
+    all_in_range &= v >= 0 && v < nv;
+    narrow[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(v);
+  }
+  if (!all_in_range) {
+    for (std::int64_t i = 0; i < corners.size; ++i) {
+      if (corners[i] < 0 || corners[i] >= nv) {
+        throw std::invalid_argument("faces: corner " + std::to_string(i) + " refers to vertex " +
+                                    std::to_string(corners[i]) + ", but there are " + std::to_string(nv) +
+                                    " vertices");
+      }
+    }
+  }
+  m.mesh.indices.assign(narrow.get(), narrow.get() + corners.size);
+  return m;
+}
+
+// vertices (n, 3), float64 read in place when C-contiguous (else cast, a copy); indices int32 or
+// int64 read in place when C-contiguous (other integers cast to int64); offsets as PolygonMesh
+// keeps them (face f has the corners indices[offsets[f] .. offsets[f+1]-1]), or None with
+// face_size when every face has that many corners; float32: the caller's coordinates were float32.
+std::string SolveArrays(const py::array& vertices_in, const py::array& indices_in, const py::object& offsets_in,
+                        std::int64_t face_size, bool float32, const std::string& name, const py::kwargs& kw) {
+  const PictureRequest picture = TakePicture(kw);
+  const LoadOptions o = ToLoadOptions(kw);
+  using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
+  const Doubles vertices = Doubles::ensure(vertices_in);
+  if (!vertices || vertices.ndim() != 2 || vertices.shape(1) != 3) {
+    throw py::value_error("vertices must have shape (n, 3)");
+  }
+  const auto nv = static_cast<std::int64_t>(vertices.shape(0));
+  if (nv > std::numeric_limits<std::int32_t>::max()) throw py::value_error("more than 2^31 vertices");
+  py::array indices = indices_in;
+  const bool narrow = py::isinstance<py::array_t<std::int32_t>>(indices) && (indices.flags() & py::array::c_style);
+  if (!narrow) indices = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(indices_in);
+  if (!indices || indices.ndim() != 1) throw py::value_error("faces: expected one array of corners");
+  const Corners corners{indices.data(), !narrow, static_cast<std::int64_t>(indices.shape(0))};
+  py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> offsets;
+  std::int64_t faces = 0;
+  if (offsets_in.is_none()) {
+    if (face_size < 3) throw py::value_error("faces: face 0 has fewer than 3 corners");
+    if (corners.size % face_size != 0) throw py::value_error("faces: the corners are not whole faces");
+    faces = corners.size / face_size;
+  } else {
+    offsets = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(offsets_in);
+    if (!offsets || offsets.ndim() != 1 || offsets.shape(0) < 2) {
+      throw py::value_error("faces: offsets must run from 0 to the number of corners");
+    }
+    faces = static_cast<std::int64_t>(offsets.shape(0)) - 1;
+  }
+  const std::int64_t* offset_data = offsets_in.is_none() ? nullptr : offsets.data();
+  return Run(
+      [&] {
+        return SolveMesh(MeshFromArrays(vertices.data(), nv, corners, offset_data, faces, face_size, float32), name, o);
+      },
+      picture);
 }
 
 Vector3 Vec(const py::handle& h) {
@@ -812,8 +873,8 @@ PYBIND11_MODULE(_core, m) {
   m.def("fill", &Fill, py::arg("path"), py::arg("density"), py::arg("densities"), py::arg("keep_mass"),
         py::arg("source"), py::arg("packages"), py::arg("repair"), py::arg("allow_open"),
         "FillRobotDescription -> (report JSON, document)");
-  m.def("solve_arrays", &SolveArrays, py::arg("vertices"), py::arg("indices"), py::arg("offsets"), py::arg("float32"),
-        py::arg("name"), "SolveMesh(arrays, options) -> JSON of the result");
+  m.def("solve_arrays", &SolveArrays, py::arg("vertices"), py::arg("indices"), py::arg("offsets"),
+        py::arg("face_size"), py::arg("float32"), py::arg("name"), "SolveMesh(arrays, options) -> JSON of the result");
   m.def(
       "batch_records",
       [](const std::vector<std::string>& paths, const std::vector<std::size_t>& indices, std::size_t of, double timeout,

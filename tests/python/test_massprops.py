@@ -169,6 +169,25 @@ def test_any_object_with_vertices_and_faces():
         massprops.mass_properties(v)
 
 
+def test_face_arrays_of_any_integer_dtype_give_the_same_bits():
+    # int32 and int64 are read in place; other integers (and non-contiguous views) are cast first.
+    path = os.path.join(MESHES, "cube_cup_quad.obj")
+    v, polygons = read_obj(path)
+    quads = np.array(polygons, dtype=np.int64)
+    want = massprops.mass_properties(v, quads, unit="m")
+    for faces in (quads.astype(np.int32), quads.astype(np.uint16), np.asfortranarray(quads),
+                  np.asfortranarray(quads.astype(np.int32)), quads[::-1][::-1]):
+        got = massprops.mass_properties(v, faces, unit="m")
+        assert got == want
+        assert np.array_equal(got.inertia_com, want.inertia_com)
+    # Vertices: float64 in place; Fortran order and float32 cast (float32 reported as such).
+    assert massprops.mass_properties(np.asfortranarray(v), quads, unit="m") == want
+    with pytest.raises(ValueError, match="refers to vertex -1, but there are"):
+        massprops.mass_properties(v, np.where(quads == 5, -1, quads).astype(np.int32), unit="m")
+    with pytest.raises(ValueError, match="face 0 has fewer than 3 corners"):
+        massprops.mass_properties(v, quads[:, :2], unit="m")
+
+
 def test_array_faults_raise():
     v, q = box((1.0, 1.0, 1.0))
     with pytest.raises(ValueError, match="refers to vertex 8, but there are 8 vertices"):
