@@ -14,7 +14,9 @@
 #include <map>
 #include <vector>
 
+#include "massprops/io/load.h"
 #include "massprops/mass_properties.h"
+#include "massprops/mesh_topology.h"
 #include "massprops/solids.h"
 #include "massprops/triangle_soup.h"
 
@@ -47,12 +49,40 @@ void BM_TrianglePath(benchmark::State& state) {
 }
 BENCHMARK(BM_TrianglePath)
     ->ArgNames({"tris", "threads"})
+    ->Args({10000, 1})
     ->Args({1000000, 1})
     ->Args({1000000, 2})
     ->Args({10000000, 1})
     ->Args({10000000, 2})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+// The edge analysis every checked path runs (boundary, non-manifold and inconsistent edges,
+// components, holes): triangles per second.
+void BM_AnalyzeTopology(benchmark::State& state) {
+  const massprops::PolygonMesh mesh = massprops::ToPolygonMesh(TorusMesh(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(massprops::AnalyzeTopology(mesh));
+  state.SetItemsProcessed(state.iterations() * mesh.num_faces());
+}
+BENCHMARK(BM_AnalyzeTopology)->ArgName("tris")->Arg(10000)->Arg(1000000)->Unit(benchmark::kMicrosecond);
+
+// What Python's mass_properties runs on its arrays, one thread: the weld, the edge analysis, the
+// shells and the integrals with their result. Beside BM_TrianglePath/BM_AnalyzeTopology of the
+// same torus, the checks' share of a call.
+void BM_SolveMesh(benchmark::State& state) {
+  const massprops::PolygonMesh mesh = massprops::ToPolygonMesh(TorusMesh(state.range(0)));
+  massprops::LoadOptions options;
+  options.num_threads = 1;
+  options.unit_stated = true;
+  for (auto _ : state) {
+    massprops::LoadedMesh loaded;
+    loaded.format = "arrays";
+    loaded.mesh = mesh;
+    benchmark::DoNotOptimize(massprops::SolveMesh(std::move(loaded), "torus", options));
+  }
+  state.SetItemsProcessed(state.iterations() * mesh.num_faces());
+}
+BENCHMARK(BM_SolveMesh)->ArgName("tris")->Arg(10000)->Arg(1000000)->Unit(benchmark::kMicrosecond);
 
 void BM_PolygonPath(benchmark::State& state) {
   static std::map<std::int64_t, massprops::PolygonMesh> cache;

@@ -16,12 +16,51 @@
 namespace massprops {
 namespace {
 
-std::int32_t Find(std::vector<std::int32_t>& parent, std::int32_t i) {
+std::int32_t Find(std::int32_t* parent, std::int32_t i) {
   while (parent[i] != i) {
     parent[i] = parent[parent[i]];
     i = parent[i];
   }
   return i;
+}
+
+// Joins the sets of a and b, the larger root under the smaller: the edges come by their smaller
+// vertex in increasing order, so a vertex seen first as the larger end hangs straight off a root
+// and the trees stay shallow (linking the other way grew chains through the mesh's numbering).
+void Join(std::int32_t* parent, std::int32_t a, std::int32_t b) {
+  const std::int32_t ra = Find(parent, a), rb = Find(parent, b);
+  if (ra < rb) {
+    parent[static_cast<std::size_t>(rb)] = ra;
+  } else if (rb < ra) {
+    parent[static_cast<std::size_t>(ra)] = rb;
+  }
+}
+
+// AnalyzeTopology's working arrays, kept by each thread from one call to the next: a fresh
+// allocation of a few hundred kB per call came back from the kernel as zeroed pages (glibc gives
+// the top of the heap back), and those page faults were half of a 10^4-triangle analysis. Arrays
+// of a large mesh are let go after the call.
+struct TopologyScratch {
+  struct Edge {
+    std::uint32_t b;
+    int forward, backward;
+  };
+  std::vector<char> used, on_boundary;
+  std::vector<std::uint32_t> start, other, cursor, seen, slot_of;
+  std::vector<std::int32_t> parent, hole_parent;
+  std::vector<Edge> group;
+
+  void Trim() {
+    constexpr std::size_t kKeep = std::size_t{1} << 20;  // entries: ~30 MB at most, kept
+    if (other.capacity() > 4 * kKeep || start.capacity() > kKeep) *this = TopologyScratch{};
+  }
+};
+
+// Not inlined: the caller then holds a plain reference, where an inlined thread_local in a shared
+// library is looked up again (__tls_get_addr) at every use inside the loops.
+[[gnu::noinline]] TopologyScratch& ThreadScratch() {
+  static thread_local TopologyScratch scratch;
+  return scratch;
 }
 
 }  // namespace
@@ -102,14 +141,19 @@ void CountDuplicateFaces(const PolygonMesh& mesh, MeshTopology& t) {
 
 // Directed edges are grouped by their smaller vertex (a counting sort: vertices are numbered in
 // order of first appearance, so the groups fill in near file order), and each group — a vertex's
-// few edges to larger neighbours — is sorted on its own. Linear, and a quarter of the memory of
-// sorting 64-bit edge keys.
+// few edges to larger neighbours — is counted by the other end in a slot table. Linear, and a
+// quarter of the memory of sorting 64-bit edge keys.
 MeshTopology AnalyzeTopology(const PolygonMesh& mesh) {
   MeshTopology t;
   t.faces = mesh.num_faces();
   const auto nv = static_cast<std::size_t>(mesh.V.rows());
-  std::vector<char> used(nv, 0);
-  std::vector<std::uint32_t> start(nv + 1, 0);  // directed edges by smaller vertex
+  // The scratch's arrays sized, then used through plain pointers (a store through char* could
+  // alias a vector's own pointers, which the loops would then reload at every step).
+  TopologyScratch& scratch = ThreadScratch();
+  scratch.used.assign(nv, 0);
+  scratch.start.assign(nv + 1, 0);
+  char* const used = scratch.used.data();
+  std::uint32_t* const start = scratch.start.data();  // directed edges by smaller vertex
   auto for_each_edge = [&mesh](std::int64_t f, auto&& fn) {
     const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
     const int n = mesh.face_size(f);
@@ -130,52 +174,59 @@ MeshTopology AnalyzeTopology(const PolygonMesh& mesh) {
   }
   for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
   // Each directed edge as (larger vertex << 1 | reversed), in the group of its smaller vertex.
-  std::vector<std::uint32_t> other(start[nv]);
+  scratch.other.resize(start[nv]);
+  std::uint32_t* const other = scratch.other.data();
   {
-    std::vector<std::uint32_t> cursor(start.begin(), start.end() - 1);
+    scratch.cursor.assign(start, start + nv);
+    std::uint32_t* const cursor = scratch.cursor.data();
     for (std::int64_t f = 0; f < t.faces; ++f) {
       for_each_edge(f, [&](std::uint32_t a, std::uint32_t b) {
         if (a != b) other[cursor[std::min(a, b)]++] = std::max(a, b) << 1 | (a > b ? 1u : 0u);
       });
     }
   }
-  std::vector<std::int32_t> parent(nv), hole_parent(nv);
-  std::iota(parent.begin(), parent.end(), 0);
-  std::iota(hole_parent.begin(), hole_parent.end(), 0);
-  std::vector<char> on_boundary(nv, 0);
+  scratch.parent.resize(nv);
+  scratch.hole_parent.resize(nv);
+  std::int32_t* const parent = scratch.parent.data();
+  std::int32_t* const hole_parent = scratch.hole_parent.data();
+  std::iota(parent, parent + nv, 0);
+  std::iota(hole_parent, hole_parent + nv, 0);
+  scratch.on_boundary.assign(nv, 0);
+  char* const on_boundary = scratch.on_boundary.data();
+  // Each group's edges counted by their other end, in order of first appearance (no sort: the
+  // counts do not depend on the order). seen[b] == a + 1 when b already has a slot in a's group.
+  scratch.seen.assign(nv, 0);
+  scratch.slot_of.resize(nv);
+  std::uint32_t* const seen = scratch.seen.data();
+  std::uint32_t* const slot_of = scratch.slot_of.data();
+  std::vector<TopologyScratch::Edge>& group = scratch.group;
   for (std::size_t a = 0; a < nv; ++a) {
-    std::uint32_t* begin = other.data() + start[a];
-    std::uint32_t* end = other.data() + start[a + 1];
-    if (end - begin < 2) {
-      // nothing to sort (an empty group may sit at a null data(): no begin + 1)
-    } else if (end - begin <= 16) {  // insertion sort: groups are small
-      for (std::uint32_t* i = begin + 1; i < end; ++i) {
-        const std::uint32_t x = *i;
-        std::uint32_t* j = i;
-        for (; j > begin && *(j - 1) > x; --j) *j = *(j - 1);
-        *j = x;
+    group.clear();
+    const auto mark = static_cast<std::uint32_t>(a + 1);
+    for (std::uint32_t k = start[a]; k < start[a + 1]; ++k) {
+      const std::uint32_t b = other[k] >> 1;
+      if (seen[b] != mark) {
+        seen[b] = mark;
+        slot_of[b] = static_cast<std::uint32_t>(group.size());
+        group.push_back({b, 0, 0});
       }
-    } else {
-      std::sort(begin, end);
+      TopologyScratch::Edge& e = group[slot_of[b]];
+      ((other[k] & 1) ? e.backward : e.forward)++;
     }
-    for (std::uint32_t* i = begin; i < end;) {
-      std::uint32_t* j = i;
-      int forward = 0, backward = 0;
-      for (; j < end && (*j >> 1) == (*i >> 1); ++j) ((*j & 1) ? backward : forward)++;
-      const auto b = static_cast<std::int32_t>(*i >> 1);
-      const auto av = static_cast<std::int32_t>(a);
+    const auto av = static_cast<std::int32_t>(a);
+    for (const TopologyScratch::Edge& e : group) {
+      const auto b = static_cast<std::int32_t>(e.b);
       ++t.edges;
-      parent[static_cast<std::size_t>(Find(parent, av))] = Find(parent, b);
-      const int uses = forward + backward;
+      Join(parent, av, b);
+      const int uses = e.forward + e.backward;
       if (uses == 1) {
         ++t.boundary_edges;
         on_boundary[a] = on_boundary[static_cast<std::size_t>(b)] = 1;
-        hole_parent[static_cast<std::size_t>(Find(hole_parent, av))] = Find(hole_parent, b);
+        Join(hole_parent, av, b);
       }
       if (uses > 2) ++t.non_manifold_edges;
-      if (uses > 2 && forward != backward) ++t.unbalanced_edges;
-      if (uses == 2 && forward != 1) ++t.inconsistent_edges;
-      i = j;
+      if (uses > 2 && e.forward != e.backward) ++t.unbalanced_edges;
+      if (uses == 2 && e.forward != 1) ++t.inconsistent_edges;
     }
   }
   for (std::size_t v = 0; v < nv; ++v) {
@@ -188,6 +239,7 @@ MeshTopology AnalyzeTopology(const PolygonMesh& mesh) {
     if (on_boundary[v] && Find(hole_parent, static_cast<std::int32_t>(v)) == static_cast<std::int32_t>(v)) ++t.holes;
   }
   if (t.non_manifold_edges > 0) CountDuplicateFaces(mesh, t);
+  scratch.Trim();
   return t;
 }
 
@@ -273,7 +325,7 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
   std::iota(parent.begin(), parent.end(), 0);
   for (std::int64_t f = 0; f < nf; ++f) {
     const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
-    for (int k = 1; k < mesh.face_size(f); ++k) parent[Find(parent, idx[k])] = Find(parent, idx[0]);
+    for (int k = 1; k < mesh.face_size(f); ++k) Join(parent.data(), idx[k], idx[0]);
   }
   // Shells in order of their first face.
   std::vector<int> shell_of_root(static_cast<std::size_t>(nv), -1);
@@ -281,7 +333,7 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
       nv > 0 ? Vector3(0.5 * (mesh.V.colwise().minCoeff() + mesh.V.colwise().maxCoeff()).transpose()) : Vector3::Zero();
   for (std::int64_t f = 0; f < nf; ++f) {
     const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
-    const std::int32_t root = Find(parent, idx[0]);
+    const std::int32_t root = Find(parent.data(), idx[0]);
     int& s = shell_of_root[static_cast<std::size_t>(root)];
     if (s < 0) {
       s = static_cast<int>(report.shells.size());
