@@ -465,8 +465,12 @@ void IntegrateSolid(SolidResult& r, const LoadOptions& opt) {
   } else {
     r.path_used =
         triangles ? "triangles (signed tetrahedra)" : "triangles (signed tetrahedra), polygons split into fans";
-    const TriangleMesh tri = Triangulate(mesh);
-    integrals = IntegrateTriangles(tri.V, tri.F, io);
+    if (triangles) {  // the corners are already an (m, 3) row-major array: integrated in place
+      integrals = IntegrateTriangles(mesh.V, Eigen::Map<const FaceMatrix>(mesh.indices.data(), mesh.num_faces(), 3), io);
+    } else {
+      const TriangleMesh tri = Triangulate(mesh);
+      integrals = IntegrateTriangles(tri.V, tri.F, io);
+    }
   }
   r.mass_fixed = FixesMass(opt.mass);
   const double size = Diagonal(mesh);
