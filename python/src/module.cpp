@@ -313,8 +313,7 @@ LoadedMesh MeshFromArrays(const double* vertices, std::int64_t nv, const Corners
     for (std::int64_t i = 0; i < corners.size; ++i) {
       if (corners[i] < 0 || corners[i] >= nv) {
         throw std::invalid_argument("faces: corner " + std::to_string(i) + " refers to vertex " +
-                                    std::to_string(corners[i]) + ", but there are " + std::to_string(nv) +
-                                    " vertices");
+                                    std::to_string(corners[i]) + ", but there are " + std::to_string(nv) + " vertices");
       }
     }
   }
@@ -873,8 +872,8 @@ PYBIND11_MODULE(_core, m) {
   m.def("fill", &Fill, py::arg("path"), py::arg("density"), py::arg("densities"), py::arg("keep_mass"),
         py::arg("source"), py::arg("packages"), py::arg("repair"), py::arg("allow_open"),
         "FillRobotDescription -> (report JSON, document)");
-  m.def("solve_arrays", &SolveArrays, py::arg("vertices"), py::arg("indices"), py::arg("offsets"),
-        py::arg("face_size"), py::arg("float32"), py::arg("name"), "SolveMesh(arrays, options) -> JSON of the result");
+  m.def("solve_arrays", &SolveArrays, py::arg("vertices"), py::arg("indices"), py::arg("offsets"), py::arg("face_size"),
+        py::arg("float32"), py::arg("name"), "SolveMesh(arrays, options) -> JSON of the result");
   m.def(
       "batch_records",
       [](const std::vector<std::string>& paths, const std::vector<std::size_t>& indices, std::size_t of, double timeout,

@@ -466,7 +466,8 @@ void IntegrateSolid(SolidResult& r, const LoadOptions& opt) {
     r.path_used =
         triangles ? "triangles (signed tetrahedra)" : "triangles (signed tetrahedra), polygons split into fans";
     if (triangles) {  // the corners are already an (m, 3) row-major array: integrated in place
-      integrals = IntegrateTriangles(mesh.V, Eigen::Map<const FaceMatrix>(mesh.indices.data(), mesh.num_faces(), 3), io);
+      integrals =
+          IntegrateTriangles(mesh.V, Eigen::Map<const FaceMatrix>(mesh.indices.data(), mesh.num_faces(), 3), io);
     } else {
       const TriangleMesh tri = Triangulate(mesh);
       integrals = IntegrateTriangles(tri.V, tri.F, io);
