@@ -203,6 +203,10 @@ def mass_properties(vertices, faces=None, *, name="<arrays>", **options):
     ``vertices``: (n, 3) float64 or float32; ``faces``: an (m, 3) (or (m, k)) integer array of
     0-based vertex indices, or a sequence of polygons. Or pass one object with ``vertices`` and
     ``faces`` attributes (a trimesh.Trimesh, for instance) as the only argument.
+
+    C-contiguous float64 vertices and int32 or int64 faces are read in place; other dtypes and
+    memory orders are cast once (the faces' dtype changes no bit of the result). The GIL is
+    released while the mesh is checked and integrated.
     """
     if faces is None:
         if not (hasattr(vertices, "vertices") and hasattr(vertices, "faces")):
