@@ -19,6 +19,10 @@ double DiagonalRatio(const Eigen::MatrixXd& M) {
   if (M.rows() == 0) return 1.0;
   return M.diagonal().maxCoeff() / std::max(M.diagonal().minCoeff(), std::numeric_limits<double>::min());
 }
+double Ratio(const Eigen::VectorXd& diagonal) {
+  if (diagonal.size() == 0) return 1.0;
+  return diagonal.maxCoeff() / std::max(diagonal.minCoeff(), std::numeric_limits<double>::min());
+}
 
 }  // namespace
 
@@ -62,7 +66,7 @@ StepStatus Articulation::Advance(Integrator integrator, const std::vector<std::u
 void Articulation::Accept(std::vector<RigidBody>& bodies) {
   q_ = q1_;
   p_ = p1_;
-  v_ = end_.llt.solve(p_);
+  Solve(end_, p_, v_);
   Velocities(v_, end_);
   Sync(end_, bodies);
 }
@@ -98,8 +102,9 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
   bool converged = false;
   for (int iteration = 0; iteration < 100 && !converged; ++iteration) {
     Move(q0_, vbar_, 0.5 * h, qs_);
-    if (!Configure(qs_, mid_)) return false;
-    vnew_ = mid_.llt.solve(0.5 * (p0_ + p1_));
+    if (!Configure(qs_, mid_, !Sparse())) return false;
+    ps_ = 0.5 * (p0_ + p1_);
+    Solve(mid_, ps_, vnew_);
     Velocities(vnew_, mid_);
     MomentumRate(forces, t + 0.5 * h, qs_, vnew_, mid_, stage_, rate_);
     pnew_ = p0_ + h * rate_;
@@ -114,7 +119,8 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
     // ten times ε times the ratio of M's largest diagonal entry to its smallest, a lower bound of
     // its condition number. (Without that floor a 300-link chain iterated 100 times at 10⁻⁸ and
     // halved its step ten times, every step.)
-    const double floor = 10 * std::numeric_limits<double>::epsilon() * DiagonalRatio(mid_.M);
+    const double floor =
+        10 * std::numeric_limits<double>::epsilon() * (mid_.dense ? DiagonalRatio(mid_.M) : Ratio(mid_.diagonal));
     converged = change <= 1e-13 || (change <= std::max(1e-11, floor) && change >= last_change);
     last_change = change;
     vbar_ = vnew_;
@@ -125,14 +131,15 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
   last_rate_ = rate_;
   last_vbar_ = vbar_;
   Move(q0_, vbar_, h, q1_);
-  if (!Configure(q1_, end_)) return false;
+  if (!Configure(q1_, end_, !Sparse())) return false;
   std::vector<std::pair<int, double>> stops;
   if (Impulses(end_, q1_, h, p1_, stops)) {
     // The impulses act over the step: the midpoint velocity takes half of them.
-    vbar_ = mid_.llt.solve(0.5 * (p0_ + p1_));
+    ps_ = 0.5 * (p0_ + p1_);
+    Solve(mid_, ps_, vbar_);
     Move(q0_, vbar_, h, q1_);
     for (const auto& [qi, limit] : stops) q1_[qi] = limit;
-    if (!Configure(q1_, end_)) return false;
+    if (!Configure(q1_, end_, !Sparse())) return false;
   }
   Accept(bodies);
   return true;
@@ -187,7 +194,7 @@ bool Articulation::RK4Step(const std::vector<std::unique_ptr<Force>>& forces, do
 //   velocity motor:  q̇ = target with |impulse| ≤ max_effort · h
 //   stop (a coordinate past its limit at the end of the step): q̇ ≥ −e q̇_arrival (at the lower
 //   limit; ≤ at the upper), impulse ≥ 0 (≤ 0), and the coordinate is placed on the limit.
-bool Articulation::Impulses(const Configuration& c, const Eigen::VectorXd& q1, double h, Eigen::VectorXd& p1,
+bool Articulation::Impulses(Configuration& c, const Eigen::VectorXd& q1, double h, Eigen::VectorXd& p1,
                             std::vector<std::pair<int, double>>& stops) {
   rows_.clear();
   stops.clear();
@@ -207,7 +214,7 @@ bool Articulation::Impulses(const Configuration& c, const Eigen::VectorXd& q1, d
       continue;
     }
     if (qi < j.limits.lower || qi > j.limits.upper) {
-      if (v1.size() == 0) v1 = c.llt.solve(p1);
+      if (v1.size() == 0) Solve(c, p1, v1);
       const double arrival = v1[n.v];
       if (qi < j.limits.lower) {
         rows_.push_back({n.joint, n.v, 0.0, inf, -j.limits.restitution * std::min(arrival, 0.0), true});
@@ -219,6 +226,8 @@ bool Articulation::Impulses(const Configuration& c, const Eigen::VectorXd& q1, d
     }
   }
   if (rows_.empty()) return false;
+  // The rows' coupling W: columns of M⁻¹ (the factor, formed now for a large tree).
+  if (!c.dense && !Densify(c)) return false;
   if (v1.size() == 0) v1 = c.llt.solve(p1);
   const auto nr = static_cast<Eigen::Index>(rows_.size());
   Eigen::MatrixXd W(nr, nr);
