@@ -265,10 +265,16 @@ Vector6 ForceAt(const Vector6& f, const Vector3& d) {
   return out;
 }
 Matrix6 InertiaAt(const Matrix6& I, const Vector3& d) {
-  Matrix6 to = Matrix6::Identity(), back = Matrix6::Identity();
-  to.topRightCorner<3, 3>() = -Cross(d);
-  back.bottomLeftCorner<3, 3>() = Cross(d);
-  return to * I * back;
+  // X* = [1, −D; 0, 1], X⁻¹ = [1, 0; D, 1] with D = [d]×, I = [A, B; Bᵀ, C] (blockwise).
+  const Matrix3 D = Cross(d);
+  const Matrix3 A = I.topLeftCorner<3, 3>(), B = I.topRightCorner<3, 3>(), C = I.bottomRightCorner<3, 3>();
+  const Matrix3 CD = C * D;
+  Matrix6 out;
+  out.topLeftCorner<3, 3>() = A + B * D - D * B.transpose() - D * CD;
+  out.topRightCorner<3, 3>() = B - D * C;
+  out.bottomLeftCorner<3, 3>() = B.transpose() + CD;
+  out.bottomRightCorner<3, 3>() = C;
+  return out;
 }
 
 }  // namespace
@@ -303,7 +309,17 @@ void Articulation::Solve(const Configuration& c, const Eigen::VectorXd& p, Eigen
     const MotionColumns& S = aba_s_[i];
     Matrix6 handed = aba_inertia_[i];
     Vector6 bias = aba_bias_[i];
-    if (ni.nv > 0) {
+    if (ni.nv == 1) {  // hinges and sliders: D a number
+      const Vector6 U = aba_inertia_[i] * S.col(0);
+      double D = S.col(0).dot(U);
+      if (ni.joint >= 0) D += joints_[static_cast<std::size_t>(ni.joint)].armature;
+      const double rhs = p[ni.v] - S.col(0).dot(aba_bias_[i]);
+      aba_u_[i] = U;
+      aba_d_inverse_[i].setConstant(1, 1, 1.0 / D);
+      aba_rhs_[i].setConstant(1, rhs);
+      handed.noalias() -= (U / D) * U.transpose();
+      bias += U * (rhs / D);
+    } else if (ni.nv > 1) {
       aba_u_[i] = aba_inertia_[i] * S;
       SmallMatrix D = S.transpose() * aba_u_[i];
       if (ni.nv == 1 && ni.joint >= 0) D(0, 0) += joints_[static_cast<std::size_t>(ni.joint)].armature;
@@ -328,6 +344,12 @@ void Articulation::Solve(const Configuration& c, const Eigen::VectorXd& p, Eigen
       aba_velocity_[i] = MotionAt(aba_velocity_[parent], c.frames[i].joint_origin - c.frames[parent].joint_origin);
     }
     if (ni.nv == 0) continue;
+    if (ni.nv == 1) {
+      const double vi = aba_d_inverse_[i](0, 0) * (aba_rhs_[i][0] - aba_u_[i].col(0).dot(aba_velocity_[i]));
+      v[ni.v] = vi;
+      aba_velocity_[i] += aba_s_[i].col(0) * vi;
+      continue;
+    }
     const SmallVector vi = aba_d_inverse_[i] * (aba_rhs_[i] - aba_u_[i].transpose() * aba_velocity_[i]);
     v.segment(ni.v, ni.nv) = vi;
     aba_velocity_[i] += aba_s_[i] * vi;
