@@ -13,6 +13,6 @@ export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$root/tests/lsan.supp:print_sup
 # hostile tests there) and the browser's page tests (JavaScript) run once too.
 exclude=()
 if [ "${MASSPROPS_SANITIZE:-OFF}" = ON ]; then
-  exclude=(-E '^(MeshContact\.StackOfTenMeshBoxesStands|Contact\.StackOfTenBoxesStands|Drops\.BoxLandsOnItsLargeFacesAndRestitutionMatters|Drops\.CubeAndTetrahedronLandOnEveryFaceAlike|Drops\.FourTimesTheDropsHalveTheInterval|Simulation\.ContactExamples|MeshContact\.RingSlidesDownAPegThatItsHullCannotPass|Scene\.PileInABinSettlesInsideIt|Friction\.BoxesAtRestOnInclinesBelowStaticFrictionStayPut|Joints\.MeshPendulumPeriodAtLargeAmplitude|Joints\.DoublePendulumEnergyHasNoSecularDrift|Joints\.LagrangeTopNutatesBetweenTheRootsAtThePeriodByQuadrature|peers|golden|rbsim_page|rbsim_viewer_bundle)$')
+  exclude=(-E '^(MeshContact\.StackOfTenMeshBoxesStands|Contact\.StackOfTenBoxesStands|Drops\.BoxLandsOnItsLargeFacesAndRestitutionMatters|Drops\.CubeAndTetrahedronLandOnEveryFaceAlike|Drops\.FourTimesTheDropsHalveTheInterval|Simulation\.ContactExamples|MeshContact\.RingSlidesDownAPegThatItsHullCannotPass|Scene\.PileInABinSettlesInsideIt|Friction\.BoxesAtRestOnInclinesBelowStaticFrictionStayPut|Joints\.MeshPendulumPeriodAtLargeAmplitude|Joints\.DoublePendulumEnergyHasNoSecularDrift|Joints\.LagrangeTopNutatesBetweenTheRootsAtThePeriodByQuadrature|Joints\.LongChainsOnTheRecursionAgreeWithTheDenseFactor|peers|golden|rbsim_page|rbsim_viewer_bundle)$')
 fi
 ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)" "${exclude[@]}"
