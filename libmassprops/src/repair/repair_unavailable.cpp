@@ -19,7 +19,9 @@ RepairedMesh RepairMesh(const PolygonMesh&, const RepairOptions&) { Unavailable(
 
 PolygonMesh UnionOfShells(const PolygonMesh&, std::int64_t&) { Unavailable("the union of overlapping shells"); }
 
-std::int64_t CountSelfIntersections(const PolygonMesh&, const SelfIntersectionOptions&) { Unavailable("the self-intersection check"); }
+std::int64_t CountSelfIntersections(const PolygonMesh&, const SelfIntersectionOptions&) {
+  Unavailable("the self-intersection check");
+}
 
 PolygonMesh ConvexHull(const PolygonMesh&) { Unavailable("the convex hull"); }
 
