@@ -375,6 +375,22 @@ TEST(SelfIntersections, LargeFansAgreeWithEveryPair) {
   }
 }
 
+// The meshes in data/ (scans, CAD exports, a quad mesh, meshes that intersect themselves): the
+// whole-group check counts what every pair of triangles counts.
+TEST(SelfIntersections, DataMeshesAgreeWithEveryPair) {
+  std::int64_t intersecting = 0;
+  for (const char* name :
+       {"HalfDonut_binary.stl", "Moon.stl", "featuretype.STL", "assembly_bracket.obj", "bin.obj", "cube_cup_quad.obj",
+        "spot.obj", "t_handle.obj", "blobby-shuffled.off", "ellipe0.003.off", "hollow_sphere.off"}) {
+    const LoadedMesh m = ReadMeshFile(DataPath(std::string("meshes/") + name));
+    const std::int64_t whole = CountSelfIntersections(m.mesh);
+    EXPECT_GE(whole, 0) << name;
+    EXPECT_EQ(whole, Pairwise(m.mesh)) << name;
+    intersecting += whole > 0;
+  }
+  EXPECT_EQ(intersecting, 2);  // featuretype.STL (1216 pairs) and the bracket's touching boxes (10)
+}
+
 // A mesh that bounds a volume once welded keeps its polygons (CGAL would split them), and its
 // numbers are those of the closed form.
 TEST(Repair, AClosedMeshKeepsItsPolygons) {
