@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <sstream>
 #include <vector>
@@ -40,19 +41,40 @@ void Join(std::int32_t* parent, std::int32_t a, std::int32_t b) {
 // allocation of a few hundred kB per call came back from the kernel as zeroed pages (glibc gives
 // the top of the heap back), and those page faults were half of a 10^4-triangle analysis. Arrays
 // of a large mesh are let go after the call.
+// An array whose entries are all written before they are read: not cleared between calls. When
+// it grows, its fresh memory is touched in order once (zeroed): the scattered first writes of the
+// analysis took page faults in random order, twice as slow.
+template <typename T>
+class Uninitialized {
+ public:
+  T* Get(std::size_t n) {
+    if (n > capacity_) {
+      data_.reset(new T[n]());
+      capacity_ = n;
+    }
+    return data_.get();
+  }
+  std::size_t capacity() const { return capacity_; }
+
+ private:
+  std::unique_ptr<T[]> data_;
+  std::size_t capacity_ = 0;
+};
+
 struct TopologyScratch {
   struct Edge {
     std::uint32_t b;
     int forward, backward;
   };
-  std::vector<char> used, on_boundary;
-  std::vector<std::uint32_t> start, other, cursor, seen, slot_of;
-  std::vector<std::int32_t> parent, hole_parent;
+  std::vector<char> used, on_boundary;  // zeroed each call
+  std::vector<std::uint32_t> start;     // zeroed each call
+  Uninitialized<std::uint32_t> other, cursor, slot_of;
+  Uninitialized<std::int32_t> parent, hole_parent;
   std::vector<Edge> group;
 
-  void Trim() {
-    constexpr std::size_t kKeep = std::size_t{1} << 20;  // entries: ~30 MB at most, kept
-    if (other.capacity() > 4 * kKeep || start.capacity() > kKeep) *this = TopologyScratch{};
+  void Trim() {  // kept for meshes of up to 2^19 vertices (~27 MB a thread at most)
+    constexpr std::size_t kKeep = std::size_t{1} << 19;
+    if (other.capacity() > 8 * kKeep || start.capacity() > kKeep + 1) *this = TopologyScratch{};
   }
 };
 
@@ -174,39 +196,32 @@ MeshTopology AnalyzeTopology(const PolygonMesh& mesh) {
   }
   for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
   // Each directed edge as (larger vertex << 1 | reversed), in the group of its smaller vertex.
-  scratch.other.resize(start[nv]);
-  std::uint32_t* const other = scratch.other.data();
+  std::uint32_t* const other = scratch.other.Get(start[nv]);
   {
-    scratch.cursor.assign(start, start + nv);
-    std::uint32_t* const cursor = scratch.cursor.data();
+    std::uint32_t* const cursor = scratch.cursor.Get(nv);
+    std::copy(start, start + nv, cursor);
     for (std::int64_t f = 0; f < t.faces; ++f) {
       for_each_edge(f, [&](std::uint32_t a, std::uint32_t b) {
         if (a != b) other[cursor[std::min(a, b)]++] = std::max(a, b) << 1 | (a > b ? 1u : 0u);
       });
     }
   }
-  scratch.parent.resize(nv);
-  scratch.hole_parent.resize(nv);
-  std::int32_t* const parent = scratch.parent.data();
-  std::int32_t* const hole_parent = scratch.hole_parent.data();
+  std::int32_t* const parent = scratch.parent.Get(nv);
+  std::int32_t* const hole_parent = scratch.hole_parent.Get(nv);
   std::iota(parent, parent + nv, 0);
   std::iota(hole_parent, hole_parent + nv, 0);
   scratch.on_boundary.assign(nv, 0);
   char* const on_boundary = scratch.on_boundary.data();
   // Each group's edges counted by their other end, in order of first appearance (no sort: the
-  // counts do not depend on the order). seen[b] == a + 1 when b already has a slot in a's group.
-  scratch.seen.assign(nv, 0);
-  scratch.slot_of.resize(nv);
-  std::uint32_t* const seen = scratch.seen.data();
-  std::uint32_t* const slot_of = scratch.slot_of.data();
+  // counts do not depend on the order). b has a slot in a's group when slot_of[b] names an entry
+  // of the group that holds b (slot_of is never cleared: an older value fails that test).
+  std::uint32_t* const slot_of = scratch.slot_of.Get(nv);
   std::vector<TopologyScratch::Edge>& group = scratch.group;
   for (std::size_t a = 0; a < nv; ++a) {
     group.clear();
-    const auto mark = static_cast<std::uint32_t>(a + 1);
     for (std::uint32_t k = start[a]; k < start[a + 1]; ++k) {
       const std::uint32_t b = other[k] >> 1;
-      if (seen[b] != mark) {
-        seen[b] = mark;
+      if (slot_of[b] >= group.size() || group[slot_of[b]].b != b) {
         slot_of[b] = static_cast<std::uint32_t>(group.size());
         group.push_back({b, 0, 0});
       }
