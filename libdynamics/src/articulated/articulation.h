@@ -81,7 +81,7 @@ struct Configuration {
   bool dense = true;
   Eigen::MatrixXd M;  ///< the mass matrix's lower triangle (the upper is not kept), when dense
   Eigen::LLT<Eigen::MatrixXd> llt;
-  Eigen::VectorXd diagonal;  ///< M's diagonal, when not dense
+  Eigen::VectorXd diagonal;  ///< M's diagonal as Configure formed it (dense or not)
 };
 
 class Articulation {
@@ -144,6 +144,8 @@ class Articulation {
   static constexpr Eigen::Index kDenseLimit = 64;
   /// Spatial velocities V of c's frames from v.
   void Velocities(const Eigen::VectorXd& v, Configuration& c) const;
+  /// subtree_momentum_: Σ I V over each node's subtree, of configuration c (velocities set).
+  void SubtreeMomenta(const Configuration& c);
   /// ṗ at (q, v) of configuration c (velocities set), time t.
   void MomentumRate(const std::vector<std::unique_ptr<Force>>& forces, double t, const Eigen::VectorXd& q,
                     const Eigen::VectorXd& v, const Configuration& c, std::vector<RigidBody>& stage,

@@ -232,14 +232,8 @@ bool Articulation::EnsureMomenta() {
   if (!end_.dense) {
     // (M v)_i = S_iᵀ Σ over i's subtree of I_j V_j (+ the armature's a v_i): the momenta of the
     // subtrees, O(n).
-    const std::size_t n = nodes_.size();
-    subtree_momentum_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) subtree_momentum_[i] = end_.frames[i].inertia * end_.frames[i].V;
-    for (std::size_t i = n; i-- > 0;) {
-      const int parent = nodes_[i].parent;
-      if (parent >= 0) subtree_momentum_[static_cast<std::size_t>(parent)] += subtree_momentum_[i];
-    }
-    for (std::size_t i = 0; i < n; ++i) {
+    SubtreeMomenta(end_);
+    for (std::size_t i = 0; i < nodes_.size(); ++i) {
       const Node& ni = nodes_[i];
       if (ni.nv == 0) continue;
       p_.segment(ni.v, ni.nv) = end_.frames[i].S.transpose() * subtree_momentum_[i];
@@ -321,8 +315,7 @@ void Articulation::Solve(const Configuration& c, const Eigen::VectorXd& p, Eigen
       bias += U * (rhs / D);
     } else if (ni.nv > 1) {
       aba_u_[i] = aba_inertia_[i] * S;
-      SmallMatrix D = S.transpose() * aba_u_[i];
-      if (ni.nv == 1 && ni.joint >= 0) D(0, 0) += joints_[static_cast<std::size_t>(ni.joint)].armature;
+      const SmallMatrix D = S.transpose() * aba_u_[i];
       aba_d_inverse_[i] = D.inverse();
       aba_rhs_[i] = p.segment(ni.v, ni.nv) - S.transpose() * aba_bias_[i];
       handed.noalias() -= aba_u_[i] * aba_d_inverse_[i] * aba_u_[i].transpose();
@@ -446,6 +439,7 @@ bool Articulation::Densify(Configuration& c) const {
       c.M.block(ni.v, nj.v, ni.nv, nj.nv) = F.transpose() * c.frames[static_cast<std::size_t>(j)].S;
     }
   }
+  c.diagonal = c.M.diagonal();
   if (nv == 0) return true;
   c.llt.compute(c.M);  // reads the lower triangle, the only one filled
   return c.llt.info() == Eigen::Success;
@@ -475,6 +469,16 @@ void Articulation::Sync(const Configuration& c, std::vector<RigidBody>& bodies, 
   }
 }
 
+void Articulation::SubtreeMomenta(const Configuration& c) {
+  const std::size_t n = nodes_.size();
+  subtree_momentum_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) subtree_momentum_[i] = c.frames[i].inertia * c.frames[i].V;
+  for (std::size_t i = n; i-- > 0;) {
+    const int p = nodes_[i].parent;
+    if (p >= 0) subtree_momentum_[static_cast<std::size_t>(p)] += subtree_momentum_[i];
+  }
+}
+
 void Articulation::MomentumRate(const std::vector<std::unique_ptr<Force>>& forces, double t, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& v, const Configuration& c, std::vector<RigidBody>& stage,
                                 Eigen::VectorXd& rate) {
@@ -483,19 +487,16 @@ void Articulation::MomentumRate(const std::vector<std::unique_ptr<Force>>& force
   Sync(c, stage);
   wrenches_.assign(stage.size(), Wrench{});
   for (const auto& force : forces) force->Apply(t, stage, wrenches_);
-  subtree_momentum_.resize(n);
+  SubtreeMomenta(c);
   subtree_force_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const NodeFrame& f = c.frames[i];
     const Wrench& w = wrenches_[static_cast<std::size_t>(nodes_[i].body)];
-    subtree_momentum_[i] = f.inertia * f.V;
     subtree_force_[i] << w.torque + f.x.cross(w.force), w.force;
   }
   for (std::size_t i = n; i-- > 0;) {
     const int p = nodes_[i].parent;
-    if (p < 0) continue;
-    subtree_momentum_[static_cast<std::size_t>(p)] += subtree_momentum_[i];
-    subtree_force_[static_cast<std::size_t>(p)] += subtree_force_[i];
+    if (p >= 0) subtree_force_[static_cast<std::size_t>(p)] += subtree_force_[i];
   }
   rate.resize(v.size());
   for (std::size_t i = 0; i < n; ++i) {

@@ -15,10 +15,6 @@ double MaxAbs(const Eigen::VectorXd& x) { return x.size() ? x.cwiseAbs().maxCoef
 
 // The ratio of a mass matrix's largest diagonal entry to its smallest (a lower bound of its
 // condition number; 1 when empty).
-double DiagonalRatio(const Eigen::MatrixXd& M) {
-  if (M.rows() == 0) return 1.0;
-  return M.diagonal().maxCoeff() / std::max(M.diagonal().minCoeff(), std::numeric_limits<double>::min());
-}
 double Ratio(const Eigen::VectorXd& diagonal) {
   if (diagonal.size() == 0) return 1.0;
   return diagonal.maxCoeff() / std::max(diagonal.minCoeff(), std::numeric_limits<double>::min());
@@ -119,8 +115,7 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
     // ten times ε times the ratio of M's largest diagonal entry to its smallest, a lower bound of
     // its condition number. (Without that floor a 300-link chain iterated 100 times at 10⁻⁸ and
     // halved its step ten times, every step.)
-    const double floor =
-        10 * std::numeric_limits<double>::epsilon() * (mid_.dense ? DiagonalRatio(mid_.M) : Ratio(mid_.diagonal));
+    const double floor = 10 * std::numeric_limits<double>::epsilon() * Ratio(mid_.diagonal);
     converged = change <= 1e-13 || (change <= std::max(1e-11, floor) && change >= last_change);
     last_change = change;
     vbar_ = vnew_;
