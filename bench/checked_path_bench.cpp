@@ -103,7 +103,7 @@ std::string_view ObjText() {
   return {reinterpret_cast<const char*>(file.data()), file.size()};
 }
 
-// Every number in text[begin, end) parsed as a double, summed (the sum keeps the work).
+// Every number in `text` parsed as a double, summed (the sum keeps the work).
 double SumNumbers(std::string_view text) {
   const char* p = text.data();
   const char* const end = p + text.size();

@@ -168,7 +168,7 @@ def main():
         cn = "10⁴" if args.quick else "10⁶"
         case(f"tilted cone over a {cn}-gon (OBJ), `--check-self-intersections`", "seconds",
              [exe, cone, "--check-self-intersections"] + q, [cone])
-        case(f"same, `--wall 0.01`", "seconds", [exe, cone, "--wall", "0.01"] + q, [cone])
+        case("same, `--wall 0.01`", "seconds", [exe, cone, "--wall", "0.01"] + q, [cone])
 
         # Baselines on the 2·10⁶ STL: whole processes, as a user would run them.
         py = "/usr/bin/python3"

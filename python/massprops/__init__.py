@@ -178,15 +178,13 @@ def fill(path, output=None, *, density=1000.0, densities=None, keep_mass=False, 
 
 def _faces_to_arrays(faces):
     """Faces as (indices, offsets, face size): an (m, k) integer array (offsets None: every face
-    has k corners; int32 and int64 pass as they are, other integers become int64), or a sequence
-    of polygons."""
+    has k corners; the module reads int32 and int64 in place and casts other integers), or a
+    sequence of polygons."""
     if isinstance(faces, _np.ndarray) and faces.ndim == 2:
         if not _np.issubdtype(faces.dtype, _np.integer):
             raise ValueError(f"faces must be integers, not {faces.dtype}")
-        m, k = faces.shape
-        if faces.dtype not in (_np.int32, _np.int64):
-            faces = faces.astype(_np.int64)
-        return _np.ascontiguousarray(faces).reshape(-1), None, k
+        k = faces.shape[1]
+        return faces.reshape(-1), None, k
     polygons = [_np.asarray(f).reshape(-1) for f in faces]
     for i, f in enumerate(polygons):
         if f.size and not _np.issubdtype(f.dtype, _np.integer):

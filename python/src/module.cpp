@@ -301,13 +301,13 @@ LoadedMesh MeshFromArrays(const double* vertices, std::int64_t nv, const Corners
       throw std::invalid_argument("faces: face " + std::to_string(f) + " has fewer than 3 corners");
     }
   }
-  // Corners into int32, checked in one pass (no zero fill first).
-  std::unique_ptr<std::int32_t[]> narrow(new std::int32_t[static_cast<std::size_t>(corners.size)]);
+  // Corners into int32 and checked in one pass (the first fault found again below, for its message).
+  m.mesh.indices.resize(static_cast<std::size_t>(corners.size));
   bool all_in_range = true;
   for (std::int64_t i = 0; i < corners.size; ++i) {
     const std::int64_t v = corners[i];
     all_in_range &= v >= 0 && v < nv;
-    narrow[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(v);
+    m.mesh.indices[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(v);
   }
   if (!all_in_range) {
     for (std::int64_t i = 0; i < corners.size; ++i) {
@@ -317,7 +317,6 @@ LoadedMesh MeshFromArrays(const double* vertices, std::int64_t nv, const Corners
       }
     }
   }
-  m.mesh.indices.assign(narrow.get(), narrow.get() + corners.size);
   return m;
 }
 

@@ -37,13 +37,9 @@ void Join(std::int32_t* parent, std::int32_t a, std::int32_t b) {
   }
 }
 
-// AnalyzeTopology's working arrays, kept by each thread from one call to the next: a fresh
-// allocation of a few hundred kB per call came back from the kernel as zeroed pages (glibc gives
-// the top of the heap back), and those page faults were half of a 10^4-triangle analysis. Arrays
-// of a large mesh are let go after the call.
-// An array whose entries are all written before they are read: not cleared between calls. When
-// it grows, its fresh memory is touched in order once (zeroed): the scattered first writes of the
-// analysis took page faults in random order, twice as slow.
+// An array not cleared between calls: its entries are written before they are read (slot_of's
+// are only compared, so any earlier value is fine). Zeroed once when it grows, so that no entry is
+// ever indeterminate.
 template <typename T>
 class Uninitialized {
  public:
@@ -61,6 +57,10 @@ class Uninitialized {
   std::size_t capacity_ = 0;
 };
 
+// AnalyzeTopology's working arrays, kept by each thread from one call to the next: a fresh
+// allocation of a few hundred kB per call came back from the kernel as zeroed pages (glibc gives
+// the top of the heap back), and those page faults were half of a 10^4-triangle analysis. Arrays
+// of a large mesh are let go after the call.
 struct TopologyScratch {
   struct Edge {
     std::uint32_t b;
