@@ -26,6 +26,13 @@ env -u MASSPROPS_CAD_PLUGIN "$prefix/bin/massprops" "$root/data/cad/drilled_plat
 assert r["brep"]["result"] == "brep" and abs(r["volume"] * 1e9 - v) < 1e-9 * v, r
 assert abs(r["brep"]["mesh"]["volume"] * 1e9 - v) < 1e-3 * v, r' \
   || { echo "check_install: the installed massprops did not read the STEP plate"; exit 1; }
+# ... and draws a PNG through the raster plugin installed beside the library (librsvg, loaded on
+# first use): a PNG file's signature and a picture of at least 400 px a side.
+env -u MASSPROPS_RASTER_PLUGIN "$prefix/bin/massprops" "$root/data/meshes/spot.obj" --unit m -q --picture "$work/spot.png" >/dev/null
+/usr/bin/python3 -c 'import struct, sys; d = open(sys.argv[1], "rb").read(24)
+assert d[:8] == b"\x89PNG\r\n\x1a\n", d[:8]
+w, h = struct.unpack(">II", d[16:24]); assert w >= 400 and h >= 400, (w, h)' "$work/spot.png" \
+  || { echo "check_install: the installed massprops did not draw a PNG"; exit 1; }
 # The installed Python module, from the prefix's dist-packages, with Debian's interpreter.
 pydir=$(echo "$prefix"/lib/python3*/dist-packages)
 env -u MASSPROPS_ASSIMP_PLUGIN PYTHONPATH="$pydir" /usr/bin/python3 -c "
@@ -36,4 +43,4 @@ assert abs(r.mass - 6.0) < 1e-5 and abs(r.inertia_com[0][0] - 0.065) < 1e-7, r
 " || { echo "check_install: the installed Python module did not work"; exit 1; }
 "$prefix/bin/massprops" --version
 "$prefix/bin/rbsim" --version
-echo "check_install: installed package, find_package consumer glTF and STEP reading work"
+echo "check_install: installed package, find_package consumer glTF and STEP reading and PNG pictures work"

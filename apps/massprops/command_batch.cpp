@@ -62,7 +62,7 @@ int BatchMain(int argc, char** argv) {
   }
   if (!b.pictures.empty()) {
     if (picture_format == "png" && !report::CanRasterize())
-      return bad("--picture-format png: this build has no librsvg");
+      return bad("--picture-format png: cannot draw PNG: " + report::RasterProblem());
     std::error_code ec;
     if (std::filesystem::exists(b.pictures, ec) && !std::filesystem::is_directory(b.pictures, ec)) {
       return bad("--pictures: '" + b.pictures + "' exists and is not a folder");

@@ -40,7 +40,7 @@ std::optional<std::string> PictureProblem(const std::string& picture, const Argu
     report::PictureFormatOf(picture);
     report::CheckOutputPath(picture, a.files);
     if (report::PictureFormatOf(picture) == report::PictureFormat::kPng && !report::CanRasterize()) {
-      return "--picture: this build has no librsvg for PNG; write .svg";
+      return "--picture: cannot draw PNG: " + report::RasterProblem();
     }
   } catch (const std::exception& e) {
     return std::string("--picture: ") + e.what();

@@ -49,12 +49,17 @@ PictureFormat PictureFormatOf(const std::string& path);
 /// its surface and its box.
 std::string PictureSvg(const SolidResult& r, const PictureOptions& options = {});
 
-/// Whether this build rasterizes SVG (it was built with librsvg).
+/// Whether SVG can be drawn as pixels: the build has librsvg, and its raster plugin
+/// (libmassprops_raster.so, loaded on first use) is found.
 bool CanRasterize();
 
+/// Why SVG cannot be drawn as pixels ("" when it can): no librsvg in this build, or where the
+/// raster plugin was looked for.
+std::string RasterProblem();
+
 /// Pixels of an SVG document drawn at its own size, 8-bit RGBA rows top to bottom (not
-/// premultiplied), over white. @throws std::runtime_error when the SVG cannot be drawn or this
-/// build has no librsvg.
+/// premultiplied), over white. @throws std::runtime_error when the SVG cannot be drawn or
+/// RasterProblem() says why nothing can be.
 struct Raster {
   int width = 0, height = 0;
   std::vector<std::uint8_t> rgba;
