@@ -15,6 +15,7 @@
 #include "core/triangle_kernel.h"
 #include "massprops/parallel.h"
 #include "mesh/soup_faces.h"
+#include "mesh/soup_scan.h"
 #include "mesh/soup_shells.h"
 
 namespace massprops {
@@ -26,51 +27,10 @@ using internal::Moments;
 
 constexpr std::int64_t kBlock = 4096;
 constexpr std::int64_t kShellBlocks = 8;
-constexpr std::size_t kPrefetchBytes = 2048;
-
-struct CornerHash {
-  std::uint64_t h, g;
-};
-
-// Two hashes of a corner's exact position (-0.0 counts as 0.0): multiply–xorshift mixing, four
-// multiplications in all (this runs three times per triangle, so it is kept lean; the tests flip or
-// drop every triangle of a regular grid mesh in turn and require the check to notice).
-inline CornerHash HashCorner(const float* p) {
-  std::uint32_t b[3];
-  std::memcpy(b, p, sizeof b);
-  for (auto& v : b) v = (v == 0x80000000u) ? 0u : v;
-  std::uint64_t h = (b[0] | static_cast<std::uint64_t>(b[1]) << 32) * 0xD6E8FEB86659FD93ull ^
-                    (static_cast<std::uint64_t>(b[2]) + 0x9E3779B97F4A7C15ull) * 0xA0761D6478BD642Full;
-  h ^= h >> 31;
-  h *= 0xBF58476D1CE4E5B9ull;
-  h ^= h >> 29;
-  std::uint64_t g = h * 0x94D049BB133111EBull;
-  g ^= g >> 32;
-  return {h, g};
-}
-
-inline bool Finite(float v) {
-  std::uint32_t b;
-  std::memcpy(&b, &v, sizeof b);
-  return (b & 0x7F800000u) != 0x7F800000u;
-}
-
-// A key of a triangle's corner positions that does not depend on their order: symmetric
-// functions (sum, and sum of products) of the corners' hashes, mixed.
-inline std::uint64_t FaceKey(const CornerHash& a, const CornerHash& b, const CornerHash& c) {
-  std::uint64_t k = (a.h + b.h + c.h) ^ ((a.g * b.g + b.g * c.g + c.g * a.g) * 0x9E3779B97F4A7C15ull);
-  k ^= k >> 32;
-  k *= 0xD6E8FEB86659FD93ull;
-  return k ^ (k >> 29);
-}
 
 struct BlockResult {
   Moments moments;
-  std::uint64_t edge_hash = 0;
-  float lo[3] = {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity(),
-                 std::numeric_limits<float>::infinity()};
-  float hi[3] = {-std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
-                 -std::numeric_limits<float>::infinity()};
+  internal::ScanSums scan;
   std::int64_t first_bad = -1;
 };
 
@@ -114,32 +74,10 @@ SoupIntegrals Integrate(const Fetch& fetch, std::int64_t count, std::size_t stri
       const unsigned char* data = fetch(begin, end - begin);
       for (std::int64_t t0 = begin; t0 < end; t0 += internal::kBatch) {
         const int n = static_cast<int>(std::min<std::int64_t>(internal::kBatch, end - t0));
-        for (int j = 0; j < n; ++j) {
-          const unsigned char* rec = data + static_cast<std::size_t>(t0 - begin + j) * stride + offset;
-          // Records in memory (a mapped file) may sit in scattered 4 KiB pages that the hardware
-          // prefetcher does not cross: ask for bytes ahead (a hint; past the end is no access).
-          __builtin_prefetch(rec + kPrefetchBytes);
-          float c[9];
-          std::memcpy(c, rec, sizeof c);
-          bool finite = true;
-          for (int k = 0; k < 9; ++k) {
-            finite = finite && Finite(c[k]);
-            res.lo[k % 3] = std::min(res.lo[k % 3], c[k]);
-            res.hi[k % 3] = std::max(res.hi[k % 3], c[k]);
-          }
-          if (!finite && res.first_bad < 0) res.first_bad = t0 + j;
-          // Directed edges a→b, b→c, c→a.
-          const CornerHash ha = HashCorner(c), hb = HashCorner(c + 3), hc = HashCorner(c + 6);
-          res.edge_hash += ha.h * hb.g - hb.h * ha.g;
-          res.edge_hash += hb.h * hc.g - hc.h * hb.g;
-          res.edge_hash += hc.h * ha.g - ha.h * hc.g;
-          s.face_keys[static_cast<std::size_t>(t0 + j - group_begin)] = FaceKey(ha, hb, hc);
-          std::uint64_t* corner = s.corner_hash + 3 * j;
-          corner[0] = ha.h;
-          corner[1] = hb.h;
-          corner[2] = hc.h;
-          internal::SetTriangle(batch, j, c, c + 3, c + 6, ref.data());
-        }
+        const int bad =
+            internal::ScanRecords(data + static_cast<std::size_t>(t0 - begin) * stride, n, stride, offset, ref.data(),
+                                  batch, s.corner_hash, s.face_keys.data() + (t0 - group_begin), res.scan);
+        if (bad >= 0 && res.first_bad < 0) res.first_bad = t0 + bad;
         s.joiner.AddAll(s.corner_hash, n);
         internal::AccumulateBatch(batch, internal::PadBatch(batch, n), sums);
       }
@@ -163,10 +101,10 @@ SoupIntegrals Integrate(const Fetch& fetch, std::int64_t count, std::size_t stri
       throw std::invalid_argument(msg.str());
     }
     moments[b] = p.moments;
-    out.unmatched_edge_hash += p.edge_hash;
+    out.unmatched_edge_hash += p.scan.edge_hash;
     for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], static_cast<double>(p.lo[k]));
-      hi[k] = std::max(hi[k], static_cast<double>(p.hi[k]));
+      lo[k] = std::min(lo[k], static_cast<double>(p.scan.lo[k]));
+      hi[k] = std::max(hi[k], static_cast<double>(p.scan.hi[k]));
     }
   }
   if (count > 0) {
