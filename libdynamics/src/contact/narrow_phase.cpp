@@ -336,10 +336,25 @@ void CollideGround(const Posed& a, const Vector3& n, double offset, const Collis
           const Vector3 u = a.R.transpose() * n;
           const double limit = margin + offset - n.dot(a.t);
           const double scale = a.t.cwiseAbs().sum() + std::abs(offset) + std::abs(margin);
-          for (std::size_t i = 0; i < x.vertices.size(); ++i) {
+          auto test = [&](std::size_t i) {
             const Vector3& v = x.vertices[i];
-            if (u.dot(v) - limit > 1e-12 * (scale + v.cwiseAbs().sum())) continue;
+            if (u.dot(v) - limit > 1e-12 * (scale + v.cwiseAbs().sum())) return;
             add(a.R * v + a.t, static_cast<std::uint32_t>(i), 0);
+          };
+          const std::size_t nv = x.vertices.size();
+          if (a.polytope != nullptr && a.polytope->xs.size() == nv) {
+            // Most corners are far above the plane: a vectorized scan rules them out, and the
+            // exact test runs on the rest (the same points, in the same order).
+            std::uint8_t maybe[kScan];
+            for (std::size_t at = 0; at < nv; at += kScan) {
+              const int count = static_cast<int>(std::min<std::size_t>(kScan, nv - at));
+              MayLieBelow(*a.polytope, at, count, u, limit, scale, maybe);
+              for (int j = 0; j < count; ++j) {
+                if (maybe[j] != 0) test(at + static_cast<std::size_t>(j));
+              }
+            }
+          } else {
+            for (std::size_t i = 0; i < nv; ++i) test(i);
           }
           ReduceContacts(out, first);  // a finely tessellated hull lying flat: thousands of corners
         } else if constexpr (std::is_same_v<T, shape::Mesh>) {

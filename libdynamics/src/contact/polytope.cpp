@@ -119,7 +119,13 @@ Polytope MakePolytope(const std::vector<Vector3>& vertices, const std::vector<st
         throw std::invalid_argument("a hull index out of range");
     }
   }
-  for (const Vector3& v : vertices) p.centroid += v;
+  for (const Vector3& v : vertices) {
+    p.centroid += v;
+    p.xs.push_back(v.x());
+    p.ys.push_back(v.y());
+    p.zs.push_back(v.z());
+    p.l1.push_back(v.cwiseAbs().sum());
+  }
   p.centroid /= static_cast<double>(vertices.size());
   double size = 0;
   for (const Vector3& v : vertices) size = std::max(size, (v - p.centroid).norm());
@@ -240,6 +246,24 @@ Polytope MakePolytope(const std::vector<Vector3>& vertices, const std::vector<st
     }
   }
   return p;
+}
+
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
+__attribute__((target_clones("arch=x86-64-v4", "avx2", "default")))
+#endif
+void MayLieBelow(const Polytope& p, std::size_t first, int n, const Vector3& u, double limit, double scale,
+                 std::uint8_t* maybe) {
+  const double* x = p.xs.data() + first;
+  const double* y = p.ys.data() + first;
+  const double* z = p.zs.data() + first;
+  const double* l1 = p.l1.data() + first;
+  const double u0 = u.x(), u1 = u.y(), u2 = u.z(), slack = 1e-14 * std::abs(limit);
+  // The exact test sums u·v in Eigen's order; this one may differ from it by a few units in the
+  // last place of Σ|uᵢ vᵢ| ≤ |v|₁ (|u| = 1), far below the slack.
+  for (int j = 0; j < n; ++j) {
+    const double h = u0 * x[j] + u1 * y[j] + u2 * z[j];
+    maybe[j] = static_cast<std::uint8_t>(h - limit <= 1e-12 * (scale + l1[j]) + 1e-14 * l1[j] + slack);
+  }
 }
 
 Polytope BoxPolytope(const Vector3& h) {

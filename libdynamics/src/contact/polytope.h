@@ -4,6 +4,7 @@
 // face (a manifold of up to four points), and a sphere against one.
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "narrow_phase.h"
@@ -19,7 +20,19 @@ struct Polytope {
   std::vector<std::vector<int>> vertex_faces;   ///< the faces each vertex touches
   std::vector<int> triangle_faces;              ///< the face of each triangle given
   Vector3 centroid = Vector3::Zero();
+  /// The vertices by coordinate and each one's |v|₁, for scans over all of them (MayLieBelow).
+  std::vector<double> xs, ys, zs, l1;
 };
+
+/// Scan width of MayLieBelow.
+constexpr int kScan = 64;
+
+/// Of vertices first .. first + n − 1 of `p` (n ≤ kScan), which may lie at height u·v within
+/// `limit` + 10⁻¹² (scale + |v|₁): `maybe[j]` is 0 only for a vertex that lies above that by more
+/// than rounding (1e-14 (|v|₁ + |limit|)), so that the exact test need run only on the others.
+/// Vectorized (AVX2 or AVX-512 where the CPU has it); `u` is a unit vector.
+void MayLieBelow(const Polytope& p, std::size_t first, int n, const Vector3& u, double limit, double scale,
+                 std::uint8_t* maybe);
 
 /// A posed polytope's vertices, face planes and edges in the world.
 struct PlacedPolytope {
