@@ -110,6 +110,11 @@ struct Patch {
   int factored = -1;
   bool factor_ok = false;
   double factor[4][4] = {};
+  // The same for the patch's whole system (UpdatePatchJointly: its loaded points' normals and its
+  // friction), kept between sweeps: the set it was factored for (-1: none) and the factor.
+  int joint_set = -1;
+  bool joint_ok = false;
+  Eigen::Matrix<double, 7, 7> joint = Eigen::Matrix<double, 7, 7>::Zero();
   double mu_s = 0, mu_k = 0;
   double mu = 0;                       // the bound of this step: μs for a patch that holds, μk for one that slides
   bool sliding = false;                // did not hold last step, and slides at the start of this one
