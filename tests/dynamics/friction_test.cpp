@@ -485,6 +485,41 @@ TEST(Friction, ReportedContactImpulsesBalanceGravityOrSlideAtMuK) {
   }
 }
 
+// A box held on an incline by static friction is one patch alone in its island, solved whole
+// (its normals and friction as one system, UpdatePatchJointly): settled, a step takes two sweeps
+// (the second confirms the first), and its impulses balance gravity to 10⁻¹² of the weight — flat,
+// halfway to the friction limit and at 0.99 of it, where the joint answer must still be accepted.
+TEST(Friction, AHoldingPatchAloneIsSolvedWholeInTwoSweeps) {
+  const double h = 1e-3;
+  for (const double ratio : {0.0, 0.5, 0.99}) {
+    for (const BoxCase& box : kBoxes) {
+      SCOPED_TRACE(std::string(box.name) + ", tan θ = " + std::to_string(ratio) + " μs");
+      const Material m = Mat(0.6, 0.4);
+      const double theta = std::atan(ratio * m.static_friction);
+      const Vector3 half = box.size * (kU / 2);
+      if (std::tan(theta) >= half.x() / half.z()) continue;
+      ContactWorld w;
+      AddIncline(w, Support::kGround, theta, m);
+      const Matrix3 R = InclineRotation(theta);
+      RigidBody b = BoxBody(half, 500);
+      b.position = R * Vector3(0.3, 0, half.z());
+      b.orientation = Quaternion(R);
+      w.AddBody(b, Collider{shape::Box{half}, Matrix3::Identity(), Vector3::Zero(), m});
+      w.AddForce(Gravity(Vector3(0, 0, -kG)));
+      Simulate(w, 100);
+      for (int k = 0; k < 20; ++k) {
+        ASSERT_TRUE(w.Step(h).ok);
+        EXPECT_LE(w.stats().iterations, 2);
+        Vector3 sum = Vector3::Zero();
+        for (const ContactReport& c : w.Contacts()) sum += c.impulse;
+        const double weight = b.mass * kG * h;
+        EXPECT_LT((sum - Vector3(0, 0, weight)).norm(), 1e-12 * weight) << sum.transpose();
+      }
+      EXPECT_LT((w.world().bodies()[0].position - b.position).norm(), 1e-7);
+    }
+  }
+}
+
 // The reported rows carry the whole wrench of the step, turning included: a box that slides and
 // spins on a support changes its momentum by gravity's impulse plus the rows' impulses, and its
 // angular momentum about its center by Σ (point − center) × impulse + torque, the torsional
