@@ -36,7 +36,11 @@ LoadedMesh ReadBinaryStl(const std::string& path, std::string_view data, std::ui
   const char* records = data.data() + 84;
   auto corner_at = [records](std::size_t c) {
     float f[3];  // record t = c / 3: 12 bytes of normal, then three corners of 12 bytes
-    std::memcpy(f, records + 50 * (c / 3) + 12 + 12 * (c % 3), sizeof f);
+    const char* record = records + 50 * (c / 3);
+    // The weld reads the records in order first: fetch bytes ahead, across the mapping's 4 KiB
+    // pages that the hardware prefetcher does not cross (a hint; past the end is no access).
+    __builtin_prefetch(record + 2048);
+    std::memcpy(f, record + 12 + 12 * (c % 3), sizeof f);
     return weld::PositionKey{f[0], f[1], f[2]};
   };
   LoadedMesh out = weld::Weld(path, 3 * static_cast<std::size_t>(n), corner_at, std::vector<int>(n, 3), "stl-binary");
