@@ -120,7 +120,8 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
   // "entries", listed in order of their first corner.
   constexpr std::size_t kChunk = std::size_t{1} << 16;
   const std::size_t chunks = std::max<std::size_t>(1, (n + kChunk - 1) / kChunk);
-  std::vector<std::uint32_t> local(n);
+  // Each corner's entry in its chunk; at the end, in place, its vertex (the one array of n).
+  std::vector<std::int32_t> local(n);
   std::vector<std::vector<PositionKey>> chunk_keys(chunks);
   std::vector<std::vector<std::uint64_t>> chunk_hashes(chunks);
   std::vector<std::vector<std::uint32_t>> chunk_first(chunks);
@@ -136,7 +137,7 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
         return;
       }
       bool inserted = false;
-      local[i] = table.Find(k, Hash(k), inserted);
+      local[i] = static_cast<std::int32_t>(table.Find(k, Hash(k), inserted));
       if (inserted) chunk_first[b].push_back(static_cast<std::uint32_t>(i));
     }
     chunk_keys[b] = std::move(table.keys());
@@ -145,7 +146,7 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
   g.first_non_finite = *std::min_element(bad.begin(), bad.end());
   if (g.first_non_finite < n) return g;
   if (chunks == 1) {  // one chunk: its table saw every corner in order, and is the weld
-    g.vertex_of.assign(local.begin(), local.end());
+    g.vertex_of = std::move(local);
     g.first_corner = std::move(chunk_first[0]);
     return g;
   }
@@ -237,14 +238,14 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
     for (std::size_t i = begin[p]; i < begin[p + 1]; ++i) entry_vertex[bucket[i]] = global[entry_vertex[bucket[i]]];
   });
 
-  // 5. Each corner's vertex, through its chunk's entry.
-  g.vertex_of.resize(n);
+  // 5. Each corner's vertex, through its chunk's entry (in place of the entry).
   ParallelForBlocks(static_cast<std::int64_t>(chunks), num_threads, [&](std::int64_t bb) {
     const auto b = static_cast<std::size_t>(bb);
     const std::size_t lo = b * kChunk, hi = std::min(n, lo + kChunk);
     const std::uint32_t* ev = entry_vertex.data() + entry_base[b];
-    for (std::size_t i = lo; i < hi; ++i) g.vertex_of[i] = static_cast<std::int32_t>(ev[local[i]]);
+    for (std::size_t i = lo; i < hi; ++i) local[i] = static_cast<std::int32_t>(ev[local[i]]);
   });
+  g.vertex_of = std::move(local);
   return g;
 }
 
