@@ -19,7 +19,13 @@ assert massprops.__file__.startswith(sys.prefix), massprops.__file__
 r = massprops.load(sys.argv[1], unit="m", repair=True)   # the repair: CGAL, found beside the module
 v = 0.08 * 0.02 * 0.02 + 0.02 * 0.06 * 0.02
 assert abs(r.volume - v) <= 1e-14 * v and abs(r.mass - 1000 * v) <= 1e-14 * 1000 * v, (r.volume, r.mass)
-print("pip_install_test: installed module computes the T-handle")
+# A PNG picture through the raster plugin installed in the package (librsvg, loaded on first use).
+import os, tempfile
+png = os.path.join(tempfile.mkdtemp(), "t.png")
+r.picture(png)
+head = open(png, "rb").read(8)
+assert head == b"\x89PNG\r\n\x1a\n", head
+print("pip_install_test: installed module computes the T-handle and draws it as PNG")
 PY
 MASSPROPS_CLI="$build/apps/massprops" MASSPROPS_DATA="$root/data" \
   "$py" -m pytest -q -p no:cacheprovider "$root/tests/python/test_packaging.py"
