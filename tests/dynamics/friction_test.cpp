@@ -122,6 +122,19 @@ const Material kMaterials[] = {Mat(0.4, 0.3), Mat(0.8, 0.5)};
 // of angle atan(ratio μs), its centre `up` metres up the slope, gravity on: `check` gets the body
 // after `steps` steps, as it started, the angle and the material. Boxes that would tip (tan θ beyond their
 // width over height) are another test.
+// A box of half extents `half` (500 kg/m³) at rest on an incline of angle theta, `up` along it
+// from the origin, under gravity; returns the body as it was added.
+RigidBody BoxOnIncline(ContactWorld& w, Support s, double theta, const Vector3& half, double up, const Material& m) {
+  AddIncline(w, s, theta, m);
+  const Matrix3 R = InclineRotation(theta);
+  RigidBody b = BoxBody(half, 500);
+  b.position = R * Vector3(up, 0, half.z());
+  b.orientation = Quaternion(R);
+  w.AddBody(b, Collider{shape::Box{half}, Matrix3::Identity(), Vector3::Zero(), m});
+  w.AddForce(Gravity(Vector3(0, 0, -kG)));
+  return b;
+}
+
 void ForEachBoxOnAnIncline(
     double ratio, double up, int steps,
     const std::function<void(const RigidBody&, const RigidBody&, double, const Material&)>& check) {
@@ -132,13 +145,7 @@ void ForEachBoxOnAnIncline(
         const Vector3 half = box.size * (kU / 2);
         if (std::tan(theta) >= half.x() / half.z()) continue;
         ContactWorld w;
-        AddIncline(w, s, theta, m);
-        const Matrix3 R = InclineRotation(theta);
-        RigidBody b = BoxBody(half, 500);
-        b.position = R * Vector3(up, 0, half.z());
-        b.orientation = Quaternion(R);
-        w.AddBody(b, Collider{shape::Box{half}, Matrix3::Identity(), Vector3::Zero(), m});
-        w.AddForce(Gravity(Vector3(0, 0, -kG)));
+        const RigidBody b = BoxOnIncline(w, s, theta, half, up, m);
         SCOPED_TRACE(std::string(Name(s)) + ", " + box.name + ", μs " + std::to_string(m.static_friction));
         Simulate(w, steps);
         check(w.world().bodies()[0], b, theta, m);
@@ -453,14 +460,9 @@ TEST(Friction, ReportedContactImpulsesBalanceGravityOrSlideAtMuK) {
       const Material m = Mat(0.6, 0.4);
       const double theta = std::atan(ratio * m.static_friction);
       ContactWorld w;
-      AddIncline(w, s, theta, m);
       const Matrix3 R = InclineRotation(theta);
       const Vector3 half(0.04, 0.03, 0.02), n = R * Vector3::UnitZ(), up_slope = R * Vector3::UnitX();
-      RigidBody b = BoxBody(half, 500);
-      b.position = R * Vector3(0.3, 0, half.z());
-      b.orientation = Quaternion(R);
-      w.AddBody(b, Collider{shape::Box{half}, Matrix3::Identity(), Vector3::Zero(), m});
-      w.AddForce(Gravity(Vector3(0, 0, -kG)));
+      const RigidBody b = BoxOnIncline(w, s, theta, half, 0.3, m);
       Simulate(w, 200);
       const std::vector<ContactReport> contacts = w.Contacts();
       ASSERT_GE(contacts.size(), 3u);
@@ -499,13 +501,7 @@ TEST(Friction, AHoldingPatchAloneIsSolvedWholeInTwoSweeps) {
       const Vector3 half = box.size * (kU / 2);
       if (std::tan(theta) >= half.x() / half.z()) continue;
       ContactWorld w;
-      AddIncline(w, Support::kGround, theta, m);
-      const Matrix3 R = InclineRotation(theta);
-      RigidBody b = BoxBody(half, 500);
-      b.position = R * Vector3(0.3, 0, half.z());
-      b.orientation = Quaternion(R);
-      w.AddBody(b, Collider{shape::Box{half}, Matrix3::Identity(), Vector3::Zero(), m});
-      w.AddForce(Gravity(Vector3(0, 0, -kG)));
+      const RigidBody b = BoxOnIncline(w, Support::kGround, theta, half, 0.3, m);
       Simulate(w, 100);
       for (int k = 0; k < 20; ++k) {
         ASSERT_TRUE(w.Step(h).ok);
