@@ -4,6 +4,7 @@
 // stepped: the step succeeds and finds contact points, and the pair pushes apart.
 
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 
 #include "dynamics/contact.h"
 #include "narrow_phase.h"
+#include "polytope.h"
 
 namespace {
 
@@ -79,6 +81,63 @@ TEST(NarrowPhase, TheTableAnswersForEveryPairOfKinds) {
     for (const auto& [b_name, b] : kinds)
       EXPECT_TRUE(dynamics::contact::SupportsPair(a, b)) << a_name << " / " << b_name;
   }
+}
+
+// A hull against the ground through a kept scan (GroundScan: the corners near the plane at the last
+// full scan, tested alone while the hull has not turned or moved enough for another to come within
+// reach) finds exactly the points a full scan finds — same points, normals, separations, corners,
+// in the same order — along a tumbling path that grazes, rests, lifts and jumps; and the kept
+// scan is actually used on most steps.
+TEST(NarrowPhase, AKeptGroundScanFindsWhatAFullScanFinds) {
+  // An ellipsoid's UV tessellation (convex, 266 corners).
+  const int nlat = 12, nlon = 24;
+  std::vector<Vector3> v = {Vector3(0, 0, 0.3)};
+  for (int i = 1; i < nlat; ++i) {
+    for (int j = 0; j < nlon; ++j) {
+      const double th = M_PI * i / nlat, ph = 2 * M_PI * j / nlon;
+      v.emplace_back(0.5 * std::sin(th) * std::cos(ph), 0.4 * std::sin(th) * std::sin(ph), 0.3 * std::cos(th));
+    }
+  }
+  v.emplace_back(0, 0, -0.3);
+  const int south = static_cast<int>(v.size()) - 1;
+  auto at = [&](int i, int j) { return 1 + (i - 1) * nlon + (j % nlon); };
+  std::vector<std::array<int, 3>> t;
+  for (int j = 0; j < nlon; ++j) {
+    t.push_back({0, at(1, j), at(1, j + 1)});
+    t.push_back({south, at(nlat - 1, j + 1), at(nlat - 1, j)});
+    for (int i = 1; i + 1 < nlat; ++i) {
+      t.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      t.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  }
+  const Shape hull = dynamics::MakeConvex(v, t);
+  const auto& convex = std::get<shape::Convex>(hull);
+  dynamics::contact::Posed a;
+  a.shape = &hull;
+  a.polytope = convex.polytope.get();
+  dynamics::contact::GroundScan scan;
+  const Vector3 n = Vector3::UnitZ();
+  const dynamics::CollisionFilter ground{~0u, ~0u};
+  int kept = 0;
+  for (int s = 0; s < 600; ++s) {
+    const double time = 1e-3 * s;
+    const Vector3 axis = Vector3(std::sin(3 * time), std::cos(2 * time), 0.5).normalized();
+    a.R = Eigen::AngleAxisd(4 * time + (s / 150) * 1.3, axis).toRotationMatrix();  // a jump every 150 steps
+    a.t = Vector3(0.1 * time, 0, 0.28 + 0.05 * std::sin(20 * time));               // grazing, resting, lifting
+    const double margin = 0.01 + 0.005 * std::sin(7 * time);
+    std::vector<dynamics::contact::ContactPoint> with, without;
+    dynamics::contact::CollideGround(a, n, 0.0, ground, margin, with, &scan);
+    dynamics::contact::CollideGround(a, n, 0.0, ground, margin, without);
+    if (scan.u != a.R.transpose() * n) ++kept;
+    ASSERT_EQ(with.size(), without.size()) << "step " << s;
+    for (std::size_t i = 0; i < with.size(); ++i) {
+      EXPECT_EQ(with[i].point, without[i].point) << "step " << s;
+      EXPECT_EQ(with[i].normal, without[i].normal);
+      EXPECT_EQ(with[i].separation, without[i].separation);
+      EXPECT_EQ(with[i].feature, without[i].feature);
+    }
+  }
+  EXPECT_GT(kept, 300);
 }
 
 }  // namespace

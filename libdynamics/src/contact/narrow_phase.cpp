@@ -288,7 +288,7 @@ void ReduceContacts(std::vector<ContactPoint>& out, std::size_t first) {
 }
 
 void CollideGround(const Posed& a, const Vector3& n, double offset, const CollisionFilter& ground, double margin,
-                   std::vector<ContactPoint>& out) {
+                   std::vector<ContactPoint>& out, GroundScan* scan) {
   if (const auto* c = std::get_if<shape::Compound>(a.shape)) {
     for (std::size_t k = 0; k < c->parts.size(); ++k) {
       const std::size_t first = out.size();
@@ -343,14 +343,40 @@ void CollideGround(const Posed& a, const Vector3& n, double offset, const Collis
           };
           const std::size_t nv = x.vertices.size();
           if (a.polytope != nullptr && a.polytope->xs.size() == nv) {
+            const Polytope& poly = *a.polytope;
+            // A corner the last scan left out lay above limit + band by more than its tolerance;
+            // since then its height u·v has fallen by at most |Δu| |v|, the limit risen by its
+            // change, the tolerance grown by 10⁻¹² of the scale's: while all that stays below the
+            // band, the corners kept are the only ones that can be within reach.
+            if (scan != nullptr && scan->polytope == &poly) {
+              const double moved = (u - scan->u).norm() * poly.max_norm * (1 + 1e-12) + std::abs(limit - scan->limit) +
+                                   1e-12 * std::max(0.0, scale - scan->scale) +
+                                   1e-14 * (poly.max_norm + std::abs(limit) + scale);
+              if (moved < scan->band) {
+                for (const int i : scan->near) test(static_cast<std::size_t>(i));
+                ReduceContacts(out, first);
+                return;
+              }
+            }
             // Most corners are far above the plane: a vectorized scan rules them out, and the
             // exact test runs on the rest (the same points, in the same order).
+            const double band = scan != nullptr ? 0.02 * poly.max_norm : 0.0;
+            if (scan != nullptr) {
+              scan->polytope = &poly;
+              scan->u = u;
+              scan->limit = limit;
+              scan->scale = scale;
+              scan->band = band;
+              scan->near.clear();
+            }
             std::uint8_t maybe[kScan];
             for (std::size_t at = 0; at < nv; at += kScan) {
               const int count = static_cast<int>(std::min<std::size_t>(kScan, nv - at));
-              MayLieBelow(*a.polytope, at, count, u, limit, scale, maybe);
+              MayLieBelow(poly, at, count, u, limit + band, scale, maybe);
               for (int j = 0; j < count; ++j) {
-                if (maybe[j] != 0) test(at + static_cast<std::size_t>(j));
+                if (maybe[j] == 0) continue;
+                if (scan != nullptr) scan->near.push_back(static_cast<int>(at) + j);
+                test(at + static_cast<std::size_t>(j));
               }
             }
           } else {

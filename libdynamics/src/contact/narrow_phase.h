@@ -24,6 +24,8 @@ struct ContactPoint {
 struct PlacedPolytope;
 
 /// A shape in the world: x_W = R x_S + t.
+struct Polytope;
+
 struct Posed {
   const Shape* shape = nullptr;
   const Polytope* polytope = nullptr;  ///< boxes and convex shapes
@@ -50,10 +52,23 @@ void ValidateShape(const Shape& shape);
 inline constexpr std::size_t kMaxContactPoints = 16;
 void ReduceContacts(std::vector<ContactPoint>& out, std::size_t first);
 
+/// What the last full scan of a hull's corners against a ground plane kept, so that the next
+/// steps test only those while the hull has not turned or moved enough for another corner to come
+/// within reach (CollideGround): the corners within `band` beyond the reach then, and what that
+/// scan was made against.
+struct GroundScan {
+  const Polytope* polytope = nullptr;  ///< null: no scan kept
+  Vector3 u = Vector3::Zero();         ///< the plane's normal in the shape's frame
+  double limit = 0, scale = 0, band = 0;
+  std::vector<int> near;  ///< the corners kept, ascending
+};
+
 /// The shape against the half-space {x : n·x ≤ offset} whose filter is `ground` (nothing when the
-/// filters do not touch; a compound's parts each on their own).
+/// filters do not touch; a compound's parts each on their own). `scan` (optional, one per body
+/// and plane, kept between steps) lets a hull test only the corners near the plane; the points
+/// are the same with it or without.
 void CollideGround(const Posed& a, const Vector3& n, double offset, const CollisionFilter& ground, double margin,
-                   std::vector<ContactPoint>& out);
+                   std::vector<ContactPoint>& out, GroundScan* scan = nullptr);
 /// Whether every kind of `a` (a compound's: its parts') has a contact routine against every kind
 /// of `b`. ContactWorld asks when a body is added and refuses a pair that has none.
 bool SupportsPair(const Shape& a, const Shape& b);

@@ -125,6 +125,7 @@ Polytope MakePolytope(const std::vector<Vector3>& vertices, const std::vector<st
     p.ys.push_back(v.y());
     p.zs.push_back(v.z());
     p.l1.push_back(v.cwiseAbs().sum());
+    p.max_norm = std::max(p.max_norm, v.norm());
   }
   p.centroid /= static_cast<double>(vertices.size());
   double size = 0;

@@ -20,8 +20,10 @@ struct Polytope {
   std::vector<std::vector<int>> vertex_faces;   ///< the faces each vertex touches
   std::vector<int> triangle_faces;              ///< the face of each triangle given
   Vector3 centroid = Vector3::Zero();
-  /// The vertices by coordinate and each one's |v|₁, for scans over all of them (MayLieBelow).
+  /// The vertices by coordinate and each one's |v|₁, for scans over all of them (MayLieBelow),
+  /// and the largest |v|.
   std::vector<double> xs, ys, zs, l1;
+  double max_norm = 0;
 };
 
 /// Scan width of MayLieBelow.

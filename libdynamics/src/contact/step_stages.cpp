@@ -292,13 +292,16 @@ PairMaterials MaterialsOf(const Model& model, int a, int b, const Material& ma, 
 void GroundRows(const StepInput& in, const Model& model, Scratch& s, ContactStats& stats) {
   const RowContext row_context{in.bodies, s.vel, s.before_kick, in.h, s.bounce_threshold};
   std::vector<ContactPoint>& points = s.points;
+  const std::size_t grounds = model.grounds.size();
+  if (s.ground_scans.size() < s.posed.size() * grounds) s.ground_scans.resize(s.posed.size() * grounds);
   for (std::size_t k = 0; k < s.posed.size(); ++k) {
     if (!model.collides[k]) continue;
     if (in.jointed != nullptr && !s.coupling.movable[k]) continue;  // welded to the world
     for (const Ground& g : model.grounds) {
       if (g.normal.dot(s.posed[k].t) - g.offset - model.radii[k] >= s.broad[k].reach) continue;
       points.clear();
-      CollideGround(s.posed[k], g.normal, g.offset, g.filter, s.broad[k].reach, points);
+      GroundScan& scan = s.ground_scans[k * grounds + static_cast<std::size_t>(&g - model.grounds.data())];
+      CollideGround(s.posed[k], g.normal, g.offset, g.filter, s.broad[k].reach, points, &scan);
       const int i = static_cast<int>(k);
       AppendRows(row_context, points, i, -1, KeyOfGround(static_cast<int>(&g - model.grounds.data())),
                  MaterialsOf(model, i, -1, model.colliders[k].material, g.material),

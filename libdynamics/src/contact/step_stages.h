@@ -69,6 +69,7 @@ struct Scratch {
   std::vector<internal::Vector6> kicked;         // their (v, ω) after the kick
   // The stages' working arrays, so that a step like the one before allocates nothing.
   std::vector<ContactPoint> points;      // one body's against one ground
+  std::vector<GroundScan> ground_scans;  // each body's hull against each ground (body-major)
   std::vector<Candidate> candidates;     // the broad phase's pairs
   std::vector<SweepInterval> intervals;  // and its sweep
   std::vector<PairQuery> queries;        // the narrow phase's
