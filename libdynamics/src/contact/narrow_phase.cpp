@@ -287,6 +287,69 @@ void ReduceContacts(std::vector<ContactPoint>& out, std::size_t first) {
   }
 }
 
+namespace {
+
+// A hull's corners against the plane: each corner's height along n in the shape's frame
+// ((Rᵀn)·v) decides, and only corners within reach are placed (`add`). Most lie far above: a
+// vectorized scan rules them out, or — with `scan` kept from an earlier step whose corners near
+// the plane are still the only ones that can be within reach — only those are tested; the exact
+// test then runs on the rest, so the points and their order are the same either way.
+template <typename Add>
+void ConvexGround(const Posed& a, const shape::Convex& x, const Vector3& n, double offset, double margin,
+                  const Add& add, std::vector<ContactPoint>& out, GroundScan* scan) {
+  const std::size_t first = out.size();
+  const Vector3 u = a.R.transpose() * n;
+  const double limit = margin + offset - n.dot(a.t);
+  const double scale = a.t.cwiseAbs().sum() + std::abs(offset) + std::abs(margin);
+  auto test = [&](std::size_t i) {
+    const Vector3& v = x.vertices[i];
+    if (u.dot(v) - limit > 1e-12 * (scale + v.cwiseAbs().sum())) return;
+    add(a.R * v + a.t, static_cast<std::uint32_t>(i), 0);
+  };
+  const std::size_t nv = x.vertices.size();
+  if (a.polytope == nullptr || a.polytope->xs.size() != nv) {
+    for (std::size_t i = 0; i < nv; ++i) test(i);
+    ReduceContacts(out, first);
+    return;
+  }
+  const Polytope& poly = *a.polytope;
+  // A corner the last scan left out lay above limit + band by more than its tolerance; since then
+  // its height u·v has fallen by at most |Δu| |v|, the limit risen by its change, the tolerance
+  // grown by 10⁻¹² of the scale's: while all that stays below the band, the corners kept are the
+  // only ones that can be within reach.
+  if (scan != nullptr && scan->polytope == &poly) {
+    const double moved = (u - scan->u).norm() * poly.max_norm * (1 + 1e-12) + std::abs(limit - scan->limit) +
+                         1e-12 * std::max(0.0, scale - scan->scale) + 1e-14 * (poly.max_norm + std::abs(limit) + scale);
+    if (moved < scan->band) {
+      for (const int i : scan->near) test(static_cast<std::size_t>(i));
+      ReduceContacts(out, first);
+      return;
+    }
+  }
+  const double band = scan != nullptr ? 0.02 * poly.max_norm : 0.0;
+  if (scan != nullptr) {
+    scan->polytope = &poly;
+    scan->u = u;
+    scan->limit = limit;
+    scan->scale = scale;
+    scan->band = band;
+    scan->near.clear();
+  }
+  std::uint8_t maybe[kScan];
+  for (std::size_t at = 0; at < nv; at += kScan) {
+    const int count = static_cast<int>(std::min<std::size_t>(kScan, nv - at));
+    MayLieBelow(poly, at, count, u, limit + band, scale, maybe);
+    for (int j = 0; j < count; ++j) {
+      if (maybe[j] == 0) continue;
+      if (scan != nullptr) scan->near.push_back(static_cast<int>(at) + j);
+      test(at + static_cast<std::size_t>(j));
+    }
+  }
+  ReduceContacts(out, first);  // a finely tessellated hull lying flat: thousands of corners
+}
+
+}  // namespace
+
 void CollideGround(const Posed& a, const Vector3& n, double offset, const CollisionFilter& ground, double margin,
                    std::vector<ContactPoint>& out, GroundScan* scan) {
   if (const auto* c = std::get_if<shape::Compound>(a.shape)) {
@@ -329,60 +392,7 @@ void CollideGround(const Posed& a, const Vector3& n, double offset, const Collis
             }
           }
         } else if constexpr (std::is_same_v<T, shape::Convex>) {
-          // Each corner's height along n in the shape's frame first ((Rᵀn)·v, a third of the
-          // work): one clearly beyond the margin (by more than the two forms' rounding) is not
-          // placed; the others are, and tested as they always were.
-          const std::size_t first = out.size();
-          const Vector3 u = a.R.transpose() * n;
-          const double limit = margin + offset - n.dot(a.t);
-          const double scale = a.t.cwiseAbs().sum() + std::abs(offset) + std::abs(margin);
-          auto test = [&](std::size_t i) {
-            const Vector3& v = x.vertices[i];
-            if (u.dot(v) - limit > 1e-12 * (scale + v.cwiseAbs().sum())) return;
-            add(a.R * v + a.t, static_cast<std::uint32_t>(i), 0);
-          };
-          const std::size_t nv = x.vertices.size();
-          if (a.polytope != nullptr && a.polytope->xs.size() == nv) {
-            const Polytope& poly = *a.polytope;
-            // A corner the last scan left out lay above limit + band by more than its tolerance;
-            // since then its height u·v has fallen by at most |Δu| |v|, the limit risen by its
-            // change, the tolerance grown by 10⁻¹² of the scale's: while all that stays below the
-            // band, the corners kept are the only ones that can be within reach.
-            if (scan != nullptr && scan->polytope == &poly) {
-              const double moved = (u - scan->u).norm() * poly.max_norm * (1 + 1e-12) + std::abs(limit - scan->limit) +
-                                   1e-12 * std::max(0.0, scale - scan->scale) +
-                                   1e-14 * (poly.max_norm + std::abs(limit) + scale);
-              if (moved < scan->band) {
-                for (const int i : scan->near) test(static_cast<std::size_t>(i));
-                ReduceContacts(out, first);
-                return;
-              }
-            }
-            // Most corners are far above the plane: a vectorized scan rules them out, and the
-            // exact test runs on the rest (the same points, in the same order).
-            const double band = scan != nullptr ? 0.02 * poly.max_norm : 0.0;
-            if (scan != nullptr) {
-              scan->polytope = &poly;
-              scan->u = u;
-              scan->limit = limit;
-              scan->scale = scale;
-              scan->band = band;
-              scan->near.clear();
-            }
-            std::uint8_t maybe[kScan];
-            for (std::size_t at = 0; at < nv; at += kScan) {
-              const int count = static_cast<int>(std::min<std::size_t>(kScan, nv - at));
-              MayLieBelow(poly, at, count, u, limit + band, scale, maybe);
-              for (int j = 0; j < count; ++j) {
-                if (maybe[j] == 0) continue;
-                if (scan != nullptr) scan->near.push_back(static_cast<int>(at) + j);
-                test(at + static_cast<std::size_t>(j));
-              }
-            }
-          } else {
-            for (std::size_t i = 0; i < nv; ++i) test(i);
-          }
-          ReduceContacts(out, first);  // a finely tessellated hull lying flat: thousands of corners
+          ConvexGround(a, x, n, offset, margin, add, out, scan);
         } else if constexpr (std::is_same_v<T, shape::Mesh>) {
           CollideMeshGround(a, n, offset, margin, out);
         }
