@@ -24,8 +24,6 @@ struct ContactPoint {
 struct PlacedPolytope;
 
 /// A shape in the world: x_W = R x_S + t.
-struct Polytope;
-
 struct Posed {
   const Shape* shape = nullptr;
   const Polytope* polytope = nullptr;  ///< boxes and convex shapes

@@ -300,10 +300,11 @@ void GroundRows(const StepInput& in, const Model& model, Scratch& s, ContactStat
     for (const Ground& g : model.grounds) {
       if (g.normal.dot(s.posed[k].t) - g.offset - model.radii[k] >= s.broad[k].reach) continue;
       points.clear();
-      GroundScan& scan = s.ground_scans[k * grounds + static_cast<std::size_t>(&g - model.grounds.data())];
-      CollideGround(s.posed[k], g.normal, g.offset, g.filter, s.broad[k].reach, points, &scan);
+      const auto gi = static_cast<std::size_t>(&g - model.grounds.data());
+      CollideGround(s.posed[k], g.normal, g.offset, g.filter, s.broad[k].reach, points,
+                    &s.ground_scans[k * grounds + gi]);
       const int i = static_cast<int>(k);
-      AppendRows(row_context, points, i, -1, KeyOfGround(static_cast<int>(&g - model.grounds.data())),
+      AppendRows(row_context, points, i, -1, KeyOfGround(static_cast<int>(gi)),
                  MaterialsOf(model, i, -1, model.colliders[k].material, g.material),
                  Slop(model.colliders[k].shape, model.radii[k], nullptr, -1), s.rows, stats);
     }

@@ -2,10 +2,11 @@
 // cairo), loaded on first use; without it the functions say so.
 
 #include <cstddef>
-#include <cstring>
+#include <cstdint>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "io/plugins.h"
 #include "massprops/report/picture.h"
@@ -44,8 +45,10 @@ const RasterPlugin& Plugin() {
   return plugin;
 }
 
-// The SVG drawn by the plugin: RGBA rows (png false) or a PNG file's bytes.
-std::string Draw(const std::string& svg, bool png, int& width, int& height) {
+// The SVG drawn by the plugin: RGBA rows (png false) or a PNG file's bytes, copied once into
+// `Bytes` (a string or a byte vector).
+template <typename Bytes>
+Bytes Draw(const std::string& svg, bool png, int& width, int& height) {
   const RasterPlugin& p = Plugin();
   if (p.draw == nullptr) throw std::runtime_error(p.error);
   unsigned char* bytes = nullptr;
@@ -55,7 +58,7 @@ std::string Draw(const std::string& svg, bool png, int& width, int& height) {
     throw std::runtime_error(error);
   }
   const std::unique_ptr<unsigned char, FreeFn> owned(bytes, p.free);
-  return std::string(reinterpret_cast<const char*>(bytes), size);
+  return Bytes(bytes, bytes + size);
 }
 
 }  // namespace
@@ -66,14 +69,13 @@ std::string RasterProblem() { return Plugin().error; }
 
 Raster RasterizeSvg(const std::string& svg) {
   Raster out;
-  const std::string rgba = Draw(svg, false, out.width, out.height);
-  out.rgba.assign(rgba.begin(), rgba.end());
+  out.rgba = Draw<std::vector<std::uint8_t>>(svg, false, out.width, out.height);
   return out;
 }
 
 std::string SvgToPng(const std::string& svg) {
   int width = 0, height = 0;
-  return Draw(svg, true, width, height);
+  return Draw<std::string>(svg, true, width, height);
 }
 
 }  // namespace massprops::report
