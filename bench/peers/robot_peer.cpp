@@ -12,6 +12,8 @@
 //   robot_peer --bench   steps per second (h = 1 ms, medians of three runs) of the quadruped
 //                        settling on the ground and of a 7-DOF arm draped over a table, ours
 //                        against MuJoCo's Euler
+//   robot_peer --ours quadruped|arm STEPS
+//                        ours alone (for a profiler): steps per second and sweeps a step
 //   robot_peer --bench --file FILE.xml
 //                        any MJCF file as it is (its floor, its placement), limp: steps per second
 //                        over 3 s of falling and resting in each engine, when each comes to rest
@@ -283,6 +285,18 @@ double StepsPerSecond(const Setup& s, int steps) {
   });
 }
 
+// Our solver's sweeps a step, averaged over `steps` steps from the start (the iterations the
+// contact solve used: what a block solve of a tree's contacts would cut).
+double MeanSweeps(const Setup& s, int steps) {
+  Ours o(s);
+  long total = 0;
+  for (int k = 0; k < steps; ++k) {
+    o.Step();
+    total += o.world.stats().iterations;
+  }
+  return static_cast<double>(total) / steps;
+}
+
 // Steps per second of one MJCF file as it is (its floor, its placement), limp, falling and coming
 // to rest: the first and the last of `seconds`, and where each engine rests it.
 int BenchFile(const std::string& path, double seconds) {
@@ -305,14 +319,26 @@ int BenchFile(const std::string& path, double seconds) {
   return 0;
 }
 
+// Ours alone, for a profiler: the quadruped's or the arm's `steps` steps, three times.
+int OursOnly(const std::string& model, int steps) {
+  if (model != "quadruped" && model != "arm") throw std::runtime_error("--ours: quadruped or arm");
+  const Setup s = model == "quadruped" ? Quadruped() : Arm();
+  const double rate = StepsPerSecond<Ours>(s, steps);
+  std::printf("%s: %.0f steps/s (ours), %.1f sweeps a step\n", model.c_str(), rate, MeanSweeps(s, steps));
+  for (const std::string& p : {s.path, s.mujoco_path}) {
+    if (p != kQuadruped) std::remove(p.c_str());
+  }
+  return 0;
+}
+
 int Bench() {
   const Setup q = Quadruped(), a = Arm();
   std::printf("h = 1 ms, steps/s (medians of 3 runs of 3000 steps: the fall, the landing and rest)\n");
-  std::printf("%-34s %12s %14s %8s\n", "model", "ours", "MuJoCo Euler", "ratio");
+  std::printf("%-34s %12s %14s %8s %16s\n", "model", "ours", "MuJoCo Euler", "ratio", "our sweeps/step");
   for (const auto& [name, setup] : {std::pair<const char*, const Setup*>{"quadruped on the ground (14 dof)", &q},
                                     std::pair<const char*, const Setup*>{"7-DOF arm draped over a table", &a}}) {
     const double ours = StepsPerSecond<Ours>(*setup, 3000), mj = StepsPerSecond<MuJoCo>(*setup, 3000);
-    std::printf("%-34s %12.0f %14.0f %8.2f\n", name, ours, mj, mj / ours);
+    std::printf("%-34s %12.0f %14.0f %8.2f %16.1f\n", name, ours, mj, mj / ours, MeanSweeps(*setup, 3000));
   }
   for (const std::string& p : {q.mujoco_path, a.path, a.mujoco_path}) std::remove(p.c_str());
   return 0;
@@ -379,13 +405,15 @@ int main(int argc, char** argv) {
   try {
     if (mode == "--check") return Check();
     if (mode == "--bench" && argc == 2) return Bench();
+    if (mode == "--ours" && argc == 4) return OursOnly(argv[2], std::stoi(argv[3]));
     if (mode == "--bench" && argc == 4 && std::string(argv[2]) == "--file") return BenchFile(argv[3], 3.0);
     if (mode == "--joints" && argc == 6) return Joints(argv[2], argv[3], std::stod(argv[4]), std::stod(argv[5]));
   } catch (const std::exception& e) {
     std::cerr << "robot_peer: " << e.what() << "\n";
     return 1;
   }
-  std::cerr << "usage: robot_peer --check | --bench [--file FILE.xml] | --joints FILE.xml KEYFRAME|'' SECONDS "
+  std::cerr << "usage: robot_peer --check | --bench [--file FILE.xml] | --ours quadruped|arm STEPS | --joints FILE.xml "
+               "KEYFRAME|'' SECONDS "
                "TOLERANCE\n";
   return 2;
 }

@@ -211,6 +211,79 @@ TEST(JointedContact, QuadrupedDroppedLimpComesToRest) {
   for (const RigidBody& b : w.world().bodies()) EXPECT_GT(b.position.z(), 0.0);
 }
 
+// The contacts of a tree are solved as one block (its contacts' Delassus matrix, a pivoting
+// step): the quadruped resting limp — its feet and body on the ground, coupled through legs held
+// on their stops, which the point-by-point sweeps could not settle within their 32 a step — takes
+// a few sweeps a step, and its contact impulses carry its weight each step (Σ impulses = m g h,
+// the bodies at rest).
+TEST(JointedContact, AQuadrupedAtRestIsSolvedAsOneBlockInAFewSweeps) {
+  ContactWorld w = MakeWorld();
+  w.AddGround({});
+  std::vector<int> joints;
+  AddQuadruped(w, 0.1, joints, [](Joint& j, bool knee) {
+    j.damping = 0.02;
+    j.position = {knee ? -0.3 : 0.15};
+  });
+  double mass = 0;
+  for (const RigidBody& b : w.world().bodies()) mass += b.mass;
+  const double h = 1e-3;
+  long sweeps = 0, steps = 0;
+  double worst = 0;
+  Simulate(w, h, 3000, [&](long s) {
+    if (s < 2500) return;
+    sweeps += w.stats().iterations;
+    ++steps;
+    Vector3 total = Vector3::Zero();
+    for (const dynamics::ContactReport& c : w.Contacts()) total += c.impulse;
+    worst = std::max(worst, std::abs(total.z() - mass * kG * h));
+  });
+  ASSERT_LT(MaxSpeed(w.world()), 1e-4);
+  EXPECT_LE(static_cast<double>(sweeps) / static_cast<double>(steps), 3.0);
+  EXPECT_LT(worst, 1e-9 * mass * kG * h);
+}
+
+// A tree sliding as one block: two boxes hinged about the normal of an incline, one above the
+// other, below static friction (tan θ = 0.9 μs) stay put; beyond it (tan θ = 1.05 μs) they slide
+// together at a = g (sin θ − μk cos θ) from the first step — the pivoting step's sliding
+// patches (their friction μ N against their sliding).
+TEST(JointedContact, HingedBoxesOnAnInclineHoldOrSlideAtTheKineticRate) {
+  Material mat;
+  mat.static_friction = 0.6;
+  mat.kinetic_friction = 0.4;
+  for (const double ratio : {0.9, 1.05}) {
+    const double theta = std::atan(ratio * mat.static_friction);
+    ContactWorld w = MakeWorld();
+    const Matrix3 R = Eigen::AngleAxisd(-theta, Vector3::UnitY()).toRotationMatrix();  // x up the slope
+    w.AddGround(dynamics::Ground(R * Vector3::UnitZ(), 0, mat));
+    const Vector3 size(0.2, 0.1, 0.05);
+    auto add = [&](double x) {
+      RigidBody b = Box(1.0, size, R * Vector3(x, 0, size.z() / 2));
+      b.orientation = dynamics::Quaternion(R);
+      return w.AddBody(b, BoxCollider(size, mat));
+    };
+    const int upper = add(-0.11), lower = add(0.11);
+    Joint hinge = Hinge(w, upper, lower, R * Vector3(0, 0, size.z() / 2), R * Vector3::UnitZ());
+    w.AddJoint(hinge);
+    const Vector3 downhill = -(R * Vector3::UnitX());
+    const Vector3 start = w.world().bodies()[static_cast<std::size_t>(lower)].position;
+    long sweeps = 0;
+    Simulate(w, 1e-3, 1000, [&](long) { sweeps += w.stats().iterations; });
+    const auto& bodies = w.world().bodies();
+    SCOPED_TRACE("tan θ = " + std::to_string(ratio) + " μs");
+    if (ratio < 1) {
+      EXPECT_LT((bodies[static_cast<std::size_t>(lower)].position - start).norm(), 1e-6);
+    } else {
+      const double a = kG * (std::sin(theta) - mat.kinetic_friction * std::cos(theta));
+      for (const int b : {upper, lower}) {
+        EXPECT_NEAR(bodies[static_cast<std::size_t>(b)].velocity.dot(downhill), a * 1.0, a * 1e-3);
+        EXPECT_LT(bodies[static_cast<std::size_t>(b)].AngularVelocity().norm(), 1e-6)
+            << bodies[static_cast<std::size_t>(b)].AngularVelocity().transpose();
+      }
+    }
+    EXPECT_LE(sweeps, 3 * 1000);
+  }
+}
+
 TEST(JointedContact, QuadrupedStandsOnPdServos) {
   ContactWorld w = MakeWorld();
   w.AddGround({});

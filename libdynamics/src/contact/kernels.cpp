@@ -27,46 +27,6 @@ void UpdateNormal(Row& r, std::vector<Velocities>& vel, int frozen, double mass_
   progress.speed = std::max(progress.speed, std::abs(dn) / mass_n);
 }
 
-// The impulse nearest `target` in the metric of the response K (the one that leaves the least
-// kinetic energy) within the ball |λ| ≤ bound, over the first `dim` components: Coulomb's
-// maximal dissipation, the friction then opposing the patch's sliding at the end of the update.
-// On the ball's surface λ(ν) = (K + ν E)⁻¹ K target with ν ≥ 0 such that |λ| = bound (a
-// trust-region step: Newton on 1/|λ(ν)| − 1/bound, which is nearly linear in ν).
-Vector3 ProjectOntoBall(const Matrix3& K, const Vector3& target, double bound, int dim, double& nu_guess) {
-  if (!(bound > 0)) return Vector3::Zero();
-  Matrix3 Kd = K;
-  if (dim == 2) {
-    Kd.row(2).setZero();
-    Kd.col(2).setZero();
-    Kd(2, 2) = 1;
-  }
-  const Vector3 Kt = Kd * target;
-  // x(ν) = (K + ν E)⁻¹ K t, d|x|²/dν = −2 xᵀ (K + ν E)⁻¹ x: a 3 × 3 inverse an iteration.
-  auto at = [&](double nu, Vector3& x, double& length, double& slope) {
-    const Matrix3 inverse = (Kd + nu * Matrix3::Identity()).inverse();
-    x = inverse * Kt;
-    length = x.norm();
-    slope = -2 * x.dot(inverse * x);
-  };
-  // Newton on φ(ν) = 1/|x| − 1/bound, φ' = −½ |x|⁻³ d|x|²/dν: nearly linear and concave, so from
-  // below the root it approaches monotonically, and from above it lands below it. Started from
-  // the ν of the patch's last projection (the sweeps change it little), else from 0 (x = t).
-  double nu = nu_guess > 0 && std::isfinite(nu_guess) ? nu_guess : 0.0, length = 0, slope = 0;
-  Vector3 x;
-  at(nu, x, length, slope);
-  for (int k = 0; k < 50; ++k) {
-    const double phi = 1 / length - 1 / bound, dphi = -0.5 * slope / (length * length * length);
-    if (std::abs(phi) * bound <= 1e-12 || !(dphi > 0) || !std::isfinite(dphi)) break;
-    const double next = nu - phi / dphi;
-    nu = next > 0 ? next : nu * 1e-3;  // (ν ≥ 0: below 0 the ball holds x(0) = t already)
-    at(nu, x, length, slope);
-  }
-  nu_guess = nu;
-  if (!(length <= bound)) x *= bound / length;  // the last rounding (or a direction without response)
-  if (dim == 2) x[2] = 0;
-  return x;
-}
-
 // Moves a sliding patch's anchor to the centre of pressure of its rows' present normal impulses
 // (kinetic friction so acts where the load is, as friction distributed over the points would: a
 // sliding box does not yaw because its points are unevenly spread), carrying the friction impulse
@@ -117,8 +77,9 @@ void UpdateFriction(Patch& p, const std::vector<Row>& rows, std::vector<Velociti
 // coupled response — the linear complementarity problem of the patch alone, by trying the sets of
 // loaded points, the most first. Four coplanar points make A singular (a rigid face's load is
 // shared in infinitely many ways): a regularization of 10⁻⁹ of its diagonal picks the evenest
-// sharing and misses each target by 10⁻⁹ of the change. Returns false where no set solves it
-// (rounding), for the point-by-point update.
+// sharing and misses each target by 10⁻⁹ of the change (of jointed bodies, it regularizes the
+// change: the sharing is kept, the targets met). Returns false where no set solves it (rounding),
+// for the point-by-point update.
 bool UpdateNormalBlock(Patch& p, std::vector<Row>& rows, std::vector<Velocities>& vel, Progress& progress) {
   const int m = p.count;
   if (m < 2 || m > 4) return false;
@@ -130,6 +91,10 @@ bool UpdateNormalBlock(Patch& p, std::vector<Row>& rows, std::vector<Velocities>
     c[i] = r[i].target - NormalSpeed(vel, r[i]) + A.row(i).head(m).dot(old.head(m));
   }
   const double scale = c.head(m).cwiseAbs().maxCoeff();
+  // Jointed bodies: the regularization acts on the change, as in the block solve
+  // (block_solve.cpp): where the load's sharing is not determined it is kept, and the fixed point
+  // is the unregularized one, which both then share.
+  const bool proximal = p.coupling != nullptr;
   Eigen::Vector4d x = Eigen::Vector4d::Zero();
   // One set of loaded points: their impulses solve their block (Cholesky, the regularization on
   // its diagonal), none negative, and the others' velocities reach their targets unloaded.
@@ -160,14 +125,21 @@ bool UpdateNormalBlock(Patch& p, std::vector<Row>& rows, std::vector<Velocities>
     double y[4] = {};
     for (int i = 0; i < k; ++i) {
       double sum = c[index[i]];
+      if (proximal) {
+        for (int j = 0; j < k; ++j) sum -= A(index[i], index[j]) * old[index[j]];
+      }
       for (int l = 0; l < i; ++l) sum -= L[i][l] * y[l];
       y[i] = sum / L[i][i];
     }
-    Eigen::Vector4d trial = Eigen::Vector4d::Zero();
+    double solved[4] = {};
     for (int i = k - 1; i >= 0; --i) {
       double sum = y[i];
-      for (int l = i + 1; l < k; ++l) sum -= L[l][i] * trial[index[l]];
-      trial[index[i]] = sum / L[i][i];
+      for (int l = i + 1; l < k; ++l) sum -= L[l][i] * solved[l];
+      solved[i] = sum / L[i][i];
+    }
+    Eigen::Vector4d trial = Eigen::Vector4d::Zero();
+    for (int i = 0; i < k; ++i) {
+      trial[index[i]] = solved[i] + (proximal ? old[index[i]] : 0.0);
       if (!(trial[index[i]] >= 0)) return false;
     }
     for (int i = 0; i < m; ++i) {
@@ -291,7 +263,45 @@ bool UpdatePatchJointly(Patch& p, std::vector<Row>& rows, std::vector<Velocities
 
 }  // namespace
 
-// The patch's generalized sliding velocity: (v·t1, v·t2, ρ ω·n) at its anchor.
+// The impulse nearest `target` in the metric of the response K (the one that leaves the least
+// kinetic energy) within the ball |λ| ≤ bound, over the first `dim` components: Coulomb's
+// maximal dissipation, the friction then opposing the patch's sliding at the end of the update.
+// On the ball's surface λ(ν) = (K + ν E)⁻¹ K target with ν ≥ 0 such that |λ| = bound (a
+// trust-region step: Newton on 1/|λ(ν)| − 1/bound, which is nearly linear in ν).
+Vector3 ProjectOntoBall(const Matrix3& K, const Vector3& target, double bound, int dim, double& nu_guess) {
+  if (!(bound > 0)) return Vector3::Zero();
+  Matrix3 Kd = K;
+  if (dim == 2) {
+    Kd.row(2).setZero();
+    Kd.col(2).setZero();
+    Kd(2, 2) = 1;
+  }
+  const Vector3 Kt = Kd * target;
+  // x(ν) = (K + ν E)⁻¹ K t, d|x|²/dν = −2 xᵀ (K + ν E)⁻¹ x: a 3 × 3 inverse an iteration.
+  auto at = [&](double nu, Vector3& x, double& length, double& slope) {
+    const Matrix3 inverse = (Kd + nu * Matrix3::Identity()).inverse();
+    x = inverse * Kt;
+    length = x.norm();
+    slope = -2 * x.dot(inverse * x);
+  };
+  // Newton on φ(ν) = 1/|x| − 1/bound, φ' = −½ |x|⁻³ d|x|²/dν: nearly linear and concave, so from
+  // below the root it approaches monotonically, and from above it lands below it. Started from
+  // the ν of the patch's last projection (the sweeps change it little), else from 0 (x = t).
+  double nu = nu_guess > 0 && std::isfinite(nu_guess) ? nu_guess : 0.0, length = 0, slope = 0;
+  Vector3 x;
+  at(nu, x, length, slope);
+  for (int k = 0; k < 50; ++k) {
+    const double phi = 1 / length - 1 / bound, dphi = -0.5 * slope / (length * length * length);
+    if (std::abs(phi) * bound <= 1e-12 || !(dphi > 0) || !std::isfinite(dphi)) break;
+    const double next = nu - phi / dphi;
+    nu = next > 0 ? next : nu * 1e-3;  // (ν ≥ 0: below 0 the ball holds x(0) = t already)
+    at(nu, x, length, slope);
+  }
+  nu_guess = nu;
+  if (!(length <= bound)) x *= bound / length;  // the last rounding (or a direction without response)
+  if (dim == 2) x[2] = 0;
+  return x;
+}
 
 // A patch's total normal impulse N, and (when `centre` is given) its centre of pressure
 // Σ λn x / N (left as it is when N = 0).

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include <Eigen/Cholesky>
+
 #include "dynamics/contact.h"
 
 namespace dynamics::contact {
@@ -259,12 +261,48 @@ struct Progress {
   }
 };
 
+/// A channel of the block solve of jointed bodies: a row's normal or one direction of a patch's
+/// friction; its unit impulse is the wrench wa on body a (force, torque about a's centre) and −wb
+/// on b (-1: the ground or a static body).
+struct BlockChannel {
+  int a = -1, b = -1;
+  Vector6 wa = Vector6::Zero(), wb = Vector6::Zero();
+  double target = 0;    // its least velocity (a row's target; friction: 0)
+  bool normal = false;  // a row's normal (else a friction direction)
+};
+
+/// The block solve's regularization, relative to the diagonal (block_solve.cpp: iterative
+/// refinement solves the determined part of the system exactly; where the impulses are not
+/// determined — coplanar points, more channels than a tree has degrees of freedom — it keeps the
+/// warm start's).
+inline constexpr double kBlockRegularization = 1e-9;
+
+/// Islands of jointed bodies with more channels than this are swept point by point.
+inline constexpr int kMaxBlockChannels = 96;
+
+/// The block solve's working arrays (block_solve.cpp), kept from step to step.
+struct BlockScratch {
+  std::vector<BlockChannel> channels;
+  std::vector<int> first;    // each patch's first channel (by its place in the island's order)
+  std::vector<int> members;  // the bodies that move (sorted)
+  Eigen::MatrixXd U;         // each channel's unit impulse's change of every member's (v, ω)
+  Eigen::MatrixXd A;         // the Delassus matrix J U
+  Eigen::VectorXd u, lambda, start, delta, change_u, change_v, rhs, solved;
+  std::vector<char> role, failed;    // the pivoting step's roles; the loaded set it last failed from
+  std::vector<int> index, factored;  // the pivoting step's set, and the set its factor is of
+  Eigen::MatrixXd S0, S;             // the set's block of A, and regularized
+  Eigen::VectorXd residual;
+  Eigen::LLT<Eigen::MatrixXd> llt;
+  bool factor_ok = false;
+};
+
 /// One island's working copy (its bodies, and their velocities and impulses to go back to).
 struct IslandScratch {
   std::vector<int> members;
   std::vector<Velocities> velocities;
   std::vector<double> normal;
   std::vector<Vector3> friction;
+  BlockScratch block;
 };
 
 /// The solve's working arrays, kept from step to step: a step whose contacts are those of the

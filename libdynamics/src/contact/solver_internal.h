@@ -66,6 +66,10 @@ void SetPatchJacobian(Patch& p, const BodyResponse& bodies);
 void SetNormalBlock(Patch& p, const std::vector<Row>& rows);
 
 // kernels.cpp
+/// The impulse nearest `target` in the metric of the response K within the ball |λ| ≤ bound,
+/// over the first `dim` components (Coulomb's maximal dissipation); nu_guess: the multiplier of
+/// the last projection (updated).
+Vector3 ProjectOntoBall(const Matrix3& K, const Vector3& target, double bound, int dim, double& nu_guess);
 /// A patch's total normal impulse N, and (when `centre` is given) its centre of pressure.
 double Load(const Patch& p, const std::vector<Row>& rows, Vector3* centre = nullptr);
 /// A sweep over the patches in `order` (forward or backward): each patch's normals (as one block
@@ -76,5 +80,17 @@ void Sweep(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vecto
 void PropagateShock(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order,
                     std::vector<Velocities>& vel, const BodyResponse& bodies, const std::vector<int>& body_level,
                     const SolveSettings& settings);
+
+// block_solve.cpp
+/// Whether an island's patches are solved as a block: jointed bodies, none sliding since the last
+/// step, at most kMaxBlockChannels channels.
+bool BlockSolvable(const std::vector<Patch>& patches, const std::vector<int>& order, const BodyResponse& bodies);
+/// The sweeps of such an island on its channels' Delassus matrix (a pivoting step on the loaded
+/// set, else a projected Gauss–Seidel sweep), from the rows' and patches' impulses (already in
+/// `vel`) until the stopping rule holds; then the new impulses into the rows, patches and `vel`.
+/// Returns the sweeps used, or max_iterations.
+int SolveBlock(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order,
+               std::vector<Velocities>& vel, const BodyResponse& bodies, const SolveSettings& settings,
+               BlockScratch& scratch);
 
 }  // namespace dynamics::contact
