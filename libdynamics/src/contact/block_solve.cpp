@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "solver_internal.h"
 
@@ -138,6 +139,7 @@ void ScatterImpulses(const BlockScratch& s, const std::vector<int>& order, std::
 
 // A change d of channel c's impulse: every channel's velocity follows.
 void Change(BlockScratch& s, Eigen::Index c, double d) {
+  if (d == 0) return;
   s.lambda[c] += d;
   s.u.noalias() += s.A.col(c) * d;
 }
@@ -233,11 +235,16 @@ bool SolveSet(double tolerance, BlockScratch& s) {
   }
   if (!s.factor_ok) return false;
   s.solved = s.llt.solve(s.rhs);
+  double before = std::numeric_limits<double>::infinity();
   for (int refinement = 0;; ++refinement) {
     s.residual.noalias() = s.rhs - s.S0 * s.solved;
-    if (!s.residual.allFinite()) return false;
-    if (s.residual.cwiseAbs().maxCoeff() <= 0.1 * tolerance) break;
-    if (refinement == kRefinements) return false;
+    const double residual = s.residual.cwiseAbs().maxCoeff();
+    if (!std::isfinite(residual)) return false;
+    if (residual <= 0.1 * tolerance) break;
+    // Refinement halves a determined residual at least every step (or the set's equations
+    // contradict each other: more channels than degrees of freedom, targets no motion meets).
+    if (refinement == kRefinements || residual > 0.5 * before) return false;
+    before = residual;
     s.solved += s.llt.solve(s.residual);
   }
   for (Eigen::Index i = 0; i < k; ++i) s.delta[s.index[static_cast<std::size_t>(i)]] = s.solved[i];
