@@ -216,6 +216,11 @@ void ContactWorld::AddStatic(Collider collider, const Matrix3& rotation, const V
   broad.radius = contact::BoundingRadius(s.collider.shape);
   broad.lower = broad.posed.t - Vector3::Constant(broad.radius);
   broad.upper = broad.posed.t + Vector3::Constant(broad.radius);
+  if (s.polytope != nullptr) {
+    s.placed = std::make_unique<contact::PlacedPolytope>();
+    contact::PlacePolytope(*s.polytope, broad.posed, *s.placed);
+    broad.posed.placed = s.placed.get();
+  }
   impl_->statics.push_back(std::move(s));
   impl_->static_broad.push_back(broad);
   // The shapes may have moved with the vector: every posed shape points at its collider again.

@@ -28,21 +28,23 @@ Scratch& ThreadScratch() {
 }  // namespace
 
 void PlacePolytope(const Polytope& p, const Posed& posed, PlacedPolytope& w) {
-  w.v.clear();
-  w.n.clear();
-  w.d.clear();
-  w.e.clear();
-  w.arc.clear();
-  for (const Vector3& x : p.vertices) w.v.push_back(posed.R * x + posed.t);
-  for (std::size_t f = 0; f < p.faces.size(); ++f) {
-    w.n.push_back(posed.R * p.normals[f]);
-    w.d.push_back(w.n.back().dot(w.v[static_cast<std::size_t>(p.faces[f][0])]));
+  // (Sized, then written in place: an append a value cost a pile's step a few per cent.)
+  const std::size_t nv = p.vertices.size(), nf = p.faces.size(), ne = p.edges.size();
+  w.v.resize(nv);
+  w.n.resize(nf);
+  w.d.resize(nf);
+  w.e.resize(ne);
+  w.arc.resize(ne);
+  for (std::size_t i = 0; i < nv; ++i) w.v[i] = posed.R * p.vertices[i] + posed.t;
+  for (std::size_t f = 0; f < nf; ++f) {
+    w.n[f] = posed.R * p.normals[f];
+    w.d[f] = w.n[f].dot(w.v[static_cast<std::size_t>(p.faces[f][0])]);
   }
-  for (std::size_t i = 0; i < p.edges.size(); ++i) {
-    w.e.push_back(w.v[static_cast<std::size_t>(p.edges[i].second)] - w.v[static_cast<std::size_t>(p.edges[i].first)]);
+  for (std::size_t i = 0; i < ne; ++i) {
+    w.e[i] = w.v[static_cast<std::size_t>(p.edges[i].second)] - w.v[static_cast<std::size_t>(p.edges[i].first)];
     const Vector3& first = w.n[static_cast<std::size_t>(p.edge_faces[i].first)];
     const Vector3& second = w.n[static_cast<std::size_t>(p.edge_faces[i].second)];
-    w.arc.push_back(second.cross(first));
+    w.arc[i] = second.cross(first);
   }
 }
 
@@ -377,7 +379,7 @@ void FaceContact(const Polytope& pr, const PlacedPolytope& wr, const Polytope& p
 void PolytopePolytope(const Polytope& pa, const Posed& a, const Polytope& pb, const Posed& b, double margin,
                       std::vector<ContactPoint>& out) {
   Scratch& scratch = ThreadScratch();
-  // Each body's placed once a step (Posed::placed); a compound's parts and statics here.
+  // Each body's placed once a step, a static body once (Posed::placed); a compound's parts here.
   if (a.placed == nullptr) PlacePolytope(pa, a, scratch.a);
   if (b.placed == nullptr) PlacePolytope(pb, b, scratch.b);
   const PlacedPolytope& wa = a.placed != nullptr ? *a.placed : scratch.a;

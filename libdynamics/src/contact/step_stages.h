@@ -28,6 +28,8 @@ namespace dynamics::contact {
 struct StaticBody {
   Collider collider;
   std::shared_ptr<const Polytope> polytope;
+  /// Its polytope placed in the world once (it does not move; Posed::placed points here).
+  std::unique_ptr<PlacedPolytope> placed;
 };
 
 /// What was added to the world: it changes only when something is added.
