@@ -95,6 +95,15 @@ int AddQuadruped(ContactWorld& w, double lift, std::vector<int>& joints,
   return base;
 }
 
+// The quadruped limp (joint damping only), its knees a little bent (straight legs would balance,
+// unstably, for a while).
+int AddLimpQuadruped(ContactWorld& w, double lift, std::vector<int>& joints) {
+  return AddQuadruped(w, lift, joints, [](Joint& j, bool knee) {
+    j.damping = 0.02;
+    j.position = {knee ? -0.3 : 0.15};
+  });
+}
+
 double MaxSpeed(const World& w) {
   double v = 0;
   for (const RigidBody& b : w.bodies()) v = std::max(v, b.velocity.norm() + 0.2 * b.AngularVelocity().norm());
@@ -190,11 +199,7 @@ TEST(JointedContact, QuadrupedDroppedLimpComesToRest) {
   ContactWorld w = MakeWorld();
   w.AddGround({});
   std::vector<int> joints;
-  // Limp, its knees a little bent (straight legs would balance, unstably, for a while).
-  const int base = AddQuadruped(w, 0.1, joints, [](Joint& j, bool knee) {
-    j.damping = 0.02;
-    j.position = {knee ? -0.3 : 0.15};
-  });
+  const int base = AddLimpQuadruped(w, 0.1, joints);
   double at_rest = -1;
   Simulate(w, 1e-3, 3000, [&](long s) {
     if (MaxSpeed(w.world()) < 1e-4) {
@@ -220,10 +225,7 @@ TEST(JointedContact, AQuadrupedAtRestIsSolvedAsOneBlockInAFewSweeps) {
   ContactWorld w = MakeWorld();
   w.AddGround({});
   std::vector<int> joints;
-  AddQuadruped(w, 0.1, joints, [](Joint& j, bool knee) {
-    j.damping = 0.02;
-    j.position = {knee ? -0.3 : 0.15};
-  });
+  AddLimpQuadruped(w, 0.1, joints);
   double mass = 0;
   for (const RigidBody& b : w.world().bodies()) mass += b.mass;
   const double h = 1e-3;
@@ -395,10 +397,7 @@ TEST(JointedContact, ABoxDroppedOnALimpRobotDoesNotSinkIntoIt) {
   ContactWorld w = MakeWorld();
   w.AddGround({});
   std::vector<int> joints;
-  AddQuadruped(w, 0.0, joints, [](Joint& j, bool knee) {
-    j.damping = 0.02;
-    j.position = {knee ? -0.3 : 0.15};
-  });
+  AddLimpQuadruped(w, 0.0, joints);
   const Vector3 size = Vector3::Constant(0.2);
   w.AddBody(Box(8.0, size, Vector3(0, 0, 1.0)), BoxCollider(size));
   double deepest = 0;
