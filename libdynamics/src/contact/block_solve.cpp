@@ -4,15 +4,18 @@
 // slowly (a quadruped at rest ran out of its 32 sweeps every step). Here the island's channels —
 // each row's normal and each patch's friction directions (t1, t2, ρ n) — get their Delassus
 // matrix A = J M⁻¹ Jᵀ once a step (U = M⁻¹ Jᵀ from the coupling's blocks, A = J U), and the
-// sweeps work on the channels' velocities u = J v alone:
+// sweeps work on the channels' velocities u = J v alone (solver.cpp comes here once the sweeps of
+// kernels.cpp slow down):
 // - a pivoting step first: the loaded rows and the friction of every loaded patch solved as one
-//   linear system (Cholesky of their block of A), accepted only when it is the answer of the
+//   linear system (regularized Cholesky of their block of A, then iterative refinement),
+//   principal pivoting on the normals, accepted only when it is the answer of the
 //   complementarity problem — loaded points push, the others separate, every patch's friction
 //   within μ N — which the sweeps converge to;
 // - else a projected Gauss–Seidel sweep on A, with the updates of kernels.cpp (the least normal
 //   impulse that keeps a point at its target; friction that stops the patch when it can, else the
 //   impulse of least kinetic energy on the limit μ N).
-// A sweep costs O(m²) for m channels, and stops on the same m/s rule as the others.
+// A sweep costs O(m²) for m channels, and stops on the same m/s rule as the others. A patch that
+// must slide is left to the projected sweeps (the pivoting step holds friction only).
 
 #include <algorithm>
 #include <cmath>
