@@ -82,6 +82,7 @@ struct Configuration {
   Eigen::MatrixXd M;  ///< the mass matrix's lower triangle (the upper is not kept), when dense
   Eigen::LLT<Eigen::MatrixXd> llt;
   Eigen::VectorXd diagonal;  ///< M's diagonal as Configure formed it (dense or not)
+  Eigen::VectorXd q;         ///< the coordinates Configure placed it at
 };
 
 class Articulation {

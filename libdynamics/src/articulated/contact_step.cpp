@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "../contact/solver.h"
 #include "articulation.h"
@@ -45,7 +46,16 @@ Eigen::VectorXd Articulation::GeneralizedImpulse(const std::vector<Wrench>& w) c
 bool Articulation::ContactKick(const std::vector<std::unique_ptr<Force>>& forces, double t, double h,
                                std::vector<Vector6>& kicked) {
   kicked.assign(inertias_.size(), Vector6::Zero());
-  if (!EnsureMomenta() || !Configure(q_, start_)) return false;
+  if (!EnsureMomenta()) return false;
+  // The start is the last step's end when nothing has moved the joints since (the same
+  // coordinates, bit for bit): its kinematics, mass matrix and factor are kept, not formed again.
+  const bool same = end_.dense && q_.size() > 0 && end_.q.size() == q_.size() &&
+                    std::memcmp(end_.q.data(), q_.data(), sizeof(double) * static_cast<std::size_t>(q_.size())) == 0;
+  if (same) {
+    std::swap(start_, end_);
+  } else if (!Configure(q_, start_)) {
+    return false;
+  }
   if (p_.size() == 0) {
     kicked_p_.resize(0);
     return true;

@@ -387,6 +387,7 @@ void Articulation::PlaceNode(int i, const Eigen::VectorXd& q, Configuration& c) 
 }
 
 bool Articulation::Configure(const Eigen::VectorXd& q, Configuration& c, bool dense) const {
+  c.q = q;
   const std::size_t n = nodes_.size();
   c.frames.resize(n);
   c.composite.resize(n);
