@@ -197,7 +197,7 @@ class Articulation {
   bool momenta_ready_ = false;
   bool recursion_ok_ = false;  ///< no joint of several coordinates below a root (Sparse)
   Eigen::VectorXd kicked_p_;   ///< ContactKick's p + h ṗ (+ h D v)
-  Configuration effective_;    ///< ContactKick's start with M + h D + h² K
+  Configuration effective_;    ///< ContactKick's M + h D + h² K and its factor (nothing else)
   /// Dofs ContactKick holds on a stop (-1 the lower, +1 the upper; Impulses leaves their stops),
   /// and those the last contact step left pressed on one (held again in the next).
   std::vector<signed char> held_, stuck_;

@@ -66,7 +66,9 @@ bool Articulation::ContactKick(const std::vector<std::unique_ptr<Force>>& forces
   // stable): (M + h D + h² K) u = p + h ṗ + h D v, with D and K their diagonal gains; impulses
   // then act on this effective mass, and the step's momentum is M u.
   kicked_p_ = p_ + h * rate_;
-  effective_ = start_;
+  // (Only its mass matrix and factor are read: the start's frames are not copied.)
+  effective_.dense = true;
+  effective_.M = start_.M;
   held_.assign(static_cast<std::size_t>(v_.size()), 0);
   for (const Node& n : nodes_) {
     if (n.joint < 0 || n.nv == 0 || n.type == JointType::kFree) continue;
