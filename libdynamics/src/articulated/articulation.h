@@ -195,6 +195,7 @@ class Articulation {
   };
   std::vector<Row> rows_;
   bool momenta_ready_ = false;
+  bool start_formed_ = false;  // start_ was configured densely (its factor computed) at least once
   bool recursion_ok_ = false;  ///< no joint of several coordinates below a root (Sparse)
   Eigen::VectorXd kicked_p_;   ///< ContactKick's p + h ṗ (+ h D v)
   Configuration effective_;    ///< ContactKick's M + h D + h² K and its factor (nothing else)

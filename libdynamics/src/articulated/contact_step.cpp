@@ -49,12 +49,15 @@ bool Articulation::ContactKick(const std::vector<std::unique_ptr<Force>>& forces
   if (!EnsureMomenta()) return false;
   // The start is the last step's end when nothing has moved the joints since (the same
   // coordinates, bit for bit): its kinematics, mass matrix and factor are kept, not formed again.
-  const bool same = end_.dense && q_.size() > 0 && end_.q.size() == q_.size() &&
+  // (Swapped once the start has been formed itself: a factor never computed may not be moved.)
+  const bool same = start_formed_ && end_.dense && q_.size() > 0 && end_.q.size() == q_.size() &&
                     std::memcmp(end_.q.data(), q_.data(), sizeof(double) * static_cast<std::size_t>(q_.size())) == 0;
   if (same) {
     std::swap(start_, end_);
   } else if (!Configure(q_, start_)) {
     return false;
+  } else {
+    start_formed_ = start_.dense && v_.size() > 0;
   }
   if (p_.size() == 0) {
     kicked_p_.resize(0);
