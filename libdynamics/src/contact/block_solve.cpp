@@ -177,12 +177,7 @@ void ProjectedSweep(std::vector<Patch>& patches, const std::vector<int>& order, 
       g[f] = s.u[f0 + f];
       old[f] = s.lambda[f0 + f];
     }
-    const Vector3 stop = old - p.mass * g;
-    const double bound = p.mu * N;
-    Vector3 lt = stop;
-    if (stop.norm() > bound) {
-      lt = ProjectOntoBall(p.Ka, stop, bound, static_cast<int>(nf), p.nu);
-    }
+    const Vector3 lt = FrictionUpdate(p, old, g, p.mass, p.Ka, p.mu * N);
     const Vector3 d = lt - old;
     for (Eigen::Index f = 0; f < nf; ++f) Change(s, f0 + f, d[f]);
     progress.change = std::max(progress.change, d.norm());

@@ -43,6 +43,46 @@ void FollowPressure(Patch& p, std::vector<Velocities>& vel, const BodyResponse& 
   ApplyPatch(vel, p, p.lambda, frozen);
 }
 
+// The impulse nearest `target` in the metric of the response K (the one that leaves the least
+// kinetic energy) within the ball |λ| ≤ bound, over the first `dim` components: Coulomb's
+// maximal dissipation, the friction then opposing the patch's sliding at the end of the update.
+// On the ball's surface λ(ν) = (K + ν E)⁻¹ K target with ν ≥ 0 such that |λ| = bound (a
+// trust-region step: Newton on 1/|λ(ν)| − 1/bound, which is nearly linear in ν).
+Vector3 ProjectOntoBall(const Matrix3& K, const Vector3& target, double bound, int dim, double& nu_guess) {
+  if (!(bound > 0)) return Vector3::Zero();
+  Matrix3 Kd = K;
+  if (dim == 2) {
+    Kd.row(2).setZero();
+    Kd.col(2).setZero();
+    Kd(2, 2) = 1;
+  }
+  const Vector3 Kt = Kd * target;
+  // x(ν) = (K + ν E)⁻¹ K t, d|x|²/dν = −2 xᵀ (K + ν E)⁻¹ x: a 3 × 3 inverse an iteration.
+  auto at = [&](double nu, Vector3& x, double& length, double& slope) {
+    const Matrix3 inverse = (Kd + nu * Matrix3::Identity()).inverse();
+    x = inverse * Kt;
+    length = x.norm();
+    slope = -2 * x.dot(inverse * x);
+  };
+  // Newton on φ(ν) = 1/|x| − 1/bound, φ' = −½ |x|⁻³ d|x|²/dν: nearly linear and concave, so from
+  // below the root it approaches monotonically, and from above it lands below it. Started from
+  // the ν of the patch's last projection (the sweeps change it little), else from 0 (x = t).
+  double nu = nu_guess > 0 && std::isfinite(nu_guess) ? nu_guess : 0.0, length = 0, slope = 0;
+  Vector3 x;
+  at(nu, x, length, slope);
+  for (int k = 0; k < 50; ++k) {
+    const double phi = 1 / length - 1 / bound, dphi = -0.5 * slope / (length * length * length);
+    if (std::abs(phi) * bound <= 1e-12 || !(dphi > 0) || !std::isfinite(dphi)) break;
+    const double next = nu - phi / dphi;
+    nu = next > 0 ? next : nu * 1e-3;  // (ν ≥ 0: below 0 the ball holds x(0) = t already)
+    at(nu, x, length, slope);
+  }
+  nu_guess = nu;
+  if (!(length <= bound)) x *= bound / length;  // the last rounding (or a direction without response)
+  if (dim == 2) x[2] = 0;
+  return x;
+}
+
 // One update of a patch's friction: the impulse that stops its sliding and turning, if it lies
 // within the limit μ N (the patch holds, or comes to rest in this step); else the impulse of
 // least kinetic energy on the limit (μs: a holding patch breaks away; μk: a sliding one slides,
@@ -55,20 +95,13 @@ void UpdateFriction(Patch& p, const std::vector<Row>& rows, std::vector<Velociti
   const double N = Load(p, rows, follow ? &centre : nullptr);
   if (follow && N > 0) FollowPressure(p, vel, bodies, frozen, centre);
   const Matrix3 mass = frozen < 0 ? p.mass : PatchMass(frozen == p.a ? p.Kb : p.Ka, p.rho);
-  const Vector3 g = PatchVelocity(vel, p);
-  const Vector3 stop = p.lambda - mass * g;
-  const double bound = p.mu * N;
-  Vector3 lt = stop;
-  if (stop.norm() > bound) {
-    const Matrix3 K = frozen < 0 ? Matrix3(p.Ka + p.Kb) : (frozen == p.a ? p.Kb : p.Ka);
-    lt = ProjectOntoBall(K, stop, bound, p.rho > 0 ? 3 : 2, p.nu);
-  }
+  const Matrix3 K = frozen < 0 ? Matrix3(p.Ka + p.Kb) : (frozen == p.a ? p.Kb : p.Ka);
+  const Vector3 lt = FrictionUpdate(p, p.lambda, PatchVelocity(vel, p), mass, K, p.mu * N);
   const Vector3 d = lt - p.lambda;
   p.lambda = lt;
   ApplyPatch(vel, p, d, frozen);
   progress.change = std::max(progress.change, d.norm());
   progress.scale = std::max(progress.scale, lt.norm());
-  const Matrix3 K = frozen < 0 ? Matrix3(p.Ka + p.Kb) : (frozen == p.a ? p.Kb : p.Ka);
   progress.speed = std::max(progress.speed, (K * d).norm());
 }
 
@@ -263,44 +296,13 @@ bool UpdatePatchJointly(Patch& p, std::vector<Row>& rows, std::vector<Velocities
 
 }  // namespace
 
-// The impulse nearest `target` in the metric of the response K (the one that leaves the least
-// kinetic energy) within the ball |λ| ≤ bound, over the first `dim` components: Coulomb's
-// maximal dissipation, the friction then opposing the patch's sliding at the end of the update.
-// On the ball's surface λ(ν) = (K + ν E)⁻¹ K target with ν ≥ 0 such that |λ| = bound (a
-// trust-region step: Newton on 1/|λ(ν)| − 1/bound, which is nearly linear in ν).
-Vector3 ProjectOntoBall(const Matrix3& K, const Vector3& target, double bound, int dim, double& nu_guess) {
-  if (!(bound > 0)) return Vector3::Zero();
-  Matrix3 Kd = K;
-  if (dim == 2) {
-    Kd.row(2).setZero();
-    Kd.col(2).setZero();
-    Kd(2, 2) = 1;
-  }
-  const Vector3 Kt = Kd * target;
-  // x(ν) = (K + ν E)⁻¹ K t, d|x|²/dν = −2 xᵀ (K + ν E)⁻¹ x: a 3 × 3 inverse an iteration.
-  auto at = [&](double nu, Vector3& x, double& length, double& slope) {
-    const Matrix3 inverse = (Kd + nu * Matrix3::Identity()).inverse();
-    x = inverse * Kt;
-    length = x.norm();
-    slope = -2 * x.dot(inverse * x);
-  };
-  // Newton on φ(ν) = 1/|x| − 1/bound, φ' = −½ |x|⁻³ d|x|²/dν: nearly linear and concave, so from
-  // below the root it approaches monotonically, and from above it lands below it. Started from
-  // the ν of the patch's last projection (the sweeps change it little), else from 0 (x = t).
-  double nu = nu_guess > 0 && std::isfinite(nu_guess) ? nu_guess : 0.0, length = 0, slope = 0;
-  Vector3 x;
-  at(nu, x, length, slope);
-  for (int k = 0; k < 50; ++k) {
-    const double phi = 1 / length - 1 / bound, dphi = -0.5 * slope / (length * length * length);
-    if (std::abs(phi) * bound <= 1e-12 || !(dphi > 0) || !std::isfinite(dphi)) break;
-    const double next = nu - phi / dphi;
-    nu = next > 0 ? next : nu * 1e-3;  // (ν ≥ 0: below 0 the ball holds x(0) = t already)
-    at(nu, x, length, slope);
-  }
-  nu_guess = nu;
-  if (!(length <= bound)) x *= bound / length;  // the last rounding (or a direction without response)
-  if (dim == 2) x[2] = 0;
-  return x;
+// Coulomb's friction update (solver_internal.h): the impulse that stops the sliding, if within
+// the limit; else the one of least kinetic energy on it.
+Vector3 FrictionUpdate(Patch& p, const Vector3& old, const Vector3& g, const Matrix3& mass, const Matrix3& K,
+                       double bound) {
+  const Vector3 stop = old - mass * g;
+  if (!(stop.norm() > bound)) return stop;
+  return ProjectOntoBall(K, stop, bound, p.rho > 0 ? 3 : 2, p.nu);
 }
 
 // A patch's total normal impulse N, and (when `centre` is given) its centre of pressure

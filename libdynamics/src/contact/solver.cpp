@@ -77,33 +77,23 @@ class IslandState {
 
 // Symmetric sweeps from the ground up, then back down (they carry a load through a stack in both
 // directions), until the stopping rule holds. Returns the sweeps used, or max_iterations.
+// With `block` (jointed bodies, block_solve.cpp): the sweeps while they converge fast (the warm
+// start is often nearly the answer, and a sweep costs less than forming the block), then the
+// block solve once a sweep does not cut the change of the one before by kSlower (the contacts of
+// a tree couple through its joints, and the sweeps crawl).
 int Sweeps(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order,
-           std::vector<Velocities>& vel, const BodyResponse& bodies, const SolveSettings& settings) {
-  for (int iteration = 0; iteration < settings.max_iterations; ++iteration) {
-    Progress progress;
-    Sweep(rows, patches, order, iteration % 2 == 0, !settings.exact, vel, bodies, progress);
-    if (progress.Done(settings)) return iteration + 1;
-  }
-  return settings.max_iterations;
-}
-
-// Jointed bodies (block_solve.cpp): sweeps while they converge fast (the warm start is often
-// nearly the answer, and a sweep costs less than forming the block), then the block solve once a
-// sweep does not cut the change of the one before by kSlower (the contacts of a tree couple
-// through its joints, and the sweeps crawl).
-int SweepsThenBlock(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order,
-                    std::vector<Velocities>& vel, const BodyResponse& bodies, const SolveSettings& settings,
-                    BlockScratch& block) {
+           std::vector<Velocities>& vel, const BodyResponse& bodies, const SolveSettings& settings,
+           BlockScratch* block = nullptr) {
   constexpr double kSlower = 0.1;
   double before = std::numeric_limits<double>::infinity();
   for (int iteration = 0; iteration < settings.max_iterations; ++iteration) {
     Progress progress;
-    Sweep(rows, patches, order, iteration % 2 == 0, true, vel, bodies, progress);
+    Sweep(rows, patches, order, iteration % 2 == 0, !settings.exact, vel, bodies, progress);
     if (progress.Done(settings)) return iteration + 1;
-    if (iteration + 1 < settings.max_iterations && progress.speed > kSlower * before) {
+    if (block != nullptr && iteration + 1 < settings.max_iterations && progress.speed > kSlower * before) {
       SolveSettings rest = settings;
       rest.max_iterations -= iteration + 1;
-      return iteration + 1 + SolveBlock(rows, patches, order, vel, bodies, rest, block);
+      return iteration + 1 + SolveBlock(rows, patches, order, vel, bodies, rest, *block);
     }
     before = progress.speed;
   }
@@ -145,13 +135,9 @@ int SolveIsland(std::vector<Row>& rows, std::vector<Patch>& patches, const std::
   IslandState state(patches, order, bodies.coupling, work);
   const double kicked = state.Energy(vel, bodies);
   state.Save(rows, patches, order, vel);  // the kicked velocities, the warm start's impulses
-  const bool block = BlockSolvable(patches, order, bodies);
-  auto solve = [&] {
-    WarmStart(rows, patches, order, vel);
-    return block ? SweepsThenBlock(rows, patches, order, vel, bodies, settings, work.block)
-                 : Sweeps(rows, patches, order, vel, bodies, settings);
-  };
-  int last = solve(), sweeps = last;
+  BlockScratch* const block = BlockSolvable(patches, order, bodies) ? &work.block : nullptr;
+  WarmStart(rows, patches, order, vel);
+  int last = Sweeps(rows, patches, order, vel, bodies, settings, block), sweeps = last;
   if (state.Energy(vel, bodies) > kicked) {
     state.Restore(rows, patches, order, vel);
     for (const int k : order) {
@@ -159,7 +145,7 @@ int SolveIsland(std::vector<Row>& rows, std::vector<Patch>& patches, const std::
       p.lambda.setZero();
       for (int i = p.first; i < p.first + p.count; ++i) rows[static_cast<std::size_t>(i)].lambda_n = 0;
     }
-    last = solve();
+    last = Sweeps(rows, patches, order, vel, bodies, settings, block);
     sweeps += last;
   }
   if (last < settings.max_iterations) return sweeps;

@@ -66,10 +66,12 @@ void SetPatchJacobian(Patch& p, const BodyResponse& bodies);
 void SetNormalBlock(Patch& p, const std::vector<Row>& rows);
 
 // kernels.cpp
-/// The impulse nearest `target` in the metric of the response K within the ball |λ| ≤ bound,
-/// over the first `dim` components (Coulomb's maximal dissipation); nu_guess: the multiplier of
-/// the last projection (updated).
-Vector3 ProjectOntoBall(const Matrix3& K, const Vector3& target, double bound, int dim, double& nu_guess);
+/// Coulomb's friction update of patch p (every sweep's): from its impulse `old` and its sliding
+/// velocity g = (v·t1, v·t2, ρ ω·n), the impulse that stops the sliding (old − mass g) if it lies
+/// within `bound` = μ N; else the one of least kinetic energy on that limit in the metric of the
+/// response K (mass = K⁻¹; p.nu keeps the projection's multiplier for the next update).
+Vector3 FrictionUpdate(Patch& p, const Vector3& old, const Vector3& g, const Matrix3& mass, const Matrix3& K,
+                       double bound);
 /// A patch's total normal impulse N, and (when `centre` is given) its centre of pressure.
 double Load(const Patch& p, const std::vector<Row>& rows, Vector3* centre = nullptr);
 /// A sweep over the patches in `order` (forward or backward): each patch's normals (as one block
