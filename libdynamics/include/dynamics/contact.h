@@ -228,6 +228,14 @@ struct ContactOptions {
   /// and child (which meet at the joint). Off by default, as in URDF simulators (robot files
   /// often let links' collision shapes overlap where they never touch in motion).
   bool self_collision = false;
+  /// Contact points kept from step to step: a pair whose shapes have moved relative to each
+  /// other by at most `reuse_distance` times their two bounding radii summed (every point of the
+  /// second, in the first's frame) since its points were found takes those points again, carried
+  /// with the first shape, each separation brought up to date by that motion along its normal,
+  /// instead of running the narrow phase. A kept point is so within that distance of where the
+  /// narrow phase would put it (for 5 cm boxes: 10⁻¹¹ m). 0: the narrow phase every
+  /// step; never in exact mode.
+  double reuse_distance = 1e-10;
 };
 
 /// What the last step's contact did (diagnostics).
@@ -243,6 +251,7 @@ struct ContactStats {
   /// quarter of a mesh field's cell; half a percent of a primitive's bounding radius): kinetic
   /// energy unchanged; the potential energy may rise by the weight times this much.
   double pushed = 0;
+  int reused = 0;  ///< pairs whose points were kept from an earlier step (ContactOptions::reuse_distance)
 };
 
 /// One contact point of the last step, as the outputs report it (ContactWorld::Contacts).

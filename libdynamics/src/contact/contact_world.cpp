@@ -82,6 +82,7 @@ ContactWorld::ContactWorld(World world, ContactOptions options)
           "restitution_threshold must be non-negative and finite");
   require(o.sleep_speed > 0 && std::isfinite(o.sleep_speed), "sleep_speed must be positive and finite");
   require(o.sleep_time > 0 && std::isfinite(o.sleep_time), "sleep_time must be positive and finite");
+  require(o.reuse_distance >= 0 && o.reuse_distance <= 1e-3, "reuse_distance must be 0 (off) to 10^-3");
 }
 ContactWorld::~ContactWorld() = default;
 ContactWorld::ContactWorld(ContactWorld&&) noexcept = default;
@@ -272,7 +273,7 @@ StepStatus ContactWorld::Step(double h) {
     failure.message = "the joints' mass matrix is not positive definite at t = " + std::to_string(world_.time());
     return failure;
   }
-  if (const StepStatus detected = contact::Detect(in, m, m, stats_); !detected.ok) return detected;
+  if (const StepStatus detected = contact::Detect(in, m, m, m, stats_); !detected.ok) return detected;
   if (m.rows.empty()) {  // free flight: the world's own integrator, bit for bit
     contact::Forget(m);
     return world_.Step(h);

@@ -557,7 +557,7 @@ void CollidePairs(const std::vector<PairQuery>& pairs, Workers* workers,
   const std::size_t groups = (pairs.size() + kGroup - 1) / kGroup;
   auto collide = [&](std::size_t g) {
     for (std::size_t c = g * kGroup; c < std::min(pairs.size(), (g + 1) * kGroup); ++c) {
-      Collide(*pairs[c].a, *pairs[c].b, pairs[c].margin, found[c]);
+      if (pairs[c].a != nullptr) Collide(*pairs[c].a, *pairs[c].b, pairs[c].margin, found[c]);
     }
   };
   if (workers != nullptr && groups > 1) {

@@ -86,8 +86,8 @@ struct PairQuery {
   double margin = 0;
 };
 class Workers;
-/// Collide on each pair: found[c] gets pair c's points. Pairs run in groups of 16 on the workers (null: on the caller),
-/// each on its own, so the result does not depend on the thread count.
+/// Collide on each pair: found[c] gets pair c's points (none for a pair whose `a` is null). Pairs run in groups of 16
+/// on the workers (null: on the caller), each on its own, so the result does not depend on the thread count.
 void CollidePairs(const std::vector<PairQuery>& pairs, Workers* workers, std::vector<std::vector<ContactPoint>>& found);
 
 }  // namespace dynamics::contact

@@ -342,42 +342,64 @@ const std::vector<Candidate>& CandidatePairs(const StepInput& in, const Model& m
 }
 
 // The narrow phase: each pair on its own, then the rows in the pairs' order, so the step does not
-// depend on the thread count.
-StepStatus PairRows(const StepInput& in, const Model& model, const std::vector<Candidate>& candidates, Scratch& s,
-                    ContactStats& stats) {
+// depend on the thread count. A pair that has barely moved since its points were found takes
+// them again (ManifoldCache; ContactOptions::reuse_distance); the others run the narrow phase
+// with a margin wide enough for their points to serve the next steps, and keep them.
+StepStatus PairRows(const StepInput& in, const Model& model, const std::vector<Candidate>& candidates, State& state,
+                    Scratch& s, ContactStats& stats) {
   const std::vector<BroadStatic>& statics = model.static_broad;
-  // The polytope of each body in a pair placed once for the step (not of a body alone on the
-  // ground: it needs none, and a hull of hundreds of faces costs a drop several µs a step).
-  for (const Candidate& c : candidates) {
-    for (const int k : {c.a, c.b}) {
-      if (k < 0) continue;
-      Posed& posed = s.posed[static_cast<std::size_t>(k)];
-      if (posed.polytope == nullptr || posed.placed != nullptr) continue;
-      PlacePolytope(*posed.polytope, posed, s.placed[static_cast<std::size_t>(k)]);
-      posed.placed = &s.placed[static_cast<std::size_t>(k)];
-    }
-  }
+  const double reuse = in.options.exact ? 0.0 : in.options.reuse_distance;
+  ManifoldCache& kept = state.manifolds;
+  auto radius = [&](int k) {
+    return k >= 0 ? model.radii[static_cast<std::size_t>(k)] : statics[static_cast<std::size_t>(-1 - k)].radius;
+  };
+  auto posed = [&](int k) -> const Posed& {
+    return k >= 0 ? s.posed[static_cast<std::size_t>(k)] : statics[static_cast<std::size_t>(-1 - k)].posed;
+  };
+  // (Both arrays indexed by candidate, as the pairs are: their points' arrays keep their sizes.)
+  s.found.resize(candidates.size());
   std::vector<PairQuery>& queries = s.queries;
   queries.clear();
-  for (const Candidate& c : candidates) {
-    queries.push_back(
-        {&s.posed[static_cast<std::size_t>(c.a)],
-         c.b >= 0 ? &s.posed[static_cast<std::size_t>(c.b)] : &statics[static_cast<std::size_t>(-1 - c.b)].posed,
-         c.margin});
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    const int a = candidates[c].a, b = candidates[c].b;
+    const double gate = reuse * (radius(a) + radius(b)), margin = candidates[c].margin;
+    s.found[c].clear();
+    if (gate > 0 && kept.Reuse(a, b, posed(a), posed(b), radius(b), margin, gate, s.found[c])) {
+      kept.KeepReused(a, b);
+      ++stats.reused;
+      queries.push_back({});  // (none: CollidePairs passes it by)
+      continue;
+    }
+    // The polytope of each body in a pair placed once for the step (not of a body alone on the
+    // ground: it needs none, and a hull of hundreds of faces costs a drop several µs a step).
+    for (const int k : {a, b}) {
+      if (k < 0) continue;
+      Posed& p = s.posed[static_cast<std::size_t>(k)];
+      if (p.polytope == nullptr || p.placed != nullptr) continue;
+      PlacePolytope(*p.polytope, p, s.placed[static_cast<std::size_t>(k)]);
+      p.placed = &s.placed[static_cast<std::size_t>(k)];
+    }
+    queries.push_back({&posed(a), &posed(b), gate > 0 ? ManifoldCache::WideMargin(margin, gate) : margin});
   }
-  CollidePairs(queries, s.WorkersFor(in.threads), s.found);
+  CollidePairs(queries, s.WorkersFor(in.threads), s.fresh);
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    if (queries[c].a == nullptr) continue;
+    if (reuse > 0)
+      kept.Keep(candidates[c].a, candidates[c].b, *queries[c].a, *queries[c].b, queries[c].margin, s.fresh[c]);
+    for (const ContactPoint& p : s.fresh[c]) {
+      if (p.separation < candidates[c].margin) s.found[c].push_back(p);
+    }
+  }
+  kept.Flip();
   const RowContext row_context{in.bodies, s.vel, s.before_kick, in.h, s.bounce_threshold};
   for (std::size_t c = 0; c < candidates.size(); ++c) {
     const int a = candidates[c].a, b = candidates[c].b;
     const auto ka = static_cast<std::size_t>(a);
     const Material& mb = b >= 0 ? model.colliders[static_cast<std::size_t>(b)].material
                                 : model.statics[static_cast<std::size_t>(-1 - b)].collider.material;
-    AppendRows(
-        row_context, s.found[c], a, b >= 0 ? b : -1, b >= 0 ? b : KeyOfStatic(-1 - b),
-        MaterialsOf(model, a, b >= 0 ? b : -1, model.colliders[ka].material, mb),
-        Slop(*s.posed[ka].shape, model.radii[ka], queries[c].b->shape,
-             b >= 0 ? model.radii[static_cast<std::size_t>(b)] : statics[static_cast<std::size_t>(-1 - b)].radius),
-        s.rows, stats);
+    AppendRows(row_context, s.found[c], a, b >= 0 ? b : -1, b >= 0 ? b : KeyOfStatic(-1 - b),
+               MaterialsOf(model, a, b >= 0 ? b : -1, model.colliders[ka].material, mb),
+               Slop(*s.posed[ka].shape, model.radii[ka], posed(b).shape, radius(b)), s.rows, stats);
   }
   return {};
 }
@@ -406,12 +428,12 @@ void JointedRows(const StepInput& in, Scratch& s) {
 
 }  // namespace
 
-StepStatus Detect(const StepInput& in, const Model& model, Scratch& s, ContactStats& stats) {
+StepStatus Detect(const StepInput& in, const Model& model, State& state, Scratch& s, ContactStats& stats) {
   PoseBodies(in, model, s);
   s.rows.clear();
   s.patches.clear();
   GroundRows(in, model, s, stats);
-  const StepStatus status = PairRows(in, model, CandidatePairs(in, model, s), s, stats);
+  const StepStatus status = PairRows(in, model, CandidatePairs(in, model, s), state, s, stats);
   if (!status.ok) return status;
   if (in.jointed != nullptr) JointedRows(in, s);
   stats.contacts = static_cast<int>(s.rows.size());

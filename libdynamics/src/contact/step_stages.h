@@ -16,6 +16,7 @@
 #include "broad_phase.h"
 #include "dynamics/contact.h"
 #include "islands.h"
+#include "manifold_cache.h"
 #include "massprops/parallel.h"
 #include "narrow_phase.h"
 #include "polytope.h"
@@ -47,8 +48,9 @@ struct Model {
 
 /// What one step leaves for the next.
 struct State {
-  SleepState sleep;    // ContactOptions::sleeping
-  ContactCache cache;  // the last step's impulses: the warm start of the next
+  SleepState sleep;         // ContactOptions::sleeping
+  ContactCache cache;       // the last step's impulses: the warm start of the next
+  ManifoldCache manifolds;  // pairs' contact points, for the steps that follow (reuse_distance)
 };
 
 /// A step's working memory (kept between steps for its allocations); rows and patches stay
@@ -67,6 +69,7 @@ struct Scratch {
   std::unique_ptr<Workers> workers;              // kept between steps; null: one thread
   internal::StepScratch step_scratch;            // the forces' wrenches
   std::vector<std::vector<ContactPoint>> found;  // each candidate pair's points
+  std::vector<std::vector<ContactPoint>> fresh;  // the narrow phase's (a kept pair's: none)
   Coupling coupling;                             // an articulated world's bodies (a step's)
   std::vector<internal::Vector6> kicked;         // their (v, ω) after the kick
   // The stages' working arrays, so that a step like the one before allocates nothing.
@@ -110,7 +113,7 @@ bool Kick(const StepInput& in, Scratch& s);
 /// in this step — against the grounds, then pair by pair (the narrow phase on the workers, the
 /// rows in the pairs' order: the same bits on any thread count); a jointed world's rows that no
 /// motion of the trees can serve are dropped. Fails naming a pair of kinds with no routine.
-StepStatus Detect(const StepInput& in, const Model& model, Scratch& s, ContactStats& stats);
+StepStatus Detect(const StepInput& in, const Model& model, State& state, Scratch& s, ContactStats& stats);
 
 /// No contact this step: the warm start and the sleep are forgotten.
 void Forget(State& state);

@@ -469,6 +469,8 @@ void ReadContact(Fields& f, const std::string& file, Scene& scene) {
     scene.contact.sleep_speed = o.Number("sleep_speed", scene.contact.sleep_speed, "positive");
     scene.contact.sleep_time = o.Number("sleep_time", scene.contact.sleep_time, "positive");
     scene.contact.self_collision = o.Bool("self_collision", false);
+    scene.contact.reuse_distance = o.Number("reuse_distance", scene.contact.reuse_distance, "non-negative");
+    if (scene.contact.reuse_distance > 1e-3) o.Fail("reuse_distance", "must be at most 10^-3 (0: off)");
     o.Done();
   }
 }
