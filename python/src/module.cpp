@@ -845,9 +845,11 @@ void BindContactWorld(py::module_& m) {
             out["max_penetration"] = s.max_penetration;
             out["dissipated"] = s.dissipated;
             out["sleeping"] = s.sleeping;
+            out["reused"] = s.reused;
             return out;
           },
-          "The last step's contact statistics: contacts, iterations, max_penetration, dissipated, sleeping");
+          "The last step's contact statistics: contacts, iterations, max_penetration, dissipated, sleeping, reused "
+          "(pairs whose contact points were kept from an earlier step)");
 }
 
 void BindDynamics(py::module_& m) {

@@ -173,6 +173,7 @@ void RefuseUnsupportedPairs(const contact::Model& m, const Shape& s) {
 }  // namespace
 
 int ContactWorld::AddBody(const RigidBody& body, Collider collider) {
+  impl_->manifolds.Clear();  // (kept points name the colliders' part materials, which may move)
   PrepareShape(collider, world_.num_threads());
   contact::ValidateShape(collider.shape);
   ValidateMaterials(collider);
@@ -189,6 +190,7 @@ int ContactWorld::AddBody(const RigidBody& body, Collider collider) {
 }
 
 int ContactWorld::AddBody(const RigidBody& body) {
+  impl_->manifolds.Clear();  // (kept points name the colliders' part materials, which may move)
   const int index = world_.AddBody(body);
   impl_->colliders.push_back(Collider{shape::Sphere{1}});
   impl_->radii.push_back(1.0);
@@ -200,6 +202,7 @@ int ContactWorld::AddBody(const RigidBody& body) {
 }
 
 void ContactWorld::AddStatic(Collider collider, const Matrix3& rotation, const Vector3& translation) {
+  impl_->manifolds.Clear();  // (kept points name the colliders' part materials, which may move)
   PrepareShape(collider, world_.num_threads());
   contact::ValidateShape(collider.shape);
   ValidateMaterials(collider);
