@@ -232,9 +232,10 @@ struct ContactOptions {
   /// other by at most `reuse_distance` times their two bounding radii summed (every point of the
   /// second, in the first's frame) since its points were found takes those points again, carried
   /// with the first shape, each separation brought up to date by that motion along its normal,
-  /// instead of running the narrow phase. A kept point is so within that distance of where the
-  /// narrow phase would put it (for 5 cm boxes: 10⁻¹¹ m). 0: the narrow phase every
-  /// step; never in exact mode.
+  /// instead of running the narrow phase: a corner is where the narrow phase would put it to
+  /// within that distance (for 5 cm boxes, 10⁻¹¹ m), its separation to rounding. Not for meshes
+  /// (their points are samples of a distance field, chosen afresh every step). 0: the narrow
+  /// phase every step; never in exact mode.
   double reuse_distance = 1e-10;
 };
 

@@ -34,8 +34,11 @@ double EdgeMoment(const Eigen::Vector2d& P, const Eigen::Vector2d& Q) {
   return std::copysign(F(Q.dot(u)) - F(P.dot(u)), cross);
 }
 
-// The anchor (world) and torsion radius of a patch's points (rows warm-started).
-void Outline(const std::vector<Row>& rows, const Patch& p, Vector3& anchor, double& rho, SolveScratch& scratch) {
+// The anchor (world) and torsion radius of a patch's points (rows warm-started). `rho_known`:
+// the points are those of a cached patch, carried rigidly, whose radius `rho` already holds (the
+// outline is needed then only for an anchor without load).
+void Outline(const std::vector<Row>& rows, const Patch& p, Vector3& anchor, double& rho, bool rho_known,
+             SolveScratch& scratch) {
   std::vector<Eigen::Vector2d>& q = scratch.points;
   q.clear();
   double height = 0, extent = 0, load = 0;
@@ -48,6 +51,11 @@ void Outline(const std::vector<Row>& rows, const Patch& p, Vector3& anchor, doub
     load += r.lambda_n;
   }
   height /= p.count;
+  if (rho_known && load > 0) {
+    const Eigen::Vector2d c2 = pressure / load;
+    anchor = p.t1 * c2.x() + p.t2 * c2.y() + p.n * height;
+    return;
+  }
   // The convex outline (Andrew's monotone chain), counter-clockwise.
   std::sort(q.begin(), q.end(),
             [](const auto& x, const auto& y) { return x.x() < y.x() || (x.x() == y.x() && x.y() < y.y()); });
@@ -169,13 +177,6 @@ void PreparePatches(std::vector<Row>& rows, const ContactCache& cache, const std
     // Each patch's anchor, effective masses, warm start and friction state.
     for (std::size_t k = patches.size() - leaders.size(); k < patches.size(); ++k) {
       Patch& p = patches[k];
-      Vector3& anchor = p.anchor;
-      Outline(rows, p, anchor, p.rho, scratch);
-      const Row& r0 = rows[static_cast<std::size_t>(p.first)];
-      p.ra = anchor - (r0.point - r0.ra);
-      p.rb = p.b >= 0 ? Vector3(anchor - (r0.point - r0.rb)) : Vector3::Zero();
-      SetPatchJacobian(p, bodies);
-      SetNormalBlock(p, rows);
       // The patch it was last step: the cached patch of one of its rows (by the rows' feature
       // keys, as a contact is known step after step); none: a new patch.
       std::size_t best = used.size();
@@ -193,6 +194,21 @@ void PreparePatches(std::vector<Row>& rows, const ContactCache& cache, const std
           if (!used[c] && dot >= same && (best == used.size() || dot > found.first[best].patch.n.dot(p.n))) best = c;
         }
       }
+      // Its points kept from the step before, and all of them that patch's: the same outline.
+      bool same_outline = best < used.size() && found.first[best].patch.rows == p.count;
+      for (int i = p.first; i < p.first + p.count && same_outline; ++i) {
+        const Row& r = rows[static_cast<std::size_t>(i)];
+        const CachedRow* cached = cache.FindRow(r.key);
+        same_outline = r.kept && cached != nullptr && cached->patch == static_cast<int>(best);
+      }
+      if (same_outline) p.rho = found.first[best].patch.rho;
+      Vector3& anchor = p.anchor;
+      Outline(rows, p, anchor, p.rho, same_outline, scratch);
+      const Row& r0 = rows[static_cast<std::size_t>(p.first)];
+      p.ra = anchor - (r0.point - r0.ra);
+      p.rb = p.b >= 0 ? Vector3(anchor - (r0.point - r0.rb)) : Vector3::Zero();
+      SetPatchJacobian(p, bodies);
+      SetNormalBlock(p, rows);
       const Vector3 g = PatchVelocity(vel, p);
       bool stuck;
       if (best < used.size()) {
@@ -246,7 +262,8 @@ void StoreImpulses(const std::vector<Row>& rows, const std::vector<Patch>& patch
     if (index[k] >= 0) {
       // On the limit: it slides (or just broke away); inside: it holds.
       const bool stuck = p.lambda.norm() < p.mu * load[k] * (1 - 1e-9);
-      cache.AddPatch(pair_of(p), index[k], {p.n, p.t1 * p.lambda[0] + p.t2 * p.lambda[1], p.rho * p.lambda[2], stuck});
+      cache.AddPatch(pair_of(p), index[k],
+                     {p.n, p.t1 * p.lambda[0] + p.t2 * p.lambda[1], p.rho * p.lambda[2], stuck, p.rho, p.count});
     }
     for (int i = p.first; i < p.first + p.count; ++i) {
       const Row& r = rows[static_cast<std::size_t>(i)];

@@ -76,6 +76,9 @@ struct Row {
   // Overlap beyond this is pushed out after the step (< 0: never).
   double slop = -1;
   double push = 0;  // its accumulated pseudo-impulse
+  // Its pair's points were kept from an earlier step (ManifoldCache): their layout has not
+  // changed, and its patch's torsion radius is the one cached.
+  bool kept = false;
   // Jointed bodies (else null): impulses act through the coupling, mass_n is
   // 1 / Coupling::NormalResponse (Ka and Kb zero).
   const Coupling* coupling = nullptr;
@@ -136,6 +139,8 @@ struct CachedPatch {
   Vector3 force = Vector3::Zero();  // the friction impulse (world)
   double torque = 0;                // its moment about n
   bool stuck = false;               // its friction was inside the cone: it holds with μs next step
+  double rho = 0;                   // its torsion radius
+  int rows = 0;                     // its points
 };
 /// What the solve remembers of a row: its normal impulse and its patch (an index into its
 /// pair's cached patches; -1: its patch was not touching).
