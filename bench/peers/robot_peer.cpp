@@ -12,7 +12,7 @@
 //   robot_peer --bench   steps per second (h = 1 ms, medians of three runs) of the quadruped
 //                        settling on the ground and of a 7-DOF arm draped over a table, ours
 //                        against MuJoCo's Euler
-//   robot_peer --ours quadruped|arm STEPS
+//   robot_peer --ours quadruped|arm STEPS [--reuse-distance D]
 //                        ours alone (for a profiler): steps per second and sweeps a step
 //   robot_peer --bench --file FILE.xml
 //                        any MJCF file as it is (its floor, its placement), limp: steps per second
@@ -60,6 +60,7 @@ struct Setup {
   std::map<std::string, double> positions;  ///< initial joint positions
   bool file_floor = false;                  ///< the file brings its floor and places the robot
   std::string keyframe;                     ///< the file's keyframe to start from ("": none)
+  double reuse_distance = -1;               ///< ours: ContactOptions::reuse_distance (< 0: the default)
 };
 
 std::string Slurp(const std::string& path) {
@@ -149,7 +150,9 @@ struct Ours {
   explicit Ours(const Setup& s) {
     dynamics::World w(dynamics::Integrator::kImplicitMidpoint);
     w.AddForce(dynamics::Gravity(Vector3(0, 0, -9.81)));
-    world = dynamics::ContactWorld(std::move(w));
+    dynamics::ContactOptions contact;
+    if (s.reuse_distance >= 0) contact.reuse_distance = s.reuse_distance;
+    world = dynamics::ContactWorld(std::move(w), contact);
     model = massprops::ReadRobotModel(s.path);
     if (s.file_floor) {
       for (const massprops::RobotGround& g : model.grounds) {
@@ -319,10 +322,12 @@ int BenchFile(const std::string& path, double seconds) {
   return 0;
 }
 
-// Ours alone, for a profiler: the quadruped's or the arm's `steps` steps, three times.
-int OursOnly(const std::string& model, int steps) {
+// Ours alone, for a profiler: the quadruped's or the arm's `steps` steps, three times
+// (`reuse_distance` ≥ 0: ContactOptions::reuse_distance, for a before and after in one build).
+int OursOnly(const std::string& model, int steps, double reuse_distance) {
   if (model != "quadruped" && model != "arm") throw std::runtime_error("--ours: quadruped or arm");
-  const Setup s = model == "quadruped" ? Quadruped() : Arm();
+  Setup s = model == "quadruped" ? Quadruped() : Arm();
+  s.reuse_distance = reuse_distance;
   const double rate = StepsPerSecond<Ours>(s, steps);
   std::printf("%s: %.0f steps/s (ours), %.1f sweeps a step\n", model.c_str(), rate, MeanSweeps(s, steps));
   for (const std::string& p : {s.path, s.mujoco_path}) {
@@ -405,15 +410,18 @@ int main(int argc, char** argv) {
   try {
     if (mode == "--check") return Check();
     if (mode == "--bench" && argc == 2) return Bench();
-    if (mode == "--ours" && argc == 4) return OursOnly(argv[2], std::stoi(argv[3]));
+    if (mode == "--ours" && argc == 4) return OursOnly(argv[2], std::stoi(argv[3]), -1);
+    if (mode == "--ours" && argc == 6 && std::string(argv[4]) == "--reuse-distance") {
+      return OursOnly(argv[2], std::stoi(argv[3]), std::stod(argv[5]));
+    }
     if (mode == "--bench" && argc == 4 && std::string(argv[2]) == "--file") return BenchFile(argv[3], 3.0);
     if (mode == "--joints" && argc == 6) return Joints(argv[2], argv[3], std::stod(argv[4]), std::stod(argv[5]));
   } catch (const std::exception& e) {
     std::cerr << "robot_peer: " << e.what() << "\n";
     return 1;
   }
-  std::cerr << "usage: robot_peer --check | --bench [--file FILE.xml] | --ours quadruped|arm STEPS | --joints FILE.xml "
-               "KEYFRAME|'' SECONDS "
-               "TOLERANCE\n";
+  std::cerr << "usage: robot_peer --check | --bench [--file FILE.xml]\n"
+               "     | --ours quadruped|arm STEPS [--reuse-distance D]\n"
+               "     | --joints FILE.xml KEYFRAME|'' SECONDS TOLERANCE\n";
   return 2;
 }
