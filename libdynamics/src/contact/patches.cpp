@@ -198,8 +198,8 @@ void PreparePatches(std::vector<Row>& rows, const ContactCache& cache, const std
       bool same_outline = best < used.size() && found.first[best].patch.rows == p.count;
       for (int i = p.first; i < p.first + p.count && same_outline; ++i) {
         const Row& r = rows[static_cast<std::size_t>(i)];
-        const CachedRow* cached = cache.FindRow(r.key);
-        same_outline = r.kept && cached != nullptr && cached->patch == static_cast<int>(best);
+        const CachedRow* cached = r.kept ? cache.FindRow(r.key) : nullptr;
+        same_outline = cached != nullptr && cached->patch == static_cast<int>(best);
       }
       if (same_outline) p.rho = found.first[best].patch.rho;
       Vector3& anchor = p.anchor;
