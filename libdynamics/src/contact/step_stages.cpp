@@ -373,15 +373,28 @@ StepStatus PairRows(const StepInput& in, const Model& model, const std::vector<C
     return k >= 0 ? s.posed[static_cast<std::size_t>(k)] : statics[static_cast<std::size_t>(-1 - k)].posed;
   };
   // (Both arrays indexed by candidate, as the pairs are: their points' arrays keep their sizes.)
+  // A pair's points are kept only while it moved, over the last step, by at most a hundred gates
+  // (the velocities before this step's kick: gravity's kick alone is 10 µm a step): a faster pair
+  // would pass the gate in a step or two, and keeping its points would only cost (a falling pile:
+  // 5 %).
+  constexpr double kKeptMotion = 100;
+  auto motion = [&](int a, int b) {
+    const Velocities& va = s.before_kick[static_cast<std::size_t>(a)];
+    const Velocities none{Vector3::Zero(), Vector3::Zero()};
+    const Velocities& vb = b >= 0 ? s.before_kick[static_cast<std::size_t>(b)] : none;
+    return in.h * ((va.v - vb.v).norm() + (va.w.norm() + vb.w.norm()) * (radius(a) + radius(b)));
+  };
   s.found.resize(candidates.size());
+  s.keep.assign(candidates.size(), 0);
   std::vector<PairQuery>& queries = s.queries;
   queries.clear();
   for (std::size_t c = 0; c < candidates.size(); ++c) {
     const int a = candidates[c].a, b = candidates[c].b;
-    const bool may_keep = reuse > 0 && MayKeepPoints(*posed(a).shape) && MayKeepPoints(*posed(b).shape);
-    const double gate = may_keep ? reuse * (radius(a) + radius(b)) : 0.0, margin = candidates[c].margin;
+    const double margin = candidates[c].margin, gate = reuse * (radius(a) + radius(b));
+    s.keep[c] = gate > 0 && motion(a, b) <= kKeptMotion * gate && MayKeepPoints(*posed(a).shape) &&
+                MayKeepPoints(*posed(b).shape);
     s.found[c].clear();
-    if (gate > 0 && kept.Reuse(a, b, posed(a), posed(b), radius(b), margin, gate, s.found[c])) {
+    if (s.keep[c] && kept.Reuse(a, b, posed(a), posed(b), radius(b), margin, gate, s.found[c])) {
       kept.KeepReused(a, b);
       ++stats.reused;
       queries.push_back({});  // (none: CollidePairs passes it by)
@@ -396,12 +409,12 @@ StepStatus PairRows(const StepInput& in, const Model& model, const std::vector<C
       PlacePolytope(*p.polytope, p, s.placed[static_cast<std::size_t>(k)]);
       p.placed = &s.placed[static_cast<std::size_t>(k)];
     }
-    queries.push_back({&posed(a), &posed(b), gate > 0 ? ManifoldCache::WideMargin(margin, gate) : margin});
+    queries.push_back({&posed(a), &posed(b), s.keep[c] ? ManifoldCache::WideMargin(margin, gate) : margin});
   }
   CollidePairs(queries, s.WorkersFor(in.threads), s.fresh);
   for (std::size_t c = 0; c < candidates.size(); ++c) {
     if (queries[c].a == nullptr) continue;
-    if (reuse > 0 && MayKeepPoints(*queries[c].a->shape) && MayKeepPoints(*queries[c].b->shape)) {
+    if (s.keep[c]) {
       kept.Keep(candidates[c].a, candidates[c].b, *queries[c].a, *queries[c].b, queries[c].margin, s.fresh[c]);
     }
     for (const ContactPoint& p : s.fresh[c]) {

@@ -70,6 +70,7 @@ struct Scratch {
   internal::StepScratch step_scratch;            // the forces' wrenches
   std::vector<std::vector<ContactPoint>> found;  // each candidate pair's points
   std::vector<std::vector<ContactPoint>> fresh;  // the narrow phase's (a kept pair's: none)
+  std::vector<char> keep;                        // each candidate's points may be kept
   Coupling coupling;                             // an articulated world's bodies (a step's)
   std::vector<internal::Vector6> kicked;         // their (v, ω) after the kick
   // The stages' working arrays, so that a step like the one before allocates nothing.
