@@ -106,14 +106,14 @@ struct PairMaterials {
 };
 
 void AppendRows(const RowContext& c, const std::vector<contact::ContactPoint>& points, int a, int b, int key_b,
-                const PairMaterials& materials, double slop, bool kept, std::vector<contact::Row>& rows,
+                const PairMaterials& materials, double slop, bool points_kept, std::vector<contact::Row>& rows,
                 ContactStats& stats) {
   Material scratch;
   for (const contact::ContactPoint& p : points) {
     const Material& mat = materials.At(p, scratch);
     contact::Row r;
     r.slop = slop;
-    r.kept = kept;
+    r.kept = points_kept;
     r.a = a;
     r.b = b;
     r.n = p.normal;
@@ -372,7 +372,6 @@ StepStatus PairRows(const StepInput& in, const Model& model, const std::vector<C
   auto posed = [&](int k) -> const Posed& {
     return k >= 0 ? s.posed[static_cast<std::size_t>(k)] : statics[static_cast<std::size_t>(-1 - k)].posed;
   };
-  // (Both arrays indexed by candidate, as the pairs are: their points' arrays keep their sizes.)
   // A pair's points are kept only while it moved, over the last step, by at most a hundred gates
   // (the velocities before this step's kick: gravity's kick alone is 10 µm a step): a faster pair
   // would pass the gate in a step or two, and keeping its points would only cost (a falling pile:
@@ -384,6 +383,7 @@ StepStatus PairRows(const StepInput& in, const Model& model, const std::vector<C
     const Velocities& vb = b >= 0 ? s.before_kick[static_cast<std::size_t>(b)] : none;
     return in.h * ((va.v - vb.v).norm() + (va.w.norm() + vb.w.norm()) * (radius(a) + radius(b)));
   };
+  // (found and fresh indexed by candidate, as the pairs are: their points' arrays keep their sizes.)
   s.found.resize(candidates.size());
   s.keep.assign(candidates.size(), 0);
   std::vector<PairQuery>& queries = s.queries;
