@@ -119,7 +119,10 @@ TEST(ManifoldCache, RefusedBeyondTheGateOrTheMarginItWasFoundWith) {
   Pair turned = p;  // b turned about its own origin: its farthest corner moves 1.01 gates
   turned.b.R = Turn(Vector3(0, 0, 1.01 * gate / p.radius_b)) * turned.b.R;
   EXPECT_FALSE(cache.Reuse(0, 1, turned.a, turned.b, p.radius_b, margin, gate, out));
-  // A pair that is not a candidate in a step is forgotten at the next.
+  // A pair that is not a candidate in a step is forgotten at the next (the step above reused it).
+  cache.Flip();
+  EXPECT_TRUE(cache.Reuse(0, 1, p.a, p.b, p.radius_b, margin, gate, out));
+  cache.Flip();
   cache.Flip();
   EXPECT_FALSE(cache.Reuse(0, 1, p.a, p.b, p.radius_b, margin, gate, out));
 }

@@ -26,7 +26,7 @@ const KeptManifold* ManifoldCache::Find(int a, int b) const {
 }
 
 bool ManifoldCache::Reuse(int a, int b, const Posed& pa, const Posed& pb, double radius_b, double margin, double gate,
-                          std::vector<ContactPoint>& out) const {
+                          std::vector<ContactPoint>& out) {
   const KeptManifold* m = Find(a, b);
   if (m == nullptr) return false;
   Matrix3 R;
@@ -43,6 +43,10 @@ bool ManifoldCache::Reuse(int a, int b, const Posed& pa, const Posed& pb, double
     if (!(separation < margin)) continue;
     out.push_back({pa.R * k.at_a + pa.t, pa.R * k.normal_a, separation, k.feature, k.material_a, k.material_b});
   }
+  KeptManifold again = *m;  // kept as it was found: the gate stays on the motion since then
+  again.first = static_cast<std::uint32_t>(next_points_.size());
+  next_points_.insert(next_points_.end(), points_.begin() + m->first, points_.begin() + m->first + m->count);
+  next_.push_back(again);
   return true;
 }
 
@@ -67,15 +71,6 @@ void ManifoldCache::Keep(int a, int b, const Posed& pa, const Posed& pb, double 
     k.material_b = p.material_b;
     next_points_.push_back(k);
   }
-  next_.push_back(m);
-}
-
-void ManifoldCache::KeepReused(int a, int b) {
-  const KeptManifold* old = Find(a, b);
-  if (old == nullptr) return;
-  KeptManifold m = *old;
-  m.first = static_cast<std::uint32_t>(next_points_.size());
-  next_points_.insert(next_points_.end(), points_.begin() + old->first, points_.begin() + old->first + old->count);
   next_.push_back(m);
 }
 

@@ -44,14 +44,13 @@ class ManifoldCache {
   /// Pair (a, b)'s kept points, if b has moved by at most `gate` (any point within `radius_b` of
   /// its origin, in a's frame) since they were found, and the wider margin they were found with
   /// still covers `margin` after that motion: appended to `out` in the world, their separations
-  /// brought up to date, those at `margin` or beyond left out. False: the narrow phase must run.
+  /// brought up to date, those at `margin` or beyond left out, and the manifold kept as it was
+  /// found for the next steps. False: the narrow phase must run.
   bool Reuse(int a, int b, const Posed& pa, const Posed& pb, double radius_b, double margin, double gate,
-             std::vector<ContactPoint>& out) const;
+             std::vector<ContactPoint>& out);
   /// Keeps pair (a, b)'s points, found with `wide_margin`, for the next steps (this step's
-  /// manifolds are kept and the others dropped at Flip).
+  /// manifolds, found or reused, are kept and the others dropped at Flip).
   void Keep(int a, int b, const Posed& pa, const Posed& pb, double wide_margin, const std::vector<ContactPoint>& found);
-  /// Keeps a reused pair's manifold as it was found.
-  void KeepReused(int a, int b);
   /// This step's manifolds become the ones kept (pairs no longer candidates are dropped).
   void Flip();
   void Clear();

@@ -395,7 +395,6 @@ StepStatus PairRows(const StepInput& in, const Model& model, const std::vector<C
                 MayKeepPoints(*posed(b).shape);
     s.found[c].clear();
     if (s.keep[c] && kept.Reuse(a, b, posed(a), posed(b), radius(b), margin, gate, s.found[c])) {
-      kept.KeepReused(a, b);
       ++stats.reused;
       queries.push_back({});  // (none: CollidePairs passes it by)
       continue;
