@@ -253,6 +253,9 @@ struct ContactStats {
   /// energy unchanged; the potential energy may rise by the weight times this much.
   double pushed = 0;
   int reused = 0;  ///< pairs whose points were kept from an earlier step (ContactOptions::reuse_distance)
+  /// Threads the largest island's sweeps ran on: 1, or up to the step's threads for an island of
+  /// free bodies with at least 128 patches (the same results as on one).
+  int lanes = 1;
 };
 
 /// One contact point of the last step, as the outputs report it (ContactWorld::Contacts).

@@ -326,17 +326,22 @@ void Sweep(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vecto
   const int n = static_cast<int>(order.size());
   for (int k = 0; k < n; ++k) {
     Patch& p = patches[static_cast<std::size_t>(order[static_cast<std::size_t>(forward ? k : n - 1 - k)])];
-    if (block && n == 1 && UpdatePatchJointly(p, rows, vel, progress)) continue;
-    if (block && UpdateNormalBlock(p, rows, vel, progress)) {
-      UpdateFriction(p, rows, vel, bodies, -1, progress);
-      continue;
-    }
-    for (int j = 0; j < p.count; ++j) {
-      Row& r = rows[static_cast<std::size_t>(forward ? p.first + j : p.first + p.count - 1 - j)];
-      UpdateNormal(r, vel, -1, r.mass_n, progress);
-    }
-    UpdateFriction(p, rows, vel, bodies, -1, progress);
+    SweepPatch(p, rows, forward, block, n == 1, vel, bodies, progress);
   }
+}
+
+void SweepPatch(Patch& p, std::vector<Row>& rows, bool forward, bool block, bool alone, std::vector<Velocities>& vel,
+                const BodyResponse& bodies, Progress& progress) {
+  if (block && alone && UpdatePatchJointly(p, rows, vel, progress)) return;
+  if (block && UpdateNormalBlock(p, rows, vel, progress)) {
+    UpdateFriction(p, rows, vel, bodies, -1, progress);
+    return;
+  }
+  for (int j = 0; j < p.count; ++j) {
+    Row& r = rows[static_cast<std::size_t>(forward ? p.first + j : p.first + p.count - 1 - j)];
+    UpdateNormal(r, vel, -1, r.mass_n, progress);
+  }
+  UpdateFriction(p, rows, vel, bodies, -1, progress);
 }
 
 // Shock propagation (Guendelman, Bridson & Fedkiw 2003): level by level from the ground up, each

@@ -8,6 +8,7 @@
 
 #include "../integrators/integrator.h"
 #include "solver_internal.h"
+#include "sweep_lanes.h"
 #include "workers.h"
 
 namespace dynamics::contact {
@@ -114,7 +115,8 @@ void WarmStart(const std::vector<Row>& rows, const std::vector<Patch>& patches, 
 }
 
 // One island's solve: its patches in `order` (by support level), warm start, sweeps until the
-// stopping rule holds, and shock propagation when they run out. Returns the sweeps.
+// stopping rule holds, and shock propagation when they run out. Returns the sweeps. With `lanes`
+// (planned for this island), its sweeps run on the workers' threads, with the same bits.
 //
 // Exact mode: shock propagation whenever the sweeps run out (rbsim 0.3). By default two guards
 // keep the impulses from adding kinetic energy where the sweeps stop short of convergence: sweeps
@@ -125,10 +127,15 @@ void WarmStart(const std::vector<Row>& rows, const std::vector<Patch>& patches, 
 // add kinetic energy.
 int SolveIsland(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order,
                 std::vector<Velocities>& vel, const BodyResponse& bodies, const std::vector<int>& body_level,
-                const SolveSettings& settings, IslandScratch& work) {
+                const SolveSettings& settings, IslandScratch& work, SweepLanes* lanes = nullptr,
+                Workers* workers = nullptr) {
+  auto sweep = [&](BlockScratch* block) {
+    if (lanes != nullptr && block == nullptr) return lanes->Sweeps(rows, patches, vel, bodies, settings, *workers);
+    return Sweeps(rows, patches, order, vel, bodies, settings, block);
+  };
   if (settings.exact) {
     WarmStart(rows, patches, order, vel);
-    const int sweeps = Sweeps(rows, patches, order, vel, bodies, settings);
+    const int sweeps = sweep(nullptr);
     if (sweeps == settings.max_iterations) PropagateShock(rows, patches, order, vel, bodies, body_level, settings);
     return sweeps;
   }
@@ -137,7 +144,7 @@ int SolveIsland(std::vector<Row>& rows, std::vector<Patch>& patches, const std::
   state.Save(rows, patches, order, vel);  // the kicked velocities, the warm start's impulses
   BlockScratch* const block = BlockSolvable(patches, order, bodies) ? &work.block : nullptr;
   WarmStart(rows, patches, order, vel);
-  int last = Sweeps(rows, patches, order, vel, bodies, settings, block), sweeps = last;
+  int last = sweep(block), sweeps = last;
   if (state.Energy(vel, bodies) > kicked) {
     state.Restore(rows, patches, order, vel);
     for (const int k : order) {
@@ -145,7 +152,7 @@ int SolveIsland(std::vector<Row>& rows, std::vector<Patch>& patches, const std::
       p.lambda.setZero();
       for (int i = p.first; i < p.first + p.count; ++i) rows[static_cast<std::size_t>(i)].lambda_n = 0;
     }
-    last = Sweeps(rows, patches, order, vel, bodies, settings, block);
+    last = sweep(block);
     sweeps += last;
   }
   if (last < settings.max_iterations) return sweeps;
@@ -201,15 +208,29 @@ int SolveImpulses(std::vector<Row>& rows, std::vector<Patch>& patches, std::vect
   std::vector<int>& sweeps = scratch.sweeps;
   sweeps.assign(count, 0);
   if (scratch.islands.size() < count) scratch.islands.resize(count);
+  // The largest island, when large enough, with its sweeps on every thread; then the others
+  // (or all), each on one thread.
+  std::size_t first = 0;
+  scratch.lanes_used = 1;
+  if (workers != nullptr && workers->threads() > 1 && count > 0 &&
+      SweepLanes::Suits(rows, patches, groups[by_size[0]])) {
+    const std::size_t g = by_size[0];
+    if (!scratch.lanes) scratch.lanes = std::make_shared<SweepLanes>();
+    scratch.lanes_used = SweepLanes::LanesFor(groups[g].size(), workers->threads());
+    scratch.lanes->Plan(patches, groups[g], scratch.lanes_used, vel.size());
+    sweeps[g] = SolveIsland(rows, patches, groups[g], vel, bodies, body_level, settings, scratch.islands[g],
+                            scratch.lanes.get(), workers);
+    first = 1;
+  }
   auto solve = [&](std::size_t i) {
-    const std::size_t g = by_size[i];
+    const std::size_t g = by_size[first + i];
     sweeps[g] = SolveIsland(rows, patches, groups[g], vel, bodies, body_level, settings, scratch.islands[g]);
   };
   // A few small islands are not worth waking the workers for.
-  if (workers != nullptr && count > 1 && patches.size() >= 32) {
-    workers->ForEach(count, solve);
+  if (workers != nullptr && count - first > 1 && patches.size() >= 32) {
+    workers->ForEach(count - first, solve);
   } else {
-    for (std::size_t i = 0; i < count; ++i) solve(i);
+    for (std::size_t i = 0; i + first < count; ++i) solve(i);
   }
   return sweeps.empty() ? 0 : *std::max_element(sweeps.begin(), sweeps.end());
 }

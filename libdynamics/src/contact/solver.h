@@ -4,6 +4,7 @@
 // friction, iterated from the ground up with shock propagation.
 
 #include <cstdint>
+#include <memory>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -310,6 +311,8 @@ struct IslandScratch {
   BlockScratch block;
 };
 
+class SweepLanes;
+
 /// The solve's working arrays, kept from step to step: a step whose contacts are those of the
 /// step before allocates nothing.
 struct SolveScratch {
@@ -326,6 +329,8 @@ struct SolveScratch {
   std::vector<std::vector<int>> groups;
   std::vector<std::size_t> by_size;
   std::vector<IslandScratch> islands;
+  std::shared_ptr<SweepLanes> lanes;  // the largest island's sweeps on several threads (sweep_lanes.h)
+  int lanes_used = 1;                 // how many, in the last solve
   // StoreImpulses: each patch's load, the patches by pair, each one's index among its pair's.
   std::vector<double> load;
   std::vector<std::size_t> by_pair;

@@ -78,6 +78,11 @@ double Load(const Patch& p, const std::vector<Row>& rows, Vector3* centre = null
 /// when `block`), then its friction.
 void Sweep(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order, bool forward, bool block,
            std::vector<Velocities>& vel, const BodyResponse& bodies, Progress& progress);
+/// One patch's update in a sweep: its normals (as one block when `block`; the rows in sweep order
+/// when point by point), then its friction; a patch `alone` in its island, its whole system at
+/// once where it holds. It reads and writes the velocities of the patch's two bodies alone.
+void SweepPatch(Patch& p, std::vector<Row>& rows, bool forward, bool block, bool alone, std::vector<Velocities>& vel,
+                const BodyResponse& bodies, Progress& progress);
 /// Shock propagation, level by level from the ground up (body_level as SolveImpulses').
 void PropagateShock(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order,
                     std::vector<Velocities>& vel, const BodyResponse& bodies, const std::vector<int>& body_level,

@@ -529,6 +529,7 @@ void Solve(const StepInput& in, Islands& islands, State& state, Scratch& s, Cont
   SupportLevels(nb, s.rows, s.levels);
   stats.iterations = SolveImpulses(s.rows, s.patches, s.vel, s.response, s.levels, s.island, SettingsOf(in.options),
                                    s.WorkersFor(in.threads), s.solve);
+  stats.lanes = s.solve.lanes_used;
   s.kept.Finish();
   std::swap(state.cache, s.kept);  // s.kept keeps the old arrays for the next step
   StoreImpulses(s.rows, s.patches, state.cache, s.solve);

@@ -130,6 +130,9 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
     const auto b = static_cast<std::size_t>(bb);
     const std::size_t lo = b * kChunk, hi = std::min(n, lo + kChunk);
     detail::PositionTable table((hi - lo) / 4);
+    // Filled here and moved in at the end: neighbouring chunks' vectors share cache lines, and
+    // two threads growing them in turn would pass those lines back and forth at every corner.
+    std::vector<std::uint32_t> first;
     for (std::size_t i = lo; i < hi; ++i) {
       const PositionKey k = corner_at(i);
       if (!k.Finite()) {
@@ -138,8 +141,9 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
       }
       bool inserted = false;
       local[i] = static_cast<std::int32_t>(table.Find(k, Hash(k), inserted));
-      if (inserted) chunk_first[b].push_back(static_cast<std::uint32_t>(i));
+      if (inserted) first.push_back(static_cast<std::uint32_t>(i));
     }
+    chunk_first[b] = std::move(first);
     chunk_keys[b] = std::move(table.keys());
     chunk_hashes[b] = std::move(table.hashes());
   });
@@ -202,12 +206,14 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
   ParallelForBlocks(static_cast<std::int64_t>(parts), num_threads, [&](std::int64_t pb) {
     const auto p = static_cast<std::size_t>(pb);
     detail::PositionTable table((begin[p + 1] - begin[p]) / 2);
+    std::vector<std::uint32_t> first;  // moved in at the end, as in step 1
     for (std::size_t i = begin[p]; i < begin[p + 1]; ++i) {
       const PositionKey& k = bucket_key[i];
       bool inserted = false;
       entry_vertex[bucket[i]] = table.Find(k, Hash(k), inserted);
-      if (inserted) firsts[p].push_back(bucket_first[i]);
+      if (inserted) first.push_back(bucket_first[i]);
     }
+    firsts[p] = std::move(first);
   });
 
   // 4. Number the vertices by their first corners: a bitmap of first corners with prefix counts

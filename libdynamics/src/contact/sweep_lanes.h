@@ -1,0 +1,78 @@
+#pragma once
+// One island's Gauss–Seidel sweeps on several threads, with the bits of one thread (internal to
+// the solver). A patch's update reads and writes the velocities of its two bodies alone, so two
+// updates that share no body commute exactly. The island's patches are split into lanes, one a
+// thread, by where their first body lies (along the island's longest extent, so that most
+// neighbours share a lane); each lane runs its patches in the sweep's order, and a patch whose
+// body a patch of another lane touched last (in the sweep's order) waits until that lane has
+// done it. Every update thus sees exactly the velocities the one-thread sweep gives it, and the
+// sweep's result, its progress and the number of sweeps are the same bits at any thread count;
+// only the waits depend on the split.
+
+#include <algorithm>
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "solver.h"
+
+namespace dynamics::contact {
+
+class Workers;
+
+class SweepLanes {
+ public:
+  /// Islands smaller than this are swept on one thread (waking a second costs more), and each
+  /// lane has at least half of it.
+  static constexpr std::size_t kMinPatches = 128;
+  /// The lanes for an island of `patches` patches on `threads` threads (at least 2 where Suits).
+  static int LanesFor(std::size_t patches, int threads) {
+    return static_cast<int>(std::max<std::size_t>(2, std::min<std::size_t>(threads, 2 * patches / kMinPatches)));
+  }
+
+  /// Whether an island's sweeps may be split: large enough, no jointed bodies (their impulses
+  /// move a whole tree), and every row acting on its patch's two bodies.
+  static bool Suits(const std::vector<Row>& rows, const std::vector<Patch>& patches, const std::vector<int>& order);
+
+  /// Splits the island (patches `order`, in the sweeps' order) into `lanes` lanes and finds each
+  /// patch's waits for both directions of the sweep. `bodies`: the number of bodies.
+  void Plan(const std::vector<Patch>& patches, const std::vector<int>& order, int lanes, std::size_t bodies);
+
+  /// The island's symmetric sweeps (forward first; no block solve) until the stopping rule holds,
+  /// one lane on each of the workers' threads (`lanes` of Plan ≤ workers.threads()). Returns the
+  /// sweeps used, or max_iterations: the same as the one-thread sweeps.
+  int Sweeps(std::vector<Row>& rows, std::vector<Patch>& patches, std::vector<Velocities>& vel,
+             const BodyResponse& bodies, const SolveSettings& settings, Workers& workers);
+
+ private:
+  /// A patch to update, and the work of other lanes it waits for: lane `lane` has updated at
+  /// least `count` of its patches in this sweep.
+  struct Step {
+    int patch = 0;
+    int waits = 0;
+    int lane[2] = {0, 0};
+    std::uint32_t count[2] = {0, 0};
+  };
+  struct alignas(64) Counter {
+    std::atomic<std::uint64_t> done{0};  ///< sweep × (patches + 1) + the lane's patches done in it
+  };
+  void BuildSteps(const std::vector<Patch>& patches, const std::vector<int>& order, bool forward);
+  int Lane(int lane, std::vector<Row>& rows, std::vector<Patch>& patches, std::vector<Velocities>& vel,
+           const BodyResponse& bodies, const SolveSettings& settings);
+  void Barrier();
+
+  int lanes_ = 0;
+  std::size_t patches_ = 0;
+  std::vector<std::vector<Step>> forward_, backward_;  // per lane, in the order it runs them
+  std::vector<int> lane_of_body_, last_lane_;          // by body (-1: none)
+  std::vector<std::uint32_t> last_count_;
+  std::vector<std::pair<double, int>> placed_;  // the island's bodies by position along its extent
+  std::vector<std::uint32_t> lane_size_;
+  std::unique_ptr<Counter[]> counters_;
+  std::vector<Progress> progress_;  // two per lane: this sweep's and the last one's
+  alignas(64) std::atomic<int> arrived_{0};
+  alignas(64) std::atomic<int> generation_{0};
+};
+
+}  // namespace dynamics::contact
