@@ -1,6 +1,8 @@
-// One island's sweeps on several threads (SweepLanes): a heap of boxes whose contacts form one
-// island of a few hundred patches steps to the same bits on one, two and three threads, and the
-// sweeps did run on more than one.
+// One island's sweeps and shock propagation on several threads (SweepLanes): a heap of boxes
+// whose contacts form one island of a few hundred patches steps to the same bits on one, two and
+// three threads, and its sweeps did run on more than one. (A lane that did not wait for another's
+// update of a shared body, or shock propagation that did not wait for a ground patch's update of
+// the body it holds still, fails it.)
 
 #include <gtest/gtest.h>
 

@@ -361,21 +361,30 @@ void PropagateShock(std::vector<Row>& rows, std::vector<Patch>& patches, const s
       Progress progress;
       for (const int k : order) {
         Patch& p = patches[static_cast<std::size_t>(k)];
-        if (p.level != level) continue;
-        const int la = body_level[static_cast<std::size_t>(p.a)];
-        const int lb = p.b >= 0 ? body_level[static_cast<std::size_t>(p.b)] : -1;
-        if (la == lb) continue;
-        const int frozen = la < lb ? p.a : p.b;
-        for (int i = p.first; i < p.first + p.count; ++i) {
-          Row& r = rows[static_cast<std::size_t>(i)];
-          const Matrix3& K = frozen == r.a ? r.Kb : r.Ka;
-          UpdateNormal(r, vel, frozen, 1.0 / r.n.dot(K * r.n), progress);
-        }
-        UpdateFriction(p, rows, vel, bodies, frozen, progress);
+        if (p.level == level) ShockPatch(p, rows, vel, bodies, body_level, progress);
       }
       if (progress.Done(settings)) break;
     }
   }
+}
+
+int ShockFrozen(const Patch& p, const std::vector<int>& body_level) {
+  const int la = body_level[static_cast<std::size_t>(p.a)];
+  const int lb = p.b >= 0 ? body_level[static_cast<std::size_t>(p.b)] : -1;
+  if (la == lb) return kShockSkipped;
+  return la < lb ? p.a : p.b;
+}
+
+void ShockPatch(Patch& p, std::vector<Row>& rows, std::vector<Velocities>& vel, const BodyResponse& bodies,
+                const std::vector<int>& body_level, Progress& progress) {
+  const int frozen = ShockFrozen(p, body_level);
+  if (frozen == kShockSkipped) return;
+  for (int i = p.first; i < p.first + p.count; ++i) {
+    Row& r = rows[static_cast<std::size_t>(i)];
+    const Matrix3& K = frozen == r.a ? r.Kb : r.Ka;
+    UpdateNormal(r, vel, frozen, 1.0 / r.n.dot(K * r.n), progress);
+  }
+  UpdateFriction(p, rows, vel, bodies, frozen, progress);
 }
 
 }  // namespace dynamics::contact

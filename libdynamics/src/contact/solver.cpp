@@ -133,10 +133,18 @@ int SolveIsland(std::vector<Row>& rows, std::vector<Patch>& patches, const std::
     if (lanes != nullptr && block == nullptr) return lanes->Sweeps(rows, patches, vel, bodies, settings, *workers);
     return Sweeps(rows, patches, order, vel, bodies, settings, block);
   };
+  auto shock = [&] {
+    if (lanes != nullptr) {
+      lanes->PropagateShock(rows, patches, vel, bodies, body_level, settings, *workers);
+
+    } else {
+      PropagateShock(rows, patches, order, vel, bodies, body_level, settings);
+    }
+  };
   if (settings.exact) {
     WarmStart(rows, patches, order, vel);
     const int sweeps = sweep(nullptr);
-    if (sweeps == settings.max_iterations) PropagateShock(rows, patches, order, vel, bodies, body_level, settings);
+    if (sweeps == settings.max_iterations) shock();
     return sweeps;
   }
   IslandState state(patches, order, bodies.coupling, work);
@@ -158,7 +166,7 @@ int SolveIsland(std::vector<Row>& rows, std::vector<Patch>& patches, const std::
   if (last < settings.max_iterations) return sweeps;
   const double before_shock = state.Energy(vel, bodies);
   state.Save(rows, patches, order, vel);
-  PropagateShock(rows, patches, order, vel, bodies, body_level, settings);
+  shock();
   if (state.Energy(vel, bodies) > before_shock) state.Restore(rows, patches, order, vel);
   return sweeps;
 }
@@ -217,7 +225,7 @@ int SolveImpulses(std::vector<Row>& rows, std::vector<Patch>& patches, std::vect
     const std::size_t g = by_size[0];
     if (!scratch.lanes) scratch.lanes = std::make_shared<SweepLanes>();
     scratch.lanes_used = SweepLanes::LanesFor(groups[g].size(), workers->threads());
-    scratch.lanes->Plan(patches, groups[g], scratch.lanes_used, vel.size());
+    scratch.lanes->Plan(patches, groups[g], scratch.lanes_used, body_level);
     sweeps[g] = SolveIsland(rows, patches, groups[g], vel, bodies, body_level, settings, scratch.islands[g],
                             scratch.lanes.get(), workers);
     first = 1;

@@ -84,9 +84,19 @@ void Sweep(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vecto
 void SweepPatch(Patch& p, std::vector<Row>& rows, bool forward, bool block, bool alone, std::vector<Velocities>& vel,
                 const BodyResponse& bodies, Progress& progress);
 /// Shock propagation, level by level from the ground up (body_level as SolveImpulses').
+/// A level's passes update its patches (those whose lower body is on that level) with the lower
+/// body held still: they write the upper body's velocity alone.
 void PropagateShock(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order,
                     std::vector<Velocities>& vel, const BodyResponse& bodies, const std::vector<int>& body_level,
                     const SolveSettings& settings);
+/// What ShockFrozen says of a patch between two bodies of one level: no update.
+inline constexpr int kShockSkipped = -2;
+/// The body a patch holds still in shock propagation: its lower one (-1, the ground or a static
+/// body, for a patch of a body on one).
+int ShockFrozen(const Patch& p, const std::vector<int>& body_level);
+/// One patch's update in a pass of shock propagation.
+void ShockPatch(Patch& p, std::vector<Row>& rows, std::vector<Velocities>& vel, const BodyResponse& bodies,
+                const std::vector<int>& body_level, Progress& progress);
 
 // block_solve.cpp
 /// Whether an island's patches are solved as a block: jointed bodies, none sliding since the last

@@ -36,8 +36,10 @@ class SweepLanes {
   static bool Suits(const std::vector<Row>& rows, const std::vector<Patch>& patches, const std::vector<int>& order);
 
   /// Splits the island (patches `order`, in the sweeps' order) into `lanes` lanes and finds each
-  /// patch's waits for both directions of the sweep. `bodies`: the number of bodies.
-  void Plan(const std::vector<Patch>& patches, const std::vector<int>& order, int lanes, std::size_t bodies);
+  /// patch's waits for both directions of the sweep and for each level of shock propagation.
+  /// `body_level`: SolveImpulses' (its size: the number of bodies).
+  void Plan(const std::vector<Patch>& patches, const std::vector<int>& order, int lanes,
+            const std::vector<int>& body_level);
 
   /// The island's symmetric sweeps (forward first; no block solve) until the stopping rule holds,
   /// one lane on each of the workers' threads (`lanes` of Plan ≤ workers.threads()). Returns the
@@ -45,32 +47,51 @@ class SweepLanes {
   int Sweeps(std::vector<Row>& rows, std::vector<Patch>& patches, std::vector<Velocities>& vel,
              const BodyResponse& bodies, const SolveSettings& settings, Workers& workers);
 
+  /// PropagateShock's passes, level by level, on the lanes (each patch in the lane of the body it
+  /// moves). The same bits as PropagateShock.
+  void PropagateShock(std::vector<Row>& rows, std::vector<Patch>& patches, std::vector<Velocities>& vel,
+                      const BodyResponse& bodies, const std::vector<int>& body_level, const SolveSettings& settings,
+                      Workers& workers);
+
  private:
   /// A patch to update, and the work of other lanes it waits for: lane `lane` has updated at
-  /// least `count` of its patches in this sweep.
+  /// least `count` of its patches in this pass.
   struct Step {
     int patch = 0;
     int waits = 0;
     int lane[2] = {0, 0};
     std::uint32_t count[2] = {0, 0};
   };
+  using Schedule = std::vector<std::vector<Step>>;  // per lane, in the order it runs them
   struct alignas(64) Counter {
-    std::atomic<std::uint64_t> done{0};  ///< sweep × (patches + 1) + the lane's patches done in it
+    std::atomic<std::uint64_t> done{0};  ///< pass × (patches + 1) + the lane's patches done in it
   };
-  void BuildSteps(const std::vector<Patch>& patches, const std::vector<int>& order, bool forward);
-  int Lane(int lane, std::vector<Row>& rows, std::vector<Patch>& patches, std::vector<Velocities>& vel,
-           const BodyResponse& bodies, const SolveSettings& settings);
+  /// The schedule of sequence_ (patch indices in the pass's order): each patch in lane
+  /// lane_of(patch), waiting for the last update of each body bodies_of(patch) gives (-1: none).
+  template <typename LaneOf, typename BodiesOf>
+  void Build(Schedule& out, const std::vector<Patch>& patches, const LaneOf& lane_of, const BodiesOf& bodies_of);
+  /// Lane `lane`'s part of one pass (the pass'th since the counters were reset).
+  template <typename Update>
+  void Pass(int lane, const Schedule& schedule, int pass, const Update& update);
+  /// Every lane's progress in pass `pass` combined (after all have finished it), as one thread's.
+  Progress Combined(int lane, int pass, const Progress& mine);
+  void Reset();
   void Barrier();
 
   int lanes_ = 0;
   std::size_t patches_ = 0;
-  std::vector<std::vector<Step>> forward_, backward_;  // per lane, in the order it runs them
-  std::vector<int> lane_of_body_, last_lane_;          // by body (-1: none)
+  Schedule forward_, backward_;
+  std::vector<Schedule> shock_;  // one per level that has patches (shock_levels_ of them)
+  std::vector<int> shock_level_;
+  std::size_t shock_levels_ = 0;
+  std::vector<int> lane_of_body_, last_lane_;  // by body (-1: none)
   std::vector<std::uint32_t> last_count_;
   std::vector<std::pair<double, int>> placed_;  // the island's bodies by position along its extent
+  std::vector<int> sequence_;
   std::vector<std::uint32_t> lane_size_;
   std::unique_ptr<Counter[]> counters_;
-  std::vector<Progress> progress_;  // two per lane: this sweep's and the last one's
+  int counter_lanes_ = 0;
+  std::vector<Progress> progress_;  // two per lane: this pass's and the last one's
   alignas(64) std::atomic<int> arrived_{0};
   alignas(64) std::atomic<int> generation_{0};
 };
