@@ -19,7 +19,9 @@ engine's default time step (rbsim's scenes: 1 ms; MuJoCo: 2 ms; Bullet: 1/60 s) 
   backspin 30°   the backspin case along 30° to the x axis                  error of the speed
   rest      box resting on the ground 5 s                                     drift
   stack     ten boxes stacked (data/scenes/box_stack.json)                    drift of the top box
-  pile      216 and 1000 boxes dropped in a heap (throughput only)            steps/s
+  pile      216 and 1000 tilted boxes dropped in 36 and 100 columns, each
+            column its own island (throughput only)                           steps/s
+  heap      216 tilted boxes dropped close together: one island (throughput only)   steps/s
 
 Penetration is measured from the sampled poses (box corners and sphere surfaces below the ground,
 boxes of the stack into each other). Wall time is the stepping only, as each program times it.
@@ -179,6 +181,20 @@ def cases(quick, tmp):
                              "ground": dict(flat, material={"static_friction": 0.6, "kinetic_friction": 0.5}),
                              "bodies": bodies, "forces": [{"type": "gravity", "g": [0, 0, -G]}]},
                     {"kind": "throughput", "n": [0, 0, 1], "bodies": side ** 3}))
+    if not quick:
+        # The same boxes 1 cm apart (every other layer shifted by 1 cm): they land on each other
+        # and settle as one heap, one island of some 370 contact patches.
+        side, bodies = 6, []
+        for i in range(side ** 3):
+            x, y, z = i % side, (i // side) % side, i // (side * side)
+            tilt = 0.3 * ((i * 7919) % 13 - 6) / 6
+            bodies.append({"name": "b%d" % i, "solid": {"type": "box", "size": [0.08, 0.08, 0.08]}, "density": 500,
+                           "position": [0.09 * (x - side / 2) + 0.01 * (z % 2), 0.09 * (y - side / 2), 0.06 + 0.1 * z],
+                           "orientation": [math.cos(tilt / 2), math.sin(tilt / 2), 0, 0]})
+        out.append(("heap", {"dt": 1e-3, "duration": 1.0, "output_rate": 10,
+                             "ground": dict(flat, material={"static_friction": 0.6, "kinetic_friction": 0.5}),
+                             "bodies": bodies, "forces": [{"type": "gravity", "g": [0, 0, -G]}]},
+                    {"kind": "throughput", "n": [0, 0, 1], "bodies": side ** 3}))
     return out
 
 
@@ -286,7 +302,7 @@ def check(rows):
              "ramp roll": (0.002, None), "ramp stick": (None, 1e-9), "slide 50°": (0.005, None), "backspin 30°": (1e-6, None)}
     failures = []
     for name, engine, dt, error, drift, pen, wall, sps, bodies in rows:
-        if abs(dt - 1e-3) > 1e-12 or name == "pile":
+        if abs(dt - 1e-3) > 1e-12 or name in ("pile", "heap"):
             continue
         for table in ([limits] + ([rbsim] if engine == "rbsim" else [])):
             if name not in table:
@@ -358,7 +374,7 @@ def main():
     print("| case | engine | dt (ms) | error vs closed form | drift (mm) | max penetration (mm) | wall (s) | steps/s |")
     print("|---|---|---|---|---|---|---|---|")
     for name, engine, dt, error, drift, pen, wall, sps, bodies in rows:
-        label = name if name != "pile" else "pile (%d boxes)" % bodies
+        label = name if name not in ("pile", "heap") else "%s (%d boxes)" % (name, bodies)
         if wall is None:
             print("| %s | %s | %.3g | could not run it | | | | |" % (label, engine, dt * 1000))
             continue

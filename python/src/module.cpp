@@ -846,10 +846,12 @@ void BindContactWorld(py::module_& m) {
             out["dissipated"] = s.dissipated;
             out["sleeping"] = s.sleeping;
             out["reused"] = s.reused;
+            out["lanes"] = s.lanes;
             return out;
           },
           "The last step's contact statistics: contacts, iterations, max_penetration, dissipated, sleeping, reused "
-          "(pairs whose contact points were kept from an earlier step)");
+          "(pairs whose contact points were kept from an earlier step), lanes (threads the largest island's sweeps "
+          "ran on)");
 }
 
 void BindDynamics(py::module_& m) {

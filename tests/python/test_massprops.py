@@ -366,6 +366,7 @@ def test_contact_a_ball_rolls_down_an_incline_at_five_sevenths():
     assert b.velocity[0] == pytest.approx(9.81 * sin(theta) / 1.4, rel=1e-3)
     assert abs(b.velocity[0] - b.angular_velocity[1] * r) < 1e-6  # rolling, not sliding
     assert world.stats()["contacts"] == 1
+    assert world.stats()["lanes"] == 1  # one patch: its island is swept on one thread
 
 
 def test_contact_a_cup_as_its_mesh_holds_a_ball():
