@@ -87,6 +87,16 @@ class PositionTable {
     if (2 * keys_.size() > slots_) Grow();
     return id;
   }
+  /// Hints that k (by its hash) is looked up soon: its slot now, and once the slot is in cache
+  /// (`second`), the key it leads to.
+  void Prefetch(std::uint64_t hash, bool second) const {
+    const std::size_t slot = static_cast<std::size_t>(hash) & (slots_ - 1);
+    if (!second) {
+      __builtin_prefetch(&table_[slot]);
+    } else if (const std::int32_t id = table_[slot]; id >= 0) {
+      __builtin_prefetch(&keys_[static_cast<std::size_t>(id)]);
+    }
+  }
   std::vector<PositionKey>& keys() { return keys_; }
   std::vector<std::uint64_t>& hashes() { return hashes_; }
 
@@ -133,14 +143,28 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
     // Filled here and moved in at the end: neighbouring chunks' vectors share cache lines, and
     // two threads growing them in turn would pass those lines back and forth at every corner.
     std::vector<std::uint32_t> first;
+    // Corners read and hashed kAhead ahead of their lookup, their table slots fetched then and the
+    // keys those slots lead to half way (the lookups, in order, are those of before).
+    constexpr std::size_t kAhead = 16;
+    PositionKey ahead_key[kAhead];
+    std::uint64_t ahead_hash[kAhead];
+    auto read = [&](std::size_t j) {
+      ahead_key[j % kAhead] = corner_at(j);
+      ahead_hash[j % kAhead] = Hash(ahead_key[j % kAhead]);
+      table.Prefetch(ahead_hash[j % kAhead], false);
+    };
+    for (std::size_t j = lo; j < std::min(hi, lo + kAhead); ++j) read(j);
     for (std::size_t i = lo; i < hi; ++i) {
-      const PositionKey k = corner_at(i);
+      const PositionKey k = ahead_key[i % kAhead];
+      const std::uint64_t h = ahead_hash[i % kAhead];
+      if (i + kAhead < hi) read(i + kAhead);
+      if (i + kAhead / 2 < hi) table.Prefetch(ahead_hash[(i + kAhead / 2) % kAhead], true);
       if (!k.Finite()) {
         bad[b] = i;
         return;
       }
       bool inserted = false;
-      local[i] = static_cast<std::int32_t>(table.Find(k, Hash(k), inserted));
+      local[i] = static_cast<std::int32_t>(table.Find(k, h, inserted));
       if (inserted) first.push_back(static_cast<std::uint32_t>(i));
     }
     chunk_first[b] = std::move(first);
