@@ -8,7 +8,8 @@
 //                         RK4: joint angles every millisecond; exit 1 beyond 1e-4 rad
 //   joints_peer --bench   steps per second of a 7-DOF arm and a 30-link chain, both engines,
 //                         h = 1 ms, medians of three runs, and each one's error after 1 s
-//   joints_peer --chains  steps per second of 300- and 3000-link chains, both engines, h = 1 ms
+//   joints_peer --chains [--ours]  steps per second of 300- and 3000-link chains, both engines (or
+//                        ours alone: MuJoCo takes minutes to build the longer one), h = 1 ms
 //   joints_peer --urdf    prints the 6-link arm's URDF
 
 #include <algorithm>
@@ -257,7 +258,7 @@ int Bench() {
 // articulated-body recursion past 64 hinges) against MuJoCo's Euler (its chain's mass matrix is dense
 // too), steps per second from a short run each (a 3000-link step takes seconds to minutes: one
 // or two steps), and each world's build.
-int Chains() {
+int Chains(bool ours_only) {
   const double h = 1e-3;
   std::printf("h = 1 ms, limp chains of 5 cm boxes (hinges alternating x and y)\n");
   std::printf("%-16s %14s %14s %10s\n", "model", "ours midpoint", "MuJoCo Euler", "ratio");
@@ -270,6 +271,12 @@ int Chains() {
     dynamics::World w = Ours(links, dynamics::Integrator::kImplicitMidpoint);
     const double ours_build = seconds_since(start);
     const double ours = StepsPerSecond([&] { w.Step(h); }, n <= 300 ? 200 : 20);
+    if (ours_only) {
+      std::printf("%-16s %14.3g %14s %10s   (built in %.2f s)\n", (std::to_string(n) + "-link chain").c_str(), ours,
+                  "-", "-", ours_build);
+      std::fflush(stdout);
+      continue;
+    }
     start = std::chrono::steady_clock::now();
     MuJoCo mj(links, h, mjINT_EULER);
     const double theirs_build = seconds_since(start);
@@ -288,7 +295,7 @@ int main(int argc, char** argv) {
   try {
     if (mode == "--check") return Check();
     if (mode == "--bench") return Bench();
-    if (mode == "--chains") return Chains();
+    if (mode == "--chains") return Chains(argc > 2 && std::string(argv[2]) == "--ours");
     if (mode == "--urdf") {
       std::cout << Urdf(MeshArm(6));
       return 0;
@@ -297,6 +304,6 @@ int main(int argc, char** argv) {
     std::cerr << "joints_peer: " << e.what() << "\n";
     return 1;
   }
-  std::cerr << "usage: joints_peer --check | --bench | --chains | --urdf\n";
+  std::cerr << "usage: joints_peer --check | --bench | --chains [--ours] | --urdf\n";
   return 2;
 }
