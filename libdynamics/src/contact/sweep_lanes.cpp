@@ -51,15 +51,21 @@ void SweepLanes::Plan(const std::vector<Patch>& patches, const std::vector<int>&
     last_lane_.assign(body_level.size(), -1);
     last_count_.assign(body_level.size(), 0);
   }
-  // The island's longest extent, from its patches' anchors.
-  Vector3 lo = Vector3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  // The island's longest extent across the way its contacts push (their normals' mean
+  // direction, most often up: lanes split along it would wait on each other, the sweeps running
+  // from the ground up), from its patches' anchors.
+  Vector3 lo = Vector3::Constant(std::numeric_limits<double>::infinity()), hi = -lo, push = Vector3::Zero();
   for (const int k : order) {
-    const Vector3& x = patches[static_cast<std::size_t>(k)].anchor;
-    lo = lo.cwiseMin(x);
-    hi = hi.cwiseMax(x);
+    const Patch& p = patches[static_cast<std::size_t>(k)];
+    lo = lo.cwiseMin(p.anchor);
+    hi = hi.cwiseMax(p.anchor);
+    push += p.n.cwiseAbs();
   }
-  int axis = 0;
-  (hi - lo).maxCoeff(&axis);
+  int up = 0, axis = 0;
+  push.maxCoeff(&up);
+  Vector3 extent = hi - lo;
+  extent[up] = -1;
+  extent.maxCoeff(&axis);
   // Each body's position along it (its centre: a patch's anchor less its arm), and the number of
   // patches each body leads (a patch of the sweeps runs in its first body's lane).
   placed_.clear();
