@@ -136,7 +136,6 @@ int SolveIsland(std::vector<Row>& rows, std::vector<Patch>& patches, const std::
   auto shock = [&] {
     if (lanes != nullptr) {
       lanes->PropagateShock(rows, patches, vel, bodies, body_level, settings, *workers);
-
     } else {
       PropagateShock(rows, patches, order, vel, bodies, body_level, settings);
     }

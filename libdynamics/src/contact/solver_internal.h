@@ -80,12 +80,14 @@ void Sweep(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vecto
            std::vector<Velocities>& vel, const BodyResponse& bodies, Progress& progress);
 /// One patch's update in a sweep: its normals (as one block when `block`; the rows in sweep order
 /// when point by point), then its friction; a patch `alone` in its island, its whole system at
-/// once where it holds. It reads and writes the velocities of the patch's two bodies alone.
+/// once where it holds. Of free bodies, it reads and writes the velocities of the patch's two
+/// bodies alone (a jointed body's impulse moves its whole tree).
 void SweepPatch(Patch& p, std::vector<Row>& rows, bool forward, bool block, bool alone, std::vector<Velocities>& vel,
                 const BodyResponse& bodies, Progress& progress);
 /// Shock propagation, level by level from the ground up (body_level as SolveImpulses').
 /// A level's passes update its patches (those whose lower body is on that level) with the lower
-/// body held still: they write the upper body's velocity alone.
+/// body held still: each writes its upper body's velocity alone (a body on the ground is the
+/// upper body of its ground patches, and so moves in its own level's passes).
 void PropagateShock(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order,
                     std::vector<Velocities>& vel, const BodyResponse& bodies, const std::vector<int>& body_level,
                     const SolveSettings& settings);
