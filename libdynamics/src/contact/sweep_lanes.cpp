@@ -114,8 +114,6 @@ void SweepLanes::Plan(const std::vector<Patch>& patches, const std::vector<int>&
     }
     if (sequence_.empty()) continue;
     if (shock_.size() <= shock_levels_) shock_.emplace_back();
-    if (shock_level_.size() <= shock_levels_) shock_level_.push_back(0);
-    shock_level_[shock_levels_] = level;
     Build(shock_[shock_levels_++], patches, moved_lane, moved_first);
   }
   for (const auto& [position, body] : placed_) lane_of_body_[static_cast<std::size_t>(body)] = -1;

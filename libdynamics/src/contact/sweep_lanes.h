@@ -81,8 +81,7 @@ class SweepLanes {
   int lanes_ = 0;
   std::size_t patches_ = 0;
   Schedule forward_, backward_;
-  std::vector<Schedule> shock_;  // one per level that has patches (shock_levels_ of them)
-  std::vector<int> shock_level_;
+  std::vector<Schedule> shock_;  // one per level that has patches, in order (shock_levels_ of them)
   std::size_t shock_levels_ = 0;
   std::vector<int> lane_of_body_, last_lane_;  // by body (-1: none)
   std::vector<std::uint32_t> last_count_;
