@@ -3,11 +3,11 @@
 // the solver). A patch's update reads and writes the velocities of its two bodies alone, so two
 // updates that share no body commute exactly. The island's patches are split into lanes, one a
 // thread, by where their first body lies (along the island's longest extent across the way its
-// contacts push, so that most neighbours share a lane and no lane waits on the one below it); each lane runs its patches in the sweep's order, and a patch whose
-// body a patch of another lane touched last (in the sweep's order) waits until that lane has
-// done it. Every update thus sees exactly the velocities the one-thread sweep gives it, and the
-// sweep's result, its progress and the number of sweeps are the same bits at any thread count;
-// only the waits depend on the split.
+// contacts push, so that most neighbours share a lane and no lane waits on the one below it); each lane runs its
+// patches in the sweep's order, and a patch whose body a patch of another lane touched last (in the sweep's order)
+// waits until that lane has done it. Every update thus sees exactly the velocities the one-thread sweep gives it, and
+// the sweep's result, its progress and the number of sweeps are the same bits at any thread count; only the waits
+// depend on the split.
 
 #include <algorithm>
 #include <atomic>
