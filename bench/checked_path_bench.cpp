@@ -137,11 +137,11 @@ void BM_ObjFloor(benchmark::State& state) {
 
 void BM_ObjParse(benchmark::State& state) {
   const std::string_view text = ObjText();
-  for (auto _ : state) benchmark::DoNotOptimize(massprops::ParseObj("torus.obj", text));
+  for (auto _ : state) benchmark::DoNotOptimize(massprops::ParseObj("torus.obj", text, 0));
 }
 
 void BM_ObjWeld(benchmark::State& state) {
-  const massprops::LoadedMesh parsed = massprops::ParseObj("torus.obj", ObjText());
+  const massprops::LoadedMesh parsed = massprops::ParseObj("torus.obj", ObjText(), 0);
   for (auto _ : state) {
     state.PauseTiming();
     massprops::PolygonMesh mesh = parsed.mesh;

@@ -125,7 +125,7 @@ LoadedMesh ReadCadFile(const std::string& path, const CadOptions& cad) {
     Fail(path, "the OpenCASCADE reader process sent no result");
   }
   // Bit-identical corners that the B-rep's topology did not join (faces that share no edge).
-  mesh->welded = MergeCoincidentVertices(mesh->mesh);
+  mesh->welded = MergeCoincidentVertices(mesh->mesh, cad.num_threads);
   // A file of one unnamed part names none (the pipeline names it after the file).
   if (mesh->part_names.size() == 1 && mesh->part_names[0].empty()) {
     mesh->part_names.clear();

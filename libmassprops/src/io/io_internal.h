@@ -42,20 +42,21 @@ StlLayout DetectStl(const std::string& path, const unsigned char* data, std::siz
 /// As Fail, for a file that cannot be opened or read at all (FileAccessError).
 [[noreturn]] void FailAccess(const std::string& path, const std::string& what);
 
+/// (num_threads, here and below: as LoadOptions::num_threads, 0 every core; the same bits for any.)
 LoadedMesh WeldCorners(const std::string& path, const std::vector<double>& xyz, const std::vector<int>& face_sizes,
-                       const char* format);
+                       const char* format, int num_threads = 0);
 
 /// Points the corners of vertices with bit-identical positions (-0.0 == 0.0) at the first such
 /// vertex (the others stay, unreferenced), so that a file repeating each corner per face is
 /// checked as the surface it describes. Returns how many vertices were merged.
-std::int64_t MergeCoincidentVertices(PolygonMesh& mesh);
+std::int64_t MergeCoincidentVertices(PolygonMesh& mesh, int num_threads = 0);
 
 // One parser per format, each in its own file (mesh_io.cpp holds the table).
-LoadedMesh ParseObj(const std::string& path, std::string_view data);
-LoadedMesh ParseStl(const std::string& path, std::string_view data);
-LoadedMesh ParsePly(const std::string& path, std::string_view data);
-LoadedMesh ParseOff(const std::string& path, std::string_view data);
-LoadedMesh Parse3mf(const std::string& path, std::string_view data);
+LoadedMesh ParseObj(const std::string& path, std::string_view data, int num_threads);
+LoadedMesh ParseStl(const std::string& path, std::string_view data, int num_threads);
+LoadedMesh ParsePly(const std::string& path, std::string_view data, int num_threads);
+LoadedMesh ParseOff(const std::string& path, std::string_view data, int num_threads);
+LoadedMesh Parse3mf(const std::string& path, std::string_view data, int num_threads);
 
 /// The length unit a 3MF or AMF unit attribute names ("millimeter", "inch", ...), if it is one.
 std::optional<LengthUnit> ModelUnitNamed(const std::string& word);

@@ -12,7 +12,7 @@ namespace {
 
 struct ReaderEntry {
   const char* extension;
-  LoadedMesh (*parse)(const std::string& name, std::string_view bytes);
+  LoadedMesh (*parse)(const std::string& name, std::string_view bytes, int num_threads);
 };
 
 // Our own parsers (double precision): one row per format.
@@ -29,13 +29,14 @@ const ReaderEntry* FindReader(const std::string& extension) {
 
 }  // namespace
 
-LoadedMesh ParseMeshBuffer(const std::string& name, const std::string& extension, std::string_view bytes) {
+LoadedMesh ParseMeshBuffer(const std::string& name, const std::string& extension, std::string_view bytes,
+                           int num_threads) {
   const std::string ext = io_text::Lower(extension);
   if (const ReaderEntry* r = FindReader(ext)) {
-    LoadedMesh out = r->parse(name, bytes);
+    LoadedMesh out = r->parse(name, bytes, num_threads);
     // Indexed formats may still repeat a position under several indices (one per face):
     // weld them as the STL and assimp readers do.
-    if (ext != "stl") out.welded += MergeCoincidentVertices(out.mesh);
+    if (ext != "stl") out.welded += MergeCoincidentVertices(out.mesh, num_threads);
     return out;
   }
   Fail(name, "no parser of our own for '" + ext + "' (formats read through assimp need a file)");
@@ -58,7 +59,8 @@ LoadedMesh ReadMeshFile(const std::string& path, const CadOptions& cad) {
   const std::string ext = io_text::FileExtension(path);
   if (FindReader(ext)) {
     const MappedFile file(path);
-    return ParseMeshBuffer(path, ext, std::string_view(reinterpret_cast<const char*>(file.data()), file.size()));
+    return ParseMeshBuffer(path, ext, std::string_view(reinterpret_cast<const char*>(file.data()), file.size()),
+                           cad.num_threads);
   }
   if (IsCadFile(path)) return ReadCadFile(path, cad);
   if (AssimpCanRead(ext)) return ReadWithAssimp(path);

@@ -256,7 +256,7 @@ void AssignParts(const std::vector<Chunk>& chunks, const std::vector<std::int64_
 
 }  // namespace
 
-LoadedMesh ParseObj(const std::string& path, std::string_view data) {
+LoadedMesh ParseObj(const std::string& path, std::string_view data, int num_threads) {
   if (data.empty()) Fail(path, "the file is empty");
   // Chunks of about 4 MB (one for small files: no threads started).
   constexpr std::size_t kChunkBytes = std::size_t{4} << 20;
@@ -266,7 +266,7 @@ LoadedMesh ParseObj(const std::string& path, std::string_view data) {
     chunks.emplace_back().text = data.substr(at, end - at);
     at = end;
   }
-  ParallelForBlocks(static_cast<std::int64_t>(chunks.size()), 0,
+  ParallelForBlocks(static_cast<std::int64_t>(chunks.size()), num_threads,
                     [&](std::int64_t b) { ParseChunk(chunks[static_cast<std::size_t>(b)]); });
 
   // Resolve the indices: each chunk's vertices follow those of the chunks before it.
@@ -291,7 +291,7 @@ LoadedMesh ParseObj(const std::string& path, std::string_view data) {
   mesh.offsets[0] = 0;
   std::vector<std::size_t> range_error_line(chunks.size(), 0);
   std::vector<std::string> range_error(chunks.size());
-  ParallelForBlocks(static_cast<std::int64_t>(chunks.size()), 0, [&](std::int64_t bb) {
+  ParallelForBlocks(static_cast<std::int64_t>(chunks.size()), num_threads, [&](std::int64_t bb) {
     const auto b = static_cast<std::size_t>(bb);
     const Chunk& c = chunks[b];
     std::size_t at = static_cast<std::size_t>(index_base[b]);
@@ -323,7 +323,7 @@ LoadedMesh ParseObj(const std::string& path, std::string_view data) {
   if (vert_base.back() == 0 || face_base.back() == 0) Fail(path, "no faces found in the OBJ file");
   AssignParts(chunks, face_base, out);
   mesh.V.resize(vert_base.back(), 3);
-  ParallelForBlocks(static_cast<std::int64_t>(chunks.size()), 0, [&](std::int64_t bb) {
+  ParallelForBlocks(static_cast<std::int64_t>(chunks.size()), num_threads, [&](std::int64_t bb) {
     const auto b = static_cast<std::size_t>(bb);
     const std::vector<double>& v = chunks[b].verts;
     std::copy(v.begin(), v.end(), mesh.V.data() + 3 * vert_base[b]);

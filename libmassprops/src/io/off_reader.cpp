@@ -15,7 +15,7 @@ using io_text::ParseNumber;
 using io_text::Space;
 using io_text::Tokens;
 
-LoadedMesh ParseOff(const std::string& path, std::string_view data) {
+LoadedMesh ParseOff(const std::string& path, std::string_view data, int /*num_threads: one*/) {
   if (data.empty()) Fail(path, "the file is empty");
   // Line based: '#' comments, a header keyword ([ST][C][N][4]OFF) possibly followed by the counts.
   std::vector<std::string_view> lines;

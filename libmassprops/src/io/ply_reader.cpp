@@ -127,7 +127,7 @@ bool IsLittleEndianHost() {
 
 }  // namespace
 
-LoadedMesh ParsePly(const std::string& path, std::string_view data) {
+LoadedMesh ParsePly(const std::string& path, std::string_view data, int /*num_threads: one*/) {
   if (data.empty()) Fail(path, "the file is empty");
   if (data.substr(0, 3) != "ply") Fail(path, "not a PLY file (it does not start with 'ply')");
   const std::size_t header_end_tag = data.find("end_header");

@@ -28,11 +28,12 @@ using io_text::Lower;
 using io_text::NextToken;
 using io_text::ParseDouble;
 
-LoadedMesh FromTriangleSoup(const std::string& path, const std::vector<double>& xyz, const char* format) {
-  return WeldCorners(path, xyz, std::vector<int>(xyz.size() / 9, 3), format);
+LoadedMesh FromTriangleSoup(const std::string& path, const std::vector<double>& xyz, const char* format,
+                            int num_threads) {
+  return WeldCorners(path, xyz, std::vector<int>(xyz.size() / 9, 3), format, num_threads);
 }
 
-LoadedMesh ReadBinaryStl(const std::string& path, std::string_view data, std::uint32_t n) {
+LoadedMesh ReadBinaryStl(const std::string& path, std::string_view data, std::uint32_t n, int num_threads) {
   const char* records = data.data() + 84;
   auto corner_at = [records](std::size_t c) {
     float f[3];  // record t = c / 3: 12 bytes of normal, then three corners of 12 bytes
@@ -43,12 +44,13 @@ LoadedMesh ReadBinaryStl(const std::string& path, std::string_view data, std::ui
     std::memcpy(f, record + 12 + 12 * (c % 3), sizeof f);
     return weld::PositionKey{f[0], f[1], f[2]};
   };
-  LoadedMesh out = weld::Weld(path, 3 * static_cast<std::size_t>(n), corner_at, std::vector<int>(n, 3), "stl-binary");
+  LoadedMesh out =
+      weld::Weld(path, 3 * static_cast<std::size_t>(n), corner_at, std::vector<int>(n, 3), "stl-binary", num_threads);
   out.float32_coordinates = true;
   return out;
 }
 
-LoadedMesh ReadAsciiStl(const std::string& path, std::string_view data) {
+LoadedMesh ReadAsciiStl(const std::string& path, std::string_view data, int num_threads) {
   std::vector<double> xyz;
   std::string_view rest(data);
   std::size_t line = 1;
@@ -86,16 +88,16 @@ LoadedMesh ReadAsciiStl(const std::string& path, std::string_view data) {
   }
   if (!saw_solid || xyz.empty()) Fail(path, "no facets found in the ASCII STL");
   if (in_facet_vertices != 0) Fail(path, "the ASCII STL ends inside a facet (truncated?)");
-  return FromTriangleSoup(path, xyz, "stl-ascii");
+  return FromTriangleSoup(path, xyz, "stl-ascii", num_threads);
 }
 
 }  // namespace
 
-LoadedMesh ParseStl(const std::string& path, std::string_view data) {
+LoadedMesh ParseStl(const std::string& path, std::string_view data, int num_threads) {
   if (data.empty()) Fail(path, "the file is empty");
   const StlLayout layout = DetectStl(path, reinterpret_cast<const unsigned char*>(data.data()), data.size());
-  if (layout.ascii) return ReadAsciiStl(path, data);
-  return ReadBinaryStl(path, data, layout.triangles);
+  if (layout.ascii) return ReadAsciiStl(path, data, num_threads);
+  return ReadBinaryStl(path, data, layout.triangles, num_threads);
 }
 
 StlLayout DetectStl(const std::string& path, const unsigned char* bytes, std::size_t size) {

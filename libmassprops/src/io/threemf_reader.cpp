@@ -210,7 +210,7 @@ std::string RootModelName(const unsigned char* data, std::size_t size, const std
 
 }  // namespace
 
-LoadedMesh Parse3mf(const std::string& path, std::string_view bytes) {
+LoadedMesh Parse3mf(const std::string& path, std::string_view bytes, int /*num_threads: one*/) {
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
   const std::vector<internal::ZipEntry> entries = internal::ZipDirectory(data, bytes.size());
   if (entries.empty()) Fail(path, "not a 3MF package (no zip directory found: cut short, or not a zip)");

@@ -283,10 +283,10 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
 // an intermediate copy of every coordinate).
 template <typename CornerAt>
 LoadedMesh Weld(const std::string& path, std::size_t corners, const CornerAt& corner_at,
-                const std::vector<int>& face_sizes, const char* format) {
+                const std::vector<int>& face_sizes, const char* format, int num_threads) {
   LoadedMesh out;
   out.format = format;
-  Grouping g = GroupByPosition(corners, corner_at);
+  Grouping g = GroupByPosition(corners, corner_at, num_threads);
   if (g.first_non_finite < corners) {
     const PositionKey k = corner_at(g.first_non_finite);
     std::ostringstream msg;

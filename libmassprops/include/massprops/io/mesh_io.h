@@ -124,16 +124,19 @@ struct LoadedMesh {
 LoadedMesh ReadMeshFile(const std::string& path);
 
 /// As ReadMeshFile, with the tessellation options for CAD files (STEP, IGES, BREP), which
-/// OpenCASCADE reads in a child process with a time limit (a plugin, optional at build time).
+/// OpenCASCADE reads in a child process with a time limit (a plugin, optional at build time);
+/// `cad.num_threads` also bounds the threads of every other reader's parse and weld.
 LoadedMesh ReadMeshFile(const std::string& path, const CadOptions& cad);
 
 /// Whether `path` is a CAD file by its extension (.step, .stp, .iges, .igs, .brep, .brp).
 bool IsCadFile(const std::string& path);
 
-/// Parses a mesh held in memory with the readers of our own: `extension` is "obj", "stl", "ply"
-/// or "off"; `name` is used in messages. The same checks as ReadMeshFile.
+/// Parses a mesh held in memory with the readers of our own: `extension` is "obj", "stl", "ply",
+/// "off" or "3mf"; `name` is used in messages. The same checks as ReadMeshFile. `num_threads`:
+/// the threads the parse and the weld may use (0: every core; the same mesh for any count).
 /// @throws MeshFileError as ReadMeshFile.
-LoadedMesh ParseMeshBuffer(const std::string& name, const std::string& extension, std::string_view bytes);
+LoadedMesh ParseMeshBuffer(const std::string& name, const std::string& extension, std::string_view bytes,
+                           int num_threads = 0);
 
 /// Whether ReadMeshFile reads `path` with a reader of our own (OBJ, STL, PLY, OFF, by extension),
 /// in this process; the other formats go through assimp in a child process.
