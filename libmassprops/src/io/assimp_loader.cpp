@@ -140,12 +140,12 @@ AssimpOutput ReadIsolated(const Plugin& p, const std::string& path) {
 
 }  // namespace
 
-LoadedMesh ReadWithAssimp(const std::string& path) {
+LoadedMesh ReadWithAssimp(const std::string& path, int num_threads) {
   const Plugin& p = LoadPlugin();
   if (!p.loaded()) Fail(path, p.error);
   const AssimpOutput read = ReadIsolated(p, path);
   if (read.face_sizes.empty()) Fail(path, "no faces found (the file holds no surface mesh)");
-  LoadedMesh out = WeldCorners(path, read.xyz, read.face_sizes, "assimp");
+  LoadedMesh out = WeldCorners(path, read.xyz, read.face_sizes, "assimp", num_threads);
   const std::string ext = io_text::FileExtension(path);
   out.format = "assimp:" + ext;
   out.float32_coordinates = true;
@@ -164,7 +164,9 @@ LoadedMesh ReadWithAssimp(const std::string& path) {
   return out;
 }
 
-LoadedMesh ReadMeshFileWithAssimp(const std::string& path) { return ReadWithAssimp(path); }
+LoadedMesh ReadMeshFileWithAssimp(const std::string& path, int num_threads) {
+  return ReadWithAssimp(path, num_threads);
+}
 
 std::string AssimpPluginStatus() {
   const Plugin& p = LoadPlugin();

@@ -75,7 +75,7 @@ std::string AssimpPluginStatus();
 bool AssimpCanRead(const std::string& extension);
 /// Reads any format assimp knows; node transforms are applied, all meshes are merged, corners
 /// welded by position. Debian's assimp stores coordinates as 32-bit floats: LoadedMesh says so.
-LoadedMesh ReadWithAssimp(const std::string& path);
+LoadedMesh ReadWithAssimp(const std::string& path, int num_threads);
 
 /// Reads a STEP, IGES or BREP file through the CAD plugin (cad_loader.cpp): each part's triangles,
 /// its B-rep integrals and material, the file's unit.

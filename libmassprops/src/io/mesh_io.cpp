@@ -63,7 +63,7 @@ LoadedMesh ReadMeshFile(const std::string& path, const CadOptions& cad) {
                            cad.num_threads);
   }
   if (IsCadFile(path)) return ReadCadFile(path, cad);
-  if (AssimpCanRead(ext)) return ReadWithAssimp(path);
+  if (AssimpCanRead(ext)) return ReadWithAssimp(path, cad.num_threads);
   const std::string plugin = AssimpPluginStatus();
   if (!plugin.empty()) {
     Fail(path,

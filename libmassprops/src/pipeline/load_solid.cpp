@@ -606,7 +606,7 @@ SolidResult LoadSolid(const std::string& file, const LoadOptions& given) {
   }
   Stage(given, "reading");
   const bool cad = IsCadFile(file);
-  r.loaded = given.reader == Reader::kAssimp && !cad ? ReadMeshFileWithAssimp(file)
+  r.loaded = given.reader == Reader::kAssimp && !cad ? ReadMeshFileWithAssimp(file, given.num_threads)
                                                      : ReadMeshFile(file, internal::CadOptionsFor(given));
   if (cad) internal::AddCadFindings(r);
   if (!given.parts && internal::MaterialsDiffer(r.loaded, given)) {

@@ -146,9 +146,10 @@ bool HasOwnReader(const std::string& path);
 /// assimp's formats (asks the assimp plugin, loading it on first use).
 bool IsMeshFile(const std::string& path);
 
-/// Reads any format through assimp, even those with a reader of our own (for comparison).
+/// Reads any format through assimp, even those with a reader of our own (for comparison); the
+/// weld on up to `num_threads` threads (0: every core).
 /// @throws MeshFileError as ReadMeshFile.
-LoadedMesh ReadMeshFileWithAssimp(const std::string& path);
+LoadedMesh ReadMeshFileWithAssimp(const std::string& path, int num_threads = 0);
 
 /// The fast path for binary STL: memory-maps the file and integrates its records as they lie
 /// (no indexed mesh, memory independent of the triangle count), with the streaming closed-surface
