@@ -73,8 +73,13 @@ TEST(ThreadLimit, OneThreadAskedOneThreadUsed) {
   SolidResult solved;
   EXPECT_EQ(MostThreadsDuring([&] { solved = SolveMesh(parsed, "torus", one); }), before + 1);
   EXPECT_NEAR(solved.mp.volume, 2 * M_PI * M_PI * 2.0 * 0.25, 0.01);
-  // The control: with two allowed, the same work does start threads (the watcher sees them).
-  EXPECT_GT(MostThreadsDuring([&] { parsed = ParseMeshBuffer("torus.obj", "obj", text, 2); }), before + 1);
+  // The control: with two allowed, the same work does start threads, and the watcher sees them
+  // (a few tries: on a loaded machine the watcher may not run while a short phase lasts).
+  int most = 0;
+  for (int attempt = 0; attempt < 5 && most <= before + 1; ++attempt) {
+    most = MostThreadsDuring([&] { parsed = ParseMeshBuffer("torus.obj", "obj", text, 2); });
+  }
+  EXPECT_GT(most, before + 1);
 }
 
 }  // namespace
