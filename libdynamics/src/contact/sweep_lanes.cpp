@@ -202,7 +202,7 @@ int SweepLanes::Sweeps(std::vector<Row>& rows, std::vector<Patch>& patches, std:
   Reset();
   const bool block = !settings.exact;
   int sweeps = settings.max_iterations;
-  workers.ForEach(static_cast<std::size_t>(lanes_), [&](std::size_t l) {
+  workers.Together(static_cast<std::size_t>(lanes_), [&](std::size_t l) {
     const int lane = static_cast<int>(l);
     for (int sweep = 0; sweep < settings.max_iterations; ++sweep) {
       const bool forward = sweep % 2 == 0;
@@ -223,7 +223,7 @@ void SweepLanes::PropagateShock(std::vector<Row>& rows, std::vector<Patch>& patc
                                 const BodyResponse& bodies, const std::vector<int>& body_level,
                                 const SolveSettings& settings, Workers& workers) {
   Reset();
-  workers.ForEach(static_cast<std::size_t>(lanes_), [&](std::size_t l) {
+  workers.Together(static_cast<std::size_t>(lanes_), [&](std::size_t l) {
     const int lane = static_cast<int>(l);
     int passes = 0;  // since the reset
     for (std::size_t s = 0; s < shock_levels_; ++s) {

@@ -1,14 +1,17 @@
 #pragma once
 // A small pool of worker threads kept between contact steps (internal to ContactWorld): starting
-// threads each step costs more than a small step's work. Work items are independent; which thread
-// runs which item never changes a result.
+// threads each step costs more than a small step's work. ForEach's items are independent;
+// Together's run at once and may wait on each other. Which thread runs which item never changes a
+// result.
 
 #include <condition_variable>
 #include <cstddef>
 #include <exception>
 #include <mutex>
+#include <stdexcept>
 #include <thread>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace dynamics::contact {
@@ -29,6 +32,15 @@ class Workers {
   void ForEach(std::size_t n, F&& fn) {
     using Fn = std::remove_reference_t<F>;
     Run(n, const_cast<void*>(static_cast<const void*>(&fn)), [](void* f, std::size_t i) { (*static_cast<Fn*>(f))(i); });
+  }
+  /// fn(i) for every i in [0, n), n from 2 to threads(), each on a thread of its own, all at once:
+  /// an item may wait for another's progress (sweep_lanes.h). A thread takes an item only after
+  /// finishing its last, and none finishes while another waits for it, so the n threads each take
+  /// one. fn must not throw (an item that stopped would leave the others waiting).
+  template <class F>
+  void Together(std::size_t n, F&& fn) {
+    if (n < 2 || n > static_cast<std::size_t>(threads())) throw std::logic_error("Workers::Together: bad item count");
+    ForEach(n, std::forward<F>(fn));
   }
 
  private:
