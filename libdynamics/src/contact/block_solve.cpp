@@ -1,13 +1,15 @@
-// The contacts of jointed bodies solved as a block (solver_internal.h). A tree answers an impulse
-// at one foot with every member's motion (Coupling::Apply: a 6 × 6 product per member), and its
+// An island's contacts solved as a block (solver_internal.h). A tree answers an impulse at one
+// foot with every member's motion (Coupling::Apply: a 6 × 6 product per member), and its
 // contacts couple through the legs, so the point-by-point sweeps both cost much and converge
-// slowly (a quadruped at rest ran out of its 32 sweeps every step). Here the island's channels —
-// each row's normal and each patch's friction directions (t1, t2, ρ n) — get their Delassus
-// matrix A = J M⁻¹ Jᵀ once a step (U = M⁻¹ Jᵀ from the coupling's blocks, A = J U), and the
-// sweeps work on the channels' velocities u = J v alone (solver.cpp comes here once the sweeps of
-// kernels.cpp slow down):
+// slowly (a quadruped at rest ran out of its 32 sweeps every step). Free bodies leaning on each
+// other crawl the same way (a column of tilted boxes: each sweep cut the change by ~4 %). Here the
+// island's channels — each row's normal and each patch's friction directions (t1, t2, ρ n) — get
+// their Delassus matrix A = J M⁻¹ Jᵀ once a step (U = M⁻¹ Jᵀ from the coupling's blocks, or a
+// free body's own 1/m and I⁻¹; A = J U), and the sweeps work on the channels' velocities u = J v
+// alone (solver.cpp comes here once the sweeps of kernels.cpp slow down):
 // - a pivoting step first: the loaded rows and the friction of every loaded patch solved as one
-//   linear system (regularized Cholesky of their block of A, then iterative refinement),
+//   linear system (regularized Cholesky of their block of A over its rows' profiles — banded for
+//   a column of free bodies, whose channels come from the ground up — then iterative refinement),
 //   principal pivoting on the normals, accepted only when it is the answer of the
 //   complementarity problem — loaded points push, the others separate, every patch's friction
 //   within μ N — which the sweeps converge to;
@@ -68,15 +70,20 @@ void BuildChannels(const std::vector<Row>& rows, const std::vector<Patch>& patch
   }
 }
 
-// The island's members: every touched body of the trees its patches touch (sorted).
-void BuildMembers(const std::vector<Patch>& patches, const std::vector<int>& order, const Coupling& coupling,
+// The island's members: every touched body of the trees its patches touch (sorted); of free
+// bodies (no coupling), the patches' bodies.
+void BuildMembers(const std::vector<Patch>& patches, const std::vector<int>& order, const Coupling* coupling,
                   BlockScratch& s) {
   s.members.clear();
   for (const int k : order) {
     const Patch& p = patches[static_cast<std::size_t>(k)];
     for (const int body : {p.a, p.b}) {
       if (body < 0) continue;
-      const auto& tree = coupling.members[static_cast<std::size_t>(coupling.tree[static_cast<std::size_t>(body)])];
+      if (coupling == nullptr) {
+        s.members.push_back(body);
+        continue;
+      }
+      const auto& tree = coupling->members[static_cast<std::size_t>(coupling->tree[static_cast<std::size_t>(body)])];
       s.members.insert(s.members.end(), tree.begin(), tree.end());
     }
   }
@@ -85,17 +92,26 @@ void BuildMembers(const std::vector<Patch>& patches, const std::vector<int>& ord
 }
 
 // U (each channel's unit impulse's change of every member's (v, ω), 6 rows a member), the
-// Delassus matrix A = J U, and the channels' velocities J V of the velocities `vel`.
-void BuildResponse(const std::vector<Velocities>& vel, const Coupling& coupling, BlockScratch& s) {
+// Delassus matrix A = J U, and the channels' velocities J V of the velocities `vel`. A free body
+// (no coupling) answers a wrench alone: (f / m, I⁻¹ τ).
+void BuildResponse(const std::vector<Velocities>& vel, const BodyResponse& bodies, const Coupling* coupling,
+                   BlockScratch& s) {
   const auto m = static_cast<Eigen::Index>(s.channels.size());
   const auto n = static_cast<Eigen::Index>(s.members.size());
   s.U.setZero(6 * n, m);
   for (Eigen::Index d = 0; d < m; ++d) {
     const BlockChannel& c = s.channels[static_cast<std::size_t>(d)];
     auto add = [&](int body, const Vector6& w, double sign) {
-      const auto t = static_cast<std::size_t>(coupling.tree[static_cast<std::size_t>(body)]);
-      for (const int j : coupling.members[t]) {
-        s.U.col(d).segment<6>(6 * LocalIndex(s.members, j)).noalias() += sign * (coupling.Response(j, body) * w);
+      if (coupling == nullptr) {
+        const auto k = static_cast<std::size_t>(body);
+        auto column = s.U.col(d).segment<6>(6 * LocalIndex(s.members, body));
+        column.head<3>() += (sign * bodies.inv_mass[k]) * w.head<3>();
+        column.tail<3>().noalias() += sign * (bodies.inv_inertia[k] * w.tail<3>());
+        return;
+      }
+      const auto t = static_cast<std::size_t>(coupling->tree[static_cast<std::size_t>(body)]);
+      for (const int j : coupling->members[t]) {
+        s.U.col(d).segment<6>(6 * LocalIndex(s.members, j)).noalias() += sign * (coupling->Response(j, body) * w);
       }
     };
     add(c.a, c.wa, 1.0);
@@ -177,12 +193,14 @@ void ProjectedSweep(std::vector<Patch>& patches, const std::vector<int>& order, 
       g[f] = s.u[f0 + f];
       old[f] = s.lambda[f0 + f];
     }
-    const Vector3 lt = FrictionUpdate(p, old, g, p.mass, p.Ka, p.mu * N);
+    // (A jointed body's patch keeps its whole response in Ka, Kb zero.)
+    const Matrix3 K = p.Ka + p.Kb;
+    const Vector3 lt = FrictionUpdate(p, old, g, p.mass, K, p.mu * N);
     const Vector3 d = lt - old;
     for (Eigen::Index f = 0; f < nf; ++f) Change(s, f0 + f, d[f]);
     progress.change = std::max(progress.change, d.norm());
     progress.scale = std::max(progress.scale, lt.norm());
-    progress.speed = std::max(progress.speed, (p.Ka * d).norm());
+    progress.speed = std::max(progress.speed, (K * d).norm());
   }
 }
 
@@ -194,12 +212,12 @@ enum Role : char {
 };
 
 // The linear system of one set of roles: s.delta, the change of every channel's impulse, and
-// s.change_u, of its velocity. The set's block of A is factored (Cholesky, kept while the set
-// holds) with kBlockRegularization of its diagonal added: a tree has fewer degrees of freedom
-// than its contacts have channels, and legs held on their stops make the rest ill-conditioned.
-// The regularized solve changes the impulses least where they are not determined (the warm
-// start's sharing of a load is kept), and iterative refinement solves the determined part to a
-// tenth of the tolerance (m/s). False where that fails.
+// s.change_u, of its velocity. The set's block of A is factored (Cholesky over its rows'
+// profiles: the channels come patch by patch from the ground up, so free bodies' islands give
+// banded blocks; kept while the set holds) with kBlockRegularization of its diagonal added: a tree has fewer degrees of
+// freedom than its contacts have channels, and legs held on their stops make the rest ill-conditioned. The regularized
+// solve changes the impulses least where they are not determined (the warm start's sharing of a load is kept), and
+// iterative refinement solves the determined part to a tenth of the tolerance (m/s). False where that fails.
 bool SolveSet(double tolerance, BlockScratch& s) {
   constexpr int kRefinements = 40;
   const auto m = static_cast<Eigen::Index>(s.channels.size());
@@ -226,13 +244,11 @@ bool SolveSet(double tolerance, BlockScratch& s) {
       const auto ci = s.index[static_cast<std::size_t>(i)];
       for (Eigen::Index j = 0; j < k; ++j) s.S0(i, j) = s.A(ci, s.index[static_cast<std::size_t>(j)]);
     }
-    s.S = s.S0;
-    s.S.diagonal() *= 1 + kBlockRegularization;
-    s.llt.compute(s.S);
-    s.factor_ok = s.llt.info() == Eigen::Success;
+    s.factor_ok = s.cholesky.Compute(s.S0, kBlockRegularization);
   }
   if (!s.factor_ok) return false;
-  s.solved = s.llt.solve(s.rhs);
+  s.solved = s.rhs;
+  s.cholesky.SolveInPlace(s.solved);
   double before = std::numeric_limits<double>::infinity();
   for (int refinement = 0;; ++refinement) {
     s.residual.noalias() = s.rhs - s.S0 * s.solved;
@@ -243,7 +259,8 @@ bool SolveSet(double tolerance, BlockScratch& s) {
     // contradict each other: more channels than degrees of freedom, targets no motion meets).
     if (refinement == kRefinements || residual > 0.5 * before) return false;
     before = residual;
-    s.solved += s.llt.solve(s.residual);
+    s.cholesky.SolveInPlace(s.residual);
+    s.solved += s.residual;
   }
   for (Eigen::Index i = 0; i < k; ++i) s.delta[s.index[static_cast<std::size_t>(i)]] = s.solved[i];
   s.change_u.noalias() = s.A * s.delta;
@@ -346,24 +363,29 @@ bool PivotStep(const std::vector<Patch>& patches, const std::vector<int>& order,
 }  // namespace
 
 bool BlockSolvable(const std::vector<Patch>& patches, const std::vector<int>& order, const BodyResponse& bodies) {
-  if (bodies.coupling == nullptr || order.empty()) return false;
+  if (order.empty()) return false;
+  const bool jointed = patches[static_cast<std::size_t>(order[0])].coupling != nullptr;
+  if (!jointed && order.size() == 1) return false;  // (a free patch alone: UpdatePatchJointly)
   int channels = 0;
   for (const int k : order) {
     const Patch& p = patches[static_cast<std::size_t>(k)];
     // A patch that slid last step follows its centre of pressure within the sweeps (its
-    // friction's channels move with it): kernels.cpp's sweeps.
-    if (p.sliding || p.coupling == nullptr) return false;
+    // friction's channels move with it): kernels.cpp's sweeps. An island of jointed and free
+    // bodies both: the sweeps too.
+    if (p.sliding || (p.coupling != nullptr) != jointed) return false;
     channels += p.count + (p.rho > 0 ? 3 : 2);
   }
-  return channels <= kMaxBlockChannels;
+  return (!jointed || bodies.coupling != nullptr) && channels <= kMaxBlockChannels;
 }
 
 int SolveBlock(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order,
                std::vector<Velocities>& vel, const BodyResponse& bodies, const SolveSettings& settings,
                BlockScratch& s) {
   BuildChannels(rows, patches, order, s);
-  BuildMembers(patches, order, *bodies.coupling, s);
-  BuildResponse(vel, *bodies.coupling, s);
+  const bool jointed = patches[static_cast<std::size_t>(order[0])].coupling != nullptr;
+  const Coupling* const coupling = jointed ? bodies.coupling : nullptr;
+  BuildMembers(patches, order, coupling, s);
+  BuildResponse(vel, bodies, coupling, s);
   GatherImpulses(rows, patches, order, s);
   s.start = s.lambda;
   s.factored.clear();

@@ -12,6 +12,7 @@
 #include <Eigen/Cholesky>
 
 #include "dynamics/contact.h"
+#include "profile_cholesky.h"
 
 namespace dynamics::contact {
 
@@ -283,7 +284,7 @@ struct BlockChannel {
 /// warm start's).
 inline constexpr double kBlockRegularization = 1e-9;
 
-/// Islands of jointed bodies with more channels than this are swept point by point.
+/// Islands with more channels than this are swept point by point.
 inline constexpr int kMaxBlockChannels = 96;
 
 /// The block solve's working arrays (block_solve.cpp), kept from step to step.
@@ -296,9 +297,9 @@ struct BlockScratch {
   Eigen::VectorXd u, lambda, start, delta, change_u, change_v, rhs, solved;
   std::vector<char> role, failed;    // the pivoting step's roles; the loaded set it last failed from
   std::vector<int> index, factored;  // the pivoting step's set, and the set its factor is of
-  Eigen::MatrixXd S0, S;             // the set's block of A, and regularized
+  Eigen::MatrixXd S0;                // the set's block of A
   Eigen::VectorXd residual;
-  Eigen::LLT<Eigen::MatrixXd> llt;
+  ProfileCholesky cholesky;  // of S0, regularized
   bool factor_ok = false;
 };
 
