@@ -2,8 +2,8 @@
 // factor (profile_cholesky.h): the profile Cholesky solves what Eigen's dense LLT solves, banded
 // or dense, regularized or not, and refuses a matrix that is not positive definite; a column of
 // tilted boxes, the case the point-by-point sweeps crawl on (each sweep cut the change by ~4 %),
-// once it leans still is solved in a few sweeps instead of running out of them, and comes to rest
-// to the stopping rule with the ground carrying its weight.
+// is solved in a few sweeps instead of running out of them while it sways and settles, and comes
+// to rest to the stopping rule with the ground carrying its weight.
 
 #include <gtest/gtest.h>
 
@@ -96,20 +96,21 @@ TEST(BlockSolve, ALeaningColumnIsSolvedAsOneBlock) {
   ContactWorld w = LeaningColumn();
   constexpr int kMaxSweeps = 32;  // ContactOptions' default
   int capped = 0, quick = 0;
-  for (int step = 0; step < 1500; ++step) {
+  for (int step = 0; step < 3000; ++step) {
     ASSERT_TRUE(w.Step(1e-3).ok);
     const int sweeps = w.stats().iterations;
-    if (step >= 1000) {  // the column has landed and leans
+    if (step >= 300) {  // the column has landed; it sways, then stands
       capped += sweeps >= kMaxSweeps;
       quick += sweeps <= 3;
     }
   }
-  // Once the column leans still, its solve is one block: two sweeps, then the pivoting step (or
-  // the sweeps alone, at rest). The sweeps run out only in the few steps where a patch creeps (a
-  // sliding patch is swept point by point). Before the block solve took free bodies, 214 of
-  // these 500 steps ran out of sweeps and 264 were solved in three or fewer.
-  EXPECT_LE(capped, 25) << "of the last 500 steps";
-  EXPECT_GE(quick, 470) << "of the last 500 steps";
+  // Landed, the column sways for about a second and then stands (when exactly depends on rounding:
+  // a column balanced on edges is chaotic). Its solve is one block: two sweeps, then the pivoting
+  // step (at rest, the sweeps alone). The sweeps run out only in steps where a patch slides (a
+  // sliding patch is swept point by point): 50-70 of these 2700. Before the block solve took free
+  // bodies, 914 ran out of sweeps and 1764 were solved in three or fewer.
+  EXPECT_LE(capped, 150) << "of the last 2700 steps";
+  EXPECT_GE(quick, 2400) << "of the last 2700 steps";
   // The column stands: it is one island of six patches (boxes on boxes), and at rest to the
   // stopping rule — no point of a box moving faster than a few times 10⁻⁹ m/s.
   EXPECT_EQ(w.stats().pairs, 6);
