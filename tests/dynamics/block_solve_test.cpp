@@ -107,7 +107,7 @@ TEST(BlockSolve, ALeaningColumnIsSolvedAsOneBlock) {
   // Landed, the column sways for about a second and then stands (when exactly depends on rounding:
   // a column balanced on edges is chaotic). Its solve is one block: two sweeps, then the pivoting
   // step (at rest, the sweeps alone). The sweeps run out only in steps where a patch slides (a
-  // sliding patch is swept point by point): 50-70 of these 2700. Before the block solve took free
+  // sliding patch is swept point by point): 12 of these 2700. Before the block solve took free
   // bodies, 914 ran out of sweeps and 1764 were solved in three or fewer.
   EXPECT_LE(capped, 150) << "of the last 2700 steps";
   EXPECT_GE(quick, 2400) << "of the last 2700 steps";

@@ -41,6 +41,7 @@ int LocalIndex(const std::vector<int>& members, int body) {
 // and −wb on b (force, torque about the body's centre); its velocity is wa·V_a − wb·V_b.
 void BuildChannels(const std::vector<Row>& rows, const std::vector<Patch>& patches, const std::vector<int>& order,
                    BlockScratch& s) {
+  s.Reserve();
   s.channels.clear();
   s.first.clear();
   for (const int k : order) {
@@ -91,6 +92,63 @@ void BuildMembers(const std::vector<Patch>& patches, const std::vector<int>& ord
   s.members.erase(std::unique(s.members.begin(), s.members.end()), s.members.end());
 }
 
+// The channels' velocities u = J V of the velocities `vel`.
+void ChannelVelocities(const std::vector<Velocities>& vel, BlockScratch& s) {
+  const auto m = static_cast<Eigen::Index>(s.channels.size());
+  s.u.resize(m);
+  for (Eigen::Index c = 0; c < m; ++c) {
+    const BlockChannel& ch = s.channels[static_cast<std::size_t>(c)];
+    const Velocities& va = vel[static_cast<std::size_t>(ch.a)];
+    s.u[c] = ch.wa.head<3>().dot(va.v) + ch.wa.tail<3>().dot(va.w);
+    if (ch.b >= 0) {
+      const Velocities& vb = vel[static_cast<std::size_t>(ch.b)];
+      s.u[c] -= ch.wb.head<3>().dot(vb.v) + ch.wb.tail<3>().dot(vb.w);
+    }
+  }
+}
+
+// A = J U of free bodies, entry by entry where two channels share a body (elsewhere zero): a
+// column of boxes touches each channel's row with a dozen others, not the island's every one.
+void FreeDelassus(BlockScratch& s) {
+  const auto m = static_cast<Eigen::Index>(s.channels.size());
+  const std::size_t n = s.members.size();
+  // Each channel's bodies (their places among the members), and each member's channels.
+  s.sides.resize(2 * static_cast<std::size_t>(m));
+  s.touch_first.assign(n + 1, 0);
+  for (Eigen::Index c = 0; c < m; ++c) {
+    const BlockChannel& ch = s.channels[static_cast<std::size_t>(c)];
+    const int la = LocalIndex(s.members, ch.a), lb = ch.b >= 0 ? LocalIndex(s.members, ch.b) : -1;
+    s.sides[static_cast<std::size_t>(2 * c)] = la;
+    s.sides[static_cast<std::size_t>(2 * c + 1)] = lb;
+    ++s.touch_first[static_cast<std::size_t>(la) + 1];
+    if (lb >= 0) ++s.touch_first[static_cast<std::size_t>(lb) + 1];
+  }
+  for (std::size_t j = 0; j < n; ++j) s.touch_first[j + 1] += s.touch_first[j];
+  s.touch.resize(static_cast<std::size_t>(s.touch_first[n]));
+  s.touch_fill.assign(s.touch_first.begin(), s.touch_first.end() - 1);
+  for (Eigen::Index c = 0; c < m; ++c) {
+    for (int side = 0; side < 2; ++side) {
+      const int l = s.sides[static_cast<std::size_t>(2 * c + side)];
+      if (l >= 0) s.touch[static_cast<std::size_t>(s.touch_fill[static_cast<std::size_t>(l)]++)] = static_cast<int>(c);
+    }
+  }
+  s.A.setZero(m, m);
+  for (Eigen::Index c = 0; c < m; ++c) {
+    const BlockChannel& ch = s.channels[static_cast<std::size_t>(c)];
+    for (int side = 0; side < 2; ++side) {
+      const int l = s.sides[static_cast<std::size_t>(2 * c + side)];
+      if (l < 0) continue;
+      const Vector6& w = side == 0 ? ch.wa : ch.wb;
+      const double sign = side == 0 ? 1.0 : -1.0;
+      for (int k = s.touch_first[static_cast<std::size_t>(l)]; k < s.touch_first[static_cast<std::size_t>(l) + 1];
+           ++k) {
+        const int d = s.touch[static_cast<std::size_t>(k)];
+        s.A(c, d) += sign * w.dot(s.U.col(d).segment<6>(6 * l));
+      }
+    }
+  }
+}
+
 // U (each channel's unit impulse's change of every member's (v, ω), 6 rows a member), the
 // Delassus matrix A = J U, and the channels' velocities J V of the velocities `vel`. A free body
 // (no coupling) answers a wrench alone: (f / m, I⁻¹ τ).
@@ -117,21 +175,21 @@ void BuildResponse(const std::vector<Velocities>& vel, const BodyResponse& bodie
     add(c.a, c.wa, 1.0);
     if (c.b >= 0) add(c.b, c.wb, -1.0);
   }
-  s.A.resize(m, m);
-  s.u.resize(m);
-  for (Eigen::Index c = 0; c < m; ++c) {
-    const BlockChannel& ch = s.channels[static_cast<std::size_t>(c)];
-    const Eigen::Index ia = 6 * LocalIndex(s.members, ch.a);
-    s.A.row(c).noalias() = ch.wa.transpose() * s.U.middleRows<6>(ia);
-    const Velocities& va = vel[static_cast<std::size_t>(ch.a)];
-    s.u[c] = ch.wa.head<3>().dot(va.v) + ch.wa.tail<3>().dot(va.w);
-    if (ch.b >= 0) {
-      const Eigen::Index ib = 6 * LocalIndex(s.members, ch.b);
-      s.A.row(c).noalias() -= ch.wb.transpose() * s.U.middleRows<6>(ib);
-      const Velocities& vb = vel[static_cast<std::size_t>(ch.b)];
-      s.u[c] -= ch.wb.head<3>().dot(vb.v) + ch.wb.tail<3>().dot(vb.w);
+  if (coupling == nullptr) {
+    FreeDelassus(s);
+  } else {
+    s.A.resize(m, m);
+    for (Eigen::Index c = 0; c < m; ++c) {
+      const BlockChannel& ch = s.channels[static_cast<std::size_t>(c)];
+      const Eigen::Index ia = 6 * LocalIndex(s.members, ch.a);
+      s.A.row(c).noalias() = ch.wa.transpose() * s.U.middleRows<6>(ia);
+      if (ch.b >= 0) {
+        const Eigen::Index ib = 6 * LocalIndex(s.members, ch.b);
+        s.A.row(c).noalias() -= ch.wb.transpose() * s.U.middleRows<6>(ib);
+      }
     }
   }
+  ChannelVelocities(vel, s);
 }
 
 // The impulses of the channels from the rows and patches (the warm start), and back.
@@ -360,6 +418,19 @@ bool PivotStep(const std::vector<Patch>& patches, const std::vector<int>& order,
   return true;
 }
 
+// The block's impulses into the rows and patches, and their change into the members' velocities
+// (all at once).
+void Finish(const std::vector<int>& order, std::vector<Row>& rows, std::vector<Patch>& patches,
+            std::vector<Velocities>& vel, BlockScratch& s) {
+  ScatterImpulses(s, order, rows, patches);
+  s.change_v.noalias() = s.U * (s.lambda - s.start);
+  for (std::size_t j = 0; j < s.members.size(); ++j) {
+    Velocities& v = vel[static_cast<std::size_t>(s.members[j])];
+    v.v += s.change_v.segment<3>(static_cast<Eigen::Index>(6 * j));
+    v.w += s.change_v.segment<3>(static_cast<Eigen::Index>(6 * j + 3));
+  }
+}
+
 }  // namespace
 
 bool BlockSolvable(const std::vector<Patch>& patches, const std::vector<int>& order, const BodyResponse& bodies) {
@@ -405,15 +476,28 @@ int SolveBlock(std::vector<Row>& rows, std::vector<Patch>& patches, const std::v
       break;
     }
   }
-  ScatterImpulses(s, order, rows, patches);
-  // The members' velocities: the impulses' whole change at once.
-  s.change_v.noalias() = s.U * (s.lambda - s.start);
-  for (std::size_t j = 0; j < s.members.size(); ++j) {
-    Velocities& v = vel[static_cast<std::size_t>(s.members[j])];
-    v.v += s.change_v.segment<3>(static_cast<Eigen::Index>(6 * j));
-    v.w += s.change_v.segment<3>(static_cast<Eigen::Index>(6 * j + 3));
-  }
+  Finish(order, rows, patches, vel, s);
   return sweeps;
+}
+
+bool PivotFree(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order,
+               std::vector<Velocities>& vel, const BodyResponse& bodies, const SolveSettings& settings, BlockScratch& s,
+               bool first) {
+  if (first) {
+    BuildChannels(rows, patches, order, s);
+    BuildMembers(patches, order, nullptr, s);
+    BuildResponse(vel, bodies, nullptr, s);
+    s.factored.clear();
+    s.failed.clear();
+  } else {
+    ChannelVelocities(vel, s);
+  }
+  GatherImpulses(rows, patches, order, s);
+  s.start = s.lambda;
+  Progress progress;
+  if (!PivotStep(patches, order, settings.speed_tolerance, s, progress)) return false;
+  Finish(order, rows, patches, vel, s);
+  return true;
 }
 
 }  // namespace dynamics::contact

@@ -86,12 +86,24 @@ int Sweeps(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vecto
            std::vector<Velocities>& vel, const BodyResponse& bodies, const SolveSettings& settings,
            BlockScratch* block = nullptr) {
   constexpr double kSlower = 0.1;
+  constexpr int kTries = 2;
   double before = std::numeric_limits<double>::infinity();
+  const bool free = block != nullptr && patches[static_cast<std::size_t>(order[0])].coupling == nullptr;
+  bool built = false;
+  int tries = 0;
   for (int iteration = 0; iteration < settings.max_iterations; ++iteration) {
     Progress progress;
     Sweep(rows, patches, order, iteration % 2 == 0, !settings.exact, vel, bodies, progress);
     if (progress.Done(settings)) return iteration + 1;
-    if (block != nullptr && iteration + 1 < settings.max_iterations && progress.speed > kSlower * before) {
+    // Free bodies: once the sweeps slow down, the pivoting step after each sweep until it is taken
+    // (the answer). The sweeps between change the loaded set it starts from.
+    if (free && tries < kTries && iteration + 1 < settings.max_iterations &&
+        (built || progress.speed > kSlower * before)) {
+      if (PivotFree(rows, patches, order, vel, bodies, settings, *block, !built)) return iteration + 2;
+      built = true;
+      ++tries;
+    }
+    if (block != nullptr && !free && iteration + 1 < settings.max_iterations && progress.speed > kSlower * before) {
       SolveSettings rest = settings;
       rest.max_iterations -= iteration + 1;
       return iteration + 1 + SolveBlock(rows, patches, order, vel, bodies, rest, *block);

@@ -289,11 +289,31 @@ inline constexpr int kMaxBlockChannels = 96;
 
 /// The block solve's working arrays (block_solve.cpp), kept from step to step.
 struct BlockScratch {
+  /// Room for the largest island solved as a block, taken once: each island's slot of the solve's
+  /// scratch sees islands of every size, and a step allocates nothing.
+  void Reserve() {
+    if (channels.capacity() >= kMaxBlockChannels) return;
+    constexpr auto kMax = static_cast<std::size_t>(kMaxBlockChannels);
+    channels.reserve(kMax);
+    first.reserve(kMax);
+    members.reserve(2 * kMax);
+    role.reserve(kMax);
+    failed.reserve(kMax);
+    index.reserve(kMax);
+    factored.reserve(kMax);
+    sides.reserve(2 * kMax);
+    touch.reserve(2 * kMax);
+    touch_first.reserve(2 * kMax + 1);
+    touch_fill.reserve(2 * kMax + 1);
+  }
   std::vector<BlockChannel> channels;
   std::vector<int> first;    // each patch's first channel (by its place in the island's order)
   std::vector<int> members;  // the bodies that move (sorted)
   Eigen::MatrixXd U;         // each channel's unit impulse's change of every member's (v, ω)
   Eigen::MatrixXd A;         // the Delassus matrix J U
+  // Free bodies: each channel's two bodies (places among the members; -1: none), and each
+  // member's channels (from touch_first[j] to touch_first[j + 1] in touch).
+  std::vector<int> sides, touch_first, touch_fill, touch;
   Eigen::VectorXd u, lambda, start, delta, change_u, change_v, rhs, solved;
   std::vector<char> role, failed;    // the pivoting step's roles; the loaded set it last failed from
   std::vector<int> index, factored;  // the pivoting step's set, and the set its factor is of

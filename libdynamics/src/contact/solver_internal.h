@@ -111,5 +111,14 @@ bool BlockSolvable(const std::vector<Patch>& patches, const std::vector<int>& or
 int SolveBlock(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order,
                std::vector<Velocities>& vel, const BodyResponse& bodies, const SolveSettings& settings,
                BlockScratch& scratch);
+/// Of free bodies: the pivoting step alone, from the impulses and velocities the sweeps left, taken
+/// (into the rows, patches and `vel`) only where it is the answer — else nothing changes, and the
+/// sweeps go on (a projected sweep on A costs more than theirs, and a patch that starts to slide
+/// leaves the pivoting step nothing to find). `first`: the island's channels and Delassus matrix
+/// are built (once a step: free bodies' responses do not change within it). Returns whether it
+/// was taken.
+bool PivotFree(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order,
+               std::vector<Velocities>& vel, const BodyResponse& bodies, const SolveSettings& settings,
+               BlockScratch& scratch, bool first);
 
 }  // namespace dynamics::contact
