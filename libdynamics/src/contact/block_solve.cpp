@@ -13,11 +13,14 @@
 //   principal pivoting on the normals, accepted only when it is the answer of the
 //   complementarity problem — loaded points push, the others separate, every patch's friction
 //   within μ N — which the sweeps converge to;
-// - else a projected Gauss–Seidel sweep on A, with the updates of kernels.cpp (the least normal
-//   impulse that keeps a point at its target; friction that stops the patch when it can, else the
-//   impulse of least kinetic energy on the limit μ N).
-// A sweep costs O(m²) for m channels, and stops on the same m/s rule as the others. A patch that
-// must slide is left to the projected sweeps (the pivoting step holds friction only).
+// - else (SolveBlock, jointed bodies) a projected Gauss–Seidel sweep on A, with the updates of
+//   kernels.cpp (the least normal impulse that keeps a point at its target; friction that stops
+//   the patch when it can, else the impulse of least kinetic energy on the limit μ N); a sweep
+//   costs O(m²) for m channels, and stops on the same m/s rule as the others. A patch that must
+//   slide is left to the projected sweeps (the pivoting step holds friction only);
+// - else (PivotFree, free bodies) nothing: their own sweeps cost less than a projected one, and
+//   solver.cpp goes on with them. A free body's channels meet only the channels of the patches
+//   that share its body, so their A is built entry by entry (FreeDelassus).
 
 #include <algorithm>
 #include <cmath>
@@ -251,14 +254,12 @@ void ProjectedSweep(std::vector<Patch>& patches, const std::vector<int>& order, 
       g[f] = s.u[f0 + f];
       old[f] = s.lambda[f0 + f];
     }
-    // (A jointed body's patch keeps its whole response in Ka, Kb zero.)
-    const Matrix3 K = p.Ka + p.Kb;
-    const Vector3 lt = FrictionUpdate(p, old, g, p.mass, K, p.mu * N);
+    const Vector3 lt = FrictionUpdate(p, old, g, p.mass, p.Ka, p.mu * N);
     const Vector3 d = lt - old;
     for (Eigen::Index f = 0; f < nf; ++f) Change(s, f0 + f, d[f]);
     progress.change = std::max(progress.change, d.norm());
     progress.scale = std::max(progress.scale, lt.norm());
-    progress.speed = std::max(progress.speed, (K * d).norm());
+    progress.speed = std::max(progress.speed, (p.Ka * d).norm());
   }
 }
 
@@ -272,10 +273,11 @@ enum Role : char {
 // The linear system of one set of roles: s.delta, the change of every channel's impulse, and
 // s.change_u, of its velocity. The set's block of A is factored (Cholesky over its rows'
 // profiles: the channels come patch by patch from the ground up, so free bodies' islands give
-// banded blocks; kept while the set holds) with kBlockRegularization of its diagonal added: a tree has fewer degrees of
-// freedom than its contacts have channels, and legs held on their stops make the rest ill-conditioned. The regularized
-// solve changes the impulses least where they are not determined (the warm start's sharing of a load is kept), and
-// iterative refinement solves the determined part to a tenth of the tolerance (m/s). False where that fails.
+// banded blocks; kept while the set holds) with kBlockRegularization of its diagonal added: a
+// tree has fewer degrees of freedom than its contacts have channels, and legs held on their stops
+// make the rest ill-conditioned. The regularized solve changes the impulses least where they are
+// not determined (the warm start's sharing of a load is kept), and iterative refinement solves
+// the determined part to a tenth of the tolerance (m/s). False where that fails.
 bool SolveSet(double tolerance, BlockScratch& s) {
   constexpr int kRefinements = 40;
   const auto m = static_cast<Eigen::Index>(s.channels.size());

@@ -78,10 +78,13 @@ class IslandState {
 
 // Symmetric sweeps from the ground up, then back down (they carry a load through a stack in both
 // directions), until the stopping rule holds. Returns the sweeps used, or max_iterations.
-// With `block` (jointed bodies, block_solve.cpp): the sweeps while they converge fast (the warm
-// start is often nearly the answer, and a sweep costs less than forming the block), then the
-// block solve once a sweep does not cut the change of the one before by kSlower (the contacts of
-// a tree couple through its joints, and the sweeps crawl).
+// With `block` (block_solve.cpp): the sweeps while they converge fast (the warm start is often
+// nearly the answer, and a sweep costs less than forming the block), then, once a sweep does not
+// cut the change of the one before by kSlower (the contacts of a tree couple through its joints,
+// boxes leaning on each other through their lever arms, and the sweeps crawl): for jointed
+// bodies the block solve; for free bodies its pivoting step alone, after that sweep and the next
+// (kTries), each taken only where it is the answer — else the sweeps go on as if it had not been
+// tried (the sweeps between change the loaded set it starts from).
 int Sweeps(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order,
            std::vector<Velocities>& vel, const BodyResponse& bodies, const SolveSettings& settings,
            BlockScratch* block = nullptr) {
@@ -95,8 +98,6 @@ int Sweeps(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vecto
     Progress progress;
     Sweep(rows, patches, order, iteration % 2 == 0, !settings.exact, vel, bodies, progress);
     if (progress.Done(settings)) return iteration + 1;
-    // Free bodies: once the sweeps slow down, the pivoting step after each sweep until it is taken
-    // (the answer). The sweeps between change the loaded set it starts from.
     if (free && tries < kTries && iteration + 1 < settings.max_iterations &&
         (built || progress.speed > kSlower * before)) {
       if (PivotFree(rows, patches, order, vel, bodies, settings, *block, !built)) return iteration + 2;
