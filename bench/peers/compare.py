@@ -76,6 +76,22 @@ f 4 1 5 8
 """
 
 
+def pile_scene(side, duration, prime=7919):
+    """side³ boxes of 8 cm dropped in side × side columns, each tilted about x by
+    0.3 · ((i · prime mod 13) − 6) / 6 rad (another prime: another pattern of the same pile)."""
+    bodies = []
+    for i in range(side ** 3):
+        x, y, z = i % side, (i // side) % side, i // (side * side)
+        tilt = 0.3 * ((i * prime) % 13 - 6) / 6
+        bodies.append({"name": "b%d" % i, "solid": {"type": "box", "size": [0.08, 0.08, 0.08]}, "density": 500,
+                       "position": [0.12 * (x - side / 2), 0.12 * (y - side / 2), 0.06 + 0.12 * z],
+                       "orientation": [math.cos(tilt / 2), math.sin(tilt / 2), 0, 0]})
+    flat = {"normal": [0, 0, 1], "offset": 0}
+    return {"dt": 1e-3, "duration": duration, "output_rate": 10,
+            "ground": dict(flat, material={"static_friction": 0.6, "kinetic_friction": 0.5}),
+            "bodies": bodies, "forces": [{"type": "gravity", "g": [0, 0, -G]}]}
+
+
 def cases(quick, tmp):
     out = []
     box_mesh = os.path.join(tmp, "box.obj")
@@ -170,16 +186,7 @@ def cases(quick, tmp):
     out.append(("stack", "data/scenes/box_stack.json", {"kind": "drift", "shape": ("box", 0.05), "n": [0, 0, 1],
                                                         "stack": 0.1}))
     for side in ((6,) if quick else (6, 10)):
-        bodies = []
-        for i in range(side ** 3):
-            x, y, z = i % side, (i // side) % side, i // (side * side)
-            tilt = 0.3 * ((i * 7919) % 13 - 6) / 6
-            bodies.append({"name": "b%d" % i, "solid": {"type": "box", "size": [0.08, 0.08, 0.08]}, "density": 500,
-                           "position": [0.12 * (x - side / 2), 0.12 * (y - side / 2), 0.06 + 0.12 * z],
-                           "orientation": [math.cos(tilt / 2), math.sin(tilt / 2), 0, 0]})
-        out.append(("pile", {"dt": 1e-3, "duration": 0.5 if quick else 1.0, "output_rate": 10,
-                             "ground": dict(flat, material={"static_friction": 0.6, "kinetic_friction": 0.5}),
-                             "bodies": bodies, "forces": [{"type": "gravity", "g": [0, 0, -G]}]},
+        out.append(("pile", pile_scene(side, 0.5 if quick else 1.0),
                     {"kind": "throughput", "n": [0, 0, 1], "bodies": side ** 3}))
     if not quick:
         # The same boxes 1 cm apart (every other layer shifted by 1 cm): they land on each other
