@@ -9,8 +9,11 @@
 #include <cmath>
 #include <vector>
 
+#include <random>
+
 #include "islands.h"
 #include "solver.h"
+#include "solver_internal.h"
 
 namespace dynamics::contact {
 namespace {
@@ -123,6 +126,48 @@ TEST(Solver, TwoBodiesMeetWithTheImpulseOfTheirEffectiveMass) {
   EXPECT_NEAR(rows[0].lambda_n, -before * effective, 1e-12);
   EXPECT_NEAR(normal_speed(), 0, 1e-12);
   EXPECT_LT((vel[0].v * 1.0 + vel[1].v * 3.0 - momentum).norm(), 1e-12);
+}
+
+// Coulomb's friction update on its limit (FrictionUpdate's projection, by Newton on the
+// multiplier ν of x(ν) = (K + ν E)⁻¹ K t): for random responses K (SPD, 10⁻² to 10² in scale,
+// condition up to 10⁴; with torsion, 3 components, and without, 2) and targets t beyond the limit
+// b, the answer lies on the limit and is the point of least kinetic energy there — the optimality
+// condition K (t − x) = ν x with ν ≥ 0 (Lagrange), checked as K (t − x) parallel to x and
+// pointing with it — and the multiplier kept for the next update is that ν.
+TEST(Solver, FrictionOnItsLimitIsTheLeastKineticEnergyThere) {
+  std::mt19937 rng(12345);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const int dim = trial % 2 == 0 ? 3 : 2;
+    const double scale = std::pow(10.0, 2 * u(rng));
+    const Eigen::Matrix3d Q = Eigen::Quaterniond::UnitRandom().toRotationMatrix();
+    const Vector3 eig(scale, scale * std::pow(10.0, 2 * (u(rng) + 1)), scale * std::pow(10.0, 1 + u(rng)));
+    Matrix3 K = Q * eig.asDiagonal() * Q.transpose();
+    if (dim == 2) {  // (the patch's K without torsion: its 2 × 2 block counts)
+      K.row(2).setZero();
+      K.col(2).setZero();
+    }
+    Patch p;
+    p.rho = dim == 3 ? 0.01 : 0;
+    const Matrix3 mass = dim == 3 ? Matrix3(K.inverse()) : [&] {
+      Matrix3 m = Matrix3::Zero();
+      m.topLeftCorner<2, 2>() = K.topLeftCorner<2, 2>().inverse();
+      return m;
+    }();
+    Vector3 t(u(rng), u(rng), dim == 3 ? u(rng) : 0.0);
+    const double bound = (0.05 + 0.9 * std::abs(u(rng))) * t.norm();  // t beyond it
+    // FrictionUpdate's target is old − mass g: choose g so that it is t, from old = 0.
+    const Vector3 g = -(K * t);
+    const Vector3 x = FrictionUpdate(p, Vector3::Zero(), g, mass, K, bound);
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    ASSERT_NEAR(x.norm(), bound, 1e-12 * bound);
+    if (dim == 2) EXPECT_EQ(x[2], 0.0);
+    const Vector3 pull = K * (t - x);  // = ν x at the optimum
+    const double nu = pull.dot(x) / x.squaredNorm();
+    EXPECT_GE(nu, 0.0);
+    EXPECT_LE((pull - nu * x).norm(), 1e-9 * (pull.norm() + K.norm() * x.norm()));
+    EXPECT_NEAR(p.nu, nu, 1e-6 * (nu + K.norm()));
+  }
 }
 
 }  // namespace

@@ -57,12 +57,21 @@ Vector3 ProjectOntoBall(const Matrix3& K, const Vector3& target, double bound, i
     Kd(2, 2) = 1;
   }
   const Vector3 Kt = Kd * target;
-  // x(ν) = (K + ν E)⁻¹ K t, d|x|²/dν = −2 xᵀ (K + ν E)⁻¹ x: a 3 × 3 inverse an iteration.
+  // x(ν) = (K + ν E)⁻¹ K t as polynomials in ν (Cayley–Hamilton: adj(K + ν E) = adj K +
+  // ν (tr K E − K) + ν² E, and adj K · K = det K · E): x = N(ν) / D(ν) with N = det K t +
+  // ν (tr K · Kt − K Kt) + ν² Kt and D = det(K + ν E) = ν³ + tr K ν² + c₂ ν + det K (c₂ the sum of
+  // K's principal 2 × 2 minors). An iteration is then a few products, not a 3 × 3 inverse.
+  const double tr = Kd.trace(), det = Kd.determinant();
+  const double c2 = Kd(0, 0) * Kd(1, 1) - Kd(0, 1) * Kd(1, 0) + Kd(0, 0) * Kd(2, 2) - Kd(0, 2) * Kd(2, 0) +
+                    Kd(1, 1) * Kd(2, 2) - Kd(1, 2) * Kd(2, 1);
+  const Vector3 a0 = det * target, a1 = tr * Kt - Kd * Kt, a2 = Kt;
+  // x, |x| and d|x|²/dν = 2 (N·N' D − |N|² D') / D³.
   auto at = [&](double nu, Vector3& x, double& length, double& slope) {
-    const Matrix3 inverse = (Kd + nu * Matrix3::Identity()).inverse();
-    x = inverse * Kt;
-    length = x.norm();
-    slope = -2 * x.dot(inverse * x);
+    const Vector3 N = a0 + nu * (a1 + nu * a2), dN = a1 + 2 * nu * a2;
+    const double D = ((nu + tr) * nu + c2) * nu + det, dD = (3 * nu + 2 * tr) * nu + c2;
+    x = N / D;
+    length = N.norm() / D;
+    slope = 2 * (N.dot(dN) * D - N.squaredNorm() * dD) / (D * D * D);
   };
   // Newton on φ(ν) = 1/|x| − 1/bound, φ' = −½ |x|⁻³ d|x|²/dν: nearly linear and concave, so from
   // below the root it approaches monotonically, and from above it lands below it. Started from
