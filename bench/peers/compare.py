@@ -38,6 +38,7 @@ import tempfile
 
 G = 9.81
 ENGINES = ("rbsim", "mujoco", "bullet")
+FLAT = {"normal": [0, 0, 1], "offset": 0}  # the ground z = 0 (scenes add its material)
 DEFAULT_DT = {"rbsim": 1e-3, "mujoco": 2e-3, "bullet": 1.0 / 60}
 
 
@@ -86,9 +87,8 @@ def pile_scene(side, duration, prime=7919):
         bodies.append({"name": "b%d" % i, "solid": {"type": "box", "size": [0.08, 0.08, 0.08]}, "density": 500,
                        "position": [0.12 * (x - side / 2), 0.12 * (y - side / 2), 0.06 + 0.12 * z],
                        "orientation": [math.cos(tilt / 2), math.sin(tilt / 2), 0, 0]})
-    flat = {"normal": [0, 0, 1], "offset": 0}
     return {"dt": 1e-3, "duration": duration, "output_rate": 10,
-            "ground": dict(flat, material={"static_friction": 0.6, "kinetic_friction": 0.5}),
+            "ground": dict(FLAT, material={"static_friction": 0.6, "kinetic_friction": 0.5}),
             "bodies": bodies, "forces": [{"type": "gravity", "g": [0, 0, -G]}]}
 
 
@@ -139,7 +139,7 @@ def cases(quick, tmp):
                                   "shape": ("box", 0.05) if body == "box" else ("sphere", 0.05), "n": n}))
     # Off the axes: sliding to a stop at 50° to x, and backspin along 30° (a friction cone that
     # depends on the direction shows here: MuJoCo's default is a pyramid).
-    flat = {"normal": [0, 0, 1], "offset": 0}
+    flat = FLAT
     phi = math.radians(50)
     d = [math.cos(phi), math.sin(phi), 0.0]
     box = {"name": "box", "solid": {"type": "box", "size": [0.1, 0.1, 0.1]}, "density": 500, "position": [0, 0, 0.05],

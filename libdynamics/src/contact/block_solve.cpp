@@ -455,10 +455,8 @@ int SolveBlock(std::vector<Row>& rows, std::vector<Patch>& patches, const std::v
                std::vector<Velocities>& vel, const BodyResponse& bodies, const SolveSettings& settings,
                BlockScratch& s) {
   BuildChannels(rows, patches, order, s);
-  const bool jointed = patches[static_cast<std::size_t>(order[0])].coupling != nullptr;
-  const Coupling* const coupling = jointed ? bodies.coupling : nullptr;
-  BuildMembers(patches, order, coupling, s);
-  BuildResponse(vel, bodies, coupling, s);
+  BuildMembers(patches, order, bodies.coupling, s);
+  BuildResponse(vel, bodies, bodies.coupling, s);
   GatherImpulses(rows, patches, order, s);
   s.start = s.lambda;
   s.factored.clear();
