@@ -150,9 +150,11 @@ void BM_ObjWeld(benchmark::State& state) {
   }
 }
 
+// The edge analysis on state.range(0) threads (0: every core).
 void BM_EdgeAnalysis(benchmark::State& state) {
   const massprops::LoadedMesh m = massprops::ReadMeshFile(TorusFile());
-  for (auto _ : state) benchmark::DoNotOptimize(massprops::AnalyzeTopology(m.mesh));
+  const auto threads = static_cast<int>(state.range(0));
+  for (auto _ : state) benchmark::DoNotOptimize(massprops::AnalyzeTopology(m.mesh, threads));
 }
 
 void BM_Integrate(benchmark::State& state) {
@@ -174,7 +176,7 @@ BENCHMARK(BM_ReadObj)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ObjFloor)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ObjParse)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ObjWeld)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_EdgeAnalysis)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_EdgeAnalysis)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_Integrate)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_LoadSolidFullCheck)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_MAIN();

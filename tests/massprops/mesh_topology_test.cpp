@@ -5,6 +5,10 @@
 #include "massprops/mesh_topology.h"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
+#include <numeric>
+#include <random>
 #include <vector>
 
 #include <gmock/gmock.h>
@@ -104,6 +108,55 @@ TEST(Topology, FindsHolesNonManifoldAndFlippedFaces) {
   EXPECT_EQ(AnalyzeTopology(fin).non_manifold_edges, 1);
   EXPECT_EQ(AnalyzeTopology(fin).unbalanced_edges, 1);
   EXPECT_FALSE(AnalyzeTopology(fin).BoundsVolume());
+}
+
+// Meshes of 2^17 faces and more are analysed in ranges on several threads. Two tori of 90 000
+// triangles (V − E + F = 0 each) with ten triangles cut out of one (ten holes of three edges),
+// ten flipped in the other (three edges each traversed twice the same way), a repeated face
+// (three edges used three times, unbalanced), a face with a repeated corner (an edge used four
+// times, balanced); faces shuffled and vertices renumbered at random, so that edges join vertex
+// ranges everywhere. Every count is the closed form's, on any number of threads.
+TEST(Topology, SeveralThreadsCountWhatTheClosedFormSays) {
+  const PolygonMesh two = testing::WithMovedCopy(ToPolygonMesh(solids::Torus(2.0, 0.5, 150)), Vector3(10, 0, 0));
+  ASSERT_EQ(two.num_faces(), 180000);
+  std::vector<std::array<std::int32_t, 3>> faces;
+  for (std::int64_t f = 0; f < two.num_faces(); ++f) {
+    const std::int32_t* c = two.indices.data() + two.offsets[f];
+    std::array<std::int32_t, 3> face = {c[0], c[1], c[2]};
+    if (f >= 90000 && f % 1000 == 500 && f < 100000) std::swap(face[1], face[2]);  // flipped
+    if (f % 1000 == 7 && f < 10000) continue;                                      // cut out
+    faces.push_back(face);
+  }
+  faces.push_back(faces[45003]);                                         // repeated
+  faces.push_back({faces[60005][0], faces[60005][0], faces[60005][1]});  // a repeated corner
+  std::mt19937_64 random(7);
+  for (std::size_t i = faces.size() - 1; i > 0; --i) std::swap(faces[i], faces[random() % (i + 1)]);
+  std::vector<std::int32_t> renumber(static_cast<std::size_t>(two.V.rows()));
+  std::iota(renumber.begin(), renumber.end(), 0);
+  for (std::size_t i = renumber.size() - 1; i > 0; --i) std::swap(renumber[i], renumber[random() % (i + 1)]);
+  PolygonMesh mesh;
+  mesh.V = two.V;
+  for (const auto& face : faces) {
+    mesh.AddFace(std::array<std::int32_t, 3>{renumber[static_cast<std::size_t>(face[0])],
+                                             renumber[static_cast<std::size_t>(face[1])],
+                                             renumber[static_cast<std::size_t>(face[2])]});
+  }
+  for (int threads : {1, 2, 3, 8}) {
+    const MeshTopology t = AnalyzeTopology(mesh, threads);
+    EXPECT_EQ(t.faces, 179992) << threads;
+    EXPECT_EQ(t.vertices, 90000) << threads;
+    EXPECT_EQ(t.unreferenced_vertices, 0) << threads;
+    EXPECT_EQ(t.edges, 270000) << threads;
+    EXPECT_EQ(t.boundary_edges, 30) << threads;
+    EXPECT_EQ(t.holes, 10) << threads;
+    EXPECT_EQ(t.inconsistent_edges, 30) << threads;
+    EXPECT_EQ(t.non_manifold_edges, 4) << threads;
+    EXPECT_EQ(t.unbalanced_edges, 3) << threads;
+    EXPECT_EQ(t.degenerate_faces, 1) << threads;
+    EXPECT_EQ(t.duplicate_faces, 1) << threads;
+    EXPECT_EQ(t.reversed_duplicate_faces, 0) << threads;
+    EXPECT_EQ(t.components, 2) << threads;
+  }
 }
 
 }  // namespace

@@ -30,7 +30,12 @@ using io_text::ParseDouble;
 
 LoadedMesh FromTriangleSoup(const std::string& path, const std::vector<double>& xyz, const char* format,
                             int num_threads) {
-  return WeldCorners(path, xyz, std::vector<int>(xyz.size() / 9, 3), format, num_threads);
+  return weld::Weld(
+      path, xyz.size() / 3,
+      [&xyz](std::size_t c) {
+        return weld::PositionKey{xyz[3 * c], xyz[3 * c + 1], xyz[3 * c + 2]};
+      },
+      nullptr, format, num_threads);
 }
 
 LoadedMesh ReadBinaryStl(const std::string& path, std::string_view data, std::uint32_t n, int num_threads) {
@@ -44,8 +49,7 @@ LoadedMesh ReadBinaryStl(const std::string& path, std::string_view data, std::ui
     std::memcpy(f, record + 12 + 12 * (c % 3), sizeof f);
     return weld::PositionKey{f[0], f[1], f[2]};
   };
-  LoadedMesh out =
-      weld::Weld(path, 3 * static_cast<std::size_t>(n), corner_at, std::vector<int>(n, 3), "stl-binary", num_threads);
+  LoadedMesh out = weld::Weld(path, 3 * static_cast<std::size_t>(n), corner_at, nullptr, "stl-binary", num_threads);
   out.float32_coordinates = true;
   return out;
 }

@@ -13,7 +13,7 @@ LoadedMesh WeldCorners(const std::string& path, const std::vector<double>& xyz, 
       [&xyz](std::size_t c) {
         return weld::PositionKey{xyz[3 * c], xyz[3 * c + 1], xyz[3 * c + 2]};
       },
-      face_sizes, format, num_threads);
+      &face_sizes, format, num_threads);
 }
 
 std::int64_t MergeCoincidentVertices(PolygonMesh& mesh, int num_threads) {

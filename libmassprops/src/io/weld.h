@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "core/large_array.h"
 #include "io/io_internal.h"
 #include "massprops/parallel.h"
 
@@ -210,9 +211,10 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
   }
   // Entry numbers, positions and first corners, grouped by partition (copied so that each
   // partition reads its own entries in sequence).
-  std::vector<std::uint32_t> bucket(entries);
-  std::vector<PositionKey> bucket_key(entries);
-  std::vector<std::uint32_t> bucket_first(entries);
+  // Uninitialised: first touched by the threads that scatter into them.
+  internal::LargeArray<std::uint32_t> bucket(entries);
+  internal::LargeArray<PositionKey> bucket_key(entries);
+  internal::LargeArray<std::uint32_t> bucket_first(entries);
   ParallelForBlocks(static_cast<std::int64_t>(chunks), num_threads, [&](std::int64_t bb) {
     const auto b = static_cast<std::size_t>(bb);  // each chunk writes its own slots
     std::size_t* cur = cursor.data() + b * parts;
@@ -225,7 +227,7 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
   });
 
   // 3. Weld each partition's entries: its vertices, each with its first corner.
-  std::vector<std::uint32_t> entry_vertex(entries);  // partition-local for now
+  internal::LargeArray<std::uint32_t> entry_vertex(entries);  // partition-local for now
   std::vector<std::vector<std::uint32_t>> firsts(parts);
   ParallelForBlocks(static_cast<std::int64_t>(parts), num_threads, [&](std::int64_t pb) {
     const auto p = static_cast<std::size_t>(pb);
@@ -280,10 +282,11 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
 }
 
 // The weld, over corners given by an accessor (so binary STL records are read in place, without
-// an intermediate copy of every coordinate).
+// an intermediate copy of every coordinate). `face_sizes` gives each face's corner count in order;
+// null, every face is a triangle.
 template <typename CornerAt>
 LoadedMesh Weld(const std::string& path, std::size_t corners, const CornerAt& corner_at,
-                const std::vector<int>& face_sizes, const char* format, int num_threads) {
+                const std::vector<int>* face_sizes, const char* format, int num_threads) {
   LoadedMesh out;
   out.format = format;
   Grouping g = GroupByPosition(corners, corner_at, num_threads);
@@ -295,14 +298,25 @@ LoadedMesh Weld(const std::string& path, std::size_t corners, const CornerAt& co
     Fail(path, msg.str());
   }
   out.welded = static_cast<std::int64_t>(corners - g.first_corner.size());
-  out.mesh.V.resize(static_cast<Eigen::Index>(g.first_corner.size()), 3);
-  for (std::size_t v = 0; v < g.first_corner.size(); ++v) {
-    const PositionKey k = corner_at(g.first_corner[v]);
-    out.mesh.V.row(static_cast<Eigen::Index>(v)) << k.x, k.y, k.z;
-  }
+  const std::size_t vertices = g.first_corner.size();
+  out.mesh.V.resize(static_cast<Eigen::Index>(vertices), 3);
+  constexpr std::size_t kRows = std::size_t{1} << 15;  // first touched by the thread that fills them
+  ParallelForBlocks(static_cast<std::int64_t>((vertices + kRows - 1) / kRows), num_threads, [&](std::int64_t b) {
+    const std::size_t lo = static_cast<std::size_t>(b) * kRows, hi = std::min(vertices, lo + kRows);
+    for (std::size_t v = lo; v < hi; ++v) {
+      const PositionKey k = corner_at(g.first_corner[v]);
+      out.mesh.V.row(static_cast<Eigen::Index>(v)) << k.x, k.y, k.z;
+    }
+  });
   out.mesh.indices = std::move(g.vertex_of);
-  out.mesh.offsets.reserve(face_sizes.size() + 1);
-  for (int n : face_sizes) out.mesh.offsets.push_back(out.mesh.offsets.back() + n);
+  std::vector<std::int64_t>& offsets = out.mesh.offsets;
+  if (face_sizes == nullptr) {
+    offsets.reserve(corners / 3 + 1);
+    for (std::size_t c = 3; c <= corners; c += 3) offsets.push_back(static_cast<std::int64_t>(c));
+  } else {
+    offsets.reserve(face_sizes->size() + 1);
+    for (int n : *face_sizes) offsets.push_back(offsets.back() + n);
+  }
   return out;
 }
 

@@ -8,19 +8,28 @@
 #include <memory>
 #include <numeric>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include "massprops/mesh_topology.h"
+#include "massprops/parallel.h"
 
 #include <Eigen/Geometry>
 
 namespace massprops {
 namespace {
 
+// The union–find's links, read and written as relaxed atomics (plain moves on x86): with vertex
+// ranges on several threads, two of them may link or shorten the same trees at once.
+std::int32_t Load(const std::int32_t* p) { return __atomic_load_n(p, __ATOMIC_RELAXED); }
+
+// Path halving. A link only ever points to a smaller vertex of the same set, so a halving step
+// that races another thread's (or a link) still leaves every vertex in its set.
 std::int32_t Find(std::int32_t* parent, std::int32_t i) {
-  while (parent[i] != i) {
-    parent[i] = parent[parent[i]];
-    i = parent[i];
+  for (std::int32_t up = Load(parent + i); up != i; up = Load(parent + i)) {
+    const std::int32_t grand = Load(parent + up);
+    __atomic_store_n(parent + i, grand, __ATOMIC_RELAXED);
+    i = grand;
   }
   return i;
 }
@@ -28,12 +37,21 @@ std::int32_t Find(std::int32_t* parent, std::int32_t i) {
 // Joins the sets of a and b, the larger root under the smaller: the edges come by their smaller
 // vertex in increasing order, so a vertex seen first as the larger end hangs straight off a root
 // and the trees stay shallow (linking the other way grew chains through the mesh's numbering).
+// kShared: other threads join too, so the link is made only if the root is still a root.
+template <bool kShared>
 void Join(std::int32_t* parent, std::int32_t a, std::int32_t b) {
-  const std::int32_t ra = Find(parent, a), rb = Find(parent, b);
-  if (ra < rb) {
-    parent[static_cast<std::size_t>(rb)] = ra;
-  } else if (rb < ra) {
-    parent[static_cast<std::size_t>(ra)] = rb;
+  for (;;) {
+    const std::int32_t ra = Find(parent, a), rb = Find(parent, b);
+    if (ra == rb) return;
+    std::int32_t child = std::max(ra, rb);
+    const std::int32_t root = std::min(ra, rb);
+    if (!kShared) {
+      parent[child] = root;
+      return;
+    }
+    if (__atomic_compare_exchange_n(parent + child, &child, root, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) return;
+    a = ra;  // another thread linked one of the roots first: again from the roots
+    b = rb;
   }
 }
 
@@ -161,14 +179,114 @@ void CountDuplicateFaces(const PolygonMesh& mesh, MeshTopology& t) {
 
 }  // namespace
 
+namespace {
+
+// What one range of vertices finds in the edges whose smaller end it holds.
+struct EdgeCounts {
+  std::int64_t edges = 0, boundary = 0, non_manifold = 0, unbalanced = 0, inconsistent = 0, degenerate_faces = 0;
+  void Add(const EdgeCounts& o) {
+    edges += o.edges, boundary += o.boundary, non_manifold += o.non_manifold, unbalanced += o.unbalanced;
+    inconsistent += o.inconsistent, degenerate_faces += o.degenerate_faces;
+  }
+};
+
+// Calls fn(a, b) for each directed edge of face f.
+template <typename Fn>
+void ForEachEdge(const PolygonMesh& mesh, std::int64_t f, Fn&& fn) {
+  const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
+  const int n = mesh.face_size(f);
+  for (int k = 0; k < n; ++k)
+    fn(static_cast<std::uint32_t>(idx[k]), static_cast<std::uint32_t>(idx[k + 1 < n ? k + 1 : 0]));
+}
+
+// Pass 1 over the faces [lo, hi): marks their corners used, counts the directed edges each vertex
+// starts as the smaller end (count[v + 1]) and the faces with a repeated corner.
+void CountEdges(const PolygonMesh& mesh, std::int64_t lo, std::int64_t hi, char* used, std::uint32_t* count,
+                EdgeCounts& out) {
+  EdgeCounts c;  // counted here: the threads' results share cache lines
+  for (std::int64_t f = lo; f < hi; ++f) {
+    bool degenerate = false;
+    ForEachEdge(mesh, f, [&](std::uint32_t a, std::uint32_t b) {
+      __atomic_store_n(used + a, char{1}, __ATOMIC_RELAXED);  // another slice may mark it too
+      if (a == b) {
+        degenerate = true;
+      } else {
+        ++count[std::min(a, b) + 1];
+      }
+    });
+    c.degenerate_faces += degenerate;
+  }
+  out.Add(c);
+}
+
+// Pass 2 over the faces [lo, hi): each directed edge as (larger vertex << 1 | reversed), in the
+// group of its smaller vertex, at its cursor.
+void PlaceEdges(const PolygonMesh& mesh, std::int64_t lo, std::int64_t hi, std::uint32_t* cursor,
+                std::uint32_t* other) {
+  for (std::int64_t f = lo; f < hi; ++f) {
+    ForEachEdge(mesh, f, [&](std::uint32_t a, std::uint32_t b) {
+      if (a != b) other[cursor[std::min(a, b)]++] = std::max(a, b) << 1 | (a > b ? 1u : 0u);
+    });
+  }
+}
+
+// Pass 3 over the vertices [lo, hi): each group's edges counted by their other end, in order of
+// first appearance (no sort: the counts do not depend on the order). b has a slot in a's group
+// when slot_of[b] names an entry of the group that holds b (slot_of, the range's own, is never
+// cleared: an older value fails that test).
+template <bool kShared>
+void ClassifyEdges(std::uint32_t lo, std::uint32_t hi, const std::uint32_t* start, const std::uint32_t* other,
+                   std::uint32_t* slot_of, std::vector<TopologyScratch::Edge>& group, std::int32_t* parent,
+                   std::int32_t* hole_parent, char* on_boundary, EdgeCounts& out) {
+  EdgeCounts c;  // counted here: the threads' results share cache lines
+  for (std::uint32_t a = lo; a < hi; ++a) {
+    group.clear();
+    for (std::uint32_t k = start[a]; k < start[a + 1]; ++k) {
+      const std::uint32_t b = other[k] >> 1;
+      std::uint32_t slot = slot_of[b];
+      if (slot >= group.size() || group[slot].b != b) {
+        slot = static_cast<std::uint32_t>(group.size());
+        slot_of[b] = slot;
+        group.push_back({b, 0, 0});
+      }
+      TopologyScratch::Edge& e = group[slot];
+      ((other[k] & 1) ? e.backward : e.forward)++;
+    }
+    const auto av = static_cast<std::int32_t>(a);
+    for (const TopologyScratch::Edge& e : group) {
+      const auto b = static_cast<std::int32_t>(e.b);
+      ++c.edges;
+      Join<kShared>(parent, av, b);
+      const int uses = e.forward + e.backward;
+      if (uses == 1) {
+        ++c.boundary;
+        __atomic_store_n(on_boundary + a, char{1}, __ATOMIC_RELAXED);  // b may be another range's
+        __atomic_store_n(on_boundary + b, char{1}, __ATOMIC_RELAXED);
+        Join<kShared>(hole_parent, av, b);
+      }
+      if (uses > 2) ++c.non_manifold;
+      if (uses > 2 && e.forward != e.backward) ++c.unbalanced;
+      if (uses == 2 && e.forward != 1) ++c.inconsistent;
+    }
+  }
+  out.Add(c);
+}
+
+}  // namespace
+
 // Directed edges are grouped by their smaller vertex (a counting sort: vertices are numbered in
 // order of first appearance, so the groups fill in near file order), and each group — a vertex's
 // few edges to larger neighbours — is counted by the other end in a slot table. Linear, and a
-// quarter of the memory of sorting 64-bit edge keys.
-MeshTopology AnalyzeTopology(const PolygonMesh& mesh) {
+// quarter of the memory of sorting 64-bit edge keys. Meshes of 2^17 faces and more are analysed
+// in vertex ranges, one a thread (the counts are those of one range: sums, and the union–find's
+// sets, which do not depend on the order of the joins).
+MeshTopology AnalyzeTopology(const PolygonMesh& mesh, int num_threads) {
   MeshTopology t;
   t.faces = mesh.num_faces();
   const auto nv = static_cast<std::size_t>(mesh.V.rows());
+  const int parts = t.faces >= (std::int64_t{1} << 17) ? ResolveThreadCount(num_threads, 64) : 1;
+  const auto part = [&](std::int64_t r, std::int64_t n) { return n * r / parts; };
+  auto each_part = [&](auto&& fn) { ParallelForBlocks(parts, parts, fn); };
   // The scratch's arrays sized, then used through plain pointers (a store through char* could
   // alias a vector's own pointers, which the loops would then reload at every step).
   TopologyScratch& scratch = ThreadScratch();
@@ -176,83 +294,70 @@ MeshTopology AnalyzeTopology(const PolygonMesh& mesh) {
   scratch.start.assign(nv + 1, 0);
   char* const used = scratch.used.data();
   std::uint32_t* const start = scratch.start.data();  // directed edges by smaller vertex
-  auto for_each_edge = [&mesh](std::int64_t f, auto&& fn) {
-    const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
-    const int n = mesh.face_size(f);
-    for (int k = 0; k < n; ++k)
-      fn(static_cast<std::uint32_t>(idx[k]), static_cast<std::uint32_t>(idx[k + 1 < n ? k + 1 : 0]));
-  };
-  for (std::int64_t f = 0; f < t.faces; ++f) {
-    bool degenerate = false;
-    for_each_edge(f, [&](std::uint32_t a, std::uint32_t b) {
-      used[a] = 1;
-      if (a == b) {
-        degenerate = true;
-      } else {
-        ++start[std::min(a, b) + 1];
-      }
-    });
-    t.degenerate_faces += degenerate;
+  // Each slice of faces counts its edges by smaller vertex, then places them at its cursors: the
+  // slices' edges follow each other in every group, so each group lists its edges in face order.
+  std::vector<std::uint32_t*> cursor(static_cast<std::size_t>(parts));
+  std::vector<std::vector<std::uint32_t>> more_cursors(static_cast<std::size_t>(parts - 1));
+  cursor[0] = scratch.cursor.Get(nv + 1);
+  std::fill(cursor[0], cursor[0] + nv + 1, 0u);
+  for (int r = 1; r < parts; ++r) {
+    more_cursors[static_cast<std::size_t>(r - 1)].assign(nv + 1, 0);
+    cursor[static_cast<std::size_t>(r)] = more_cursors[static_cast<std::size_t>(r - 1)].data();
   }
-  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  // Each directed edge as (larger vertex << 1 | reversed), in the group of its smaller vertex.
+  std::vector<EdgeCounts> counts(static_cast<std::size_t>(parts));
+  each_part([&](std::int64_t r) {
+    const auto i = static_cast<std::size_t>(r);
+    CountEdges(mesh, part(r, t.faces), part(r + 1, t.faces), used, cursor[i], counts[i]);
+  });
+  for (std::size_t v = 0; v < nv; ++v) {  // counts into each slice's first place in each group
+    std::uint32_t at = start[v];
+    for (std::uint32_t* c : cursor) at += std::exchange(c[v + 1], at);
+    start[v + 1] = at;
+  }
   std::uint32_t* const other = scratch.other.Get(start[nv]);
-  {
-    std::uint32_t* const cursor = scratch.cursor.Get(nv);
-    std::copy(start, start + nv, cursor);
-    for (std::int64_t f = 0; f < t.faces; ++f) {
-      for_each_edge(f, [&](std::uint32_t a, std::uint32_t b) {
-        if (a != b) other[cursor[std::min(a, b)]++] = std::max(a, b) << 1 | (a > b ? 1u : 0u);
-      });
-    }
-  }
+  each_part([&](std::int64_t r) {
+    PlaceEdges(mesh, part(r, t.faces), part(r + 1, t.faces), cursor[static_cast<std::size_t>(r)] + 1, other);
+  });
   std::int32_t* const parent = scratch.parent.Get(nv);
   std::int32_t* const hole_parent = scratch.hole_parent.Get(nv);
   std::iota(parent, parent + nv, 0);
   std::iota(hole_parent, hole_parent + nv, 0);
   scratch.on_boundary.assign(nv, 0);
   char* const on_boundary = scratch.on_boundary.data();
-  // Each group's edges counted by their other end, in order of first appearance (no sort: the
-  // counts do not depend on the order). b has a slot in a's group when slot_of[b] names an entry
-  // of the group that holds b (slot_of is never cleared: an older value fails that test).
   std::uint32_t* const slot_of = scratch.slot_of.Get(nv);
-  std::vector<TopologyScratch::Edge>& group = scratch.group;
-  for (std::size_t a = 0; a < nv; ++a) {
-    group.clear();
-    for (std::uint32_t k = start[a]; k < start[a + 1]; ++k) {
-      const std::uint32_t b = other[k] >> 1;
-      if (slot_of[b] >= group.size() || group[slot_of[b]].b != b) {
-        slot_of[b] = static_cast<std::uint32_t>(group.size());
-        group.push_back({b, 0, 0});
-      }
-      TopologyScratch::Edge& e = group[slot_of[b]];
-      ((other[k] & 1) ? e.backward : e.forward)++;
-    }
-    const auto av = static_cast<std::int32_t>(a);
-    for (const TopologyScratch::Edge& e : group) {
-      const auto b = static_cast<std::int32_t>(e.b);
-      ++t.edges;
-      Join(parent, av, b);
-      const int uses = e.forward + e.backward;
-      if (uses == 1) {
-        ++t.boundary_edges;
-        on_boundary[a] = on_boundary[static_cast<std::size_t>(b)] = 1;
-        Join(hole_parent, av, b);
-      }
-      if (uses > 2) ++t.non_manifold_edges;
-      if (uses > 2 && e.forward != e.backward) ++t.unbalanced_edges;
-      if (uses == 2 && e.forward != 1) ++t.inconsistent_edges;
-    }
+  // Then each range of vertices classifies its groups' edges (the union–find shared when there
+  // are several).
+  if (parts == 1) {
+    ClassifyEdges<false>(0, static_cast<std::uint32_t>(nv), start, other, slot_of, scratch.group, parent, hole_parent,
+                         on_boundary, counts[0]);
+  } else {
+    std::vector<EdgeCounts> more(static_cast<std::size_t>(parts));
+    each_part([&](std::int64_t r) {
+      std::vector<TopologyScratch::Edge> group;
+      std::vector<std::uint32_t> own_slots(r == 0 ? 0 : nv);  // a slot table a range
+      ClassifyEdges<true>(static_cast<std::uint32_t>(part(r, static_cast<std::int64_t>(nv))),
+                          static_cast<std::uint32_t>(part(r + 1, static_cast<std::int64_t>(nv))), start, other,
+                          r == 0 ? slot_of : own_slots.data(), group, parent, hole_parent, on_boundary,
+                          more[static_cast<std::size_t>(r)]);
+    });
+    for (std::size_t r = 0; r < more.size(); ++r) counts[r].Add(more[r]);
   }
+  EdgeCounts all;
+  for (const EdgeCounts& c : counts) all.Add(c);
+  t.edges = all.edges;
+  t.boundary_edges = all.boundary;
+  t.non_manifold_edges = all.non_manifold;
+  t.unbalanced_edges = all.unbalanced;
+  t.inconsistent_edges = all.inconsistent;
+  t.degenerate_faces = all.degenerate_faces;
+  // A set's root is its smallest vertex, the one that is its own parent.
   for (std::size_t v = 0; v < nv; ++v) {
     if (!used[v]) continue;
     ++t.vertices;
-    if (Find(parent, static_cast<std::int32_t>(v)) == static_cast<std::int32_t>(v)) ++t.components;
+    t.components += parent[v] == static_cast<std::int32_t>(v);
   }
   t.unreferenced_vertices = static_cast<std::int64_t>(nv) - t.vertices;
-  for (std::size_t v = 0; v < nv; ++v) {
-    if (on_boundary[v] && Find(hole_parent, static_cast<std::int32_t>(v)) == static_cast<std::int32_t>(v)) ++t.holes;
-  }
+  for (std::size_t v = 0; v < nv; ++v) t.holes += on_boundary[v] && hole_parent[v] == static_cast<std::int32_t>(v);
   if (t.non_manifold_edges > 0) CountDuplicateFaces(mesh, t);
   scratch.Trim();
   return t;
@@ -340,7 +445,7 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
   std::iota(parent.begin(), parent.end(), 0);
   for (std::int64_t f = 0; f < nf; ++f) {
     const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
-    for (int k = 1; k < mesh.face_size(f); ++k) Join(parent.data(), idx[k], idx[0]);
+    for (int k = 1; k < mesh.face_size(f); ++k) Join<false>(parent.data(), idx[k], idx[0]);
   }
   // Shells in order of their first face.
   std::vector<int> shell_of_root(static_cast<std::size_t>(nv), -1);

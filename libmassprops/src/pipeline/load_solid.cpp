@@ -731,7 +731,7 @@ SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_c
   }
   const PolygonMesh& mesh = r.loaded.mesh;
   Stage(opt, "checking edges");
-  r.topology = AnalyzeTopology(mesh);
+  r.topology = AnalyzeTopology(mesh, opt.num_threads);
   if (opt.check_self_intersections) {
     Stage(opt, "checking self-intersections (CGAL)");
     r.self_intersections =
