@@ -63,6 +63,25 @@ void ExpectTheObviousWeld(const std::vector<PositionKey>& corners) {
   }
 }
 
+// Triangles in strips, as files list them: most corners are at the position of one of the last
+// few (the weld takes those without a lookup). The zero column is written as 0.0 and −0.0 in turn.
+TEST(Weld, StripsOfTrianglesAsFilesListThem) {
+  const int m = 300;  // 2 m² triangles, many chunks
+  std::vector<PositionKey> corners;
+  std::size_t written = 0;
+  auto at = [&](int i, int j) {
+    const double x = i == 0 ? (written++ % 2 == 0 ? 0.0 : -0.0) : 0.01 * i;
+    return PositionKey{x, 0.01 * j, 0.0};
+  };
+  for (int i = 0; i < m; ++i) {
+    for (int j = 0; j < m; ++j) {
+      for (const PositionKey& k : {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i, j + 1)})
+        corners.push_back(k);
+    }
+  }
+  ExpectTheObviousWeld(corners);
+}
+
 TEST(Weld, FindsTheFirstNonFiniteCorner) {
   std::vector<PositionKey> corners = Corners(200000, 1000, 3);
   corners[150001].y = std::numeric_limits<double>::infinity();
@@ -70,6 +89,15 @@ TEST(Weld, FindsTheFirstNonFiniteCorner) {
   const weld::Grouping g = weld::GroupByPosition(
       corners.size(), [&](std::size_t c) { return corners[c]; }, 2);
   EXPECT_EQ(g.first_non_finite, 70000u);
+  // A non-finite position repeated right after itself: the first of them.
+  corners[70000] = corners[69999];
+  corners[90000].x = std::numeric_limits<double>::infinity();
+  corners[90001] = corners[90000];
+  corners[90003] = corners[90000];
+  EXPECT_EQ(weld::GroupByPosition(
+                corners.size(), [&](std::size_t c) { return corners[c]; }, 2)
+                .first_non_finite,
+            90000u);
 }
 
 }  // namespace

@@ -67,6 +67,8 @@ class PositionTable {
   explicit PositionTable(std::size_t expected) {
     while (slots_ < 2 * expected) slots_ *= 2;
     table_.assign(slots_, -1);
+    keys_.reserve(expected);  // no copies while the table fills to what is expected
+    hashes_.reserve(expected);
   }
   // The id of k, inserting it (with id = size()) when new; `inserted` tells which.
   std::uint32_t Find(const PositionKey& k, std::uint64_t hash, bool& inserted) {
@@ -144,22 +146,41 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
     // Filled here and moved in at the end: neighbouring chunks' vectors share cache lines, and
     // two threads growing them in turn would pass those lines back and forth at every corner.
     std::vector<std::uint32_t> first;
+    first.reserve((hi - lo) / 4);
     // Corners read and hashed kAhead ahead of their lookup, their table slots fetched then and the
-    // keys those slots lead to half way (the lookups, in order, are those of before).
-    constexpr std::size_t kAhead = 16;
+    // keys those slots lead to half way (the lookups, in order, are those of before). A corner at
+    // the position of one of the kRecent corners before it (files list triangles in strips: most
+    // corners were among the last few) takes that corner's entry, with no hash and no lookup.
+    constexpr std::size_t kAhead = 16, kRecent = 6;
     PositionKey ahead_key[kAhead];
     std::uint64_t ahead_hash[kAhead];
+    std::size_t ahead_same[kAhead];  // 0, or how many corners back the same position was
     auto read = [&](std::size_t j) {
-      ahead_key[j % kAhead] = corner_at(j);
-      ahead_hash[j % kAhead] = Hash(ahead_key[j % kAhead]);
-      table.Prefetch(ahead_hash[j % kAhead], false);
+      const PositionKey k = corner_at(j);
+      ahead_key[j % kAhead] = k;
+      std::size_t same = 0;
+      for (std::size_t d = 1; d <= kRecent && d <= j - lo && same == 0; ++d) {
+        if (ahead_key[(j - d) % kAhead] == k) same = d;
+      }
+      ahead_same[j % kAhead] = same;
+      if (same == 0) {
+        ahead_hash[j % kAhead] = Hash(k);
+        table.Prefetch(ahead_hash[j % kAhead], false);
+      }
     };
     for (std::size_t j = lo; j < std::min(hi, lo + kAhead); ++j) read(j);
     for (std::size_t i = lo; i < hi; ++i) {
       const PositionKey k = ahead_key[i % kAhead];
       const std::uint64_t h = ahead_hash[i % kAhead];
+      const std::size_t same = ahead_same[i % kAhead];
       if (i + kAhead < hi) read(i + kAhead);
-      if (i + kAhead / 2 < hi) table.Prefetch(ahead_hash[(i + kAhead / 2) % kAhead], true);
+      if (const std::size_t m = i + kAhead / 2; m < hi && ahead_same[m % kAhead] == 0) {
+        table.Prefetch(ahead_hash[m % kAhead], true);
+      }
+      if (same != 0) {  // an earlier corner of the chunk, finite and looked up already
+        local[i] = local[i - same];
+        continue;
+      }
       if (!k.Finite()) {
         bad[b] = i;
         return;
