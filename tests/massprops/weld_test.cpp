@@ -55,11 +55,14 @@ void ExpectTheObviousWeld(const std::vector<PositionKey>& corners) {
   }
   ASSERT_GT(corners.size(), 4 * expected_first.size());  // many corners per vertex
   for (int threads : {1, 2, 7}) {
-    const weld::Grouping g = weld::GroupByPosition(
-        corners.size(), [&](std::size_t c) { return corners[c]; }, threads);
-    EXPECT_EQ(g.first_non_finite, corners.size());
-    EXPECT_EQ(g.vertex_of, expected) << threads << " threads";
-    EXPECT_EQ(g.first_corner, expected_first) << threads << " threads";
+    // Either hint (what the positions are like) gives the same weld.
+    for (weld::Positions kind : {weld::Positions::kCorners, weld::Positions::kVertices}) {
+      const weld::Grouping g = weld::GroupByPosition(
+          corners.size(), [&](std::size_t c) { return corners[c]; }, threads, kind);
+      EXPECT_EQ(g.first_non_finite, corners.size());
+      EXPECT_EQ(g.vertex_of, expected) << threads << " threads";
+      EXPECT_EQ(g.first_corner, expected_first) << threads << " threads";
+    }
   }
 }
 

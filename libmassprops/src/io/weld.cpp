@@ -25,7 +25,7 @@ std::int64_t MergeCoincidentVertices(PolygonMesh& mesh, int num_threads) {
         const auto i = static_cast<Eigen::Index>(v);
         return weld::PositionKey{mesh.V(i, 0), mesh.V(i, 1), mesh.V(i, 2)};
       },
-      num_threads);
+      num_threads, weld::Positions::kVertices);
   if (g.first_non_finite < nv) return 0;  // the readers refuse non-finite coordinates themselves
   const auto merged = static_cast<std::int64_t>(nv - g.first_corner.size());
   if (merged == 0) return 0;  // the common case: nothing changes, not even the index array

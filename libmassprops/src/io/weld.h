@@ -121,8 +121,13 @@ class PositionTable {
 
 }  // namespace detail
 
+/// What the positions to weld are like: the corners of faces (each position several times, in
+/// strips: most at the position of one of the last few), or a vertex list (mostly distinct).
+enum class Positions { kCorners, kVertices };
+
 template <typename CornerAt>
-Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threads = 0) {
+Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threads = 0,
+                         Positions kind = Positions::kCorners) {
   Grouping g;
   g.first_non_finite = n;
   if (n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
@@ -142,16 +147,18 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
   ParallelForBlocks(static_cast<std::int64_t>(chunks), num_threads, [&](std::int64_t bb) {
     const auto b = static_cast<std::size_t>(bb);
     const std::size_t lo = b * kChunk, hi = std::min(n, lo + kChunk);
-    detail::PositionTable table((hi - lo) / 4);
+    const bool corners = kind == Positions::kCorners;
+    detail::PositionTable table(corners ? (hi - lo) / 4 : hi - lo);
     // Filled here and moved in at the end: neighbouring chunks' vectors share cache lines, and
     // two threads growing them in turn would pass those lines back and forth at every corner.
     std::vector<std::uint32_t> first;
-    first.reserve((hi - lo) / 4);
+    first.reserve(corners ? (hi - lo) / 4 : hi - lo);
     // Corners read and hashed kAhead ahead of their lookup, their table slots fetched then and the
     // keys those slots lead to half way (the lookups, in order, are those of before). A corner at
-    // the position of one of the kRecent corners before it (files list triangles in strips: most
+    // the position of one of the six corners before it (files list triangles in strips: most
     // corners were among the last few) takes that corner's entry, with no hash and no lookup.
-    constexpr std::size_t kAhead = 16, kRecent = 6;
+    constexpr std::size_t kAhead = 16;
+    const std::size_t recent = corners ? 6 : 0;
     PositionKey ahead_key[kAhead];
     std::uint64_t ahead_hash[kAhead];
     std::size_t ahead_same[kAhead];  // 0, or how many corners back the same position was
@@ -159,7 +166,7 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
       const PositionKey k = corner_at(j);
       ahead_key[j % kAhead] = k;
       std::size_t same = 0;
-      for (std::size_t d = 1; d <= kRecent && d <= j - lo && same == 0; ++d) {
+      for (std::size_t d = 1; d <= recent && d <= j - lo && same == 0; ++d) {
         if (ahead_key[(j - d) % kAhead] == k) same = d;
       }
       ahead_same[j % kAhead] = same;

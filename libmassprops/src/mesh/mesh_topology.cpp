@@ -190,23 +190,34 @@ struct EdgeCounts {
   }
 };
 
-// Calls fn(a, b) for each directed edge of face f.
-template <typename Fn>
+// Calls fn(a, b) for each directed edge of face f, in order; kTriangles: every face is a triangle
+// (its corners at 3 f, the loop unrolled).
+template <bool kTriangles, typename Fn>
 void ForEachEdge(const PolygonMesh& mesh, std::int64_t f, Fn&& fn) {
-  const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
-  const int n = mesh.face_size(f);
-  for (int k = 0; k < n; ++k)
-    fn(static_cast<std::uint32_t>(idx[k]), static_cast<std::uint32_t>(idx[k + 1 < n ? k + 1 : 0]));
+  if constexpr (kTriangles) {
+    const std::int32_t* idx = mesh.indices.data() + 3 * f;
+    const auto a = static_cast<std::uint32_t>(idx[0]), b = static_cast<std::uint32_t>(idx[1]),
+               c = static_cast<std::uint32_t>(idx[2]);
+    fn(a, b);
+    fn(b, c);
+    fn(c, a);
+  } else {
+    const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
+    const int n = mesh.face_size(f);
+    for (int k = 0; k < n; ++k)
+      fn(static_cast<std::uint32_t>(idx[k]), static_cast<std::uint32_t>(idx[k + 1 < n ? k + 1 : 0]));
+  }
 }
 
 // Pass 1 over the faces [lo, hi): marks their corners used, counts the directed edges each vertex
 // starts as the smaller end (count[v + 1]) and the faces with a repeated corner.
+template <bool kTriangles>
 void CountEdges(const PolygonMesh& mesh, std::int64_t lo, std::int64_t hi, char* used, std::uint32_t* count,
                 EdgeCounts& out) {
   EdgeCounts c;  // counted here: the threads' results share cache lines
   for (std::int64_t f = lo; f < hi; ++f) {
     bool degenerate = false;
-    ForEachEdge(mesh, f, [&](std::uint32_t a, std::uint32_t b) {
+    ForEachEdge<kTriangles>(mesh, f, [&](std::uint32_t a, std::uint32_t b) {
       __atomic_store_n(used + a, char{1}, __ATOMIC_RELAXED);  // another slice may mark it too
       if (a == b) {
         degenerate = true;
@@ -221,10 +232,11 @@ void CountEdges(const PolygonMesh& mesh, std::int64_t lo, std::int64_t hi, char*
 
 // Pass 2 over the faces [lo, hi): each directed edge as (larger vertex << 1 | reversed), in the
 // group of its smaller vertex, at its cursor.
+template <bool kTriangles>
 void PlaceEdges(const PolygonMesh& mesh, std::int64_t lo, std::int64_t hi, std::uint32_t* cursor,
                 std::uint32_t* other) {
   for (std::int64_t f = lo; f < hi; ++f) {
-    ForEachEdge(mesh, f, [&](std::uint32_t a, std::uint32_t b) {
+    ForEachEdge<kTriangles>(mesh, f, [&](std::uint32_t a, std::uint32_t b) {
       if (a != b) other[cursor[std::min(a, b)]++] = std::max(a, b) << 1 | (a > b ? 1u : 0u);
     });
   }
@@ -240,23 +252,39 @@ void ClassifyEdges(std::uint32_t lo, std::uint32_t hi, const std::uint32_t* star
                    std::int32_t* hole_parent, char* on_boundary, EdgeCounts& out) {
   EdgeCounts c;  // counted here: the threads' results share cache lines
   for (std::uint32_t a = lo; a < hi; ++a) {
-    group.clear();
+    // The group's entries written field by field into room made beforehand (a pushed-back
+    // aggregate went through the stack, and reading it back missed store forwarding: a quarter of
+    // the analysis).
+    const std::uint32_t degree = start[a + 1] - start[a];
+    if (group.size() < degree) group.resize(degree);
+    TopologyScratch::Edge* const g = group.data();
+    std::uint32_t size = 0;
     for (std::uint32_t k = start[a]; k < start[a + 1]; ++k) {
       const std::uint32_t b = other[k] >> 1;
       std::uint32_t slot = slot_of[b];
-      if (slot >= group.size() || group[slot].b != b) {
-        slot = static_cast<std::uint32_t>(group.size());
+      if (slot >= size || g[slot].b != b) {
+        slot = size++;
         slot_of[b] = slot;
-        group.push_back({b, 0, 0});
+        g[slot].b = b;
+        g[slot].forward = g[slot].backward = 0;
       }
-      TopologyScratch::Edge& e = group[slot];
-      ((other[k] & 1) ? e.backward : e.forward)++;
+      ((other[k] & 1) ? g[slot].backward : g[slot].forward)++;
     }
     const auto av = static_cast<std::int32_t>(a);
-    for (const TopologyScratch::Edge& e : group) {
+    // One thread: a's root found once for its group, and followed as b's sets join it.
+    std::int32_t root = kShared || size == 0 ? av : Find(parent, av);
+    for (std::uint32_t i = 0; i < size; ++i) {
+      const TopologyScratch::Edge& e = g[i];
       const auto b = static_cast<std::int32_t>(e.b);
       ++c.edges;
-      Join<kShared>(parent, av, b);
+      if constexpr (kShared) {
+        Join<true>(parent, av, b);
+      } else if (const std::int32_t rb = Find(parent, b); rb < root) {  // the larger root under the smaller
+        parent[root] = rb;
+        root = rb;
+      } else if (rb > root) {
+        parent[rb] = root;
+      }
       const int uses = e.forward + e.backward;
       if (uses == 1) {
         ++c.boundary;
@@ -296,27 +324,34 @@ MeshTopology AnalyzeTopology(const PolygonMesh& mesh, int num_threads) {
   std::uint32_t* const start = scratch.start.data();  // directed edges by smaller vertex
   // Each slice of faces counts its edges by smaller vertex, then places them at its cursors: the
   // slices' edges follow each other in every group, so each group lists its edges in face order.
-  std::vector<std::uint32_t*> cursor(static_cast<std::size_t>(parts));
-  std::vector<std::vector<std::uint32_t>> more_cursors(static_cast<std::size_t>(parts - 1));
-  cursor[0] = scratch.cursor.Get(nv + 1);
-  std::fill(cursor[0], cursor[0] + nv + 1, 0u);
-  for (int r = 1; r < parts; ++r) {
-    more_cursors[static_cast<std::size_t>(r - 1)].assign(nv + 1, 0);
-    cursor[static_cast<std::size_t>(r)] = more_cursors[static_cast<std::size_t>(r - 1)].data();
-  }
+  // One slice counts straight into start.
+  const bool triangles = IsAllTriangles(mesh);
+  std::vector<std::vector<std::uint32_t>> slice(parts > 1 ? static_cast<std::size_t>(parts) : 0);
   std::vector<EdgeCounts> counts(static_cast<std::size_t>(parts));
   each_part([&](std::int64_t r) {
     const auto i = static_cast<std::size_t>(r);
-    CountEdges(mesh, part(r, t.faces), part(r + 1, t.faces), used, cursor[i], counts[i]);
+    if (parts > 1) slice[i].assign(nv + 1, 0);
+    std::uint32_t* const count = parts > 1 ? slice[i].data() : start;
+    (triangles ? CountEdges<true> : CountEdges<false>)(mesh, part(r, t.faces), part(r + 1, t.faces), used, count,
+                                                       counts[i]);
   });
-  for (std::size_t v = 0; v < nv; ++v) {  // counts into each slice's first place in each group
-    std::uint32_t at = start[v];
-    for (std::uint32_t* c : cursor) at += std::exchange(c[v + 1], at);
-    start[v + 1] = at;
+  std::uint32_t* cursor = nullptr;  // of one slice
+  if (parts == 1) {
+    std::uint32_t sum = 0;  // in a register: the loop through memory waited on each store
+    for (std::size_t v = 1; v <= nv; ++v) start[v] = sum += start[v];
+    cursor = scratch.cursor.Get(nv);
+    std::copy(start, start + nv, cursor);
+  } else {
+    for (std::size_t v = 0; v < nv; ++v) {  // each slice's count into its first place in the group
+      std::uint32_t at = start[v];
+      for (std::vector<std::uint32_t>& c : slice) at += std::exchange(c[v + 1], at);
+      start[v + 1] = at;
+    }
   }
   std::uint32_t* const other = scratch.other.Get(start[nv]);
   each_part([&](std::int64_t r) {
-    PlaceEdges(mesh, part(r, t.faces), part(r + 1, t.faces), cursor[static_cast<std::size_t>(r)] + 1, other);
+    std::uint32_t* const at = parts > 1 ? slice[static_cast<std::size_t>(r)].data() + 1 : cursor;
+    (triangles ? PlaceEdges<true> : PlaceEdges<false>)(mesh, part(r, t.faces), part(r + 1, t.faces), at, other);
   });
   std::int32_t* const parent = scratch.parent.Get(nv);
   std::int32_t* const hole_parent = scratch.hole_parent.Get(nv);
