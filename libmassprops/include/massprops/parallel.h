@@ -29,6 +29,10 @@ inline int ResolveThreadCount(int requested, std::int64_t num_blocks) {
   return static_cast<int>(std::min<std::int64_t>(ThreadCount(requested), std::max<std::int64_t>(num_blocks, 1)));
 }
 
+/// The threads worth starting for `items` items of a few nanoseconds each: one per 2^15 (starting
+/// a thread costs about what 2^13 of them do), at most ThreadCount(requested).
+inline int ThreadsForItems(int requested, std::int64_t items) { return ResolveThreadCount(requested, items >> 15); }
+
 /// Calls block_fn(b) for b in [0, num_blocks) on up to num_threads threads. If a call throws,
 /// the remaining blocks are skipped and the exception of the lowest-numbered failing block seen is
 /// rethrown on the calling thread.

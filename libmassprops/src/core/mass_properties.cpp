@@ -35,7 +35,7 @@ Vector3 ReferencePoint(const Eigen::Ref<const VertexMatrix>& V, int num_threads,
   const std::int64_t n = V.rows();
   const std::int64_t blocks = (n + kVertexBlock - 1) / kVertexBlock;
   std::vector<Bounds> parts(static_cast<std::size_t>(blocks));
-  ParallelForBlocks(blocks, num_threads, [&](std::int64_t b) {
+  ParallelForBlocks(blocks, ThreadsForItems(num_threads, n), [&](std::int64_t b) {
     Bounds bb;
     const std::int64_t end = std::min(n, (b + 1) * kVertexBlock);
     for (std::int64_t i = b * kVertexBlock; i < end; ++i) {
@@ -166,7 +166,7 @@ VolumeIntegrals IntegrateTriangles(const Eigen::Ref<const VertexMatrix>& V, cons
   const std::int32_t* I = F.data();
   const Eigen::Index fs = F.outerStride();
 
-  ParallelForBlocks(blocks, options.num_threads, [&](std::int64_t b) {
+  ParallelForBlocks(blocks, ThreadsForItems(options.num_threads, nf), [&](std::int64_t b) {
     Batch batch;
     LaneSums sums;
     bool bad = false;

@@ -182,7 +182,7 @@ VolumeIntegrals IntegratePolygons(const PolygonMesh& mesh, const IntegrationOpti
 
   const std::int64_t blocks = (nf + kFaceBlock - 1) / kFaceBlock;
   std::vector<Moments> parts(static_cast<std::size_t>(blocks));
-  ParallelForBlocks(blocks, options.num_threads, [&](std::int64_t b) {
+  ParallelForBlocks(blocks, ThreadsForItems(options.num_threads, nf), [&](std::int64_t b) {
     Moments m;
     std::vector<double> corners;
     const std::int64_t end = std::min(nf, (b + 1) * kFaceBlock);

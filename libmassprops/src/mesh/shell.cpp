@@ -52,7 +52,7 @@ SurfaceIntegrals IntegrateSurface(const PolygonMesh& mesh, const IntegrationOpti
   const std::int64_t nf = mesh.num_faces();
   const std::int64_t blocks = (nf + kFaceBlock - 1) / kFaceBlock;
   std::vector<SurfaceSums> parts(static_cast<std::size_t>(blocks));
-  ParallelForBlocks(blocks, options.num_threads, [&](std::int64_t b) {
+  ParallelForBlocks(blocks, ThreadsForItems(options.num_threads, nf), [&](std::int64_t b) {
     SurfaceSums s;
     const std::int64_t end = std::min(nf, (b + 1) * kFaceBlock);
     for (std::int64_t f = b * kFaceBlock; f < end; ++f) {
