@@ -259,8 +259,8 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
   std::vector<std::vector<std::uint32_t>> firsts(parts);
   ParallelForBlocks(static_cast<std::int64_t>(parts), num_threads, [&](std::int64_t pb) {
     const auto p = static_cast<std::size_t>(pb);
-    detail::PositionTable table((begin[p + 1] - begin[p]) / 2);
-    std::vector<std::uint32_t> first;  // moved in at the end, as in step 1
+    detail::PositionTable table(begin[p + 1] - begin[p]);  // entries: distinct but for the chunks' seams
+    std::vector<std::uint32_t> first;                      // moved in at the end, as in step 1
     for (std::size_t i = begin[p]; i < begin[p + 1]; ++i) {
       const PositionKey& k = bucket_key[i];
       bool inserted = false;
