@@ -127,16 +127,27 @@ Outcome Compute(const std::string& name, bool show_progress, const Solve& solve)
   return out;
 }
 
+// What the formats read of a result's surface is its face sizes (the JSON counts triangles);
+// the vertices and corners are let go once a file is computed, unless a picture is drawn: a
+// dataset's thousand files are held until the output is written, in order.
+void KeepWhatTheFormatsRead(SolidResult& r) {
+  r.loaded.mesh.V = VertexMatrix();
+  std::vector<std::int32_t>().swap(r.loaded.mesh.indices);
+}
+
 // Every input's outcome, in the order of the inputs. Several files are computed side by side, one
 // per thread, when the library says they may be (a dataset's small files gain the cores a single
 // file's stages would use); no progress line then: the lines would interleave.
-std::vector<std::pair<std::string, Outcome>> ComputeAll(const Arguments& a, const LoadOptions& options) {
+std::vector<std::pair<std::string, Outcome>> ComputeAll(const Arguments& a, const LoadOptions& options,
+                                                        bool keep_surfaces) {
   auto load = [&](const std::string& file, bool show_progress) {
-    return Compute(file, show_progress, [&](const ProgressCallback& progress) {
+    Outcome out = Compute(file, show_progress, [&](const ProgressCallback& progress) {
       LoadOptions o = options;
       o.progress = progress;
       return LoadSolid(file, o);
     });
+    if (out.result && !keep_surfaces) KeepWhatTheFormatsRead(*out.result);
+    return out;
   };
   std::vector<std::pair<std::string, Outcome>> out;
   if (a.files.size() > 1 && LoadsSideBySide(a.files, options)) {
@@ -225,7 +236,7 @@ int ComputeMain(int argc, char** argv) {
   int failures = 0;
   std::vector<SolidResult> results;
   std::string text;
-  for (auto& [name, o] : ComputeAll(a, options)) {
+  for (auto& [name, o] : ComputeAll(a, options, !picture.empty())) {
     if (!o.result) {
       ++failures;
       std::cerr << "error: " << massprops::app::OneLine(o.error) << "\n";
