@@ -178,6 +178,9 @@ TEST(TriangleSoup, RepeatedFacesAndShellsAcrossGroups) {
   const TriangleMesh twice = SurfaceTwice(m);
   EXPECT_TRUE(Soup(StlBytes(twice), 1).repeated_faces);
   EXPECT_TRUE(Soup(StlBytes(twice), 2).repeated_faces);
+  // The same file again on this thread, on one thread and on two: each search starts afresh (the
+  // search's tables are kept between buckets and searches, and only its own keys count).
+  for (int threads : {1, 2, 1}) EXPECT_FALSE(Soup(StlBytes(m), threads).repeated_faces) << threads;
 
   TriangleMesh apart;  // 40 000 triangles, no corner shared
   const int n = 40000;

@@ -12,9 +12,15 @@
 namespace massprops::internal {
 namespace {
 
+// A thread's table, kept from bucket to bucket without clearing: the keys of bucket b all have b
+// as their top bits, so a slot holding another bucket's key is as good as empty. Cleared once in
+// each search (an earlier search's keys of the same bucket would otherwise count).
 struct BucketTable {
   std::vector<std::uint64_t> slots;
+  std::uint64_t search = 0;  ///< the search it was cleared for
 };
+
+std::atomic<std::uint64_t> searches{0};
 
 }  // namespace
 
@@ -45,8 +51,15 @@ bool FaceKeyBuckets::AnyRepeated(int num_threads) const {
   constexpr std::size_t kRun = 16;
   std::atomic<bool> repeated{false};
   const auto runs = static_cast<std::int64_t>((buckets_ + kRun - 1) / kRun);
+  const std::uint64_t search = ++searches;
+  const int shift = 64 - bits_;
   ParallelForBlocks(runs, num_threads, [&](std::int64_t run) {
-    std::vector<std::uint64_t>& table = ThreadScratch<BucketTable>().slots;
+    BucketTable& scratch = ThreadScratch<BucketTable>();
+    std::vector<std::uint64_t>& table = scratch.slots;
+    if (scratch.search != search) {
+      std::fill(table.begin(), table.end(), 0);
+      scratch.search = search;
+    }
     for (std::size_t b = static_cast<std::size_t>(run) * kRun; b < std::min(buckets_, (run + 1) * kRun); ++b) {
       if (repeated.load(std::memory_order_relaxed)) return;
       std::size_t total = 0;
@@ -56,8 +69,10 @@ bool FaceKeyBuckets::AnyRepeated(int num_threads) const {
       }
       std::size_t slots = 16;
       while (slots < 2 * total) slots *= 2;
-      table.assign(slots, 0);  // 0 is empty; a key of 0 is stored as 1 (two keys confused: a 2⁻⁶⁴ chance)
+      if (table.size() < slots) table.resize(slots, 0);
+      // Empty: 0 (a key of 0 is stored as 1: two keys confused, a 2⁻⁶⁴ chance), or another bucket's.
       std::uint64_t* t = table.data();
+      auto empty = [b, shift](std::uint64_t k) { return k == 0 || (k >> shift) != b; };
       const std::size_t mask = slots - 1;
       for (std::int64_t g = 0; g < groups_; ++g) {
         const std::uint32_t* bounds = bounds_.data() + static_cast<std::size_t>(g) * (buckets_ + 1);
@@ -65,7 +80,7 @@ bool FaceKeyBuckets::AnyRepeated(int num_threads) const {
         for (std::uint32_t i = bounds[b]; i < bounds[b + 1]; ++i) {
           const std::uint64_t k = keys[i] == 0 ? 1 : keys[i];
           std::size_t at = static_cast<std::size_t>(k) & mask;  // the low bits: the top ones chose the bucket
-          for (; t[at] != 0; at = (at + 1) & mask) {
+          for (; !empty(t[at]); at = (at + 1) & mask) {
             if (t[at] == k) {
               repeated.store(true, std::memory_order_relaxed);
               return;
