@@ -33,20 +33,34 @@ std::vector<PositionKey> Corners(std::size_t n, std::size_t pool, std::uint32_t 
   return out;
 }
 
-void ExpectTheObviousWeld(const std::vector<PositionKey>& corners);
+template <typename Key>
+void ExpectTheObviousWeld(const std::vector<Key>& corners);
+
+// Binary STL's corners as they are stored (three floats each: weld::FloatKey), welded by the
+// same equality as the doubles they convert to.
+std::vector<weld::FloatKey> AsFloats(const std::vector<PositionKey>& corners) {
+  std::vector<weld::FloatKey> out;
+  for (const PositionKey& k : corners) {
+    out.push_back({static_cast<float>(k.x), static_cast<float>(k.y), static_cast<float>(k.z)});
+  }
+  return out;
+}
 
 TEST(Weld, SameVerticesInOrderOfFirstAppearanceWhateverTheThreads) {
   ExpectTheObviousWeld(Corners(400000, 50000, 7));  // many chunks and partitions
   ExpectTheObviousWeld(Corners(3000, 500, 5));      // one chunk
+  ExpectTheObviousWeld(AsFloats(Corners(400000, 50000, 7)));
+  ExpectTheObviousWeld(AsFloats(Corners(3000, 500, 5)));
 }
 
-void ExpectTheObviousWeld(const std::vector<PositionKey>& corners) {
+template <typename Key>
+void ExpectTheObviousWeld(const std::vector<Key>& corners) {
   // The obvious weld.
   std::map<std::tuple<double, double, double>, std::int32_t> seen;
   std::vector<std::int32_t> expected(corners.size());
   std::vector<std::uint32_t> expected_first;
   for (std::size_t c = 0; c < corners.size(); ++c) {
-    const PositionKey& k = corners[c];
+    const Key& k = corners[c];
     auto z = [](double d) { return d == 0.0 ? 0.0 : d; };
     const auto [it, inserted] =
         seen.emplace(std::make_tuple(z(k.x), z(k.y), z(k.z)), static_cast<std::int32_t>(seen.size()));
@@ -83,6 +97,7 @@ TEST(Weld, StripsOfTrianglesAsFilesListThem) {
     }
   }
   ExpectTheObviousWeld(corners);
+  ExpectTheObviousWeld(AsFloats(corners));
 }
 
 TEST(Weld, FindsTheFirstNonFiniteCorner) {
@@ -99,6 +114,11 @@ TEST(Weld, FindsTheFirstNonFiniteCorner) {
   corners[90003] = corners[90000];
   EXPECT_EQ(weld::GroupByPosition(
                 corners.size(), [&](std::size_t c) { return corners[c]; }, 2)
+                .first_non_finite,
+            90000u);
+  const std::vector<weld::FloatKey> floats = AsFloats(corners);  // as a binary STL stores them
+  EXPECT_EQ(weld::GroupByPosition(
+                floats.size(), [&](std::size_t c) { return floats[c]; }, 2)
                 .first_non_finite,
             90000u);
 }

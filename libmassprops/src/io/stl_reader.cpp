@@ -47,7 +47,7 @@ LoadedMesh ReadBinaryStl(const std::string& path, std::string_view data, std::ui
     // pages that the hardware prefetcher does not cross (a hint; past the end is no access).
     __builtin_prefetch(record + 2048);
     std::memcpy(f, record + 12 + 12 * (c % 3), sizeof f);
-    return weld::PositionKey{f[0], f[1], f[2]};
+    return weld::FloatKey{f[0], f[1], f[2]};
   };
   LoadedMesh out = weld::Weld(path, 3 * static_cast<std::size_t>(n), corner_at, nullptr, "stl-binary", num_threads);
   out.float32_coordinates = true;
