@@ -306,8 +306,9 @@ void ClassifyEdges(std::uint32_t lo, std::uint32_t hi, const std::uint32_t* star
 // order of first appearance, so the groups fill in near file order), and each group — a vertex's
 // few edges to larger neighbours — is counted by the other end in a slot table. Linear, and a
 // quarter of the memory of sorting 64-bit edge keys. Meshes of 2^17 faces and more are analysed
-// in vertex ranges, one a thread (the counts are those of one range: sums, and the union–find's
-// sets, which do not depend on the order of the joins).
+// on several threads — faces counted and placed in slices, groups classified in vertex ranges —
+// with the counts of one thread: sums, and the union–find's sets, which do not depend on the
+// order of the joins.
 MeshTopology AnalyzeTopology(const PolygonMesh& mesh, int num_threads) {
   MeshTopology t;
   t.faces = mesh.num_faces();
@@ -366,16 +367,14 @@ MeshTopology AnalyzeTopology(const PolygonMesh& mesh, int num_threads) {
     ClassifyEdges<false>(0, static_cast<std::uint32_t>(nv), start, other, slot_of, scratch.group, parent, hole_parent,
                          on_boundary, counts[0]);
   } else {
-    std::vector<EdgeCounts> more(static_cast<std::size_t>(parts));
     each_part([&](std::int64_t r) {
       std::vector<TopologyScratch::Edge> group;
       std::vector<std::uint32_t> own_slots(r == 0 ? 0 : nv);  // a slot table a range
       ClassifyEdges<true>(static_cast<std::uint32_t>(part(r, static_cast<std::int64_t>(nv))),
                           static_cast<std::uint32_t>(part(r + 1, static_cast<std::int64_t>(nv))), start, other,
                           r == 0 ? slot_of : own_slots.data(), group, parent, hole_parent, on_boundary,
-                          more[static_cast<std::size_t>(r)]);
+                          counts[static_cast<std::size_t>(r)]);
     });
-    for (std::size_t r = 0; r < more.size(); ++r) counts[r].Add(more[r]);
   }
   EdgeCounts all;
   for (const EdgeCounts& c : counts) all.Add(c);
