@@ -203,8 +203,8 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
     for (std::size_t j = lo; j < std::min(hi, lo + kAhead); ++j) read(j);
     for (std::size_t i = lo; i < hi; ++i) {
       const Key k = ahead_key[i % kAhead];
-      const std::uint64_t h = ahead_hash[i % kAhead];
       const std::size_t same = ahead_same[i % kAhead];
+      const std::uint64_t h = same == 0 ? ahead_hash[i % kAhead] : 0;  // (hashed only when looked up)
       if (i + kAhead < hi) read(i + kAhead);
       if (const std::size_t m = i + kAhead / 2; m < hi && ahead_same[m % kAhead] == 0) {
         table.Prefetch(ahead_hash[m % kAhead], true);
