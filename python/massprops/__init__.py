@@ -202,9 +202,10 @@ def mass_properties(vertices, faces=None, *, name="<arrays>", **options):
     0-based vertex indices, or a sequence of polygons. Or pass one object with ``vertices`` and
     ``faces`` attributes (a trimesh.Trimesh, for instance) as the only argument.
 
-    C-contiguous float64 vertices and int32 or int64 faces are read in place; other dtypes and
-    memory orders are cast once (the faces' dtype changes no bit of the result). The GIL is
-    released while the mesh is checked and integrated.
+    C-contiguous float64 vertices and int32 or int64 faces are used without a cast; other dtypes
+    and memory orders are cast once (the faces' dtype changes no bit of the result). Either way
+    the library's mesh takes one copy of them, checked as it is copied. The GIL is released
+    while the mesh is checked and integrated.
     """
     if faces is None:
         if not (hasattr(vertices, "vertices") and hasattr(vertices, "faces")):
