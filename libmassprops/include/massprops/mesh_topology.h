@@ -39,8 +39,8 @@ struct MeshTopology {
   std::string Problems() const;
 };
 
-/// The edge analysis. Meshes of 2^17 faces and more are analysed on `num_threads` threads (0: the
-/// hardware's; the same counts on any number).
+/// The edge analysis. Meshes of 2^17 faces and more are analysed on up to `num_threads` threads
+/// (0: the hardware's; at most four; the same counts on any number).
 MeshTopology AnalyzeTopology(const PolygonMesh& mesh, int num_threads = 1);
 
 /// Corners on the boundary (of an open mesh) that lie within `tolerance` (absolute) of another

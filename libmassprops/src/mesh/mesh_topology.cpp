@@ -313,7 +313,9 @@ MeshTopology AnalyzeTopology(const PolygonMesh& mesh, int num_threads) {
   MeshTopology t;
   t.faces = mesh.num_faces();
   const auto nv = static_cast<std::size_t>(mesh.V.rows());
-  const int parts = t.faces >= (std::int64_t{1} << 17) ? ResolveThreadCount(num_threads, 64) : 1;
+  // At most four parts: each costs two arrays of the vertices' size (its counts and its slot
+  // table), and the passes are bound by memory beyond a few threads.
+  const int parts = t.faces >= (std::int64_t{1} << 17) ? ResolveThreadCount(num_threads, 4) : 1;
   const auto part = [&](std::int64_t r, std::int64_t n) { return n * r / parts; };
   auto each_part = [&](auto&& fn) { ParallelForBlocks(parts, parts, fn); };
   // The scratch's arrays sized, then used through plain pointers (a store through char* could
