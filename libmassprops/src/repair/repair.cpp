@@ -154,7 +154,7 @@ PolygonMesh WeldedWithoutRepeats(const PolygonMesh& input, const std::vector<std
   }
   if (std::count(drop.begin(), drop.end(), kWall) == nf) {
     for (std::int64_t f : wall_firsts) drop[static_cast<std::size_t>(f)] = kKeep;  // a double-sided surface
-    for (char& d : drop) d = d == kWall ? kRepeated : d;
+    for (char& d : drop) d = d == kWall ? char{kRepeated} : d;
   }
   repeats.walls = static_cast<std::int64_t>(std::count(drop.begin(), drop.end(), kWall));
   repeats.repeated = static_cast<std::int64_t>(std::count(drop.begin(), drop.end(), kRepeated));
