@@ -55,15 +55,16 @@ void Join(std::int32_t* parent, std::int32_t a, std::int32_t b) {
   }
 }
 
-// An array not cleared between calls: its entries are written before they are read (slot_of's
-// are only compared, so any earlier value is fine). Zeroed once when it grows, so that no entry is
-// ever indeterminate.
-template <typename T>
+// An array not cleared between calls: its entries are written before they are read. kZeroed:
+// zeroed once when it grows, for slot_of, whose entries are read (only compared: any earlier value
+// is fine) but must never be indeterminate; the others are not (a 10^6-vertex mesh's edge array
+// is 24 MB the kernel zeroes already).
+template <typename T, bool kZeroed = false>
 class Uninitialized {
  public:
   T* Get(std::size_t n) {
     if (n > capacity_) {
-      data_.reset(new T[n]());
+      data_.reset(kZeroed ? new T[n]() : new T[n]);
       capacity_ = n;
     }
     return data_.get();
@@ -86,7 +87,8 @@ struct TopologyScratch {
   };
   std::vector<char> used, on_boundary;  // zeroed each call
   std::vector<std::uint32_t> start;     // zeroed each call
-  Uninitialized<std::uint32_t> other, cursor, slot_of;
+  Uninitialized<std::uint32_t> other, cursor;
+  Uninitialized<std::uint32_t, true> slot_of;
   Uninitialized<std::int32_t> parent, hole_parent;
   std::vector<Edge> group;
 
