@@ -320,8 +320,9 @@ LoadedMesh MeshFromArrays(const double* vertices, std::int64_t nv, const Corners
   return m;
 }
 
-// vertices (n, 3), float64 read in place when C-contiguous (else cast, a copy); indices int32 or
-// int64 read in place when C-contiguous (other integers cast to int64); offsets as PolygonMesh
+// vertices (n, 3), float64 used without a cast when C-contiguous (else cast); indices int32 or
+// int64 likewise (other integers cast to int64) — either way copied once into the library's mesh
+// by MeshFromArrays, checked as they are copied; offsets as PolygonMesh
 // keeps them (face f has the corners indices[offsets[f] .. offsets[f+1]-1]), or None with
 // face_size when every face has that many corners; float32: the caller's coordinates were float32.
 std::string SolveArrays(const py::array& vertices_in, const py::array& indices_in, const py::object& offsets_in,
