@@ -161,7 +161,9 @@ TEST(Solver, FrictionOnItsLimitIsTheLeastKineticEnergyThere) {
     const Vector3 x = FrictionUpdate(p, Vector3::Zero(), g, mass, K, bound);
     SCOPED_TRACE("trial " + std::to_string(trial));
     ASSERT_NEAR(x.norm(), bound, 1e-12 * bound);
-    if (dim == 2) EXPECT_EQ(x[2], 0.0);
+    if (dim == 2) {
+      EXPECT_EQ(x[2], 0.0);
+    }
     const Vector3 pull = K * (t - x);  // = ν x at the optimum
     const double nu = pull.dot(x) / x.squaredNorm();
     EXPECT_GE(nu, 0.0);

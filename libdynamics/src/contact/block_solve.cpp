@@ -435,20 +435,21 @@ void Finish(const std::vector<int>& order, std::vector<Row>& rows, std::vector<P
 
 }  // namespace
 
-bool BlockSolvable(const std::vector<Patch>& patches, const std::vector<int>& order, const BodyResponse& bodies) {
-  if (order.empty()) return false;
+BlockKind BlockKindOf(const std::vector<Patch>& patches, const std::vector<int>& order, const BodyResponse& bodies) {
+  if (order.empty()) return BlockKind::kNone;
   const bool jointed = patches[static_cast<std::size_t>(order[0])].coupling != nullptr;
-  if (!jointed && order.size() == 1) return false;  // (a free patch alone: UpdatePatchJointly)
+  if (!jointed && order.size() == 1) return BlockKind::kNone;  // (a free patch alone: UpdatePatchJointly)
   int channels = 0;
   for (const int k : order) {
     const Patch& p = patches[static_cast<std::size_t>(k)];
     // A patch that slid last step follows its centre of pressure within the sweeps (its
     // friction's channels move with it): kernels.cpp's sweeps. An island of jointed and free
     // bodies both: the sweeps too.
-    if (p.sliding || (p.coupling != nullptr) != jointed) return false;
+    if (p.sliding || (p.coupling != nullptr) != jointed) return BlockKind::kNone;
     channels += p.count + (p.rho > 0 ? 3 : 2);
   }
-  return (!jointed || bodies.coupling != nullptr) && channels <= kMaxBlockChannels;
+  if ((jointed && bodies.coupling == nullptr) || channels > kMaxBlockChannels) return BlockKind::kNone;
+  return jointed ? BlockKind::kJointed : BlockKind::kFree;
 }
 
 int SolveBlock(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order,

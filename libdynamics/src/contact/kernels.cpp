@@ -7,6 +7,8 @@
 #include <limits>
 #include <numeric>
 
+#include <Eigen/Cholesky>
+
 #include "../integrators/integrator.h"
 #include "solver_internal.h"
 #include "workers.h"

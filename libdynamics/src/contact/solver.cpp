@@ -78,20 +78,21 @@ class IslandState {
 
 // Symmetric sweeps from the ground up, then back down (they carry a load through a stack in both
 // directions), until the stopping rule holds. Returns the sweeps used, or max_iterations.
-// With `block` (block_solve.cpp): the sweeps while they converge fast (the warm start is often
-// nearly the answer, and a sweep costs less than forming the block), then, once a sweep does not
-// cut the change of the one before by kSlower (the contacts of a tree couple through its joints,
-// boxes leaning on each other through their lever arms, and the sweeps crawl): for jointed
-// bodies the block solve; for free bodies its pivoting step alone, after that sweep and the next
-// (kTries), each taken only where it is the answer — else the sweeps go on as if it had not been
-// tried (the sweeps between change the loaded set it starts from).
+// An island solved as a block (`kind` not kNone, block_solve.cpp, its arrays in `block`): the
+// sweeps while they converge fast (the warm start is often nearly the answer, and a sweep costs
+// less than forming the block), then, once a sweep does not cut the change of the one before by
+// kSlower (the contacts of a tree couple through its joints, boxes leaning on each other through
+// their lever arms, and the sweeps crawl): for jointed bodies the block solve; for free bodies its
+// pivoting step alone, after that sweep and the next (kTries), each taken only where it is the
+// answer — else the sweeps go on as if it had not been tried (the sweeps between change the
+// loaded set it starts from).
 int Sweeps(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vector<int>& order,
-           std::vector<Velocities>& vel, const BodyResponse& bodies, const SolveSettings& settings,
-           BlockScratch* block = nullptr) {
+           std::vector<Velocities>& vel, const BodyResponse& bodies, const SolveSettings& settings, BlockKind kind,
+           BlockScratch& block) {
   constexpr double kSlower = 0.1;
   constexpr int kTries = 2;
   double before = std::numeric_limits<double>::infinity();
-  const bool free = block != nullptr && patches[static_cast<std::size_t>(order[0])].coupling == nullptr;
+  const bool free = kind == BlockKind::kFree;
   bool built = false;
   int tries = 0;
   for (int iteration = 0; iteration < settings.max_iterations; ++iteration) {
@@ -100,14 +101,14 @@ int Sweeps(std::vector<Row>& rows, std::vector<Patch>& patches, const std::vecto
     if (progress.Done(settings)) return iteration + 1;
     if (free && tries < kTries && iteration + 1 < settings.max_iterations &&
         (built || progress.speed > kSlower * before)) {
-      if (PivotFree(rows, patches, order, vel, bodies, settings, *block, !built)) return iteration + 2;
+      if (PivotFree(rows, patches, order, vel, bodies, settings, block, !built)) return iteration + 2;
       built = true;
       ++tries;
     }
-    if (block != nullptr && !free && iteration + 1 < settings.max_iterations && progress.speed > kSlower * before) {
+    if (kind == BlockKind::kJointed && iteration + 1 < settings.max_iterations && progress.speed > kSlower * before) {
       SolveSettings rest = settings;
       rest.max_iterations -= iteration + 1;
-      return iteration + 1 + SolveBlock(rows, patches, order, vel, bodies, rest, *block);
+      return iteration + 1 + SolveBlock(rows, patches, order, vel, bodies, rest, block);
     }
     before = progress.speed;
   }
@@ -142,9 +143,10 @@ int SolveIsland(std::vector<Row>& rows, std::vector<Patch>& patches, const std::
                 std::vector<Velocities>& vel, const BodyResponse& bodies, const std::vector<int>& body_level,
                 const SolveSettings& settings, IslandScratch& work, SweepLanes* lanes = nullptr,
                 Workers* workers = nullptr) {
-  auto sweep = [&](BlockScratch* block) {
-    if (lanes != nullptr && block == nullptr) return lanes->Sweeps(rows, patches, vel, bodies, settings, *workers);
-    return Sweeps(rows, patches, order, vel, bodies, settings, block);
+  auto sweep = [&](BlockKind kind) {
+    if (lanes != nullptr && kind == BlockKind::kNone)
+      return lanes->Sweeps(rows, patches, vel, bodies, settings, *workers);
+    return Sweeps(rows, patches, order, vel, bodies, settings, kind, work.block);
   };
   auto shock = [&] {
     if (lanes != nullptr) {
@@ -155,14 +157,14 @@ int SolveIsland(std::vector<Row>& rows, std::vector<Patch>& patches, const std::
   };
   if (settings.exact) {
     WarmStart(rows, patches, order, vel);
-    const int sweeps = sweep(nullptr);
+    const int sweeps = sweep(BlockKind::kNone);
     if (sweeps == settings.max_iterations) shock();
     return sweeps;
   }
   IslandState state(patches, order, bodies.coupling, work);
   const double kicked = state.Energy(vel, bodies);
   state.Save(rows, patches, order, vel);  // the kicked velocities, the warm start's impulses
-  BlockScratch* const block = BlockSolvable(patches, order, bodies) ? &work.block : nullptr;
+  const BlockKind block = BlockKindOf(patches, order, bodies);
   WarmStart(rows, patches, order, vel);
   int last = sweep(block), sweeps = last;
   if (state.Energy(vel, bodies) > kicked) {

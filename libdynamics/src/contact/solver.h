@@ -9,8 +9,6 @@
 #include <utility>
 #include <vector>
 
-#include <Eigen/Cholesky>
-
 #include "dynamics/contact.h"
 #include "profile_cholesky.h"
 

@@ -101,9 +101,12 @@ void ShockPatch(Patch& p, std::vector<Row>& rows, std::vector<Velocities>& vel, 
                 const std::vector<int>& body_level, Progress& progress);
 
 // block_solve.cpp
-/// Whether an island's patches are solved as a block: all of jointed bodies, or all of free bodies
+/// How an island's patches are solved as a block: not at all, all of jointed bodies (SolveBlock),
+/// or all of free bodies (PivotFree).
+enum class BlockKind { kNone, kJointed, kFree };
+/// An island's kind: a block when its patches are all of jointed bodies, or all of free bodies
 /// (two patches or more), none sliding since the last step, at most kMaxBlockChannels channels.
-bool BlockSolvable(const std::vector<Patch>& patches, const std::vector<int>& order, const BodyResponse& bodies);
+BlockKind BlockKindOf(const std::vector<Patch>& patches, const std::vector<int>& order, const BodyResponse& bodies);
 /// Of jointed bodies: the sweeps of such an island on its channels' Delassus matrix (a pivoting step on the loaded
 /// set, else a projected Gauss–Seidel sweep), from the rows' and patches' impulses (already in
 /// `vel`) until the stopping rule holds; then the new impulses into the rows, patches and `vel`.
