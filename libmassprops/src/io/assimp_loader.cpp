@@ -145,7 +145,7 @@ LoadedMesh ReadWithAssimp(const std::string& path, int num_threads) {
   if (!p.loaded()) Fail(path, p.error);
   const AssimpOutput read = ReadIsolated(p, path);
   if (read.face_sizes.empty()) Fail(path, "no faces found (the file holds no surface mesh)");
-  LoadedMesh out = WeldCorners(path, read.xyz, read.face_sizes, "assimp", num_threads);
+  LoadedMesh out = WeldCorners(path, read.xyz, &read.face_sizes, "assimp", num_threads);
   const std::string ext = io_text::FileExtension(path);
   out.format = "assimp:" + ext;
   out.float32_coordinates = true;

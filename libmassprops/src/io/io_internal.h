@@ -42,8 +42,10 @@ StlLayout DetectStl(const std::string& path, const unsigned char* data, std::siz
 /// As Fail, for a file that cannot be opened or read at all (FileAccessError).
 [[noreturn]] void FailAccess(const std::string& path, const std::string& what);
 
-/// (num_threads, here and below: as LoadOptions::num_threads, 0 every core; the same bits for any.)
-LoadedMesh WeldCorners(const std::string& path, const std::vector<double>& xyz, const std::vector<int>& face_sizes,
+/// Welds corners given one by one (xyz per corner); `face_sizes` gives each face's corner count
+/// in order (null: every face a triangle). (num_threads, here and below: as
+/// LoadOptions::num_threads, 0 every core; the same bits for any.)
+LoadedMesh WeldCorners(const std::string& path, const std::vector<double>& xyz, const std::vector<int>* face_sizes,
                        const char* format, int num_threads = 0);
 
 /// Points the corners of vertices with bit-identical positions (-0.0 == 0.0) at the first such

@@ -28,16 +28,6 @@ using io_text::Lower;
 using io_text::NextToken;
 using io_text::ParseDouble;
 
-LoadedMesh FromTriangleSoup(const std::string& path, const std::vector<double>& xyz, const char* format,
-                            int num_threads) {
-  return weld::Weld(
-      path, xyz.size() / 3,
-      [&xyz](std::size_t c) {
-        return weld::PositionKey{xyz[3 * c], xyz[3 * c + 1], xyz[3 * c + 2]};
-      },
-      nullptr, format, num_threads);
-}
-
 LoadedMesh ReadBinaryStl(const std::string& path, std::string_view data, std::uint32_t n, int num_threads) {
   const char* records = data.data() + 84;
   auto corner_at = [records](std::size_t c) {
@@ -92,7 +82,7 @@ LoadedMesh ReadAsciiStl(const std::string& path, std::string_view data, int num_
   }
   if (!saw_solid || xyz.empty()) Fail(path, "no facets found in the ASCII STL");
   if (in_facet_vertices != 0) Fail(path, "the ASCII STL ends inside a facet (truncated?)");
-  return FromTriangleSoup(path, xyz, "stl-ascii", num_threads);
+  return WeldCorners(path, xyz, nullptr, "stl-ascii", num_threads);
 }
 
 }  // namespace
