@@ -235,7 +235,7 @@ bool SolveBrep(SolidResult& r, const LoadOptions& opt) {
     return false;
   }
   const PolygonMesh& mesh = r.loaded.mesh;
-  r.topology = AnalyzeTopology(mesh);
+  r.topology = AnalyzeTopology(mesh, opt.num_threads);
   for (const std::string& fix : part.fixes) Warn(r, FindingKind::kCadFix, PartWords(r) + ": " + fix);
   // The size for the plausibility check and the differences: the check mesh's box, or with no
   // mesh the B-rep's radius of gyration.

@@ -807,7 +807,7 @@ SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_c
       }
       r.repair->united_shells = united;
       r.repair->volume_after = SignedVolumeOf(r.loaded.mesh);
-      r.topology = AnalyzeTopology(r.loaded.mesh);
+      r.topology = AnalyzeTopology(r.loaded.mesh, opt.num_threads);
       r.shells = r.topology.components > 1 ? AnalyzeShells(r.loaded.mesh) : ShellReport{};
     }
     if (!r.shells.problem.empty()) {
