@@ -53,6 +53,7 @@ struct Node {
 /// What the kinematics of one configuration gives each node.
 struct NodeFrame {
   Matrix3 R;             ///< body axes → world
+  Matrix3 rotational;    ///< the body's inertia about its centre of mass, world axes
   Vector3 x;             ///< center of mass, world
   Matrix3 joint_R;       ///< J_c → world
   Vector3 joint_origin;  ///< J_c's origin, world
@@ -75,7 +76,8 @@ void CheckJoint(const Joint& joint, int num_bodies, const std::vector<Joint>& ex
 /// One configuration's kinematics and mass matrix.
 struct Configuration {
   std::vector<NodeFrame> frames;
-  std::vector<Matrix6> composite;  ///< composite inertia of each subtree
+  std::vector<Matrix6> composite;   ///< composite inertia of each subtree
+  bool composites_current = false;  ///< composite was formed at q (not left by a kFrames Configure)
   /// M and its factor formed (else M⁻¹ is applied in O(n) by the articulated-body recursion;
   /// Densify forms them when a step needs them).
   bool dense = true;
@@ -127,9 +129,17 @@ class Articulation {
   void Accept(std::vector<RigidBody>& bodies);
   /// A step of a tree without degrees of freedom.
   bool Still(std::vector<RigidBody>& bodies);
-  /// Kinematics, mass matrix and its factor at q (false: the mass matrix is not positive definite).
-  /// dense = false: the kinematics, the composite inertias and M's diagonal only (O(n)).
-  bool Configure(const Eigen::VectorXd& q, Configuration& c, bool dense = true) const;
+  /// What Configure forms: kinematics, composite inertias, the mass matrix and its factor (kDense);
+  /// the kinematics, the composite inertias and M's diagonal (kSparse, O(n)); the kinematics alone
+  /// (kFrames, O(n): the composites and the diagonal are left as they were, and Densify forms the
+  /// composites again).
+  enum class Form { kDense, kSparse, kFrames };
+  /// The configuration at q in the given form (false: the mass matrix is not positive definite).
+  bool Configure(const Eigen::VectorXd& q, Configuration& c, Form form = Form::kDense) const;
+  /// kDense for trees that use the dense factor, else kSparse.
+  Form StepForm() const { return Sparse() ? Form::kSparse : Form::kDense; }
+  /// The composite inertia of each subtree, from c's frames.
+  void Composites(Configuration& c) const;
   /// M and its factor for a configuration placed without them (false: not positive definite).
   bool Densify(Configuration& c) const;
   /// v = M⁻¹ p at configuration c: the factor when dense, else the articulated-body recursion

@@ -61,14 +61,16 @@ void Relative(const Node& n, const Eigen::VectorXd& q, Matrix3& R, Vector3& t) {
   }
 }
 
-Matrix6 SpatialInertia(const RigidBody& b, const Matrix3& R, const Vector3& c) {
-  const Matrix3 Ic = R * b.inertia.asDiagonal() * R.transpose();
+/// A body's spatial inertia about a point at c from its centre of mass (world axes): its mass m
+/// and its rotational inertia Ic about the centre, in world axes.
+Matrix6 SpatialInertia(double m, const Matrix3& Ic, const Vector3& c) {
   const Matrix3 C = Cross(c);
   Matrix6 I;
-  I.topLeftCorner<3, 3>() = Ic + b.mass * C * C.transpose();
-  I.topRightCorner<3, 3>() = b.mass * C;
-  I.bottomLeftCorner<3, 3>() = b.mass * C.transpose();
-  I.bottomRightCorner<3, 3>() = b.mass * Matrix3::Identity();
+  // m C Cᵀ = m (|c|² 1 − c cᵀ)
+  I.topLeftCorner<3, 3>() = Ic + m * (c.squaredNorm() * Matrix3::Identity() - c * c.transpose());
+  I.topRightCorner<3, 3>() = m * C;
+  I.bottomLeftCorner<3, 3>() = m * C.transpose();
+  I.bottomRightCorner<3, 3>() = m * Matrix3::Identity();
   return I;
 }
 
@@ -225,7 +227,7 @@ Articulation::Articulation(const std::vector<Joint>& joints, std::vector<RigidBo
 
 bool Articulation::EnsureMomenta() {
   if (momenta_ready_) return true;
-  if (!Configure(q_, end_, !Sparse())) return false;
+  if (!Configure(q_, end_, StepForm())) return false;
   Velocities(v_, end_);
   p_ = Eigen::VectorXd::Zero(v_.size());  // (an empty product is UB in Eigen's self-adjoint kernel)
   if (v_.size() > 0 && end_.dense) p_ = end_.M.selfadjointView<Eigen::Lower>() * v_;
@@ -259,14 +261,19 @@ Vector6 ForceAt(const Vector6& f, const Vector3& d) {
   return out;
 }
 Matrix6 InertiaAt(const Matrix6& I, const Vector3& d) {
-  // X* = [1, −D; 0, 1], X⁻¹ = [1, 0; D, 1] with D = [d]×, I = [A, B; Bᵀ, C] (blockwise).
-  const Matrix3 D = Cross(d);
-  const Matrix3 A = I.topLeftCorner<3, 3>(), B = I.topRightCorner<3, 3>(), C = I.bottomRightCorner<3, 3>();
-  const Matrix3 CD = C * D;
+  // X* = [1, −D; 0, 1], X⁻¹ = [1, 0; D, 1] with D = [d]×, I = [A, B; Bᵀ, C] (blockwise, A and C
+  // symmetric): X* I X⁻¹ = [A − D Bᵀ + E D, E; Eᵀ, C] with E = B − D C. Each product with D is
+  // three cross products: column j of D M is d × M_j, row i of M D is M_iᵀ × d.
+  const Matrix3 B = I.topRightCorner<3, 3>(), C = I.bottomRightCorner<3, 3>();
+  Matrix3 E;
+  for (int j = 0; j < 3; ++j) E.col(j) = B.col(j) - d.cross(Vector3(C.col(j)));
   Matrix6 out;
-  out.topLeftCorner<3, 3>() = A + B * D - D * B.transpose() - D * CD;
-  out.topRightCorner<3, 3>() = B - D * C;
-  out.bottomLeftCorner<3, 3>() = B.transpose() + CD;
+  for (int j = 0; j < 3; ++j) {  // column j of −D Bᵀ is −d × (row j of B)
+    out.block<3, 1>(0, j) = I.block<3, 1>(0, j) - d.cross(Vector3(B.row(j).transpose()));
+  }
+  for (int i = 0; i < 3; ++i) out.block<1, 3>(i, 0) += Vector3(E.row(i).transpose()).cross(d).transpose();
+  out.topRightCorner<3, 3>() = E;
+  out.bottomLeftCorner<3, 3>() = E.transpose();
   out.bottomRightCorner<3, 3>() = C;
   return out;
 }
@@ -294,15 +301,15 @@ void Articulation::Solve(const Configuration& c, const Eigen::VectorXd& p, Eigen
   for (std::size_t i = 0; i < n; ++i) {
     const NodeFrame& f = c.frames[i];
     const Vector3& o = f.joint_origin;
-    aba_inertia_[i] = SpatialInertia(inertias_[static_cast<std::size_t>(nodes_[i].body)], f.R, f.x - o);
+    aba_inertia_[i] = SpatialInertia(inertias_[static_cast<std::size_t>(nodes_[i].body)].mass, f.rotational, f.x - o);
     aba_s_[i] = f.S;
     for (Eigen::Index k = 0; k < f.S.cols(); ++k) aba_s_[i].col(k) = MotionAt(f.S.col(k), o);
   }
   for (std::size_t i = n; i-- > 0;) {
     const Node& ni = nodes_[i];
     const MotionColumns& S = aba_s_[i];
-    Matrix6 handed = aba_inertia_[i];
-    Vector6 bias = aba_bias_[i];
+    Matrix6& handed = aba_inertia_[i];  // (the forward pass does not read it)
+    Vector6& bias = aba_bias_[i];
     if (ni.nv == 1) {  // hinges and sliders: D a number
       const Vector6 U = aba_inertia_[i] * S.col(0);
       double D = S.col(0).dot(U);
@@ -383,23 +390,31 @@ void Articulation::PlaceNode(int i, const Eigen::VectorXd& q, Configuration& c) 
       for (int k = 0; k < 3; ++k) translation(3 + k, Rj.col(k));
       break;
   }
-  f.inertia = SpatialInertia(inertias_[static_cast<std::size_t>(n.body)], f.R, f.x);
+  const RigidBody& b = inertias_[static_cast<std::size_t>(n.body)];
+  f.rotational = f.R * b.inertia.asDiagonal() * f.R.transpose();
+  f.inertia = SpatialInertia(b.mass, f.rotational, f.x);
 }
 
-bool Articulation::Configure(const Eigen::VectorXd& q, Configuration& c, bool dense) const {
-  c.q = q;
+void Articulation::Composites(Configuration& c) const {
   const std::size_t n = nodes_.size();
-  c.frames.resize(n);
   c.composite.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    PlaceNode(static_cast<int>(i), q, c);
-    c.composite[i] = c.frames[i].inertia;
-  }
+  for (std::size_t i = 0; i < n; ++i) c.composite[i] = c.frames[i].inertia;
   for (std::size_t i = n; i-- > 0;) {
     if (nodes_[i].parent >= 0) c.composite[static_cast<std::size_t>(nodes_[i].parent)] += c.composite[i];
   }
-  c.dense = dense;
-  if (dense) return Densify(c);
+  c.composites_current = true;
+}
+
+bool Articulation::Configure(const Eigen::VectorXd& q, Configuration& c, Form form) const {
+  c.q = q;
+  const std::size_t n = nodes_.size();
+  c.frames.resize(n);
+  for (std::size_t i = 0; i < n; ++i) PlaceNode(static_cast<int>(i), q, c);
+  c.dense = form == Form::kDense;
+  c.composites_current = false;
+  if (form == Form::kFrames) return true;
+  Composites(c);
+  if (c.dense) return Densify(c);
   c.diagonal.resize(v_.size());
   for (std::size_t i = 0; i < n; ++i) {
     const Node& ni = nodes_[i];
@@ -414,6 +429,7 @@ bool Articulation::Configure(const Eigen::VectorXd& q, Configuration& c, bool de
 }
 
 bool Articulation::Densify(Configuration& c) const {
+  if (!c.composites_current) Composites(c);
   c.dense = true;
   const std::size_t n = nodes_.size();
   const auto nv = static_cast<Eigen::Index>(v_.size());

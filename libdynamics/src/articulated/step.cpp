@@ -98,7 +98,8 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
   bool converged = false;
   for (int iteration = 0; iteration < 100 && !converged; ++iteration) {
     Move(q0_, vbar_, 0.5 * h, qs_);
-    if (!Configure(qs_, mid_, !Sparse())) return false;
+    // (A large tree's composites and diagonal once a step: the diagonal bounds the rounding floor.)
+    if (!Configure(qs_, mid_, iteration > 0 && Sparse() ? Form::kFrames : StepForm())) return false;
     ps_ = 0.5 * (p0_ + p1_);
     Solve(mid_, ps_, vnew_);
     Velocities(vnew_, mid_);
@@ -126,7 +127,7 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
   last_rate_ = rate_;
   last_vbar_ = vbar_;
   Move(q0_, vbar_, h, q1_);
-  if (!Configure(q1_, end_, !Sparse())) return false;
+  if (!Configure(q1_, end_, StepForm())) return false;
   std::vector<std::pair<int, double>> stops;
   if (Impulses(end_, q1_, h, p1_, stops)) {
     // The impulses act over the step: the midpoint velocity takes half of them.
@@ -134,7 +135,7 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
     Solve(mid_, ps_, vbar_);
     Move(q0_, vbar_, h, q1_);
     for (const auto& [qi, limit] : stops) q1_[qi] = limit;
-    if (!Configure(q1_, end_, !Sparse())) return false;
+    if (!Configure(q1_, end_, StepForm())) return false;
   }
   Accept(bodies);
   return true;
