@@ -531,6 +531,29 @@ TEST(Joints, SpringOscillatesAtItsNaturalFrequencyAndKeepsItsEnergy) {
   EXPECT_TRUE(a.w.Conserves().energy);
 }
 
+// A spring too stiff for the step: its fixed-point solve contracts by about (h ω / 2)², so at
+// h ω = 8 the step is halved until h ω / 2 = 1/2 (eight sub-steps; the attempts at h, h/2 and
+// h/4 give up). The midpoint rule on a linear oscillator turns (x, ẋ/ω) by φ = 2 atan(h ω / 2)
+// a step: after n sub-steps x = x0 cos(n φ), whatever the attempts that failed before.
+TEST(Joints, AStiffSpringHalvesTheStepAndTurnsByTheMidpointRulesAngle) {
+  const double omega = 800, I = Axle([](Joint&) {}).I;
+  Axle a([&](Joint& j) {
+    j.stiffness = I * omega * omega;
+    j.rest_position = 0.1;
+    j.position = {0.4};
+  });
+  const double h = 0.01;
+  const int steps = 40, substeps = 8;
+  for (int s = 0; s < steps; ++s) {
+    const dynamics::StepStatus st = a.w.Step(h);
+    ASSERT_TRUE(st.ok) << st.message;
+    ASSERT_EQ(st.substeps, substeps) << "step " << s;
+  }
+  const double phi = 2 * std::atan(h / substeps * omega / 2), turned = substeps * steps * phi;
+  EXPECT_NEAR(a.q() - 0.1, 0.3 * std::cos(turned), 1e-10);  // (320 solves to 1e-13, 297 rad turned)
+  EXPECT_NEAR(a.v(), -0.3 * omega * std::sin(turned), 1e-7);
+}
+
 // A velocity motor turns an unbalanced arm about a horizontal axle: gravity's torque varies
 // through the turn, the motor's impulse takes it up and the rate holds.
 TEST(Joints, VelocityMotorHoldsItsRateUnderALoadBelowItsLimit) {

@@ -11,6 +11,9 @@
 namespace dynamics::internal {
 namespace {
 
+// Iterations of the midpoint solve without progress after which it gives up (MidpointStep).
+constexpr int kStalled = 8;
+
 double MaxAbs(const Eigen::VectorXd& x) { return x.size() ? x.cwiseAbs().maxCoeff() : 0.0; }
 
 // The ratio of a mass matrix's largest diagonal entry to its smallest (a lower bound of its
@@ -95,6 +98,8 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
     p1_ = p_;
   }
   double last_change = std::numeric_limits<double>::infinity();
+  double best_pair = last_change;  // the least of max(change, last change) so far
+  int since_best = 0;
   bool converged = false;
   for (int iteration = 0; iteration < 100 && !converged; ++iteration) {
     Move(q0_, vbar_, 0.5 * h, qs_);
@@ -118,6 +123,17 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
     // halved its step ten times, every step.)
     const double floor = 10 * std::numeric_limits<double>::epsilon() * Ratio(mid_.diagonal);
     converged = change <= 1e-13 || (change <= std::max(1e-11, floor) && change >= last_change);
+    // The changes of the momenta and of the velocities take turns (each iteration's velocities
+    // answer the last one's momenta): a solve whose change over two iterations has not come
+    // below its best for kStalled iterations, still far above rounding, does not contract — the
+    // step is too long for the stiffest motion — and gives up now rather than at 100 (the step
+    // is then halved).
+    const double pair = std::max(change, last_change);
+    if (pair < best_pair) {
+      best_pair = pair, since_best = 0;
+    } else if (++since_best >= kStalled && pair > 1e-6 && !converged) {
+      return false;
+    }
     last_change = change;
     vbar_ = vnew_;
     p1_ = pnew_;
