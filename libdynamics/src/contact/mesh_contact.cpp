@@ -11,6 +11,7 @@
 #include "mesh_field.h"
 #include "narrow_phase.h"
 #include "polytope.h"
+#include "sample_bounds.h"
 
 namespace dynamics::contact {
 namespace {
@@ -105,13 +106,16 @@ double DistanceOnly(const Posed& s, const Vector3& x) {
 
 // φ alone where it matters only whether it is above `threshold`: +∞ when a mesh field's blocks
 // show it is (MeshField::SurelyAbove), without reading the field's nodes; else φ as DistanceOnly.
-double DistanceOnlyUnless(const Posed& s, const Vector3& x, double threshold) {
+// `bound` (optional): a bound from below of φ (less its rounding).
+double DistanceOnlyUnless(const Posed& s, const Vector3& x, double threshold, double* bound = nullptr) {
   const Vector3 q = s.R.transpose() * (x - s.t);
-  if (const auto* m = std::get_if<shape::Mesh>(s.shape); m != nullptr && m->field->SurelyAbove(q, threshold)) {
+  if (const auto* m = std::get_if<shape::Mesh>(s.shape); m != nullptr && m->field->SurelyAbove(q, threshold, bound)) {
     return std::numeric_limits<double>::infinity();
   }
   Vector3 unused = Vector3::UnitZ();
-  return LocalDistance(s, q, unused, false);
+  const double d = LocalDistance(s, q, unused, false);
+  if (bound != nullptr) *bound = d - 1e-12 * (1 + std::abs(d));
+  return d;
 }
 
 // Surface points of a shape for testing against a mesh's field (world), spaced about `spacing`;
@@ -188,12 +192,42 @@ Box3 WorldBox(const Posed& s) {
   return Box3(s.t - extent, s.t + extent);
 }
 
+// The bounds' reference for this step: kept while the sampled mesh has moved, in the field's
+// frame, by less than half a cell of the field (beyond that the bounds would reject little), else
+// (or at a first step) reset to the pose of now with no bound. (The bounds are of φ, whatever
+// margin they were compared with.)
+void Refer(SampleBounds& bounds, const Posed& from, const Posed& to, const MeshField& sampled, std::size_t clusters) {
+  const Matrix3 R = to.R.transpose() * from.R;
+  const Vector3 t = to.R.transpose() * (from.t - to.t);
+  const double cell = std::get<shape::Mesh>(*to.shape).field->cell;
+  if (bounds.valid && bounds.cluster.size() == clusters && bounds.Motion(R, t, sampled.radius) < 0.5 * cell) {
+    return;
+  }
+  bounds.valid = true;
+  bounds.R = R, bounds.t = t;
+  bounds.cluster.assign(clusters, -std::numeric_limits<double>::infinity());
+  bounds.first.assign(clusters, SampleBounds::kNone);
+  bounds.sample.clear();
+}
+
+// Cluster `ci`'s samples' bounds (room for `count`, without bounds, the first time it is asked).
+double* KeptSamples(SampleBounds& bounds, std::size_t ci, int count) {
+  if (bounds.first[ci] == SampleBounds::kNone) {
+    bounds.first[ci] = static_cast<std::uint32_t>(bounds.sample.size());
+    bounds.sample.resize(bounds.sample.size() + static_cast<std::size_t>(count),
+                         -std::numeric_limits<double>::infinity());
+  }
+  return bounds.sample.data() + bounds.first[ci];
+}
+
 // The samples of `from` against the distance of `to`; normals from `to` into `from`, flipped
 // when `from` is the second shape of the pair. Only samples in the overlap of the two shapes'
 // boxes (grown by the margin and the samples' radii) are tested: a mesh's are culled in its own
 // frame before they are moved.
+// `bounds` (a mesh against a mesh, optional): the bounds kept from the steps before
+// (sample_bounds.h), which answer the tests they can and take what the others find.
 void SamplesAgainst(const Posed& from, const Posed& to, double spacing, double margin, bool from_is_second,
-                    std::vector<ContactPoint>& out) {
+                    std::vector<ContactPoint>& out, SampleBounds* bounds) {
   double grow = margin;
   if (const auto* c = std::get_if<shape::Capsule>(from.shape)) grow += c->radius;
   if (const auto* c = std::get_if<shape::Sphere>(from.shape)) grow += c->radius;
@@ -204,9 +238,13 @@ void SamplesAgainst(const Posed& from, const Posed& to, double spacing, double m
   if (overlap.isEmpty()) return;
   const MeshField* from_field = nullptr;
   if (const auto* m = std::get_if<shape::Mesh>(from.shape)) from_field = m->field.get();
+  // Each sample's test: a contact point appended, or the sample rejected; returns a bound from
+  // below of φ where the field rejected it (−∞ otherwise).
+  constexpr double kNoBound = -std::numeric_limits<double>::infinity();
   auto test = [&](const Vector3& p, double radius, std::size_t index) {
-    if (!overlap.contains(p)) return;
-    if (!(DistanceOnlyUnless(to, p, margin + radius) - radius < margin)) return;
+    if (!overlap.contains(p)) return kNoBound;
+    double bound = kNoBound;
+    if (!(DistanceOnlyUnless(to, p, margin + radius, &bound) - radius < margin)) return bound;
     Vector3 n = Vector3::UnitZ();
     const double sep = Distance(to, p, n) - radius;
     if (from_field != nullptr) {
@@ -227,6 +265,7 @@ void SamplesAgainst(const Posed& from, const Posed& to, double spacing, double m
     if (radius > 0) feature |= kCentre;
     if (from_is_second) feature |= kSecond;
     out.push_back({surface - n * (0.5 * sep), from_is_second ? Vector3(-n) : n, sep, feature});
+    return kNoBound;
   };
   if (const auto* m = std::get_if<shape::Mesh>(from.shape)) {
     Box3 local;  // the overlap in the mesh's frame
@@ -245,13 +284,47 @@ void SamplesAgainst(const Posed& from, const Posed& to, double spacing, double m
     const bool smooth = std::holds_alternative<shape::Sphere>(*to.shape) ||
                         std::holds_alternative<shape::Capsule>(*to.shape) ||
                         std::holds_alternative<shape::Cylinder>(*to.shape);
-    for (const MeshField::Cluster& c : m->field->clusters) {
+    const std::vector<MeshField::Cluster>& clusters = m->field->clusters;
+    if (bounds != nullptr) Refer(*bounds, from, to, *m->field, clusters.size());
+    double turned = 0, shifted = 0;  // since the bounds' reference: ‖R − R_ref‖_F, |t − t_ref|
+    if (bounds != nullptr) {
+      turned = (to.R.transpose() * from.R - bounds->R).norm();
+      shifted = (to.R.transpose() * (from.t - to.t) - bounds->t).norm();
+    }
+    for (std::size_t ci = 0; ci < clusters.size(); ++ci) {
+      const MeshField::Cluster& c = clusters[ci];
       if (local.exteriorDistance(c.centre) > c.radius) continue;
-      if (DistanceOnlyUnless(to, from.R * c.centre + from.t, c.radius + slack) > c.radius + slack) continue;
+      const double within = c.radius + slack;
+      // The field's change over the motion since the reference, at most (and rounding's share).
+      const double change = kFieldLipschitz * (turned * (c.centre.norm() + c.radius) + shifted) + 1e-10;
+      if (bounds != nullptr && bounds->cluster[ci] - change > within * (1 + 1e-12)) {
+        ++bounds->skipped;
+        continue;
+      }
+      double bound = kNoBound;
+      const bool far =
+          DistanceOnlyUnless(to, from.R * c.centre + from.t, within, bounds != nullptr ? &bound : nullptr) > within;
+      double* kept = nullptr;  // the cluster's samples' bounds
+      if (bounds != nullptr) {
+        ++bounds->evaluated;
+        bounds->cluster[ci] = std::max(bounds->cluster[ci], bound - change);
+        if (!far) kept = KeptSamples(*bounds, ci, c.count);
+      }
+      if (far) continue;
       for (int i = c.first; i < c.first + c.count; ++i) {
         const auto k = static_cast<std::size_t>(i);
         if (smooth && m->field->sample_faces[k].count > 0) continue;
-        if (local.contains(samples[k])) test(from.R * samples[k] + from.t, 0, k);
+        if (!local.contains(samples[k])) continue;
+        double* b = kept != nullptr ? kept + (i - c.first) : nullptr;
+        if (b != nullptr && *b - change > margin * (1 + 1e-12)) {
+          ++bounds->skipped;
+          continue;
+        }
+        const double found = test(from.R * samples[k] + from.t, 0, k);
+        if (b != nullptr) {
+          ++bounds->evaluated;
+          *b = std::max(*b, found - change);
+        }
       }
     }
     return;
@@ -314,11 +387,17 @@ bool OutOfReach(const Posed& mesh, const Posed& other, double margin) {
 }
 
 void CollideWithMesh(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out) {
+  CollideMeshes(a, b, margin, out, nullptr);
+}
+
+void CollideMeshes(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out,
+                   PairSampleBounds* bounds) {
   if (OutOfReach(a, b, margin) || OutOfReach(b, a, margin)) return;
   const std::size_t first = out.size();
   const double spacing = std::min(Spacing(a), Spacing(b));
-  SamplesAgainst(a, b, spacing, margin, false, out);
-  SamplesAgainst(b, a, spacing, margin, true, out);
+  const bool both = std::holds_alternative<shape::Mesh>(*a.shape) && std::holds_alternative<shape::Mesh>(*b.shape);
+  SamplesAgainst(a, b, spacing, margin, false, out, both && bounds != nullptr ? &bounds->of[0] : nullptr);
+  SamplesAgainst(b, a, spacing, margin, true, out, both && bounds != nullptr ? &bounds->of[1] : nullptr);
   ReduceContacts(out, first);
 }
 

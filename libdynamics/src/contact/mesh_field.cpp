@@ -360,7 +360,7 @@ double MeshField::Distance(const Vector3& x, Vector3* gradient) const {
   return std::max(mesh_box.exteriorDistance(x), value - outside);
 }
 
-bool MeshField::SurelyAbove(const Vector3& x, double threshold) const {
+bool MeshField::SurelyAbove(const Vector3& x, double threshold, double* bound) const {
   if (block_min.empty()) return false;
   // The cell Distance uses for a point inside the grid, or (rounding at a cell's face) its
   // neighbour across that face, whose block holds the face's nodes, which then carry all but ~10⁻¹⁶
@@ -376,7 +376,9 @@ bool MeshField::SurelyAbove(const Vector3& x, double threshold) const {
   const double least =
       block_min[(b[2] * static_cast<std::size_t>(blocks[1]) + b[1]) * static_cast<std::size_t>(blocks[0]) + b[0]];
   // The interpolation's rounding may leave it a few ulps under its corners: a margin far above that.
-  return least - 1e-12 * (1 + std::abs(least) + std::abs(threshold)) > threshold;
+  if (!(least - 1e-12 * (1 + std::abs(least) + std::abs(threshold)) > threshold)) return false;
+  if (bound != nullptr) *bound = least - 1e-12 * (1 + std::abs(least));
+  return true;
 }
 
 std::size_t MeshField::MemoryBytes() const {

@@ -69,8 +69,9 @@ struct MeshField {
   // φ at x (mesh frame) and its gradient (not normalized).
   double Distance(const Vector3& x, Vector3* gradient) const;
   // True when φ at x (mesh frame) is surely above `threshold` by the blocks' bound alone (by more
-  // than rounding: then Distance(x) > threshold too); false when that is not known.
-  bool SurelyAbove(const Vector3& x, double threshold) const;
+  // than rounding: then Distance(x) > threshold too); false when that is not known. `bound`
+  // (optional, when true): a bound from below of Distance(x).
+  bool SurelyAbove(const Vector3& x, double threshold, double* bound = nullptr) const;
   std::size_t MemoryBytes() const;
 };
 

@@ -557,7 +557,13 @@ void CollidePairs(const std::vector<PairQuery>& pairs, Workers* workers,
   const std::size_t groups = (pairs.size() + kGroup - 1) / kGroup;
   auto collide = [&](std::size_t g) {
     for (std::size_t c = g * kGroup; c < std::min(pairs.size(), (g + 1) * kGroup); ++c) {
-      if (pairs[c].a != nullptr) Collide(*pairs[c].a, *pairs[c].b, pairs[c].margin, found[c]);
+      const PairQuery& q = pairs[c];
+      if (q.a == nullptr) continue;
+      if (q.bounds == nullptr) {
+        Collide(*q.a, *q.b, q.margin, found[c]);
+      } else if (q.a->filter.Touches(q.b->filter)) {  // (two meshes: Collide's table, without the compounds)
+        CollideMeshes(*q.a, *q.b, q.margin, found[c], q.bounds);
+      }
     }
   };
   if (workers != nullptr && groups > 1) {

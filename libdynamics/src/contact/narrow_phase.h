@@ -78,12 +78,19 @@ void Collide(const Posed& a, const Posed& b, double margin, std::vector<ContactP
 /// mesh (mesh_contact.cpp). At most 12 points a pair: the deepest, then the farthest apart.
 void CollideMeshGround(const Posed& a, const Vector3& n, double offset, double margin, std::vector<ContactPoint>& out);
 void CollideWithMesh(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out);
+struct PairSampleBounds;
+/// CollideWithMesh with the bounds kept from the steps before for two meshes (sample_bounds.h;
+/// null: none); the same points either way.
+void CollideMeshes(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out,
+                   PairSampleBounds* bounds);
 
-/// A pair for the narrow phase: two posed shapes and the margin.
+/// A pair for the narrow phase: two posed shapes and the margin, and for two meshes the bounds
+/// kept between steps (null: none).
 struct PairQuery {
   const Posed* a = nullptr;
   const Posed* b = nullptr;
   double margin = 0;
+  PairSampleBounds* bounds = nullptr;
 };
 class Workers;
 /// Collide on each pair: found[c] gets pair c's points (none for a pair whose `a` is null). Pairs run in groups of 16

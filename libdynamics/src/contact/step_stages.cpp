@@ -388,6 +388,7 @@ StepStatus PairRows(const StepInput& in, const Model& model, const std::vector<C
   s.keep.assign(candidates.size(), 0);
   std::vector<PairQuery>& queries = s.queries;
   queries.clear();
+  state.sample_bounds.Begin(candidates.size());
   for (std::size_t c = 0; c < candidates.size(); ++c) {
     const int a = candidates[c].a, b = candidates[c].b;
     const double margin = candidates[c].margin, gate = reuse * (radius(a) + radius(b));
@@ -408,7 +409,10 @@ StepStatus PairRows(const StepInput& in, const Model& model, const std::vector<C
       PlacePolytope(*p.polytope, p, s.placed[static_cast<std::size_t>(k)]);
       p.placed = &s.placed[static_cast<std::size_t>(k)];
     }
-    queries.push_back({&posed(a), &posed(b), s.keep[c] ? ManifoldCache::WideMargin(margin, gate) : margin});
+    const bool meshes =
+        std::holds_alternative<shape::Mesh>(*posed(a).shape) && std::holds_alternative<shape::Mesh>(*posed(b).shape);
+    queries.push_back({&posed(a), &posed(b), s.keep[c] ? ManifoldCache::WideMargin(margin, gate) : margin,
+                       meshes ? state.sample_bounds.Slot(a, b) : nullptr});
   }
   CollidePairs(queries, s.WorkersFor(in.threads), s.fresh);
   for (std::size_t c = 0; c < candidates.size(); ++c) {
@@ -421,6 +425,7 @@ StepStatus PairRows(const StepInput& in, const Model& model, const std::vector<C
     }
   }
   kept.Flip();
+  state.sample_bounds.Flip();
   const RowContext row_context{in.bodies, s.vel, s.before_kick, in.h, s.bounce_threshold};
   for (std::size_t c = 0; c < candidates.size(); ++c) {
     const int a = candidates[c].a, b = candidates[c].b;

@@ -20,6 +20,7 @@
 #include "massprops/parallel.h"
 #include "narrow_phase.h"
 #include "polytope.h"
+#include "sample_bounds.h"
 #include "solver.h"
 #include "workers.h"
 
@@ -48,9 +49,10 @@ struct Model {
 
 /// What one step leaves for the next.
 struct State {
-  SleepState sleep;         // ContactOptions::sleeping
-  ContactCache cache;       // the last step's impulses: the warm start of the next
-  ManifoldCache manifolds;  // pairs' contact points, for the steps that follow (reuse_distance)
+  SleepState sleep;                 // ContactOptions::sleeping
+  ContactCache cache;               // the last step's impulses: the warm start of the next
+  ManifoldCache manifolds;          // pairs' contact points, for the steps that follow (reuse_distance)
+  SampleBoundsCache sample_bounds;  // mesh pairs' field bounds, for the steps that follow (exact)
 };
 
 /// A step's working memory (kept between steps for its allocations); rows and patches stay
