@@ -15,6 +15,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -194,8 +195,21 @@ class Articulation {
   std::vector<RigidBody> stage_;
   std::vector<Wrench> wrenches_;
   std::vector<Vector6> subtree_momentum_, subtree_force_;
-  Eigen::VectorXd last_rate_, older_rate_;       ///< ṗ of the last two midpoint steps (the predictor)
-  Eigen::VectorXd last_vbar_;                    ///< the last midpoint velocity
+  /// The last midpoint steps' ṗ and midpoint velocities, newest first, and their lengths: the
+  /// predictor of the next step's solve.
+  struct MidpointHistory {
+    static constexpr int kKept = 3;
+    Eigen::VectorXd rate[kKept], vbar[kKept];
+    double h[kKept] = {0, 0, 0};
+    int count = 0;
+    void Push(const Eigen::VectorXd& r, const Eigen::VectorXd& v, double step) {
+      for (int k = kKept - 1; k > 0; --k) rate[k].swap(rate[k - 1]), vbar[k].swap(vbar[k - 1]), h[k] = h[k - 1];
+      rate[0] = r, vbar[0] = v, h[0] = step;  // (into kept capacity)
+      count = std::min(count + 1, kKept);
+    }
+    void Clear() { count = 0; }
+  };
+  MidpointHistory history_;
   Eigen::VectorXd saved_q_, saved_v_, saved_p_;  ///< the state before a step that may be retried
   Eigen::VectorXd q0_, p0_, q1_, p1_, vbar_, vnew_, pnew_, rate_, k_[4], kq_[4], qs_, ps_, vs_;
   struct Row {

@@ -189,8 +189,7 @@ bool Articulation::ContactFinish(const std::vector<Wrench>& impulses, const std:
                                  std::vector<RigidBody>& bodies) {
   std::fill(limit_impulse_.begin(), limit_impulse_.end(), 0.0);
   std::fill(drive_impulse_.begin(), drive_impulse_.end(), 0.0);
-  older_rate_.resize(0);  // the midpoint rule's predictor starts afresh after contact
-  last_rate_.resize(0);
+  history_.Clear();  // the midpoint rule's predictor starts afresh after contact
   if (p_.size() == 0) return Still(bodies);
   p1_ = kicked_p_ + GeneralizedImpulse(impulses);
   vbar_ = effective_.llt.solve(p1_);
