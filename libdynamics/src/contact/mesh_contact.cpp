@@ -193,21 +193,34 @@ Box3 WorldBox(const Posed& s) {
 }
 
 // The bounds' reference for this step: kept while the sampled mesh has moved, in the field's
-// frame, by less than half a cell of the field (beyond that the bounds would reject little), else
-// (or at a first step) reset to the pose of now with no bound. (The bounds are of φ, whatever
-// margin they were compared with.)
-void Refer(SampleBounds& bounds, const Posed& from, const Posed& to, const MeshField& sampled, std::size_t clusters) {
+// frame, by less than kReferMotion cells of the field; past that, moved to the pose of now, every
+// bound lowered by what the move may have changed it (so that bounds found from then on are not
+// lowered by the motion before). A first step starts with no bound.
+constexpr double kReferMotion = 0.25;
+void Refer(SampleBounds& bounds, const Posed& from, const Posed& to, const MeshField& sampled) {
   const Matrix3 R = to.R.transpose() * from.R;
   const Vector3 t = to.R.transpose() * (from.t - to.t);
   const double cell = std::get<shape::Mesh>(*to.shape).field->cell;
-  if (bounds.valid && bounds.cluster.size() == clusters && bounds.Motion(R, t, sampled.radius) < 0.5 * cell) {
+  const std::vector<MeshField::Cluster>& clusters = sampled.clusters;
+  if (!bounds.valid || bounds.cluster.size() != clusters.size()) {
+    bounds.valid = true;
+    bounds.R = R, bounds.t = t;
+    bounds.cluster.assign(clusters.size(), -std::numeric_limits<double>::infinity());
+    bounds.first.assign(clusters.size(), SampleBounds::kNone);
+    bounds.sample.clear();
     return;
   }
-  bounds.valid = true;
+  if (bounds.Motion(R, t, sampled.radius) < kReferMotion * cell) return;
+  const double turned = (R - bounds.R).norm(), shifted = (t - bounds.t).norm();
+  for (std::size_t ci = 0; ci < clusters.size(); ++ci) {
+    const MeshField::Cluster& c = clusters[ci];
+    const double change = kFieldLipschitz * (turned * (c.centre.norm() + c.radius) + shifted) + 1e-10;
+    bounds.cluster[ci] -= change;
+    if (bounds.first[ci] == SampleBounds::kNone) continue;
+    double* b = bounds.sample.data() + bounds.first[ci];
+    for (int i = 0; i < c.count; ++i) b[i] -= change;
+  }
   bounds.R = R, bounds.t = t;
-  bounds.cluster.assign(clusters, -std::numeric_limits<double>::infinity());
-  bounds.first.assign(clusters, SampleBounds::kNone);
-  bounds.sample.clear();
 }
 
 // Cluster `ci`'s samples' bounds (room for `count`, without bounds, the first time it is asked).
@@ -285,7 +298,7 @@ void SamplesAgainst(const Posed& from, const Posed& to, double spacing, double m
                         std::holds_alternative<shape::Capsule>(*to.shape) ||
                         std::holds_alternative<shape::Cylinder>(*to.shape);
     const std::vector<MeshField::Cluster>& clusters = m->field->clusters;
-    if (bounds != nullptr) Refer(*bounds, from, to, *m->field, clusters.size());
+    if (bounds != nullptr) Refer(*bounds, from, to, *m->field);
     double turned = 0, shifted = 0;  // since the bounds' reference: ‖R − R_ref‖_F, |t − t_ref|
     if (bounds != nullptr) {
       turned = (to.R.transpose() * from.R - bounds->R).norm();
