@@ -214,7 +214,7 @@ void Refer(SampleBounds& bounds, const Posed& from, const Posed& to, const MeshF
   const double turned = (R - bounds.R).norm(), shifted = (t - bounds.t).norm();
   for (std::size_t ci = 0; ci < clusters.size(); ++ci) {
     const MeshField::Cluster& c = clusters[ci];
-    const double change = kFieldLipschitz * (turned * (c.centre.norm() + c.radius) + shifted) + 1e-10;
+    const double change = SampleBounds::Change(turned, shifted, c.centre, c.radius);
     bounds.cluster[ci] -= change;
     if (bounds.first[ci] == SampleBounds::kNone) continue;
     double* b = bounds.sample.data() + bounds.first[ci];
@@ -308,8 +308,7 @@ void SamplesAgainst(const Posed& from, const Posed& to, double spacing, double m
       const MeshField::Cluster& c = clusters[ci];
       if (local.exteriorDistance(c.centre) > c.radius) continue;
       const double within = c.radius + slack;
-      // The field's change over the motion since the reference, at most (and rounding's share).
-      const double change = kFieldLipschitz * (turned * (c.centre.norm() + c.radius) + shifted) + 1e-10;
+      const double change = SampleBounds::Change(turned, shifted, c.centre, c.radius);  // since the reference
       if (bounds != nullptr && bounds->cluster[ci] - change > within * (1 + 1e-12)) {
         ++bounds->skipped;
         continue;

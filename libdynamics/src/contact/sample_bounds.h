@@ -45,6 +45,12 @@ struct SampleBounds {
   double Motion(const Matrix3& R_now, const Vector3& t_now, double radius) const {
     return (R_now - R).norm() * radius + (t_now - t).norm();
   }
+  /// The most the field may have changed at the points of a ball (`centre`, `radius`) of the
+  /// sampled mesh over a motion that turned it by ‖ΔR‖_F = `turned` and shifted it by `shifted`
+  /// (and rounding's share).
+  static double Change(double turned, double shifted, const Vector3& centre, double radius) {
+    return kFieldLipschitz * (turned * (centre.norm() + radius) + shifted) + 1e-10;
+  }
 };
 
 /// A mesh pair's two directions (a's samples against b's field, then b's against a's).
