@@ -93,11 +93,10 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
   // the line); after two, the rate by a line and the midpoint velocity from the last one's
   // (v_n ≈ (v̄_{n−½} + v̄_{n+½}) / 2); the first step starts from the current state.
   const MidpointHistory& past = history_;
-  const bool sized = past.count > 0 && past.rate[0].size() == p_.size();
-  if (sized && past.count == 3 && past.h[0] == h && past.h[1] == h && past.h[2] == h) {
+  if (past.count == 3 && past.h[0] == h && past.h[1] == h && past.h[2] == h) {
     p1_ = p0_ + h * (3 * past.rate[0] - 3 * past.rate[1] + past.rate[2]);
     vbar_ = 3 * past.vbar[0] - 3 * past.vbar[1] + past.vbar[2];
-  } else if (sized && past.count >= 2) {
+  } else if (past.count >= 2) {
     p1_ = p0_ + h * (2 * past.rate[0] - past.rate[1]);
     vbar_ = 2 * v_ - past.vbar[0];
   } else {

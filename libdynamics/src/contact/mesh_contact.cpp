@@ -195,9 +195,10 @@ Box3 WorldBox(const Posed& s) {
 // The bounds' reference for this step: kept while the sampled mesh has moved, in the field's
 // frame, by less than kReferMotion cells of the field; past that, moved to the pose of now, every
 // bound lowered by what the move may have changed it (so that bounds found from then on are not
-// lowered by the motion before). A first step starts with no bound.
+// lowered by the motion before). A first step starts with no bound. Returns the motion since the
+// reference (none when it was just moved).
 constexpr double kReferMotion = 0.25;
-void Refer(SampleBounds& bounds, const Posed& from, const Posed& to, const MeshField& sampled) {
+SampleBounds::Moved Refer(SampleBounds& bounds, const Posed& from, const Posed& to, const MeshField& sampled) {
   const Matrix3 R = to.R.transpose() * from.R;
   const Vector3 t = to.R.transpose() * (from.t - to.t);
   const double cell = std::get<shape::Mesh>(*to.shape).field->cell;
@@ -208,19 +209,20 @@ void Refer(SampleBounds& bounds, const Posed& from, const Posed& to, const MeshF
     bounds.cluster.assign(clusters.size(), -std::numeric_limits<double>::infinity());
     bounds.first.assign(clusters.size(), SampleBounds::kNone);
     bounds.sample.clear();
-    return;
+    return {};
   }
-  if (bounds.Motion(R, t, sampled.radius) < kReferMotion * cell) return;
-  const double turned = (R - bounds.R).norm(), shifted = (t - bounds.t).norm();
+  const SampleBounds::Moved moved = bounds.Since(R, t);
+  if (moved.turned * sampled.radius + moved.shifted < kReferMotion * cell) return moved;
   for (std::size_t ci = 0; ci < clusters.size(); ++ci) {
     const MeshField::Cluster& c = clusters[ci];
-    const double change = SampleBounds::Change(turned, shifted, c.centre, c.radius);
+    const double change = SampleBounds::Change(moved, c.centre, c.radius);
     bounds.cluster[ci] -= change;
     if (bounds.first[ci] == SampleBounds::kNone) continue;
     double* b = bounds.sample.data() + bounds.first[ci];
     for (int i = 0; i < c.count; ++i) b[i] -= change;
   }
   bounds.R = R, bounds.t = t;
+  return {};
 }
 
 // Cluster `ci`'s samples' bounds (room for `count`, without bounds, the first time it is asked).
@@ -298,17 +300,12 @@ void SamplesAgainst(const Posed& from, const Posed& to, double spacing, double m
                         std::holds_alternative<shape::Capsule>(*to.shape) ||
                         std::holds_alternative<shape::Cylinder>(*to.shape);
     const std::vector<MeshField::Cluster>& clusters = m->field->clusters;
-    if (bounds != nullptr) Refer(*bounds, from, to, *m->field);
-    double turned = 0, shifted = 0;  // since the bounds' reference: ‖R − R_ref‖_F, |t − t_ref|
-    if (bounds != nullptr) {
-      turned = (to.R.transpose() * from.R - bounds->R).norm();
-      shifted = (to.R.transpose() * (from.t - to.t) - bounds->t).norm();
-    }
+    const SampleBounds::Moved moved = bounds != nullptr ? Refer(*bounds, from, to, *m->field) : SampleBounds::Moved{};
     for (std::size_t ci = 0; ci < clusters.size(); ++ci) {
       const MeshField::Cluster& c = clusters[ci];
       if (local.exteriorDistance(c.centre) > c.radius) continue;
       const double within = c.radius + slack;
-      const double change = SampleBounds::Change(turned, shifted, c.centre, c.radius);  // since the reference
+      const double change = SampleBounds::Change(moved, c.centre, c.radius);  // since the reference
       if (bounds != nullptr && bounds->cluster[ci] - change > within * (1 + 1e-12)) {
         ++bounds->skipped;
         continue;

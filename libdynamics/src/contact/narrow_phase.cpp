@@ -523,7 +523,7 @@ bool SupportsPair(const Shape& a, const Shape& b) {
   return ok;
 }
 
-void Collide(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out) {
+void Collide(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out, PairSampleBounds* bounds) {
   for (int side = 0; side < 2; ++side) {
     const Posed& whole = side == 0 ? a : b;
     const auto* c = std::get_if<shape::Compound>(whole.shape);
@@ -546,6 +546,10 @@ void Collide(const Posed& a, const Posed& b, double margin, std::vector<ContactP
     throw std::logic_error(std::string("contact between a ") + ShapeName(*a.shape) + " and a " + ShapeName(*b.shape) +
                            " has no routine (ContactWorld refuses it when the body is added)");
   }
+  if (routine == kMesh && bounds != nullptr) {
+    CollideMeshes(a, b, margin, out, bounds);
+    return;
+  }
   routine(a, b, margin, out);
 }
 
@@ -557,13 +561,7 @@ void CollidePairs(const std::vector<PairQuery>& pairs, Workers* workers,
   const std::size_t groups = (pairs.size() + kGroup - 1) / kGroup;
   auto collide = [&](std::size_t g) {
     for (std::size_t c = g * kGroup; c < std::min(pairs.size(), (g + 1) * kGroup); ++c) {
-      const PairQuery& q = pairs[c];
-      if (q.a == nullptr) continue;
-      if (q.bounds == nullptr) {
-        Collide(*q.a, *q.b, q.margin, found[c]);
-      } else if (q.a->filter.Touches(q.b->filter)) {  // (two meshes: Collide's table, without the compounds)
-        CollideMeshes(*q.a, *q.b, q.margin, found[c], q.bounds);
-      }
+      if (pairs[c].a != nullptr) Collide(*pairs[c].a, *pairs[c].b, pairs[c].margin, found[c], pairs[c].bounds);
     }
   };
   if (workers != nullptr && groups > 1) {

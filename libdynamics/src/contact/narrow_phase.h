@@ -70,15 +70,17 @@ void CollideGround(const Posed& a, const Vector3& n, double offset, const Collis
 /// Whether every kind of `a` (a compound's: its parts') has a contact routine against every kind
 /// of `b`. ContactWorld asks when a body is added and refuses a pair that has none.
 bool SupportsPair(const Shape& a, const Shape& b);
+struct PairSampleBounds;
 /// Two shapes, through the table of pair routines (nothing when their filters do not touch;
-/// compounds part by part, each part's features marked with its index).
-void Collide(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out);
+/// compounds part by part, each part's features marked with its index). `bounds` (optional, two
+/// meshes): the pair's field bounds kept between steps (CollideMeshes).
+void Collide(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out,
+             PairSampleBounds* bounds = nullptr);
 
 /// A mesh collider against the half-space (its vertices), and a pair of which at least one is a
 /// mesh (mesh_contact.cpp). At most 12 points a pair: the deepest, then the farthest apart.
 void CollideMeshGround(const Posed& a, const Vector3& n, double offset, double margin, std::vector<ContactPoint>& out);
 void CollideWithMesh(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out);
-struct PairSampleBounds;
 /// CollideWithMesh with the bounds kept from the steps before for two meshes (sample_bounds.h;
 /// null: none); the same points either way.
 void CollideMeshes(const Posed& a, const Posed& b, double margin, std::vector<ContactPoint>& out,

@@ -40,16 +40,16 @@ struct SampleBounds {
   std::uint64_t skipped = 0;    ///< tests answered by a bound (for tests and benchmarks)
   std::uint64_t evaluated = 0;  ///< tests that read the field
 
-  /// How far (at most) a point of the sampled mesh within `radius` of its origin has moved in the
-  /// field's frame since the reference, for the pose (R, t) of now.
-  double Motion(const Matrix3& R_now, const Vector3& t_now, double radius) const {
-    return (R_now - R).norm() * radius + (t_now - t).norm();
-  }
+  /// How far the sampled mesh, at pose (R, t) in the field's frame now, is from the reference:
+  /// ‖R − R_ref‖_F and |t − t_ref| (a point s of it has moved by at most turned |s| + shifted).
+  struct Moved {
+    double turned = 0, shifted = 0;
+  };
+  Moved Since(const Matrix3& R_now, const Vector3& t_now) const { return {(R_now - R).norm(), (t_now - t).norm()}; }
   /// The most the field may have changed at the points of a ball (`centre`, `radius`) of the
-  /// sampled mesh over a motion that turned it by ‖ΔR‖_F = `turned` and shifted it by `shifted`
-  /// (and rounding's share).
-  static double Change(double turned, double shifted, const Vector3& centre, double radius) {
-    return kFieldLipschitz * (turned * (centre.norm() + radius) + shifted) + 1e-10;
+  /// sampled mesh over the motion `m` (and rounding's share).
+  static double Change(const Moved& m, const Vector3& centre, double radius) {
+    return kFieldLipschitz * (m.turned * (centre.norm() + radius) + m.shifted) + 1e-10;
   }
 };
 
