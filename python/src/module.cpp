@@ -7,9 +7,12 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <chrono>
 #include <cmath>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "bindings.h"
 #include "bodies/robot.h"
@@ -363,10 +366,19 @@ LoadedMesh MeshFromArrays(const double* vertices, std::int64_t nv, const Corners
 // by MeshFromArrays, checked as they are copied; offsets as PolygonMesh
 // keeps them (face f has the corners indices[offsets[f] .. offsets[f+1]-1]), or None with
 // face_size when every face has that many corners; float32: the caller's coordinates were float32.
-std::string SolveArrays(const py::array& vertices_in, const py::array& indices_in, const py::object& offsets_in,
-                        std::int64_t face_size, bool float32, const std::string& name, const py::kwargs& kw) {
+// With the private keyword `_stages` (benchmarks): (JSON, [(stage, seconds from the call's start)
+// ...]), the stages the pipeline announces, the arrays' copy and checks before the first, and
+// ("done", the whole call) last.
+py::object SolveArrays(const py::array& vertices_in, const py::array& indices_in, const py::object& offsets_in,
+                       std::int64_t face_size, bool float32, const std::string& name, const py::kwargs& kw) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const bool timed = kw.contains("_stages") && py::cast<bool>(kw["_stages"]);
+  if (kw.contains("_stages")) PyDict_DelItemString(kw.ptr(), "_stages");
+  std::vector<std::pair<std::string, double>> stages;
+  auto since = [&t0] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   const PictureRequest picture = TakePicture(kw);
-  const LoadOptions o = ToLoadOptions(kw);
+  LoadOptions o = ToLoadOptions(kw);
+  if (timed) o.progress = [&](const char* stage) { stages.emplace_back(stage, since()); };
   using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
   const Doubles vertices = Doubles::ensure(vertices_in);
   if (!vertices || vertices.ndim() != 2 || vertices.shape(1) != 3) {
@@ -393,11 +405,14 @@ std::string SolveArrays(const py::array& vertices_in, const py::array& indices_i
     faces = static_cast<std::int64_t>(offsets.shape(0)) - 1;
   }
   const std::int64_t* offset_data = offsets_in.is_none() ? nullptr : offsets.data();
-  return Run(
+  std::string json = Run(
       [&] {
         return SolveMesh(MeshFromArrays(vertices.data(), nv, corners, offset_data, faces, face_size, float32), name, o);
       },
       picture);
+  if (!timed) return py::str(json);
+  stages.emplace_back("done", since());
+  return py::make_tuple(json, stages);
 }
 
 Vector3 Vec(const py::handle& h) {

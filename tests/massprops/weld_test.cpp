@@ -121,6 +121,13 @@ TEST(Weld, FindsTheFirstNonFiniteCorner) {
                 floats.size(), [&](std::size_t c) { return floats[c]; }, 2)
                 .first_non_finite,
             90000u);
+  // A vertex list: every position an entry of its chunk; the first non-finite one on any thread.
+  for (int threads : {1, 2}) {
+    EXPECT_EQ(weld::GroupByPosition(
+                  corners.size(), [&](std::size_t c) { return corners[c]; }, threads, weld::Positions::kVertices)
+                  .first_non_finite,
+              90000u);
+  }
   // A vertex list of one chunk (its own path): the first non-finite vertex, not a later one.
   std::vector<PositionKey> list = Corners(3000, 3000, 1);
   list[2500].x = std::numeric_limits<double>::infinity();

@@ -142,37 +142,62 @@ class PositionTable {
 
 }  // namespace detail
 
-// A vertex list of one chunk (mostly distinct positions): one table of vertex numbers, each
-// compared through the list itself (no copy of the keys, nothing to scatter): a third of the
-// general path's time for 10^4 vertices.
-template <typename CornerAt>
-Grouping GroupFewVertices(std::size_t n, const CornerAt& corner_at) {
-  Grouping g;
-  g.first_non_finite = n;
+namespace detail {
+
+// A thread's slot table for WeldThroughTable, kept from call to call (a fresh one's pages were
+// faulted in again for every partition).
+struct SlotTable {
+  std::vector<std::int32_t> slots;
+};
+
+// Welds positions key_at(0 .. n), all finite, through one open-addressing table (linear probing,
+// at most half full) of their vertex numbers in order of first appearance, each compared through
+// key_at at its first index (nothing copied): calls each(i, vertex) and returns each vertex's
+// first index.
+template <typename KeyAt, typename Each>
+std::vector<std::uint32_t> WeldThroughTable(std::size_t n, const KeyAt& key_at, const Each& each) {
   std::size_t slots = 64;
   while (slots < 2 * n) slots *= 2;
-  std::vector<std::int32_t> table(slots, -1);
-  g.vertex_of.resize(n);
-  g.first_corner.reserve(n);
+  std::vector<std::int32_t>& table = ThreadScratch<SlotTable>().slots;
+  table.assign(slots, -1);
+  std::vector<std::uint32_t> first;
+  first.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const auto k = corner_at(i);
-    if (!k.Finite()) {
-      g.first_non_finite = i;
-      return g;
-    }
+    const auto k = key_at(i);
     std::size_t slot = static_cast<std::size_t>(Hash(k)) & (slots - 1);
     std::int32_t id = table[slot];
-    while (id >= 0 && !(corner_at(g.first_corner[static_cast<std::size_t>(id)]) == k)) {
+    while (id >= 0 && !(key_at(first[static_cast<std::size_t>(id)]) == k)) {
       slot = (slot + 1) & (slots - 1);
       id = table[slot];
     }
     if (id < 0) {
-      id = static_cast<std::int32_t>(g.first_corner.size());
+      id = static_cast<std::int32_t>(first.size());
       table[slot] = id;
-      g.first_corner.push_back(static_cast<std::uint32_t>(i));
+      first.push_back(static_cast<std::uint32_t>(i));
     }
-    g.vertex_of[i] = id;
+    each(i, static_cast<std::uint32_t>(id));
   }
+  if (slots > (std::size_t{1} << 18)) table = {};  // a large one is let go
+  return first;
+}
+
+}  // namespace detail
+
+// A vertex list of one chunk (mostly distinct positions): one table, nothing to scatter or
+// number (a third of the general path's time for 10^4 vertices).
+template <typename CornerAt>
+Grouping GroupFewVertices(std::size_t n, const CornerAt& corner_at) {
+  Grouping g;
+  g.first_non_finite = n;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!corner_at(i).Finite()) {
+      g.first_non_finite = i;
+      return g;
+    }
+  }
+  g.vertex_of.resize(n);
+  g.first_corner = detail::WeldThroughTable(
+      n, corner_at, [&](std::size_t i, std::uint32_t v) { g.vertex_of[i] = static_cast<std::int32_t>(v); });
   return g;
 }
 
@@ -194,7 +219,9 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
   }
   // 1. Weld each chunk of consecutive corners on its own (read in file order; neighbouring faces
   // share most corners, so a chunk's distinct positions are few). Its distinct positions are
-  // "entries", listed in order of their first corner.
+  // "entries", listed in order of their first corner. A vertex list's positions are mostly
+  // distinct: each is an entry as it is (a chunk table found next to nothing, at the cost of a
+  // lookup each: 60 % of the weld of 5·10⁵ vertices), and step 3 welds them.
   const std::size_t chunks = std::max<std::size_t>(1, (n + kChunk - 1) / kChunk);
   // Each corner's entry in its chunk; at the end, in place, its vertex (the one array of n).
   std::vector<std::int32_t> local(n);
@@ -205,18 +232,31 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
   ParallelForBlocks(static_cast<std::int64_t>(chunks), num_threads, [&](std::int64_t bb) {
     const auto b = static_cast<std::size_t>(bb);
     const std::size_t lo = b * kChunk, hi = std::min(n, lo + kChunk);
-    const bool corners = kind == Positions::kCorners;
-    detail::PositionTable<Key> table(corners ? (hi - lo) / 4 : hi - lo);
+    if (kind == Positions::kVertices) {            // mostly distinct: every position an entry, welded in step 3
+      std::vector<std::uint64_t> hashes(hi - lo);  // (its key and first corner: the position's own)
+      for (std::size_t i = lo; i < hi; ++i) {
+        const Key k = corner_at(i);
+        if (!k.Finite()) {
+          bad[b] = i;
+          return;
+        }
+        hashes[i - lo] = Hash(k);
+        local[i] = static_cast<std::int32_t>(i - lo);
+      }
+      chunk_hashes[b] = std::move(hashes);
+      return;
+    }
+    detail::PositionTable<Key> table((hi - lo) / 4);
     // Filled here and moved in at the end: neighbouring chunks' vectors share cache lines, and
     // two threads growing them in turn would pass those lines back and forth at every corner.
     std::vector<std::uint32_t> first;
-    first.reserve(corners ? (hi - lo) / 4 : hi - lo);
+    first.reserve((hi - lo) / 4);
     // Corners read and hashed kAhead ahead of their lookup, their table slots fetched then and the
     // keys those slots lead to half way (the lookups, in order, are those of before). A corner at
     // the position of one of the six corners before it (files list triangles in strips: most
     // corners were among the last few) takes that corner's entry, with no hash and no lookup.
     constexpr std::size_t kAhead = 16;
-    const std::size_t recent = corners ? 6 : 0;
+    constexpr std::size_t recent = 6;
     Key ahead_key[kAhead];
     std::uint64_t ahead_hash[kAhead];
     std::size_t ahead_same[kAhead];  // 0, or how many corners back the same position was
@@ -260,13 +300,13 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
   });
   g.first_non_finite = *std::min_element(bad.begin(), bad.end());
   if (g.first_non_finite < n) return g;
-  if (chunks == 1) {  // one chunk: its table saw every corner in order, and is the weld
+  if (chunks == 1 && kind == Positions::kCorners) {  // one chunk: its table saw every corner in order, and is the weld
     g.vertex_of = std::move(local);
     g.first_corner = std::move(chunk_first[0]);
     return g;
   }
   std::vector<std::size_t> entry_base(chunks + 1, 0);
-  for (std::size_t b = 0; b < chunks; ++b) entry_base[b + 1] = entry_base[b] + chunk_keys[b].size();
+  for (std::size_t b = 0; b < chunks; ++b) entry_base[b + 1] = entry_base[b] + chunk_hashes[b].size();
   const std::size_t entries = entry_base[chunks];
 
   // 2. Scatter the entries into partitions by their hash's top bits (each partition's table then
@@ -307,8 +347,13 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
     for (std::size_t e = 0; e < chunk_hashes[b].size(); ++e) {
       const std::size_t at = cur[part_of(chunk_hashes[b][e])]++;
       bucket[at] = static_cast<std::uint32_t>(entry_base[b] + e);
-      bucket_key[at] = chunk_keys[b][e];
-      bucket_first[at] = chunk_first[b][e];
+      if (kind == Positions::kVertices) {  // the chunk's positions in order, read in order
+        bucket_key[at] = corner_at(b * kChunk + e);
+        bucket_first[at] = static_cast<std::uint32_t>(b * kChunk + e);
+      } else {
+        bucket_key[at] = chunk_keys[b][e];
+        bucket_first[at] = chunk_first[b][e];
+      }
     }
   });
 
@@ -317,14 +362,12 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
   std::vector<std::vector<std::uint32_t>> firsts(parts);
   ParallelForBlocks(static_cast<std::int64_t>(parts), num_threads, [&](std::int64_t pb) {
     const auto p = static_cast<std::size_t>(pb);
-    detail::PositionTable<Key> table(begin[p + 1] - begin[p]);  // entries: distinct but for the chunks' seams
-    std::vector<std::uint32_t> first;                           // moved in at the end, as in step 1
-    for (std::size_t i = begin[p]; i < begin[p + 1]; ++i) {
-      const Key& k = bucket_key[i];
-      bool inserted = false;
-      entry_vertex[bucket[i]] = table.Find(k, Hash(k), inserted);
-      if (inserted) first.push_back(bucket_first[i]);
-    }
+    const Key* keys = bucket_key.data() + begin[p];
+    const std::uint32_t* entry = bucket.data() + begin[p];
+    std::vector<std::uint32_t> first = detail::WeldThroughTable(
+        begin[p + 1] - begin[p], [keys](std::size_t i) { return keys[i]; },
+        [&](std::size_t i, std::uint32_t v) { entry_vertex[entry[i]] = v; });
+    for (std::uint32_t& c : first) c = bucket_first[begin[p] + c];  // the entry's first corner
     firsts[p] = std::move(first);
   });
 

@@ -653,6 +653,7 @@ SolidResult SolveMesh(LoadedMesh mesh, const std::string& name, const LoadOption
   SolidResult r = Begin(name, given);
   r.loaded = std::move(mesh);
   // The readers' contract: corners at bit-identical positions are one vertex.
+  Stage(given, "welding coincident vertices");
   r.loaded.welded += MergeCoincidentVertices(r.loaded.mesh, given.num_threads);
   return given.parts ? internal::SolveParts(std::move(r), given, t0) : internal::Solve(std::move(r), given, t0);
 }
