@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <system_error>
 
 #include <unistd.h>
 
@@ -45,10 +46,23 @@ std::string TempPath(const char* ext) {
       .string();
 }
 
+// A file of this process, removed when it ends (its destructor runs at exit; an atexit handler
+// registered while the path's own static was being made ran after that static was destroyed, and
+// left every file behind).
+struct TempFile {
+  std::string path;
+  TempFile(const TempFile&) = delete;
+  TempFile& operator=(const TempFile&) = delete;
+  ~TempFile() {
+    std::error_code ignored;
+    std::filesystem::remove(path, ignored);
+  }
+};
+
 // The torus as a binary STL and as an OBJ (17 significant digits), written once per process into
 // the temporary folder and removed at exit.
 const std::string& TorusFile() {
-  static const std::string path = [] {
+  static const TempFile file{[] {
     const massprops::TriangleMesh m = Torus();
     const std::string p = TempPath("stl");
     std::ofstream out(p, std::ios::binary);
@@ -65,14 +79,13 @@ const std::string& TorusFile() {
       std::memcpy(rec, c, 48);
       out.write(rec, 50);
     }
-    std::atexit([] { std::filesystem::remove(TorusFile()); });
     return p;
-  }();
-  return path;
+  }()};
+  return file.path;
 }
 
 const std::string& TorusObjFile() {
-  static const std::string path = [] {
+  static const TempFile file{[] {
     const massprops::TriangleMesh m = Torus();
     const std::string p = TempPath("obj");
     std::FILE* f = std::fopen(p.c_str(), "w");
@@ -81,10 +94,9 @@ const std::string& TorusObjFile() {
     for (Eigen::Index t = 0; t < m.F.rows(); ++t)
       std::fprintf(f, "f %d %d %d\n", m.F(t, 0) + 1, m.F(t, 1) + 1, m.F(t, 2) + 1);
     std::fclose(f);
-    std::atexit([] { std::filesystem::remove(TorusObjFile()); });
     return p;
-  }();
-  return path;
+  }()};
+  return file.path;
 }
 
 void BM_ReadAndWeld(benchmark::State& state) {
