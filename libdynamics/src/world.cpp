@@ -49,14 +49,15 @@ World& World::operator=(World&&) noexcept = default;
 
 int World::AddBody(const RigidBody& body) {
   CheckBody(body);
-  if (articulation_ && time_ != 0.0) {
+  if (jointed_ && time_ != 0.0) {
     throw std::invalid_argument("World::AddBody: an articulated world takes its bodies before its first step");
   }
   RigidBody b = body;
   b.orientation.normalize();
   bodies_.push_back(b);
   as_added_.push_back(b);
-  if (articulation_) articulation_ = std::make_unique<internal::Articulation>(joints_, bodies_);
+  parent_of_.push_back(-1);
+  placed_ = !jointed_;
   return static_cast<int>(bodies_.size()) - 1;
 }
 
@@ -64,24 +65,38 @@ int World::AddJoint(const Joint& joint) {
   if (time_ != 0.0)
     throw std::invalid_argument("World::AddJoint: joint '" + joint.name + "': add joints before the first step");
   internal::CheckJoint(joint, static_cast<int>(bodies_.size()), joints_);
+  bool loop = false;  // the child among the parent's ancestors
+  for (int b = joint.parent; b >= 0 && !loop; b = parent_of_[static_cast<std::size_t>(b)]) loop = b == joint.child;
   joints_.push_back(joint);
-  try {
-    auto articulation = std::make_unique<internal::Articulation>(joints_, bodies_);
-    // Only free joints from the world (so no body carries another): free bodies, stepped as such.
-    bool lone_free = true;
-    for (const Joint& j : joints_) lone_free = lone_free && j.type == JointType::kFree && j.parent < 0;
-    articulation_ = lone_free ? nullptr : std::move(articulation);
-  } catch (...) {
-    joints_.pop_back();
-    throw;
+  if (loop) {
+    try {
+      std::vector<RigidBody> bodies = bodies_;
+      [[maybe_unused]] const internal::Articulation refused(joints_, bodies);  // names a body the loop leaves out
+    } catch (...) {
+      joints_.pop_back();
+      throw;
+    }
   }
+  parent_of_[static_cast<std::size_t>(joint.child)] = joint.parent;
+  // Only free joints from the world (so no body carries another): free bodies, stepped as such
+  // (placed by their joints all the same).
+  jointed_ = jointed_ || joint.type != JointType::kFree || joint.parent >= 0;
+  placed_ = false;
   return static_cast<int>(joints_.size()) - 1;
+}
+
+void World::Place() const {
+  if (placed_) return;
+  auto articulation = std::make_unique<internal::Articulation>(joints_, bodies_);
+  articulation_ = jointed_ ? std::move(articulation) : nullptr;
+  placed_ = true;
 }
 
 JointState World::joint_state(int j) const {
   if (j < 0 || j >= static_cast<int>(joints_.size())) {
     throw std::out_of_range("World::joint_state: no joint " + std::to_string(j));
   }
+  Place();
   return articulation_ ? articulation_->State(j)
                        : internal::JointStateFromBodies(joints_[static_cast<std::size_t>(j)], bodies_);
 }
@@ -128,6 +143,7 @@ StepStatus World::Step(double h) {
 }
 
 std::pair<int, const char*> World::FirstNonFinite() const {
+  Place();
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     const RigidBody& b = bodies_[i];
     // One sum per body: a NaN or an infinity anywhere makes it non-finite.
@@ -143,6 +159,7 @@ std::pair<int, const char*> World::FirstNonFinite() const {
 }
 
 StepStatus World::Advance(double h) {
+  Place();
   const internal::IntegratorInfo& info = internal::Info(integrator_);
   if (articulation_) {
     if (integrator_ != Integrator::kImplicitMidpoint && integrator_ != Integrator::kRK4) {
@@ -231,6 +248,7 @@ Conservation World::Conserves() const {
 }
 
 Diagnostics World::Diagnose() const {
+  Place();
   Diagnostics d;
   d.time = time_;
   for (const RigidBody& b : bodies_) {

@@ -268,6 +268,7 @@ StepStatus ContactWorld::Step(double h) {
       std::find(m.collides.begin(), m.collides.end(), true) == m.collides.end()) {
     return world_.Step(h);  // nothing can touch: the world's integrator, at no extra cost
   }
+  world_.Place();
   const contact::StepInput in{
       world_.bodies(), world_.forces(), world_.articulation_.get(), options_, world_.time(), h, world_.num_threads()};
   if (!contact::Kick(in, m)) {
