@@ -57,7 +57,7 @@ int World::AddBody(const RigidBody& body) {
   bodies_.push_back(b);
   as_added_.push_back(b);
   parent_of_.push_back(-1);
-  placed_ = !jointed_;
+  if (jointed_) placed_ = false;  // (a new free body needs no placing; joints waiting to place theirs still do)
   return static_cast<int>(bodies_.size()) - 1;
 }
 

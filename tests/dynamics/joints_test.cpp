@@ -876,6 +876,17 @@ TEST(Joints, PlacementWhenReadIsPlacementAtEveryJoint) {
     Simulate(once, 1e-3, 50);
     same("after 50 steps", 1e-9);
   }
+  // A lone body's free joint from the world, given a position, then another body added before
+  // anything is read: the first is placed all the same (and the world stays one of free bodies).
+  World w;
+  w.AddBody(SolidBox(1, 0.1, 0.1, 0.1, Vector3::Zero()));
+  Joint free = PlacedJoint(w, -1, 0, Vector3::Zero(), Vector3::UnitZ(), JointType::kFree);
+  free.position = {1.0, 2.0, 3.0, 1.0, 0.0, 0.0, 0.0};
+  w.AddJoint(free);
+  w.AddBody(SolidBox(1, 0.1, 0.1, 0.1, Vector3(5, 0, 0)));
+  EXPECT_FALSE(w.articulated());
+  EXPECT_LT((w.bodies()[0].position - Vector3(1, 2, 3)).norm(), 1e-12);
+  EXPECT_EQ(w.bodies()[1].position, Vector3(5, 0, 0));
 }
 
 TEST(Joints, ConservationIsReportedFromTheJoints) {
