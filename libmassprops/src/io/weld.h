@@ -140,10 +140,6 @@ class PositionTable {
   std::vector<std::uint64_t> hashes_;
 };
 
-}  // namespace detail
-
-namespace detail {
-
 // A thread's slot table for WeldThroughTable, kept from call to call (a fresh one's pages were
 // faulted in again for every partition).
 struct SlotTable {
@@ -221,7 +217,7 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
   // share most corners, so a chunk's distinct positions are few). Its distinct positions are
   // "entries", listed in order of their first corner. A vertex list's positions are mostly
   // distinct: each is an entry as it is (a chunk table found next to nothing, at the cost of a
-  // lookup each: 60 % of the weld of 5·10⁵ vertices), and step 3 welds them.
+  // lookup each: 5·10⁵ vertices welded in 38 ms with it, 27 without), and step 3 welds them.
   const std::size_t chunks = std::max<std::size_t>(1, (n + kChunk - 1) / kChunk);
   // Each corner's entry in its chunk; at the end, in place, its vertex (the one array of n).
   std::vector<std::int32_t> local(n);
