@@ -150,6 +150,6 @@ int main(int argc, char** argv) {
       sample);
   peers::PrintTiming("bullet", "3.24 (double)", scene, seconds);
   for (auto& b : bodies) world.removeRigidBody(b.get());
-  if (!args.out.empty()) csv.Write(args.out);
+  if (!args.out.empty() && !csv.Write(args.out)) return 1;
   return 0;
 }

@@ -179,6 +179,6 @@ int main(int argc, char** argv) {
   peers::PrintTiming("mujoco", version, scene, seconds);
   mj_deleteData(d);
   mj_deleteModel(m);
-  if (!args.out.empty()) csv.Write(args.out);
+  if (!args.out.empty() && !csv.Write(args.out)) return 1;
   return 0;
 }

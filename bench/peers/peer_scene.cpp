@@ -136,7 +136,15 @@ void TrajectoryCsv::Add(double time, const PeerBody& body, const Vector3& x, con
   text_ += line;
 }
 
-void TrajectoryCsv::Write(const std::string& path) const { massprops::report::WriteFileAtomically(path, text_); }
+bool TrajectoryCsv::Write(const std::string& path) const {
+  try {
+    massprops::report::WriteFileAtomically(path, text_);
+    return true;
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return false;
+  }
+}
 
 bool ParsePeerArgs(int argc, char** argv, const char* program, PeerArgs& args) {
   for (int i = 1; i < argc; ++i) {
@@ -169,6 +177,12 @@ bool ParsePeerArgs(int argc, char** argv, const char* program, PeerArgs& args) {
   }
   if (args.scene.empty()) {
     std::cerr << "usage: " << program << " SCENE.json [--dt S] [--out trajectory.csv] [--threads N (rbsim only)]\n";
+    return false;
+  }
+  try {  // (before the run, not after it)
+    if (!args.out.empty()) massprops::report::CheckOutputPath(args.out, {args.scene});
+  } catch (const std::exception& e) {
+    std::cerr << "error: --out " << e.what() << "\n";
     return false;
   }
   return true;

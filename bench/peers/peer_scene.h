@@ -67,7 +67,8 @@ class TrajectoryCsv {
   /// `q`: the peer body's frame F → world; written as the mesh's orientation, as rbsim writes it.
   void Add(double time, const PeerBody& body, const Vector3& x, const Quaternion& q, const Vector3& v,
            const Vector3& omega_world);
-  void Write(const std::string& path) const;
+  /// Writes the CSV whole or not at all; false (after a message naming the path) where it cannot.
+  bool Write(const std::string& path) const;
 
  private:
   std::string text_;

@@ -52,6 +52,6 @@ int main(int argc, char** argv) {
     std::cerr << "contacts/step " << double(contacts) / double(steps) << ", sweeps/step "
               << double(iterations) / double(steps) << ", deepest overlap " << deepest << " m\n";
   }
-  if (!args.out.empty()) csv.Write(args.out);
+  if (!args.out.empty() && !csv.Write(args.out)) return 1;
   return 0;
 }

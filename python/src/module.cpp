@@ -28,6 +28,7 @@
 #include "massprops/report/record.h"
 #include "massprops/robot/robot.h"
 #include "massprops/robot/robot_model.h"
+#include "massprops/simd_clones.h"
 #include "massprops/version.h"
 
 namespace py = pybind11;
@@ -276,14 +277,9 @@ struct Corners {
 };
 
 // The arrays' checks, one pass each without an early exit (a fault is looked for again, for its
-// message, only when there is one), compiled for AVX2 too: SSE2 has no 64-bit comparison, and the
-// scalar loops were a twentieth of a 10^4-triangle call.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
-#define MASSPROPS_AVX2_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define MASSPROPS_AVX2_CLONES
-#endif
-
+// message, only when there is one), compiled for AVX2 too (MASSPROPS_CLONES_AVX2): SSE2 has no
+// 64-bit comparison, and the scalar loops were a twentieth of a 10^4-triangle call.
+//
 // Copies corners as int32; whether every one names one of `vertices`.
 template <typename T>
 [[gnu::always_inline]] inline bool CopyCorners(const T* in, std::int64_t n, std::int64_t vertices, std::int32_t* out) {
@@ -298,17 +294,17 @@ template <typename T>
   }
   return vertices > 0 && (outside >> 63) == 0;
 }
-MASSPROPS_AVX2_CLONES bool CopyCorners32(const std::int32_t* in, std::int64_t n, std::int64_t vertices,
+MASSPROPS_CLONES_AVX2 bool CopyCorners32(const std::int32_t* in, std::int64_t n, std::int64_t vertices,
                                          std::int32_t* out) {
   return CopyCorners(in, n, vertices, out);
 }
-MASSPROPS_AVX2_CLONES bool CopyCorners64(const std::int64_t* in, std::int64_t n, std::int64_t vertices,
+MASSPROPS_CLONES_AVX2 bool CopyCorners64(const std::int64_t* in, std::int64_t n, std::int64_t vertices,
                                          std::int32_t* out) {
   return CopyCorners(in, n, vertices, out);
 }
 
 // Copies n doubles; whether all are finite (|x| <= max fails for infinities and NaN).
-MASSPROPS_AVX2_CLONES bool CopyFinite(const double* in, std::int64_t n, double* out) {
+MASSPROPS_CLONES_AVX2 bool CopyFinite(const double* in, std::int64_t n, double* out) {
   bool finite = true;
   for (std::int64_t i = 0; i < n; ++i) {
     finite &= std::abs(in[i]) <= std::numeric_limits<double>::max();

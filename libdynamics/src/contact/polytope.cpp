@@ -8,6 +8,8 @@
 #include <map>
 #include <stdexcept>
 
+#include "massprops/simd_clones.h"
+
 namespace dynamics::contact {
 namespace {
 
@@ -251,9 +253,7 @@ Polytope MakePolytope(const std::vector<Vector3>& vertices, const std::vector<st
   return p;
 }
 
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
-__attribute__((target_clones("arch=x86-64-v4", "avx2", "default")))
-#endif
+MASSPROPS_CLONES_AVX2_AVX512
 void MayLieBelow(const Polytope& p, std::size_t first, int n, const Vector3& u, double limit, double scale,
                  std::uint8_t* maybe) {
   const double* x = p.xs.data() + first;

@@ -13,6 +13,7 @@
 #include "core/moments.h"
 #include "core/triangle_kernel.h"
 #include "massprops/parallel.h"
+#include "massprops/simd_clones.h"
 
 namespace massprops {
 namespace internal {
@@ -75,9 +76,7 @@ constexpr std::int64_t kFaceBlock = 4096;
 }  // namespace
 
 namespace internal {
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
-__attribute__((target_clones("avx2", "default")))
-#endif
+MASSPROPS_CLONES_AVX2
 void AccumulateBatch(const Batch& t, int count, LaneSums& out) {
   LaneSums sums = out;  // local copy: no aliasing with the batch, kept in registers
   for (int i = 0; i < count; i += kLanes) {

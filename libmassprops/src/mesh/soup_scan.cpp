@@ -6,6 +6,8 @@
 #include <cstring>
 #include <limits>
 
+#include "massprops/simd_clones.h"
+
 namespace massprops::internal {
 namespace {
 
@@ -44,9 +46,7 @@ ScanSums::ScanSums() {
   }
 }
 
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
-__attribute__((target_clones("arch=x86-64-v4", "avx2", "default")))
-#endif
+MASSPROPS_CLONES_AVX2_AVX512
 int ScanRecords(const unsigned char* records, int n, std::size_t stride, std::size_t offset, const double* ref,
                 Batch& batch, std::uint64_t* corners, std::uint64_t* face_keys, ScanSums& sums) {
   // The records' coordinate bits, one array per coordinate (the one scalar loop).
