@@ -345,6 +345,82 @@ TEST(JointedContact, ArmRestingOnATableHoldsStill) {
   EXPECT_GT(w.world().joint_state(0).position[0], 0.0);  // it fell onto the table
 }
 
+TEST(JointedContact, AVelocityMotorPressingALeverOntoTheGroundIsBalancedByTheContact) {
+  // A 0.5 m bar (1 kg) hinged to the world about y at 5 cm above a frictionless ground, its motor
+  // driving its tip down (target +1 rad/s) with at most τ: at rest on its tip, the ground's force
+  // balances the motor's torque and the weight's about the hinge,
+  //   Σ x_i J_z,i = (m g x_c + τ) h,
+  // the tip is on the ground, not in it, and the motor pushes at its bound. (With the motor's
+  // row solved after the contacts, its push went into the ground every step: the tip 1.3 mm deep
+  // at τ = 2 N·m, still sinking at 12 mm/s.)
+  const double h = 1e-3, m = 1.0, pivot = 0.05, half_thickness = 0.02, length = 0.5;
+  // The rest angle: the tip's lower edge on the ground, pivot − L sin θ − t cos θ = 0 (Newton).
+  double rest = 0.06;
+  for (int k = 0; k < 50; ++k) {
+    const double f = pivot - length * std::sin(rest) - half_thickness * std::cos(rest);
+    rest -= f / (-length * std::cos(rest) + half_thickness * std::sin(rest));
+  }
+  for (const double torque : {0.0, 2.0, 20.0}) {
+    SCOPED_TRACE("motor's bound " + std::to_string(torque) + " N m");
+    ContactWorld w = MakeWorld();
+    Material frictionless;
+    frictionless.static_friction = frictionless.kinetic_friction = 0;
+    w.AddGround(dynamics::Ground(Vector3::UnitZ(), 0.0, frictionless));
+    const Vector3 size(length, 2 * half_thickness, 2 * half_thickness);
+    const int bar = w.AddBody(Box(m, size, Vector3(length / 2, 0, pivot)), BoxCollider(size, frictionless));
+    Joint hinge = Hinge(w, -1, bar, Vector3(0, 0, pivot), Vector3::UnitY());
+    if (torque > 0) {
+      hinge.motor.mode = dynamics::JointMotor::Mode::kVelocity;
+      hinge.motor.target = 1.0;
+      hinge.motor.max_effort = torque;
+    }
+    const int joint = w.AddJoint(hinge);
+    Simulate(w, h, 2000);
+    const dynamics::JointState s = w.world().joint_state(joint);
+    EXPECT_NEAR(s.position[0], rest, 1e-7);
+    EXPECT_LT(std::abs(s.velocity[0]), 1e-7);
+    EXPECT_NEAR(s.drive_impulse, torque * h, 1e-15);
+    double moment = 0;
+    for (const dynamics::ContactReport& c : w.Contacts()) {
+      ASSERT_EQ(c.a, bar);
+      moment += c.point.x() * c.impulse.z();
+    }
+    const double x_c = length / 2 * std::cos(rest);  // the centre's lever arm about the hinge
+    EXPECT_NEAR(moment, (m * kG * x_c + torque) * h, 1e-6 * (m * kG * x_c + torque) * h);
+  }
+}
+
+TEST(JointedContact, ABoxRestsOnALeverThatItsJointsFrictionHolds) {
+  // A horizontal 0.5 m bar (1 kg) hinged to the world about y, its joint's Coulomb friction 5 N·m
+  // above the 2.45 N·m its weight and the 1.80 N·m of a 0.4 kg box set down (touching, at rest) on
+  // its far end: the joint sticks, the bar stays where it is and the box rests on it, the contacts
+  // carrying the box's weight, Σ J_z = m g h. (With the friction's row after the contacts, the
+  // contacts saw a free joint: the bar gave way under the box, 0.04 rad in 1.5 s, the box sliding
+  // off it at 2.4 cm/s.)
+  const double h = 1e-3, length = 0.5, box_mass = 0.4;
+  ContactWorld w = MakeWorld();
+  const Vector3 bar_size(length, 0.04, 0.04), box_size(0.06, 0.06, 0.06);
+  const int bar = w.AddBody(Box(1.0, bar_size, Vector3(length / 2, 0, 0.5)), BoxCollider(bar_size));
+  Joint hinge = Hinge(w, -1, bar, Vector3(0, 0, 0.5), Vector3::UnitY());
+  hinge.friction = 5.0;
+  const int joint = w.AddJoint(hinge);
+  const int box =
+      w.AddBody(Box(box_mass, box_size, Vector3(length - 0.04, 0, 0.5 + 0.02 + 0.03)), BoxCollider(box_size));
+  Simulate(w, h, 1500);
+  const dynamics::JointState s = w.world().joint_state(joint);
+  EXPECT_LT(std::abs(s.position[0]), 1e-9);
+  EXPECT_LT(std::abs(s.velocity[0]), 1e-9);
+  const RigidBody& b = w.world().bodies()[static_cast<std::size_t>(box)];
+  EXPECT_NEAR(b.position.z(), 0.5 + 0.02 + 0.03, 1e-6);  // on the bar, not in it
+  EXPECT_LT(b.velocity.norm(), 1e-7);
+  double carried = 0;
+  for (const dynamics::ContactReport& c : w.Contacts()) {
+    if (c.a == box) carried += c.impulse.z();
+    if (c.b == box) carried -= c.impulse.z();
+  }
+  EXPECT_NEAR(carried, box_mass * kG * h, 1e-6 * box_mass * kG * h);
+}
+
 TEST(JointedContact, SelfCollisionIsSwitchable) {
   // A bar welded to the world, a second bar hinged about z at its end, swung round at 3 rad/s
   // without gravity, and a ball welded to the second bar's far end: after half a turn the ball

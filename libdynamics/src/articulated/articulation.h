@@ -226,6 +226,18 @@ class Articulation {
   /// Dofs ContactKick holds on a stop (-1 the lower, +1 the upper; Impulses leaves their stops),
   /// and those the last contact step left pressed on one (held again in the next).
   std::vector<signed char> held_, stuck_;
+  /// Joint friction or a velocity motor of a 1-dof joint in a contact step (DriveInKick): what
+  /// its row did in the last step, per coordinate — 0 held at its target rate, ±1 pushed at its
+  /// bound in that direction; which coordinates ContactKick drives (Impulses leaves their rows),
+  /// and the damper gain h D of those it holds (0: pushed at the bound).
+  std::vector<signed char> drive_mode_;
+  std::vector<char> driven_;
+  std::vector<double> drive_gain_;
+  /// ContactKick's part: joint n's friction or velocity motor in the contact step's own solve.
+  void DriveInKick(const Node& n, const Joint& j, double h);
+  /// ContactFinish's part: each driven row's impulse from the step's velocities `u`, and its
+  /// mode for the next step.
+  void DriveAfterContacts(const Eigen::VectorXd& u, double h);
   /// Respond's working arrays (a step like the one before allocates nothing): the touched bodies'
   /// Jacobians Φ, M⁻¹ Φᵀ, and a Jacobian's path columns.
   mutable std::vector<Eigen::MatrixXd> phi_, solved_;

@@ -108,6 +108,14 @@ bool Articulation::ContactKick(const std::vector<std::unique_ptr<Force>>& forces
     kicked_p_[n.v] -= h * k * (q - rest);
     held_[dof] = passes ? (reach < j.limits.lower ? -1 : 1) : pressed;
   }
+  driven_.assign(static_cast<std::size_t>(v_.size()), 0);
+  drive_gain_.assign(static_cast<std::size_t>(v_.size()), 0.0);
+  if (drive_mode_.size() != static_cast<std::size_t>(v_.size()))
+    drive_mode_.assign(static_cast<std::size_t>(v_.size()), 0);
+  for (const Node& n : nodes_) {
+    if (n.joint < 0 || n.nv != 1 || held_[static_cast<std::size_t>(n.v)] != 0) continue;  // (a stop holds it)
+    DriveInKick(n, joints_[static_cast<std::size_t>(n.joint)], h);
+  }
   effective_.llt.compute(effective_.M);
   if (effective_.llt.info() != Eigen::Success) return false;
   const Eigen::VectorXd u = effective_.llt.solve(kicked_p_);
@@ -118,6 +126,57 @@ bool Articulation::ContactKick(const std::vector<std::unique_ptr<Force>>& forces
     kicked[static_cast<std::size_t>(nodes_[i].body)] << f.V.tail<3>() + w.cross(f.x), w;
   }
   return true;
+}
+
+// A joint's friction or velocity motor — a row q̇ = target with |impulse| ≤ bound · h — in the
+// very solve the contacts see (after them, a motor pressing a link onto the ground pushed it in
+// every step, and a joint held by its friction gave way under a load the contacts put on it):
+// held at its target rate by a stiff implicit damper, (M + h D) u = … + h D target with h D a
+// billion times the joint's own inertia (a damper holds a rate, not a place: at a million, a bar
+// its friction held crept by 5·10⁻⁸ rad/s under its load), or, where the last step's impulse
+// reached the bound, pushed by the bound as a constant effort. Which of the two is the last
+// step's outcome (DriveAfterContacts), as a stop's hold is: a change of regime takes effect a step
+// late (an impact that a joint's friction cannot hold slips a step after it). A joint with both
+// friction and a motor keeps its rows after the contacts.
+void Articulation::DriveInKick(const Node& n, const Joint& j, double h) {
+  const bool friction = j.friction > 0, motor = j.motor.mode == JointMotor::Mode::kVelocity;
+  if (friction == motor) return;
+  const double bound = (friction ? j.friction : j.motor.max_effort) * h;
+  if (!(bound > 0)) return;
+  const auto dof = static_cast<std::size_t>(n.v);
+  driven_[dof] = 1;
+  if (drive_mode_[dof] != 0 && std::isfinite(bound)) {
+    kicked_p_[n.v] += drive_mode_[dof] * bound;
+    return;
+  }
+  const double gain = 1e9 * start_.M(n.v, n.v);
+  effective_.M(n.v, n.v) += gain;
+  kicked_p_[n.v] += gain * (friction ? 0.0 : j.motor.target);
+  drive_gain_[dof] = gain;
+}
+
+// The driven rows' impulses: a held row's is its damper's, h D (target − u); past the bound, the
+// row pushes at the bound from the next step on (this step's excess stays: the contacts answered
+// it). A row pushed at its bound holds again once its rate has passed the target.
+void Articulation::DriveAfterContacts(const Eigen::VectorXd& u, double h) {
+  for (const Node& n : nodes_) {
+    const auto dof = static_cast<std::size_t>(n.v);
+    if (n.joint < 0 || n.nv != 1 || dof >= driven_.size() || !driven_[dof]) continue;
+    const Joint& j = joints_[static_cast<std::size_t>(n.joint)];
+    const bool friction = j.friction > 0;
+    const double bound = (friction ? j.friction : j.motor.max_effort) * h;
+    const double target = friction ? 0.0 : j.motor.target;
+    signed char& mode = drive_mode_[dof];
+    double impulse = mode * bound;
+    if (drive_gain_[dof] > 0) {
+      impulse = drive_gain_[dof] * (target - u[n.v]);
+      mode = impulse > bound ? 1 : impulse < -bound ? -1 : 0;
+    } else if (mode * (target - u[n.v]) < 0) {
+      mode = 0;
+    }
+    drive_impulse_[static_cast<std::size_t>(n.joint)] += impulse;
+  }
+  driven_.clear();
 }
 
 void Articulation::Classify(contact::Coupling& c) const {
@@ -198,6 +257,7 @@ bool Articulation::ContactFinish(const std::vector<Wrench>& impulses, const std:
   if (Impulses(effective_, q1_, h, p1_, stops)) vbar_ = effective_.llt.solve(p1_);
   p1_ = start_.M.selfadjointView<Eigen::Lower>() * vbar_;  // the momentum of the step's velocity
   const Eigen::VectorXd solved = vbar_;
+  DriveAfterContacts(solved, h);
   const Eigen::VectorXd push = GeneralizedImpulse(pushes);
   if (push.cwiseAbs().maxCoeff() > 0) vbar_ += start_.llt.solve(push);
   Move(q_, vbar_, h, q1_);

@@ -36,6 +36,7 @@ StepStatus Articulation::Advance(Integrator integrator, const std::vector<std::u
   }
   held_.clear();  // (a contact step's, when it found no contact)
   stuck_.clear();
+  driven_.clear();
   saved_q_ = q_, saved_v_ = v_, saved_p_ = p_;  // into kept capacity
   const int substeps = internal::StepWithHalving(
       t, h,
@@ -228,8 +229,9 @@ bool Articulation::Impulses(Configuration& c, const Eigen::VectorXd& q1, double 
   for (const Node& n : nodes_) {
     if (n.joint < 0 || n.nv != 1) continue;
     const Joint& j = joints_[static_cast<std::size_t>(n.joint)];
-    if (j.friction > 0) rows_.push_back({n.joint, n.v, -j.friction * h, j.friction * h, 0.0, false});
-    if (j.motor.mode == JointMotor::Mode::kVelocity) {
+    const bool driven = static_cast<std::size_t>(n.v) < driven_.size() && driven_[static_cast<std::size_t>(n.v)];
+    if (j.friction > 0 && !driven) rows_.push_back({n.joint, n.v, -j.friction * h, j.friction * h, 0.0, false});
+    if (j.motor.mode == JointMotor::Mode::kVelocity && !driven) {
       rows_.push_back({n.joint, n.v, -j.motor.max_effort * h, j.motor.max_effort * h, j.motor.target, false});
     }
     const double qi = q1[n.q];
@@ -279,6 +281,10 @@ bool Articulation::Impulses(Configuration& c, const Eigen::VectorXd& q1, double 
     const Row& row = rows_[static_cast<std::size_t>(r)];
     p1[row.dof] += lambda[r];
     (row.stop ? limit_impulse_ : drive_impulse_)[static_cast<std::size_t>(row.joint)] += lambda[r];
+    // Whether a friction or motor row pushed at its bound: where the next contact step starts.
+    if (!row.stop && static_cast<std::size_t>(row.dof) < drive_mode_.size()) {
+      drive_mode_[static_cast<std::size_t>(row.dof)] = lambda[r] == row.hi ? 1 : lambda[r] == row.lo ? -1 : 0;
+    }
   }
   return true;
 }
