@@ -227,9 +227,11 @@ class Articulation {
   /// and those the last contact step left pressed on one (held again in the next).
   std::vector<signed char> held_, stuck_;
   /// Joint friction or a velocity motor of a 1-dof joint in a contact step (DriveInKick): what
-  /// its row did in the last step, per coordinate — 0 held at its target rate, ±1 pushed at its
-  /// bound in that direction; which coordinates ContactKick drives (Impulses leaves their rows),
-  /// and the damper gain h D of those it holds (0: pushed at the bound).
+  /// its row did in the last step, per coordinate — held at its target rate in a contact step
+  /// (kDriveHeld) or in a step without contact (kDriveFree), or ±1, pushed at its bound in that
+  /// direction; which coordinates ContactKick drives (Impulses leaves their rows), and the damper
+  /// gain h D of those it holds (0: pushed at the bound).
+  static constexpr signed char kDriveHeld = 0, kDriveFree = 2;
   std::vector<signed char> drive_mode_;
   std::vector<char> driven_;
   std::vector<double> drive_gain_;

@@ -111,7 +111,7 @@ bool Articulation::ContactKick(const std::vector<std::unique_ptr<Force>>& forces
   driven_.assign(static_cast<std::size_t>(v_.size()), 0);
   drive_gain_.assign(static_cast<std::size_t>(v_.size()), 0.0);
   if (drive_mode_.size() != static_cast<std::size_t>(v_.size()))
-    drive_mode_.assign(static_cast<std::size_t>(v_.size()), 0);
+    drive_mode_.assign(static_cast<std::size_t>(v_.size()), kDriveFree);
   for (const Node& n : nodes_) {
     if (n.joint < 0 || n.nv != 1 || held_[static_cast<std::size_t>(n.v)] != 0) continue;  // (a stop holds it)
     DriveInKick(n, joints_[static_cast<std::size_t>(n.joint)], h);
@@ -136,16 +136,19 @@ bool Articulation::ContactKick(const std::vector<std::unique_ptr<Force>>& forces
 // its friction held crept by 5·10⁻⁸ rad/s under its load), or, where the last step's impulse
 // reached the bound, pushed by the bound as a constant effort. Which of the two is the last
 // step's outcome (DriveAfterContacts), as a stop's hold is: a change of regime takes effect a step
-// late (an impact that a joint's friction cannot hold slips a step after it). A joint with both
-// friction and a motor keeps its rows after the contacts.
+// late (a load that a joint's friction cannot hold, put on it while in contact, slips a step
+// after). A row that held its target in a step without contact (kDriveFree) is solved after the
+// contacts in the first contact step, as before, so that an impact sees the joint as it is: held
+// rigid, a motor's link would strike as if infinitely heavy. A joint with both friction and a
+// motor keeps its rows after the contacts.
 void Articulation::DriveInKick(const Node& n, const Joint& j, double h) {
   const bool friction = j.friction > 0, motor = j.motor.mode == JointMotor::Mode::kVelocity;
   if (friction == motor) return;
   const double bound = (friction ? j.friction : j.motor.max_effort) * h;
-  if (!(bound > 0)) return;
   const auto dof = static_cast<std::size_t>(n.v);
+  if (!(bound > 0) || drive_mode_[dof] == kDriveFree) return;
   driven_[dof] = 1;
-  if (drive_mode_[dof] != 0 && std::isfinite(bound)) {
+  if (drive_mode_[dof] != kDriveHeld && std::isfinite(bound)) {
     kicked_p_[n.v] += drive_mode_[dof] * bound;
     return;
   }
@@ -170,9 +173,9 @@ void Articulation::DriveAfterContacts(const Eigen::VectorXd& u, double h) {
     double impulse = mode * bound;
     if (drive_gain_[dof] > 0) {
       impulse = drive_gain_[dof] * (target - u[n.v]);
-      mode = impulse > bound ? 1 : impulse < -bound ? -1 : 0;
+      mode = impulse > bound ? 1 : impulse < -bound ? -1 : kDriveHeld;
     } else if (mode * (target - u[n.v]) < 0) {
-      mode = 0;
+      mode = kDriveHeld;
     }
     drive_impulse_[static_cast<std::size_t>(n.joint)] += impulse;
   }

@@ -281,9 +281,11 @@ bool Articulation::Impulses(Configuration& c, const Eigen::VectorXd& q1, double 
     const Row& row = rows_[static_cast<std::size_t>(r)];
     p1[row.dof] += lambda[r];
     (row.stop ? limit_impulse_ : drive_impulse_)[static_cast<std::size_t>(row.joint)] += lambda[r];
-    // Whether a friction or motor row pushed at its bound: where the next contact step starts.
+    // Whether a friction or motor row pushed at its bound, or held (in a contact step, or not):
+    // where the next contact step starts (DriveInKick).
     if (!row.stop && static_cast<std::size_t>(row.dof) < drive_mode_.size()) {
-      drive_mode_[static_cast<std::size_t>(row.dof)] = lambda[r] == row.hi ? 1 : lambda[r] == row.lo ? -1 : 0;
+      const signed char held = driven_.empty() ? kDriveFree : kDriveHeld;
+      drive_mode_[static_cast<std::size_t>(row.dof)] = lambda[r] == row.hi ? 1 : lambda[r] == row.lo ? -1 : held;
     }
   }
   return true;

@@ -3,7 +3,8 @@
 /// Functions compiled for more than one instruction set, the CPU's chosen when the library loads
 /// (GCC's `target_clones`): loops that vectorize run with AVX2 — and AVX-512 where named — on the
 /// machines that have them, and with the baseline's SSE2 elsewhere, from one binary. Every clone
-/// computes the same bits (they vectorize across independent items; no reduction is reordered).
+/// computes the same bits: they vectorize across independent items, no reduction is reordered, and
+/// the targets' -ffp-contract=off (massprops_set_floating_point) keeps AVX-512's FMAs out.
 /// Plain functions under other compilers, other architectures and AddressSanitizer (whose
 /// instrumentation the clones' resolver runs before).
 ///
