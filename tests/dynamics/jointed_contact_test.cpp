@@ -353,7 +353,8 @@ TEST(JointedContact, AVelocityMotorPressingALeverOntoTheGroundIsBalancedByTheCon
   // the tip is on the ground (within the few µm the first contact step, which solves the motor's
   // row after the contacts, lets it in), and the motor pushes at its bound. (With the motor's row
   // solved after the contacts in every step, its push went into the ground every step: the tip
-  // 1.3 mm deep at τ = 2 N·m, still sinking at 12 mm/s.)
+  // 1.3 mm deep at τ = 2 N·m, still sinking at 12 mm/s.) With joint friction f besides the motor,
+  // the joint sticks, and friction and ground share the load: the moment lies within ± f h of that.
   const double h = 1e-3, m = 1.0, pivot = 0.05, half_thickness = 0.02, length = 0.5;
   // The rest angle: the tip's lower edge on the ground, pivot − L sin θ − t cos θ = 0 (Newton).
   double rest = 0.06;
@@ -361,8 +362,9 @@ TEST(JointedContact, AVelocityMotorPressingALeverOntoTheGroundIsBalancedByTheCon
     const double f = pivot - length * std::sin(rest) - half_thickness * std::cos(rest);
     rest -= f / (-length * std::cos(rest) + half_thickness * std::sin(rest));
   }
-  for (const double torque : {0.0, 2.0, 20.0}) {
-    SCOPED_TRACE("motor's bound " + std::to_string(torque) + " N m");
+  for (const auto& [torque, friction] :
+       {std::pair{0.0, 0.0}, std::pair{2.0, 0.0}, std::pair{20.0, 0.0}, std::pair{2.0, 0.5}}) {
+    SCOPED_TRACE("motor's bound " + std::to_string(torque) + " N m, friction " + std::to_string(friction));
     ContactWorld w = MakeWorld();
     Material frictionless;
     frictionless.static_friction = frictionless.kinetic_friction = 0;
@@ -375,19 +377,22 @@ TEST(JointedContact, AVelocityMotorPressingALeverOntoTheGroundIsBalancedByTheCon
       hinge.motor.target = 1.0;
       hinge.motor.max_effort = torque;
     }
+    hinge.friction = friction;
     const int joint = w.AddJoint(hinge);
     Simulate(w, h, 2000);
     const dynamics::JointState s = w.world().joint_state(joint);
     EXPECT_NEAR(s.position[0], rest, 2e-5);  // the tip within 10 µm of the ground
     EXPECT_LT(std::abs(s.velocity[0]), 1e-7);
-    EXPECT_NEAR(s.drive_impulse, torque * h, 1e-15);
+    EXPECT_NEAR(s.drive_impulse, torque * h, friction * h + 1e-15);  // the friction's share
     double moment = 0;
     for (const dynamics::ContactReport& c : w.Contacts()) {
       ASSERT_EQ(c.a, bar);
       moment += c.point.x() * c.impulse.z();
     }
     const double x_c = length / 2 * std::cos(rest);  // the centre's lever arm about the hinge
-    EXPECT_NEAR(moment, (m * kG * x_c + torque) * h, 1e-6 * (m * kG * x_c + torque) * h);
+    EXPECT_NEAR(moment, (m * kG * x_c + torque) * h, friction * h + 1e-6 * (m * kG * x_c + torque) * h);
+    // The balance with the joint's reported impulse (the motor's and the friction's together).
+    EXPECT_NEAR(moment, m * kG * x_c * h + s.drive_impulse, 1e-6 * (m * kG * x_c + torque) * h);
   }
 }
 

@@ -216,6 +216,7 @@ class Articulation {
     int joint, dof;
     double lo, hi, target;
     bool stop;
+    int drive = -1;  ///< a drive row's slot in drive_mode_ (the motor's 2 dof, the friction's 2 dof + 1)
   };
   std::vector<Row> rows_;
   bool momenta_ready_ = false;
@@ -226,16 +227,24 @@ class Articulation {
   /// Dofs ContactKick holds on a stop (-1 the lower, +1 the upper; Impulses leaves their stops),
   /// and those the last contact step left pressed on one (held again in the next).
   std::vector<signed char> held_, stuck_;
-  /// Joint friction or a velocity motor of a 1-dof joint in a contact step (DriveInKick): what
-  /// its row did in the last step, per coordinate — held at its target rate in a contact step
-  /// (kDriveHeld) or in a step without contact (kDriveFree), or ±1, pushed at its bound in that
-  /// direction; which coordinates ContactKick drives (Impulses leaves their rows), and the damper
-  /// gain h D of those it holds (0: pushed at the bound).
+  /// The velocity motor's and the friction's rows of a 1-dof joint in a contact step
+  /// (DriveInKick), two per coordinate (2 dof: the motor's, 2 dof + 1: the friction's): what each
+  /// did in the last step — held at its target rate in a contact step (kDriveHeld) or in a step
+  /// without contact (kDriveFree), or ±1, pushed at its bound in that direction; which coordinates
+  /// ContactKick drives (Impulses leaves their rows), and the damper gain h D of each row it holds
+  /// (0: pushed at the bound, or held by the motor's damper).
   static constexpr signed char kDriveHeld = 0, kDriveFree = 2;
   std::vector<signed char> drive_mode_;
   std::vector<char> driven_;
   std::vector<double> drive_gain_;
-  /// ContactKick's part: joint n's friction or velocity motor in the contact step's own solve.
+  /// A joint's two rows for a step of length h: whether each acts, its bound (N·m·s or N·s) and
+  /// its target rate ([0] the velocity motor, [1] the friction).
+  struct DriveRows {
+    bool on[2] = {false, false};
+    double bound[2] = {0, 0}, target[2] = {0, 0};
+  };
+  static DriveRows DriveRowsOf(const Joint& j, double h);
+  /// ContactKick's part: joint n's friction and velocity motor in the contact step's own solve.
   void DriveInKick(const Node& n, const Joint& j, double h);
   /// ContactFinish's part: each driven row's impulse from the step's velocities `u`, and its
   /// mode for the next step.

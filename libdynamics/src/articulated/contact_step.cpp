@@ -109,9 +109,9 @@ bool Articulation::ContactKick(const std::vector<std::unique_ptr<Force>>& forces
     held_[dof] = passes ? (reach < j.limits.lower ? -1 : 1) : pressed;
   }
   driven_.assign(static_cast<std::size_t>(v_.size()), 0);
-  drive_gain_.assign(static_cast<std::size_t>(v_.size()), 0.0);
-  if (drive_mode_.size() != static_cast<std::size_t>(v_.size()))
-    drive_mode_.assign(static_cast<std::size_t>(v_.size()), kDriveFree);
+  drive_gain_.assign(2 * static_cast<std::size_t>(v_.size()), 0.0);
+  if (drive_mode_.size() != 2 * static_cast<std::size_t>(v_.size()))
+    drive_mode_.assign(2 * static_cast<std::size_t>(v_.size()), kDriveFree);
   for (const Node& n : nodes_) {
     if (n.joint < 0 || n.nv != 1 || held_[static_cast<std::size_t>(n.v)] != 0) continue;  // (a stop holds it)
     DriveInKick(n, joints_[static_cast<std::size_t>(n.joint)], h);
@@ -128,56 +128,84 @@ bool Articulation::ContactKick(const std::vector<std::unique_ptr<Force>>& forces
   return true;
 }
 
-// A joint's friction or velocity motor — a row q̇ = target with |impulse| ≤ bound · h — in the
+// A joint's friction and velocity motor — rows q̇ = target with |impulse| ≤ bound · h — in the
 // very solve the contacts see (after them, a motor pressing a link onto the ground pushed it in
-// every step, and a joint held by its friction gave way under a load the contacts put on it):
-// held at its target rate by a stiff implicit damper, (M + h D) u = … + h D target with h D a
-// billion times the joint's own inertia (a damper holds a rate, not a place: at a million, a bar
+// every step, and a joint held by its friction gave way under a load the contacts put on it). Each
+// row is held at its target rate by a stiff implicit damper, (M + h D) u = … + h D target with h D
+// a billion times the joint's own inertia (a damper holds a rate, not a place: at a million, a bar
 // its friction held crept by 5·10⁻⁸ rad/s under its load), or, where the last step's impulse
 // reached the bound, pushed by the bound as a constant effort. Which of the two is the last
 // step's outcome (DriveAfterContacts), as a stop's hold is: a change of regime takes effect a step
 // late (a load that a joint's friction cannot hold, put on it while in contact, slips a step
-// after). A row that held its target in a step without contact (kDriveFree) is solved after the
-// contacts in the first contact step, as before, so that an impact sees the joint as it is: held
-// rigid, a motor's link would strike as if infinitely heavy. A joint with both friction and a
-// motor keeps its rows after the contacts.
+// after). A joint whose rows held their targets in a step without contact (kDriveFree) has them
+// solved after the contacts in the first contact step, as before, so that an impact sees the
+// joint as it is: held rigid, a motor's link would strike as if infinitely heavy. A joint with
+// both: friction cannot hold the joint still while the motor holds it at another rate, so of two
+// held rows with different targets the friction slips, against the motor's target; with the same
+// target (0) one damper holds both, their bounds added.
 void Articulation::DriveInKick(const Node& n, const Joint& j, double h) {
-  const bool friction = j.friction > 0, motor = j.motor.mode == JointMotor::Mode::kVelocity;
-  if (friction == motor) return;
-  const double bound = (friction ? j.friction : j.motor.max_effort) * h;
+  const DriveRows rows = DriveRowsOf(j, h);
   const auto dof = static_cast<std::size_t>(n.v);
-  if (!(bound > 0) || drive_mode_[dof] == kDriveFree) return;
-  driven_[dof] = 1;
-  if (drive_mode_[dof] != kDriveHeld && std::isfinite(bound)) {
-    kicked_p_[n.v] += drive_mode_[dof] * bound;
-    return;
+  signed char* mode = drive_mode_.data() + 2 * dof;
+  if (!rows.on[0] && !rows.on[1]) return;
+  for (int k = 0; k < 2; ++k) {
+    if (rows.on[k] && mode[k] == kDriveFree) return;
   }
-  const double gain = 1e9 * start_.M(n.v, n.v);
-  effective_.M(n.v, n.v) += gain;
-  kicked_p_[n.v] += gain * (friction ? 0.0 : j.motor.target);
-  drive_gain_[dof] = gain;
+  driven_[dof] = 1;
+  if (rows.on[0] && rows.on[1] && mode[0] == kDriveHeld && mode[1] == kDriveHeld && rows.target[0] != 0) {
+    mode[1] = rows.target[0] > 0 ? -1 : 1;
+  }
+  for (int k = 0; k < 2; ++k) {
+    if (!rows.on[k]) continue;
+    if (mode[k] != kDriveHeld && std::isfinite(rows.bound[k])) {
+      kicked_p_[n.v] += mode[k] * rows.bound[k];
+      continue;
+    }
+    if (k == 1 && rows.on[0] && mode[0] == kDriveHeld) continue;  // (one damper, the motor's, holds both at 0)
+    const double gain = 1e9 * start_.M(n.v, n.v);
+    effective_.M(n.v, n.v) += gain;
+    kicked_p_[n.v] += gain * rows.target[k];
+    drive_gain_[2 * dof + static_cast<std::size_t>(k)] = gain;
+  }
 }
 
-// The driven rows' impulses: a held row's is its damper's, h D (target − u); past the bound, the
-// row pushes at the bound from the next step on (this step's excess stays: the contacts answered
-// it). A row pushed at its bound holds again once its rate has passed the target.
+Articulation::DriveRows Articulation::DriveRowsOf(const Joint& j, double h) {
+  DriveRows r;
+  r.bound[0] = j.motor.max_effort * h;
+  r.target[0] = j.motor.target;
+  r.on[0] = j.motor.mode == JointMotor::Mode::kVelocity && r.bound[0] > 0;
+  r.bound[1] = j.friction * h;
+  r.on[1] = r.bound[1] > 0;
+  return r;
+}
+
+// The driven rows' impulses: a held row's is its damper's, h D (target − u) (a damper that holds
+// both rows, its impulse theirs together); past the bound, the row pushes at the bound from the
+// next step on (this step's excess stays: the contacts answered it). A row pushed at its bound
+// holds again once the rate has passed its target.
 void Articulation::DriveAfterContacts(const Eigen::VectorXd& u, double h) {
   for (const Node& n : nodes_) {
     const auto dof = static_cast<std::size_t>(n.v);
     if (n.joint < 0 || n.nv != 1 || dof >= driven_.size() || !driven_[dof]) continue;
-    const Joint& j = joints_[static_cast<std::size_t>(n.joint)];
-    const bool friction = j.friction > 0;
-    const double bound = (friction ? j.friction : j.motor.max_effort) * h;
-    const double target = friction ? 0.0 : j.motor.target;
-    signed char& mode = drive_mode_[dof];
-    double impulse = mode * bound;
-    if (drive_gain_[dof] > 0) {
-      impulse = drive_gain_[dof] * (target - u[n.v]);
-      mode = impulse > bound ? 1 : impulse < -bound ? -1 : kDriveHeld;
-    } else if (mode * (target - u[n.v]) < 0) {
-      mode = kDriveHeld;
+    const DriveRows rows = DriveRowsOf(joints_[static_cast<std::size_t>(n.joint)], h);
+    signed char* mode = drive_mode_.data() + 2 * dof;
+    const double* gain = drive_gain_.data() + 2 * dof;
+    const bool shared = rows.on[0] && rows.on[1] && gain[0] > 0 && mode[1] == kDriveHeld;
+    double total = 0;
+    for (int k = 0; k < 2; ++k) {
+      if (!rows.on[k] || (shared && k == 1)) continue;
+      const double bound = shared ? rows.bound[0] + rows.bound[1] : rows.bound[k];
+      double impulse = mode[k] * rows.bound[k];
+      if (gain[k] > 0) {
+        impulse = gain[k] * (rows.target[k] - u[n.v]);
+        mode[k] = impulse > bound ? 1 : impulse < -bound ? -1 : kDriveHeld;
+        if (shared) mode[1] = mode[0];
+      } else if (mode[k] * (rows.target[k] - u[n.v]) < 0) {
+        mode[k] = kDriveHeld;
+      }
+      total += impulse;
     }
-    drive_impulse_[static_cast<std::size_t>(n.joint)] += impulse;
+    drive_impulse_[static_cast<std::size_t>(n.joint)] += total;
   }
   driven_.clear();
 }

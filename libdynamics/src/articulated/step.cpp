@@ -230,9 +230,11 @@ bool Articulation::Impulses(Configuration& c, const Eigen::VectorXd& q1, double 
     if (n.joint < 0 || n.nv != 1) continue;
     const Joint& j = joints_[static_cast<std::size_t>(n.joint)];
     const bool driven = static_cast<std::size_t>(n.v) < driven_.size() && driven_[static_cast<std::size_t>(n.v)];
-    if (j.friction > 0 && !driven) rows_.push_back({n.joint, n.v, -j.friction * h, j.friction * h, 0.0, false});
+    if (j.friction > 0 && !driven) {
+      rows_.push_back({n.joint, n.v, -j.friction * h, j.friction * h, 0.0, false, 2 * n.v + 1});
+    }
     if (j.motor.mode == JointMotor::Mode::kVelocity && !driven) {
-      rows_.push_back({n.joint, n.v, -j.motor.max_effort * h, j.motor.max_effort * h, j.motor.target, false});
+      rows_.push_back({n.joint, n.v, -j.motor.max_effort * h, j.motor.max_effort * h, j.motor.target, false, 2 * n.v});
     }
     const double qi = q1[n.q];
     if (!held_.empty() && held_[static_cast<std::size_t>(n.v)]) {  // a contact step's implicit stop holds it
@@ -283,9 +285,9 @@ bool Articulation::Impulses(Configuration& c, const Eigen::VectorXd& q1, double 
     (row.stop ? limit_impulse_ : drive_impulse_)[static_cast<std::size_t>(row.joint)] += lambda[r];
     // Whether a friction or motor row pushed at its bound, or held (in a contact step, or not):
     // where the next contact step starts (DriveInKick).
-    if (!row.stop && static_cast<std::size_t>(row.dof) < drive_mode_.size()) {
+    if (row.drive >= 0 && static_cast<std::size_t>(row.drive) < drive_mode_.size()) {
       const signed char held = driven_.empty() ? kDriveFree : kDriveHeld;
-      drive_mode_[static_cast<std::size_t>(row.dof)] = lambda[r] == row.hi ? 1 : lambda[r] == row.lo ? -1 : held;
+      drive_mode_[static_cast<std::size_t>(row.drive)] = lambda[r] == row.hi ? 1 : lambda[r] == row.lo ? -1 : held;
     }
   }
   return true;
