@@ -230,11 +230,11 @@ bool Articulation::Impulses(Configuration& c, const Eigen::VectorXd& q1, double 
     if (n.joint < 0 || n.nv != 1) continue;
     const Joint& j = joints_[static_cast<std::size_t>(n.joint)];
     const bool driven = static_cast<std::size_t>(n.v) < driven_.size() && driven_[static_cast<std::size_t>(n.v)];
-    if (j.friction > 0 && !driven) {
-      rows_.push_back({n.joint, n.v, -j.friction * h, j.friction * h, 0.0, false, 2 * n.v + 1});
-    }
+    const DriveRows d = DriveRowsOf(j, h);  // (a motor bound to 0 keeps its row here, as it always did)
+    if (j.friction > 0 && !driven)
+      rows_.push_back({n.joint, n.v, -d.bound[1], d.bound[1], d.target[1], false, 2 * n.v + 1});
     if (j.motor.mode == JointMotor::Mode::kVelocity && !driven) {
-      rows_.push_back({n.joint, n.v, -j.motor.max_effort * h, j.motor.max_effort * h, j.motor.target, false, 2 * n.v});
+      rows_.push_back({n.joint, n.v, -d.bound[0], d.bound[0], d.target[0], false, 2 * n.v});
     }
     const double qi = q1[n.q];
     if (!held_.empty() && held_[static_cast<std::size_t>(n.v)]) {  // a contact step's implicit stop holds it
