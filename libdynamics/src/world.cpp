@@ -88,6 +88,7 @@ int World::AddJoint(const Joint& joint) {
 void World::Place() const {
   if (placed_) return;
   auto articulation = std::make_unique<internal::Articulation>(joints_, bodies_);
+  articulation->SetConstraints(loops_, couplings_, tendons_);
   articulation_ = jointed_ ? std::move(articulation) : nullptr;
   placed_ = true;
 }
@@ -167,6 +168,11 @@ StepStatus World::Advance(double h) {
                                   " integrator has no meaning for joints (it steps free bodies); an articulated world "
                                   "takes implicit-midpoint or rk4");
     }
+    if (integrator_ != Integrator::kImplicitMidpoint && articulation_->Bilateral()) {
+      throw std::invalid_argument(std::string("World::Step: loops and couplings are held by the implicit-midpoint "
+                                              "integrator only, not ") +
+                                  info.name);
+    }
     const double t0 = time_;
     StepStatus status = articulation_->Advance(integrator_, forces_, t0, h, bodies_);
     time_ = t0 + h;
@@ -230,6 +236,15 @@ Conservation World::Conserves() const {
       note(c.energy_broken_by, "joint stops");
     }
     if (j.parent < 0 && j.type != JointType::kFree) note(c.momentum_broken_by, "joints to the world");
+  }
+  for (const Tendon& t : tendons_) {
+    if (t.damping > 0) note(c.energy_broken_by, "tendon damping");
+    if (t.motor.mode != JointMotor::Mode::kOff) note(c.energy_broken_by, "tendon motors");
+    if (t.limits.restitution < 1 && (std::isfinite(t.limits.lower) || std::isfinite(t.limits.upper)))
+      note(c.energy_broken_by, "tendon ranges");
+  }
+  for (const Loop& l : loops_) {
+    if (l.a.body < 0 || l.b.body < 0) note(c.momentum_broken_by, "loops to the world");
   }
   c.energy = c.energy_broken_by.empty();
   c.momentum = c.momentum_broken_by.empty();

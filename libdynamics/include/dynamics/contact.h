@@ -299,6 +299,10 @@ class ContactWorld {
   void AddForce(std::unique_ptr<Force> force) { world_.AddForce(std::move(force)); }
   /// A joint (World::AddJoint): its bodies then step in joint coordinates, through contact too.
   int AddJoint(const Joint& joint) { return world_.AddJoint(joint); }
+  /// Loops, couplings and tendons (World's): held in the contacts' solve too.
+  int AddLoop(const Loop& loop) { return world_.AddLoop(loop); }
+  int AddCoupling(const Coupling& coupling) { return world_.AddCoupling(coupling); }
+  int AddTendon(const Tendon& tendon) { return world_.AddTendon(tendon); }
   /// Bodies a and b never touch each other (MJCF's <contact><exclude>); each still touches the
   /// rest. @throws std::invalid_argument unless a and b are two different bodies of the world.
   void ExcludePair(int a, int b);

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "dynamics/constraints.h"
 #include "dynamics/forces.h"
 #include "dynamics/joints.h"
 #include "dynamics/rigid_body.h"
@@ -139,6 +140,28 @@ class World {
   const std::vector<Joint>& joints() const { return joints_; }
   /// Position, velocity and last step's impulses of joint j. @throws std::out_of_range.
   JointState joint_state(int j) const;
+  /// Adds a loop closure (dynamics/constraints.h) between bodies placed by the joints added so
+  /// far; returns its index. The world becomes articulated.
+  /// @throws std::invalid_argument for a missing body, a loop of a body with itself, or frames
+  /// that do not meet within the loop's tolerance (saying by how much), or after the first step.
+  int AddLoop(const Loop& loop);
+  /// Adds a coupling; returns its index. @throws std::invalid_argument for a joint or tendon that
+  /// does not exist, a joint of other than one coordinate, a coupling of a coordinate to itself,
+  /// a coordinate that already follows another, a cycle of couplings, a coefficient that is not
+  /// finite, or after the first step.
+  int AddCoupling(const Coupling& coupling);
+  /// Adds a tendon; returns its index. @throws std::invalid_argument for a joint that does not
+  /// exist or has other than one coordinate, a spatial tendon of fewer than two points, one both
+  /// fixed and spatial or neither, a missing body, a range whose lower end is above its upper, a
+  /// negative stiffness or damping, a velocity motor, or after the first step.
+  int AddTendon(const Tendon& tendon);
+  const std::vector<Loop>& loops() const { return loops_; }
+  const std::vector<Coupling>& couplings() const { return couplings_; }
+  const std::vector<Tendon>& tendons() const { return tendons_; }
+  /// Gap, impulse (and length) of loop, coupling or tendon k. @throws std::out_of_range.
+  ConstraintState loop_state(int k) const;
+  ConstraintState coupling_state(int k) const;
+  ConstraintState tendon_state(int k) const;
   /// True when the world is stepped in joint coordinates (see AddJoint).
   bool articulated() const { return jointed_; }
 
@@ -189,6 +212,9 @@ class World {
   std::vector<std::unique_ptr<Force>> forces_;
   std::unique_ptr<internal::StepScratch> scratch_;  ///< kept between steps
   std::vector<Joint> joints_;
+  std::vector<Loop> loops_;
+  std::vector<Coupling> couplings_;
+  std::vector<Tendon> tendons_;
   std::vector<RigidBody> as_added_;  ///< the bodies' states when added (before joints moved them)
   mutable std::unique_ptr<internal::Articulation> articulation_;  ///< null: free bodies only
   mutable bool placed_ = true;  ///< articulation_ and bodies_ follow every joint added

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "dynamics/constraints.h"
 #include "dynamics/forces.h"
 #include "dynamics/joints.h"
 #include "dynamics/world.h"
@@ -88,6 +89,32 @@ struct Configuration {
   Eigen::VectorXd q;         ///< the coordinates Configure placed it at
 };
 
+/// Bilateral rows at a configuration: values g (m) and Jacobian J (m × nv); each row's owner (a
+/// loop's index, then the couplings' after the loops'; -1 a pin).
+struct ConstraintRows {
+  Eigen::MatrixXd J;
+  Eigen::VectorXd g;
+  std::vector<int> owner;
+};
+
+/// Coordinates held on a limit by a step's end: (dof, limit) of stops, (tendon, limit) of ranges.
+struct Pins {
+  std::vector<std::pair<int, double>> dofs, tendons;
+};
+
+/// Velocities held on rows J v = target through a mass matrix's factor: the least change in its
+/// metric, x += M⁻¹Jᵀν with ν = (J M⁻¹ Jᵀ)⁺ (target − J x) (the pseudo-inverse: redundant rows
+/// share nothing).
+struct Projector {
+  Eigen::MatrixXd J, Y, Ainv;  ///< the rows, M⁻¹Jᵀ, (J M⁻¹ Jᵀ)⁺
+  void Form(const Eigen::LLT<Eigen::MatrixXd>& factor, const Eigen::MatrixXd& rows);
+  bool active() const { return J.rows() > 0; }
+  /// x moved onto J x = target; returns ν.
+  Eigen::VectorXd Hold(Eigen::VectorXd& x, const Eigen::VectorXd& target) const;
+  /// x moved onto J x = 0 (a response to an impulse, with the rows held).
+  void Restrict(Eigen::VectorXd& x) const;
+};
+
 class Articulation {
  public:
   /// Builds the tree of `joints` over `bodies` (validated by World::AddJoint), takes the initial
@@ -117,6 +144,16 @@ class Articulation {
   bool ContactFinish(const std::vector<Wrench>& impulses, const std::vector<Wrench>& pushes, double h,
                      std::vector<RigidBody>& bodies);
   JointState State(int joint) const;
+  /// The world's loops, couplings and tendons (dynamics/constraints.h), before the first step.
+  void SetConstraints(const std::vector<Loop>& loops, const std::vector<Coupling>& couplings,
+                      const std::vector<Tendon>& tendons);
+  /// Loops or couplings: rows the implicit midpoint rule holds (RK4 does not).
+  bool Bilateral() const { return bilateral_; }
+  ConstraintState LoopState(int k) const;
+  ConstraintState CouplingState(int k) const;
+  ConstraintState TendonState(int k) const;
+  /// ½ k (L − rest)² over the tendons' springs, J.
+  double TendonEnergy() const;
   /// Σ ½ k (q − rest)² over the joints' springs, J.
   double SpringEnergy() const;
   /// ½ Σ a q̇² of the joints' armatures (kinetic energy no body carries).
@@ -152,7 +189,7 @@ class Articulation {
   /// loses its rotational block by cancellation, and D⁻¹ of a thin link's twist amplifies that
   /// level after level: 10⁻⁸ relative at 22 ball joints, the dense factor 10⁻¹⁶. Hinges and
   /// sliders keep to what M's conditioning allows.)
-  bool Sparse() const { return recursion_ok_ && v_.size() > kDenseLimit; }
+  bool Sparse() const { return recursion_ok_ && !bilateral_ && tendons_.empty() && v_.size() > kDenseLimit; }
   static constexpr Eigen::Index kDenseLimit = 64;
   /// Spatial velocities V of c's frames from v.
   void Velocities(const Eigen::VectorXd& v, Configuration& c) const;
@@ -183,6 +220,61 @@ class Articulation {
   void BodyJacobian(const Configuration& c, int node, Eigen::MatrixXd& path, Eigen::MatrixXd& P) const;
   /// Σ Φᵀ w over the bodies' wrenches (force, torque about the centre), at the contact step's start.
   Eigen::VectorXd GeneralizedImpulse(const std::vector<Wrench>& w) const;
+
+  // Loops, couplings and tendons (constraints.cpp).
+  /// A point (and its frame's rotation) of a body in c, with its Jacobian: rows 0–2 the point's
+  /// velocity, 3–5 the body's ω (world axes), 6 × nv.
+  Vector3 PointOf(const Configuration& c, const BodyFrame& f, Matrix3* rotation, Eigen::MatrixXd* jacobian) const;
+  /// A joint's position or a tendon's length at (c, q), with its gradient (nv).
+  double CoordinateOf(const Configuration& c, const Eigen::VectorXd& q, const Coordinate& x,
+                      Eigen::VectorXd* jacobian) const;
+  double TendonLength(const Configuration& c, const Eigen::VectorXd& q, int t, Eigen::VectorXd* jacobian) const;
+  /// The loops' and couplings' rows, then the pins', at configuration c (its frames) and q.
+  void BilateralRows(const Configuration& c, const Eigen::VectorXd& q, const Pins& pins, ConstraintRows& rows) const;
+  /// The position slot of a 1-dof joint's velocity slot.
+  int DofPosition(int dof) const;
+  /// q moved onto the rows (and pins) by Newton's method in the metric of `metric` (false: not finite).
+  bool ProjectPositions(const Eigen::LLT<Eigen::MatrixXd>& metric, const Pins& pins, Eigen::VectorXd& q);
+  /// p changed by the least impulse Jᵀν that makes v = M⁻¹p satisfy J v = 0 at c (dense).
+  void HoldMomenta(const Configuration& c, const Eigen::VectorXd& q, Eigen::VectorXd& p);
+  /// Adds scale ν of each row to its loop's or coupling's impulse of the step.
+  void AddRowImpulses(const ConstraintRows& rows, const Eigen::VectorXd& nu, double scale);
+  /// Σ J_Lᵀ f of the tendons' springs, dampers and motors into `rate`.
+  void TendonEfforts(const Configuration& c, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                     Eigen::VectorXd& rate) const;
+  /// The midpoint velocity v̄ held on the rows: J(q̄) v̄ = −g(q0)/h; the generalized impulse this
+  /// adds over the step (2 Jᵀν) into `impulse`.
+  void HoldMidpoint(const Configuration& mid, const Eigen::VectorXd& qbar, double h, Eigen::VectorXd& vbar,
+                    Eigen::VectorXd& impulse);
+  /// The tendons past an end of their range at (c, q): rows of stops for Impulses.
+  /// Rows of stops (Impulses') for the tendons past an end of their range at q1 (v1 the end
+  /// velocity), and their pins in tendon_pins_.
+  void TendonStopRows(const Eigen::VectorXd& q1, const Eigen::VectorXd& v1);
+  /// Loops, couplings or tendon ranges to hold at the end of a step.
+  bool Constrained() const { return bilateral_ || !tendon_pins_.tendons.empty(); }
+  /// After a step's impulses: q1_ onto the rows with the stops and tendon ends pinned, end_
+  /// configured at it, p1_ onto the rows' tangent (false: not finite or not positive definite).
+  bool FinishConstrained(const std::vector<std::pair<int, double>>& stops);
+  void ClearConstraintImpulses(bool tendons = true);
+  /// Classify's part: the trees that loops, couplings and tendons join made one.
+  void MergeConstrainedTrees(std::vector<int>& tree) const;
+
+  std::vector<Loop> loops_;
+  std::vector<Coupling> couplings_;
+  std::vector<Tendon> tendons_;
+  bool bilateral_ = false;
+  std::vector<double> loop_impulse_, coupling_impulse_, tendon_impulse_;  ///< last step
+  Eigen::VectorXd start_gap_;  ///< g(q0) of the step being solved
+  mutable Configuration probe_;
+  ConstraintRows rows_scratch_;
+  Projector projector_;
+  /// The rows the step's impulses see held (J v = held_target_), formed by the step: empty when
+  /// there are none.
+  Projector held_rows_;
+  Eigen::VectorXd held_target_, held_nu_;
+  ConstraintRows held_source_;  ///< the contact step's rows at its start (held_rows_' J and owners)
+  Pins tendon_pins_;  ///< the tendons Impulses stopped at an end of their range
+  std::vector<Eigen::VectorXd> row_jacobians_;  ///< Impulses' rows on tendons (empty: a joint's dof)
 
   std::vector<Joint> joints_;
   std::vector<Node> nodes_;
@@ -217,6 +309,7 @@ class Articulation {
     double lo, hi, target;
     bool stop;
     int drive = -1;  ///< a drive row's slot in drive_mode_ (the motor's 2 dof, the friction's 2 dof + 1)
+    int tendon = -1;  ///< a tendon's stop (its Jacobian in row_jacobians_; joint and dof -1)
   };
   std::vector<Row> rows_;
   bool momenta_ready_ = false;

@@ -118,7 +118,16 @@ bool Articulation::ContactKick(const std::vector<std::unique_ptr<Force>>& forces
   }
   effective_.llt.compute(effective_.M);
   if (effective_.llt.info() != Eigen::Success) return false;
-  const Eigen::VectorXd u = effective_.llt.solve(kicked_p_);
+  Eigen::VectorXd u = effective_.llt.solve(kicked_p_);
+  // Loops and couplings held in the contacts' solve: the kicked velocity on their rows, aimed at
+  // g = 0 by the step's end, and every response to an impulse restricted to them (Respond).
+  held_rows_ = Projector{};
+  if (bilateral_) {
+    BilateralRows(start_, q_, Pins{}, held_source_);
+    held_rows_.Form(effective_.llt, held_source_.J);
+    held_target_ = -held_source_.g / h;
+    held_rows_.Hold(u, held_target_);
+  }
   Velocities(u, start_);  // (the start's velocities are read no more: ṗ is taken)
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
     const NodeFrame& f = start_.frames[i];
@@ -230,6 +239,52 @@ void Articulation::Classify(contact::Coupling& c) const {
         n.nv > 0 ||
         (n.parent >= 0 && c.movable[static_cast<std::size_t>(nodes_[static_cast<std::size_t>(n.parent)].body)]);
   }
+  c.joint_tree = c.tree;
+  MergeConstrainedTrees(c.tree);
+}
+
+// Trees joined by a loop, a coupling or a tendon answer impulses together: one tree for the
+// contacts' solve (each body's tree renamed to the least of those it is joined with).
+void Articulation::MergeConstrainedTrees(std::vector<int>& tree) const {
+  if (loops_.empty() && couplings_.empty() && tendons_.empty()) return;
+  std::vector<int> root(tree.size());
+  for (std::size_t t = 0; t < root.size(); ++t) root[t] = static_cast<int>(t);
+  auto find = [&](int t) {
+    while (root[static_cast<std::size_t>(t)] != t) t = root[static_cast<std::size_t>(t)] = root[static_cast<std::size_t>(root[static_cast<std::size_t>(t)])];
+    return t;
+  };
+  auto join = [&](const std::vector<int>& bodies) {
+    int first = -1;
+    for (int b : bodies) {
+      if (b < 0) continue;
+      const int t = find(tree[static_cast<std::size_t>(b)]);
+      if (first < 0) first = t;
+      root[static_cast<std::size_t>(std::max(t, first))] = std::min(t, first);
+      first = std::min(t, first);
+    }
+  };
+  auto body_of_joint = [&](int j) { return j >= 0 ? joints_[static_cast<std::size_t>(j)].child : -1; };
+  for (const Loop& l : loops_) join({l.a.body, l.b.body});
+  for (const Coupling& cp : couplings_) {
+    std::vector<int> bodies;
+    for (const Coordinate& x : {cp.follower, cp.leader}) {
+      if (x.index < 0) continue;
+      if (x.kind == Coordinate::Kind::kJoint) bodies.push_back(body_of_joint(x.index));
+      if (x.kind == Coordinate::Kind::kTendon) {
+        const Tendon& t = tendons_[static_cast<std::size_t>(x.index)];
+        for (const auto& [j, c] : t.joints) bodies.push_back(body_of_joint(j));
+        for (const BodyFrame& f : t.path) bodies.push_back(f.body);
+      }
+    }
+    join(bodies);
+  }
+  for (const Tendon& t : tendons_) {
+    std::vector<int> bodies;
+    for (const auto& [j, c] : t.joints) bodies.push_back(body_of_joint(j));
+    for (const BodyFrame& f : t.path) bodies.push_back(f.body);
+    join(bodies);
+  }
+  for (int& t : tree) t = find(t);
 }
 
 void Articulation::Respond(contact::Coupling& c, const std::vector<char>& touched) const {
@@ -264,11 +319,19 @@ void Articulation::Respond(contact::Coupling& c, const std::vector<char>& touche
       // Y_k = L⁻¹ Φ_kᵀ (M = L Lᵀ): G_jk = Y_jᵀ Y_k, one triangular solve instead of two.
       solved[k] = effective_.llt.matrixL().solve(phi[k].transpose());
     }
+    // With loops and couplings held, M⁻¹ is restricted to their rows: G_jk −= T_jᵀ A⁺ T_k with
+    // T_k = (L⁻¹Jᵀ)ᵀ Y_k = J M⁻¹ Φ_kᵀ.
+    std::vector<Eigen::MatrixXd> held(held_rows_.active() ? m.size() : 0);
+    if (held_rows_.active()) {
+      const Eigen::MatrixXd Z = effective_.llt.matrixL().solve(held_rows_.J.transpose());
+      for (std::size_t k = 0; k < m.size(); ++k) held[k] = Z.transpose() * solved[k];
+    }
     // (Each product a 6 × 6 of inner size n: coefficient-wise, not through the matrix-product
     // kernels, whose packing costs more than the arithmetic at a robot's size; G_kj = G_jkᵀ.)
     for (std::size_t j = 0; j < m.size(); ++j) {
       for (std::size_t k = j; k < m.size(); ++k) {
         G[j * m.size() + k].noalias() = solved[j].transpose().lazyProduct(solved[k]);
+        if (!held.empty()) G[j * m.size() + k].noalias() -= held[j].transpose() * (held_rows_.Ainv * held[k]);
         if (k != j) G[k * m.size() + j] = G[j * m.size() + k].transpose();
       }
     }
@@ -279,18 +342,31 @@ bool Articulation::ContactFinish(const std::vector<Wrench>& impulses, const std:
                                  std::vector<RigidBody>& bodies) {
   std::fill(limit_impulse_.begin(), limit_impulse_.end(), 0.0);
   std::fill(drive_impulse_.begin(), drive_impulse_.end(), 0.0);
+  ClearConstraintImpulses();
   history_.Clear();  // the midpoint rule's predictor starts afresh after contact
   if (p_.size() == 0) return Still(bodies);
   p1_ = kicked_p_ + GeneralizedImpulse(impulses);
-  vbar_ = effective_.llt.solve(p1_);
+  // The step's velocity, with the loops and couplings held (their impulses reported).
+  auto velocity = [&] {
+    vbar_ = effective_.llt.solve(p1_);
+    if (held_rows_.active()) AddRowImpulses(held_source_, held_rows_.Hold(vbar_, held_target_), 1.0);
+  };
+  velocity();
   Move(q_, vbar_, h, q1_);
   std::vector<std::pair<int, double>> stops;
-  if (Impulses(effective_, q1_, h, p1_, stops)) vbar_ = effective_.llt.solve(p1_);
+  if (Impulses(effective_, q1_, h, p1_, stops)) {
+    ClearConstraintImpulses(/*tendons=*/false);  // (the held rows' impulses are taken again, whole)
+    velocity();
+  }
   p1_ = start_.M.selfadjointView<Eigen::Lower>() * vbar_;  // the momentum of the step's velocity
   const Eigen::VectorXd solved = vbar_;
   DriveAfterContacts(solved, h);
   const Eigen::VectorXd push = GeneralizedImpulse(pushes);
-  if (push.cwiseAbs().maxCoeff() > 0) vbar_ += start_.llt.solve(push);
+  if (push.cwiseAbs().maxCoeff() > 0) {
+    Eigen::VectorXd moved = start_.llt.solve(push);
+    held_rows_.Restrict(moved);
+    vbar_ += moved;
+  }
   Move(q_, vbar_, h, q1_);
   for (const auto& [qi, limit] : stops) q1_[qi] = limit;
   // Which stops stay held in the next contact step: those the contacts pressed on (a held
@@ -311,6 +387,7 @@ bool Articulation::ContactFinish(const std::vector<Wrench>& impulses, const std:
   }
   held_.clear();  // (the midpoint rule's stops are its own)
   if (!q1_.allFinite() || !p1_.allFinite() || !Configure(q1_, end_)) return false;
+  if (Constrained() && !FinishConstrained(stops)) return false;
   Accept(bodies);
   return true;
 }

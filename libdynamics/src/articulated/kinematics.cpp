@@ -544,6 +544,7 @@ void Articulation::MomentumRate(const std::vector<std::unique_ptr<Force>>& force
     }
     rate[nd.v] += effort;
   }
+  if (!tendons_.empty()) TendonEfforts(c, q, v, rate);
 }
 
 void Articulation::PositionRate(const Eigen::VectorXd& q, const Eigen::VectorXd& v, Eigen::VectorXd& rate) const {
@@ -614,7 +615,7 @@ double Articulation::SpringEnergy() const {
     const double d = q_[n.q] - j.rest_position;
     e += 0.5 * j.stiffness * d * d;
   }
-  return e;
+  return e + TendonEnergy();
 }
 
 }  // namespace dynamics::internal

@@ -43,6 +43,7 @@ StepStatus Articulation::Advance(Integrator integrator, const std::vector<std::u
       [&] {
         std::fill(limit_impulse_.begin(), limit_impulse_.end(), 0.0);
         std::fill(drive_impulse_.begin(), drive_impulse_.end(), 0.0);
+        ClearConstraintImpulses();
       },
       [&](double at, double dt, int) {
         return integrator == Integrator::kRK4 ? RK4Step(forces, at, dt, bodies) : MidpointStep(forces, at, dt, bodies);
@@ -105,6 +106,13 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
     vbar_ = v_;
     p1_ = p_;
   }
+  held_rows_ = Projector{};
+  if (bilateral_) {  // g(q0): the midpoint velocity aims the step's end at g = 0
+    Configure(q0_, probe_, Form::kFrames);
+    BilateralRows(probe_, q0_, Pins{}, rows_scratch_);
+    start_gap_ = rows_scratch_.g;
+  }
+  Eigen::VectorXd held;  // the rows' generalized impulse over the step
   double last_change = std::numeric_limits<double>::infinity();
   double best_pair = last_change;  // the least of max(change, last change) so far
   int since_best = 0;
@@ -115,6 +123,7 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
     if (!Configure(qs_, mid_, iteration > 0 && Sparse() ? Form::kFrames : StepForm())) return false;
     ps_ = 0.5 * (p0_ + p1_);
     Solve(mid_, ps_, vnew_);
+    if (bilateral_) HoldMidpoint(mid_, qs_, h, vnew_, held);
     Velocities(vnew_, mid_);
     MomentumRate(forces, t + 0.5 * h, qs_, vnew_, mid_, stage_, rate_);
     pnew_ = p0_ + h * rate_;
@@ -156,17 +165,33 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
   }
   if (!converged) return false;
   history_.Push(rate_, vbar_, h);
+  if (bilateral_) {
+    p1_ += held;
+    AddRowImpulses(rows_scratch_, held_nu_, 2.0);
+  }
   Move(q0_, vbar_, h, q1_);
   if (!Configure(q1_, end_, StepForm())) return false;
+  if (bilateral_) {  // the stops' impulses see the loops and couplings held at the end
+    HoldMomenta(end_, q1_, p1_);
+    BilateralRows(end_, q1_, Pins{}, rows_scratch_);
+    held_rows_.Form(end_.llt, rows_scratch_.J);
+    held_target_ = Eigen::VectorXd::Zero(rows_scratch_.J.rows());
+  }
   std::vector<std::pair<int, double>> stops;
   if (Impulses(end_, q1_, h, p1_, stops)) {
     // The impulses act over the step: the midpoint velocity takes half of them.
     ps_ = 0.5 * (p0_ + p1_);
     Solve(mid_, ps_, vbar_);
+    if (bilateral_) {
+      HoldMidpoint(mid_, qs_, h, vbar_, held);
+      p1_ += held;
+      AddRowImpulses(rows_scratch_, held_nu_, 2.0);
+    }
     Move(q0_, vbar_, h, q1_);
     for (const auto& [qi, limit] : stops) q1_[qi] = limit;
     if (!Configure(q1_, end_, StepForm())) return false;
   }
+  if (Constrained() && !FinishConstrained(stops)) return false;
   Accept(bodies);
   return true;
 }
@@ -200,6 +225,7 @@ bool Articulation::RK4Step(const std::vector<std::unique_ptr<Force>>& forces, do
   }
   if (!q1_.allFinite() || !p1_.allFinite()) return false;
   if (!Configure(q1_, end_)) return false;
+  held_rows_ = Projector{};
   std::vector<std::pair<int, double>> stops;
   pnew_ = p1_;
   if (Impulses(end_, q1_, h, p1_, stops)) {
@@ -210,6 +236,7 @@ bool Articulation::RK4Step(const std::vector<std::unique_ptr<Force>>& forces, do
     for (const auto& [qi, limit] : stops) q1_[qi] = limit;
     if (!Configure(q1_, end_)) return false;
   }
+  if (Constrained() && !FinishConstrained(stops)) return false;
   Accept(bodies);
   return true;
 }
@@ -224,8 +251,14 @@ bool Articulation::Impulses(Configuration& c, const Eigen::VectorXd& q1, double 
                             std::vector<std::pair<int, double>>& stops) {
   rows_.clear();
   stops.clear();
+  tendon_pins_ = Pins{};
   const double inf = std::numeric_limits<double>::infinity();
   Eigen::VectorXd v1;
+  // The end velocity, with the loops and couplings held (their rows' target).
+  auto velocity = [&] {
+    Solve(c, p1, v1);
+    if (held_rows_.active()) held_rows_.Hold(v1, held_target_);
+  };
   for (const Node& n : nodes_) {
     if (n.joint < 0 || n.nv != 1) continue;
     const Joint& j = joints_[static_cast<std::size_t>(n.joint)];
@@ -243,7 +276,7 @@ bool Articulation::Impulses(Configuration& c, const Eigen::VectorXd& q1, double 
       continue;
     }
     if (qi < j.limits.lower || qi > j.limits.upper) {
-      if (v1.size() == 0) Solve(c, p1, v1);
+      if (v1.size() == 0) velocity();
       const double arrival = v1[n.v];
       if (qi < j.limits.lower) {
         rows_.push_back({n.joint, n.v, 0.0, inf, -j.limits.restitution * std::min(arrival, 0.0), true});
@@ -254,24 +287,39 @@ bool Articulation::Impulses(Configuration& c, const Eigen::VectorXd& q1, double 
       }
     }
   }
+  row_jacobians_.assign(rows_.size(), Eigen::VectorXd());
+  if (!tendons_.empty()) {
+    if (v1.size() == 0) velocity();
+    TendonStopRows(q1, v1);
+  }
   if (rows_.empty()) return false;
-  // The rows' coupling W: columns of M⁻¹ (the factor, formed now for a large tree).
+  // The rows' coupling W: columns of M⁻¹ (the factor, formed now for a large tree), with the
+  // loops and couplings held.
   if (!c.dense && !Densify(c)) return false;
-  if (v1.size() == 0) v1 = c.llt.solve(p1);
+  if (v1.size() == 0) velocity();
   const auto nr = static_cast<Eigen::Index>(rows_.size());
+  // Row r's Jacobian applied to x: a dof's coordinate, or a tendon's gradient.
+  auto along = [&](Eigen::Index r, const Eigen::VectorXd& x) {
+    const Eigen::VectorXd& jac = row_jacobians_[static_cast<std::size_t>(r)];
+    return jac.size() ? jac.dot(x) : x[rows_[static_cast<std::size_t>(r)].dof];
+  };
   Eigen::MatrixXd W(nr, nr);
   for (Eigen::Index r = 0; r < nr; ++r) {
-    Eigen::VectorXd e = Eigen::VectorXd::Zero(p1.size());
-    e[rows_[static_cast<std::size_t>(r)].dof] = 1.0;
-    const Eigen::VectorXd col = c.llt.solve(e);
-    for (Eigen::Index s = 0; s < nr; ++s) W(s, r) = col[rows_[static_cast<std::size_t>(s)].dof];
+    Eigen::VectorXd e = row_jacobians_[static_cast<std::size_t>(r)];
+    if (e.size() == 0) {
+      e = Eigen::VectorXd::Zero(p1.size());
+      e[rows_[static_cast<std::size_t>(r)].dof] = 1.0;
+    }
+    Eigen::VectorXd col = c.llt.solve(e);
+    held_rows_.Restrict(col);
+    for (Eigen::Index s = 0; s < nr; ++s) W(s, r) = along(s, col);
   }
   Eigen::VectorXd lambda = Eigen::VectorXd::Zero(nr);
   for (int sweep = 0; sweep < 1000; ++sweep) {
     double change = 0, size = 1e-300;
     for (Eigen::Index r = 0; r < nr; ++r) {
       const Row& row = rows_[static_cast<std::size_t>(r)];
-      const double v = v1[row.dof] + W.row(r).dot(lambda);
+      const double v = along(r, v1) + W.row(r).dot(lambda);
       const double next = std::clamp(lambda[r] + (row.target - v) / W(r, r), row.lo, row.hi);
       change = std::max(change, std::fabs(next - lambda[r]));
       size = std::max(size, std::fabs(next));
@@ -281,6 +329,11 @@ bool Articulation::Impulses(Configuration& c, const Eigen::VectorXd& q1, double 
   }
   for (Eigen::Index r = 0; r < nr; ++r) {
     const Row& row = rows_[static_cast<std::size_t>(r)];
+    if (row.tendon >= 0) {
+      p1.noalias() += lambda[r] * row_jacobians_[static_cast<std::size_t>(r)];
+      tendon_impulse_[static_cast<std::size_t>(row.tendon)] += lambda[r];
+      continue;
+    }
     p1[row.dof] += lambda[r];
     (row.stop ? limit_impulse_ : drive_impulse_)[static_cast<std::size_t>(row.joint)] += lambda[r];
     // Whether a friction or motor row pushed at its bound, or held (in a contact step, or not):

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "massprops/repair/repair.h"
+#include "robot_constraints.h"
 #include "massprops/units.h"
 
 namespace dynamics {
@@ -695,6 +696,15 @@ RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotO
     }
   }
   if (options.base == RobotOptions::Base::kFixed) WeldRoots(world, model, options, lumps, first_body);
+  // Tendons (their drives from the file's actuators on them), couplings and loops.
+  std::vector<JointMotor> tendon_motors(model.tendons.size());
+  for (std::size_t a = 0; a < model.actuators.size(); ++a) {
+    const int t = model.actuators[a].tendon;
+    if (t < 0 || tendon_motors[static_cast<std::size_t>(t)].mode != JointMotor::Mode::kOff) continue;
+    if (const auto m = ActuatorMotor(model.actuators[a], key.ctrl[a], model.path, out.notes))
+      tendon_motors[static_cast<std::size_t>(t)] = *m;
+  }
+  internal::AddRobotConstraints(world, model, options.pose, out, tendon_motors);
   // The file's excluded pairs (MJCF <contact><exclude>), between the bodies their links became.
   for (const auto& [l1, l2] : model.excluded) {
     const int a = out.body_of_link[static_cast<std::size_t>(l1)], b = out.body_of_link[static_cast<std::size_t>(l2)];

@@ -30,7 +30,8 @@ struct Row;
 /// mass matrix and Φ the bodies' Jacobians. Bodies of different trees do not couple. Only the
 /// bodies a step's contacts touch are members (the others' velocities are not read).
 struct Coupling {
-  std::vector<int> tree;                       ///< each body's tree
+  std::vector<int> tree;                       ///< each body's tree (trees joined by loops, couplings, tendons: one)
+  std::vector<int> joint_tree;                 ///< each body's tree of joints alone: the pairs that never touch
   std::vector<int> slot;                       ///< each member's index among its tree's members
   std::vector<std::vector<int>> members;       ///< each tree's touched bodies
   std::vector<std::vector<Matrix6>> response;  ///< each tree's blocks, [j × size + k]

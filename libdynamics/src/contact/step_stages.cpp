@@ -335,7 +335,7 @@ const std::vector<Candidate>& CandidatePairs(const StepInput& in, const Model& m
                                       if (p.b < 0) return !c.movable[a];
                                       const auto b = static_cast<std::size_t>(p.b);
                                       if (!c.movable[a] && !c.movable[b]) return true;
-                                      if (c.tree[a] != c.tree[b]) return false;
+                                      if (c.joint_tree[a] != c.joint_tree[b]) return false;
                                       return !self_collision || c.parent[a] == p.b || c.parent[b] == p.a;
                                     }),
                      candidates.end());

@@ -430,7 +430,7 @@ std::optional<std::pair<double, double>> Range(pugi::xml_attribute limited, pugi
 }
 
 // <actuator>: position, velocity, motor and general (fixed gain, affine or no bias) on joints, in
-// MuJoCo's general form (robot_model.h). The others, and those on tendons or sites, are noted and
+// and tendons in MuJoCo's general form (robot_model.h). The others, and those on sites, are noted and
 // kept as placeholders, so that keyframes' ctrl stays aligned with the file's actuators.
 void Actuators(pugi::xml_node root, const Defaults& defaults, const Compiler& compiler, RobotModel& model) {
   int k = 0;
@@ -451,13 +451,16 @@ void Actuators(pugi::xml_node root, const Defaults& defaults, const Compiler& co
       };
       RobotActuator act;
       act.name = a.attribute("name") ? a.attribute("name").value() : Describe(a, k);
-      const std::string joint = attr("joint").value();
+      const std::string joint = attr("joint").value(), tendon = attr("tendon").value();
       const auto it =
           std::find_if(model.joints.begin(), model.joints.end(), [&](const RobotJoint& j) { return j.name == joint; });
+      const auto on_tendon = std::find_if(model.tendons.begin(), model.tendons.end(),
+                                          [&](const RobotTendon& t) { return !tendon.empty() && t.name == tendon; });
       const bool supported = kind == "position" || kind == "velocity" || kind == "motor" || kind == "general";
-      if (joint.empty() || it == model.joints.end() || !supported ||
-          !(it->type == RobotJointType::kRevolute || it->type == RobotJointType::kContinuous ||
-            it->type == RobotJointType::kPrismatic)) {
+      const bool scalar_joint = !joint.empty() && it != model.joints.end() &&
+                                (it->type == RobotJointType::kRevolute || it->type == RobotJointType::kContinuous ||
+                                 it->type == RobotJointType::kPrismatic);
+      if (!supported || (!scalar_joint && on_tendon == model.tendons.end())) {
         left_out.push_back(act.name);
         model.actuators.push_back(act);  // joint -1: a placeholder
         continue;
@@ -478,7 +481,7 @@ void Actuators(pugi::xml_node root, const Defaults& defaults, const Compiler& co
         const std::string biastype = attr("biastype") ? attr("biastype").value() : "none";
         if (gaintype != "fixed" || (biastype != "none" && biastype != "affine")) {
           left_out.push_back(act.name + " (gaintype " + gaintype + ", biastype " + biastype + ")");
-          model.actuators.push_back(RobotActuator{act.name, -1, 1, 1, {}, {}, {}});
+          model.actuators.push_back(RobotActuator{act.name, -1, -1, 1, 1, {}, {}, {}});
           continue;
         }
         auto first = [&](const char* name, std::size_t n, double fallback) {
@@ -496,7 +499,11 @@ void Actuators(pugi::xml_node root, const Defaults& defaults, const Compiler& co
           act.bias = {b[0], b[1], b[2]};
         }
       }
-      act.joint = static_cast<int>(it - model.joints.begin());
+      if (scalar_joint) {
+        act.joint = static_cast<int>(it - model.joints.begin());
+      } else {
+        act.tendon = static_cast<int>(on_tendon - model.tendons.begin());
+      }
       act.ctrlrange =
           Range(attr("ctrllimited"), attr("ctrlrange"), what + " ctrlrange", compiler.autolimits, model.notes);
       act.forcerange =
@@ -508,7 +515,7 @@ void Actuators(pugi::xml_node root, const Defaults& defaults, const Compiler& co
     std::string names;
     for (const std::string& n : left_out) names += (names.empty() ? "" : ", ") + n;
     model.notes.push_back(std::to_string(left_out.size()) +
-                          " actuator(s) not simulated (on tendons or sites, of other kinds, or on ball and free "
+                          " actuator(s) not simulated (on sites, of other kinds, or on ball and free "
                           "joints): " +
                           names);
   }
@@ -782,7 +789,6 @@ void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotMo
       throw ElementError("<compiler coordinate=\"global\"> is not followed: give local coordinates");
     }
   }
-  if (root.child("tendon")) model.notes.push_back("<tendon>s are not simulated");
   const Compiler compiler = CompilerOf(root);
   const Defaults defaults(root);
   WorldGeoms(root, compiler, defaults, model);
@@ -859,6 +865,14 @@ void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotMo
       from = to;
     }
   }
+  MjcfConstraints(
+      root, links, compiler.autolimits, angle,
+      [&](pugi::xml_node e, const std::string& what) {
+        Geometry g;
+        PlaceBy([&](const char* a) { return e.attribute(a); }, compiler, g, what);
+        return Placement{g.rotation, g.translation};
+      },
+      model);
   Actuators(root, defaults, compiler, model);
   Keyframes(root, model);
   ContactFilters(root, links, model);

@@ -106,12 +106,6 @@ void Screen(const Document& doc, RobotFormat format, std::vector<std::string>& n
                              " > robot.urdf)");
   }
   if (format == RobotFormat::kUrdf) {
-    for (const pugi::xml_node j : root.children("joint")) {
-      if (j.child("mimic")) {
-        throw std::runtime_error(doc.path + ": joint '" + std::string(j.attribute("name").value()) +
-                                 "' has a <mimic>: coupled joints are not simulated");
-      }
-    }
     NoteIgnored(root,
                 {{"transmission", "ROS control metadata (drives are a scene's motors)"},
                  {"ros2_control", "ROS 2 control metadata (drives are a scene's motors)"},
@@ -119,12 +113,6 @@ void Screen(const Document& doc, RobotFormat format, std::vector<std::string>& n
                 notes);
   }
   if (format == RobotFormat::kMjcf) {
-    if (const pugi::xml_node e = robot::FindElement(root, "equality")) {
-      if (e.first_child()) {
-        throw std::runtime_error(doc.path + ": <equality> <" + std::string(e.first_child().name()) +
-                                 ">: closed loops and equality constraints are not simulated");
-      }
-    }
     NoteIgnored(root, {{"sensor", "sensors"}, {"camera", "cameras"}, {"light", "lights"}}, notes);
   }
 }

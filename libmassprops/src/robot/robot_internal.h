@@ -3,6 +3,7 @@
 // sdf.cpp, mjcf.cpp), and the helpers they share (xml.cpp). fill.cpp computes and writes.
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <variant>
@@ -90,8 +91,16 @@ std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options);
 /// the format's links in order (their geometries already read), model.links matches them.
 /// @throws ElementError naming the element.
 void UrdfKinematics(const Document& doc, RobotModel& model);
+/// URDF <mimic>s as couplings (after the joints). @throws ElementError naming the joint.
+void UrdfMimics(pugi::xml_node root, RobotModel& model);
 void SdfKinematics(const Document& doc, const std::vector<Link>& links, RobotModel& model);
 void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotModel& model);
+/// An MJCF element's frame (pos and orientation) in its parent's, as the compiler reads it.
+using MjcfFrame = std::function<Placement(pugi::xml_node, const std::string&)>;
+/// MJCF <tendon>s and <equality>s into model.tendons, couplings and loops (mjcf_constraints.cpp),
+/// after the joints. @throws ElementError naming the element.
+void MjcfConstraints(pugi::xml_node root, const std::vector<Link>& links, bool autolimits, double angle,
+                     const MjcfFrame& frame_of, RobotModel& model);
 /// The joint type a URDF or SDFormat `type` names, among `allowed` (by RobotJointTypeName).
 /// @throws ElementError naming `what` and listing the allowed types.
 RobotJointType JointTypeNamed(const std::string& type, const std::vector<RobotJointType>& allowed,

@@ -191,6 +191,44 @@ void UrdfKinematics(const Document& doc, RobotModel& model) {
     }
     model.joints.push_back(j);
   }
+  UrdfMimics(root, model);
+}
+
+// <mimic joint multiplier offset> (ROS: q = multiplier · q_joint + offset; the defaults 1 and 0)
+// of a revolute, continuous or prismatic joint, after every joint is read.
+void UrdfMimics(const pugi::xml_node root, RobotModel& model) {
+  auto index_of = [&](const std::string& name) {
+    for (std::size_t k = 0; k < model.joints.size(); ++k) {
+      if (model.joints[k].name == name) return static_cast<int>(k);
+    }
+    return -1;
+  };
+  auto moves = [](RobotJointType t) {
+    return t == RobotJointType::kRevolute || t == RobotJointType::kContinuous || t == RobotJointType::kPrismatic;
+  };
+  for (pugi::xml_node element : root.children("joint")) {
+    const pugi::xml_node mimic = element.child("mimic");
+    if (!mimic) continue;
+    const std::string name = element.attribute("name").value(), what = "joint '" + name + "' <mimic>";
+    RobotCoupling c;
+    c.name = name;
+    c.follower = index_of(name);
+    const std::string leader = mimic.attribute("joint").value();
+    c.leader = index_of(leader);
+    if (leader.empty()) throw ElementError(what + ": no joint attribute (the joint it follows)");
+    if (c.leader < 0) throw ElementError(what + ": joint=\"" + leader + "\" names no joint");
+    if (c.leader == c.follower) throw ElementError(what + ": the joint mimics itself");
+    for (const int k : {c.follower, c.leader}) {
+      const RobotJoint& j = model.joints[static_cast<std::size_t>(k)];
+      if (!moves(j.type)) {
+        throw ElementError(what + ": joint '" + j.name + "' is " + RobotJointTypeName(j.type) +
+                           ": only revolute, continuous and prismatic joints are coupled");
+      }
+    }
+    c.polynomial[0] = Attribute(mimic, "offset", what, 0.0);
+    c.polynomial[1] = Attribute(mimic, "multiplier", what, 1.0);
+    model.couplings.push_back(c);
+  }
 }
 
 void WriteUrdfInertial(Link& link, const MassProperties& mp) {

@@ -11,8 +11,10 @@
 /// motion(q) a turn by q about the axis (revolute, continuous), a shift by q along it (prismatic),
 /// a quaternion (ball) or nothing (fixed).
 ///
-/// What cannot be simulated is refused, naming the element: mimic joints, planar/universal/screw
-/// joints, closed loops (a link that is the child of two joints, MJCF <equality>), xacro left
+/// Beyond the tree: URDF <mimic> and MJCF <equality joint|tendon> as couplings, MJCF <equality
+/// connect|weld> as loops, MJCF <tendon> (fixed and spatial through sites) as tendons. What cannot
+/// be simulated is refused, naming the element: planar/universal/screw joints, a link that is the
+/// child of two joints in URDF (SDFormat's second joint of a link is a loop), xacro left
 /// unexpanded, nested SDFormat models. What does not move a rigid
 /// body (transmissions, Gazebo blocks, sensors, cameras, lights) is noted, one note per kind.
 /// URDF's "world" link is the world frame; MJCF files are read as MuJoCo 3 reads them
@@ -112,10 +114,47 @@ struct RobotGround {
 /// motor: gain 1, no bias; general: its gainprm[0] and biasprm[0..2] (fixed gain, affine bias).
 struct RobotActuator {
   std::string name;
-  int joint = -1;  ///< index in RobotModel::joints
+  int joint = -1;   ///< index in RobotModel::joints
+  int tendon = -1;  ///< or index in RobotModel::tendons (joint -1, "gear q" is then gear L)
   double gear = 1, gain = 1;
   std::array<double, 3> bias{};
   std::optional<std::pair<double, double>> ctrlrange, forcerange;  ///< when limited
+};
+
+/// One coordinate follows another: y − y₀ = c₀ + c₁ (x − x₀) + … + c₄ (x − x₀)⁴, with x₀ and y₀
+/// the coordinates at the reference configuration (every joint at 0; a tendon's length there).
+/// URDF <mimic multiplier offset>: c₀ = offset, c₁ = multiplier. MJCF <equality joint|tendon
+/// polycoef>; without a leader the follower is held at y₀ + c₀.
+struct RobotCoupling {
+  std::string name;
+  bool tendons = false;  ///< follower and leader index RobotModel::tendons, else joints
+  int follower = -1, leader = -1;
+  std::array<double, 5> polynomial{0, 1, 0, 0, 0};
+};
+
+/// A loop closure: a frame of link b held on a frame of link a (-1: the world) — their origins
+/// (kBall, MJCF connect), the frames (kWeld, MJCF weld), origins and z axes (kHinge, an SDFormat
+/// revolute joint closing a loop) or z axes only, b's origin on a's z (kSlider).
+struct RobotLoop {
+  std::string name;
+  enum class Type { kBall, kWeld, kHinge, kSlider };
+  Type type = Type::kBall;
+  int link_a = -1, link_b = -1;
+  Placement in_a;  ///< in link a's frame
+  /// In link b's frame; none: where in_a is at the reference configuration (MuJoCo's rule for
+  /// connect's anchor and a weld without relpose).
+  std::optional<Placement> in_b;
+};
+
+/// A tendon (MJCF <tendon>): fixed, L = Σ c q over joints, or spatial, the length of the straight
+/// segments through points of links (sites). Its range is a pair of stops on L.
+struct RobotTendon {
+  std::string name;
+  std::vector<std::pair<int, double>> joints;   ///< fixed: (joint index, coefficient)
+  std::vector<std::pair<int, Vector3>> path;    ///< spatial: (link index, -1 the world; point in its frame)
+  std::optional<std::pair<double, double>> range;
+  double stiffness = 0, damping = 0;
+  std::optional<double> rest_length;  ///< none: the length at the reference configuration
 };
 
 /// An MJCF keyframe, in MuJoCo's order (joints in body order; a free joint's qpos is x y z and a
@@ -132,7 +171,10 @@ struct RobotModel {
   std::vector<RobotLink> links;
   std::vector<RobotJoint> joints;        ///< each link is the child of one joint at most
   std::vector<RobotGround> grounds;      ///< the file's own floors (MJCF); none: the simulator's
-  std::vector<RobotActuator> actuators;  ///< MJCF <actuator>s on joints
+  std::vector<RobotActuator> actuators;  ///< MJCF <actuator>s on joints and tendons
+  std::vector<RobotCoupling> couplings;  ///< URDF <mimic>, MJCF <equality joint|tendon>
+  std::vector<RobotLoop> loops;          ///< MJCF <equality connect|weld>, SDFormat loops
+  std::vector<RobotTendon> tendons;      ///< MJCF <tendon>
   std::vector<RobotKeyframe> keyframes;  ///< MJCF <keyframe><key>s
   /// MJCF <contact><exclude body1 body2>: pairs of links (indices into `links`) that never touch.
   std::vector<std::pair<int, int>> excluded;
