@@ -166,7 +166,7 @@ TEST(Robot, RefusesWhatItCannotSimulate) {
   ExpectRefused(Write("mimic.urdf", std::string(kTwoLinks) +
                                         R"(<joint name="j" type="revolute"><parent link="a"/><child link="b"/>
 <mimic joint="k"/></joint></robot>)"),
-                "joint 'j' has a <mimic>");
+                "joint 'j' <mimic>: joint=\"k\" names no joint");
   ExpectRefused(Write("xacro.urdf", R"(<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
 <xacro:macro name="leg"/></robot>)"),
                 "expand the file first");
@@ -184,7 +184,7 @@ TEST(Robot, RefusesWhatItCannotSimulate) {
                 "joint 'x': a free joint below another body, or beside other joints");
   ExpectRefused(
       Write("equality.xml", R"(<mujoco><worldbody/><equality><connect body1="a" anchor="0 0 0"/></equality></mujoco>)"),
-      "closed loops");
+      "<equality> <connect> connect #1: body1=\"a\" names no body");
   ExpectRefused(
       Write("ghost.urdf", std::string(kTwoLinks) +
                               R"(<joint name="j" type="fixed"><parent link="a"/><child link="c"/></joint></robot>)"),

@@ -322,7 +322,7 @@ void Articulation::Respond(contact::Coupling& c, const std::vector<char>& touche
     // With loops and couplings held, M⁻¹ is restricted to their rows: G_jk −= T_jᵀ A⁺ T_k with
     // T_k = (L⁻¹Jᵀ)ᵀ Y_k = J M⁻¹ Φ_kᵀ.
     std::vector<Eigen::MatrixXd> held(held_rows_.active() ? m.size() : 0);
-    if (held_rows_.active()) {
+    if (!held.empty()) {
       const Eigen::MatrixXd Z = effective_.llt.matrixL().solve(held_rows_.J.transpose());
       for (std::size_t k = 0; k < m.size(); ++k) held[k] = Z.transpose() * solved[k];
     }
