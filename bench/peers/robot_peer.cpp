@@ -398,6 +398,21 @@ int Joints(const std::string& path, const std::string& keyframe, double seconds,
     std::printf("  %-14s (%.4f, %.4f, %.4f) (%.4f, %.4f, %.4f)   (center of mass, m; within 1 cm: %s)\n", name.c_str(),
                 p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), ok ? "yes" : "NO");
   }
+  // Loops, couplings and tendon ranges: ours held exactly, MuJoCo's soft (its residual is the
+  // scale of the agreement to expect).
+  const dynamics::World& world = ours.world();
+  double held = 0, soft = 0;
+  for (std::size_t k = 0; k < world.loops().size(); ++k) held = std::max(held, std::abs(world.loop_state(static_cast<int>(k)).residual));
+  for (std::size_t k = 0; k < world.couplings().size(); ++k)
+    held = std::max(held, std::abs(world.coupling_state(static_cast<int>(k)).residual));
+  for (std::size_t k = 0; k < world.tendons().size(); ++k)
+    held = std::max(held, std::abs(world.tendon_state(static_cast<int>(k)).residual));
+  for (int i = 0; i < d->nefc; ++i) {
+    if (d->efc_type[i] == mjCNSTR_EQUALITY || (d->efc_type[i] == mjCNSTR_LIMIT_TENDON && d->efc_pos[i] < 0))
+      soft = std::max(soft, std::abs(d->efc_pos[i]));
+  }
+  if (!world.loops().empty() || !world.couplings().empty() || !world.tendons().empty())
+    std::printf("  loops, couplings and tendon ranges: largest residual ours %.2e, MuJoCo %.2e\n", held, soft);
   const bool ok = worst <= tolerance && height_ok;
   std::printf("%s: largest difference %.2e (tolerance %.2e)\n", ok ? "agree" : "DISAGREE", worst, tolerance);
   return ok ? 0 : 1;

@@ -90,7 +90,7 @@ struct Configuration {
 };
 
 /// Bilateral rows at a configuration: values g (m) and Jacobian J (m × nv); each row's owner (a
-/// loop's index, then the couplings' after the loops'; -1 a pin).
+/// loop's index, then the couplings' after the loops'; -1 a joint's pin, -2 − t tendon t's pin).
 struct ConstraintRows {
   Eigen::MatrixXd J;
   Eigen::VectorXd g;
@@ -162,6 +162,10 @@ class Articulation {
  private:
   bool MidpointStep(const std::vector<std::unique_ptr<Force>>& forces, double t, double h,
                     std::vector<RigidBody>& bodies);
+  /// The midpoint solve's first guess of v̄ and p1 (from the last steps' history).
+  void Predict(double h);
+  /// The midpoint rule's fixed-point iteration from the guess (false: it did not converge).
+  bool IterateMidpoint(const std::vector<std::unique_ptr<Force>>& forces, double t, double h, Eigen::VectorXd& held);
   bool RK4Step(const std::vector<std::unique_ptr<Force>>& forces, double t, double h, std::vector<RigidBody>& bodies);
   /// Takes the step's end (q1_, p1_, configured in end_) as the state and writes the bodies.
   void Accept(std::vector<RigidBody>& bodies);
@@ -236,7 +240,14 @@ class Articulation {
   /// q moved onto the rows (and pins) by Newton's method in the metric of `metric` (false: not finite).
   bool ProjectPositions(const Eigen::LLT<Eigen::MatrixXd>& metric, const Pins& pins, Eigen::VectorXd& q);
   /// p changed by the least impulse Jᵀν that makes v = M⁻¹p satisfy J v = 0 at c (dense).
-  void HoldMomenta(const Configuration& c, const Eigen::VectorXd& q, Eigen::VectorXd& p);
+  void HoldMomenta(const Configuration& c, const Eigen::VectorXd& q, Eigen::VectorXd& p, const Pins& pins = {});
+  /// Rows the midpoint step holds: loops, couplings, taut tendons.
+  bool Holds() const { return bilateral_ || !midpoint_pins_.tendons.empty(); }
+  /// The tendons at an end of their range at q (to 10⁻¹² of it), pinned there.
+  void TautTendons(const Eigen::VectorXd& q, Pins& pins);
+  /// Lets go of the taut tendons whose hold in the last midpoint solve pushed (a string cannot);
+  /// true when any was let go.
+  bool ReleasePushingPins();
   /// Adds scale ν of each row to its loop's or coupling's impulse of the step.
   void AddRowImpulses(const ConstraintRows& rows, const Eigen::VectorXd& nu, double scale);
   /// Σ J_Lᵀ f of the tendons' springs, dampers and motors into `rate`.
@@ -251,7 +262,7 @@ class Articulation {
   /// velocity), and their pins in tendon_pins_.
   void TendonStopRows(const Eigen::VectorXd& q1, const Eigen::VectorXd& v1);
   /// Loops, couplings or tendon ranges to hold at the end of a step.
-  bool Constrained() const { return bilateral_ || !tendon_pins_.tendons.empty(); }
+  bool Constrained() const { return Holds() || !tendon_pins_.tendons.empty(); }
   /// After a step's impulses: q1_ onto the rows with the stops and tendon ends pinned, end_
   /// configured at it, p1_ onto the rows' tangent (false: not finite or not positive definite).
   bool FinishConstrained(const std::vector<std::pair<int, double>>& stops);
@@ -273,7 +284,8 @@ class Articulation {
   Projector held_rows_;
   Eigen::VectorXd held_target_, held_nu_;
   ConstraintRows held_source_;  ///< the contact step's rows at its start (held_rows_' J and owners)
-  Pins tendon_pins_;  ///< the tendons Impulses stopped at an end of their range
+  Pins tendon_pins_;    ///< the tendons Impulses stopped at an end of their range
+  Pins midpoint_pins_;  ///< the taut tendons the midpoint step holds
   std::vector<Eigen::VectorXd> row_jacobians_;  ///< Impulses' rows on tendons (empty: a joint's dof)
 
   std::vector<Joint> joints_;

@@ -168,7 +168,7 @@ void Articulation::BilateralRows(const Configuration& c, const Eigen::VectorXd& 
   }
   for (const auto& [t, limit] : pins.tendons) {
     const double length = TendonLength(c, q, t, &jx);
-    add(length - limit, jx, -1);
+    add(length - limit, jx, -2 - t);
   }
   const auto m = static_cast<Eigen::Index>(g.size());
   rows.g.resize(m);
@@ -235,8 +235,9 @@ bool Articulation::ProjectPositions(const Eigen::LLT<Eigen::MatrixXd>& metric, c
   return true;
 }
 
-void Articulation::HoldMomenta(const Configuration& c, const Eigen::VectorXd& q, Eigen::VectorXd& p) {
-  BilateralRows(c, q, Pins{}, rows_scratch_);
+void Articulation::HoldMomenta(const Configuration& c, const Eigen::VectorXd& q, Eigen::VectorXd& p,
+                               const Pins& pins) {
+  BilateralRows(c, q, pins, rows_scratch_);
   if (rows_scratch_.g.size() == 0) return;
   projector_.Form(c.llt, rows_scratch_.J);
   Eigen::VectorXd v = c.llt.solve(p);
@@ -247,8 +248,9 @@ void Articulation::HoldMomenta(const Configuration& c, const Eigen::VectorXd& q,
 void Articulation::AddRowImpulses(const ConstraintRows& rows, const Eigen::VectorXd& nu, double scale) {
   for (Eigen::Index r = 0; r < nu.size(); ++r) {
     const int owner = rows.owner[static_cast<std::size_t>(r)];
-    if (owner < 0) continue;
     const double share = scale * nu[r];
+    if (owner <= -2) tendon_impulse_[static_cast<std::size_t>(-2 - owner)] += share;
+    if (owner < 0) continue;
     if (owner < static_cast<int>(loops_.size())) {
       loop_impulse_[static_cast<std::size_t>(owner)] += share * share;  // (summed squares: the magnitude)
     } else {
@@ -292,7 +294,7 @@ void Articulation::HoldMidpoint(const Configuration& mid, const Eigen::VectorXd&
                                 Eigen::VectorXd& vbar, Eigen::VectorXd& impulse) {
   // g(q1) ≈ g(q0) + h J(q̄) v̄ (exact for linear rows, O(h³) else: the end's projection takes the
   // rest): v̄ += M⁻¹J̄ᵀν, the step's momentum p1 by 2 J̄ᵀν (v̄ = M⁻¹ (p0 + p1)/2).
-  BilateralRows(mid, qbar, Pins{}, rows_scratch_);
+  BilateralRows(mid, qbar, midpoint_pins_, rows_scratch_);
   projector_.Form(mid.llt, rows_scratch_.J);
   held_nu_ = projector_.Hold(vbar, -start_gap_ / h);
   impulse = 2.0 * (rows_scratch_.J.transpose() * held_nu_);
@@ -305,6 +307,9 @@ void Articulation::TendonStopRows(const Eigen::VectorXd& q1, const Eigen::Vector
   for (std::size_t t = 0; t < tendons_.size(); ++t) {
     const JointLimits& limits = tendons_[t].limits;
     if (!std::isfinite(limits.lower) && !std::isfinite(limits.upper)) continue;
+    const auto held = std::find_if(midpoint_pins_.tendons.begin(), midpoint_pins_.tendons.end(),
+                                   [&](const auto& pin) { return pin.first == static_cast<int>(t); });
+    if (held != midpoint_pins_.tendons.end()) continue;  // (held through the step)
     const double length = TendonLength(probe_, q1, static_cast<int>(t), &jl);
     if (length >= limits.lower && length <= limits.upper) continue;
     const double arrival = jl.dot(v1);
@@ -321,8 +326,40 @@ void Articulation::TendonStopRows(const Eigen::VectorXd& q1, const Eigen::Vector
   }
 }
 
+void Articulation::TautTendons(const Eigen::VectorXd& q, Pins& pins) {
+  Configure(q, probe_, Form::kFrames);
+  for (std::size_t t = 0; t < tendons_.size(); ++t) {
+    const JointLimits& limits = tendons_[t].limits;
+    if (!std::isfinite(limits.lower) && !std::isfinite(limits.upper)) continue;
+    const double length = TendonLength(probe_, q, static_cast<int>(t), nullptr);
+    if (length >= limits.upper - 1e-12 * std::max(1.0, std::abs(limits.upper))) {
+      pins.tendons.emplace_back(static_cast<int>(t), limits.upper);
+    } else if (length <= limits.lower + 1e-12 * std::max(1.0, std::abs(limits.lower))) {
+      pins.tendons.emplace_back(static_cast<int>(t), limits.lower);
+    }
+  }
+}
+
+bool Articulation::ReleasePushingPins() {
+  // A pin at the upper end may only shorten the tendon (ν ≤ 0), at the lower only lengthen it.
+  std::vector<std::pair<int, double>> kept;
+  for (Eigen::Index r = 0; r < held_nu_.size(); ++r) {
+    const int owner = rows_scratch_.owner[static_cast<std::size_t>(r)];
+    if (owner > -2) continue;
+    const int t = -2 - owner;
+    const auto pin = std::find_if(midpoint_pins_.tendons.begin(), midpoint_pins_.tendons.end(),
+                                  [&](const auto& p) { return p.first == t; });
+    const bool upper = pin->second == tendons_[static_cast<std::size_t>(t)].limits.upper;
+    if (upper ? held_nu_[r] <= 0 : held_nu_[r] >= 0) kept.push_back(*pin);
+  }
+  if (kept.size() == midpoint_pins_.tendons.size()) return false;
+  midpoint_pins_.tendons = kept;
+  return true;
+}
+
 bool Articulation::FinishConstrained(const std::vector<std::pair<int, double>>& stops) {
   Pins pins = tendon_pins_;
+  pins.tendons.insert(pins.tendons.end(), midpoint_pins_.tendons.begin(), midpoint_pins_.tendons.end());
   for (const auto& [qi, limit] : stops) {
     for (const Node& n : nodes_) {
       if (n.nq == 1 && n.q == qi) pins.dofs.emplace_back(n.v, limit);
@@ -331,7 +368,8 @@ bool Articulation::FinishConstrained(const std::vector<std::pair<int, double>>& 
   if (!end_.dense && !Densify(end_)) return false;
   if (!ProjectPositions(end_.llt, pins, q1_) || !q1_.allFinite()) return false;
   if (!Configure(q1_, end_, StepForm())) return false;
-  if (bilateral_) HoldMomenta(end_, q1_, p1_);
+  // (A tendon the step's stops pinned keeps the velocity its stop gave it: its restitution's.)
+  if (Holds()) HoldMomenta(end_, q1_, p1_, midpoint_pins_);
   return p1_.allFinite();
 }
 

@@ -122,6 +122,7 @@ bool Articulation::ContactKick(const std::vector<std::unique_ptr<Force>>& forces
   // Loops and couplings held in the contacts' solve: the kicked velocity on their rows, aimed at
   // g = 0 by the step's end, and every response to an impulse restricted to them (Respond).
   held_rows_ = Projector{};
+  midpoint_pins_ = Pins{};  // (a contact step's tendon ends are stops, at the step's end)
   if (bilateral_) {
     BilateralRows(start_, q_, Pins{}, held_source_);
     held_rows_.Form(effective_.llt, held_source_.J);

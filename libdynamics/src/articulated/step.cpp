@@ -91,6 +91,55 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
   if (p_.size() == 0) return Still(bodies);
   q0_ = q_;
   p0_ = p_;
+  held_rows_ = Projector{};
+  midpoint_pins_ = Pins{};
+  if (!tendons_.empty()) TautTendons(q0_, midpoint_pins_);
+  Eigen::VectorXd held;  // the rows' generalized impulse over the step
+  // A taut tendon is held through the step (a string swings its ball at the midpoint rule's
+  // order, not a stop's); where holding it would push, it lets go and the step is solved again.
+  for (int attempt = 0;; ++attempt) {
+    Predict(h);
+    if (Holds()) {  // g(q0): the midpoint velocity aims the step's end at g = 0
+      Configure(q0_, probe_, Form::kFrames);
+      BilateralRows(probe_, q0_, midpoint_pins_, rows_scratch_);
+      start_gap_ = rows_scratch_.g;
+    }
+    if (!IterateMidpoint(forces, t, h, held)) return false;
+    if (attempt >= 2 || !Holds() || !ReleasePushingPins()) break;
+  }
+  history_.Push(rate_, vbar_, h);
+  if (Holds()) {
+    p1_ += held;
+    AddRowImpulses(rows_scratch_, held_nu_, 2.0);
+  }
+  Move(q0_, vbar_, h, q1_);
+  if (!Configure(q1_, end_, StepForm())) return false;
+  if (Holds()) {  // the stops' impulses see the loops, couplings and taut tendons held at the end
+    HoldMomenta(end_, q1_, p1_, midpoint_pins_);
+    BilateralRows(end_, q1_, midpoint_pins_, rows_scratch_);
+    held_rows_.Form(end_.llt, rows_scratch_.J);
+    held_target_ = Eigen::VectorXd::Zero(rows_scratch_.J.rows());
+  }
+  std::vector<std::pair<int, double>> stops;
+  if (Impulses(end_, q1_, h, p1_, stops)) {
+    // The impulses act over the step: the midpoint velocity takes half of them.
+    ps_ = 0.5 * (p0_ + p1_);
+    Solve(mid_, ps_, vbar_);
+    if (Holds()) {
+      HoldMidpoint(mid_, qs_, h, vbar_, held);
+      p1_ += held;
+      AddRowImpulses(rows_scratch_, held_nu_, 2.0);
+    }
+    Move(q0_, vbar_, h, q1_);
+    for (const auto& [qi, limit] : stops) q1_[qi] = limit;
+    if (!Configure(q1_, end_, StepForm())) return false;
+  }
+  if (Constrained() && !FinishConstrained(stops)) return false;
+  Accept(bodies);
+  return true;
+}
+
+void Articulation::Predict(double h) {
   // Predictor: after three steps of this length, the rate and the midpoint velocity extrapolated
   // from theirs by a parabola (its error O(h³): 300- and 3000-link chains 1.2× and 1.4× faster than
   // the line); after two, the rate by a line and the midpoint velocity from the last one's
@@ -106,13 +155,12 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
     vbar_ = v_;
     p1_ = p_;
   }
-  held_rows_ = Projector{};
-  if (bilateral_) {  // g(q0): the midpoint velocity aims the step's end at g = 0
-    Configure(q0_, probe_, Form::kFrames);
-    BilateralRows(probe_, q0_, Pins{}, rows_scratch_);
-    start_gap_ = rows_scratch_.g;
-  }
-  Eigen::VectorXd held;  // the rows' generalized impulse over the step
+}
+
+// The fixed-point iteration of the midpoint rule (MidpointStep): v̄ and p1 from the predictor's,
+// held on the rows (Holds) at each iterate; `held` their impulse over the step.
+bool Articulation::IterateMidpoint(const std::vector<std::unique_ptr<Force>>& forces, double t, double h,
+                                   Eigen::VectorXd& held) {
   double last_change = std::numeric_limits<double>::infinity();
   double best_pair = last_change;  // the least of max(change, last change) so far
   int since_best = 0;
@@ -123,7 +171,7 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
     if (!Configure(qs_, mid_, iteration > 0 && Sparse() ? Form::kFrames : StepForm())) return false;
     ps_ = 0.5 * (p0_ + p1_);
     Solve(mid_, ps_, vnew_);
-    if (bilateral_) HoldMidpoint(mid_, qs_, h, vnew_, held);
+    if (Holds()) HoldMidpoint(mid_, qs_, h, vnew_, held);
     Velocities(vnew_, mid_);
     MomentumRate(forces, t + 0.5 * h, qs_, vnew_, mid_, stage_, rate_);
     pnew_ = p0_ + h * rate_;
@@ -163,37 +211,7 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
     vbar_ = vnew_;
     p1_ = pnew_;
   }
-  if (!converged) return false;
-  history_.Push(rate_, vbar_, h);
-  if (bilateral_) {
-    p1_ += held;
-    AddRowImpulses(rows_scratch_, held_nu_, 2.0);
-  }
-  Move(q0_, vbar_, h, q1_);
-  if (!Configure(q1_, end_, StepForm())) return false;
-  if (bilateral_) {  // the stops' impulses see the loops and couplings held at the end
-    HoldMomenta(end_, q1_, p1_);
-    BilateralRows(end_, q1_, Pins{}, rows_scratch_);
-    held_rows_.Form(end_.llt, rows_scratch_.J);
-    held_target_ = Eigen::VectorXd::Zero(rows_scratch_.J.rows());
-  }
-  std::vector<std::pair<int, double>> stops;
-  if (Impulses(end_, q1_, h, p1_, stops)) {
-    // The impulses act over the step: the midpoint velocity takes half of them.
-    ps_ = 0.5 * (p0_ + p1_);
-    Solve(mid_, ps_, vbar_);
-    if (bilateral_) {
-      HoldMidpoint(mid_, qs_, h, vbar_, held);
-      p1_ += held;
-      AddRowImpulses(rows_scratch_, held_nu_, 2.0);
-    }
-    Move(q0_, vbar_, h, q1_);
-    for (const auto& [qi, limit] : stops) q1_[qi] = limit;
-    if (!Configure(q1_, end_, StepForm())) return false;
-  }
-  if (Constrained() && !FinishConstrained(stops)) return false;
-  Accept(bodies);
-  return true;
+  return converged;
 }
 
 // Classical RK4 on (q, p), q̇ from v = M(q)⁻¹ p (quaternions as four numbers, normalized at the
@@ -226,6 +244,7 @@ bool Articulation::RK4Step(const std::vector<std::unique_ptr<Force>>& forces, do
   if (!q1_.allFinite() || !p1_.allFinite()) return false;
   if (!Configure(q1_, end_)) return false;
   held_rows_ = Projector{};
+  midpoint_pins_ = Pins{};
   std::vector<std::pair<int, double>> stops;
   pnew_ = p1_;
   if (Impulses(end_, q1_, h, p1_, stops)) {
@@ -320,6 +339,7 @@ bool Articulation::Impulses(Configuration& c, const Eigen::VectorXd& q1, double 
     for (Eigen::Index r = 0; r < nr; ++r) {
       const Row& row = rows_[static_cast<std::size_t>(r)];
       const double v = along(r, v1) + W.row(r).dot(lambda);
+      if (!(W(r, r) > 1e-300)) continue;  // (a row nothing can move: held by a loop or coupling)
       const double next = std::clamp(lambda[r] + (row.target - v) / W(r, r), row.lo, row.hi);
       change = std::max(change, std::fabs(next - lambda[r]));
       size = std::max(size, std::fabs(next));
