@@ -103,6 +103,28 @@ TEST(RobotConstraints, MjcfConnectClosesTheFourBar) {
   EXPECT_LT(l.world.world().loop_state(0).residual, 1e-9);
 }
 
+// The same four-bar as SDFormat closes it (the coupler the child of two joints): a hinge loop.
+TEST(RobotConstraints, SdformatSecondParentClosesTheFourBar) {
+  const massprops::RobotModel model = massprops::ReadRobotModel(kDir + "four_bar.sdf");
+  ASSERT_EQ(model.loops.size(), 1u);
+  ASSERT_EQ(model.joints.size(), 3u);
+  dynamics::World w;
+  w.AddForce(dynamics::Gravity(Vector3(0, 0, -kG)));
+  ContactWorld world(std::move(w));
+  dynamics::RobotOptions options;
+  const double q0 = kPi / 3;
+  options.positions = {{"crank1", q0}, {"crank2", q0}, {"coupler", -q0}};
+  const dynamics::RobotInWorld added = dynamics::AddRobot(world, model, options);
+  const double crank = 0.08354 + 1.0 * 0.25;
+  const double I = 2 * crank + 0.6, k = kG * (1.0 + 0.6);
+  const double period = 4 * std::sqrt(I / k) * boost::math::ellint_1(std::sin(q0 / 2));
+  const long n = 4000;
+  for (long s = 0; s < n / 2; ++s) ASSERT_TRUE(world.Step(period / n).ok);
+  EXPECT_NEAR(world.world().joint_state(added.joint_of[0]).position[0], -q0, 1e-5);
+  EXPECT_NEAR(world.world().joint_state(added.joint_of[1]).position[0], -q0, 1e-5);
+  EXPECT_LT(world.world().loop_state(0).residual, 1e-9);
+}
+
 TEST(RobotConstraints, MjcfSpatialTendonIsAString) {
   Loaded l = Load("string_pendulum.xml", "horizontal");
   ASSERT_EQ(l.model.tendons.size(), 1u);

@@ -117,6 +117,46 @@ void Screen(const Document& doc, RobotFormat format, std::vector<std::string>& n
   }
 }
 
+// SDFormat describes a closed loop directly: a link that is the child of a second joint. That
+// joint closes the loop (RobotLoop: a revolute its hinge, a prismatic its slider, a ball, a fixed
+// one a weld, about frames whose z is the joint's axis); the first keeps the link in the tree.
+void SecondParentsAsLoops(RobotModel& model) {
+  std::vector<char> has_parent(model.links.size(), 0);
+  std::vector<RobotJoint> tree;
+  for (const RobotJoint& j : model.joints) {
+    char& seen = has_parent[static_cast<std::size_t>(j.child)];
+    if (!seen) {
+      seen = 1;
+      tree.push_back(j);
+      continue;
+    }
+    RobotLoop loop;
+    loop.name = j.name;
+    switch (j.type) {
+      case RobotJointType::kRevolute:
+      case RobotJointType::kContinuous: loop.type = RobotLoop::Type::kHinge; break;
+      case RobotJointType::kPrismatic: loop.type = RobotLoop::Type::kSlider; break;
+      case RobotJointType::kBall: loop.type = RobotLoop::Type::kBall; break;
+      default: loop.type = RobotLoop::Type::kWeld; break;
+    }
+    // A frame whose z is the axis (J's axes turned).
+    const Vector3 z = j.axis.normalized();
+    const Vector3 x = (std::abs(z.x()) < 0.9 ? Vector3::UnitX() : Vector3::UnitY()).cross(z).normalized();
+    Matrix3 R;
+    R << x, z.cross(x), z;
+    const Placement along{R, Vector3::Zero()};
+    loop.link_a = j.parent;
+    loop.in_a = j.parent_to_joint.Then(along);
+    loop.link_b = j.child;
+    loop.in_b = j.joint_to_child.Inverse().Then(along);
+    if (j.lower || j.upper || j.damping != 0 || j.friction != 0 || j.stiffness != 0) {
+      model.notes.push_back("joint '" + j.name + "' closes a loop: its limits, damping, friction and spring are not simulated");
+    }
+    model.loops.push_back(loop);
+  }
+  model.joints = std::move(tree);
+}
+
 // Every link the child of one joint at most, and no loop.
 void CheckTree(const RobotModel& model) {
   std::vector<int> joint_of(model.links.size(), -1);
@@ -271,6 +311,7 @@ RobotModel ReadRobotModel(const std::string& path, const RobotModelOptions& opti
     throw std::runtime_error(path + ": " + e.what());
   }
   if (model.format == RobotFormat::kMjcf && !options.fill) InertiaFromGeoms(doc, options, model);
+  if (model.format == RobotFormat::kSdf) SecondParentsAsLoops(model);
   CheckTree(model);
   return model;
 }
