@@ -180,6 +180,68 @@ TEST(Scene, JointErrorsNameTheJointsField) {
   for (const auto& c : cases) EXPECT_THAT(ErrorOf(c.scene), HasSubstr(c.expect)) << c.scene;
 }
 
+TEST(Scene, ConstraintErrorsNameTheirField) {
+  const std::string bodies = R"("bodies": [{"name": "a", "solid": {"type": "box", "size": [0.1, 0.1, 0.4]}},
+                                            {"name": "b", "solid": {"type": "box", "size": [0.1, 0.1, 0.4]}, "position": [1, 0, 0]},
+                                            {"name": "c", "solid": {"type": "box", "size": [0.1, 0.1, 0.1]}, "position": [1, 0, -1]}],
+    "joints": [{"name": "ja", "type": "revolute", "parent": "world", "child": "a", "anchor": [0, 0, 0], "axis": [1, 0, 0]},
+               {"name": "jb", "type": "revolute", "parent": "world", "child": "b", "anchor": [1, 0, 0], "axis": [1, 0, 0]},
+               {"name": "free", "type": "spherical", "parent": "b", "child": "c", "anchor": [1, 0, -1]}], )";
+  auto scene = [&](const std::string& rest) { return "{" + bodies + rest + "}"; };
+  struct Case {
+    std::string scene, expect;
+  } cases[] = {
+      {scene(R"("loops": [{"type": "pin", "a": "a", "b": "b", "anchor": [0, 0, 0]}])"), "loops[0].type: 'pin' is not one of"},
+      {scene(R"("loops": [{"type": "ball", "a": "a", "b": "d", "anchor": [0, 0, 0]}])"), "loops[0].b: no body is named 'd'"},
+      {scene(R"("loops": [{"type": "hinge", "a": "a", "b": "b", "anchor": [0, 0, 0]}])"),
+       "loops[0].axis: is required for a hinge loop"},
+      {scene(R"("loops": [{"type": "ball", "a": "a", "b": "b", "axis": [1, 0, 0], "anchor": [0.5, 0, 0]}])"),
+       "loops[0].axis: has no meaning for a ball loop"},
+      {"{" + std::string(R"("bodies": [{"name": "a", "solid": {"type": "box", "size": [0.1, 0.1, 0.4]}}],
+          "joints": [{"name": "ja", "type": "revolute", "parent": "world", "child": "a", "anchor": [0, 0, 0],
+                      "axis": [1, 0, 0], "position": 0.5}],
+          "loops": [{"type": "ball", "a": "a", "b": "world", "anchor": [0, 0, -0.2]}]})"),
+       "loops[0]: its frames do not meet where the joints place the bodies: 0.0989616 m apart"},
+      {scene(R"("couplings": [{"follower": "jb", "leader": "jx"}])"), "couplings[0].leader: no joint is named 'jx'"},
+      {scene(R"("couplings": [{"follower": "jb", "leader": "jb"}])"), "couplings[0]: it couples a coordinate to itself"},
+      {scene(R"("couplings": [{"follower": "free", "leader": "ja"}])"),
+       "couplings[0].follower: 'free' is not a revolute or prismatic joint"},
+      {scene(R"("couplings": [{"follower": "jb", "leader": "ja", "multiplier": 2, "polynomial": [0, 2]}])"),
+       "couplings[0].polynomial: give 'multiplier' and 'offset', or 'polynomial', not both"},
+      {scene(R"("tendons": [{"path": [{"body": "a", "point": [0, 0, 0]}]}])"),
+       "tendons[0].path: must be an array of two points or more"},
+      {scene(R"("tendons": [{"joints": [{"joint": "ja"}], "range": [1, 0]}])"), "tendons[0].range: its lower end is above its upper"},
+      {scene(R"("tendons": [{"joints": [{"joint": "ja"}], "path": []}])"), "tendons[0]: give 'joints'"},
+      {scene(R"("couplings": [{"follower": "jb", "leader": "ja"}], "integrator": "rk4")"),
+       "integrator: 'rk4': loops and couplings are held by implicit-midpoint only"},
+  };
+  for (const auto& c : cases) EXPECT_THAT(ErrorOf(c.scene), HasSubstr(c.expect)) << c.scene;
+}
+
+// The linkages example: the four-bar's loop, the gears' coupling and the string's range held
+// through 5 s, and the energy of this conservative scene kept (the string goes slack only where it
+// would push: never, swinging).
+TEST(Simulation, LinkagesExampleHoldsItsLoopsCouplingsAndString) {
+  std::vector<std::string> w;
+  scene::Scene scene = scene::LoadScene(DataPath("scenes/linkages.json"), w);
+  scene::Simulation sim = scene::BuildSimulation(scene, w);
+  ASSERT_EQ(sim.world().loops().size(), 1u);
+  const double e0 = sim.world().Diagnose().total_energy;
+  double gap = 0, gears = 0, stretch = 0, energy = 0;
+  scene::Run(sim, [&](const dynamics::World& world, const dynamics::Diagnostics& diag) {
+    gap = std::max(gap, world.loop_state(0).residual);
+    gears = std::max(gears, std::abs(world.coupling_state(0).residual));
+    stretch = std::max(stretch, world.tendon_state(0).length - 0.6);
+    energy = std::max(energy, std::abs(diag.total_energy - e0) / std::abs(e0));
+  });
+  EXPECT_LT(gap, 1e-9);
+  EXPECT_LT(gears, 1e-12);
+  EXPECT_LT(stretch, 1e-9);
+  EXPECT_LT(energy, 1e-4);
+  const dynamics::JointState wheel = sim.world().joint_state(3), pinion = sim.world().joint_state(4);
+  EXPECT_NEAR(pinion.position[0], -2 * wheel.position[0], 1e-12);
+}
+
 // The example's T-handle pendulum against the closed form T = 4 √(I/(m g d)) K(sin(θ0/2)), run
 // through the scene (anchor and axis in the world, the mesh through massprops), and joints.csv.
 TEST(Simulation, JointExampleMeshPendulumHasTheEllipticPeriod) {
@@ -310,7 +372,8 @@ TEST(Scene, NonUnitQuaternionIsNormalizedWithAWarning) {
 TEST(Scene, ExampleScenesAreValid) {
   for (const char* name :
        {"t_handle", "heavy_top", "tumbling_spot", "hanging_spring", "two_bodies", "csg_part", "box_stack",
-        "incline_roll", "dominoes", "spot_on_table", "pile", "ring_on_peg", "pile_in_bin", "joints", "quadruped"}) {
+        "incline_roll", "dominoes", "spot_on_table", "pile", "ring_on_peg", "pile_in_bin", "joints", "quadruped",
+        "linkages"}) {
     std::vector<std::string> w;
     EXPECT_NO_THROW(scene::BuildSimulation(scene::LoadScene(DataPath(std::string("scenes/") + name + ".json"), w), w))
         << name;

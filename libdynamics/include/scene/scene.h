@@ -103,6 +103,30 @@ struct JointSpec {
   Vector3 axis = Vector3::UnitZ();
 };
 
+/// A loop closure (dynamics/constraints.h) as the scene gives it: its frames at `anchor` with z
+/// along `axis`, in the world at the scene's placement of the bodies (where every joint is at 0).
+struct LoopSpec {
+  std::string field;   ///< "loops[0]"
+  dynamics::Loop loop;  ///< name, type and bodies (frames not yet placed)
+  Vector3 anchor = Vector3::Zero();
+  Vector3 axis = Vector3::UnitZ();
+};
+
+/// A tendon as the scene gives it: its joints (scene joint indices) or the world points of its
+/// path at the scene's placement, each on a body (or "world").
+struct TendonSpec {
+  std::string field;  ///< "tendons[0]"
+  dynamics::Tendon tendon;
+  std::vector<Vector3> points;  ///< the path's points (world); tendon.path holds their bodies
+  bool rest_given = false;      ///< else the length at the placement
+};
+
+/// A coupling as the scene gives it (its coordinates by joint or tendon name).
+struct CouplingSpec {
+  std::string field;  ///< "couplings[0]"
+  dynamics::Coupling coupling;
+};
+
 /// A robot description placed in the scene (docs/robots.md).
 struct RobotSpec {
   std::string name;   ///< prefixes its bodies' names ("dog/base_link")
@@ -130,6 +154,9 @@ struct Scene {
   std::vector<BodySpec> bodies;
   std::vector<ForceSpec> forces;
   std::vector<JointSpec> joints;
+  std::vector<LoopSpec> loops;
+  std::vector<TendonSpec> tendons;
+  std::vector<CouplingSpec> couplings;
   std::vector<RobotSpec> robots;
   std::vector<GroundSpec> grounds;
   /// grounds[0] is the floor a robot file run on its own gets (RobotScene): a file with floors of

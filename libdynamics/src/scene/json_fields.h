@@ -142,6 +142,12 @@ Scene ParseScene(const nlohmann::json& json, const std::string& file, const std:
 /// Reads the scene's "joints" array (the bodies already read). @throws SceneError.
 std::vector<JointSpec> ReadJoints(const nlohmann::json& joints, const std::string& file,
                                   const std::vector<BodySpec>& bodies);
+/// Reads the scene's "loops", "tendons" and "couplings" (after its bodies and joints; each
+/// refers to them by name or index). @throws SceneError naming the field.
+void ReadConstraints(json_fields::Fields& f, Scene& scene);
+/// Adds the scene's loops, tendons and couplings to a world whose bodies and joints are the
+/// scene's, in order (frames placed from the bodies as added). @throws SceneError naming the field.
+void AddSceneConstraints(const Scene& scene, dynamics::ContactWorld& world);
 /// Reads the scene's "robots" array (files relative to base_dir). @throws SceneError.
 std::vector<RobotSpec> ReadRobots(const nlohmann::json& robots, const std::string& file, const std::string& base_dir,
                                   std::vector<std::string>& warnings);

@@ -542,6 +542,9 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
     }
   }
   if (const json* jt = f.Get("joints")) scene.joints = ReadJoints(*jt, file, scene.bodies);
+  ReadConstraints(f, scene);
+  if ((!scene.loops.empty() || !scene.couplings.empty()) && scene.integrator != dynamics::Integrator::kImplicitMidpoint)
+    f.Fail("integrator", "'" + integrator + "': loops and couplings are held by implicit-midpoint only");
   if ((!scene.joints.empty() || !scene.robots.empty()) && scene.integrator != dynamics::Integrator::kImplicitMidpoint &&
       scene.integrator != dynamics::Integrator::kRK4) {
     f.Fail("integrator", "'" + integrator + "' has no meaning for joints and robots (it steps free bodies): use " +

@@ -12,6 +12,7 @@
 
 #include "bodies/bodies.h"
 #include "bodies/robot.h"
+#include "json_fields.h"
 #include "dynamics/forces.h"
 #include "massprops/implicit.h"
 #include "massprops/io/load.h"
@@ -376,6 +377,7 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
   sim.contact = wants_contact;
   const std::vector<bool> collides = AddBodies(scene, builder, wants_contact, sim, warnings);
   AddJoints(scene, sim);
+  AddSceneConstraints(scene, sim.physics);
   for (const RobotSpec& spec : scene.robots) AddRobot(sim, spec, warnings);
   AddGrounds(sim);
   AddStatics(scene, builder, sim, warnings);
