@@ -42,6 +42,8 @@ void RunWithoutGil(const Work& work) {
 
 /// massprops._core.resting_poses (poses.cpp).
 void BindPoses(pybind11::module_& m);
+/// World's and ContactWorld's loops, couplings and tendons (constraints.cpp), after both are bound.
+void BindConstraints(pybind11::module_& dyn);
 /// massprops.dynamics.load_scene (scenes.cpp), on the dynamics submodule.
 void BindScenes(pybind11::module_& dyn);
 

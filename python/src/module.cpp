@@ -966,6 +966,7 @@ PYBIND11_MODULE(_core, m) {
   // Importable by its name too (import massprops._core.dynamics), as type checkers expect.
   py::module_::import("sys").attr("modules")["massprops._core.dynamics"] = dyn;
   BindDynamics(dyn);
+  massprops_python::BindConstraints(dyn);
   massprops_python::BindScenes(dyn);
   massprops_python::BindPoses(m);
 }
