@@ -12,6 +12,7 @@ namespace rbsim {
 const char* const kTrajectoryCsvHeader = "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,w1,w2,w3";
 const char* const kJointsCsvHeader =
     "time,joint,type,q1,q2,q3,q4,q5,q6,q7,v1,v2,v3,v4,v5,v6,limit_impulse,drive_impulse";
+const char* const kConstraintsCsvHeader = "time,constraint,kind,residual,length,impulse";
 const char* const kDiagnosticsCsvHeader =
     "time,kinetic_energy,potential_energy,energy,px,py,pz,Lx,Ly,Lz,energy_drift,p_drift,L_drift";
 
@@ -95,6 +96,7 @@ void Recording::Add(const Simulation& sim, const dynamics::World& world, const d
 TrajectoryWriter::TrajectoryWriter(const std::string& dir, const std::vector<OutputKind>& outputs, bool joints) {
   auto want = [&](OutputKind k) { return std::find(outputs.begin(), outputs.end(), k) != outputs.end(); };
   using massprops::report::AtomicFile;
+  dir_ = dir;
   if (want(OutputKind::kCsv)) {
     csv_ = std::make_unique<AtomicFile>(dir + "/trajectory.csv");
     csv_->stream() << kTrajectoryCsvHeader << "\n";
@@ -164,6 +166,7 @@ void TrajectoryWriter::Add(const Simulation& sim, const dynamics::World& world, 
     line_ += '\n';
     joints_->stream() << line_;
   }
+  if (csv_) AddConstraints(world, d.time);
   if (diagnostics_) {
     const dynamics::Drift drift = dynamics::DriftSince(start_, d);
     line_.clear();
@@ -173,6 +176,28 @@ void TrajectoryWriter::Add(const Simulation& sim, const dynamics::World& world, 
     line_ += '\n';
     diagnostics_->stream() << line_;
   }
+}
+
+void TrajectoryWriter::AddConstraints(const dynamics::World& world, double time) {
+  if (world.loops().empty() && world.couplings().empty() && world.tendons().empty()) return;
+  if (!constraints_) {
+    constraints_ = std::make_unique<massprops::report::AtomicFile>(dir_ + "/constraints.csv");
+    constraints_->stream() << kConstraintsCsvHeader << "\n";
+  }
+  auto row = [&](const std::string& name, const char* kind, const dynamics::ConstraintState& s) {
+    line_.clear();
+    Put(line_, time);
+    line_ += ',' + name + ',' + kind + ',';
+    PutList(line_, {s.residual, s.length, s.impulse});
+    line_ += '\n';
+    constraints_->stream() << line_;
+  };
+  for (std::size_t k = 0; k < world.loops().size(); ++k)
+    row(world.loops()[k].name, "loop", world.loop_state(static_cast<int>(k)));
+  for (std::size_t k = 0; k < world.couplings().size(); ++k)
+    row(world.couplings()[k].name, "coupling", world.coupling_state(static_cast<int>(k)));
+  for (std::size_t k = 0; k < world.tendons().size(); ++k)
+    row(world.tendons()[k].name, "tendon", world.tendon_state(static_cast<int>(k)));
 }
 
 void TrajectoryWriter::AddStep(const Simulation& sim, std::int64_t step) {
@@ -202,7 +227,7 @@ void TrajectoryWriter::AddStep(const Simulation& sim, std::int64_t step) {
 
 std::vector<std::string> TrajectoryWriter::Commit() {
   std::vector<std::string> paths;
-  for (auto* f : {csv_.get(), jsonl_.get(), diagnostics_.get(), joints_.get(), contacts_.get()}) {
+  for (auto* f : {csv_.get(), jsonl_.get(), diagnostics_.get(), joints_.get(), contacts_.get(), constraints_.get()}) {
     if (!f) continue;
     f->Commit();
     paths.push_back(f->path());

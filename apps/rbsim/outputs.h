@@ -50,7 +50,10 @@ class TrajectoryWriter {
   std::vector<std::string> Commit();
 
  private:
-  std::unique_ptr<massprops::report::AtomicFile> csv_, jsonl_, diagnostics_, joints_, contacts_;
+  /// constraints.csv: each loop, coupling and tendon per sample (with csv, when the world has any).
+  void AddConstraints(const dynamics::World& world, double time);
+  std::unique_ptr<massprops::report::AtomicFile> csv_, jsonl_, diagnostics_, joints_, contacts_, constraints_;
+  std::string dir_;
   dynamics::Diagnostics start_;
   bool started_ = false;
   std::string line_;
@@ -62,6 +65,10 @@ extern const char* const kDiagnosticsCsvHeader;
 /// joints.csv: per joint per sample, its position q1..q7 and velocity v1..v6 (as many as the
 /// joint type has, the rest empty) and the last step's impulses.
 extern const char* const kJointsCsvHeader;
+/// constraints.csv: per loop, coupling and tendon per sample, its kind ("loop", "coupling",
+/// "tendon"), residual (a loop's gap in m or rad, a coupling's y − y(x), a tendon's length beyond
+/// its range), length (a tendon's; a coupling's follower coordinate) and last step's impulse.
+extern const char* const kConstraintsCsvHeader;
 
 /// Writes the run as one self-contained HTML page that plays it offline (html.cpp): the bodies,
 /// static bodies and grounds, a time slider, the contact forces, sleeping bodies, the diagnostics.

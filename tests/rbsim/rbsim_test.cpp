@@ -228,7 +228,12 @@ TEST(Simulation, LinkagesExampleHoldsItsLoopsCouplingsAndString) {
   ASSERT_EQ(sim.world().loops().size(), 1u);
   const double e0 = sim.world().Diagnose().total_energy;
   double gap = 0, gears = 0, stretch = 0, energy = 0;
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("rbsim_linkages_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  rbsim::TrajectoryWriter writer(dir.string(), {scene::OutputKind::kCsv}, true);
   scene::Run(sim, [&](const dynamics::World& world, const dynamics::Diagnostics& diag) {
+    writer.Add(sim, world, diag);
     gap = std::max(gap, world.loop_state(0).residual);
     gears = std::max(gears, std::abs(world.coupling_state(0).residual));
     stretch = std::max(stretch, world.tendon_state(0).length - 0.6);
@@ -240,6 +245,19 @@ TEST(Simulation, LinkagesExampleHoldsItsLoopsCouplingsAndString) {
   EXPECT_LT(energy, 1e-4);
   const dynamics::JointState wheel = sim.world().joint_state(3), pinion = sim.world().joint_state(4);
   EXPECT_NEAR(pinion.position[0], -2 * wheel.position[0], 1e-12);
+  // constraints.csv: a row per loop, coupling and tendon per sample; the string's length its own.
+  writer.Commit();
+  std::ifstream csv(dir / "constraints.csv");
+  std::string header, loop, gears_row, string_row;
+  std::getline(csv, header);
+  std::getline(csv, loop);
+  std::getline(csv, gears_row);
+  std::getline(csv, string_row);
+  EXPECT_EQ(header, rbsim::kConstraintsCsvHeader);
+  EXPECT_THAT(loop, HasSubstr(",closure,loop,"));
+  EXPECT_THAT(gears_row, HasSubstr(",gears,coupling,0,-1,0"));  // the pinion at −1 rad, held there
+  EXPECT_THAT(string_row, HasSubstr(",string,tendon,"));
+  fs::remove_all(dir);
 }
 
 // The example's T-handle pendulum against the closed form T = 4 √(I/(m g d)) K(sin(θ0/2)), run
