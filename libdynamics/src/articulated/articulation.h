@@ -237,8 +237,10 @@ class Articulation {
   void BilateralRows(const Configuration& c, const Eigen::VectorXd& q, const Pins& pins, ConstraintRows& rows) const;
   /// The position slot of a 1-dof joint's velocity slot.
   int DofPosition(int dof) const;
-  /// q moved onto the rows (and pins) by Newton's method in the metric of `metric` (false: not finite).
-  bool ProjectPositions(const Eigen::LLT<Eigen::MatrixXd>& metric, const Pins& pins, Eigen::VectorXd& q);
+  /// q moved onto the rows (and pins) by Newton's method in the metric of `metric` (false: not
+  /// finite); `moved`: whether q changed.
+  bool ProjectPositions(const Eigen::LLT<Eigen::MatrixXd>& metric, const Pins& pins, const Configuration& at_q,
+                        Eigen::VectorXd& q, bool& moved);
   /// p changed by the least impulse Jᵀν that makes v = M⁻¹p satisfy J v = 0 at c (dense).
   void HoldMomenta(const Configuration& c, const Eigen::VectorXd& q, Eigen::VectorXd& p, const Pins& pins = {});
   /// Rows the midpoint step holds: loops, couplings, taut tendons.

@@ -191,6 +191,16 @@ void Projector::Form(const Eigen::LLT<Eigen::MatrixXd>& factor, const Eigen::Mat
   if (J.rows() == 0) return;
   Y = factor.solve(J.transpose());
   const Eigen::MatrixXd A = J * Y;
+  // Rows that say different things (the common case): A's Cholesky factor, when its pivots stay
+  // above 10⁻¹⁰ of A's largest diagonal entry.
+  const Eigen::LLT<Eigen::MatrixXd> direct(A);
+  if (direct.info() == Eigen::Success) {
+    const Eigen::VectorXd pivots = direct.matrixLLT().diagonal().cwiseAbs2();
+    if (pivots.minCoeff() > 1e-10 * A.diagonal().maxCoeff()) {
+      Ainv = direct.solve(Eigen::MatrixXd::Identity(A.rows(), A.cols()));
+      return;
+    }
+  }
   // The rows' coupling may be singular (a planar loop closed by a ball: its row out of the plane
   // is 0; two couplings saying the same): its pseudo-inverse, eigenvalues below 10⁻¹² of the
   // largest taken as 0, so that redundant rows share nothing and change nothing.
@@ -214,23 +224,28 @@ void Projector::Restrict(Eigen::VectorXd& x) const {
   x.noalias() -= Y * (Ainv * (J * x));
 }
 
-bool Articulation::ProjectPositions(const Eigen::LLT<Eigen::MatrixXd>& metric, const Pins& pins, Eigen::VectorXd& q) {
+bool Articulation::ProjectPositions(const Eigen::LLT<Eigen::MatrixXd>& metric, const Pins& pins,
+                                   const Configuration& at_q, Eigen::VectorXd& q, bool& moved) {
   // Newton's method on g(q) = 0, each correction the least in M's metric, Δ = −M⁻¹Jᵀ(JM⁻¹Jᵀ)⁺g,
-  // until g stops shrinking (rounding) or is below 10⁻¹⁵.
+  // until g is at rounding's level or stops shrinking (rounding decides the rest). `at_q` is q's
+  // configuration (its frames), read for the first look.
   double last = std::numeric_limits<double>::infinity();
-  Eigen::VectorXd delta, moved;
+  const double floor = 1e-15 * std::max(1.0, q.size() ? q.cwiseAbs().maxCoeff() : 0.0);
+  Eigen::VectorXd delta, next;
+  moved = false;
   for (int iteration = 0; iteration < 12; ++iteration) {
-    Configure(q, probe_, Form::kFrames);
-    BilateralRows(probe_, q, pins, rows_scratch_);
+    if (iteration > 0) Configure(q, probe_, Form::kFrames);
+    BilateralRows(iteration > 0 ? probe_ : at_q, q, pins, rows_scratch_);
     const double size = rows_scratch_.g.size() ? rows_scratch_.g.cwiseAbs().maxCoeff() : 0.0;
     if (!std::isfinite(size)) return false;
-    if (size <= 1e-15 || size >= 0.5 * last) return true;
+    if (size <= floor || size >= 0.5 * last) return true;
     last = size;
     projector_.Form(metric, rows_scratch_.J);
     delta = Eigen::VectorXd::Zero(v_.size());
     projector_.Hold(delta, -rows_scratch_.g);
-    Move(q, delta, 1.0, moved);
-    q.swap(moved);
+    Move(q, delta, 1.0, next);
+    q.swap(next);
+    moved = true;
   }
   return true;
 }
@@ -366,8 +381,9 @@ bool Articulation::FinishConstrained(const std::vector<std::pair<int, double>>& 
     }
   }
   if (!end_.dense && !Densify(end_)) return false;
-  if (!ProjectPositions(end_.llt, pins, q1_) || !q1_.allFinite()) return false;
-  if (!Configure(q1_, end_, StepForm())) return false;
+  bool moved = false;
+  if (!ProjectPositions(end_.llt, pins, end_, q1_, moved) || !q1_.allFinite()) return false;
+  if (moved && !Configure(q1_, end_, StepForm())) return false;
   // (A tendon the step's stops pinned keeps the velocity its stop gave it: its restitution's.)
   if (Holds()) HoldMomenta(end_, q1_, p1_, midpoint_pins_);
   return p1_.allFinite();
