@@ -402,7 +402,8 @@ int Joints(const std::string& path, const std::string& keyframe, double seconds,
   // scale of the agreement to expect).
   const dynamics::World& world = ours.world();
   double held = 0, soft = 0;
-  for (std::size_t k = 0; k < world.loops().size(); ++k) held = std::max(held, std::abs(world.loop_state(static_cast<int>(k)).residual));
+  for (std::size_t k = 0; k < world.loops().size(); ++k)
+    held = std::max(held, std::abs(world.loop_state(static_cast<int>(k)).residual));
   for (std::size_t k = 0; k < world.couplings().size(); ++k)
     held = std::max(held, std::abs(world.coupling_state(static_cast<int>(k)).residual));
   for (std::size_t k = 0; k < world.tendons().size(); ++k)

@@ -17,8 +17,8 @@ namespace {
 
 void CheckBody(const char* call, const std::string& what, const std::string& name, int body, int num_bodies) {
   if (body < -1 || body >= num_bodies) {
-    Refuse(call, what, name, "body " + std::to_string(body) + " does not exist (the world has " +
-                                 std::to_string(num_bodies) + ")");
+    Refuse(call, what, name,
+           "body " + std::to_string(body) + " does not exist (the world has " + std::to_string(num_bodies) + ")");
   }
 }
 
@@ -88,17 +88,18 @@ int World::AddCoupling(const Coupling& coupling) {
     if (x.index < 0) return;
     if (x.kind == Coordinate::Kind::kTendon) {
       if (x.index >= static_cast<int>(tendons_.size()))
-        Refuse(call, "coupling", name, std::string("its ") + role + ", tendon " + std::to_string(x.index) +
-                                           ", does not exist");
+        Refuse(call, "coupling", name,
+               std::string("its ") + role + ", tendon " + std::to_string(x.index) + ", does not exist");
       return;
     }
     if (x.index >= static_cast<int>(joints_.size()))
-      Refuse(call, "coupling", name, std::string("its ") + role + ", joint " + std::to_string(x.index) +
-                                         ", does not exist");
+      Refuse(call, "coupling", name,
+             std::string("its ") + role + ", joint " + std::to_string(x.index) + ", does not exist");
     const Joint& j = joints_[static_cast<std::size_t>(x.index)];
     if (!HasOneCoordinate(j.type))
-      Refuse(call, "coupling", name, std::string("its ") + role + ", joint '" + j.name + "', is " +
-                                         JointTypeName(j.type) + ": only revolute and prismatic joints couple");
+      Refuse(call, "coupling", name,
+             std::string("its ") + role + ", joint '" + j.name + "', is " + JointTypeName(j.type) +
+                 ": only revolute and prismatic joints couple");
   };
   if (coupling.follower.index < 0) Refuse(call, "coupling", name, "it has no follower");
   check(coupling.follower, "follower");
@@ -144,8 +145,8 @@ int World::AddTendon(const Tendon& tendon) {
     if (j < 0 || j >= static_cast<int>(joints_.size()))
       Refuse(call, "tendon", name, "joint " + std::to_string(j) + " does not exist");
     if (!HasOneCoordinate(joints_[static_cast<std::size_t>(j)].type))
-      Refuse(call, "tendon", name, "joint '" + joints_[static_cast<std::size_t>(j)].name +
-                                       "' is not revolute or prismatic");
+      Refuse(call, "tendon", name,
+             "joint '" + joints_[static_cast<std::size_t>(j)].name + "' is not revolute or prismatic");
     if (!std::isfinite(c)) Refuse(call, "tendon", name, "a coefficient is not finite");
   }
   if (!tendon.path.empty() && tendon.path.size() < 2)
@@ -167,7 +168,8 @@ int World::AddTendon(const Tendon& tendon) {
 }
 
 ConstraintState World::loop_state(int k) const {
-  if (k < 0 || k >= static_cast<int>(loops_.size())) throw std::out_of_range("World::loop_state: no loop " + std::to_string(k));
+  if (k < 0 || k >= static_cast<int>(loops_.size()))
+    throw std::out_of_range("World::loop_state: no loop " + std::to_string(k));
   Place();
   return articulation_->LoopState(k);
 }

@@ -131,13 +131,13 @@ void BindOn(py::class_<W>& cls, const dynamics::World& (*read)(const W&), int (*
   const double inf = std::numeric_limits<double>::infinity();
   cls.def(
          "add_loop",
-         [read, add_loop](W& w, const std::string& type, int a, int b, const py::handle& anchor,
-                          const py::handle& axis, const std::string& name, double tolerance) {
+         [read, add_loop](W& w, const std::string& type, int a, int b, const py::handle& anchor, const py::handle& axis,
+                          const std::string& name, double tolerance) {
            const dynamics::Loop loop = LoopOf(read(w), type, a, b, anchor, axis, name, tolerance);
            return Checked([&] { return add_loop(w, loop); });
          },
-         py::arg("type"), py::arg("a"), py::arg("b"), py::arg("anchor"), py::arg("axis") = py::make_tuple(0.0, 0.0, 1.0),
-         py::arg("name") = "", py::arg("tolerance") = 1e-6,
+         py::arg("type"), py::arg("a"), py::arg("b"), py::arg("anchor"),
+         py::arg("axis") = py::make_tuple(0.0, 0.0, 1.0), py::arg("name") = "", py::arg("tolerance") = 1e-6,
          "Closes a loop between bodies a and b (-1: the world): 'ball' (their points at `anchor` together), "
          "'weld', 'hinge' or 'slider' (about or along `axis`); anchor and axis in the world at the bodies' "
          "placement as added. Held exactly. Returns its index")
@@ -145,7 +145,8 @@ void BindOn(py::class_<W>& cls, const dynamics::World& (*read)(const W&), int (*
           "add_coupling",
           [read, add_coupling](W& w, int follower, int leader, double multiplier, double offset,
                                const py::handle& polynomial, bool tendons, const std::string& name) {
-            const dynamics::Coupling c = CouplingOf(read(w), follower, leader, multiplier, offset, polynomial, tendons, name);
+            const dynamics::Coupling c =
+                CouplingOf(read(w), follower, leader, multiplier, offset, polynomial, tendons, name);
             return Checked([&] { return add_coupling(w, c); });
           },
           py::arg("follower"), py::arg("leader") = -1, py::arg("multiplier") = 1.0, py::arg("offset") = 0.0,
@@ -161,9 +162,9 @@ void BindOn(py::class_<W>& cls, const dynamics::World& (*read)(const W&), int (*
                 TendonOf(read(w), joints, path, lower, upper, stiffness, rest_length, damping, name);
             return Checked([&] { return add_tendon(w, t); });
           },
-          py::arg("joints") = py::none(), py::arg("path") = py::none(), py::arg("lower") = -inf,
-          py::arg("upper") = inf, py::arg("stiffness") = 0.0, py::arg("rest_length") = py::none(),
-          py::arg("damping") = 0.0, py::arg("name") = "",
+          py::arg("joints") = py::none(), py::arg("path") = py::none(), py::arg("lower") = -inf, py::arg("upper") = inf,
+          py::arg("stiffness") = 0.0, py::arg("rest_length") = py::none(), py::arg("damping") = 0.0,
+          py::arg("name") = "",
           "Adds a tendon: fixed, L = Σ c q over `joints` [(joint, c), ...], or spatial, straight through `path` "
           "[(body, (x, y, z)), ...] (body -1 the world; points in the world as added). lower/upper: its range "
           "(a string: upper=length); stiffness toward rest_length (default: the length as added), damping. Returns "

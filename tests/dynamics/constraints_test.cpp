@@ -392,7 +392,8 @@ TEST(Constraints, RefusedWithTheElementNamed) {
   apart.name = "apart";
   apart.a = At(a, Vector3(0, 0, 0));
   apart.b = At(b, Vector3(0, 0, 0));
-  refused([&] { w.AddLoop(apart); }, "loop 'apart': its frames do not meet where the joints place the bodies: 1 m apart");
+  refused([&] { w.AddLoop(apart); },
+          "loop 'apart': its frames do not meet where the joints place the bodies: 1 m apart");
   Tendon one;
   one.name = "one";
   one.path = {At(a, Vector3(0, 0, 0))};

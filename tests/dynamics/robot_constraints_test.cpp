@@ -162,8 +162,9 @@ TEST(RobotConstraints, MimicGripperHoldsABox) {
   const double side = 0.06;
   box.inertia = Vector3::Constant(box.mass * side * side / 6);
   box.position = Vector3(0, 0, 0.25);
-  const int b = world.AddBody(
-      box, dynamics::Collider{dynamics::shape::Box{Vector3::Constant(side / 2)}, massprops::Matrix3::Identity(), Vector3::Zero(), dynamics::Material{}});
+  const int b =
+      world.AddBody(box, dynamics::Collider{dynamics::shape::Box{Vector3::Constant(side / 2)},
+                                            massprops::Matrix3::Identity(), Vector3::Zero(), dynamics::Material{}});
   int left = -1, right = -1;
   for (std::size_t k = 0; k < model.joints.size(); ++k) {
     if (model.joints[k].name == "left_finger_joint") left = added.joint_of[k];

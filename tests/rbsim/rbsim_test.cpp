@@ -191,8 +191,10 @@ TEST(Scene, ConstraintErrorsNameTheirField) {
   struct Case {
     std::string scene, expect;
   } cases[] = {
-      {scene(R"("loops": [{"type": "pin", "a": "a", "b": "b", "anchor": [0, 0, 0]}])"), "loops[0].type: 'pin' is not one of"},
-      {scene(R"("loops": [{"type": "ball", "a": "a", "b": "d", "anchor": [0, 0, 0]}])"), "loops[0].b: no body is named 'd'"},
+      {scene(R"("loops": [{"type": "pin", "a": "a", "b": "b", "anchor": [0, 0, 0]}])"),
+       "loops[0].type: 'pin' is not one of"},
+      {scene(R"("loops": [{"type": "ball", "a": "a", "b": "d", "anchor": [0, 0, 0]}])"),
+       "loops[0].b: no body is named 'd'"},
       {scene(R"("loops": [{"type": "hinge", "a": "a", "b": "b", "anchor": [0, 0, 0]}])"),
        "loops[0].axis: is required for a hinge loop"},
       {scene(R"("loops": [{"type": "ball", "a": "a", "b": "b", "axis": [1, 0, 0], "anchor": [0.5, 0, 0]}])"),
@@ -203,14 +205,16 @@ TEST(Scene, ConstraintErrorsNameTheirField) {
           "loops": [{"type": "ball", "a": "a", "b": "world", "anchor": [0, 0, -0.2]}]})"),
        "loops[0]: its frames do not meet where the joints place the bodies: 0.0989616 m apart"},
       {scene(R"("couplings": [{"follower": "jb", "leader": "jx"}])"), "couplings[0].leader: no joint is named 'jx'"},
-      {scene(R"("couplings": [{"follower": "jb", "leader": "jb"}])"), "couplings[0]: it couples a coordinate to itself"},
+      {scene(R"("couplings": [{"follower": "jb", "leader": "jb"}])"),
+       "couplings[0]: it couples a coordinate to itself"},
       {scene(R"("couplings": [{"follower": "free", "leader": "ja"}])"),
        "couplings[0].follower: 'free' is not a revolute or prismatic joint"},
       {scene(R"("couplings": [{"follower": "jb", "leader": "ja", "multiplier": 2, "polynomial": [0, 2]}])"),
        "couplings[0].polynomial: give 'multiplier' and 'offset', or 'polynomial', not both"},
       {scene(R"("tendons": [{"path": [{"body": "a", "point": [0, 0, 0]}]}])"),
        "tendons[0].path: must be an array of two points or more"},
-      {scene(R"("tendons": [{"joints": [{"joint": "ja"}], "range": [1, 0]}])"), "tendons[0].range: its lower end is above its upper"},
+      {scene(R"("tendons": [{"joints": [{"joint": "ja"}], "range": [1, 0]}])"),
+       "tendons[0].range: its lower end is above its upper"},
       {scene(R"("tendons": [{"joints": [{"joint": "ja"}], "path": []}])"), "tendons[0]: give 'joints'"},
       {scene(R"("couplings": [{"follower": "jb", "leader": "ja"}], "integrator": "rk4")"),
        "integrator: 'rk4': loops and couplings are held by implicit-midpoint only"},
@@ -388,10 +392,9 @@ TEST(Scene, NonUnitQuaternionIsNormalizedWithAWarning) {
 }
 
 TEST(Scene, ExampleScenesAreValid) {
-  for (const char* name :
-       {"t_handle", "heavy_top", "tumbling_spot", "hanging_spring", "two_bodies", "csg_part", "box_stack",
-        "incline_roll", "dominoes", "spot_on_table", "pile", "ring_on_peg", "pile_in_bin", "joints", "quadruped",
-        "linkages"}) {
+  for (const char* name : {"t_handle", "heavy_top", "tumbling_spot", "hanging_spring", "two_bodies", "csg_part",
+                           "box_stack", "incline_roll", "dominoes", "spot_on_table", "pile", "ring_on_peg",
+                           "pile_in_bin", "joints", "quadruped", "linkages"}) {
     std::vector<std::string> w;
     EXPECT_NO_THROW(scene::BuildSimulation(scene::LoadScene(DataPath(std::string("scenes/") + name + ".json"), w), w))
         << name;

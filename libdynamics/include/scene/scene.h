@@ -106,7 +106,7 @@ struct JointSpec {
 /// A loop closure (dynamics/constraints.h) as the scene gives it: its frames at `anchor` with z
 /// along `axis`, in the world at the scene's placement of the bodies (where every joint is at 0).
 struct LoopSpec {
-  std::string field;   ///< "loops[0]"
+  std::string field;    ///< "loops[0]"
   dynamics::Loop loop;  ///< name, type and bodies (frames not yet placed)
   Vector3 anchor = Vector3::Zero();
   Vector3 axis = Vector3::UnitZ();

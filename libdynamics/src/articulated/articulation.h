@@ -277,7 +277,7 @@ class Articulation {
   std::vector<Tendon> tendons_;
   bool bilateral_ = false;
   std::vector<double> loop_impulse_, coupling_impulse_, tendon_impulse_;  ///< last step
-  Eigen::VectorXd start_gap_;  ///< g(q0) of the step being solved
+  Eigen::VectorXd start_gap_;                                             ///< g(q0) of the step being solved
   mutable Configuration probe_;
   ConstraintRows rows_scratch_;
   Projector projector_;
@@ -285,9 +285,9 @@ class Articulation {
   /// there are none.
   Projector held_rows_;
   Eigen::VectorXd held_target_, held_nu_;
-  ConstraintRows held_source_;  ///< the contact step's rows at its start (held_rows_' J and owners)
-  Pins tendon_pins_;    ///< the tendons Impulses stopped at an end of their range
-  Pins midpoint_pins_;  ///< the taut tendons the midpoint step holds
+  ConstraintRows held_source_;                  ///< the contact step's rows at its start (held_rows_' J and owners)
+  Pins tendon_pins_;                            ///< the tendons Impulses stopped at an end of their range
+  Pins midpoint_pins_;                          ///< the taut tendons the midpoint step holds
   std::vector<Eigen::VectorXd> row_jacobians_;  ///< Impulses' rows on tendons (empty: a joint's dof)
 
   std::vector<Joint> joints_;
@@ -322,7 +322,7 @@ class Articulation {
     int joint, dof;
     double lo, hi, target;
     bool stop;
-    int drive = -1;  ///< a drive row's slot in drive_mode_ (the motor's 2 dof, the friction's 2 dof + 1)
+    int drive = -1;   ///< a drive row's slot in drive_mode_ (the motor's 2 dof, the friction's 2 dof + 1)
     int tendon = -1;  ///< a tendon's stop (its Jacobian in row_jacobians_; joint and dof -1)
   };
   std::vector<Row> rows_;

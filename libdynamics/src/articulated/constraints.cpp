@@ -225,7 +225,7 @@ void Projector::Restrict(Eigen::VectorXd& x) const {
 }
 
 bool Articulation::ProjectPositions(const Eigen::LLT<Eigen::MatrixXd>& metric, const Pins& pins,
-                                   const Configuration& at_q, Eigen::VectorXd& q, bool& moved) {
+                                    const Configuration& at_q, Eigen::VectorXd& q, bool& moved) {
   // Newton's method on g(q) = 0, each correction the least in M's metric, Δ = −M⁻¹Jᵀ(JM⁻¹Jᵀ)⁺g,
   // until g is at rounding's level or stops shrinking (rounding decides the rest). `at_q` is q's
   // configuration (its frames), read for the first look.
@@ -250,8 +250,7 @@ bool Articulation::ProjectPositions(const Eigen::LLT<Eigen::MatrixXd>& metric, c
   return true;
 }
 
-void Articulation::HoldMomenta(const Configuration& c, const Eigen::VectorXd& q, Eigen::VectorXd& p,
-                               const Pins& pins) {
+void Articulation::HoldMomenta(const Configuration& c, const Eigen::VectorXd& q, Eigen::VectorXd& p, const Pins& pins) {
   BilateralRows(c, q, pins, rows_scratch_);
   if (rows_scratch_.g.size() == 0) return;
   projector_.Form(c.llt, rows_scratch_.J);
@@ -305,8 +304,8 @@ double Articulation::TendonEnergy() const {
   return e;
 }
 
-void Articulation::HoldMidpoint(const Configuration& mid, const Eigen::VectorXd& qbar, double h,
-                                Eigen::VectorXd& vbar, Eigen::VectorXd& impulse) {
+void Articulation::HoldMidpoint(const Configuration& mid, const Eigen::VectorXd& qbar, double h, Eigen::VectorXd& vbar,
+                                Eigen::VectorXd& impulse) {
   // g(q1) ≈ g(q0) + h J(q̄) v̄ (exact for linear rows, O(h³) else: the end's projection takes the
   // rest): v̄ += M⁻¹J̄ᵀν, the step's momentum p1 by 2 J̄ᵀν (v̄ = M⁻¹ (p0 + p1)/2).
   BilateralRows(mid, qbar, midpoint_pins_, rows_scratch_);
@@ -434,7 +433,7 @@ ConstraintState Articulation::TendonState(int k) const {
   const Tendon& t = tendons_[static_cast<std::size_t>(k)];
   ConstraintState s;
   s.length = TendonLength(c, q_, k, nullptr);
-  s.residual = s.length > t.limits.upper ? s.length - t.limits.upper
+  s.residual = s.length > t.limits.upper   ? s.length - t.limits.upper
                : s.length < t.limits.lower ? s.length - t.limits.lower
                                            : 0.0;
   s.impulse = tendon_impulse_[static_cast<std::size_t>(k)];

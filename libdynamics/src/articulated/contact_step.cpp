@@ -251,7 +251,8 @@ void Articulation::MergeConstrainedTrees(std::vector<int>& tree) const {
   std::vector<int> root(tree.size());
   for (std::size_t t = 0; t < root.size(); ++t) root[t] = static_cast<int>(t);
   auto find = [&](int t) {
-    while (root[static_cast<std::size_t>(t)] != t) t = root[static_cast<std::size_t>(t)] = root[static_cast<std::size_t>(root[static_cast<std::size_t>(t)])];
+    while (root[static_cast<std::size_t>(t)] != t)
+      t = root[static_cast<std::size_t>(t)] = root[static_cast<std::size_t>(root[static_cast<std::size_t>(t)])];
     return t;
   };
   auto join = [&](const std::vector<int>& bodies) {

@@ -10,8 +10,8 @@
 #include <stdexcept>
 
 #include "massprops/repair/repair.h"
-#include "robot_constraints.h"
 #include "massprops/units.h"
+#include "robot_constraints.h"
 
 namespace dynamics {
 namespace {

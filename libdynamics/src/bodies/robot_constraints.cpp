@@ -81,7 +81,8 @@ void AddRobotConstraints(ContactWorld& world, const massprops::RobotModel& model
     Tendon tendon;
     tendon.name = rt.name;
     for (const auto& [k, c] : rt.joints) tendon.joints.emplace_back(place.Joint(k, what), c);
-    for (const auto& [link, point] : rt.path) tendon.path.push_back(place.On(link, Placement{Matrix3::Identity(), point}));
+    for (const auto& [link, point] : rt.path)
+      tendon.path.push_back(place.On(link, Placement{Matrix3::Identity(), point}));
     if (rt.range) tendon.limits.lower = rt.range->first, tendon.limits.upper = rt.range->second;
     tendon.stiffness = rt.stiffness;
     tendon.damping = rt.damping;

@@ -37,7 +37,8 @@ int IndexNamed(Fields& f, const std::string& key, const std::vector<Named>& item
     names.push_back(name_of(items[i]));
   }
   f.Fail(key, std::string("no ") + kind + " is named '" + name + "'" + json_fields::Suggest(name, names) +
-                  (names.empty() ? std::string("; the scene has none") : "; " + std::string(kind) + "s: " + json_fields::Join(names)));
+                  (names.empty() ? std::string("; the scene has none")
+                                 : "; " + std::string(kind) + "s: " + json_fields::Join(names)));
 }
 
 int JointNamed(Fields& f, const std::string& key, const Scene& scene) {
@@ -139,7 +140,8 @@ CouplingSpec ReadCoupling(const json& j, const std::string& path, const Scene& s
     dynamics::Coordinate x;
     if (f.Has(tendon_key)) {
       x.kind = dynamics::Coordinate::Kind::kTendon;
-      x.index = IndexNamed<TendonSpec>(f, tendon_key, tendons, "tendon", [](const TendonSpec& t) { return t.tendon.name; });
+      x.index =
+          IndexNamed<TendonSpec>(f, tendon_key, tendons, "tendon", [](const TendonSpec& t) { return t.tendon.name; });
     } else if (f.Has(role)) {
       x.index = JointNamed(f, role, scene);
     } else if (required) {
@@ -170,7 +172,8 @@ std::vector<Spec> ReadArray(Fields& f, const char* key, const Read& read) {
   const json* list = f.Get(key);
   if (!list) return out;
   if (!list->is_array()) f.Fail(key, "must be an array");
-  for (std::size_t i = 0; i < list->size(); ++i) out.push_back(read((*list)[i], std::string(key) + "[" + std::to_string(i) + "]"));
+  for (std::size_t i = 0; i < list->size(); ++i)
+    out.push_back(read((*list)[i], std::string(key) + "[" + std::to_string(i) + "]"));
   return out;
 }
 
@@ -204,7 +207,8 @@ void Named(const Scene& scene, const std::string& field, const Add& add) {
 }  // namespace
 
 void ReadConstraints(Fields& f, Scene& scene) {
-  scene.loops = ReadArray<LoopSpec>(f, "loops", [&](const json& j, const std::string& p) { return ReadLoop(j, p, scene); });
+  scene.loops =
+      ReadArray<LoopSpec>(f, "loops", [&](const json& j, const std::string& p) { return ReadLoop(j, p, scene); });
   scene.tendons =
       ReadArray<TendonSpec>(f, "tendons", [&](const json& j, const std::string& p) { return ReadTendon(j, p, scene); });
   scene.couplings = ReadArray<CouplingSpec>(
@@ -229,7 +233,8 @@ void AddSceneConstraints(const Scene& scene, dynamics::ContactWorld& physics) {
     loop.b.frame = FrameIn(world, loop.b.body, spec.anchor, spec.axis);
     Named(scene, spec.field, [&] { physics.AddLoop(loop); });
   }
-  for (const CouplingSpec& spec : scene.couplings) Named(scene, spec.field, [&] { physics.AddCoupling(spec.coupling); });
+  for (const CouplingSpec& spec : scene.couplings)
+    Named(scene, spec.field, [&] { physics.AddCoupling(spec.coupling); });
 }
 
 }  // namespace scene

@@ -12,8 +12,8 @@
 
 #include "bodies/bodies.h"
 #include "bodies/robot.h"
-#include "json_fields.h"
 #include "dynamics/forces.h"
+#include "json_fields.h"
 #include "massprops/implicit.h"
 #include "massprops/io/load.h"
 #include "massprops/primitive.h"

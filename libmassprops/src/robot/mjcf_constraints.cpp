@@ -174,7 +174,8 @@ RobotLoop LoopOf(pugi::xml_node e, const std::string& kind, const Names& names, 
     const Site& b = names.SiteNamed(e.attribute("site2"), what);
     loop.link_a = a.link, loop.in_a = a.frame;
     loop.link_b = b.link, loop.in_b = b.frame;
-    if (loop.type == RobotLoop::Type::kBall) loop.in_a.rotation = Matrix3::Identity(), loop.in_b->rotation = Matrix3::Identity();
+    if (loop.type == RobotLoop::Type::kBall)
+      loop.in_a.rotation = Matrix3::Identity(), loop.in_b->rotation = Matrix3::Identity();
     return loop;
   }
   if (!e.attribute("body1")) throw ElementError(what + ": no body1 (or site1 and site2)");

@@ -150,7 +150,8 @@ void SecondParentsAsLoops(RobotModel& model) {
     loop.link_b = j.child;
     loop.in_b = j.joint_to_child.Inverse().Then(along);
     if (j.lower || j.upper || j.damping != 0 || j.friction != 0 || j.stiffness != 0) {
-      model.notes.push_back("joint '" + j.name + "' closes a loop: its limits, damping, friction and spring are not simulated");
+      model.notes.push_back("joint '" + j.name +
+                            "' closes a loop: its limits, damping, friction and spring are not simulated");
     }
     model.loops.push_back(loop);
   }

@@ -150,8 +150,8 @@ struct RobotLoop {
 /// segments through points of links (sites). Its range is a pair of stops on L.
 struct RobotTendon {
   std::string name;
-  std::vector<std::pair<int, double>> joints;   ///< fixed: (joint index, coefficient)
-  std::vector<std::pair<int, Vector3>> path;    ///< spatial: (link index, -1 the world; point in its frame)
+  std::vector<std::pair<int, double>> joints;  ///< fixed: (joint index, coefficient)
+  std::vector<std::pair<int, Vector3>> path;   ///< spatial: (link index, -1 the world; point in its frame)
   std::optional<std::pair<double, double>> range;
   double stiffness = 0, damping = 0;
   std::optional<double> rest_length;  ///< none: the length at the reference configuration
