@@ -35,6 +35,13 @@ using Vector6 = Eigen::Matrix<double, 6, 1>;
 using Matrix6 = Eigen::Matrix<double, 6, 6>;
 using MotionColumns = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>;
 
+/// The cross-product matrix [r]× (r × x = [r]× x).
+inline Matrix3 CrossMatrix(const Vector3& r) {
+  Matrix3 X;
+  X << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
+  return X;
+}
+
 /// One body of the tree, parents before children.
 struct Node {
   int body = 0;
@@ -233,6 +240,9 @@ class Articulation {
   double CoordinateOf(const Configuration& c, const Eigen::VectorXd& q, const Coordinate& x,
                       Eigen::VectorXd* jacobian) const;
   double TendonLength(const Configuration& c, const Eigen::VectorXd& q, int t, Eigen::VectorXd* jacobian) const;
+  /// A coupling's y − y₀ − P(x − x₀) at (c, q), with its gradient.
+  double CouplingResidual(const Configuration& c, const Eigen::VectorXd& q, const Coupling& cp,
+                          Eigen::VectorXd* jacobian) const;
   /// The loops' and couplings' rows, then the pins', at configuration c (its frames) and q.
   void BilateralRows(const Configuration& c, const Eigen::VectorXd& q, const Pins& pins, ConstraintRows& rows) const;
   /// The position slot of a 1-dof joint's velocity slot.

@@ -25,13 +25,6 @@ const char* LoopTypeName(LoopType type) {
 namespace dynamics::internal {
 namespace {
 
-// The cross-product matrix [r]×.
-Matrix3 Cross(const Vector3& r) {
-  Matrix3 X;
-  X << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
-  return X;
-}
-
 // (x_b, rotation) → a small rotation vector of R_b R_aᵀ (world axes): sin θ times the axis, exact
 // at rest and with the rate ω_b − ω_a there.
 Vector3 TurnBetween(const Matrix3& Ra, const Matrix3& Rb) {
@@ -66,7 +59,7 @@ Vector3 Articulation::PointOf(const Configuration& c, const BodyFrame& f, Matrix
   if (jacobian) {
     // The point's velocity v − [r]× ω (rows 0–2) and the body's ω (rows 3–5).
     BodyJacobian(c, node, path_, *jacobian);
-    jacobian->topRows<3>() -= Cross(r) * jacobian->bottomRows<3>();
+    jacobian->topRows<3>() -= CrossMatrix(r) * jacobian->bottomRows<3>();
   }
   return nf.x + r;
 }
@@ -145,20 +138,8 @@ void Articulation::BilateralRows(const Configuration& c, const Eigen::VectorXd& 
   }
   Eigen::VectorXd jx, jy;
   for (std::size_t k = 0; k < couplings_.size(); ++k) {
-    const Coupling& cp = couplings_[k];
-    const double y = CoordinateOf(c, q, cp.follower, &jy);
-    double target = cp.polynomial[0], slope = 0;
-    if (cp.leader.index >= 0) {
-      const double x = CoordinateOf(c, q, cp.leader, &jx) - cp.leader_reference;
-      double power = 1;
-      for (int i = 1; i < 5; ++i) {
-        slope += i * cp.polynomial[static_cast<std::size_t>(i)] * power;
-        power *= x;
-        target += cp.polynomial[static_cast<std::size_t>(i)] * power;
-      }
-      jy -= slope * jx;
-    }
-    add(y - cp.follower_reference - target, jy, static_cast<int>(loops_.size() + k));
+    const double gap = CouplingResidual(c, q, couplings_[k], &jy);
+    add(gap, jy, static_cast<int>(loops_.size() + k));
   }
   // Stops and tendon ends the step holds: their coordinate on the limit.
   for (const auto& [dof, limit] : pins.dofs) {
@@ -177,6 +158,24 @@ void Articulation::BilateralRows(const Configuration& c, const Eigen::VectorXd& 
     rows.g[r] = g[static_cast<std::size_t>(r)];
     rows.J.row(r) = J[static_cast<std::size_t>(r)].transpose();
   }
+}
+
+double Articulation::CouplingResidual(const Configuration& c, const Eigen::VectorXd& q, const Coupling& cp,
+                                      Eigen::VectorXd* jacobian) const {
+  const double y = CoordinateOf(c, q, cp.follower, jacobian);
+  double target = cp.polynomial[0], slope = 0;
+  if (cp.leader.index >= 0) {
+    Eigen::VectorXd jx;
+    const double x = CoordinateOf(c, q, cp.leader, jacobian ? &jx : nullptr) - cp.leader_reference;
+    double power = 1;
+    for (int i = 1; i < 5; ++i) {
+      slope += i * cp.polynomial[static_cast<std::size_t>(i)] * power;
+      power *= x;
+      target += cp.polynomial[static_cast<std::size_t>(i)] * power;
+    }
+    if (jacobian) *jacobian -= slope * jx;
+  }
+  return y - cp.follower_reference - target;
 }
 
 int Articulation::DofPosition(int dof) const {
@@ -395,41 +394,33 @@ void Articulation::ClearConstraintImpulses(bool tendons) {
 }
 
 ConstraintState Articulation::LoopState(int k) const {
-  Configuration& c = const_cast<Configuration&>(probe_);
-  Configure(q_, c, Form::kFrames);
+  Configure(q_, probe_, Form::kFrames);
   const Loop& loop = loops_[static_cast<std::size_t>(k)];
   Matrix3 Ra, Rb;
-  const Vector3 gap = PointOf(c, loop.b, &Rb, nullptr) - PointOf(c, loop.a, &Ra, nullptr);
+  Vector3 gap = PointOf(probe_, loop.b, &Rb, nullptr) - PointOf(probe_, loop.a, &Ra, nullptr);
+  if (loop.type == LoopType::kSlider) gap -= Ra.col(2) * Ra.col(2).dot(gap);  // (a shift along z is free)
   ConstraintState s;
   s.residual = gap.norm();
   if (loop.type == LoopType::kWeld || loop.type == LoopType::kSlider)
     s.residual = std::max(s.residual, TurnBetween(Ra, Rb).norm());
   if (loop.type == LoopType::kHinge) s.residual = std::max(s.residual, Ra.col(2).cross(Rb.col(2)).norm());
-  if (loop.type == LoopType::kSlider) s.residual = (gap - Ra.col(2) * Ra.col(2).dot(gap)).norm();
   s.impulse = std::sqrt(loop_impulse_[static_cast<std::size_t>(k)]);
   return s;
 }
 
 ConstraintState Articulation::CouplingState(int k) const {
-  Configuration& c = const_cast<Configuration&>(probe_);
-  Configure(q_, c, Form::kFrames);
+  Configure(q_, probe_, Form::kFrames);
   const Coupling& cp = couplings_[static_cast<std::size_t>(k)];
   ConstraintState s;
-  s.length = CoordinateOf(c, q_, cp.follower, nullptr);
-  double target = cp.polynomial[0];
-  if (cp.leader.index >= 0) {
-    const double x = CoordinateOf(c, q_, cp.leader, nullptr) - cp.leader_reference;
-    double power = 1;
-    for (int i = 1; i < 5; ++i) target += cp.polynomial[static_cast<std::size_t>(i)] * (power *= x);
-  }
-  s.residual = s.length - cp.follower_reference - target;
+  s.length = CoordinateOf(probe_, q_, cp.follower, nullptr);
+  s.residual = CouplingResidual(probe_, q_, cp, nullptr);
   s.impulse = coupling_impulse_[static_cast<std::size_t>(k)];
   return s;
 }
 
 ConstraintState Articulation::TendonState(int k) const {
-  Configuration& c = const_cast<Configuration&>(probe_);
-  Configure(q_, c, Form::kFrames);
+  Configure(q_, probe_, Form::kFrames);
+  const Configuration& c = probe_;
   const Tendon& t = tendons_[static_cast<std::size_t>(k)];
   ConstraintState s;
   s.length = TendonLength(c, q_, k, nullptr);

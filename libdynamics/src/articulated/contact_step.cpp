@@ -18,9 +18,7 @@ void Articulation::BodyJacobian(const Configuration& c, int node, Eigen::MatrixX
     const Node& n = nodes_[static_cast<std::size_t>(i)];
     if (n.nv > 0) J.middleCols(n.v, n.nv) = c.frames[static_cast<std::size_t>(i)].S;
   }
-  const Vector3& x = c.frames[static_cast<std::size_t>(node)].x;
-  Matrix3 X;
-  X << 0, -x.z(), x.y(), x.z(), 0, -x.x(), -x.y(), x.x(), 0;
+  const Matrix3 X = CrossMatrix(c.frames[static_cast<std::size_t>(node)].x);
   P.resize(6, v_.size());
   P.topRows<3>() = J.bottomRows<3>() - X * J.topRows<3>();
   P.bottomRows<3>() = J.topRows<3>();

@@ -11,12 +11,6 @@
 namespace dynamics::internal {
 namespace {
 
-Matrix3 Cross(const Vector3& w) {
-  Matrix3 m;
-  m << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
-  return m;
-}
-
 Quaternion QuatAt(const Eigen::VectorXd& q, int at) {
   return Quaternion(q[at], q[at + 1], q[at + 2], q[at + 3]).normalized();
 }
@@ -64,7 +58,7 @@ void Relative(const Node& n, const Eigen::VectorXd& q, Matrix3& R, Vector3& t) {
 /// A body's spatial inertia about a point at c from its centre of mass (world axes): its mass m
 /// and its rotational inertia Ic about the centre, in world axes.
 Matrix6 SpatialInertia(double m, const Matrix3& Ic, const Vector3& c) {
-  const Matrix3 C = Cross(c);
+  const Matrix3 C = CrossMatrix(c);
   Matrix6 I;
   // m C Cᵀ = m (|c|² 1 − c cᵀ)
   I.topLeftCorner<3, 3>() = Ic + m * (c.squaredNorm() * Matrix3::Identity() - c * c.transpose());
