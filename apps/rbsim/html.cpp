@@ -81,6 +81,14 @@ Json RunData(const Simulation& sim, const Recording& rec) {
   Json statics = Json::array();
   for (const SimStatic& st : sim.statics) statics.push_back(ViewerStatic(st.name, st.color, st.display));
   j["statics"] = std::move(statics);
+  // Spatial tendons: lines through their points, sample after sample.
+  Json tendons = Json::array();
+  for (std::size_t t = 0; t < rec.tendon_paths.size(); ++t) {
+    const std::size_t points = sim.world().tendons()[t].path.size();
+    if (points < 2) continue;
+    tendons.push_back({{"name", sim.world().tendons()[t].name}, {"count", points}, {"points", Base64(rec.tendon_paths[t])}});
+  }
+  j["tendons"] = std::move(tendons);
   j["bounds"] = ViewerBounds(bounds);
   // Contact forces: arrows as long as a twentieth of the scene for the 90th percentile of the forces.
   if (rec.contacts) {

@@ -65,6 +65,14 @@ void Recording::Add(const Simulation& sim, const dynamics::World& world, const d
     if (static_cast<int>(b) == sim.scene.plot_body) omega_principal.push_back(s.omega_principal);
   }
   if (times.size() == 1) start = d;
+  tendon_paths.resize(world.tendons().size());
+  for (std::size_t t = 0; t < world.tendons().size(); ++t) {
+    for (const dynamics::BodyFrame& f : world.tendons()[t].path) {
+      Vector3 x = f.frame.origin;
+      if (f.body >= 0) x = bodies[static_cast<std::size_t>(f.body)].position + bodies[static_cast<std::size_t>(f.body)].orientation * x;
+      for (int k = 0; k < 3; ++k) tendon_paths[t].push_back(static_cast<float>(x[k]));
+    }
+  }
   const dynamics::Diagnostics& d0 = start;
   const double e0 = std::abs(d0.total_energy) > 0 ? std::abs(d0.total_energy) : 1.0;
   energy_drift.push_back((d.total_energy - d0.total_energy) / e0);

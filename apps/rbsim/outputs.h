@@ -33,6 +33,9 @@ struct Recording {
   /// it is asleep.
   bool contacts = false;
   std::vector<std::vector<float>> contact_forces;
+  /// Per spatial tendon (in the world's order, fixed ones empty): its path's world points, x y z
+  /// per point, sample after sample.
+  std::vector<std::vector<float>> tendon_paths;
   std::vector<std::vector<std::uint8_t>> asleep;
 
   void Add(const Simulation& sim, const dynamics::World& world, const dynamics::Diagnostics& d);

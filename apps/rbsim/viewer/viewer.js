@@ -247,6 +247,16 @@ function main() {
     return { mesh, shown, collider, translations, rotations, asleep, trail, line, colour: new Color(...b.color) };
   });
 
+  // Spatial tendons (strings): a dark line through their points, moved with the samples.
+  const tendons = (run.tendons || []).map((t) => {
+    const points = floats(t.points);
+    const geometry = new BufferGeometry();
+    geometry.setAttribute('position', new BufferAttribute(points.slice(0, 3 * t.count), 3));
+    const line = new Line(geometry, new LineBasicMaterial({ color: 0x333333 }));
+    scene.add(line);
+    return { count: t.count, points, geometry };
+  });
+
   // The camera: given, or looking at the run's bounds from the front-right, a little above.
   const lo = new Vector3(...run.bounds.min);
   const hi = new Vector3(...run.bounds.max);
@@ -344,6 +354,12 @@ function main() {
       if (b.collider) b.collider.visible = showColliders.checked;
       b.line.visible = trails.checked;
       b.trail.setDrawRange(0, i + 1);
+    }
+    for (const t of tendons) {
+      const at = t.geometry.attributes.position;
+      const n = 3 * t.count;
+      for (let k = 0; k < n; ++k) at.array[k] = t.points[n * i + k] + f * (t.points[n * j + k] - t.points[n * i + k]);
+      at.needsUpdate = true;
     }
     // The contacts of the sample at or before the time shown.
     let used = 0;
