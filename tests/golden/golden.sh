@@ -69,6 +69,9 @@ for scene in data/scenes/*.json; do
   if [ -f "$tmp/run/joints.csv" ]; then
     compare "rbsim $name joints" "$tmp/run/joints.csv" "$here/rbsim/$name.joints.csv"
   fi
+  if [ -f "$tmp/run/constraints.csv" ]; then
+    compare "rbsim $name constraints" "$tmp/run/constraints.csv" "$here/rbsim/$name.constraints.csv"
+  fi
 done
 
 # Resting poses of the example parts: both estimates, the intervals and the rest transforms.

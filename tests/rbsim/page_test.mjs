@@ -295,7 +295,33 @@ try {
   }
   check('the colliders toggle draws the collision shapes too', changed > 200, `${changed} px changed`);
 
-  // 6. Played: time advances.
+  // 6. A string (a spatial tendon) is a dark line from its pin to its ball, where the trajectory
+  // has the ball: at a time it swings, line pixels at three points between the pin and the ball.
+  const swing = { dt: 0.001, duration: 0.4, output_rate: 50,
+    bodies: [{ name: 'bob', solid: { type: 'sphere', radius: 0.03 }, mass: 0.1, position: [0.5, 0, 0.6], color: [1, 0, 0] }],
+    tendons: [{ name: 'string', path: [{ body: 'world', point: [0, 0, 0.6] }, { body: 'bob', point: [0.5, 0, 0.6] }],
+      range: [0, 0.5] }],
+    forces: [{ type: 'gravity', g: [0, 0, -9.81] }] };
+  writeFileSync(join(dir, 'swing.json'), JSON.stringify(swing));
+  execFileSync(rbsim, [join(dir, 'swing.json'), '--out', join(dir, 'swing'), '--outputs', 'html,csv', '-q'], {
+    stdio: ['ignore', 'ignore', 'inherit'],
+  });
+  const swingRows = readFileSync(join(dir, 'swing', 'trajectory.csv'), 'utf8').trim().split('\n').slice(1).map((l) => l.split(','));
+  const swingTime = swingRows[12][0];
+  const bob = swingRows[12].slice(2, 5).map(Number);
+  await page.goto(`file://${join(dir, 'swing', 'run.html')}?t=${swingTime}&camera=0.25,-2,0.4&target=0.25,0,0.4&fov=35&flat=1`);
+  await page.waitForFunction(() => window.rbsim && window.rbsim.frames > 2, null, { timeout: 30000 });
+  const strung = await shoot();
+  const seen = projector([0.25, -2, 0.4], [0.25, 0, 0.4], [0, 0, 1], 35, strung.image.width, strung.image.height);
+  for (const f of [0.25, 0.5, 0.75]) {
+    const p = seen([0, 0, 0.6].map((v, k) => v + f * (bob[k] - v)));
+    const got = find(strung.image, [51, 51, 51], 40, p, 3);
+    check(`the string drawn ${f * 100} % of the way to its ball`, got.n >= 1, `${got.n} line px near (${p[0].toFixed(1)}, ${p[1].toFixed(1)})`);
+  }
+  check('the ball swung below its pin', bob[2] < 0.5 && Math.abs(Math.hypot(bob[0], bob[2] - 0.6) - 0.5) < 1e-6,
+    JSON.stringify(bob));
+
+  // 7. Played: time advances.
   await page.goto(`${url}?${camera}&speed=1`);
   await page.waitForFunction(() => window.rbsim && window.rbsim.frames > 10, null, { timeout: 30000 });
   check('the page plays', (await page.evaluate(() => window.rbsim.time())) > 0);
