@@ -125,6 +125,24 @@ TEST(RobotConstraints, SdformatSecondParentClosesTheFourBar) {
   EXPECT_LT(world.world().loop_state(0).residual, 1e-9);
 }
 
+// MJCF weld (a free ball welded to a hinged rod at the reference pose: one compound pendulum) and
+// a motor on a fixed tendon (each wheel turned by coef · gear · ctrl: q = coef g c t² / (2 I)).
+TEST(RobotConstraints, MjcfWeldAndTendonMotor) {
+  Loaded l = Load("weld_and_motor.xml", "released");
+  ASSERT_EQ(l.model.loops.size(), 1u);
+  ASSERT_EQ(l.model.tendons.size(), 1u);
+  const double q0 = kPi / 3;
+  const double I = 0.08354 + 1.0 * 0.25 + 0.0005 + 0.5 * 1.0, mgd = kG * (1.0 * 0.5 + 0.5 * 1.0);
+  const double period = 4 * std::sqrt(I / mgd) * boost::math::ellint_1(std::sin(q0 / 2));
+  const long n = 4000;
+  Advance(l, period / n, n / 2);
+  EXPECT_NEAR(Q(l, "swing"), -q0, 1e-5);
+  EXPECT_LT(l.world.world().loop_state(0).residual, 1e-9);
+  const double t = l.world.world().time(), force = 2 * 0.3;
+  EXPECT_NEAR(Q(l, "left_spin"), 1.0 * force * t * t / (2 * 0.02), 1e-9);
+  EXPECT_NEAR(Q(l, "right_spin"), -0.5 * force * t * t / (2 * 0.05), 1e-9);
+}
+
 TEST(RobotConstraints, MjcfSpatialTendonIsAString) {
   Loaded l = Load("string_pendulum.xml", "horizontal");
   ASSERT_EQ(l.model.tendons.size(), 1u);

@@ -704,7 +704,15 @@ RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotO
     if (const auto m = ActuatorMotor(model.actuators[a], key.ctrl[a], model.path, out.notes))
       tendon_motors[static_cast<std::size_t>(t)] = *m;
   }
-  internal::AddRobotConstraints(world, model, options.pose, out, tendon_motors);
+  // The reference configuration (every joint at 0, free roots where the file puts them, whatever
+  // the keyframe): where MJCF's connect and weld find their second frame and tendons their lengths.
+  std::vector<Placement> reference;
+  if (!model.loops.empty() || !model.tendons.empty() || !model.couplings.empty()) {
+    const std::vector<Placement> roots = PlaceRoots(model, options, lumps, KeyframeState(model, ""));
+    for (std::size_t g = 0; g < lumps.groups.size(); ++g)
+      reference.push_back(roots[g].Then(lumps.groups[g].body_in_root));
+  }
+  internal::AddRobotConstraints(world, model, options.pose, out, reference, tendon_motors);
   // The file's excluded pairs (MJCF <contact><exclude>), between the bodies their links became.
   for (const auto& [l1, l2] : model.excluded) {
     const int a = out.body_of_link[static_cast<std::size_t>(l1)], b = out.body_of_link[static_cast<std::size_t>(l2)];

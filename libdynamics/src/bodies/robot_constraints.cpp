@@ -17,12 +17,11 @@ Frame FrameOf(const Placement& p) {
   return f;
 }
 
-Placement PlacementOf(const RigidBody& b) { return {b.orientation.normalized().toRotationMatrix(), b.position}; }
-
 class Placer {
  public:
-  Placer(const World& world, const massprops::RobotModel& model, const Placement& pose, const RobotInWorld& added)
-      : world_(world), model_(model), pose_(pose), added_(added) {}
+  Placer(const massprops::RobotModel& model, const Placement& pose, const RobotInWorld& added,
+         const std::vector<Placement>& reference)
+      : model_(model), pose_(pose), added_(added), reference_(reference) {}
   // A frame `p` of link `link` (-1: the file's world) as a frame of its body.
   BodyFrame On(int link, const Placement& p) const {
     BodyFrame f;
@@ -34,16 +33,16 @@ class Placer {
     f.frame = FrameOf(added_.link_in_body[static_cast<std::size_t>(link)].Then(p));
     return f;
   }
-  // Where a body's frame is at the reference configuration (the bodies as added), in the world.
+  // Where a body's frame is at the reference configuration, in the world.
   Placement AtReference(const BodyFrame& f) const {
     const Placement frame{f.frame.orientation.toRotationMatrix(), f.frame.origin};
-    return f.body < 0 ? frame : PlacementOf(world_.body_as_added(f.body)).Then(frame);
+    return f.body < 0 ? frame : Reference(f.body).Then(frame);
   }
   // A world placement as a frame of link `link`'s body at the reference configuration.
   BodyFrame Into(int link, const Placement& world) const {
     if (link < 0) return BodyFrame{-1, FrameOf(world)};
     const int body = added_.body_of_link[static_cast<std::size_t>(link)];
-    return BodyFrame{body, FrameOf(PlacementOf(world_.body_as_added(body)).Inverse().Then(world))};
+    return BodyFrame{body, FrameOf(Reference(body).Inverse().Then(world))};
   }
   // A tendon's length at the reference configuration (a fixed one's: 0, every joint at 0).
   double ReferenceLength(const Tendon& t) const {
@@ -63,18 +62,22 @@ class Placer {
   }
 
  private:
-  const World& world_;
+  const Placement& Reference(int body) const {
+    return reference_.at(static_cast<std::size_t>(body - added_.bodies.front()));
+  }
   const massprops::RobotModel& model_;
   const Placement& pose_;
   const RobotInWorld& added_;
+  const std::vector<Placement>& reference_;
 };
 
 }  // namespace
 
 void AddRobotConstraints(ContactWorld& world, const massprops::RobotModel& model, const Placement& pose,
-                         const RobotInWorld& added, const std::vector<JointMotor>& tendon_motors) {
-  const Placer place(world.world(), model, pose, added);
-  std::vector<double> reference;
+                         const RobotInWorld& added, const std::vector<Placement>& reference,
+                         const std::vector<JointMotor>& tendon_motors) {
+  const Placer place(model, pose, added, reference);
+  std::vector<double> lengths;  // each tendon's at the reference configuration
   for (std::size_t t = 0; t < model.tendons.size(); ++t) {
     const massprops::RobotTendon& rt = model.tendons[t];
     const std::string what = "tendon '" + rt.name + "'";
@@ -86,8 +89,8 @@ void AddRobotConstraints(ContactWorld& world, const massprops::RobotModel& model
     if (rt.range) tendon.limits.lower = rt.range->first, tendon.limits.upper = rt.range->second;
     tendon.stiffness = rt.stiffness;
     tendon.damping = rt.damping;
-    reference.push_back(place.ReferenceLength(tendon));
-    tendon.rest_length = rt.rest_length ? *rt.rest_length : reference.back();
+    lengths.push_back(place.ReferenceLength(tendon));
+    tendon.rest_length = rt.rest_length ? *rt.rest_length : lengths.back();
     if (t < tendon_motors.size()) tendon.motor = tendon_motors[t];
     world.AddTendon(tendon);
   }
@@ -104,8 +107,8 @@ void AddRobotConstraints(ContactWorld& world, const massprops::RobotModel& model
     c.follower = coordinate(rc.follower);
     c.leader = coordinate(rc.leader);
     if (rc.tendons) {
-      c.follower_reference = reference[static_cast<std::size_t>(rc.follower)];
-      if (rc.leader >= 0) c.leader_reference = reference[static_cast<std::size_t>(rc.leader)];
+      c.follower_reference = lengths[static_cast<std::size_t>(rc.follower)];
+      if (rc.leader >= 0) c.leader_reference = lengths[static_cast<std::size_t>(rc.leader)];
     }
     world.AddCoupling(c);
   }
