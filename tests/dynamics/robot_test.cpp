@@ -185,6 +185,24 @@ TEST(Robot, RefusesWhatItCannotSimulate) {
   ExpectRefused(
       Write("equality.xml", R"(<mujoco><worldbody/><equality><connect body1="a" anchor="0 0 0"/></equality></mujoco>)"),
       "<equality> <connect> connect #1: body1=\"a\" names no body");
+  // Couplings, loops and tendons that name what is not there, or cannot be.
+  const std::string hinge_body =
+      R"(<body name="b"><joint name="h" type="hinge"/><inertial mass="1" diaginertia="1 1 1"/>
+<site name="s"/></body>)";
+  ExpectRefused(Write("self.xml", "<mujoco><worldbody>" + hinge_body +
+                                      R"(</worldbody><equality><joint joint1="h" joint2="h"/></equality></mujoco>)"),
+                "<equality> <joint> joint #1: it couples a coordinate to itself");
+  ExpectRefused(Write("one_site.xml",
+                      "<mujoco><worldbody>" + hinge_body +
+                          R"(</worldbody><tendon><spatial name="t"><site site="s"/></spatial></tendon></mujoco>)"),
+                "<tendon> <spatial> spatial 't': a spatial tendon needs two sites or more");
+  ExpectRefused(Write("no_tendon.xml", "<mujoco><worldbody>" + hinge_body +
+                                           R"(</worldbody><equality><tendon tendon1="ghost"/></equality></mujoco>)"),
+                "tendon1=\"ghost\" names no tendon");
+  ExpectRefused(Write("mimic_self.urdf", std::string(kTwoLinks) +
+                                             R"(<joint name="j" type="revolute"><parent link="a"/><child link="b"/>
+<mimic joint="j"/></joint></robot>)"),
+                "joint 'j' <mimic>: the joint mimics itself");
   ExpectRefused(
       Write("ghost.urdf", std::string(kTwoLinks) +
                               R"(<joint name="j" type="fixed"><parent link="a"/><child link="c"/></joint></robot>)"),

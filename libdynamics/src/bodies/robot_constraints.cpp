@@ -71,6 +71,16 @@ class Placer {
   const std::vector<Placement>& reference_;
 };
 
+// Runs `add`, what the world refuses named by the file too.
+template <typename Add>
+void Named(const massprops::RobotModel& model, const Add& add) {
+  try {
+    add();
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(model.path + ": " + e.what());
+  }
+}
+
 }  // namespace
 
 void AddRobotConstraints(ContactWorld& world, const massprops::RobotModel& model, const Placement& pose,
@@ -92,7 +102,7 @@ void AddRobotConstraints(ContactWorld& world, const massprops::RobotModel& model
     lengths.push_back(place.ReferenceLength(tendon));
     tendon.rest_length = rt.rest_length ? *rt.rest_length : lengths.back();
     if (t < tendon_motors.size()) tendon.motor = tendon_motors[t];
-    world.AddTendon(tendon);
+    Named(model, [&] { world.AddTendon(tendon); });
   }
   for (const massprops::RobotCoupling& rc : model.couplings) {
     const std::string what = "coupling '" + rc.name + "'";
@@ -110,7 +120,7 @@ void AddRobotConstraints(ContactWorld& world, const massprops::RobotModel& model
       c.follower_reference = lengths[static_cast<std::size_t>(rc.follower)];
       if (rc.leader >= 0) c.leader_reference = lengths[static_cast<std::size_t>(rc.leader)];
     }
-    world.AddCoupling(c);
+    Named(model, [&] { world.AddCoupling(c); });
   }
   for (const massprops::RobotLoop& rl : model.loops) {
     Loop loop;
@@ -123,11 +133,7 @@ void AddRobotConstraints(ContactWorld& world, const massprops::RobotModel& model
     loop.b = rl.in_b ? place.On(rl.link_b, *rl.in_b) : place.Into(rl.link_b, place.AtReference(loop.a));
     // A file's keyframe may leave a loop open by what its numbers round to: closed by the first step.
     loop.tolerance = 1e-3;
-    try {
-      world.AddLoop(loop);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(model.path + ": " + e.what());
-    }
+    Named(model, [&] { world.AddLoop(loop); });
   }
 }
 
