@@ -159,6 +159,29 @@ TEST(RobotConstraints, MjcfSpatialTendonIsAString) {
   EXPECT_NEAR(when, bottom, 5e-6);
 }
 
+// The control suite's ball on a string, in its habits: the ball falls 8 mm, the string (a spatial
+// tendon limited to 0.3 m) catches it, and the cup on its sprung, damped slides comes to rest where
+// its springs carry the cup and the ball, (m_cup + m_ball) g / k below its start, the ball hanging
+// on the taut string below it.
+TEST(RobotConstraints, ControlSuiteBallHangsOnItsString) {
+  Loaded l = Load("ball_in_cup.xml");
+  ASSERT_EQ(l.model.tendons.size(), 1u);
+  double cup = 0, ball = 0;
+  for (const massprops::RobotLink& link : l.model.links) {
+    if (!link.inertial) continue;
+    if (link.name == "cup") cup = link.inertial->mass;
+    if (link.name == "ball") ball = link.inertial->mass;
+  }
+  ASSERT_GT(cup, 0);
+  ASSERT_GT(ball, 0);
+  Advance(l, 1e-3, 8000);
+  const double sag = -(cup + ball) * kG / 20.0;
+  EXPECT_NEAR(Q(l, "cup_z"), sag, 1e-4);
+  // Taut: the ball 0.3 m below the cup's knot (0.6 − 0.108 + sag), to rounding.
+  EXPECT_NEAR(0.2 + Q(l, "ball_z"), 0.6 - 0.108 + Q(l, "cup_z") - 0.3, 1e-9);
+  EXPECT_NEAR(l.world.world().tendon_state(0).length, 0.3, 1e-12);
+}
+
 // The gripper's left finger driven closed by a velocity motor bounded at 20 N, the right one its
 // mimic: a 0.2 kg box between them (friction 0.6) is squeezed by 10 N on each side and held.
 TEST(RobotConstraints, MimicGripperHoldsABox) {
