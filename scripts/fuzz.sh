@@ -31,6 +31,8 @@ cp "$root"/tests/fuzz/scene_corpus/* "$scenes"/
 robots=$build/robot_corpus
 mkdir -p "$robots"
 cp "$root"/tests/robot/field/*.urdf "$root"/tests/robot/field/mjcf/*.xml "$robots"/
+cp "$root"/tests/robot/field/constraints/*.xml "$root"/tests/robot/field/constraints/*.urdf \
+  "$root"/tests/robot/field/constraints/*.sdf "$robots"/  # couplings, loops and tendons
 cp "$root"/data/robots/quadruped/quadruped.urdf "$root"/data/robots/quadruped/quadruped.sdf "$robots"/
 ./robot_readers_fuzzer -max_total_time="$((seconds / 4))" -max_len=8192 -timeout=10 -rss_limit_mb=4096 \
   -print_final_stats=1 "$robots" 2>&1 | tail -n 25
