@@ -25,8 +25,8 @@ const char* LoopTypeName(LoopType type) {
 namespace dynamics::internal {
 namespace {
 
-// (x_b, rotation) → a small rotation vector of R_b R_aᵀ (world axes): sin θ times the axis, exact
-// at rest and with the rate ω_b − ω_a there.
+// How far frame b is turned from frame a: the rotation vector of R_b R_aᵀ to first order (world
+// axes; sin θ times the axis), 0 when they agree, changing at ω_b − ω_a there.
 Vector3 TurnBetween(const Matrix3& Ra, const Matrix3& Rb) {
   const Matrix3 E = Rb * Ra.transpose();
   return 0.5 * Vector3(E(2, 1) - E(1, 2), E(0, 2) - E(2, 0), E(1, 0) - E(0, 1));
