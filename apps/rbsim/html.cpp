@@ -86,7 +86,8 @@ Json RunData(const Simulation& sim, const Recording& rec) {
   for (std::size_t t = 0; t < rec.tendon_paths.size(); ++t) {
     const std::size_t points = sim.world().tendons()[t].path.size();
     if (points < 2) continue;
-    tendons.push_back({{"name", sim.world().tendons()[t].name}, {"count", points}, {"points", Base64(rec.tendon_paths[t])}});
+    tendons.push_back(
+        {{"name", sim.world().tendons()[t].name}, {"count", points}, {"points", Base64(rec.tendon_paths[t])}});
   }
   j["tendons"] = std::move(tendons);
   j["bounds"] = ViewerBounds(bounds);

@@ -69,7 +69,9 @@ void Recording::Add(const Simulation& sim, const dynamics::World& world, const d
   for (std::size_t t = 0; t < world.tendons().size(); ++t) {
     for (const dynamics::BodyFrame& f : world.tendons()[t].path) {
       Vector3 x = f.frame.origin;
-      if (f.body >= 0) x = bodies[static_cast<std::size_t>(f.body)].position + bodies[static_cast<std::size_t>(f.body)].orientation * x;
+      if (f.body >= 0)
+        x = bodies[static_cast<std::size_t>(f.body)].position +
+            bodies[static_cast<std::size_t>(f.body)].orientation * x;
       for (int k = 0; k < 3; ++k) tendon_paths[t].push_back(static_cast<float>(x[k]));
     }
   }
