@@ -3,11 +3,15 @@
 // note per kind, the URDF "world" link is the world frame, a collision mesh that is no solid still
 // gives its hull. A pendulum hinged to the world swings at its elliptic-integral half period.
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -443,6 +447,52 @@ TEST(RobotField, MjcfActuatorsDriveTheirJointsAsMuJoCoDefinesThem) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("no keyframe named 'home' (it has: start)"), std::string::npos) << e.what();
   }
+}
+
+// package:// as ROS tools find packages: a package whose folder is not named as the package (a
+// vendor's arm_description folder holding acme_arm_description), found below ROS_PACKAGE_PATH by
+// its package.xml, or at AMENT_PREFIX_PATH's share/NAME; not found, the error says where it looked.
+TEST(RobotField, PackagesAreFoundAsRosToolsFindThem) {
+  namespace fs = std::filesystem;
+  const fs::path root = fs::temp_directory_path() / ("massprops_ros_" + std::to_string(::getpid()));
+  const fs::path package = root / "ws" / "src" / "vendor" / "arm_description";
+  const fs::path installed = root / "install" / "share" / "acme_arm_description";
+  const std::string tetrahedron = "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0.1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  for (const fs::path& p : {package, installed}) {
+    fs::create_directories(p / "meshes");
+    std::ofstream(p / "meshes" / "link.obj") << tetrahedron;
+    std::ofstream(p / "package.xml") << "<?xml version=\"1.0\"?>\n<package format=\"3\">\n  "
+                                        "<name>acme_arm_description</name>\n  <version>1.0.0</version>\n</package>\n";
+  }
+  fs::create_directories(root / "ws" / "src" / "other_pkg");
+  std::ofstream(root / "ws" / "src" / "other_pkg" / "package.xml") << "<package><name>other_pkg</name></package>";
+  const fs::path urdf = root / "robot.urdf";
+  std::ofstream(urdf) << R"(<robot name="r"><link name="a"><collision><geometry>
+<mesh filename="package://acme_arm_description/meshes/link.obj"/></geometry></collision></link></robot>)";
+  massprops::RobotModelOptions fill;
+  fill.fill = true;
+  auto mesh_path = [&] {
+    const massprops::RobotModel m = massprops::ReadRobotModel(urdf.string(), fill);
+    return std::get<massprops::RobotMesh>(m.links[0].collisions.at(0).shape).path;
+  };
+  unsetenv("ROS_PACKAGE_PATH");
+  unsetenv("AMENT_PREFIX_PATH");
+  try {
+    mesh_path();
+    ADD_FAILURE() << "found without a path";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("the package 'acme_arm_description' is not found in the description's "
+                                         "folders, ROS_PACKAGE_PATH and AMENT_PREFIX_PATH"),
+              std::string::npos)
+        << e.what();
+  }
+  setenv("ROS_PACKAGE_PATH", (root / "nowhere").string().append(":").append((root / "ws" / "src").string()).c_str(), 1);
+  EXPECT_EQ(fs::path(mesh_path()), package / "meshes" / "link.obj");
+  unsetenv("ROS_PACKAGE_PATH");
+  setenv("AMENT_PREFIX_PATH", (root / "install").string().c_str(), 1);
+  EXPECT_EQ(fs::path(mesh_path()), installed / "meshes" / "link.obj");
+  unsetenv("AMENT_PREFIX_PATH");
+  fs::remove_all(root);
 }
 
 // A collision mesh that cannot be read at all is named by its link and geometry, and the file by

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 #include <system_error>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -72,21 +73,74 @@ bool IsRegular(const fs::path& p) {
 }
 
 // The folder a package:// or model:// NAME stands for, or empty.
+// Whether folder `dir` is ROS package `name`: its package.xml says <name>NAME</name>.
+bool ManifestNames(const fs::path& dir, const std::string& name) {
+  std::ifstream manifest(dir / "package.xml");
+  if (!manifest) return false;
+  std::stringstream text;
+  text << manifest.rdbuf();
+  return text.str().find("<name>" + name + "</name>") != std::string::npos;
+}
+
+// ROS 1's search (rospack): below each folder of ROS_PACKAGE_PATH, a package whose manifest names
+// it (or a folder of that name holding a manifest); a package's own folders are not searched
+// further, nor hidden ones; folders in name order, 8 levels at most.
+std::string SearchRosPackagePath(const std::string& name) {
+  const char* value = std::getenv("ROS_PACKAGE_PATH");
+  if (value == nullptr) return "";
+  std::stringstream list(value);
+  for (std::string root; std::getline(list, root, ':');) {
+    if (root.empty()) continue;
+    std::vector<std::pair<fs::path, int>> stack{{fs::path(root), 0}};
+    while (!stack.empty()) {
+      const auto [dir, depth] = stack.back();
+      stack.pop_back();
+      std::error_code e;
+      if (!fs::is_directory(dir, e)) continue;
+      if (fs::exists(dir / "package.xml", e)) {
+        if (ManifestNames(dir, name)) return dir.string();
+        continue;  // (another package: not searched below)
+      }
+      if (depth >= 8) continue;
+      std::vector<fs::path> children;
+      for (fs::directory_iterator it(dir, e), end; !e && it != end; it.increment(e)) {
+        const std::string leaf = it->path().filename().string();
+        if (!leaf.empty() && leaf[0] != '.' && it->is_directory(e)) children.push_back(it->path());
+      }
+      std::sort(children.rbegin(), children.rend());  // (popped in name order)
+      for (const fs::path& c : children) stack.emplace_back(c, depth + 1);
+    }
+  }
+  return "";
+}
+
+// ROS 2's (ament): PREFIX/share/NAME for each prefix of AMENT_PREFIX_PATH.
+std::string SearchAmentPrefixPath(const std::string& name) {
+  const char* value = std::getenv("AMENT_PREFIX_PATH");
+  if (value == nullptr) return "";
+  std::stringstream list(value);
+  std::error_code e;
+  for (std::string prefix; std::getline(list, prefix, ':');) {
+    const fs::path dir = fs::path(prefix) / "share" / name;
+    if (!prefix.empty() && fs::is_directory(dir, e)) return dir.string();
+  }
+  return "";
+}
+
 std::string FindPackage(const std::string& name, const Document& doc, const FillOptions& options, bool model) {
   for (const auto& [pkg, dir] : options.packages) {
     if (pkg == name) return dir;
+  }
+  if (!model) {
+    if (std::string dir = SearchRosPackagePath(name); !dir.empty()) return dir;
+    if (std::string dir = SearchAmentPrefixPath(name); !dir.empty()) return dir;
   }
   // The description's ancestors: a folder called NAME, or one whose package.xml says <name>NAME.
   std::error_code e;
   fs::path at = fs::absolute(fs::path(doc.path), e).parent_path();
   for (int depth = 0; depth < 32 && !at.empty(); ++depth) {
     if (at.filename() == name) return at.string();
-    std::ifstream manifest(at / "package.xml");
-    if (manifest) {
-      std::stringstream text;
-      text << manifest.rdbuf();
-      if (text.str().find("<name>" + name + "</name>") != std::string::npos) return at.string();
-    }
+    if (ManifestNames(at, name)) return at.string();
     if (at == at.parent_path()) break;
     at = at.parent_path();
   }
@@ -114,8 +168,11 @@ std::string ResolveUri(const std::string& uri, const Document& doc, const FillOp
     const std::string name = rest.substr(0, slash);
     const std::string dir = FindPackage(name, doc, options, s == "model://");
     if (dir.empty()) {
+      const std::string searched = s == "model://"
+                                       ? "the description's folders and the Gazebo resource paths"
+                                       : "the description's folders, ROS_PACKAGE_PATH and AMENT_PREFIX_PATH";
       throw ElementError("'" + uri + "': the " + (s == "model://" ? "model" : "package") + " '" + name +
-                         "' is not found (map it with --package " + name + "=DIR)");
+                         "' is not found in " + searched + " (map it with --package " + name + "=DIR)");
     }
     const fs::path file = fs::path(dir) / (slash == std::string::npos ? "" : rest.substr(slash + 1));
     if (!IsRegular(file)) throw ElementError("'" + uri + "': " + file.string() + " is not a readable file");
