@@ -48,24 +48,32 @@ int JointVelocitySize(JointType type) {
   return 0;
 }
 
-void PlaceJointAt(Joint& joint, const std::vector<RigidBody>& bodies, const Vector3& anchor, const Vector3& axis) {
-  if (!(axis.norm() > 0) || !axis.allFinite() || !anchor.allFinite()) {
-    throw std::invalid_argument("PlaceJointAt: joint '" + joint.name + "': the axis must be finite and non-zero");
+Frame FrameAt(const std::vector<RigidBody>& bodies, int body, const Vector3& anchor, const Vector3& axis) {
+  if (!(axis.norm() > 0) || !axis.allFinite() || !anchor.allFinite())
+    throw std::invalid_argument("the axis must be finite and non-zero (and the anchor finite)");
+  if (body < -1 || body >= static_cast<int>(bodies.size()))
+    throw std::invalid_argument("body " + std::to_string(body) + " does not exist");
+  // Origin at the anchor, z along the axis (world).
+  const Quaternion world_frame = Quaternion::FromTwoVectors(Vector3::UnitZ(), axis.normalized());
+  Frame frame;
+  if (body < 0) {
+    frame.origin = anchor;
+    frame.orientation = world_frame;
+    return frame;
   }
-  // J: origin at the anchor, z along the axis (world).
-  const Quaternion world_J = Quaternion::FromTwoVectors(Vector3::UnitZ(), axis.normalized());
-  auto in_body = [&](int index, Frame& frame) {
-    if (index < 0) {
-      frame.origin = anchor;
-      frame.orientation = world_J;
-      return;
-    }
-    const RigidBody& b = bodies.at(static_cast<std::size_t>(index));
-    frame.origin = b.orientation.conjugate() * (anchor - b.position);
-    frame.orientation = (b.orientation.conjugate() * world_J).normalized();
-  };
-  in_body(joint.parent, joint.parent_frame);
-  in_body(joint.child, joint.child_frame);
+  const RigidBody& b = bodies[static_cast<std::size_t>(body)];
+  frame.origin = b.orientation.conjugate() * (anchor - b.position);
+  frame.orientation = (b.orientation.conjugate() * world_frame).normalized();
+  return frame;
+}
+
+void PlaceJointAt(Joint& joint, const std::vector<RigidBody>& bodies, const Vector3& anchor, const Vector3& axis) {
+  try {
+    joint.parent_frame = FrameAt(bodies, joint.parent, anchor, axis);
+    joint.child_frame = FrameAt(bodies, joint.child, anchor, axis);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("PlaceJointAt: joint '" + joint.name + "': " + e.what());
+  }
   joint.axis = Vector3::UnitZ();
 }
 

@@ -5,7 +5,6 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <Eigen/Geometry>
 #include <limits>
 #include <optional>
 
@@ -17,7 +16,6 @@ namespace py = pybind11;
 
 namespace {
 
-using dynamics::Quaternion;
 using massprops::Vector3;
 
 Vector3 Point(const py::handle& h, const char* what) {
@@ -28,17 +26,11 @@ Vector3 Point(const py::handle& h, const char* what) {
 
 // A frame at `origin` with z along `axis` (world, at the placement as added) in body `body`'s axes.
 dynamics::Frame FrameIn(const dynamics::World& w, int body, const Vector3& origin, const Vector3& axis) {
-  if (!(axis.norm() > 0)) throw py::value_error("axis: must not be zero");
-  const Quaternion along = Quaternion::FromTwoVectors(Vector3::UnitZ(), axis.normalized());
-  dynamics::Frame f;
-  f.origin = origin;
-  f.orientation = along;
-  if (body < 0) return f;
-  if (body >= static_cast<int>(w.bodies().size())) throw py::value_error("no body " + std::to_string(body));
-  const dynamics::RigidBody& b = w.body_as_added(body);
-  f.origin = b.orientation.conjugate() * (origin - b.position);
-  f.orientation = b.orientation.conjugate() * along;
-  return f;
+  try {
+    return w.FrameAsAdded(body, origin, axis);
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(e.what());
+  }
 }
 
 py::dict StateDict(const dynamics::ConstraintState& s) {

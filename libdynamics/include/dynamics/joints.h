@@ -115,4 +115,10 @@ struct JointState {
 /// @throws std::invalid_argument for a zero axis.
 void PlaceJointAt(Joint& joint, const std::vector<RigidBody>& bodies, const Vector3& anchor, const Vector3& axis);
 
+/// The frame at `anchor` (world point) with its z axis along `axis` (world direction), in body
+/// `body`'s coordinates as `bodies` place it (-1: in the world's) — a joint's, loop's or tendon
+/// point's frame given in the world. @throws std::invalid_argument for a body that does not exist
+/// or an axis or anchor that is zero or not finite.
+Frame FrameAt(const std::vector<RigidBody>& bodies, int body, const Vector3& anchor, const Vector3& axis);
+
 }  // namespace dynamics

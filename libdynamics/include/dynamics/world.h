@@ -135,6 +135,11 @@ class World {
   void PlaceJoint(Joint& joint, const Vector3& anchor, const Vector3& axis) const {
     PlaceJointAt(joint, as_added_, anchor, axis);
   }
+  /// FrameAt with the bodies as they were added: a loop's frame or a tendon's point given in the
+  /// world of that placement, in body `body`'s coordinates (-1: the world's).
+  Frame FrameAsAdded(int body, const Vector3& anchor, const Vector3& axis = Vector3::UnitZ()) const {
+    return FrameAt(as_added_, body, anchor, axis);
+  }
   /// Body i's state when it was added. @throws std::out_of_range.
   const RigidBody& body_as_added(int i) const { return as_added_.at(static_cast<std::size_t>(i)); }
   const std::vector<Joint>& joints() const { return joints_; }

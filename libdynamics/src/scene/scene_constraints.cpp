@@ -1,7 +1,6 @@
 // The scene's "loops", "tendons" and "couplings" (docs/scenes.md): read, each error naming its
 // field, and added to the world with their frames placed from the bodies as the scene puts them.
 
-#include <Eigen/Geometry>
 #include <cmath>
 #include <set>
 
@@ -177,20 +176,6 @@ std::vector<Spec> ReadArray(Fields& f, const char* key, const Read& read) {
   return out;
 }
 
-dynamics::Frame FrameIn(const dynamics::World& world, int body, const Vector3& origin, const Vector3& z) {
-  const Quaternion along = Quaternion::FromTwoVectors(Vector3::UnitZ(), z.normalized());
-  dynamics::Frame f;
-  if (body < 0) {
-    f.origin = origin;
-    f.orientation = along;
-    return f;
-  }
-  const dynamics::RigidBody& b = world.body_as_added(body);
-  f.origin = b.orientation.conjugate() * (origin - b.position);
-  f.orientation = b.orientation.conjugate() * along;
-  return f;
-}
-
 // Runs `add`, a SceneError naming `field` for what the world refuses.
 template <typename Add>
 void Named(const Scene& scene, const std::string& field, const Add& add) {
@@ -221,7 +206,7 @@ void AddSceneConstraints(const Scene& scene, dynamics::ContactWorld& physics) {
     dynamics::Tendon t = spec.tendon;
     double length = 0;
     for (std::size_t k = 0; k < t.path.size(); ++k) {
-      t.path[k].frame = FrameIn(world, t.path[k].body, spec.points[k], Vector3::UnitZ());
+      t.path[k].frame = world.FrameAsAdded(t.path[k].body, spec.points[k]);
       if (k > 0) length += (spec.points[k] - spec.points[k - 1]).norm();
     }
     if (!spec.rest_given) t.rest_length = length;
@@ -229,8 +214,8 @@ void AddSceneConstraints(const Scene& scene, dynamics::ContactWorld& physics) {
   }
   for (const LoopSpec& spec : scene.loops) {
     dynamics::Loop loop = spec.loop;
-    loop.a.frame = FrameIn(world, loop.a.body, spec.anchor, spec.axis);
-    loop.b.frame = FrameIn(world, loop.b.body, spec.anchor, spec.axis);
+    loop.a.frame = world.FrameAsAdded(loop.a.body, spec.anchor, spec.axis);
+    loop.b.frame = world.FrameAsAdded(loop.b.body, spec.anchor, spec.axis);
     Named(scene, spec.field, [&] { physics.AddLoop(loop); });
   }
   for (const CouplingSpec& spec : scene.couplings)
