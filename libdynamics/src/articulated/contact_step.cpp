@@ -263,25 +263,25 @@ void Articulation::MergeConstrainedTrees(std::vector<int>& tree) const {
       first = std::min(t, first);
     }
   };
-  auto body_of_joint = [&](int j) { return j >= 0 ? joints_[static_cast<std::size_t>(j)].child : -1; };
+  auto body_of_joint = [&](int j) { return joints_[static_cast<std::size_t>(j)].child; };
+  // Each tendon's bodies joined; in a coupling, any one of them stands for the tendon.
+  std::vector<int> tendon_body;
+  for (const Tendon& t : tendons_) {
+    std::vector<int> bodies;
+    for (const auto& [j, c] : t.joints) bodies.push_back(body_of_joint(j));
+    for (const BodyFrame& f : t.path) bodies.push_back(f.body);
+    join(bodies);
+    const auto moving = std::find_if(bodies.begin(), bodies.end(), [](int b) { return b >= 0; });
+    tendon_body.push_back(moving == bodies.end() ? -1 : *moving);
+  }
   for (const Loop& l : loops_) join({l.a.body, l.b.body});
   for (const Coupling& cp : couplings_) {
     std::vector<int> bodies;
     for (const Coordinate& x : {cp.follower, cp.leader}) {
       if (x.index < 0) continue;
-      if (x.kind == Coordinate::Kind::kJoint) bodies.push_back(body_of_joint(x.index));
-      if (x.kind == Coordinate::Kind::kTendon) {
-        const Tendon& t = tendons_[static_cast<std::size_t>(x.index)];
-        for (const auto& [j, c] : t.joints) bodies.push_back(body_of_joint(j));
-        for (const BodyFrame& f : t.path) bodies.push_back(f.body);
-      }
+      bodies.push_back(x.kind == Coordinate::Kind::kJoint ? body_of_joint(x.index)
+                                                          : tendon_body[static_cast<std::size_t>(x.index)]);
     }
-    join(bodies);
-  }
-  for (const Tendon& t : tendons_) {
-    std::vector<int> bodies;
-    for (const auto& [j, c] : t.joints) bodies.push_back(body_of_joint(j));
-    for (const BodyFrame& f : t.path) bodies.push_back(f.body);
     join(bodies);
   }
   for (int& t : tree) t = find(t);
