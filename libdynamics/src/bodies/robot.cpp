@@ -16,6 +16,7 @@
 namespace dynamics {
 namespace {
 
+using internal::FrameOf;
 using massprops::Placement;
 using massprops::RobotJoint;
 using massprops::RobotJointType;
@@ -34,13 +35,6 @@ struct Group {
 };
 
 Quaternion QuaternionOf(const Matrix3& R) { return Quaternion(R).normalized(); }
-
-Frame FrameOf(const Placement& p) {
-  Frame f;
-  f.origin = p.translation;
-  f.orientation = QuaternionOf(p.rotation);
-  return f;
-}
 
 // A geometry's points (metres, its own frame) and, for a mesh, its triangles.
 struct Points {

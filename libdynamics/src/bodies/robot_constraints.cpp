@@ -10,13 +10,6 @@ namespace {
 
 using massprops::Placement;
 
-Frame FrameOf(const Placement& p) {
-  Frame f;
-  f.origin = p.translation;
-  f.orientation = Quaternion(p.rotation).normalized();
-  return f;
-}
-
 class Placer {
  public:
   Placer(const massprops::RobotModel& model, const Placement& pose, const RobotInWorld& added,
@@ -82,6 +75,13 @@ void Named(const massprops::RobotModel& model, const Add& add) {
 }
 
 }  // namespace
+
+Frame FrameOf(const Placement& p) {
+  Frame f;
+  f.origin = p.translation;
+  f.orientation = Quaternion(p.rotation).normalized();
+  return f;
+}
 
 void AddRobotConstraints(ContactWorld& world, const massprops::RobotModel& model, const Placement& pose,
                          const RobotInWorld& added, const std::vector<Placement>& reference,

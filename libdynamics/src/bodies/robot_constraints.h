@@ -8,6 +8,9 @@
 
 namespace dynamics::internal {
 
+/// A placement (a link frame, a joint frame) as a dynamics frame: its origin and rotation.
+Frame FrameOf(const massprops::Placement& p);
+
 /// The model's tendons, couplings and loops added to `world` between the bodies `added` made of
 /// its links; `pose` places the file's world frame (its worldbody sites); `reference` each body
 /// added (in order, from added.bodies[0]) at the reference configuration (every joint at 0, free
