@@ -156,6 +156,10 @@ std::vector<RobotSpec> ReadRobots(const nlohmann::json& robots, const std::strin
 Quaternion ReadOrientation(json_fields::Fields& f, const std::string& key, std::vector<std::string>& warnings);
 /// The "material" object of an entry; the defaults when absent.
 dynamics::Material ReadMaterial(json_fields::Fields& f);
+/// A body of the scene by name or index, or -1 for "world" where no body has that name (a joint's
+/// parent, a loop's end, a tendon's point). @throws SceneError naming the field.
+int BodyOrWorld(json_fields::Fields& f, const std::string& key, const nlohmann::json& v,
+                const std::vector<BodySpec>& bodies);
 /// A joint motor {"mode", "target" (or "target_deg"), "max_effort", "kp", "kd"}.
 dynamics::JointMotor ReadMotor(json_fields::Fields& o, bool degrees_allowed);
 }  // namespace scene

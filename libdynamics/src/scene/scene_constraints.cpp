@@ -19,13 +19,6 @@ int BodyIndex(Fields& f, const std::string& key, const json& v, const std::vecto
 
 namespace {
 
-// A body by name or index, or "world" (-1) where no body has that name.
-int BodyOrWorld(Fields& f, const std::string& key, const json& v, const std::vector<BodySpec>& bodies) {
-  const bool world = v.is_string() && v.get<std::string>() == "world" &&
-                     std::none_of(bodies.begin(), bodies.end(), [](const BodySpec& b) { return b.name == "world"; });
-  return world ? -1 : BodyIndex(f, key, v, bodies);
-}
-
 template <typename Named>
 int IndexNamed(Fields& f, const std::string& key, const std::vector<Named>& items, const char* kind,
                const std::function<std::string(const Named&)>& name_of) {

@@ -75,9 +75,7 @@ JointSpec ReadJoint(const json& j, const std::string& path, const std::string& f
   if (!names.insert(jt.name).second) f.Fail("name", "'" + jt.name + "' is used by another joint");
   const json* parent = f.Get("parent");
   if (!parent) f.Fail("parent", "is required: a body, or \"world\"");
-  const bool world = parent->is_string() && parent->get<std::string>() == "world" &&
-                     std::none_of(bodies.begin(), bodies.end(), [](const BodySpec& b) { return b.name == "world"; });
-  jt.parent = world ? -1 : BodyIndex(f, "parent", *parent, bodies);
+  jt.parent = BodyOrWorld(f, "parent", *parent, bodies);
   if (jt.parent == jt.child) f.Fail("parent", "a body cannot be jointed to itself");
   if (f.Has("anchor")) s.anchor = f.Vec3("anchor", Vector3::Zero());
   f.Get("anchor");
@@ -133,6 +131,12 @@ JointSpec ReadJoint(const json& j, const std::string& path, const std::string& f
 }
 
 }  // namespace
+
+int BodyOrWorld(Fields& f, const std::string& key, const json& v, const std::vector<BodySpec>& bodies) {
+  const bool world = v.is_string() && v.get<std::string>() == "world" &&
+                     std::none_of(bodies.begin(), bodies.end(), [](const BodySpec& b) { return b.name == "world"; });
+  return world ? -1 : BodyIndex(f, key, v, bodies);
+}
 
 dynamics::JointMotor ReadMotor(Fields& o, bool degrees_allowed) {
   dynamics::JointMotor motor;
