@@ -412,12 +412,11 @@ std::string NotALimit(const std::string& attribute, const std::string& limited) 
   return limited == "false" ? attribute + "=\"false\"" : "<compiler autolimits=\"false\"> and no " + attribute;
 }
 
-// An actuator's ctrlrange or forcerange as its ctrllimited/forcelimited says: "auto" (the default)
-// is a limit when <compiler autolimits> is on, as for joints' ranges; a range that is not a limit
-// is noted.
-std::optional<std::pair<double, double>> Range(pugi::xml_attribute limited, pugi::xml_attribute range,
-                                               const std::string& what, bool autolimits,
-                                               std::vector<std::string>& notes) {
+}  // namespace
+
+std::optional<std::pair<double, double>> MjcfRange(pugi::xml_attribute limited, pugi::xml_attribute range,
+                                                   const std::string& what, bool autolimits,
+                                                   std::vector<std::string>& notes) {
   const std::string l = limited ? limited.value() : "auto";
   if (!range) return std::nullopt;
   if (l == "false" || (l == "auto" && !autolimits)) {
@@ -428,6 +427,8 @@ std::optional<std::pair<double, double>> Range(pugi::xml_attribute limited, pugi
   if (!(r[0] <= r[1])) throw ElementError(what + ": its lower end is above its upper");
   return std::pair<double, double>{r[0], r[1]};
 }
+
+namespace {
 
 // <actuator>: position, velocity, motor and general (fixed gain, affine or no bias) on joints, in
 // and tendons in MuJoCo's general form (robot_model.h). The others, and those on sites, are noted and
@@ -505,9 +506,9 @@ void Actuators(pugi::xml_node root, const Defaults& defaults, const Compiler& co
         act.tendon = static_cast<int>(on_tendon - model.tendons.begin());
       }
       act.ctrlrange =
-          Range(attr("ctrllimited"), attr("ctrlrange"), what + " ctrlrange", compiler.autolimits, model.notes);
+          MjcfRange(attr("ctrllimited"), attr("ctrlrange"), what + " ctrlrange", compiler.autolimits, model.notes);
       act.forcerange =
-          Range(attr("forcelimited"), attr("forcerange"), what + " forcerange", compiler.autolimits, model.notes);
+          MjcfRange(attr("forcelimited"), attr("forcerange"), what + " forcerange", compiler.autolimits, model.notes);
       model.actuators.push_back(act);
     }
   }
@@ -866,7 +867,7 @@ void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotMo
     }
   }
   MjcfConstraints(
-      root, links, compiler.autolimits, angle,
+      root, links, compiler.autolimits,
       [&](pugi::xml_node e, const std::string& what) {
         Geometry g;
         PlaceBy([&](const char* a) { return e.attribute(a); }, compiler, g, what);

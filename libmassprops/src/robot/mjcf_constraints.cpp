@@ -70,7 +70,7 @@ double Number(pugi::xml_node e, const char* name, double fallback, const std::st
   return a ? Numbers(a.value(), 1, what + " " + name)[0] : fallback;
 }
 
-void Tendons(pugi::xml_node root, const Names& names, bool autolimits, double angle, RobotModel& model) {
+void Tendons(pugi::xml_node root, const Names& names, bool autolimits, RobotModel& model) {
   int k = 0;
   for (const pugi::xml_node section : root.children("tendon")) {
     for (const pugi::xml_node e : section.children()) {
@@ -105,16 +105,7 @@ void Tendons(pugi::xml_node root, const Names& names, bool autolimits, double an
       } else {
         throw ElementError(what + ": not a tendon MuJoCo knows (fixed, spatial)");
       }
-      const std::string limited = e.attribute("limited") ? e.attribute("limited").value() : "auto";
-      if (const pugi::xml_attribute range = e.attribute("range")) {
-        if (limited == "true" || (limited == "auto" && autolimits)) {
-          const auto r = Numbers(range.value(), 2, what + " range");
-          if (!(r[0] <= r[1])) throw ElementError(what + ": range's lower end is above its upper");
-          t.range = {r[0], r[1]};
-        } else {
-          model.notes.push_back(what + ": its range is not a limit (limited=\"" + limited + "\")");
-        }
-      }
+      t.range = MjcfRange(e.attribute("limited"), e.attribute("range"), what + " range", autolimits, model.notes);
       t.stiffness = Number(e, "stiffness", 0.0, what);
       t.damping = Number(e, "damping", 0.0, what);
       if (!(t.stiffness >= 0) || !(t.damping >= 0)) throw ElementError(what + ": a negative stiffness or damping");
@@ -126,7 +117,6 @@ void Tendons(pugi::xml_node root, const Names& names, bool autolimits, double an
       }
       if (Number(e, "frictionloss", 0.0, what) != 0)
         model.notes.push_back(what + ": frictionloss on a tendon is not simulated");
-      (void)angle;
       model.tendons.push_back(std::move(t));
     }
   }
@@ -248,10 +238,10 @@ void Equalities(pugi::xml_node root, const Names& names, RobotModel& model) {
 
 }  // namespace
 
-void MjcfConstraints(pugi::xml_node root, const std::vector<Link>& links, bool autolimits, double angle,
-                     const MjcfFrame& frame_of, RobotModel& model) {
+void MjcfConstraints(pugi::xml_node root, const std::vector<Link>& links, bool autolimits, const MjcfFrame& frame_of,
+                     RobotModel& model) {
   const Names names(root, links, frame_of, model);
-  Tendons(root, names, autolimits, angle, model);
+  Tendons(root, names, autolimits, model);
   Equalities(root, names, model);
 }
 

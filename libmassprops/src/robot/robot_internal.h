@@ -99,8 +99,14 @@ void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotMo
 using MjcfFrame = std::function<Placement(pugi::xml_node, const std::string&)>;
 /// MJCF <tendon>s and <equality>s into model.tendons, couplings and loops (mjcf_constraints.cpp),
 /// after the joints. @throws ElementError naming the element.
-void MjcfConstraints(pugi::xml_node root, const std::vector<Link>& links, bool autolimits, double angle,
-                     const MjcfFrame& frame_of, RobotModel& model);
+void MjcfConstraints(pugi::xml_node root, const std::vector<Link>& links, bool autolimits, const MjcfFrame& frame_of,
+                     RobotModel& model);
+/// An MJCF range (an actuator's ctrlrange or forcerange, a tendon's range) as its `limited`
+/// attribute says: "auto" (the default) is a limit when <compiler autolimits> is on, as for joints'
+/// ranges; a range that is not a limit is noted (none). @throws ElementError naming `what`.
+std::optional<std::pair<double, double>> MjcfRange(pugi::xml_attribute limited, pugi::xml_attribute range,
+                                                   const std::string& what, bool autolimits,
+                                                   std::vector<std::string>& notes);
 /// The joint type a URDF or SDFormat `type` names, among `allowed` (by RobotJointTypeName).
 /// @throws ElementError naming `what` and listing the allowed types.
 RobotJointType JointTypeNamed(const std::string& type, const std::vector<RobotJointType>& allowed,
