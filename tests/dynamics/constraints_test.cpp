@@ -219,6 +219,30 @@ TEST(Loops, WeldedPairFliesAsOneBody) {
   EXPECT_LT((bodies[ia].orientation.conjugate() * bodies[ib].orientation).vec().norm(), 1e-9);
 }
 
+// A weld's reported impulse is its whole impulse over the step, also in steps where a stop fires
+// beside it: a ball welded (at its centre) to the tip of a bar resting on its stop carries the
+// ball's weight, |impulse| = m g h, every step.
+TEST(Loops, WeldImpulseIsTheLoadItCarriesBesideAStop) {
+  World w;
+  const double mb = 0.4, h = 1e-3;
+  const int bar = w.AddBody(SolidBox(1.0, 0.5, 0.05, 0.05, Vector3(0.25, 0, 0)));
+  const int ball = w.AddBody(SolidBox(mb, 0.1, 0.1, 0.1, Vector3(0.5, 0, 0)));
+  Joint hinge = PlacedJoint(w, -1, bar, Vector3(0, 0, 0), Vector3::UnitY());
+  hinge.limits.upper = 0;  // gravity turns the bar by +y: it rests on this stop
+  const int j = w.AddJoint(hinge);
+  Loop weld;
+  weld.type = LoopType::kWeld;
+  weld.a = At(bar, Vector3(0.25, 0, 0));
+  weld.b = At(ball, Vector3(0, 0, 0));
+  w.AddLoop(weld);
+  w.AddForce(dynamics::Gravity(Vector3(0, 0, -kG)));
+  Simulate(w, h, 200, [&](long s) {
+    if (s < 10) return;
+    EXPECT_LT(w.joint_state(j).limit_impulse, 0.0);  // the (upper) stop fired in this step too
+    EXPECT_NEAR(w.loop_state(0).impulse, mb * kG * h, 1e-9 * mb * kG * h) << "step " << s;
+  });
+}
+
 // A ball on a string of length L from a fixed point: released taut from the horizontal it
 // reaches the lowest point at √(L/g) K(sin 45°) with speed √(2 g L) (the string pulls, taut, and
 // never pushes: it is a range, not a rod).

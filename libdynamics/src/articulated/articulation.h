@@ -104,9 +104,15 @@ struct ConstraintRows {
   std::vector<int> owner;
 };
 
-/// Coordinates held on a limit by a step's end: (dof, limit) of stops, (tendon, limit) of ranges.
+/// Coordinates held on a limit by a step's end: stops (a 1-dof joint's position and velocity
+/// slots, and the limit) and tendon ends ((tendon, limit)).
 struct Pins {
-  std::vector<std::pair<int, double>> dofs, tendons;
+  struct Stop {
+    int q, v;
+    double limit;
+  };
+  std::vector<Stop> stops;
+  std::vector<std::pair<int, double>> tendons;
 };
 
 /// Velocities held on rows J v = target through a mass matrix's factor: the least change in its
@@ -245,8 +251,6 @@ class Articulation {
                           Eigen::VectorXd* jacobian) const;
   /// The loops' and couplings' rows, then the pins', at configuration c (its frames) and q.
   void BilateralRows(const Configuration& c, const Eigen::VectorXd& q, const Pins& pins, ConstraintRows& rows) const;
-  /// The position slot of a 1-dof joint's velocity slot.
-  int DofPosition(int dof) const;
   /// q moved onto the rows (and pins) by Newton's method in the metric of `metric` (false: not
   /// finite); `moved`: whether q changed.
   bool ProjectPositions(const Eigen::LLT<Eigen::MatrixXd>& metric, const Pins& pins, const Configuration& at_q,
@@ -286,8 +290,9 @@ class Articulation {
   std::vector<Coupling> couplings_;
   std::vector<Tendon> tendons_;
   bool bilateral_ = false;
-  std::vector<double> loop_impulse_, coupling_impulse_, tendon_impulse_;  ///< last step
-  Eigen::VectorXd start_gap_;                                             ///< g(q0) of the step being solved
+  std::vector<double> coupling_impulse_, tendon_impulse_;  ///< last step
+  std::vector<Vector6> loop_impulse_;                      ///< last step, each of a loop's rows (at most six)
+  Eigen::VectorXd start_gap_;                              ///< g(q0) of the step being solved
   mutable Configuration probe_;
   ConstraintRows rows_scratch_;
   Projector projector_;

@@ -39,7 +39,7 @@ void Articulation::SetConstraints(const std::vector<Loop>& loops, const std::vec
   loops_ = loops;
   couplings_ = couplings;
   tendons_ = tendons;
-  loop_impulse_.assign(loops.size(), 0.0);
+  loop_impulse_.assign(loops.size(), Vector6::Zero());
   coupling_impulse_.assign(couplings.size(), 0.0);
   tendon_impulse_.assign(tendons.size(), 0.0);
   bilateral_ = !loops.empty() || !couplings.empty();
@@ -142,10 +142,10 @@ void Articulation::BilateralRows(const Configuration& c, const Eigen::VectorXd& 
     add(gap, jy, static_cast<int>(loops_.size() + k));
   }
   // Stops and tendon ends the step holds: their coordinate on the limit.
-  for (const auto& [dof, limit] : pins.dofs) {
+  for (const Pins::Stop& stop : pins.stops) {
     Eigen::VectorXd row = Eigen::VectorXd::Zero(nv);
-    row[dof] = 1.0;
-    add(q[DofPosition(dof)] - limit, row, -1);
+    row[stop.v] = 1.0;
+    add(q[stop.q] - stop.limit, row, -1);
   }
   for (const auto& [t, limit] : pins.tendons) {
     const double length = TendonLength(c, q, t, &jx);
@@ -176,13 +176,6 @@ double Articulation::CouplingResidual(const Configuration& c, const Eigen::Vecto
     if (jacobian) *jacobian -= slope * jx;
   }
   return y - cp.follower_reference - target;
-}
-
-int Articulation::DofPosition(int dof) const {
-  for (const Node& n : nodes_) {
-    if (n.nv == 1 && n.v == dof) return n.q;
-  }
-  return -1;
 }
 
 void Projector::Form(const Eigen::LLT<Eigen::MatrixXd>& factor, const Eigen::MatrixXd& rows) {
@@ -259,13 +252,15 @@ void Articulation::HoldMomenta(const Configuration& c, const Eigen::VectorXd& q,
 }
 
 void Articulation::AddRowImpulses(const ConstraintRows& rows, const Eigen::VectorXd& nu, double scale) {
+  int row_of_loop = 0;  // a loop's rows are consecutive: the index of this one among them
   for (Eigen::Index r = 0; r < nu.size(); ++r) {
     const int owner = rows.owner[static_cast<std::size_t>(r)];
+    row_of_loop = r > 0 && rows.owner[static_cast<std::size_t>(r - 1)] == owner ? row_of_loop + 1 : 0;
     const double share = scale * nu[r];
     if (owner <= -2) tendon_impulse_[static_cast<std::size_t>(-2 - owner)] += share;
     if (owner < 0) continue;
     if (owner < static_cast<int>(loops_.size())) {
-      loop_impulse_[static_cast<std::size_t>(owner)] += share * share;  // (summed squares: the magnitude)
+      loop_impulse_[static_cast<std::size_t>(owner)][row_of_loop] += share;
     } else {
       coupling_impulse_[static_cast<std::size_t>(owner) - loops_.size()] += share;
     }
@@ -375,7 +370,7 @@ bool Articulation::FinishConstrained(const std::vector<std::pair<int, double>>& 
   pins.tendons.insert(pins.tendons.end(), midpoint_pins_.tendons.begin(), midpoint_pins_.tendons.end());
   for (const auto& [qi, limit] : stops) {
     for (const Node& n : nodes_) {
-      if (n.nq == 1 && n.q == qi) pins.dofs.emplace_back(n.v, limit);
+      if (n.nq == 1 && n.q == qi) pins.stops.push_back({n.q, n.v, limit});
     }
   }
   if (!end_.dense && !Densify(end_)) return false;
@@ -388,7 +383,7 @@ bool Articulation::FinishConstrained(const std::vector<std::pair<int, double>>& 
 }
 
 void Articulation::ClearConstraintImpulses(bool tendons) {
-  std::fill(loop_impulse_.begin(), loop_impulse_.end(), 0.0);
+  std::fill(loop_impulse_.begin(), loop_impulse_.end(), Vector6::Zero());
   std::fill(coupling_impulse_.begin(), coupling_impulse_.end(), 0.0);
   if (tendons) std::fill(tendon_impulse_.begin(), tendon_impulse_.end(), 0.0);
 }
@@ -404,7 +399,7 @@ ConstraintState Articulation::LoopState(int k) const {
   if (loop.type == LoopType::kWeld || loop.type == LoopType::kSlider)
     s.residual = std::max(s.residual, TurnBetween(Ra, Rb).norm());
   if (loop.type == LoopType::kHinge) s.residual = std::max(s.residual, Ra.col(2).cross(Rb.col(2)).norm());
-  s.impulse = std::sqrt(loop_impulse_[static_cast<std::size_t>(k)]);
+  s.impulse = loop_impulse_[static_cast<std::size_t>(k)].norm();
   return s;
 }
 
