@@ -256,11 +256,12 @@ class Articulation {
   bool ProjectPositions(const Eigen::LLT<Eigen::MatrixXd>& metric, const Pins& pins, const Configuration& at_q,
                         Eigen::VectorXd& q, bool& moved);
   /// p changed by the least impulse Jᵀν that makes v = M⁻¹p satisfy J v = 0 at c (dense).
+  /// (Leaves the rows in rows_scratch_ and projector_ formed on them.)
   void HoldMomenta(const Configuration& c, const Eigen::VectorXd& q, Eigen::VectorXd& p, const Pins& pins = {});
   /// Rows the midpoint step holds: loops, couplings, taut tendons.
   bool Holds() const { return bilateral_ || !midpoint_pins_.tendons.empty(); }
-  /// The tendons at an end of their range at q (to 10⁻¹² of it), pinned there.
-  void TautTendons(const Eigen::VectorXd& q, Pins& pins);
+  /// The tendons at an end of their range at q (configuration c; to 10⁻¹² of it), pinned there.
+  void TautTendons(const Configuration& c, const Eigen::VectorXd& q, Pins& pins) const;
   /// Lets go of the taut tendons whose hold in the last midpoint solve pushed (a string cannot);
   /// true when any was let go.
   bool ReleasePushingPins();

@@ -334,12 +334,11 @@ void Articulation::TendonStopRows(const Eigen::VectorXd& q1, const Eigen::Vector
   }
 }
 
-void Articulation::TautTendons(const Eigen::VectorXd& q, Pins& pins) {
-  Configure(q, probe_, Form::kFrames);
+void Articulation::TautTendons(const Configuration& c, const Eigen::VectorXd& q, Pins& pins) const {
   for (std::size_t t = 0; t < tendons_.size(); ++t) {
     const JointLimits& limits = tendons_[t].limits;
     if (!std::isfinite(limits.lower) && !std::isfinite(limits.upper)) continue;
-    const double length = TendonLength(probe_, q, static_cast<int>(t), nullptr);
+    const double length = TendonLength(c, q, static_cast<int>(t), nullptr);
     if (length >= limits.upper - 1e-12 * std::max(1.0, std::abs(limits.upper))) {
       pins.tendons.emplace_back(static_cast<int>(t), limits.upper);
     } else if (length <= limits.lower + 1e-12 * std::max(1.0, std::abs(limits.lower))) {

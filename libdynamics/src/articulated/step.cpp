@@ -93,14 +93,15 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
   p0_ = p_;
   held_rows_ = Projector{};
   midpoint_pins_ = Pins{};
-  if (!tendons_.empty()) TautTendons(q0_, midpoint_pins_);
+  // The start's frames: which tendons are taut there, and the rows' g(q0).
+  if (bilateral_ || !tendons_.empty()) Configure(q0_, probe_, Form::kFrames);
+  if (!tendons_.empty()) TautTendons(probe_, q0_, midpoint_pins_);
   Eigen::VectorXd held;  // the rows' generalized impulse over the step
   // A taut tendon is held through the step (a string swings its ball at the midpoint rule's
   // order, not a stop's); where holding it would push, it lets go and the step is solved again.
   for (int attempt = 0;; ++attempt) {
     Predict(h);
     if (Holds()) {  // g(q0): the midpoint velocity aims the step's end at g = 0
-      Configure(q0_, probe_, Form::kFrames);
       BilateralRows(probe_, q0_, midpoint_pins_, rows_scratch_);
       start_gap_ = rows_scratch_.g;
     }
@@ -116,9 +117,8 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
   if (!Configure(q1_, end_, StepForm())) return false;
   if (Holds()) {  // the stops' impulses see the loops, couplings and taut tendons held at the end
     HoldMomenta(end_, q1_, p1_, midpoint_pins_);
-    BilateralRows(end_, q1_, midpoint_pins_, rows_scratch_);
-    held_rows_.Form(end_.llt, rows_scratch_.J);
-    held_target_ = Eigen::VectorXd::Zero(rows_scratch_.J.rows());
+    held_rows_ = projector_;  // (HoldMomenta's: these rows at the end, through end_'s factor)
+    held_target_ = Eigen::VectorXd::Zero(held_rows_.J.rows());
   }
   std::vector<std::pair<int, double>> stops;
   if (Impulses(end_, q1_, h, p1_, stops)) {
