@@ -68,10 +68,7 @@ void Recording::Add(const Simulation& sim, const dynamics::World& world, const d
   tendon_paths.resize(world.tendons().size());
   for (std::size_t t = 0; t < world.tendons().size(); ++t) {
     for (const dynamics::BodyFrame& f : world.tendons()[t].path) {
-      Vector3 x = f.frame.origin;
-      if (f.body >= 0)
-        x = bodies[static_cast<std::size_t>(f.body)].position +
-            bodies[static_cast<std::size_t>(f.body)].orientation * x;
+      const Vector3 x = dynamics::InWorld(bodies, f).origin;
       for (int k = 0; k < 3; ++k) tendon_paths[t].push_back(static_cast<float>(x[k]));
     }
   }

@@ -28,20 +28,18 @@ void CheckFrame(const char* call, const std::string& what, const std::string& na
   }
 }
 
-// A frame's origin and rotation in the world, from its body's state as it is now.
-void Placed(const std::vector<RigidBody>& bodies, const BodyFrame& f, Vector3& origin, Matrix3& rotation) {
-  Matrix3 R = Matrix3::Identity();
-  Vector3 x = Vector3::Zero();
-  if (f.body >= 0) {
-    const RigidBody& b = bodies[static_cast<std::size_t>(f.body)];
-    R = b.orientation.normalized().toRotationMatrix();
-    x = b.position;
-  }
-  origin = x + R * f.frame.origin;
-  rotation = R * f.frame.orientation.normalized().toRotationMatrix();
-}
-
 }  // namespace
+
+Frame InWorld(const std::vector<RigidBody>& bodies, const BodyFrame& f) {
+  Frame world;
+  world.origin = f.frame.origin;
+  world.orientation = f.frame.orientation.normalized();
+  if (f.body < 0) return world;
+  const RigidBody& b = bodies.at(static_cast<std::size_t>(f.body));
+  world.origin = b.position + b.orientation.normalized() * f.frame.origin;
+  world.orientation = b.orientation.normalized() * world.orientation;
+  return world;
+}
 
 int World::AddLoop(const Loop& loop) {
   const char* call = "AddLoop";
@@ -55,10 +53,9 @@ int World::AddLoop(const Loop& loop) {
   if (!(loop.tolerance >= 0)) Refuse(call, "loop", loop.name, "a negative tolerance");
   // The frames must meet as the joints place the bodies now.
   Place();
-  Vector3 pa, pb;
-  Matrix3 Ra, Rb;
-  Placed(bodies_, loop.a, pa, Ra);
-  Placed(bodies_, loop.b, pb, Rb);
+  const Frame a = InWorld(bodies_, loop.a), b = InWorld(bodies_, loop.b);
+  const Vector3 &pa = a.origin, &pb = b.origin;
+  const Matrix3 Ra = a.orientation.toRotationMatrix(), Rb = b.orientation.toRotationMatrix();
   Vector3 gap = pb - pa;
   if (loop.type == LoopType::kSlider) gap -= Ra.col(2) * Ra.col(2).dot(gap);
   double turn = 0;

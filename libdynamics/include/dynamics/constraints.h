@@ -37,6 +37,10 @@ struct BodyFrame {
   Frame frame;
 };
 
+/// Where frame `f` is in the world, with the bodies where `bodies` has them (a loop's ends, a
+/// tendon's points): its origin, and its axes' orientation.
+Frame InWorld(const std::vector<RigidBody>& bodies, const BodyFrame& f);
+
 /// How a loop holds frame b on frame a.
 enum class LoopType {
   kBall,    ///< the origins coincide (MJCF <equality connect>)
