@@ -165,7 +165,14 @@ struct Ours {
                       massprops::Matrix3::Identity(), kTableCentre);
     }
     dynamics::RobotOptions options;
-    if (!s.file_floor) options.pose.translation = Vector3(0, 0, s.base_z);
+    if (!s.file_floor) {  // MuJoCo's qpos puts the free root at base_z; our pose moves the file's world
+      options.pose.translation = Vector3(0, 0, s.base_z);
+      for (const massprops::RobotJoint& j : model.joints) {
+        if (j.parent < 0 && j.type == massprops::RobotJointType::kFloating) {
+          options.pose.translation -= j.parent_to_joint.translation;
+        }
+      }
+    }
     options.positions = s.positions;
     options.keyframe = s.keyframe;
     added = dynamics::AddRobot(world, model, options);

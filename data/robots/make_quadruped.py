@@ -22,6 +22,7 @@ LEG_RADIUS = 0.025  # of the hexagonal legs (circumradius)
 LEG_LENGTH = 0.20  # thigh and shin
 HIPS = [("front_left", 0.15, 0.13), ("front_right", 0.15, -0.13), ("rear_left", -0.15, 0.13),
         ("rear_right", -0.15, -0.13)]
+STANDING = 2 * LEG_LENGTH + 0.01  # the base's height in the SDFormat and MJCF files: legs 1 cm above the floor
 HEAD = ((0.06, 0.08, 0.05), (0.23, 0.0, 0.01))  # box size, its centre in the body frame
 
 
@@ -170,10 +171,13 @@ def main():
     with open(os.path.join(out, "quadruped.urdf"), "w") as f:
         f.write("".join(u))
 
+    # SDFormat and MJCF place the robot in their world (URDF says nothing: simulators set it down):
+    # standing, its legs 1 cm above the floor.
     # SDFormat: link poses in the model frame (legs straight down at q = 0), joint frames at the
     # child links' origins (SDFormat's default), axes in the joint frames.
     s = ['<?xml version="1.0"?>\n<!-- The example quadruped (data/robots/make_quadruped.py). -->\n'
-         '<sdf version="1.7">\n  <model name="quadruped">\n']
+         '<sdf version="1.7">\n  <model name="quadruped">\n'
+         f'    <pose>0 0 {g(STANDING)} 0 0 0</pose>\n']
     s.append('    <link name="base_link">\n' + sdf_inertial(body_mp, "      ") +
              '      <collision name="body"><geometry><mesh><uri>meshes/body.obj</uri></mesh></geometry></collision>\n'
              '    </link>\n')
@@ -202,7 +206,8 @@ def main():
     m = ['<!-- The example quadruped (data/robots/make_quadruped.py). -->\n<mujoco model="quadruped">\n'
          '  <compiler angle="radian"/>\n  <asset>\n    <mesh name="body" file="meshes/body.obj"/>\n'
          '    <mesh name="leg" file="meshes/leg.obj"/>\n  </asset>\n  <worldbody>\n'
-         '    <body name="base_link" pos="0 0 0">\n      <freejoint name="root"/>\n' + mjcf_inertial(body_mp, "      ") +
+         f'    <body name="base_link" pos="0 0 {g(STANDING)}">\n'
+         '      <freejoint name="root"/>\n' + mjcf_inertial(body_mp, "      ") +
          '      <geom name="body" type="mesh" mesh="body"/>\n'
          f'      <body name="head" pos="{ha}">\n' + mjcf_inertial(head_mp, "        ") +
          f'        <geom name="head" type="box" size="{" ".join(g(v / 2) for v in head_size)}" contype="0" '

@@ -553,7 +553,7 @@ py::dict AddRobot(dynamics::ContactWorld& w, const std::string& path, const py::
   dynamics::RobotInWorld added;
   try {
     const massprops::RobotModel model = massprops::ReadRobotModel(path, read);
-    // No position: set down 1 cm above the world's ground, as rbsim and scenes do.
+    // No position: where rbsim and scenes start it (set down 1 cm above the ground unless its file places it).
     if (position.is_none()) {
       options.pose = dynamics::PlaceAboveGround(model, options, w.grounds(), dynamics::kSetDownClearance);
     }

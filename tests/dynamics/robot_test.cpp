@@ -32,7 +32,9 @@ std::vector<RigidBody> Drop(const massprops::RobotModel& model, long steps = 100
   world.set_num_threads(threads);
   world.AddGround({});
   dynamics::RobotOptions options;
-  options.pose.translation = Vector3(0, 0, 0.47);
+  // The base 0.47 m up: the SDFormat and MJCF files stand it 0.41 m up in their world
+  // (make_quadruped.py), which the pose moves; the URDF says nothing.
+  options.pose.translation = Vector3(0, 0, model.format == massprops::RobotFormat::kUrdf ? 0.47 : 0.06);
   for (const char* leg : {"front_left", "front_right", "rear_left", "rear_right"}) {
     options.positions[std::string(leg) + "_hip"] = 0.3;
     options.positions[std::string(leg) + "_knee"] = -0.6;

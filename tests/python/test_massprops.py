@@ -437,8 +437,9 @@ def test_contact_a_mesh_hull_rests_on_a_table():
         d.ContactWorld().add_body(d.RigidBody(), d.sphere(-1.0))
 
 
-def _standing_quadruped(path, **kw):
-    """The example quadruped on the ground, its servos holding a bent-knee stance, after 4 s."""
+def _standing_quadruped(path, lift=0.0, **kw):
+    """The example quadruped on the ground, its servos holding a bent-knee stance, after 4 s.
+    `lift`: how high the file itself places the base (the position moves the file's world)."""
     world = massprops.dynamics.ContactWorld()
     world.add_ground()
     world.add_gravity([0, 0, -9.81])
@@ -449,7 +450,7 @@ def _standing_quadruped(path, **kw):
         motors[leg + "_hip"] = dict(servo, target=0.4)
         motors[leg + "_knee"] = dict(servo, target=-0.8)
     positions = {name: m["target"] for name, m in motors.items()}
-    robot = world.add_robot(path, position=[0, 0, 0.4 * math.cos(0.4) + 0.005], positions=positions,
+    robot = world.add_robot(path, position=[0, 0, 0.4 * math.cos(0.4) + 0.005 - lift], positions=positions,
                             motors=motors, **kw)
     world.step(1e-3, steps=4000)
     return world, robot
@@ -460,7 +461,7 @@ def test_robots_stand_alike_from_urdf_and_mjcf():
     1e-9), where its legs put it: hips 2 x 0.2 m x cos 0.4 above the feet, less the servos' sag."""
     robots = os.path.join(os.path.dirname(MESHES), "robots", "quadruped")
     a, ra = _standing_quadruped(os.path.join(robots, "quadruped.urdf"))
-    b, rb = _standing_quadruped(os.path.join(robots, "quadruped.xml"))
+    b, rb = _standing_quadruped(os.path.join(robots, "quadruped.xml"), lift=0.41)  # MJCF stands it 0.41 m up
     assert ra["body_names"][0] == "base_link" and len(ra["bodies"]) == 9 and len(ra["joints"]) == 8
     base_a, base_b = a.body(ra["bodies"][0]), b.body(rb["bodies"][0])
     assert np.allclose(base_a.position, base_b.position, atol=1e-9, rtol=0)

@@ -64,11 +64,17 @@ struct RobotInWorld {
 /// position (m).
 inline constexpr double kSetDownClearance = 0.01;
 
+/// Whether the file places the robot in its world, so that it starts there (relative to
+/// `options.pose`) and is never set down: MJCF (MuJoCo's qpos0) and SDFormat (the model's and its
+/// links' <pose>) always; a URDF whose root a joint attaches to its "world" link; any robot a
+/// keyframe places. A URDF with a free root says nothing of where it stands.
+bool PlacedByItsFile(const massprops::RobotModel& model, const RobotOptions& options);
+
 /// Where a robot is set down: `options.pose` raised along the first ground's normal so that the
 /// robot's lowest collision point (at its initial joint positions) is `clearance` above the highest
 /// of the grounds parallel to that one. rbsim, scenes and Python's add_robot set a robot given no
-/// position 1 cm above the ground this way. The pose as given when a keyframe places the robot or
-/// there is no ground. @throws as AddRobot.
+/// position 1 cm above the ground this way. The pose as given when the file places the robot
+/// (PlacedByItsFile) or there is no ground. @throws as AddRobot.
 massprops::Placement PlaceAboveGround(const massprops::RobotModel& model, const RobotOptions& options,
                                       const std::vector<Ground>& grounds, double clearance);
 

@@ -135,7 +135,8 @@ struct RobotSpec {
   bool fill = false;  ///< inertials computed from the links' geometries first (massprops fill)
   massprops::FillOptions fill_options;
   dynamics::RobotOptions options;  ///< pose, base, positions, motors, colliders, material
-  /// No position given: the robot is raised so that its lowest point is 1 cm above the ground.
+  /// No position given: where its file places it, or set down 1 cm above the ground when it does
+  /// not (dynamics::PlacedByItsFile).
   bool position_given = false;
   bool material_given = false;  ///< the scene states the robot's material
 };
@@ -176,8 +177,8 @@ struct Scene {
 /// Whether `path` names a robot description rather than a scene: a regular file whose extension
 /// is not .json (rbsim's and load_scene's one rule; the root element then says which format).
 bool IsRobotFile(const std::string& path);
-/// A robot file given on the command line: on the ground, dropped from 1 cm (or placed by the MJCF
-/// keyframe named, which also sets its joints and controls), for `duration`.
+/// A robot file given on the command line: where its file places it (a free URDF robot dropped
+/// from 1 cm; the MJCF keyframe named, which also sets its joints and controls), for `duration`.
 Scene RobotScene(const std::string& path, bool fill, bool fixed_base, const std::string& keyframe = "");
 
 /// Parses and validates a scene given as JSON text. `base_dir` resolves relative mesh paths.

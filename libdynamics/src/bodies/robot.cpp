@@ -356,9 +356,15 @@ std::vector<massprops::TriangleMesh> VisualShapes(const RobotModel& model, const
   return out;
 }
 
+bool PlacedByItsFile(const RobotModel& model, const RobotOptions& options) {
+  if (model.format != massprops::RobotFormat::kUrdf || !options.keyframe.empty()) return true;
+  return std::any_of(model.joints.begin(), model.joints.end(),
+                     [](const RobotJoint& j) { return j.parent < 0 && j.type != RobotJointType::kFloating; });
+}
+
 massprops::Placement PlaceAboveGround(const RobotModel& model, const RobotOptions& options,
                                       const std::vector<Ground>& grounds, double clearance) {
-  if (!options.keyframe.empty() || grounds.empty()) return options.pose;
+  if (PlacedByItsFile(model, options) || grounds.empty()) return options.pose;
   // Where its lowest point is at the pose as given (a scratch world), then raised.
   ContactWorld scratch;
   const RobotInWorld trial = AddRobot(scratch, model, options);
@@ -528,7 +534,7 @@ std::vector<Placement> PlaceRoots(const RobotModel& model, const RobotOptions& o
     if (groups[g].root != link) continue;
     const int j = lumps.joint_above[l];
     if (j < 0) {
-      root_in_world[g] = options.pose;
+      root_in_world[g] = options.pose.Then(model.links[l].placement.value_or(Placement{}));
       continue;
     }
     const RobotJoint& joint = model.joints[static_cast<std::size_t>(j)];

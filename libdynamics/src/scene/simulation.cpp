@@ -57,8 +57,8 @@ BuiltShape LoadShape(const dynamics::BodyBuilder& builder, const ShapeSpec& shap
 }
 
 // A robot of the scene: its file read (filled on request), its bodies and joints added, each
-// body drawn as its collision geometry. Without a position it is raised so that its lowest point
-// is 1 cm above the highest ground under it.
+// body drawn as its collision geometry. Without a position it starts where its file places it, or
+// raised so that its lowest point is 1 cm above the highest ground under it (PlaceAboveGround).
 void AddRobot(Simulation& sim, const RobotSpec& spec, std::vector<std::string>& warnings) {
   // A robot given on the command line is its own scene: its messages name the file once.
   const bool alone = sim.scene.file == spec.path;
@@ -88,7 +88,7 @@ void AddRobot(Simulation& sim, const RobotSpec& spec, std::vector<std::string>& 
                        "pair's); the scene's material gives only their restitution");
   }
   try {
-    if (!spec.position_given) {  // 1 cm above the ground (a keyframe places it as the file does)
+    if (!spec.position_given) {  // where the file places it, else 1 cm above the ground
       options.pose = dynamics::PlaceAboveGround(model, options, sim.scene.grounds, dynamics::kSetDownClearance);
     }
     const dynamics::RobotInWorld added = dynamics::AddRobot(sim.physics, model, options);

@@ -123,7 +123,8 @@ void SdfKinematics(const Document& doc, const std::vector<Link>& links, RobotMod
   }
   const pugi::xml_node root = models.front();
   model.name = root.attribute("name").value();
-  if (root.child("pose")) model.notes.push_back("the model's own <pose> is not used: the robot is placed by the scene");
+  // The model frame M in the world: where the file places the robot.
+  const Placement model_pose = root.child("pose") ? PoseOf(root.child("pose"), "<model>") : Placement{};
   std::map<std::string, int> index;
   for (std::size_t k = 0; k < links.size(); ++k) {
     if (!index.emplace(links[k].name, static_cast<int>(k)).second) {
@@ -209,7 +210,7 @@ void SdfKinematics(const Document& doc, const std::vector<Link>& links, RobotMod
       joint_in_model =
           (rel.empty() ? child_in_model : frame_of(rel, what + " <pose relative_to>")).Then(PoseOf(pose, what));
     }
-    const Placement parent_in_model = j.parent >= 0 ? place(j.parent, 0) : Placement{};
+    const Placement parent_in_model = j.parent >= 0 ? place(j.parent, 0) : model_pose.Inverse();
     j.parent_to_joint = parent_in_model.Inverse().Then(joint_in_model);
     j.joint_to_child = joint_in_model.Inverse().Then(child_in_model);
     if (const pugi::xml_node axis = element.child("axis")) {
@@ -254,6 +255,12 @@ void SdfKinematics(const Document& doc, const std::vector<Link>& links, RobotMod
       }
     }
     model.joints.push_back(j);
+  }
+  // A link no joint moves is free in the world, where the model's and its own <pose> put it.
+  std::vector<char> moved(links.size(), 0);
+  for (const RobotJoint& j : model.joints) moved[static_cast<std::size_t>(j.child)] = 1;
+  for (std::size_t k = 0; k < links.size(); ++k) {
+    if (!moved[k]) model.links[k].placement = model_pose.Then(place(static_cast<int>(k), 0));
   }
 }
 

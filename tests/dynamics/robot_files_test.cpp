@@ -1,0 +1,101 @@
+// Robot files as publishers write them (round five): where each format places its robot, ...
+// Fixtures under tests/robot/field/, in the habits of the files they stand for.
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "bodies/robot.h"
+#include "dynamics/contact.h"
+#include "massprops/robot/robot_model.h"
+
+namespace {
+
+using dynamics::ContactWorld;
+using massprops::Vector3;
+
+const std::string kField = std::string(MASSPROPS_DATA_DIR) + "/../tests/robot/field/";
+
+// As rbsim and scenes add a robot given no position: set down on the file's floors (or the
+// default ground) unless the file places it.
+struct Added {
+  ContactWorld world;
+  dynamics::RobotInWorld robot;
+  massprops::Placement pose;
+};
+Added AddAsRbsimDoes(const massprops::RobotModel& model) {
+  Added out;
+  std::vector<dynamics::Ground> grounds;
+  for (const massprops::RobotGround& g : model.grounds) grounds.push_back(dynamics::GroundOf(g));
+  if (grounds.empty()) grounds.emplace_back();
+  for (const dynamics::Ground& g : grounds) out.world.AddGround(g);
+  dynamics::RobotOptions options;
+  options.pose = dynamics::PlaceAboveGround(model, options, grounds, dynamics::kSetDownClearance);
+  out.pose = options.pose;
+  out.robot = dynamics::AddRobot(out.world, model, options);
+  return out;
+}
+
+Vector3 CenterOf(const Added& a, std::size_t k) {
+  return a.world.world().bodies()[static_cast<std::size_t>(a.robot.bodies.at(k))].position;
+}
+
+// The control suite's pendulum: a pole hinged to the world 0.6 m above the floor, its mass a
+// 1 kg sphere 0.5 m up the pole (the pole's and the hinge's geoms massless). MuJoCo starts it
+// there (qpos0); so do we, over the file's own floor.
+TEST(RobotFiles, MjcfHingedToTheWorldStartsWhereTheFileSays) {
+  const massprops::RobotModel m = massprops::ReadRobotModel(kField + "control/pendulum.xml");
+  EXPECT_TRUE(dynamics::PlacedByItsFile(m, {}));
+  const Added a = AddAsRbsimDoes(m);
+  EXPECT_TRUE(a.pose.translation.isZero(0)) << a.pose.translation.transpose();
+  ASSERT_EQ(a.robot.bodies.size(), 1u);
+  EXPECT_LT((CenterOf(a, 0) - Vector3(0, 0, 1.1)).norm(), 1e-12) << CenterOf(a, 0).transpose();
+  // The hinge's anchor: the body's frame origin, 0.5 m below the sphere, at 0.6 m.
+  const massprops::Placement link = a.robot.body_in_link[0].Inverse();
+  const dynamics::RigidBody& b = a.world.world().bodies()[0];
+  EXPECT_LT((b.orientation * link.translation + b.position - Vector3(0, 0, 0.6)).norm(), 1e-12);
+}
+
+// The cart-pole: rails and cart 1 m up, the pole standing on the cart (a 1 m capsule of 0.1 kg,
+// its center 0.5 m above the cart's).
+TEST(RobotFiles, MjcfCartOnRailsStartsOnTheRails) {
+  const massprops::RobotModel m = massprops::ReadRobotModel(kField + "control/cartpole.xml");
+  const Added a = AddAsRbsimDoes(m);
+  ASSERT_EQ(a.robot.bodies.size(), 2u);
+  EXPECT_LT((CenterOf(a, 0) - Vector3(0, 0, 1)).norm(), 1e-12) << CenterOf(a, 0).transpose();
+  EXPECT_LT((CenterOf(a, 1) - Vector3(0, 0, 1.5)).norm(), 1e-12) << CenterOf(a, 1).transpose();
+}
+
+// SDFormat places the model by its <pose> (x y z roll pitch yaw): the crate, free, at the model's
+// pose then its own; the door hinged to the world where the model puts it.
+TEST(RobotFiles, SdformatModelPoseIsWhereTheModelStands) {
+  const massprops::RobotModel m = massprops::ReadRobotModel(kField + "placed_model.sdf");
+  const Added a = AddAsRbsimDoes(m);
+  ASSERT_EQ(a.robot.bodies.size(), 2u);
+  EXPECT_LT((CenterOf(a, 0) - Vector3(1, 2.2, 0.5)).norm(), 1e-12) << CenterOf(a, 0).transpose();
+  EXPECT_LT((CenterOf(a, 1) - Vector3(0, 2.25, 1.0)).norm(), 1e-12) << CenterOf(a, 1).transpose();
+}
+
+// URDF says nothing of where a free robot stands: it is set down, its lowest point 1 cm above
+// the ground. A URDF bolted to its "world" link stays where the file bolts it.
+TEST(RobotFiles, UrdfIsSetDownUnlessBoltedToTheWorld) {
+  const massprops::RobotModel dog =
+      massprops::ReadRobotModel(std::string(MASSPROPS_DATA_DIR) + "/robots/quadruped/quadruped.urdf");
+  EXPECT_FALSE(dynamics::PlacedByItsFile(dog, {}));
+  const Added a = AddAsRbsimDoes(dog);
+  EXPECT_NEAR(a.pose.translation.z(), 0.41, 1e-12);  // legs 0.4 m below the base
+  const massprops::RobotModel arm = massprops::ReadRobotModel(kField + "arm_on_world.urdf");
+  EXPECT_TRUE(dynamics::PlacedByItsFile(arm, {}));
+  EXPECT_TRUE(AddAsRbsimDoes(arm).pose.translation.isZero(0));
+  // The same quadruped in MJCF and SDFormat stands where the file puts it: 0.41 m up.
+  for (const char* file : {"quadruped.xml", "quadruped.sdf"}) {
+    const Added b =
+        AddAsRbsimDoes(massprops::ReadRobotModel(std::string(MASSPROPS_DATA_DIR) + "/robots/quadruped/" + file));
+    EXPECT_TRUE(b.pose.translation.isZero(0)) << file;
+    EXPECT_NEAR(CenterOf(b, 0).z(), CenterOf(a, 0).z(), 1e-12) << file;
+  }
+}
+
+}  // namespace
