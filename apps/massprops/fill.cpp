@@ -88,10 +88,9 @@ int FillMain(int argc, char** argv) {
   };
   o.from = from == "visual" ? GeometrySource::kVisual : GeometrySource::kCollision;
   for (const std::string& p : packages) {
-    const std::size_t eq = p.find('=');
-    if (eq == std::string::npos || eq == 0 || eq + 1 == p.size())
-      return bad("--package takes NAME=DIR, got '" + p + "'");
-    o.packages.emplace_back(p.substr(0, eq), p.substr(eq + 1));
+    const auto mapping = massprops::PackageMapping(p);
+    if (!mapping) return bad("--package takes NAME=DIR, got '" + p + "'");
+    o.packages.push_back(*mapping);
   }
   try {
     report::CheckOutputPath(output, {input});

@@ -60,10 +60,12 @@ struct Exit {
 // The command line, as parsed.
 struct Flags {
   std::string scene_file, mesh, unit = "m", omega_text, omega_frame = "world", velocity_text, out_dir, integrator,
-                                outputs_text, keyframe;
+      outputs_text;
+  rbsim::RobotFileOptions robot;
+  std::vector<std::string> packages;  // NAME=DIR, as given
   double density = 1000, mass = 0;
   std::optional<double> dt, duration, rate;
-  bool repair = false, allow_open = false, quiet = false, fill = false, fixed_base = false, unit_given = false;
+  bool repair = false, allow_open = false, quiet = false, unit_given = false;
   int threads = 1;
 };
 
@@ -71,13 +73,18 @@ struct Flags {
 CLI::Option* DeclareSceneFlags(CLI::App& app, Flags& f) {
   auto* scene_opt = app.add_option("scene", f.scene_file,
                                    "Scene file (JSON), or a robot file (URDF, SDFormat, MJCF) to drop on the ground");
-  app.add_flag("--fill", f.fill,
+  app.add_flag("--fill", f.robot.fill,
                "Robot file: compute every link's inertial from its geometry first (as massprops fill)")
       ->needs(scene_opt);
-  app.add_flag("--fixed-base", f.fixed_base, "Robot file: weld its root link to the world")->needs(scene_opt);
-  app.add_option("--keyframe", f.keyframe,
+  app.add_flag("--fixed-base", f.robot.fixed_base, "Robot file: weld its root link to the world where it starts")
+      ->needs(scene_opt);
+  app.add_option("--keyframe", f.robot.keyframe,
                  "Robot file (MJCF): start from this <key>: its qpos places the robot and its joints, its ctrl "
                  "drives the actuators")
+      ->needs(scene_opt);
+  app.add_option("--package", f.packages,
+                 "Robot file: NAME=DIR, the folder of package://NAME/ (URDF) or model://NAME/ (SDFormat), searched "
+                 "before ROS_PACKAGE_PATH and AMENT_PREFIX_PATH (repeatable)")
       ->needs(scene_opt);
   return scene_opt;
 }
@@ -210,14 +217,24 @@ void ApplyOverrides(const Flags& f, rbsim::Scene& scene, std::vector<std::string
 // SceneError and the others for a scene that cannot run.
 rbsim::Scene SceneOf(const Flags& f, std::vector<std::string>& warnings) {
   const bool robot_file = rbsim::IsRobotFile(f.scene_file);
-  if ((f.fill || f.fixed_base || !f.keyframe.empty()) && !robot_file) {
-    std::cerr << "error: --fill, --fixed-base, --keyframe: for a robot file (URDF, SDFormat, MJCF), not a scene\n";
+  if ((f.robot.fill || f.robot.fixed_base || !f.robot.keyframe.empty() || !f.packages.empty()) && !robot_file) {
+    std::cerr << "error: --fill, --fixed-base, --keyframe, --package: for a robot file (URDF, SDFormat, MJCF), not "
+                 "a scene (a scene's robot entry takes \"packages\")\n";
     throw Exit{massprops::app::kBadArguments};
   }
   rbsim::Scene scene;
   if (robot_file) {
     massprops::DetectRobotFormat(f.scene_file);  // names the file when it is no robot description
-    scene = rbsim::RobotScene(f.scene_file, f.fill, f.fixed_base, f.keyframe);
+    rbsim::RobotFileOptions robot = f.robot;
+    for (const std::string& p : f.packages) {
+      const auto mapping = massprops::PackageMapping(p);
+      if (!mapping) {
+        std::cerr << "error: --package takes NAME=DIR, got '" << massprops::app::OneLine(p) << "'\n";
+        throw Exit{massprops::app::kBadArguments};
+      }
+      robot.packages.push_back(*mapping);
+    }
+    scene = rbsim::RobotScene(f.scene_file, robot);
   } else if (!f.scene_file.empty()) {
     scene = rbsim::LoadScene(f.scene_file, warnings);
   } else {

@@ -5,6 +5,8 @@
 #include <pybind11/pybind11.h>
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "massprops/io/load.h"
 #include "massprops/io/mesh_io.h"
@@ -14,6 +16,8 @@ namespace massprops_python {
 /// Every keyword checked (a misspelt one is a TypeError, a bad value a ValueError naming it).
 massprops::LoadOptions LoadOptionsFrom(const pybind11::kwargs& kw);
 const massprops::Vocabulary& PythonWords();
+/// packages={'NAME': 'DIR'} (package://NAME/, model://NAME/ roots) as FillOptions::packages.
+std::vector<std::pair<std::string, std::string>> PackagesOf(const pybind11::dict& packages);
 
 /// Runs `work` without the GIL; a file that cannot be read becomes OSError, any other error
 /// ValueError, both with the error's message worded in Python's vocabulary.

@@ -494,10 +494,11 @@ int AddJoint(dynamics::World& w, const std::string& type, int child, int parent,
 py::dict AddRobot(dynamics::ContactWorld& w, const std::string& path, const py::handle& position,
                   const py::handle& orientation, const std::string& base, bool fill, double density,
                   const py::dict& positions, const py::dict& motors, const std::string& collision,
-                  const dynamics::Material& material) {
+                  const dynamics::Material& material, const py::dict& packages) {
   massprops::RobotModelOptions read;
   read.fill = fill;
   read.fill_options.density = density;
+  read.fill_options.packages = massprops_python::PackagesOf(packages);
   read.words = &massprops_python::PythonWords();
   dynamics::RobotOptions options;
   if (!position.is_none()) options.pose.translation = Vec(position);
@@ -872,13 +873,14 @@ void BindContactWorld(py::module_& m) {
       .def("add_robot", &AddRobot, py::arg("path"), py::arg("position") = py::none(),
            py::arg("orientation") = py::none(), py::arg("base") = "as_written", py::arg("fill") = false,
            py::arg("density") = 1000.0, py::arg("positions") = py::dict(), py::arg("motors") = py::dict(),
-           py::arg("collision") = "hull", py::arg("material") = dynamics::Material{},
+           py::arg("collision") = "hull", py::arg("material") = dynamics::Material{}, py::arg("packages") = py::dict(),
            "Adds the robot of a URDF, SDFormat or MJCF file: its root link's frame at `position` turned by "
            "`orientation` (w, x, y, z); base 'as_written', 'fixed' or 'floating'; inertials as written, or "
            "computed from the links' geometry at `density` (fill=True, as massprops fill); initial joint "
            "`positions` and `motors` ({'mode': 'position', 'target', 'kp', 'kd', 'max_effort'}) by joint name; "
-           "meshes collide as hulls or (collision='mesh') as meshes. Returns a dict: bodies, body_names, joints, "
-           "notes")
+           "meshes collide as hulls or (collision='mesh') as meshes; `packages` {'NAME': DIR} finds "
+           "package://NAME/ before ROS_PACKAGE_PATH and AMENT_PREFIX_PATH. Without `position`, where rbsim starts "
+           "it (docs/robots.md). Returns a dict: bodies, body_names, joints, notes")
       .def(
           "joint_state", [](const dynamics::ContactWorld& w, int j) { return JointStateDict(w.world(), j); },
           py::arg("joint"), "Joint j's position, velocity and last step's impulses, as a dict")
@@ -916,6 +918,15 @@ void BindDynamics(py::module_& m) {
 namespace massprops_python {
 LoadOptions LoadOptionsFrom(const py::kwargs& kw) { return ToLoadOptions(kw); }
 const Vocabulary& PythonWords() { return report::WordsFor(report::FrontEnd::kPython); }
+std::vector<std::pair<std::string, std::string>> PackagesOf(const py::dict& packages) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& [name, dir] : packages) {
+    const std::string n = py::cast<std::string>(name), d = py::str(dir);  // (a str or a pathlib.Path)
+    if (n.empty() || d.empty()) throw py::value_error("packages: {'NAME': 'DIR', ...} with neither empty");
+    out.emplace_back(n, d);
+  }
+  return out;
+}
 }  // namespace massprops_python
 
 PYBIND11_MODULE(_core, m) {

@@ -264,5 +264,34 @@ printf '<robot name="r"><link name="a"><inertial><mass value="1"/><inertia ixx="
 [ $? -eq 1 ] && [ "$(grep -o "massless.urdf" "$tmp/err" | wc -l)" -eq 1 ] && grep -q "link 'b' has no mass" "$tmp/err"
 check "rbsim: a robot's fault names its file once" $?
 
+# ROS packages: a description whose package://acme_meshes/ is a folder of another name, found with
+# --package, a scene's "packages", ROS_PACKAGE_PATH (by its package.xml) and AMENT_PREFIX_PATH.
+mkdir -p "$tmp/ws/src/vendor_meshes/meshes" "$tmp/install/share/acme_meshes/meshes" "$tmp/desc"
+for d in "$tmp/ws/src/vendor_meshes" "$tmp/install/share/acme_meshes"; do
+  printf 'v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0.1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' >"$d/meshes/link.obj"
+  printf '<?xml version="1.0"?>\n<package format="2">\n  <name>acme_meshes</name>\n</package>\n' >"$d/package.xml"
+done
+printf '<robot name="r"><link name="a"><inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial><collision><geometry><mesh filename="package://acme_meshes/meshes/link.obj"/></geometry></collision></link></robot>' >"$tmp/desc/robot.urdf"
+env -u ROS_PACKAGE_PATH -u AMENT_PREFIX_PATH "$bin" "$tmp/desc/robot.urdf" --duration 0.01 -q >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 1 ] && grep -q "the package 'acme_meshes' is not found in .*ROS_PACKAGE_PATH and AMENT_PREFIX_PATH (map it with --package acme_meshes=DIR)" "$tmp/err"
+check "rbsim: an unknown package says where it looked and how to map it" $?
+env -u ROS_PACKAGE_PATH -u AMENT_PREFIX_PATH "$bin" "$tmp/desc/robot.urdf" --package "acme_meshes=$tmp/ws/src/vendor_meshes" \
+  --duration 0.01 -q --out "$tmp/pkg" >"$tmp/out" 2>"$tmp/err"
+check "rbsim --package NAME=DIR" $?
+ROS_PACKAGE_PATH="$tmp/ws/src" "$bin" "$tmp/desc/robot.urdf" --duration 0.01 -q >"$tmp/out" 2>"$tmp/err"
+check "rbsim: ROS_PACKAGE_PATH searched by package.xml" $?
+env -u ROS_PACKAGE_PATH AMENT_PREFIX_PATH="$tmp/install" "$bin" "$tmp/desc/robot.urdf" --duration 0.01 -q >"$tmp/out" 2>"$tmp/err"
+check "rbsim: AMENT_PREFIX_PATH/share/NAME" $?
+"$bin" "$tmp/desc/robot.urdf" --package acme_meshes --duration 0.01 -q >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 2 ] && grep -q "error: --package takes NAME=DIR, got 'acme_meshes'" "$tmp/err"
+check "rbsim: --package without =DIR is a bad argument" $?
+printf '{"duration": 0.01, "robots": [{"file": "desc/robot.urdf", "packages": {"acme_meshes": "ws/src/vendor_meshes"}}]}' >"$tmp/pkg_scene.json"
+env -u ROS_PACKAGE_PATH -u AMENT_PREFIX_PATH "$bin" "$tmp/pkg_scene.json" -q >"$tmp/out" 2>"$tmp/err"
+check "rbsim: a scene robot's \"packages\"" $?
+printf '{"duration": 0.01, "robots": [{"file": "desc/robot.urdf"}]}' >"$tmp/pkg_scene2.json"
+env -u ROS_PACKAGE_PATH -u AMENT_PREFIX_PATH "$bin" "$tmp/pkg_scene2.json" -q >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 1 ] && grep -q "robots\[0\]: .*(map it with \"packages\": {\"acme_meshes\": \"DIR\"} in the robot's entry)" "$tmp/err"
+check "rbsim: a scene's unknown package is worded for scenes" $?
+
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -99,3 +99,36 @@ TEST(RobotFiles, UrdfIsSetDownUnlessBoltedToTheWorld) {
 }
 
 }  // namespace
+
+namespace {
+
+// A six-axis arm as ROS-Industrial support packages publish it: its base_link has geometry but no
+// <inertial>, with massless 'base', 'flange' and 'tool0' frames welded on. ROS, Gazebo and
+// PyBullet take the massless root as the world-fixed base: so do we (with a note), where the file
+// puts it. Limp under gravity its arm falls in the x-z plane; the vertical first axis stays still.
+TEST(RobotFiles, AMasslessRootIsTheWorldFixedBase) {
+  const massprops::RobotModel m = massprops::ReadRobotModel(kField + "industrial/urdf/arm6.urdf");
+  ASSERT_EQ(m.links.size(), 5u);  // link_1..3, flange and tool0 (welded to link_3); base_link and base: the world
+  EXPECT_TRUE(dynamics::PlacedByItsFile(m, {}));
+  bool noted = false;
+  for (const std::string& n : m.notes) noted |= n.find("link 'base_link' has no mass") != std::string::npos;
+  EXPECT_TRUE(noted);
+  dynamics::World w(dynamics::Integrator::kImplicitMidpoint);
+  w.AddForce(dynamics::Gravity(Vector3(0, 0, -9.81)));
+  ContactWorld world(std::move(w));
+  const dynamics::RobotInWorld added = dynamics::AddRobot(world, m);
+  ASSERT_EQ(added.bodies.size(), 3u);
+  const auto body = [&](int k) { return world.world().bodies()[static_cast<std::size_t>(added.bodies[k])]; };
+  EXPECT_LT((body(0).position - Vector3(0, 0, 0.2)).norm(), 1e-15);
+  EXPECT_LT((body(2).position - Vector3(0.1, 0, 0.6)).norm(), 1e-15);
+  for (int s = 0; s < 300; ++s) ASSERT_TRUE(world.Step(1e-3).ok);
+  EXPECT_LT((body(0).position - Vector3(0, 0, 0.2)).norm(), 1e-12);  // bolted down
+  EXPECT_LT(std::abs(world.world().joint_state(added.joint_of[0]).position[0]), 1e-12);
+  EXPECT_LT(body(2).position.z(), 0.55);  // the forearm fell
+  // With --fill the base_link takes an inertial from its geometry: every link stays a link.
+  massprops::RobotModelOptions fill;
+  fill.fill = true;
+  EXPECT_EQ(massprops::ReadRobotModel(kField + "industrial/urdf/arm6.urdf", fill).links.size(), 7u);
+}
+
+}  // namespace

@@ -177,9 +177,18 @@ struct Scene {
 /// Whether `path` names a robot description rather than a scene: a regular file whose extension
 /// is not .json (rbsim's and load_scene's one rule; the root element then says which format).
 bool IsRobotFile(const std::string& path);
+/// What a robot file run as its own scene takes besides the file (rbsim's robot options).
+struct RobotFileOptions {
+  bool fill = false;        ///< every link's inertial from its geometry first (massprops fill)
+  bool fixed_base = false;  ///< the root welded to the world where it starts
+  std::string keyframe;     ///< an MJCF <key> to start from: its qpos, qvel and ctrl
+  /// package://NAME/ (URDF) and model://NAME/ (SDFormat) roots, before ROS's and Gazebo's paths.
+  std::vector<std::pair<std::string, std::string>> packages;
+};
+
 /// A robot file given on the command line: where its file places it (a free URDF robot dropped
 /// from 1 cm; the MJCF keyframe named, which also sets its joints and controls), for `duration`.
-Scene RobotScene(const std::string& path, bool fill, bool fixed_base, const std::string& keyframe = "");
+Scene RobotScene(const std::string& path, const RobotFileOptions& options = {});
 
 /// Parses and validates a scene given as JSON text. `base_dir` resolves relative mesh paths.
 /// Non-fatal findings (a non-unit quaternion, an output rate above 1/dt, ...) are appended to

@@ -47,6 +47,21 @@ RobotSpec ReadRobot(const json& j, const std::string& path, const std::string& f
   r.fill = f.Bool("fill", false);
   if (f.Has("density") && !r.fill) f.Fail("density", "is for \"fill\": true (the inertials are otherwise as written)");
   r.fill_options.density = f.Number("density", 1000.0, "positive");
+  if (const json* packages = f.Get("packages")) {  // {"NAME": "DIR"}, relative to the scene's folder
+    if (!packages->is_object()) f.Fail("packages", "must be an object {\"package name\": \"folder\", ...}");
+    for (auto it = packages->begin(); it != packages->end(); ++it) {
+      if (!it.value().is_string() || it.value().get<std::string>().empty()) {
+        f.Fail("packages." + it.key(), "must be a folder's path");
+      }
+      std::filesystem::path dir(it.value().get<std::string>());
+      if (dir.is_relative()) dir = std::filesystem::path(base_dir) / dir;
+      std::error_code e;
+      if (!std::filesystem::is_directory(dir, e)) {
+        f.Fail("packages." + it.key(), "'" + it.value().get<std::string>() + "' is not a folder");
+      }
+      r.fill_options.packages.emplace_back(it.key(), dir.lexically_normal().string());
+    }
+  }
   if (f.Has("position")) {
     r.position_given = true;
     r.options.pose.translation = f.Vec3("position", Vector3::Zero());
@@ -98,7 +113,7 @@ bool IsRobotFile(const std::string& path) {
   return !path.empty() && std::filesystem::path(path).extension() != ".json" && std::filesystem::is_regular_file(path);
 }
 
-Scene RobotScene(const std::string& path, bool fill, bool fixed_base, const std::string& keyframe) {
+Scene RobotScene(const std::string& path, const RobotFileOptions& options) {
   Scene scene;
   scene.file = std::filesystem::absolute(path).lexically_normal().string();  // its messages name the file
   scene.duration = 3.0;
@@ -108,9 +123,11 @@ Scene RobotScene(const std::string& path, bool fill, bool fixed_base, const std:
   r.field = "robot";
   r.path = scene.file;
   r.name = std::filesystem::path(path).stem().string();
-  r.fill = fill;
-  r.options.base = fixed_base ? dynamics::RobotOptions::Base::kFixed : dynamics::RobotOptions::Base::kAsWritten;
-  r.options.keyframe = keyframe;
+  r.fill = options.fill;
+  r.fill_options.packages = options.packages;
+  r.options.base =
+      options.fixed_base ? dynamics::RobotOptions::Base::kFixed : dynamics::RobotOptions::Base::kAsWritten;
+  r.options.keyframe = options.keyframe;
   scene.robots.push_back(std::move(r));
   ForceSpec gravity;
   gravity.kind = ForceKind::kGravity;

@@ -2,7 +2,7 @@
 /// @file
 /// Messages that advise an option. The library's findings and errors name the options a user can
 /// set as markers — {repair}, {allow_open}, {unit}, {unit=mm}, {full_check}, {wall},
-/// {winding_number} — and each
+/// {winding_number}, {package=NAME} — and each
 /// front end words them in its own vocabulary: the command line says `--repair`, a scene file
 /// `"repair": true`, Python `repair=True`. Plain what() texts use the C++ names (LoadOptions).
 
@@ -12,7 +12,7 @@
 
 namespace massprops {
 
-enum class Option { kRepair, kAllowOpen, kUnit, kFullCheck, kWall, kBrep, kWindingNumber };
+enum class Option { kRepair, kAllowOpen, kUnit, kFullCheck, kWall, kBrep, kWindingNumber, kPackage };
 
 /// Names an option, with a value where the message suggests one ({unit=mm}: value "mm").
 using Vocabulary = std::function<std::string(Option option, std::string_view value)>;

@@ -18,6 +18,7 @@ std::string CommandLine(Option option, std::string_view value) {
     case Option::kWall: return "--wall";
     case Option::kBrep: return "--brep";
     case Option::kWindingNumber: return "--winding-number";
+    case Option::kPackage: return "--package " + std::string(value) + "=DIR";
   }
   return "?";
 }
@@ -32,6 +33,7 @@ std::string Scene(Option option, std::string_view value) {
     case Option::kWall: return "wall";
     case Option::kBrep: return "(the massprops command's --brep)";
     case Option::kWindingNumber: return "(the massprops command's --winding-number)";
+    case Option::kPackage: return "\"packages\": {\"" + std::string(value) + "\": \"DIR\"} in the robot's entry";
   }
   return "?";
 }
@@ -45,6 +47,7 @@ std::string Poses(Option option, std::string_view value) {
     case Option::kWall: return "(not in rbsim poses)";
     case Option::kBrep: return "(massprops --brep)";
     case Option::kWindingNumber: return "(massprops --winding-number)";
+    case Option::kPackage: return "(not in rbsim poses)";
   }
   return "?";
 }
@@ -58,6 +61,7 @@ std::string Python(Option option, std::string_view value) {
     case Option::kWall: return "wall=...";
     case Option::kBrep: return "brep=True";
     case Option::kWindingNumber: return "winding_number=True";
+    case Option::kPackage: return "packages={'" + std::string(value) + "': DIR}";
   }
   return "?";
 }

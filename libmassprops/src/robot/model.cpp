@@ -245,7 +245,7 @@ std::vector<RobotGeometry> GeometriesOf(const robot::Link& l) {
 
 // Each link's visual geometries (for pictures only): a link whose visuals cannot be read (a mesh
 // file that is missing, a shape not understood) is drawn without them, with a note.
-void ReadVisuals(Document& doc, const FillOptions& fill, RobotModel& model) {
+void ReadVisuals(Document& doc, const FillOptions& fill, const Vocabulary& words, RobotModel& model) {
   const std::size_t notes = doc.notes.size(), simulation_notes = doc.simulation_notes.size();
   FillOptions visual = fill;
   visual.from = GeometrySource::kVisual;
@@ -260,7 +260,8 @@ void ReadVisuals(Document& doc, const FillOptions& fill, RobotModel& model) {
     if (!links[k].error.empty()) {
       ++left_out;
       if (left_out <= 3) {
-        model.notes.push_back("link '" + links[k].name + "': visual geometry not drawn: " + links[k].error);
+        model.notes.push_back("link '" + links[k].name + "': visual geometry not drawn: " +
+                              Worded(links[k].error, words));
       }
     }
   }
@@ -272,13 +273,14 @@ void ReadVisuals(Document& doc, const FillOptions& fill, RobotModel& model) {
 }  // namespace
 
 RobotModel ReadRobotModel(const std::string& path, const RobotModelOptions& options) {
+  const Vocabulary& words = options.words ? *options.words : ApiVocabulary();
   Document doc;
   if (options.fill) {
     const FillResult filled = FillRobotDescription(path, options.fill_options);
     for (const LinkFill& l : filled.links) {
       if (l.status == LinkStatus::kFailed) {
         throw std::runtime_error(path + ": link '" + l.name + "': its inertial could not be computed: " +
-                                 l.message.Worded(options.words ? *options.words : ApiVocabulary()));
+                                 l.message.Worded(words));
       }
     }
     robot::ParseText(doc, path, filled.document);
@@ -295,13 +297,13 @@ RobotModel ReadRobotModel(const std::string& path, const RobotModelOptions& opti
                                          : model.format == RobotFormat::kSdf ? robot::SdfLinks(doc, geometry)
                                                                              : robot::MjcfLinks(doc, geometry);
   for (const robot::Link& l : links) {
-    if (!l.error.empty()) throw std::runtime_error(path + ": link '" + l.name + "': " + l.error);
+    if (!l.error.empty()) throw std::runtime_error(path + ": link '" + l.name + "': " + Worded(l.error, words));
     RobotLink link;
     link.name = l.name;
     link.collisions = GeometriesOf(l);
     model.links.push_back(std::move(link));
   }
-  ReadVisuals(doc, options.fill_options, model);
+  ReadVisuals(doc, options.fill_options, words, model);
   try {
     switch (model.format) {
       case RobotFormat::kUrdf: robot::UrdfKinematics(doc, model); break;
@@ -309,11 +311,12 @@ RobotModel ReadRobotModel(const std::string& path, const RobotModelOptions& opti
       case RobotFormat::kMjcf: robot::MjcfKinematics(doc, links, model); break;
     }
   } catch (const robot::ElementError& e) {
-    throw std::runtime_error(path + ": " + e.what());
+    throw std::runtime_error(path + ": " + Worded(e.what(), words));
   }
   if (model.format == RobotFormat::kMjcf && !options.fill) InertiaFromGeoms(doc, options, model);
   if (model.format == RobotFormat::kSdf) SecondParentsAsLoops(model);
   CheckTree(model);
+  if (model.format == RobotFormat::kUrdf) robot::MasslessRootsAsWorld(model);
   return model;
 }
 

@@ -93,6 +93,8 @@ std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options);
 void UrdfKinematics(const Document& doc, RobotModel& model);
 /// URDF <mimic>s as couplings (after the joints). @throws ElementError naming the joint.
 void UrdfMimics(pugi::xml_node root, RobotModel& model);
+/// A URDF's massless root links (and the links welded to them) as the world (fixed_base.cpp).
+void MasslessRootsAsWorld(RobotModel& model);
 void SdfKinematics(const Document& doc, const std::vector<Link>& links, RobotModel& model);
 void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotModel& model);
 /// An MJCF element's frame (pos and orientation) in its parent's, as the compiler reads it.

@@ -172,7 +172,7 @@ std::string ResolveUri(const std::string& uri, const Document& doc, const FillOp
                                        ? "the description's folders and the Gazebo resource paths"
                                        : "the description's folders, ROS_PACKAGE_PATH and AMENT_PREFIX_PATH";
       throw ElementError("'" + uri + "': the " + (s == "model://" ? "model" : "package") + " '" + name +
-                         "' is not found in " + searched + " (map it with --package " + name + "=DIR)");
+                         "' is not found in " + searched + " (map it with {package=" + name + "})");
     }
     const fs::path file = fs::path(dir) / (slash == std::string::npos ? "" : rest.substr(slash + 1));
     if (!IsRegular(file)) throw ElementError("'" + uri + "': " + file.string() + " is not a readable file");
@@ -353,3 +353,13 @@ void ParseText(Document& doc, const std::string& path, std::string text) {
 }
 
 }  // namespace massprops::robot
+
+namespace massprops {
+
+std::optional<std::pair<std::string, std::string>> PackageMapping(const std::string& text) {
+  const std::size_t eq = text.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size()) return std::nullopt;
+  return std::make_pair(text.substr(0, eq), text.substr(eq + 1));
+}
+
+}  // namespace massprops

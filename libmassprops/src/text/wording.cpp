@@ -17,7 +17,8 @@ constexpr Marker kMarkers[] = {{"repair", Option::kRepair},
                                {"full_check", Option::kFullCheck},
                                {"wall", Option::kWall},
                                {"brep", Option::kBrep},
-                               {"winding_number", Option::kWindingNumber}};
+                               {"winding_number", Option::kWindingNumber},
+                               {"package", Option::kPackage}};
 
 }  // namespace
 
@@ -31,6 +32,7 @@ const Vocabulary& ApiVocabulary() {
       case Option::kWall: return "WallModel";
       case Option::kBrep: return "LoadOptions::brep = true";
       case Option::kWindingNumber: return "LoadOptions::model = WindingNumberModel";
+      case Option::kPackage: return "FillOptions::packages {\"" + std::string(value) + "\", DIR}";
     }
     return "?";
   };

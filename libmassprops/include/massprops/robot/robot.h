@@ -13,6 +13,7 @@
 /// center of mass in the link's axes (ixy = I_xy, the negated product of inertia); MJCF gets
 /// `pos`, `quat` (link axes to principal axes) and `diaginertia`.
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -90,5 +91,9 @@ RobotFormat DetectRobotFormat(const std::string& path);
 ///         construct this reader does not follow (MJCF <include>); std::invalid_argument for a
 ///         bad option or a density-map entry that matches no link.
 FillResult FillRobotDescription(const std::string& path, const FillOptions& options = {});
+
+/// A package mapping as front ends take it, "NAME=DIR" (`--package`): {NAME, DIR}; none when
+/// the text is not of that form (an empty name or folder, no '=').
+std::optional<std::pair<std::string, std::string>> PackageMapping(const std::string& text);
 
 }  // namespace massprops
