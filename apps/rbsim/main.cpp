@@ -60,7 +60,7 @@ struct Exit {
 // The command line, as parsed.
 struct Flags {
   std::string scene_file, mesh, unit = "m", omega_text, omega_frame = "world", velocity_text, out_dir, integrator,
-      outputs_text;
+                                outputs_text;
   rbsim::RobotFileOptions robot;
   std::vector<std::string> packages;  // NAME=DIR, as given
   double density = 1000, mass = 0;

@@ -132,3 +132,38 @@ TEST(RobotFiles, AMasslessRootIsTheWorldFixedBase) {
 }
 
 }  // namespace
+
+namespace {
+
+// MJCF's ref: the file draws each body at its joint's ref, where the joint starts and from which
+// MuJoCo measures it; springref is the spring's rest. The slide, ref 0.2 and springref 0.3 under a
+// 50 N/m spring with 2 kg, undamped: q(t) = 0.3 − 0.1 cos(5 t). (ref.xml against MuJoCo itself:
+// ctest robot_ref_mujoco.)
+TEST(RobotFiles, MjcfRefIsWhereTheJointStartsAndItsZeroIsMuJoCos) {
+  const massprops::RobotModel m = massprops::ReadRobotModel(kField + "mjcf/ref.xml");
+  ContactWorld world;
+  const dynamics::RobotInWorld added = dynamics::AddRobot(world, m);
+  const double deg = massprops::kPi / 180;
+  const std::vector<std::pair<std::string, double>> starts = {
+      {"shoulder", -30 * deg}, {"elbow", 60 * deg}, {"rail", 0.2}, {"twin", 10 * deg}};
+  int rail = -1;
+  for (const auto& [name, q] : starts) {
+    std::size_t k = 0;
+    while (k < m.joints.size() && m.joints[k].name != name) ++k;
+    ASSERT_LT(k, m.joints.size()) << name;
+    const int j = added.joint_of[k];
+    EXPECT_NEAR(world.world().joint_state(j).position[0], q, 1e-15) << name;
+    if (name == "rail") rail = j;
+  }
+  // Drawn where the file draws them: the upper arm's capsule (0.4 m, along its x) turned −30° about
+  // y from (0, 0, 1); the carriage at (0.2, 0.5, 1).
+  const Vector3 upper = world.world().bodies()[static_cast<std::size_t>(added.bodies[0])].position;
+  EXPECT_LT((upper - Vector3(0.2 * std::cos(30 * deg), 0, 1 + 0.2 * std::sin(30 * deg))).norm(), 1e-12)
+      << upper.transpose();
+  const Vector3 carriage = world.world().bodies()[static_cast<std::size_t>(added.bodies[2])].position;
+  EXPECT_LT((carriage - Vector3(0.2, 0.5, 1)).norm(), 1e-12) << carriage.transpose();
+  for (int s = 0; s < 300; ++s) ASSERT_TRUE(world.Step(1e-3).ok);
+  EXPECT_NEAR(world.world().joint_state(rail).position[0], 0.3 - 0.1 * std::cos(5 * 0.3), 1e-6);
+}
+
+}  // namespace

@@ -236,6 +236,16 @@ struct KeyState {
   std::vector<double> ctrl;
 };
 
+// A 1-dof joint moved to q: the child turned or slid along the axis (other joints: not moved).
+Placement JointMotion(const RobotJoint& j, double q) {
+  switch (j.type) {
+    case RobotJointType::kRevolute:
+    case RobotJointType::kContinuous: return {Eigen::AngleAxisd(q, j.axis).toRotationMatrix(), Vector3::Zero()};
+    case RobotJointType::kPrismatic: return {Matrix3::Identity(), q * j.axis};
+    default: return {};
+  }
+}
+
 // The simulator's joint type of a file's joint type.
 JointType JointTypeOf(massprops::RobotJointType t) {
   switch (t) {
@@ -539,7 +549,7 @@ std::vector<Placement> PlaceRoots(const RobotModel& model, const RobotOptions& o
     }
     const RobotJoint& joint = model.joints[static_cast<std::size_t>(j)];
     const Placement parent = joint.parent >= 0 ? link_in_world(joint.parent) : options.pose;
-    root_in_world[g] = parent.Then(joint.parent_to_joint).Then(joint.joint_to_child);
+    root_in_world[g] = parent.Then(joint.parent_to_joint).Then(JointMotion(joint, joint.ref)).Then(joint.joint_to_child);
   }
   for (std::size_t g = 0; g < groups.size(); ++g) {
     const int j = lumps.joint_above[static_cast<std::size_t>(groups[g].root)];
@@ -638,7 +648,9 @@ std::optional<Joint> JointOf(const RobotModel& model, const RobotOptions& option
   j.stiffness = rj.stiffness;
   j.rest_position = rj.rest;
   j.armature = rj.armature;
-  // The keyframe's state (hinges, sliders and balls; a scene's positions win).
+  // At the file's ref (MJCF), else 0; the keyframe's state (hinges, sliders and balls); a scene's
+  // positions win.
+  if (rj.ref != 0 && HasOneCoordinate(j.type)) j.position = {rj.ref};
   const std::vector<double>& key_q = key.q[k];
   if (!key_q.empty() && (HasOneCoordinate(j.type) || j.type == JointType::kSpherical)) j.position = key_q;
   if (!key.v[k].empty() && HasOneCoordinate(j.type)) j.velocity = key.v[k];

@@ -100,6 +100,7 @@ void AddRobotConstraints(ContactWorld& world, const massprops::RobotModel& model
     tendon.stiffness = rt.stiffness;
     tendon.damping = rt.damping;
     lengths.push_back(place.ReferenceLength(tendon));
+    for (const auto& [k, c] : rt.joints) lengths.back() += c * model.joints[static_cast<std::size_t>(k)].ref;
     tendon.rest_length = rt.rest_length ? *rt.rest_length : lengths.back();
     if (t < tendon_motors.size()) tendon.motor = tendon_motors[t];
     Named(model, [&] { world.AddTendon(tendon); });
@@ -116,10 +117,12 @@ void AddRobotConstraints(ContactWorld& world, const massprops::RobotModel& model
     };
     c.follower = coordinate(rc.follower);
     c.leader = coordinate(rc.leader);
-    if (rc.tendons) {
-      c.follower_reference = lengths[static_cast<std::size_t>(rc.follower)];
-      if (rc.leader >= 0) c.leader_reference = lengths[static_cast<std::size_t>(rc.leader)];
-    }
+    // The coordinates at the reference configuration (MuJoCo's qpos0: every joint at its ref).
+    auto reference = [&](int k) {
+      return rc.tendons ? lengths[static_cast<std::size_t>(k)] : model.joints[static_cast<std::size_t>(k)].ref;
+    };
+    c.follower_reference = reference(rc.follower);
+    if (rc.leader >= 0) c.leader_reference = reference(rc.leader);
     Named(model, [&] { world.AddCoupling(c); });
   }
   for (const massprops::RobotLoop& rl : model.loops) {

@@ -125,8 +125,7 @@ Scene RobotScene(const std::string& path, const RobotFileOptions& options) {
   r.name = std::filesystem::path(path).stem().string();
   r.fill = options.fill;
   r.fill_options.packages = options.packages;
-  r.options.base =
-      options.fixed_base ? dynamics::RobotOptions::Base::kFixed : dynamics::RobotOptions::Base::kAsWritten;
+  r.options.base = options.fixed_base ? dynamics::RobotOptions::Base::kFixed : dynamics::RobotOptions::Base::kAsWritten;
   r.options.keyframe = options.keyframe;
   scene.robots.push_back(std::move(r));
   ForceSpec gravity;

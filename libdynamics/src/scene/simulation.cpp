@@ -63,8 +63,8 @@ void AddRobot(Simulation& sim, const RobotSpec& spec, std::vector<std::string>& 
   // A robot given on the command line is its own scene: its messages name the file once.
   const bool alone = sim.scene.file == spec.path;
   const std::string where = alone ? std::string() : sim.scene.file + ": " + spec.field + ": ";
-  const massprops::Vocabulary& words =
-      massprops::report::WordsFor(alone ? massprops::report::FrontEnd::kCommandLine : massprops::report::FrontEnd::kScene);
+  const massprops::Vocabulary& words = massprops::report::WordsFor(alone ? massprops::report::FrontEnd::kCommandLine
+                                                                         : massprops::report::FrontEnd::kScene);
   massprops::RobotModelOptions read;
   read.fill = spec.fill;
   read.fill_options = spec.fill_options;

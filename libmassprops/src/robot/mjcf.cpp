@@ -770,7 +770,15 @@ RobotJoint MjcfJoint(const pugi::xml_node& e, const pugi::xml_node& body, const 
   j.friction = number("frictionloss", 0.0);
   j.stiffness = number("stiffness", 0.0);
   j.rest = number("springref", 0.0) * unit;
-  if (number("ref", 0.0) != 0) throw ElementError(jw + ": a non-zero ref is not followed");
+  // MuJoCo turns (slides) the child by q − ref from where the file draws it: q = 0 here holds it
+  // turned back by ref, and the joint starts at ref (qpos0).
+  if (j.type != RobotJointType::kBall) {
+    j.ref = number("ref", 0.0) * unit;
+    const Placement back = j.type == RobotJointType::kPrismatic
+                               ? Placement{Matrix3::Identity(), -j.ref * j.axis}
+                               : Placement{Eigen::AngleAxisd(-j.ref, j.axis).toRotationMatrix(), Vector3::Zero()};
+    j.joint_to_child = back.Then(j.joint_to_child);
+  }
   j.armature = number("armature", 0.0);
   if (!(j.armature >= 0)) throw ElementError(jw + ": a negative armature");
   if (j.type == RobotJointType::kBall && j.armature > 0) {

@@ -260,8 +260,8 @@ void ReadVisuals(Document& doc, const FillOptions& fill, const Vocabulary& words
     if (!links[k].error.empty()) {
       ++left_out;
       if (left_out <= 3) {
-        model.notes.push_back("link '" + links[k].name + "': visual geometry not drawn: " +
-                              Worded(links[k].error, words));
+        model.notes.push_back("link '" + links[k].name +
+                              "': visual geometry not drawn: " + Worded(links[k].error, words));
       }
     }
   }
@@ -279,8 +279,8 @@ RobotModel ReadRobotModel(const std::string& path, const RobotModelOptions& opti
     const FillResult filled = FillRobotDescription(path, options.fill_options);
     for (const LinkFill& l : filled.links) {
       if (l.status == LinkStatus::kFailed) {
-        throw std::runtime_error(path + ": link '" + l.name + "': its inertial could not be computed: " +
-                                 l.message.Worded(words));
+        throw std::runtime_error(path + ": link '" + l.name +
+                                 "': its inertial could not be computed: " + l.message.Worded(words));
       }
     }
     robot::ParseText(doc, path, filled.document);

@@ -98,6 +98,10 @@ struct RobotJoint {
   double velocity = 0;                 ///< rad/s or m/s; 0: not stated
   double damping = 0, friction = 0, stiffness = 0, rest = 0;
   double armature = 0;  ///< kg·m² or kg, on the joint's diagonal of the mass matrix (MJCF)
+  /// rad or m (MJCF `ref`): the position at which the file draws the child (joint_to_child holds
+  /// the child at q = 0, the file's drawing turned back by it): where the joint starts without a
+  /// keyframe, and its position in the reference configuration (MuJoCo's qpos0).
+  double ref = 0;
 };
 
 /// A plane of the file's own world (MJCF: a plane geom of the worldbody), the half-space
@@ -125,7 +129,7 @@ struct RobotActuator {
 };
 
 /// One coordinate follows another: y − y₀ = c₀ + c₁ (x − x₀) + … + c₄ (x − x₀)⁴, with x₀ and y₀
-/// the coordinates at the reference configuration (every joint at 0; a tendon's length there).
+/// the coordinates at the reference configuration (every joint at its ref; a tendon's length there).
 /// URDF <mimic multiplier offset>: c₀ = offset, c₁ = multiplier. MJCF <equality joint|tendon
 /// polycoef>; without a leader the follower is held at y₀ + c₀.
 struct RobotCoupling {
