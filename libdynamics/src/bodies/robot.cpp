@@ -549,7 +549,8 @@ std::vector<Placement> PlaceRoots(const RobotModel& model, const RobotOptions& o
     }
     const RobotJoint& joint = model.joints[static_cast<std::size_t>(j)];
     const Placement parent = joint.parent >= 0 ? link_in_world(joint.parent) : options.pose;
-    root_in_world[g] = parent.Then(joint.parent_to_joint).Then(JointMotion(joint, joint.ref)).Then(joint.joint_to_child);
+    root_in_world[g] =
+        parent.Then(joint.parent_to_joint).Then(JointMotion(joint, joint.ref)).Then(joint.joint_to_child);
   }
   for (std::size_t g = 0; g < groups.size(); ++g) {
     const int j = lumps.joint_above[static_cast<std::size_t>(groups[g].root)];
