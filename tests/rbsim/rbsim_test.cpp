@@ -486,6 +486,25 @@ TEST(Simulation, SpringsHoldTheCenterOfMassUnlessAPointIsGiven) {
   EXPECT_GT(run(R"(, "point": [0, 0, 0])"), 1e-3);  // the 7 mm stretch swings it
 }
 
+// A scene's "fluid" with "buoyancy": a ball half as dense as the water rises at a = g (ρ_f/ρ_b − 1)
+// = g from rest (no drag at rest); a ball twice as dense sinks at g/2. Drag slows both after.
+TEST(Simulation, AFluidsBuoyancyLiftsWhatIsLighterThanIt) {
+  std::vector<std::string> w;
+  scene::Simulation sim = scene::BuildSimulation(Parse(R"({"dt": 0.001, "duration": 0.01, "bodies": [
+                  {"name": "cork", "solid": {"type": "sphere", "radius": 0.05}, "density": 500},
+                  {"name": "stone", "solid": {"type": "sphere", "radius": 0.05}, "density": 2000, "position": [1, 0, 0]}],
+                "forces": [{"type": "gravity", "g": [0, 0, -9.81]},
+                           {"type": "fluid", "density": 1000, "viscosity": 0.001, "buoyancy": true}]})"),
+                                                 w);
+  ASSERT_TRUE(sim.physics.Step(1e-4).ok);
+  const double v_cork = sim.world().bodies()[0].velocity.z(), v_stone = sim.world().bodies()[1].velocity.z();
+  EXPECT_NEAR(v_cork / (9.81 * 1e-4) - 1, 0, 1e-3);  // (the drag of a speed of 1 mm/s: 3e-4 of it)
+  EXPECT_NEAR(v_stone / (-0.5 * 9.81 * 1e-4) - 1, 0, 1e-3);
+  EXPECT_THROW(Parse(R"({"bodies": [{"name": "b", "solid": {"type": "sphere", "radius": 0.05}}],
+                         "forces": [{"type": "fluid", "wind": [1, 0, 0]}]})"),
+               scene::SceneError);
+}
+
 TEST(Simulation, TwoBodyExampleConservesMomentaAndEnergy) {
   std::vector<std::string> w;
   scene::Simulation sim = scene::BuildSimulation(scene::LoadScene(DataPath("scenes/two_bodies.json"), w), w);

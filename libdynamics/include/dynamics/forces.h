@@ -63,6 +63,25 @@ std::unique_ptr<Force> SpringToWorld(int body, const Vector3& point_body, const 
 /// Damped spring between points of two bodies (body coordinates).
 std::unique_ptr<Force> SpringBetween(int body_a, const Vector3& point_a, int body_b, const Vector3& point_b, double k,
                                      double rest_length, double damping);
+/// A medium the bodies move through: MuJoCo's inertia-box fluid model (`<option density viscosity
+/// wind>`). Each body is taken as the box of its mass M and principal moments, half-sizes
+/// rᵢ = √(3/(2M) (Iⱼ + Iₖ − Iᵢ)); in its principal axes, with v its velocity relative to the wind
+/// and ω its angular velocity, it feels
+///   quadratic drag (ρ):  fᵢ = −2 ρ rⱼ rₖ |vᵢ| vᵢ,   τᵢ = −½ ρ rᵢ (rⱼ⁴ + rₖ⁴) |ωᵢ| ωᵢ
+///   viscous (β):         fᵢ = −6 π β r_eq vᵢ,      τᵢ = −8 π β r_eq³ ωᵢ,   r_eq = (r₁ + r₂ + r₃)/3.
+/// MuJoCo's model has no buoyancy: that is Buoyancy's.
+struct Medium {
+  double density = 0;              ///< ρ, kg/m³ (air 1.2, water 1000)
+  double viscosity = 0;            ///< β, Pa·s (air 1.8e-5, water 1e-3)
+  Vector3 wind = Vector3::Zero();  ///< the medium's velocity, m/s, world
+};
+/// The medium's drag on `bodies` (empty: every body). @throws std::invalid_argument for a negative
+/// or non-finite density or viscosity, or a wind that is not finite.
+std::unique_ptr<Force> Fluid(const Medium& medium, std::vector<int> bodies = {});
+/// The weight of the medium a body displaces, −ρ V g on body `body` of volume V (m³) through its
+/// center of mass (its center of buoyancy for a uniform solid wholly immersed), with the potential
+/// ρ V g·x. @throws std::invalid_argument for a negative density or volume.
+std::unique_ptr<Force> Buoyancy(double density, const Vector3& g, int body, double volume);
 /// Any user force: called with the time, the bodies and the wrenches to add to. Its traits say
 /// what it breaks (default: energy and momentum, as "user forces") and whether it depends on the
 /// velocities (default: yes, the safe assumption).

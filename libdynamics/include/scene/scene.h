@@ -71,7 +71,7 @@ struct StaticSpec {
   CollisionSpec collision;
 };
 
-enum class ForceKind { kGravity, kLinearDamping, kAngularDamping, kForce, kTorque, kSpring };
+enum class ForceKind { kGravity, kLinearDamping, kAngularDamping, kForce, kTorque, kSpring, kFluid };
 
 /// The scene's name of a force kind ("gravity", "linear_damping", ...).
 const char* ForceName(ForceKind kind);
@@ -90,7 +90,9 @@ struct ForceSpec {
   Vector3 anchor = Vector3::Zero();  ///< spring to the world: world anchor
   double coefficient = 0;            ///< damping c; spring stiffness k
   double rest_length = 0;
-  double damping = 0;  ///< spring damping along its line
+  double damping = 0;       ///< spring damping along its line
+  dynamics::Medium medium;  ///< fluid: density, viscosity, wind
+  bool buoyancy = false;    ///< fluid: the medium's weight displaced, on bodies with a volume
 };
 
 /// A joint (dynamics/joints.h) as the scene gives it: its frames are placed at `anchor` with z

@@ -726,6 +726,9 @@ RobotInWorld AddRobot(ContactWorld& world, const RobotModel& model, const RobotO
       reference.push_back(roots[g].Then(lumps.groups[g].body_in_root));
   }
   internal::AddRobotConstraints(world, model, options.pose, out, reference, tendon_motors);
+  if (model.medium) {  // the file's medium, on its own bodies (MuJoCo's inertia-box model)
+    world.AddForce(Fluid({model.medium->density, model.medium->viscosity, model.medium->wind}, out.bodies));
+  }
   // The file's excluded pairs (MJCF <contact><exclude>), between the bodies their links became.
   for (const auto& [l1, l2] : model.excluded) {
     const int a = out.body_of_link[static_cast<std::size_t>(l1)], b = out.body_of_link[static_cast<std::size_t>(l2)];

@@ -256,10 +256,12 @@ ForceSpec ReadForce(const json& j, const std::string& path, const std::string& f
   ForceSpec s;
   s.field = path;
   const std::string type =
-      f.String("type", "", {"gravity", "linear_damping", "angular_damping", "force", "torque", "spring"});
-  if (type.empty()) f.Fail("type", "is required (gravity, linear_damping, angular_damping, force, torque, spring)");
+      f.String("type", "", {"gravity", "linear_damping", "angular_damping", "force", "torque", "spring", "fluid"});
+  if (type.empty()) {
+    f.Fail("type", "is required (gravity, linear_damping, angular_damping, force, torque, spring, fluid)");
+  }
   for (const ForceKind k : {ForceKind::kGravity, ForceKind::kLinearDamping, ForceKind::kAngularDamping,
-                            ForceKind::kForce, ForceKind::kTorque, ForceKind::kSpring}) {
+                            ForceKind::kForce, ForceKind::kTorque, ForceKind::kSpring, ForceKind::kFluid}) {
     if (type == ForceName(k)) s.kind = k;
   }
   auto one_body = [&](bool required) {
@@ -283,6 +285,13 @@ ForceSpec ReadForce(const json& j, const std::string& path, const std::string& f
     s.body_frame = f.String("frame", "world", {"world", "body"}) == "body";
     if (s.kind == ForceKind::kForce && f.Has("point")) s.point = f.Vec3("point", Vector3::Zero());
     if (s.kind == ForceKind::kForce) f.Get("point");
+  } else if (s.kind == ForceKind::kFluid) {  // MuJoCo's inertia-box model; buoyancy on request
+    one_body(false);
+    s.medium.density = f.Number("density", 0.0, "non-negative");
+    s.medium.viscosity = f.Number("viscosity", 0.0, "non-negative");
+    s.medium.wind = f.Vec3("wind", Vector3::Zero());
+    s.buoyancy = f.Bool("buoyancy", false);
+    if (s.medium.density == 0 && s.medium.viscosity == 0) f.Fail("a fluid needs a density or a viscosity");
   } else {  // spring
     s.coefficient = f.RequiredNumber("k", "non-negative");
     s.rest_length = f.Number("rest_length", 0.0, "non-negative");
@@ -327,6 +336,7 @@ const char* ForceName(ForceKind kind) {
     case ForceKind::kForce: return "force";
     case ForceKind::kTorque: return "torque";
     case ForceKind::kSpring: return "spring";
+    case ForceKind::kFluid: return "fluid";
   }
   return "?";
 }

@@ -303,6 +303,22 @@ void ApplyContactFields(const Scene& scene, const std::vector<bool>& collides, S
   if (!scene.pairs.empty()) sim.contact = true;
 }
 
+// A fluid (MuJoCo's inertia-box model) on one body or every body; with buoyancy, the weight of the
+// medium each body with a volume displaces, under the scene's gravity.
+void AddFluid(const Scene& scene, const ForceSpec& f, Simulation& sim) {
+  sim.physics.AddForce(dynamics::Fluid(f.medium, f.bodies));
+  if (!f.buoyancy) return;
+  Vector3 g = Vector3::Zero();
+  for (const ForceSpec& other : scene.forces) {
+    if (other.kind == ForceKind::kGravity) g += other.vector;
+  }
+  for (std::size_t b = 0; b < sim.bodies.size(); ++b) {
+    if (!f.bodies.empty() && f.bodies[0] != static_cast<int>(b)) continue;
+    const double volume = sim.bodies[b].mp.volume;
+    if (volume > 0) sim.physics.AddForce(dynamics::Buoyancy(f.medium.density, g, static_cast<int>(b), volume));
+  }
+}
+
 // The scene's forces, their points and vectors in the bodies' principal frames.
 void AddForces(const Scene& scene, Simulation& sim) {
   // Mesh coordinates → body (principal) coordinates, x_B = R_MBᵀ (x_M − com).
@@ -330,6 +346,7 @@ void AddForces(const Scene& scene, Simulation& sim) {
           sim.physics.AddForce(dynamics::ConstantTorque(body, f.vector));
         }
         break;
+      case ForceKind::kFluid: AddFluid(scene, f, sim); break;
       case ForceKind::kSpring:
         // Unless the scene names points, springs hold the centers of mass (body point 0).
         if (f.bodies.size() == 2) {

@@ -884,6 +884,7 @@ void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotMo
       model);
   Actuators(root, defaults, compiler, model);
   Keyframes(root, model);
+  MjcfOptions(root, model);
   ContactFilters(root, links, model);
 }
 

@@ -97,6 +97,8 @@ void UrdfMimics(pugi::xml_node root, RobotModel& model);
 void MasslessRootsAsWorld(RobotModel& model);
 void SdfKinematics(const Document& doc, const std::vector<Link>& links, RobotModel& model);
 void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotModel& model);
+/// MJCF <option>s: the medium into model.medium; gravity, time step and flags noted (mjcf_option.cpp).
+void MjcfOptions(pugi::xml_node root, RobotModel& model);
 /// An MJCF element's frame (pos and orientation) in its parent's, as the compiler reads it.
 using MjcfFrame = std::function<Placement(pugi::xml_node, const std::string&)>;
 /// MJCF <tendon>s and <equality>s into model.tendons, couplings and loops (mjcf_constraints.cpp),

@@ -164,6 +164,14 @@ struct RobotTendon {
   std::optional<double> rest_length;  ///< none: the length at the reference configuration
 };
 
+/// The medium the robot moves through (MJCF <option density viscosity wind>): MuJoCo's
+/// inertia-box fluid model (dynamics::Fluid).
+struct RobotMedium {
+  double density = 0;    ///< kg/m³
+  double viscosity = 0;  ///< Pa·s
+  Vector3 wind = Vector3::Zero();
+};
+
 /// An MJCF keyframe, in MuJoCo's order (joints in body order; a free joint's qpos is x y z and a
 /// quaternion w x y z in the world, a ball's a quaternion, a hinge's or slide's one number).
 struct RobotKeyframe {
@@ -183,6 +191,7 @@ struct RobotModel {
   std::vector<RobotLoop> loops;          ///< MJCF <equality connect|weld>, SDFormat loops
   std::vector<RobotTendon> tendons;      ///< MJCF <tendon>
   std::vector<RobotKeyframe> keyframes;  ///< MJCF <keyframe><key>s
+  std::optional<RobotMedium> medium;     ///< MJCF <option density viscosity> (none: a vacuum)
   /// MJCF <contact><exclude body1 body2>: pairs of links (indices into `links`) that never touch.
   std::vector<std::pair<int, int>> excluded;
   std::vector<std::string> notes;  ///< what was read but is not simulated (actuators, armature)
