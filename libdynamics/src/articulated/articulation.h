@@ -94,6 +94,10 @@ struct Configuration {
   Eigen::LLT<Eigen::MatrixXd> llt;
   Eigen::VectorXd diagonal;  ///< M's diagonal as Configure formed it (dense or not)
   Eigen::VectorXd q;         ///< the coordinates Configure placed it at
+  /// Added to M's diagonal where it is factored or solved (not to the momenta p = M v): the midpoint
+  /// solve's joint dampers and springs taken implicitly (Articulation::ImplicitDiagonal). Empty:
+  /// none.
+  Eigen::VectorXd implicit;
 };
 
 /// Bilateral rows at a configuration: values g (m) and Jacobian J (m × nv); each row's owner (a
@@ -213,6 +217,13 @@ class Articulation {
   /// subtree_momentum_: Σ I V over each node's subtree, of configuration c (velocities set).
   void SubtreeMomenta(const Configuration& c);
   /// ṗ at (q, v) of configuration c (velocities set), time t.
+  /// The joints' dampers and springs (and position servos' gains) as the midpoint solve takes them
+  /// implicitly over a step of h: h/2 (c + kd) + h²/4 (k + kp) on each 1-dof joint's slot, h/2 c on
+  /// a ball's. Added to M where the fixed-point iteration solves for v̄ (the right side gaining the
+  /// same times the last iterate, so the fixed point is the midpoint rule's own), it keeps the
+  /// iteration contracting for light links on damped joints (h c / I ≫ 1), as MuJoCo's implicit
+  /// damping does. Empty when no joint has any.
+  Eigen::VectorXd ImplicitDiagonal(double h) const;
   void MomentumRate(const std::vector<std::unique_ptr<Force>>& forces, double t, const Eigen::VectorXd& q,
                     const Eigen::VectorXd& v, const Configuration& c, std::vector<RigidBody>& stage,
                     Eigen::VectorXd& rate);

@@ -308,6 +308,7 @@ void Articulation::Solve(const Configuration& c, const Eigen::VectorXd& p, Eigen
       const Vector6 U = aba_inertia_[i] * S.col(0);
       double D = S.col(0).dot(U);
       if (ni.joint >= 0) D += joints_[static_cast<std::size_t>(ni.joint)].armature;
+      if (c.implicit.size() > 0) D += c.implicit[ni.v];
       const double rhs = p[ni.v] - S.col(0).dot(aba_bias_[i]);
       aba_u_[i] = U;
       aba_d_inverse_[i].setConstant(1, 1, 1.0 / D);
@@ -316,7 +317,8 @@ void Articulation::Solve(const Configuration& c, const Eigen::VectorXd& p, Eigen
       bias += U * (rhs / D);
     } else if (ni.nv > 1) {
       aba_u_[i] = aba_inertia_[i] * S;
-      const SmallMatrix D = S.transpose() * aba_u_[i];
+      SmallMatrix D = S.transpose() * aba_u_[i];
+      if (c.implicit.size() > 0) D.diagonal() += c.implicit.segment(ni.v, ni.nv);
       aba_d_inverse_[i] = D.inverse();
       aba_rhs_[i] = p.segment(ni.v, ni.nv) - S.transpose() * aba_bias_[i];
       handed.noalias() -= aba_u_[i] * aba_d_inverse_[i] * aba_u_[i].transpose();
@@ -416,6 +418,7 @@ bool Articulation::Configure(const Eigen::VectorXd& q, Configuration& c, Form fo
     for (int k = 0; k < ni.nv; ++k) c.diagonal[ni.v + k] = S.col(k).dot(c.composite[i] * S.col(k));
     if (ni.nv == 1 && ni.joint >= 0) c.diagonal[ni.v] += joints_[static_cast<std::size_t>(ni.joint)].armature;
   }
+  if (c.implicit.size() > 0) c.diagonal += c.implicit;
   for (Eigen::Index k = 0; k < c.diagonal.size(); ++k) {
     if (!(c.diagonal[k] > 0)) return false;  // (M's diagonal of a positive definite M is positive)
   }
@@ -450,6 +453,7 @@ bool Articulation::Densify(Configuration& c) const {
       c.M.block(ni.v, nj.v, ni.nv, nj.nv) = F.transpose() * c.frames[static_cast<std::size_t>(j)].S;
     }
   }
+  if (c.implicit.size() > 0) c.M.diagonal() += c.implicit;
   c.diagonal = c.M.diagonal();
   if (nv == 0) return true;
   c.llt.compute(c.M);  // reads the lower triangle, the only one filled
@@ -488,6 +492,25 @@ void Articulation::SubtreeMomenta(const Configuration& c) {
     const int p = nodes_[i].parent;
     if (p >= 0) subtree_momentum_[static_cast<std::size_t>(p)] += subtree_momentum_[i];
   }
+}
+
+Eigen::VectorXd Articulation::ImplicitDiagonal(double h) const {
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(v_.size());
+  bool any = false;
+  for (const Node& n : nodes_) {
+    if (n.joint < 0 || n.nv == 0) continue;
+    const Joint& j = joints_[static_cast<std::size_t>(n.joint)];
+    double c = j.damping, k = n.nv == 1 ? j.stiffness : 0.0;
+    if (n.nv == 1 && j.motor.mode == JointMotor::Mode::kPosition) c += j.motor.kd, k += j.motor.kp;
+    if (n.nv == 1) {
+      d[n.v] = 0.5 * h * c + 0.25 * h * h * k;
+    } else if (n.type == JointType::kSpherical) {
+      d.segment(n.v, n.nv).setConstant(0.5 * h * c);
+    }
+    any = any || d.segment(n.v, n.nv).any();
+  }
+  if (!any) d.resize(0);
+  return d;
 }
 
 void Articulation::MomentumRate(const std::vector<std::unique_ptr<Force>>& forces, double t, const Eigen::VectorXd& q,

@@ -93,6 +93,7 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
   p0_ = p_;
   held_rows_ = Projector{};
   midpoint_pins_ = Pins{};
+  mid_.implicit = ImplicitDiagonal(h);
   // The start's frames: which tendons are taut there, and the rows' g(q0).
   if (bilateral_ || !tendons_.empty()) Configure(q0_, probe_, Form::kFrames);
   if (!tendons_.empty()) TautTendons(probe_, q0_, midpoint_pins_);
@@ -122,7 +123,12 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
   }
   std::vector<std::pair<int, double>> stops;
   if (Impulses(end_, q1_, h, p1_, stops)) {
-    // The impulses act over the step: the midpoint velocity takes half of them.
+    // The impulses act over the step: the midpoint velocity takes half of them (M⁻¹ itself, not
+    // the iteration's M with its implicit diagonal).
+    if (mid_.implicit.size() > 0) {
+      mid_.implicit.resize(0);
+      if (!Configure(qs_, mid_, StepForm())) return false;
+    }
     ps_ = 0.5 * (p0_ + p1_);
     Solve(mid_, ps_, vbar_);
     if (Holds()) {
@@ -170,6 +176,9 @@ bool Articulation::IterateMidpoint(const std::vector<std::unique_ptr<Force>>& fo
     // (A large tree's composites and diagonal once a step: the diagonal bounds the rounding floor.)
     if (!Configure(qs_, mid_, iteration > 0 && Sparse() ? Form::kFrames : StepForm())) return false;
     ps_ = 0.5 * (p0_ + p1_);
+    // (M + D) v̄ = (p0 + p1)/2 + D v̄_last: the dampers' and springs' share of p1 follows v̄ within
+    // the solve (ImplicitDiagonal); at the fixed point it is M v̄ = (p0 + p1)/2.
+    if (mid_.implicit.size() > 0) ps_ += mid_.implicit.cwiseProduct(vbar_);
     Solve(mid_, ps_, vnew_);
     if (Holds()) HoldMidpoint(mid_, qs_, h, vnew_, held);
     Velocities(vnew_, mid_);
