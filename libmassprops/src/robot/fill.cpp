@@ -159,6 +159,17 @@ LinkFill Compute(const Link& link, const FillOptions& options, MeshCache& meshes
 
 }  // namespace
 
+namespace robot {
+
+std::vector<LinkFill> ComputeLinkFills(const std::vector<Link>& links, const FillOptions& options) {
+  MeshCache meshes(options.load);
+  std::vector<LinkFill> out;
+  for (const Link& link : links) out.push_back(Compute(link, options, meshes));
+  return out;
+}
+
+}  // namespace robot
+
 RobotFormat DetectRobotFormat(const std::string& path) {
   Document doc;
   Parse(doc, path);
@@ -173,6 +184,15 @@ FillResult FillRobotDescription(const std::string& path, const FillOptions& opti
   Parse(doc, path);
   FillResult result;
   result.format = FormatOf(doc);
+  if (result.format == RobotFormat::kMjcf) {  // (the fill is written into the file as it is)
+    for (const char* tag : {"frame", "replicate"}) {
+      if (robot::FindElement(doc.xml.document_element(), tag)) {
+        throw std::runtime_error(path + ": <" + tag +
+                                 "> (MuJoCo 3) places bodies and geoms that massprops fill would have to move to "
+                                 "write their inertials: not filled (rbsim and the model reader follow it)");
+      }
+    }
+  }
   std::vector<Link> links = result.format == RobotFormat::kUrdf  ? robot::UrdfLinks(doc, options)
                             : result.format == RobotFormat::kSdf ? robot::SdfLinks(doc, options)
                                                                  : robot::MjcfLinks(doc, options);

@@ -430,6 +430,29 @@ std::optional<std::pair<double, double>> MjcfRange(pugi::xml_attribute limited, 
 
 namespace {
 
+// A joint's actuatorfrcrange (MuJoCo 3) bounds the total force its actuators put on it: with one
+// actuator, exactly its forcerange narrowed to the range over its gear; with several, each is
+// narrowed so (a note says so: the sum is bounded only where one acts).
+void ActuatorForceRanges(RobotModel& model) {
+  for (std::size_t j = 0; j < model.joints.size(); ++j) {
+    const auto& range = model.joints[j].actuator_force_range;
+    if (!range) continue;
+    int on = 0;
+    for (RobotActuator& a : model.actuators) {
+      if (a.joint != static_cast<int>(j) || a.gear == 0) continue;
+      ++on;
+      double lo = range->first / a.gear, hi = range->second / a.gear;
+      if (lo > hi) std::swap(lo, hi);
+      if (a.forcerange) lo = std::max(lo, a.forcerange->first), hi = std::min(hi, a.forcerange->second);
+      a.forcerange = std::make_pair(lo, std::max(lo, hi));
+    }
+    if (on > 1) {
+      model.notes.push_back("joint '" + model.joints[j].name + "' actuatorfrcrange: each of its " + std::to_string(on) +
+                            " actuators bounded by it, not their sum");
+    }
+  }
+}
+
 // <actuator>: position, velocity, motor and general (fixed gain, affine or no bias) on joints, in
 // and tendons in MuJoCo's general form (robot_model.h). The others, and those on sites, are noted and
 // kept as placeholders, so that keyframes' ctrl stays aligned with the file's actuators.
@@ -512,6 +535,7 @@ void Actuators(pugi::xml_node root, const Defaults& defaults, const Compiler& co
       model.actuators.push_back(act);
     }
   }
+  ActuatorForceRanges(model);
   if (!left_out.empty()) {
     std::string names;
     for (const std::string& n : left_out) names += (names.empty() ? "" : ", ") + n;
@@ -543,6 +567,150 @@ void Keyframes(pugi::xml_node root, RobotModel& model) {
 }
 
 }  // namespace
+
+namespace {
+
+std::string Exact(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.17g", x);
+  return b;
+}
+
+// The class an element's defaults come from: its own, else the nearest childclass above it.
+std::string ClassOf(pugi::xml_node e) {
+  if (e.attribute("class")) return e.attribute("class").value();
+  for (pugi::xml_node a = e.parent(); a; a = a.parent()) {
+    if (a.attribute("childclass")) return a.attribute("childclass").value();
+  }
+  return "main";
+}
+
+// `e` placed by `outer` once more (its parent frame's placement): its pos and orientation written
+// as pos and xyaxes (which the reader takes over any class default's quat, axisangle or euler), a
+// geom's fromto (its own or its class's) as its two ends moved.
+void PlaceUnder(pugi::xml_node e, const Placement& outer, const Compiler& compiler, const Defaults& defaults,
+                const std::string& what) {
+  const std::string tag = e.name();
+  const std::string cls = ClassOf(e);
+  auto attr = [&](const char* name) -> pugi::xml_attribute {
+    if (const pugi::xml_attribute a = e.attribute(name)) return a;
+    return tag == "geom" || tag == "site" ? defaults.Find(cls, tag.c_str(), name) : pugi::xml_attribute();
+  };
+  if (tag == "geom" || tag == "site") {
+    if (const pugi::xml_attribute f = attr("fromto")) {
+      const auto v = Numbers(f.value(), 6, what + " fromto");
+      const Vector3 a = outer.rotation * Vector3(v[0], v[1], v[2]) + outer.translation;
+      const Vector3 b = outer.rotation * Vector3(v[3], v[4], v[5]) + outer.translation;
+      std::string text;
+      for (int i = 0; i < 3; ++i) text += Exact(a[i]) + " ";
+      for (int i = 0; i < 3; ++i) text += Exact(b[i]) + (i < 2 ? " " : "");
+      if (!e.attribute("fromto")) e.append_attribute("fromto");
+      e.attribute("fromto").set_value(text.c_str());
+      return;
+    }
+  }
+  Geometry g;
+  PlaceBy(attr, compiler, g, what);
+  const Placement placed = outer.Then(Placement{g.rotation, g.translation});
+  for (const char* a : {"quat", "axisangle", "euler", "zaxis"}) e.remove_attribute(a);
+  auto set = [&](const char* name, const std::string& text) {
+    if (!e.attribute(name)) e.append_attribute(name);
+    e.attribute(name).set_value(text.c_str());
+  };
+  const Vector3& t = placed.translation;
+  set("pos", Exact(t.x()) + " " + Exact(t.y()) + " " + Exact(t.z()));
+  const Matrix3& R = placed.rotation;
+  set("xyaxes", Exact(R(0, 0)) + " " + Exact(R(1, 0)) + " " + Exact(R(2, 0)) + " " + Exact(R(0, 1)) + " " +
+                    Exact(R(1, 1)) + " " + Exact(R(2, 1)));
+}
+
+// A <replicate count offset euler sep>: count copies of its children, the k-th in a <frame> moved
+// and turned k times by (offset, euler), the names in it suffixed by sep and k (MuJoCo 3's rule).
+void Replicate(pugi::xml_node rep, const Compiler& compiler) {
+  const std::string what = "<replicate>";
+  const int count = rep.attribute("count").as_int(0);
+  if (count < 1 || count > 100000) throw ElementError(what + ": count must be a positive number");
+  Geometry step;
+  PlaceBy([&](const char* a) { return std::string(a) == "pos" ? rep.attribute("offset") : rep.attribute(a); }, compiler,
+          step, what);
+  const Placement one{step.rotation, step.translation};
+  const std::string sep = rep.attribute("sep").value();
+  Placement at;
+  pugi::xml_node parent = rep.parent();
+  for (int k = 0; k < count; ++k) {
+    pugi::xml_node frame = parent.insert_child_before("frame", rep);
+    const Matrix3& R = at.rotation;
+    frame.append_attribute("pos").set_value(
+        (Exact(at.translation.x()) + " " + Exact(at.translation.y()) + " " + Exact(at.translation.z())).c_str());
+    frame.append_attribute("xyaxes").set_value((Exact(R(0, 0)) + " " + Exact(R(1, 0)) + " " + Exact(R(2, 0)) + " " +
+                                                Exact(R(0, 1)) + " " + Exact(R(1, 1)) + " " + Exact(R(2, 1)))
+                                                   .c_str());
+    for (pugi::xml_node c : rep.children()) {
+      pugi::xml_node copy = frame.append_copy(c);
+      std::vector<pugi::xml_node> stack{copy};
+      while (!stack.empty()) {
+        pugi::xml_node n = stack.back();
+        stack.pop_back();
+        if (pugi::xml_attribute name = n.attribute("name"); name && n.type() == pugi::node_element) {
+          name.set_value((std::string(name.value()) + sep + std::to_string(k)).c_str());
+        }
+        for (pugi::xml_node ch : n.children()) stack.push_back(ch);
+      }
+    }
+    at = at.Then(one);
+  }
+  parent.remove_child(rep);
+}
+
+}  // namespace
+
+void MjcfExpandFrames(Document& doc) {
+  const pugi::xml_node root = doc.xml.child("mujoco");
+  const Compiler compiler = CompilerOf(root);
+  const Defaults defaults(root);
+  const std::size_t frames = FindElements(root, "frame").size();
+  int replicates = 0;
+  for (pugi::xml_node rep = FindElement(root, "replicate"); rep; rep = FindElement(root, "replicate")) {
+    Replicate(rep, compiler);
+    ++replicates;
+  }
+  for (pugi::xml_node frame = FindElement(root, "frame"); frame; frame = FindElement(root, "frame")) {
+    const std::string what =
+        "<frame" +
+        std::string(frame.attribute("name") ? " name=\"" + std::string(frame.attribute("name").value()) + "\"" : "") +
+        ">";
+    Geometry g;
+    PlaceBy([&](const char* a) { return frame.attribute(a); }, compiler, g, what);
+    const Placement outer{g.rotation, g.translation};
+    const std::string childclass = frame.attribute("childclass").value();
+    pugi::xml_node parent = frame.parent();
+    for (pugi::xml_node c = frame.first_child(); c;) {
+      const pugi::xml_node next = c.next_sibling();
+      if (c.type() == pugi::node_element) {
+        const std::string tag = c.name();
+        if (!childclass.empty() && !c.attribute("class") && tag != "body" && tag != "frame") {
+          c.append_attribute("class").set_value(childclass.c_str());
+        }
+        if (!childclass.empty() && !c.attribute("childclass") && (tag == "body" || tag == "frame")) {
+          c.append_attribute("childclass").set_value(childclass.c_str());
+        }
+        if (tag == "body" || tag == "geom" || tag == "site" || tag == "frame" || tag == "camera" || tag == "light") {
+          PlaceUnder(c, outer, compiler, defaults, what + " <" + tag + ">");
+        }
+      }
+      parent.insert_move_before(c, frame);
+      c = next;
+    }
+    parent.remove_child(frame);
+  }
+  if (frames > 0) {
+    doc.simulation_notes.push_back(std::to_string(frames) +
+                                   " <frame>(s) (MuJoCo 3) read: their bodies and geoms placed through them");
+  }
+  if (replicates > 0) {
+    doc.simulation_notes.push_back(std::to_string(replicates) + " <replicate>(s) (MuJoCo 3) read: their copies made");
+  }
+}
 
 std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options) {
   const pugi::xml_node root = doc.xml.child("mujoco");
@@ -781,6 +949,8 @@ RobotJoint MjcfJoint(const pugi::xml_node& e, const pugi::xml_node& body, const 
   }
   j.armature = number("armature", 0.0);
   if (!(j.armature >= 0)) throw ElementError(jw + ": a negative armature");
+  j.actuator_force_range = MjcfRange(attr("actuatorfrclimited"), attr("actuatorfrcrange"), jw + " actuatorfrcrange",
+                                     compiler.autolimits, model.notes);
   if (j.type == RobotJointType::kBall && j.armature > 0) {
     model.notes.push_back(jw + ": armature on a ball joint is not simulated");
     j.armature = 0;

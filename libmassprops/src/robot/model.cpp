@@ -113,7 +113,17 @@ void Screen(const Document& doc, RobotFormat format, std::vector<std::string>& n
                 notes);
   }
   if (format == RobotFormat::kMjcf) {
-    NoteIgnored(root, {{"sensor", "sensors"}, {"camera", "cameras"}, {"light", "lights"}}, notes);
+    NoteIgnored(root,
+                {{"sensor", "sensors"},
+                 {"camera", "cameras"},
+                 {"light", "lights"},
+                 {"plugin", "engine plugins (MuJoCo 3: cables, elasticity, SDF colliders)"},
+                 {"composite", "composite objects (particles, cables, cloth)"},
+                 {"flexcomp", "deformable bodies (MuJoCo 3 flexcomp)"},
+                 {"flex", "deformable bodies (MuJoCo 3 flex)"},
+                 {"skin", "skins"},
+                 {"attach", "attached sub-models (MuJoCo 3 <attach>): their bodies"}},
+                notes);
   }
 }
 
@@ -187,7 +197,7 @@ void CheckTree(const RobotModel& model) {
 // the mass of its geoms (all of them, massless ones aside, at density 1000 unless they say
 // otherwise), "true" gives every body that, "false" none. As MuJoCo does, so that a file runs here
 // as it does there.
-void InertiaFromGeoms(const Document& doc, const RobotModelOptions& options, RobotModel& model) {
+void InertiaFromGeoms(Document& doc, const RobotModelOptions& options, RobotModel& model) {
   std::string mode = "auto";
   for (const pugi::xml_node c : doc.xml.document_element().children("compiler")) {
     if (const pugi::xml_attribute a = c.attribute("inertiafromgeom")) mode = a.value();
@@ -200,12 +210,18 @@ void InertiaFromGeoms(const Document& doc, const RobotModelOptions& options, Rob
   from_geoms.from = GeometrySource::kAll;
   from_geoms.link_masses.clear();
   from_geoms.keep_mass = false;
-  const FillResult filled = FillRobotDescription(model.path, from_geoms);
+  // This document's bodies (as read: MuJoCo 3's frames written out), every geom; their notes were
+  // taken by the first reading.
+  const std::size_t notes = doc.notes.size(), simulation_notes = doc.simulation_notes.size();
+  const std::vector<robot::Link> geoms = robot::MjcfLinks(doc, from_geoms);
+  doc.notes.resize(notes);
+  doc.simulation_notes.resize(simulation_notes);
+  const std::vector<LinkFill> fills = robot::ComputeLinkFills(geoms, from_geoms);
   int computed = 0;
-  for (std::size_t k = 0; k < model.links.size() && k < filled.links.size(); ++k) {
+  for (std::size_t k = 0; k < model.links.size() && k < fills.size(); ++k) {
     RobotLink& link = model.links[k];
     if (link.inertial && !all) continue;
-    const LinkFill& f = filled.links[k];
+    const LinkFill& f = fills[k];
     if (f.status == LinkStatus::kFailed) {
       throw std::runtime_error(model.path + ": body '" + link.name +
                                "': its inertia from its geoms (MuJoCo's inertiafromgeom) could not be computed: " +
@@ -290,6 +306,13 @@ RobotModel ReadRobotModel(const std::string& path, const RobotModelOptions& opti
   RobotModel model;
   model.path = path;
   model.format = robot::FormatOf(doc);
+  if (model.format == RobotFormat::kMjcf) {
+    try {
+      robot::MjcfExpandFrames(doc);
+    } catch (const robot::ElementError& e) {
+      throw std::runtime_error(path + ": " + e.what());
+    }
+  }
   Screen(doc, model.format, model.notes);
   FillOptions geometry = options.fill_options;
   geometry.from = GeometrySource::kCollision;

@@ -93,10 +93,17 @@ std::vector<Link> MjcfLinks(Document& doc, const FillOptions& options);
 void UrdfKinematics(const Document& doc, RobotModel& model);
 /// URDF <mimic>s as couplings (after the joints). @throws ElementError naming the joint.
 void UrdfMimics(pugi::xml_node root, RobotModel& model);
+/// Each link's mass properties from its geometries, as massprops fill computes them (nothing
+/// written).
+std::vector<LinkFill> ComputeLinkFills(const std::vector<Link>& links, const FillOptions& options);
 /// A URDF's massless root links (and the links welded to them) as the world (fixed_base.cpp).
 void MasslessRootsAsWorld(RobotModel& model);
 void SdfKinematics(const Document& doc, const std::vector<Link>& links, RobotModel& model);
 void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotModel& model);
+/// MuJoCo 3's <replicate>s and <frame>s written out as MuJoCo 2's structure in `doc` (copies; the
+/// frames' children moved up, placed through them), noted; for reading a model to simulate.
+/// @throws ElementError naming the element.
+void MjcfExpandFrames(Document& doc);
 /// MJCF <option>s: the medium into model.medium; gravity, time step and flags noted (mjcf_option.cpp).
 void MjcfOptions(pugi::xml_node root, RobotModel& model);
 /// An MJCF element's frame (pos and orientation) in its parent's, as the compiler reads it.

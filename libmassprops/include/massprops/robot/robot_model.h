@@ -102,6 +102,9 @@ struct RobotJoint {
   /// the child at q = 0, the file's drawing turned back by it): where the joint starts without a
   /// keyframe, and its position in the reference configuration (MuJoCo's qpos0).
   double ref = 0;
+  /// MJCF actuatorfrcrange (N·m or N): the range of the actuators' total force at the joint (their
+  /// forcerange narrowed to it through their gear).
+  std::optional<std::pair<double, double>> actuator_force_range;
 };
 
 /// A plane of the file's own world (MJCF: a plane geom of the worldbody), the half-space
