@@ -1,6 +1,5 @@
 // The articulation's tree, kinematics, mass matrix and momentum rate (see articulation.h).
 
-#include <cstdlib>
 #include <algorithm>
 #include <cmath>
 #include <deque>
@@ -496,7 +495,6 @@ void Articulation::SubtreeMomenta(const Configuration& c) {
 }
 
 Eigen::VectorXd Articulation::ImplicitDiagonal(double h) const {
-  if (std::getenv("NO_IMPLICIT")) return {};
   Eigen::VectorXd d = Eigen::VectorXd::Zero(v_.size());
   bool any = false;
   for (const Node& n : nodes_) {
