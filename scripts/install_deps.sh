@@ -5,7 +5,7 @@ set -euo pipefail
 
 PACKAGES=(
   build-essential cmake ninja-build ccache pkg-config
-  libeigen3-dev zlib1g-dev libassimp-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
+  libeigen3-dev zlib1g-dev libpng-dev libassimp-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libtbb-dev libfast-float-dev
   python3-dev python3-numpy python3-pytest pybind11-dev python3-stl python3-distributed python3-pandas

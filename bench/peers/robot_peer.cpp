@@ -158,6 +158,9 @@ struct Ours {
       for (const massprops::RobotGround& g : model.grounds) {
         world.AddGround(dynamics::GroundOf(g));
       }
+      for (const massprops::RobotTerrain& t : model.terrains) {
+        world.AddStatic(dynamics::TerrainCollider(t), t.pose.rotation, t.pose.translation);
+      }
     } else if (s.ground) {
       world.AddGround({});
     } else {

@@ -2,6 +2,8 @@
 // Fixtures under tests/robot/field/, in the habits of the files they stand for.
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -239,6 +241,73 @@ TEST(RobotFiles, MuJoCo3FramesAndReplicatesReadAsTheirExpansion) {
   bool noted = false;
   for (const std::string& n : m3.notes) noted |= n.find("<replicate>") != std::string::npos;
   EXPECT_TRUE(noted);
+}
+
+}  // namespace
+
+namespace {
+
+std::string Write(const std::string& name, const std::string& text) {
+  const std::string path = (std::filesystem::temp_directory_path() / name).string();
+  std::ofstream(path) << text;
+  return path;
+}
+
+// The file's world as rbsim makes it: its floors and its terrains (height fields, static).
+ContactWorld FileWorld(const massprops::RobotModel& m) {
+  dynamics::World w(dynamics::Integrator::kImplicitMidpoint);
+  w.AddForce(dynamics::Gravity(Vector3(0, 0, -9.81)));
+  ContactWorld world(std::move(w));
+  for (const massprops::RobotGround& g : m.grounds) world.AddGround(dynamics::GroundOf(g));
+  for (const massprops::RobotTerrain& t : m.terrains) {
+    world.AddStatic(dynamics::TerrainCollider(t), t.pose.rotation, t.pose.translation);
+  }
+  return world;
+}
+
+// A box on a height field that rises linearly along x (a 2 × 2 PNG, 0 and 255 across: the 1 in 4
+// slope of its size), both of friction 0.1: it slides straight down the slope at
+// a = g (sin θ − μ cos θ), as down the equivalent plane.
+TEST(RobotFiles, ABoxSlidesDownATiltedHeightFieldAsDownThePlane) {
+  const massprops::RobotModel m = massprops::ReadRobotModel(kField + "mjcf/hfield_slope.xml");
+  ASSERT_EQ(m.terrains.size(), 1u);
+  ContactWorld world = FileWorld(m);
+  const dynamics::RobotInWorld added = dynamics::AddRobot(world, m);
+  const Vector3 start = world.world().bodies()[static_cast<std::size_t>(added.bodies[0])].position;
+  for (int s = 0; s < 500; ++s) ASSERT_TRUE(world.Step(1e-3).ok);
+  const double theta = std::atan(0.25), a = 9.81 * (std::sin(theta) - 0.1 * std::cos(theta));
+  const dynamics::RigidBody& box = world.world().bodies()[static_cast<std::size_t>(added.bodies[0])];
+  const Vector3 down(-std::cos(theta), 0, -std::sin(theta));
+  EXPECT_NEAR(box.velocity.dot(down) / (a * 0.5) - 1, 0, 1e-3) << box.velocity.transpose();
+  EXPECT_LT(std::abs(box.velocity.y()), 1e-6);
+  EXPECT_NEAR((box.position - start).dot(down) / (0.5 * a * 0.25) - 1, 0, 5e-3);
+}
+
+// A ball dropped on the lowest point of a bowl-shaped height field (a 21 × 21 PNG of x² + y²)
+// stays there, on it (the landing's kick from the grid's diagonals leaves it rolling to and fro
+// within 0.6 mm: nothing resists rolling); a size-only height field (MuJoCo fills it with zeros)
+// is a flat floor at z = 0.
+TEST(RobotFiles, ABallRestsAtTheBowlsLowestPointAndASizeOnlyFieldIsFlat) {
+  const std::string bowl = Write("hfield_bowl_center.xml", R"(<mujoco><asset>
+  <hfield name="bowl" size="0.5 0.5 0.2 0.05" file=")" + kField +
+                                                               R"(mjcf/bowl.png"/>
+  <hfield name="blank" size="1 1 1 0.1" nrow="8" ncol="8"/></asset>
+  <worldbody><geom type="hfield" hfield="bowl"/><geom type="hfield" hfield="blank" pos="3 0 0"/>
+  <body name="ball" pos="0 0 0.08"><freejoint/><geom type="sphere" size="0.03" mass="0.1"/></body>
+  <body name="cube" pos="3 0.2 0.1"><freejoint/><geom type="box" size="0.05 0.05 0.05" mass="0.5"/></body>
+  </worldbody></mujoco>)");
+  const massprops::RobotModel m = massprops::ReadRobotModel(bowl);
+  ASSERT_EQ(m.terrains.size(), 2u);
+  ContactWorld world = FileWorld(m);
+  const dynamics::RobotInWorld added = dynamics::AddRobot(world, m);
+  for (int s = 0; s < 1500; ++s) ASSERT_TRUE(world.Step(1e-3).ok);
+  const auto& b = world.world().bodies();
+  const Vector3 ball = b[static_cast<std::size_t>(added.bodies[0])].position;
+  const Vector3 cube = b[static_cast<std::size_t>(added.bodies[1])].position;
+  EXPECT_LT(ball.head<2>().norm(), 1e-3) << ball.transpose();
+  EXPECT_NEAR(ball.z(), 0.03, 1e-4);
+  EXPECT_NEAR(cube.z(), 0.05, 1e-4);
+  EXPECT_LT(b[static_cast<std::size_t>(added.bodies[1])].velocity.norm(), 1e-6);
 }
 
 }  // namespace

@@ -733,7 +733,17 @@ def main():
                 ("robot_bad_contype.xml", '<mujoco><worldbody><body name="b"><freejoint/><geom type="sphere" size="0.1" '
                  'contype="1.5"/></body></worldbody></mujoco>', 1, r"contype: '1.5' is not a 32-bit integer"),
                 ("robot_hfield.xml", '<mujoco><worldbody><geom name="terrain" type="hfield"/><body name="b"><freejoint/>'
-                 '<geom type="sphere" size="0.1"/></body></worldbody></mujoco>', 1, r"geom 'terrain': a height field"),
+                 '<geom type="sphere" size="0.1"/></body></worldbody></mujoco>', 1,
+                 r"worldbody geom 'terrain': hfield=\"\" names no <asset><hfield>"),
+                ("robot_hfield_count.xml", '<mujoco><asset><hfield name="h" size="1 1 0.1 0.1" nrow="3" ncol="3" '
+                 'elevation="0 1 2"/></asset><worldbody><geom name="t" type="hfield" hfield="h"/></worldbody></mujoco>',
+                 1, r"geom 't': <hfield name=\"h\"> elevation"),
+                ("robot_hfield_png.xml", '<mujoco><asset><hfield name="h" size="1 1 0.1 0.1" file="missing.png"/>'
+                 '</asset><worldbody><geom name="t" type="hfield" hfield="h"/></worldbody></mujoco>', 1,
+                 r"geom 't': <hfield name=\"h\">: '?missing\.png'?"),
+                ("robot_hfield_size.xml", '<mujoco><asset><hfield name="h" size="1 -1 0.1 0.1" nrow="2" ncol="2"/>'
+                 '</asset><worldbody><geom name="t" type="hfield" hfield="h"/></worldbody></mujoco>', 1,
+                 r"size needs positive radii and base"),
                 ("robot_key_nan.xml", '<mujoco><worldbody><body name="b"><joint name="h" type="hinge"/><geom '
                  'type="sphere" size="0.1"/></body></worldbody><keyframe><key name="k" qpos="nan"/></keyframe>'
                  '</mujoco>', 1, r"<key> 'k' qpos: 'nan' is not"),

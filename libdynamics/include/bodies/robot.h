@@ -88,6 +88,11 @@ std::vector<massprops::TriangleMesh> VisualShapes(const massprops::RobotModel& m
 /// A file's own floor (an MJCF worldbody plane) as a ground: its collision bits, and its friction
 /// mixed as MuJoCo mixes it (the larger of a pair's) when the file gives one.
 Ground GroundOf(const massprops::RobotGround& ground);
+/// A file's terrain (an MJCF height field) as a static mesh collider in its geom's frame (a signed
+/// distance field of the solid; its friction and collision bits the geom's). Add it with
+/// ContactWorld::AddStatic(collider, terrain.pose.rotation, terrain.pose.translation).
+/// @throws std::invalid_argument naming the terrain when its solid cannot be a collider.
+Collider TerrainCollider(const massprops::RobotTerrain& terrain);
 
 /// @throws std::invalid_argument naming the link or joint: a massless link that a joint moves, a
 /// joint or position named in the options that the robot has not, a non-positive inertia; or as

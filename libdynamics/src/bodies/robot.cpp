@@ -402,6 +402,19 @@ Ground GroundOf(const massprops::RobotGround& ground) {
   return g;
 }
 
+Collider TerrainCollider(const massprops::RobotTerrain& terrain) {
+  Collider c;
+  try {
+    shape::Mesh mesh = MeshOf(terrain.mesh);
+    c.shape = MakeMesh(std::move(mesh.vertices), std::move(mesh.triangles));
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(terrain.where + ": " + e.what());
+  }
+  if (terrain.friction) c.material = FileFriction(*terrain.friction, 0);
+  c.filter = {terrain.contype, terrain.conaffinity};
+  return c;
+}
+
 namespace {
 
 // Every joint the options name is the robot's. @throws std::invalid_argument naming it.

@@ -82,6 +82,19 @@ void AddRobot(Simulation& sim, const RobotSpec& spec, std::vector<std::string>& 
     }
     for (const massprops::RobotGround& g : model.grounds) sim.scene.grounds.push_back(dynamics::GroundOf(g));
   }
+  for (const massprops::RobotTerrain& t : model.terrains) {  // the file's height fields, static
+    try {
+      sim.physics.AddStatic(dynamics::TerrainCollider(t), t.pose.rotation, t.pose.translation);
+    } catch (const std::exception& e) {
+      throw SceneError(where + (alone ? spec.path + ": " : std::string()) + e.what());
+    }
+    SimStatic drawn{spec.name + "/" + (t.name.empty() ? std::string("terrain") : t.name), t.mesh};
+    for (Eigen::Index v = 0; v < drawn.display.V.rows(); ++v) {
+      drawn.display.V.row(v) = (t.pose.rotation * drawn.display.V.row(v).transpose() + t.pose.translation).transpose();
+    }
+    sim.statics.push_back(std::move(drawn));
+    sim.contact = true;
+  }
   dynamics::RobotOptions options = spec.options;
   if (spec.material_given && model.format == massprops::RobotFormat::kMjcf) {
     warnings.push_back(sim.scene.file + ": " + spec.field +

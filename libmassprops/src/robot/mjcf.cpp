@@ -357,9 +357,10 @@ std::set<std::string> PairedGeoms(pugi::xml_node root) {
   return out;
 }
 
-// The worldbody's own geoms: planes are the file's floors; a height field is refused (no terrain
-// is simulated); the other shapes are noted as left out.
-void WorldGeoms(pugi::xml_node root, const Compiler& compiler, const Defaults& defaults, RobotModel& model) {
+// The worldbody's own geoms: planes are the file's floors, height fields its terrain; the other
+// shapes are noted as left out.
+void WorldGeoms(const Document& doc, const Compiler& compiler, const Defaults& defaults, RobotModel& model) {
+  const pugi::xml_node root = doc.xml.child("mujoco");
   int k = 0, left_out = 0;
   SurfaceCounts surface;
   const std::set<std::string> paired = PairedGeoms(root);
@@ -378,9 +379,23 @@ void WorldGeoms(pugi::xml_node root, const Compiler& compiler, const Defaults& d
       const std::uint32_t conaffinity = Bits(attr("conaffinity"), what + " conaffinity");
       if (contype == 0 && conaffinity == 0 && !paired.count(geom.attribute("name").value())) continue;  // drawn only
       if (type == "hfield") {
-        throw ElementError("worldbody " + what +
-                           ": a height field (terrain) is not simulated: remove it, or give "
-                           "the terrain as a static mesh in a scene");
+        const std::string field = attr("hfield").value();
+        RobotTerrain t;
+        try {
+          t.mesh = HfieldSolid(root, field, doc, FillOptions{});
+        } catch (const ElementError& e) {
+          throw ElementError("worldbody " + what + ": " + e.what());
+        }
+        Geometry frame;
+        PlaceBy(attr, compiler, frame, "worldbody " + what);
+        t.pose = Placement{frame.rotation, frame.translation};
+        t.where = what + " (hfield '" + field + "')";
+        t.name = geom.attribute("name").value();
+        t.contype = contype;
+        t.conaffinity = conaffinity;
+        t.friction = Friction(attr, "worldbody " + what, surface);
+        model.terrains.push_back(std::move(t));
+        continue;
       }
       if (type != "plane") {
         ++left_out;
@@ -970,7 +985,7 @@ void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotMo
   }
   const Compiler compiler = CompilerOf(root);
   const Defaults defaults(root);
-  WorldGeoms(root, compiler, defaults, model);
+  WorldGeoms(doc, compiler, defaults, model);
   std::map<pugi::xml_node_struct*, int> index;
   for (std::size_t k = 0; k < links.size(); ++k) index[links[k].element.internal_object()] = static_cast<int>(k);
   const double angle = compiler.degrees ? kPi / 180 : 1.0;

@@ -167,6 +167,19 @@ struct RobotTendon {
   std::optional<double> rest_length;  ///< none: the length at the reference configuration
 };
 
+/// Terrain of the file's own world (MJCF: a worldbody geom of type hfield): a height field as the
+/// closed solid it bounds — its top the elevation grid (MuJoCo's: the data scaled to [0, 1], then
+/// by the elevation size; x and y spanning ±the radii), its sides and bottom down to −base —
+/// static, where the geom puts it.
+struct RobotTerrain {
+  TriangleMesh mesh;   ///< in the geom's frame, metres
+  Placement pose;      ///< the geom's frame in the world
+  std::string where;   ///< "geom 'terrain' (hfield 'bumps')", for messages
+  std::string name;    ///< the geom's name attribute
+  std::uint32_t contype = 1, conaffinity = 1;  ///< as RobotGeometry's
+  std::optional<double> friction;              ///< as RobotGeometry's
+};
+
 /// The medium the robot moves through (MJCF <option density viscosity wind>): MuJoCo's
 /// inertia-box fluid model (dynamics::Fluid).
 struct RobotMedium {
@@ -189,6 +202,7 @@ struct RobotModel {
   std::vector<RobotLink> links;
   std::vector<RobotJoint> joints;        ///< each link is the child of one joint at most
   std::vector<RobotGround> grounds;      ///< the file's own floors (MJCF); none: the simulator's
+  std::vector<RobotTerrain> terrains;    ///< the file's height fields (MJCF), static
   std::vector<RobotActuator> actuators;  ///< MJCF <actuator>s on joints and tendons
   std::vector<RobotCoupling> couplings;  ///< URDF <mimic>, MJCF <equality joint|tendon>
   std::vector<RobotLoop> loops;          ///< MJCF <equality connect|weld>, SDFormat loops
