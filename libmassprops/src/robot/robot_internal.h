@@ -106,8 +106,7 @@ void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotMo
 void MjcfExpandFrames(Document& doc);
 /// The closed solid of the <asset><hfield name="name"> (mjcf_hfield.cpp, robot_model.h's
 /// RobotTerrain). @throws ElementError naming the asset.
-TriangleMesh HfieldSolid(pugi::xml_node root, const std::string& name, const Document& doc,
-                         const FillOptions& options);
+TriangleMesh HfieldSolid(pugi::xml_node root, const std::string& name, const Document& doc, const FillOptions& options);
 /// MJCF <option>s: the medium into model.medium; gravity, time step and flags noted (mjcf_option.cpp).
 void MjcfOptions(pugi::xml_node root, RobotModel& model);
 /// An MJCF element's frame (pos and orientation) in its parent's, as the compiler reads it.

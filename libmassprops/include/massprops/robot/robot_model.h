@@ -172,10 +172,10 @@ struct RobotTendon {
 /// by the elevation size; x and y spanning ±the radii), its sides and bottom down to −base —
 /// static, where the geom puts it.
 struct RobotTerrain {
-  TriangleMesh mesh;   ///< in the geom's frame, metres
-  Placement pose;      ///< the geom's frame in the world
-  std::string where;   ///< "geom 'terrain' (hfield 'bumps')", for messages
-  std::string name;    ///< the geom's name attribute
+  TriangleMesh mesh;                           ///< in the geom's frame, metres
+  Placement pose;                              ///< the geom's frame in the world
+  std::string where;                           ///< "geom 'terrain' (hfield 'bumps')", for messages
+  std::string name;                            ///< the geom's name attribute
   std::uint32_t contype = 1, conaffinity = 1;  ///< as RobotGeometry's
   std::optional<double> friction;              ///< as RobotGeometry's
 };
