@@ -668,6 +668,19 @@ void BindWorld(py::module_& m) {
           "add_gravity", [](dynamics::World& w, const py::handle& g) { w.AddForce(dynamics::Gravity(Vec(g))); },
           py::arg("g"), "Adds uniform gravity g (m/s², world) on every body")
       .def(
+          "add_fluid",
+          [](dynamics::World& w, double density, double viscosity, const py::handle& wind, std::vector<int> bodies) {
+            try {
+              w.AddForce(dynamics::Fluid({density, viscosity, Vec(wind)}, std::move(bodies)));
+            } catch (const std::invalid_argument& e) {
+              throw py::value_error(e.what());
+            }
+          },
+          py::arg("density") = 0.0, py::arg("viscosity") = 0.0, py::arg("wind") = py::make_tuple(0.0, 0.0, 0.0),
+          py::arg("bodies") = std::vector<int>(),
+          "Adds a medium (MuJoCo's inertia-box fluid model): quadratic drag from density (kg/m³), viscous "
+          "resistance from viscosity (Pa·s), relative to the wind (m/s); on bodies (default: all)")
+      .def(
           "step",
           [](dynamics::World& w, double h, int steps) {
             StepAll<dynamics::World>(w, h, steps, [](const dynamics::World& x) { return x.time(); });
@@ -855,6 +868,20 @@ void BindContactWorld(py::module_& m) {
       .def(
           "add_gravity", [](dynamics::ContactWorld& w, const py::handle& g) { w.AddForce(dynamics::Gravity(Vec(g))); },
           py::arg("g"), "Adds uniform gravity g (m/s², world) on every body")
+      .def(
+          "add_fluid",
+          [](dynamics::ContactWorld& w, double density, double viscosity, const py::handle& wind,
+             std::vector<int> bodies) {
+            try {
+              w.AddForce(dynamics::Fluid({density, viscosity, Vec(wind)}, std::move(bodies)));
+            } catch (const std::invalid_argument& e) {
+              throw py::value_error(e.what());
+            }
+          },
+          py::arg("density") = 0.0, py::arg("viscosity") = 0.0, py::arg("wind") = py::make_tuple(0.0, 0.0, 0.0),
+          py::arg("bodies") = std::vector<int>(),
+          "Adds a medium (MuJoCo's inertia-box fluid model): quadratic drag from density (kg/m³), viscous "
+          "resistance from viscosity (Pa·s), relative to the wind (m/s); on bodies (default: all)")
       .def(
           "step",
           [](dynamics::ContactWorld& w, double h, int steps) {

@@ -54,3 +54,25 @@ def test_a_massless_root_is_bolted_where_the_file_puts_it():
     assert np.allclose(first, [0, 0, 0.2], atol=1e-15, rtol=0)  # not set down: bolted at the file's place
     world.step(1e-3, steps=200)
     assert np.allclose(world.body(arm["bodies"][0]).position, first, atol=1e-12, rtol=0)
+
+
+def test_add_fluid_gives_stokes_fall_and_names_bad_values():
+    """A sphere (its equivalent inertia box's mean half-size r_eq = √0.6 R) falling in a viscous
+    medium: v(t) = v_T (1 − e^(−t c/m)), c = 6 π β r_eq, as MuJoCo's inertia-box model gives it."""
+    d = massprops.dynamics
+    w = d.World()
+    b = d.RigidBody()
+    m, R, beta = 1.0, 0.1, 0.5
+    b.mass = m
+    b.inertia = [0.4 * m * R * R] * 3
+    w.add_body(b)
+    w.add_gravity([0, 0, -9.81])
+    w.add_fluid(viscosity=beta)
+    w.step(1e-3, steps=1000)
+    c = 6 * np.pi * beta * np.sqrt(0.6) * R
+    expected = -(m * 9.81 / c) * (1 - np.exp(-c / m))
+    assert w.bodies[0].velocity[2] == pytest.approx(expected, rel=1e-6)
+    with pytest.raises(ValueError, match="viscosity"):
+        w.add_fluid(viscosity=-1)
+    with pytest.raises(ValueError, match="body 5"):
+        w.add_fluid(density=1.2, bodies=[5])
