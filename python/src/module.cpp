@@ -490,6 +490,19 @@ int AddJoint(dynamics::World& w, const std::string& type, int child, int parent,
   }
 }
 
+// World.add_fluid and ContactWorld.add_fluid: MuJoCo's inertia-box model (dynamics/forces.h).
+template <typename W>
+void AddFluid(W& w, double density, double viscosity, const py::handle& wind, std::vector<int> bodies) {
+  try {
+    w.AddForce(dynamics::Fluid({density, viscosity, Vec(wind)}, std::move(bodies)));
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(e.what());
+  }
+}
+constexpr const char* kAddFluidDoc =
+    "Adds a medium (MuJoCo's inertia-box fluid model): quadratic drag from density (kg/m³), viscous resistance "
+    "from viscosity (Pa·s), relative to the wind (m/s); on bodies (default: all)";
+
 // ContactWorld.add_robot: a URDF, SDFormat or MJCF file's robot (bodies/robot.h).
 py::dict AddRobot(dynamics::ContactWorld& w, const std::string& path, const py::handle& position,
                   const py::handle& orientation, const std::string& base, bool fill, double density,
@@ -667,19 +680,8 @@ void BindWorld(py::module_& m) {
       .def(
           "add_gravity", [](dynamics::World& w, const py::handle& g) { w.AddForce(dynamics::Gravity(Vec(g))); },
           py::arg("g"), "Adds uniform gravity g (m/s², world) on every body")
-      .def(
-          "add_fluid",
-          [](dynamics::World& w, double density, double viscosity, const py::handle& wind, std::vector<int> bodies) {
-            try {
-              w.AddForce(dynamics::Fluid({density, viscosity, Vec(wind)}, std::move(bodies)));
-            } catch (const std::invalid_argument& e) {
-              throw py::value_error(e.what());
-            }
-          },
-          py::arg("density") = 0.0, py::arg("viscosity") = 0.0, py::arg("wind") = py::make_tuple(0.0, 0.0, 0.0),
-          py::arg("bodies") = std::vector<int>(),
-          "Adds a medium (MuJoCo's inertia-box fluid model): quadratic drag from density (kg/m³), viscous "
-          "resistance from viscosity (Pa·s), relative to the wind (m/s); on bodies (default: all)")
+      .def("add_fluid", &AddFluid<dynamics::World>, py::arg("density") = 0.0, py::arg("viscosity") = 0.0,
+           py::arg("wind") = py::make_tuple(0.0, 0.0, 0.0), py::arg("bodies") = std::vector<int>(), kAddFluidDoc)
       .def(
           "step",
           [](dynamics::World& w, double h, int steps) {
@@ -868,20 +870,8 @@ void BindContactWorld(py::module_& m) {
       .def(
           "add_gravity", [](dynamics::ContactWorld& w, const py::handle& g) { w.AddForce(dynamics::Gravity(Vec(g))); },
           py::arg("g"), "Adds uniform gravity g (m/s², world) on every body")
-      .def(
-          "add_fluid",
-          [](dynamics::ContactWorld& w, double density, double viscosity, const py::handle& wind,
-             std::vector<int> bodies) {
-            try {
-              w.AddForce(dynamics::Fluid({density, viscosity, Vec(wind)}, std::move(bodies)));
-            } catch (const std::invalid_argument& e) {
-              throw py::value_error(e.what());
-            }
-          },
-          py::arg("density") = 0.0, py::arg("viscosity") = 0.0, py::arg("wind") = py::make_tuple(0.0, 0.0, 0.0),
-          py::arg("bodies") = std::vector<int>(),
-          "Adds a medium (MuJoCo's inertia-box fluid model): quadratic drag from density (kg/m³), viscous "
-          "resistance from viscosity (Pa·s), relative to the wind (m/s); on bodies (default: all)")
+      .def("add_fluid", &AddFluid<dynamics::ContactWorld>, py::arg("density") = 0.0, py::arg("viscosity") = 0.0,
+           py::arg("wind") = py::make_tuple(0.0, 0.0, 0.0), py::arg("bodies") = std::vector<int>(), kAddFluidDoc)
       .def(
           "step",
           [](dynamics::ContactWorld& w, double h, int steps) {
