@@ -242,6 +242,8 @@ class Articulation {
   void Sync(const Configuration& c, std::vector<RigidBody>& bodies, const std::vector<char>* only = nullptr) const;
   /// p = M(q) v, once before the first step (false: the mass matrix is not positive definite).
   bool EnsureMomenta();
+  /// p = M v at configuration c (configured; its velocities set from v on the way).
+  void Momenta(Configuration& c, const Eigen::VectorXd& v, Eigen::VectorXd& p);
   /// Places node i (its frame in c) from its parent's frame and q.
   void PlaceNode(int i, const Eigen::VectorXd& q, Configuration& c) const;
   /// Node `node`'s Jacobian in c: its body's (v, ω) = Φ u (6 × nv), into P (`path`: working).
@@ -344,7 +346,7 @@ class Articulation {
   };
   MidpointHistory history_;
   Eigen::VectorXd saved_q_, saved_v_, saved_p_;  ///< the state before a step that may be retried
-  Eigen::VectorXd q0_, p0_, q1_, p1_, vbar_, vnew_, pnew_, rate_, k_[4], kq_[4], qs_, ps_, vs_;
+  Eigen::VectorXd q0_, p0_, q1_, p1_, vbar_, vnew_, pnew_, rate_, k_[4], kq_[4], qs_, ps_, vs_, v_end_;
   struct Row {
     int joint, dof;
     double lo, hi, target;

@@ -222,22 +222,25 @@ Articulation::Articulation(const std::vector<Joint>& joints, std::vector<RigidBo
 bool Articulation::EnsureMomenta() {
   if (momenta_ready_) return true;
   if (!Configure(q_, end_, StepForm())) return false;
-  Velocities(v_, end_);
-  p_ = Eigen::VectorXd::Zero(v_.size());  // (an empty product is UB in Eigen's self-adjoint kernel)
-  if (v_.size() > 0 && end_.dense) p_ = end_.M.selfadjointView<Eigen::Lower>() * v_;
-  if (!end_.dense) {
-    // (M v)_i = S_iᵀ Σ over i's subtree of I_j V_j (+ the armature's a v_i): the momenta of the
-    // subtrees, O(n).
-    SubtreeMomenta(end_);
-    for (std::size_t i = 0; i < nodes_.size(); ++i) {
-      const Node& ni = nodes_[i];
-      if (ni.nv == 0) continue;
-      p_.segment(ni.v, ni.nv) = end_.frames[i].S.transpose() * subtree_momentum_[i];
-      if (ni.nv == 1 && ni.joint >= 0) p_[ni.v] += joints_[static_cast<std::size_t>(ni.joint)].armature * v_[ni.v];
-    }
-  }
+  Momenta(end_, v_, p_);
   momenta_ready_ = true;
   return true;
+}
+
+void Articulation::Momenta(Configuration& c, const Eigen::VectorXd& v, Eigen::VectorXd& p) {
+  Velocities(v, c);
+  p = Eigen::VectorXd::Zero(v.size());  // (an empty product is UB in Eigen's self-adjoint kernel)
+  if (v.size() > 0 && c.dense) p = c.M.selfadjointView<Eigen::Lower>() * v;
+  if (c.dense) return;
+  // (M v)_i = S_iᵀ Σ over i's subtree of I_j V_j (+ the armature's a v_i): the momenta of the
+  // subtrees, O(n).
+  SubtreeMomenta(c);
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    const Node& ni = nodes_[i];
+    if (ni.nv == 0) continue;
+    p.segment(ni.v, ni.nv) = c.frames[i].S.transpose() * subtree_momentum_[i];
+    if (ni.nv == 1 && ni.joint >= 0) p[ni.v] += joints_[static_cast<std::size_t>(ni.joint)].armature * v[ni.v];
+  }
 }
 
 namespace {

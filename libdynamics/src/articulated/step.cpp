@@ -123,6 +123,12 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
   }
   std::vector<std::pair<int, double>> stops;
   if (Impulses(end_, q1_, h, p1_, stops)) {
+    // The end velocity the impulses gave (at the end as first found, where their rows hold): kept
+    // when the step's end moves onto the stops, its momenta taken there. (M(q)⁻¹ p1 at the moved
+    // end would turn a fast base's momenta into joint rates: a robot falling at 75 m/s with a
+    // joint on its stop drove it through at 10 rad/s.)
+    Solve(end_, p1_, v_end_);
+    if (held_rows_.active()) held_rows_.Hold(v_end_, held_target_);
     // The impulses act over the step: the midpoint velocity takes half of them (M⁻¹ itself, not
     // the iteration's M with its implicit diagonal).
     if (mid_.implicit.size() > 0) {
@@ -139,6 +145,7 @@ bool Articulation::MidpointStep(const std::vector<std::unique_ptr<Force>>& force
     Move(q0_, vbar_, h, q1_);
     for (const auto& [qi, limit] : stops) q1_[qi] = limit;
     if (!Configure(q1_, end_, StepForm())) return false;
+    Momenta(end_, v_end_, p1_);
   }
   if (Constrained() && !FinishConstrained(stops)) return false;
   Accept(bodies);
