@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -572,6 +573,12 @@ py::dict AddRobot(dynamics::ContactWorld& w, const std::string& path, const py::
       options.pose = dynamics::PlaceAboveGround(model, options, w.grounds(), dynamics::kSetDownClearance);
     }
     added = dynamics::AddRobot(w, model, options);
+    if (std::any_of(model.links.begin(), model.links.end(),
+                    [](const massprops::RobotLink& l) { return l.gravity_compensation != 0; })) {
+      added.notes.push_back(
+          "gravcomp (MuJoCo 3's gravity compensation): not applied by add_robot, which does not know the world's "
+          "gravity; load_scene applies it");
+    }
   } catch (const massprops::FileAccessError& e) {
     throw py::value_error(e.what());
   } catch (const std::runtime_error& e) {

@@ -505,6 +505,26 @@ TEST(Simulation, AFluidsBuoyancyLiftsWhatIsLighterThanIt) {
                scene::SceneError);
 }
 
+// MJCF gravcomp (MuJoCo 3): a body compensated in full floats where it is; one compensated by half
+// falls at g/2 (z = z0 − g t²/4).
+TEST(Simulation, GravityCompensationHoldsUpItsShareOfTheWeight) {
+  const std::string path = (std::filesystem::temp_directory_path() / "rbsim_test_gravcomp.xml").string();
+  std::ofstream(path) << R"(<mujoco><worldbody>
+  <body name="floater" pos="0 0 1" gravcomp="1"><freejoint/><geom type="sphere" size="0.05" mass="1"/></body>
+  <body name="half" pos="1 0 1" gravcomp="0.5"><freejoint/><geom type="sphere" size="0.05" mass="2"/></body>
+  </worldbody></mujoco>)";
+  std::vector<std::string> w;
+  scene::Simulation sim = scene::BuildSimulation(
+      Parse(R"({"dt": 0.001, "duration": 0.5, "forces": [{"type": "gravity", "g": [0, 0, -9.81]}],
+                "robots": [{"file": ")" +
+            path + R"(", "position": [0, 0, 0]}]})"),
+      w);
+  for (int s = 0; s < 500; ++s) ASSERT_TRUE(sim.physics.Step(1e-3).ok);
+  const auto& b = sim.world().bodies();
+  EXPECT_NEAR(b[0].position.z(), 1.0, 1e-12);
+  EXPECT_NEAR(b[1].position.z(), 1.0 - 9.81 * 0.25 / 4, 1e-9);
+}
+
 TEST(Simulation, TwoBodyExampleConservesMomentaAndEnergy) {
   std::vector<std::string> w;
   scene::Simulation sim = scene::BuildSimulation(scene::LoadScene(DataPath("scenes/two_bodies.json"), w), w);

@@ -56,6 +56,23 @@ BuiltShape LoadShape(const dynamics::BodyBuilder& builder, const ShapeSpec& shap
   }
 }
 
+// MJCF gravcomp: each such link held up by that fraction of its weight under the scene's gravity,
+// a force at its center of mass (MuJoCo 3's gravity compensation).
+void CompensateGravity(Simulation& sim, const massprops::RobotModel& model, const dynamics::RobotInWorld& added) {
+  Vector3 g = Vector3::Zero();
+  for (const ForceSpec& f : sim.scene.forces) {
+    if (f.kind == ForceKind::kGravity) g += f.vector;
+  }
+  for (std::size_t l = 0; l < model.links.size(); ++l) {
+    const massprops::RobotLink& link = model.links[l];
+    if (link.gravity_compensation == 0 || !link.inertial || g.isZero(0)) continue;
+    const Vector3 at =
+        added.link_in_body[l].rotation * link.inertial->center_of_mass + added.link_in_body[l].translation;
+    sim.physics.AddForce(
+        dynamics::PointForce(added.body_of_link[l], at, -link.gravity_compensation * link.inertial->mass * g, false));
+  }
+}
+
 // A robot of the scene: its file read (filled on request), its bodies and joints added, each
 // body drawn as its collision geometry. Without a position it starts where its file places it, or
 // raised so that its lowest point is 1 cm above the highest ground under it (PlaceAboveGround).
@@ -112,6 +129,7 @@ void AddRobot(Simulation& sim, const RobotSpec& spec, std::vector<std::string>& 
                                    [](OutputKind k) { return k == OutputKind::kGlb || k == OutputKind::kHtml; });
     const std::vector<TriangleMesh> visuals =
         drawn ? dynamics::VisualShapes(model, added, options.load, notes) : std::vector<TriangleMesh>();
+    CompensateGravity(sim, model, added);
     for (const std::string& note : notes) warnings.push_back((alone ? spec.path + ": " : where) + note);
     for (std::size_t k = 0; k < added.bodies.size(); ++k) {
       const dynamics::RigidBody& rb = sim.world().bodies()[static_cast<std::size_t>(added.bodies[k])];

@@ -995,9 +995,8 @@ void MjcfKinematics(const Document& doc, const std::vector<Link>& links, RobotMo
     Geometry frame;
     PlaceBy([&](const char* a) { return body.attribute(a); }, compiler, frame, what);
     const Placement body_in_parent{frame.rotation, frame.translation};
-    if (const pugi::xml_attribute gc = body.attribute("gravcomp"); gc && gc.as_double() != 0) {
-      model.notes.push_back(what + " gravcomp=\"" + gc.value() +
-                            "\" (MuJoCo 3's gravity compensation): not simulated, its weight acts in full");
+    if (const pugi::xml_attribute gc = body.attribute("gravcomp")) {
+      model.links[k].gravity_compensation = Numbers(gc.value(), 1, what + " gravcomp")[0];
     }
     if (const pugi::xml_node inertial = body.child("inertial")) {
       const std::string in = what + " <inertial>";

@@ -77,6 +77,9 @@ struct RobotLink {
   /// What is drawn (URDF/SDFormat <visual>s, MJCF geoms that collide with nothing), for pictures;
   /// a visual that cannot be read is left out with a note.
   std::vector<RobotGeometry> visuals;
+  /// MJCF gravcomp (MuJoCo 3): the fraction of this link's weight held up by a force at its center
+  /// of mass, against the simulator's gravity (scenes and rbsim apply it).
+  double gravity_compensation = 0;
   /// A root link's frame in the file's world, where the file places it (SDFormat: the model's
   /// <pose>, then the link's); none: the file says nothing (URDF), the root is at the robot's pose.
   std::optional<Placement> placement;
