@@ -14,6 +14,7 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <initializer_list>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -22,6 +23,7 @@
 #include <Eigen/Geometry>
 
 #include "massprops/export.h"
+#include "massprops/text.h"
 #include "robot/robot_internal.h"
 
 namespace massprops::robot {
@@ -585,10 +587,26 @@ void Keyframes(pugi::xml_node root, RobotModel& model) {
 
 namespace {
 
-std::string Exact(double x) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.17g", x);
-  return b;
+// Numbers as attribute text, each read back as the same double.
+std::string Listed(std::initializer_list<double> values) {
+  std::string text;
+  for (const double v : values) text += (text.empty() ? "" : " ") + ExactDecimal(v);
+  return text;
+}
+
+void SetAttribute(pugi::xml_node e, const char* name, const std::string& text) {
+  if (!e.attribute(name)) e.append_attribute(name);
+  e.attribute(name).set_value(text.c_str());
+}
+
+// A placement as an element's pos and xyaxes (the reader takes xyaxes over any class default's
+// quat, axisangle or euler); its own other orientations removed.
+void SetPlacement(pugi::xml_node e, const Placement& p) {
+  for (const char* a : {"quat", "axisangle", "euler", "zaxis"}) e.remove_attribute(a);
+  const Vector3& t = p.translation;
+  const Matrix3& R = p.rotation;
+  SetAttribute(e, "pos", Listed({t.x(), t.y(), t.z()}));
+  SetAttribute(e, "xyaxes", Listed({R(0, 0), R(1, 0), R(2, 0), R(0, 1), R(1, 1), R(2, 1)}));
 }
 
 // The class an element's defaults come from: its own, else the nearest childclass above it.
@@ -600,9 +618,8 @@ std::string ClassOf(pugi::xml_node e) {
   return "main";
 }
 
-// `e` placed by `outer` once more (its parent frame's placement): its pos and orientation written
-// as pos and xyaxes (which the reader takes over any class default's quat, axisangle or euler), a
-// geom's fromto (its own or its class's) as its two ends moved.
+// `e` placed by `outer` once more (its parent frame's placement): its pos and orientation
+// (SetPlacement), a geom's or site's fromto (its own or its class's) as its two ends moved.
 void PlaceUnder(pugi::xml_node e, const Placement& outer, const Compiler& compiler, const Defaults& defaults,
                 const std::string& what) {
   const std::string tag = e.name();
@@ -616,27 +633,13 @@ void PlaceUnder(pugi::xml_node e, const Placement& outer, const Compiler& compil
       const auto v = Numbers(f.value(), 6, what + " fromto");
       const Vector3 a = outer.rotation * Vector3(v[0], v[1], v[2]) + outer.translation;
       const Vector3 b = outer.rotation * Vector3(v[3], v[4], v[5]) + outer.translation;
-      std::string text;
-      for (int i = 0; i < 3; ++i) text += Exact(a[i]) + " ";
-      for (int i = 0; i < 3; ++i) text += Exact(b[i]) + (i < 2 ? " " : "");
-      if (!e.attribute("fromto")) e.append_attribute("fromto");
-      e.attribute("fromto").set_value(text.c_str());
+      SetAttribute(e, "fromto", Listed({a.x(), a.y(), a.z(), b.x(), b.y(), b.z()}));
       return;
     }
   }
   Geometry g;
   PlaceBy(attr, compiler, g, what);
-  const Placement placed = outer.Then(Placement{g.rotation, g.translation});
-  for (const char* a : {"quat", "axisangle", "euler", "zaxis"}) e.remove_attribute(a);
-  auto set = [&](const char* name, const std::string& text) {
-    if (!e.attribute(name)) e.append_attribute(name);
-    e.attribute(name).set_value(text.c_str());
-  };
-  const Vector3& t = placed.translation;
-  set("pos", Exact(t.x()) + " " + Exact(t.y()) + " " + Exact(t.z()));
-  const Matrix3& R = placed.rotation;
-  set("xyaxes", Exact(R(0, 0)) + " " + Exact(R(1, 0)) + " " + Exact(R(2, 0)) + " " + Exact(R(0, 1)) + " " +
-                    Exact(R(1, 1)) + " " + Exact(R(2, 1)));
+  SetPlacement(e, outer.Then(Placement{g.rotation, g.translation}));
 }
 
 // A <replicate count offset euler sep>: count copies of its children, the k-th in a <frame> moved
@@ -654,12 +657,7 @@ void Replicate(pugi::xml_node rep, const Compiler& compiler) {
   pugi::xml_node parent = rep.parent();
   for (int k = 0; k < count; ++k) {
     pugi::xml_node frame = parent.insert_child_before("frame", rep);
-    const Matrix3& R = at.rotation;
-    frame.append_attribute("pos").set_value(
-        (Exact(at.translation.x()) + " " + Exact(at.translation.y()) + " " + Exact(at.translation.z())).c_str());
-    frame.append_attribute("xyaxes").set_value((Exact(R(0, 0)) + " " + Exact(R(1, 0)) + " " + Exact(R(2, 0)) + " " +
-                                                Exact(R(0, 1)) + " " + Exact(R(1, 1)) + " " + Exact(R(2, 1)))
-                                                   .c_str());
+    SetPlacement(frame, at);
     for (pugi::xml_node c : rep.children()) {
       pugi::xml_node copy = frame.append_copy(c);
       std::vector<pugi::xml_node> stack{copy};
