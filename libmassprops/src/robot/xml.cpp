@@ -72,7 +72,18 @@ bool IsRegular(const fs::path& p) {
   return fs::is_regular_file(p, e);
 }
 
-// The folder a package:// or model:// NAME stands for, or empty.
+// The folders an environment variable lists, ':'-separated (empty entries left out).
+std::vector<std::string> PathList(const char* variable) {
+  std::vector<std::string> out;
+  const char* value = std::getenv(variable);
+  if (value == nullptr) return out;
+  std::stringstream list(value);
+  for (std::string dir; std::getline(list, dir, ':');) {
+    if (!dir.empty()) out.push_back(dir);
+  }
+  return out;
+}
+
 // Whether folder `dir` is ROS package `name`: its package.xml says <name>NAME</name>.
 bool ManifestNames(const fs::path& dir, const std::string& name) {
   std::ifstream manifest(dir / "package.xml");
@@ -86,11 +97,7 @@ bool ManifestNames(const fs::path& dir, const std::string& name) {
 // it (or a folder of that name holding a manifest); a package's own folders are not searched
 // further, nor hidden ones; folders in name order, 8 levels at most.
 std::string SearchRosPackagePath(const std::string& name) {
-  const char* value = std::getenv("ROS_PACKAGE_PATH");
-  if (value == nullptr) return "";
-  std::stringstream list(value);
-  for (std::string root; std::getline(list, root, ':');) {
-    if (root.empty()) continue;
+  for (const std::string& root : PathList("ROS_PACKAGE_PATH")) {
     std::vector<std::pair<fs::path, int>> stack{{fs::path(root), 0}};
     while (!stack.empty()) {
       const auto [dir, depth] = stack.back();
@@ -116,17 +123,15 @@ std::string SearchRosPackagePath(const std::string& name) {
 
 // ROS 2's (ament): PREFIX/share/NAME for each prefix of AMENT_PREFIX_PATH.
 std::string SearchAmentPrefixPath(const std::string& name) {
-  const char* value = std::getenv("AMENT_PREFIX_PATH");
-  if (value == nullptr) return "";
-  std::stringstream list(value);
   std::error_code e;
-  for (std::string prefix; std::getline(list, prefix, ':');) {
+  for (const std::string& prefix : PathList("AMENT_PREFIX_PATH")) {
     const fs::path dir = fs::path(prefix) / "share" / name;
-    if (!prefix.empty() && fs::is_directory(dir, e)) return dir.string();
+    if (fs::is_directory(dir, e)) return dir.string();
   }
   return "";
 }
 
+// The folder a package:// or model:// NAME stands for, or empty.
 std::string FindPackage(const std::string& name, const Document& doc, const FillOptions& options, bool model) {
   for (const auto& [pkg, dir] : options.packages) {
     if (pkg == name) return dir;
@@ -146,11 +151,8 @@ std::string FindPackage(const std::string& name, const Document& doc, const Fill
   }
   if (model) {
     for (const char* var : {"GZ_SIM_RESOURCE_PATH", "IGN_GAZEBO_RESOURCE_PATH", "SDF_PATH", "GAZEBO_MODEL_PATH"}) {
-      const char* value = std::getenv(var);
-      if (value == nullptr) continue;
-      std::stringstream list(value);
-      for (std::string dir; std::getline(list, dir, ':');) {
-        if (!dir.empty() && fs::is_directory(fs::path(dir) / name, e)) return (fs::path(dir) / name).string();
+      for (const std::string& dir : PathList(var)) {
+        if (fs::is_directory(fs::path(dir) / name, e)) return (fs::path(dir) / name).string();
       }
     }
   }
