@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "bodies/bodies.h"
@@ -56,13 +57,27 @@ BuiltShape LoadShape(const dynamics::BodyBuilder& builder, const ShapeSpec& shap
   }
 }
 
+// A mesh's vertices turned by R, then moved by t (when given).
+void Place(TriangleMesh& m, const Matrix3& R, const std::optional<Vector3>& t = std::nullopt) {
+  for (Eigen::Index v = 0; v < m.V.rows(); ++v) {
+    const Vector3 turned = R * m.V.row(v).transpose();
+    m.V.row(v) = (t ? Vector3(turned + *t) : turned).transpose();
+  }
+}
+
+// The scene's gravity: the sum of its gravity forces (m/s², world).
+Vector3 SceneGravity(const Scene& scene) {
+  Vector3 g = Vector3::Zero();
+  for (const ForceSpec& f : scene.forces) {
+    if (f.kind == ForceKind::kGravity) g += f.vector;
+  }
+  return g;
+}
+
 // MJCF gravcomp: each such link held up by that fraction of its weight under the scene's gravity,
 // a force at its center of mass (MuJoCo 3's gravity compensation).
 void CompensateGravity(Simulation& sim, const massprops::RobotModel& model, const dynamics::RobotInWorld& added) {
-  Vector3 g = Vector3::Zero();
-  for (const ForceSpec& f : sim.scene.forces) {
-    if (f.kind == ForceKind::kGravity) g += f.vector;
-  }
+  const Vector3 g = SceneGravity(sim.scene);
   for (std::size_t l = 0; l < model.links.size(); ++l) {
     const massprops::RobotLink& link = model.links[l];
     if (link.gravity_compensation == 0 || !link.inertial || g.isZero(0)) continue;
@@ -106,9 +121,7 @@ void AddRobot(Simulation& sim, const RobotSpec& spec, std::vector<std::string>& 
       throw SceneError(where + (alone ? spec.path + ": " : std::string()) + e.what());
     }
     SimStatic drawn{spec.name + "/" + (t.name.empty() ? std::string("terrain") : t.name), t.mesh};
-    for (Eigen::Index v = 0; v < drawn.display.V.rows(); ++v) {
-      drawn.display.V.row(v) = (t.pose.rotation * drawn.display.V.row(v).transpose() + t.pose.translation).transpose();
-    }
+    Place(drawn.display, t.pose.rotation, t.pose.translation);
     sim.statics.push_back(std::move(drawn));
     sim.contact = true;
   }
@@ -148,11 +161,7 @@ void AddRobot(Simulation& sim, const RobotSpec& spec, std::vector<std::string>& 
       body.display = added.shapes[k];
       body.collides = added.shapes[k].F.rows() > 0;
       if (k < visuals.size()) body.visual = visuals[k];
-      for (TriangleMesh* m : {&body.display, &body.visual}) {
-        for (Eigen::Index v = 0; v < m->V.rows(); ++v) {
-          m->V.row(v) = (in_link.rotation * m->V.row(v).transpose()).transpose();
-        }
-      }
+      for (TriangleMesh* m : {&body.display, &body.visual}) Place(*m, in_link.rotation);
       sim.bodies.push_back(std::move(body));
     }
   } catch (const SceneError&) {
@@ -294,9 +303,7 @@ void AddStatics(const Scene& scene, dynamics::BodyBuilder& builder, Simulation& 
       const Vector3 at = st.position + R * shape.mp.center_of_mass;
       sim.physics.AddStatic(*collider, R, at);
       SimStatic drawn{st.name, shape.display};
-      for (Eigen::Index v = 0; v < drawn.display.V.rows(); ++v) {
-        drawn.display.V.row(v) = (R * drawn.display.V.row(v).transpose() + at).transpose();
-      }
+      Place(drawn.display, R, at);
       sim.statics.push_back(std::move(drawn));
     } catch (const SceneError&) {
       throw;
@@ -339,10 +346,7 @@ void ApplyContactFields(const Scene& scene, const std::vector<bool>& collides, S
 void AddFluid(const Scene& scene, const ForceSpec& f, Simulation& sim) {
   sim.physics.AddForce(dynamics::Fluid(f.medium, f.bodies));
   if (!f.buoyancy) return;
-  Vector3 g = Vector3::Zero();
-  for (const ForceSpec& other : scene.forces) {
-    if (other.kind == ForceKind::kGravity) g += other.vector;
-  }
+  const Vector3 g = SceneGravity(scene);
   for (std::size_t b = 0; b < sim.bodies.size(); ++b) {
     if (!f.bodies.empty() && f.bodies[0] != static_cast<int>(b)) continue;
     const double volume = sim.bodies[b].mp.volume;
