@@ -499,7 +499,6 @@ void Articulation::SubtreeMomenta(const Configuration& c) {
 
 Eigen::VectorXd Articulation::ImplicitDiagonal(double h) const {
   Eigen::VectorXd d = Eigen::VectorXd::Zero(v_.size());
-  bool any = false;
   for (const Node& n : nodes_) {
     if (n.joint < 0 || n.nv == 0) continue;
     const Joint& j = joints_[static_cast<std::size_t>(n.joint)];
@@ -510,9 +509,8 @@ Eigen::VectorXd Articulation::ImplicitDiagonal(double h) const {
     } else if (n.type == JointType::kSpherical) {
       d.segment(n.v, n.nv).setConstant(0.5 * h * c);
     }
-    any = any || d.segment(n.v, n.nv).any();
   }
-  if (!any) d.resize(0);
+  if (d.isZero(0)) d.resize(0);
   return d;
 }
 
