@@ -201,15 +201,13 @@ FillResult FillRobotDescription(const std::string& path, const FillOptions& opti
   if (const PartMass* entry = FirstUnmatched(options.link_masses, names)) {
     throw std::invalid_argument("the density map's entry '" + entry->pattern + "' matches no link of " + path);
   }
-  MeshCache meshes(options.load);
-  for (Link& link : links) {
-    LinkFill fill = Compute(link, options, meshes);
-    if (fill.status == LinkStatus::kFilled) {
-      if (result.format == RobotFormat::kUrdf) robot::WriteUrdfInertial(link, fill.mp);
-      if (result.format == RobotFormat::kSdf) robot::WriteSdfInertial(link, fill.mp);
-      if (result.format == RobotFormat::kMjcf) robot::WriteMjcfInertial(link, fill.mp, fill.principal);
-    }
-    result.links.push_back(std::move(fill));
+  result.links = robot::ComputeLinkFills(links, options);
+  for (std::size_t k = 0; k < links.size(); ++k) {
+    const LinkFill& fill = result.links[k];
+    if (fill.status != LinkStatus::kFilled) continue;
+    if (result.format == RobotFormat::kUrdf) robot::WriteUrdfInertial(links[k], fill.mp);
+    if (result.format == RobotFormat::kSdf) robot::WriteSdfInertial(links[k], fill.mp);
+    if (result.format == RobotFormat::kMjcf) robot::WriteMjcfInertial(links[k], fill.mp, fill.principal);
   }
   result.notes = doc.notes;
   // What precedes and follows the root element (the declaration, comments, line breaks) is
