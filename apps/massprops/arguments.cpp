@@ -33,12 +33,6 @@ void AddInputArguments(CLI::App& app, Arguments& a) {
                  "Sample until the relative standard error of the mass and of each principal moment "
                  "is below this")
       ->check(app::InRange(1e-12, 1));
-  auto* density = app.add_option("--density", a.density, "Uniform density in kg/m^3")
-                      ->check(app::Positive())
-                      ->capture_default_str();
-  app.add_option("--mass", a.mass, "Total mass in kg (sets the density; excludes --density)")
-      ->check(app::Positive())
-      ->excludes(density);
   auto* shell = app.add_flag("--shell", a.shell,
                              "Thin shell: the surface itself carries the mass, at --area-density "
                              "(or --mass); open meshes are fine");
@@ -52,13 +46,8 @@ void AddInputArguments(CLI::App& app, Arguments& a) {
       ->excludes(shell);
 }
 
-// The file's unit, the output format and frame, the integration path, threads and the checks.
-void AddCheckArguments(CLI::App& app, Arguments& a) {
-  std::vector<std::string> units;
-  for (LengthUnit u : kAllLengthUnits) units.emplace_back(UnitName(u));
-  app.add_option("--unit", a.unit, "Unit of the file's coordinates")
-      ->check(CLI::IsMember(units))
-      ->capture_default_str();
+// The output format and frame.
+void AddFormatArguments(CLI::App& app, Arguments& a) {
   app.add_option("--format", a.format, "Output format")
       ->check(CLI::IsMember({"table", "json", "csv", "urdf", "sdf", "mjcf"}))
       ->capture_default_str();
@@ -66,35 +55,6 @@ void AddCheckArguments(CLI::App& app, Arguments& a) {
                  "Also report the inertia about the file's origin (origin), or only about the "
                  "center of mass (com)")
       ->check(CLI::IsMember({"com", "origin"}))
-      ->capture_default_str();
-  app.add_option("--path", a.path,
-                 "Integration path: auto (triangles; Mirtich for quads and n-gons), triangles, "
-                 "polygons")
-      ->check(CLI::IsMember({"auto", "triangles", "polygons"}))
-      ->capture_default_str();
-  app.add_option("--threads", a.threads, "Worker threads (0 = all cores); same bits for any count")
-      ->check(app::NonNegative());
-  app.add_flag("--allow-open", a.allow_open,
-               "Compute even when the mesh is open or inconsistently oriented (with a warning)");
-  app.add_flag("--repair", a.repair,
-               "Repair with CGAL first: merge near-coincident vertices (1e-9 of the size), drop "
-               "degenerate and duplicate faces, orient faces consistently, stitch borders, orient "
-               "shells outward and cavities inward; what changed is reported");
-  app.add_flag("--check-self-intersections", a.check_self_intersections,
-               "Count pairs of faces that intersect (CGAL); a warning when there are any");
-  app.add_flag("--hull", a.hull,
-               "Also the mass properties of the convex hull (CGAL), as collision engines see the body, at the "
-               "same density (or --mass), printed beside the exact ones");
-  app.add_flag("--exact", a.exact,
-               "Certified results: exact rational integration of the stored coordinates (GMP); every number "
-               "correctly rounded, principal moments as enclosures, the default path's difference shown");
-  app.add_flag("--full-check", a.full_check,
-               "Binary STL: weld the corners and count vertices, components and bad edges even "
-               "when the streaming check finds the surface closed (slower)");
-  app.add_option("--reader", a.reader,
-                 "auto: our own readers for OBJ/STL/PLY/OFF, assimp for the rest; assimp: assimp "
-                 "for every format (32-bit coordinates; for comparison)")
-      ->check(CLI::IsMember({"auto", "assimp"}))
       ->capture_default_str();
 }
 
@@ -119,26 +79,11 @@ void AddReportArguments(CLI::App& app, Arguments& a) {
                  "lb*in^2), or MASS,LENGTH,INERTIA such as kg,mm,kg*mm^2");
 }
 
-// Parts, densities per part, and the CAD files' tessellation and B-rep.
+// Densities per part, and the CAD files' answer.
 void AddPartArguments(CLI::App& app, Arguments& a) {
-  app.add_flag("--parts", a.parts,
-               "Each part the file names (OBJ objects or groups; glTF, 3MF, COLLADA, FBX nodes) on its own, "
-               "and the whole as their composition");
   app.add_option("--density-map", a.density_map,
                  "JSON or CSV: part name or glob pattern -> density (kg/m^3) or mass (kg); first match wins; "
                  "implies --parts");
-  app.add_option("--deflection", a.deflection,
-                 "CAD files (STEP, IGES, BREP): the tessellation's chordal deflection, in the file's unit (default: "
-                 "--relative-deflection times each part's bounding-box diagonal)")
-      ->check(app::Positive());
-  app.add_option("--relative-deflection", a.relative_deflection,
-                 "CAD files: the chordal deflection as a fraction of each part's diagonal (default: 1e-3 when "
-                 "the exact B-rep is the answer and the mesh its check, 1e-4 with --tessellated)")
-      ->check(app::InRange(1e-6, 0.5));
-  app.add_option("--angular-deflection", a.angular_deflection,
-                 "CAD files: the largest angle in radians between the normals of neighbouring triangles")
-      ->check(app::InRange(1e-3, 3.14159))
-      ->capture_default_str();
   app.add_flag("--brep", a.brep,
                "CAD files: the exact B-rep's integrals as the result; the default now, kept so that old commands "
                "run (see --tessellated)");
@@ -146,18 +91,18 @@ void AddPartArguments(CLI::App& app, Arguments& a) {
                "CAD files: the tessellation's numbers as the result, the exact B-rep's beside them (the default "
                "is the other way round)")
       ->excludes("--brep");
-  app.add_option("--interference-pairs", a.interference_pairs,
-                 "CAD files: how many pairs of solids whose boxes overlap get their exact common volume "
-                 "measured (0: none)")
-      ->check(CLI::Range(0, 1000000))
-      ->capture_default_str();
 }
 
 }  // namespace
 
 void AddArguments(CLI::App& app, Arguments& a) {
   AddInputArguments(app, a);
-  AddCheckArguments(app, a);
+  a.load = std::make_unique<app::LoadFlags>(
+      app, std::initializer_list<std::string_view>{"density", "mass", "unit", "path", "threads", "allow_open", "repair",
+                                                   "check_self_intersections", "hull", "exact", "full_check", "reader",
+                                                   "parts", "deflection", "relative_deflection", "angular_deflection",
+                                                   "interference_pairs"});
+  AddFormatArguments(app, a);
   AddReportArguments(app, a);
   AddPartArguments(app, a);
   app.add_flag("-q,--quiet", a.quiet, "No progress line on stderr");
@@ -175,9 +120,7 @@ MonteCarloOptions Sampling(const Arguments& a) {
 }
 
 LoadOptions ToLoadOptions(const Arguments& a, const CLI::App& app) {
-  LoadOptions o;
-  o.unit = ParseLengthUnit(a.unit);
-  o.mass = a.mass > 0 ? MassSpec(TotalMass{a.mass}) : MassSpec(Density{a.density});
+  LoadOptions o = a.load->Options();
   if (a.shell) {
     o.model = ShellModel{a.area_density};
   } else if (a.wall > 0) {
@@ -186,33 +129,13 @@ LoadOptions ToLoadOptions(const Arguments& a, const CLI::App& app) {
     o.model =
         WindingNumberModel{WindingNumberSampling(Sampling(a), app.count("--samples") + app.count("--tolerance") > 0)};
   }
-  o.path = FromName<IntegrationPath>({{"auto", IntegrationPath::kAuto},
-                                      {"triangles", IntegrationPath::kTriangles},
-                                      {"polygons", IntegrationPath::kPolygons}},
-                                     a.path);
-  o.reader = a.reader == "assimp" ? Reader::kAssimp : Reader::kAuto;
-  o.repair = a.repair;
-  o.allow_open = a.allow_open;
-  o.full_check = a.full_check;
-  o.check_self_intersections = a.check_self_intersections;
-  o.hull = a.hull;
-  o.exact = a.exact;
-  o.parts = a.parts || !a.density_map.empty();
-  o.num_threads = a.threads;
-  o.unit_stated = app.count("--unit") > 0;
-  o.mass_stated = app.count("--density") > 0 || app.count("--mass") > 0;
-  o.cad.deflection = a.deflection;
-  o.cad.relative_deflection = a.relative_deflection;
-  o.cad.angular_deflection = a.angular_deflection;
+  o.parts = o.parts || !a.density_map.empty();
   o.brep = !a.tessellated;
-  o.cad.interference_pairs = a.interference_pairs;
   return o;
 }
 
 std::optional<std::string> CheckArguments(const Arguments& a, const CLI::App& app) {
-  if (!std::isfinite(a.density) || !std::isfinite(a.mass) || !std::isfinite(a.area_density) || !std::isfinite(a.wall)) {
-    return "--density, --mass, --area-density and --wall must be finite";
-  }
+  if (!std::isfinite(a.area_density) || !std::isfinite(a.wall)) return "--area-density and --wall must be finite";
   // The library's rules (FindOptionConflict), in the command line's words; a shell without its
   // density is said first, as the other flags' rules assume one.
   const auto conflict = FindOptionConflict(ToLoadOptions(a, app));

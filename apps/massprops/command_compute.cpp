@@ -152,7 +152,7 @@ std::vector<std::pair<std::string, Outcome>> ComputeAll(const Arguments& a, cons
   std::vector<std::pair<std::string, Outcome>> out;
   if (a.files.size() > 1 && LoadsSideBySide(a.files, options)) {
     std::vector<Outcome> outcomes(a.files.size());
-    massprops::ParallelForBlocks(static_cast<std::int64_t>(a.files.size()), a.threads, [&](std::int64_t i) {
+    massprops::ParallelForBlocks(static_cast<std::int64_t>(a.files.size()), options.num_threads, [&](std::int64_t i) {
       outcomes[static_cast<std::size_t>(i)] = load(a.files[static_cast<std::size_t>(i)], false);
     });
     for (std::size_t i = 0; i < a.files.size(); ++i) out.emplace_back(a.files[i], std::move(outcomes[i]));
@@ -166,7 +166,7 @@ std::vector<std::pair<std::string, Outcome>> ComputeAll(const Arguments& a, cons
                        o.unit_stated = options.unit_stated;
                        o.mass = options.mass;
                        o.sampling = Sampling(a);
-                       o.num_threads = a.threads;
+                       o.num_threads = options.num_threads;
                        o.progress = progress;
                        return EstimateImplicit(*implicit::ParseShape(a.implicit, ReadSdfGridFile), o);
                      }));

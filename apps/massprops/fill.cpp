@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli.h"
+#include "load_flags.h"
 #include "massprops/report/atomic_file.h"
 #include "massprops/report/density_map.h"
 #include "massprops/report/format.h"
@@ -76,12 +77,11 @@ int FillMain(int argc, char** argv) {
   app.add_flag("--keep-mass", o.keep_mass, "Keep each link's stated mass; fill only its center of mass and inertia");
   app.add_option("--from", from, "Which geometries make the mass")->check(CLI::IsMember({"collision", "visual"}));
   app.add_option("--package", packages, "NAME=DIR: the folder of package://NAME/ (URDF) or model://NAME/ (SDF)");
-  app.add_flag("--repair", o.load.repair, "Repair the meshes before integrating (CGAL)");
-  app.add_flag("--allow-open", o.load.allow_open, "Compute meshes that are open or overlap, with a note");
-  app.add_option("--threads", o.load.num_threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  const app::LoadFlags load(app, {"repair", "allow_open", "threads"}, "The links' meshes: ");
   app.add_option("--format", report, "How the links are reported on stdout")->check(CLI::IsMember({"table", "json"}));
   app.add_flag("-q,--quiet", quiet, "No report on stdout");
   if (const int status = app::ParseArguments(app, argc, argv); status >= 0) return status;
+  load.Apply(o.load);
   auto bad = [](const std::string& what) {
     std::cerr << "error: " << massprops::app::OneLine(what) << "\n";
     return app::kBadArguments;

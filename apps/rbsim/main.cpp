@@ -25,6 +25,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli.h"
+#include "load_flags.h"
 #include "massprops/robot/robot.h"
 #include "massprops/version.h"
 #include "outputs.h"
@@ -59,13 +60,13 @@ struct Exit {
 
 // The command line, as parsed.
 struct Flags {
-  std::string scene_file, mesh, unit = "m", omega_text, omega_frame = "world", velocity_text, out_dir, integrator,
-                                outputs_text;
+  std::string scene_file, mesh, omega_text, omega_frame = "world", velocity_text, out_dir, integrator, outputs_text;
   rbsim::RobotFileOptions robot;
   std::vector<std::string> packages;  // NAME=DIR, as given
-  double density = 1000, mass = 0;
+  /// The mesh files' load options, and --threads (rbsim's default: one thread).
+  std::unique_ptr<massprops::app::LoadFlags> load;
   std::optional<double> dt, duration, rate;
-  bool repair = false, allow_open = false, quiet = false, unit_given = false;
+  bool quiet = false;
   int threads = 1;
 };
 
@@ -93,21 +94,9 @@ CLI::Option* DeclareSceneFlags(CLI::App& app, Flags& f) {
 void DeclareMeshFlags(CLI::App& app, Flags& f, CLI::Option* scene_opt) {
   auto* mesh_opt = app.add_option("--mesh", f.mesh, "Quick path: spin this one mesh torque-free (no scene file)")
                        ->excludes(scene_opt);
-  std::vector<std::string> units;
-  for (massprops::LengthUnit u : massprops::kAllLengthUnits) units.emplace_back(massprops::UnitName(u));
-  app.add_option("--unit", f.unit, "--mesh: unit of the file's coordinates")
-      ->check(CLI::IsMember(units))
-      ->needs(mesh_opt);
-  auto* density_opt = app.add_option("--density", f.density, "--mesh: density, kg/m^3")
-                          ->check(massprops::app::Positive())
-                          ->needs(mesh_opt);
-  app.add_option("--mass", f.mass, "--mesh: total mass, kg")
-      ->check(massprops::app::Positive())
-      ->excludes(density_opt)
-      ->needs(mesh_opt);
-  app.add_flag("--repair", f.repair, "--mesh: repair the mesh first (as massprops --repair)")->needs(mesh_opt);
-  app.add_flag("--allow-open", f.allow_open, "--mesh: simulate even an open mesh (its inertia is then not trustworthy)")
-      ->needs(mesh_opt);
+  f.load = std::make_unique<massprops::app::LoadFlags>(
+      app, std::initializer_list<std::string_view>{"unit", "density", "mass", "repair", "allow_open"}, "--mesh: ");
+  for (std::string_view key : {"unit", "density", "mass", "repair", "allow_open"}) f.load->Flag(key)->needs(mesh_opt);
   app.add_option("--omega", f.omega_text, "--mesh: initial angular velocity wx,wy,wz in rad/s")->needs(mesh_opt);
   app.add_option("--omega-frame", f.omega_frame,
                  "--mesh: axes of --omega: world (= the file's axes at t = 0), principal (I1 <= I2 <= I3)")
@@ -129,8 +118,6 @@ void DeclareRunFlags(CLI::App& app, Flags& f) {
                  "Which outputs, comma-separated: csv, jsonl, diagnostics, svg, png, glb, contacts (contacts.jsonl, "
                  "each step's contact points), html (run.html, a page that plays the run in a browser) "
                  "(overrides the scene; default csv,diagnostics,svg,png,glb)");
-  app.add_option("--threads", f.threads, "Worker threads for mesh loading and large worlds (0 = all cores)")
-      ->check(massprops::app::NonNegative());
   app.add_flag("-q,--quiet", f.quiet, "No progress bar");
 }
 
@@ -171,11 +158,11 @@ rbsim::Scene MeshScene(const Flags& f, std::vector<std::string>& warnings) {
   rbsim::BodySpec body;
   body.name = std::filesystem::path(f.mesh).stem().string();
   body.field = "bodies[0]";
-  body.shape.source = dynamics::MeshSource{path.string(), f.repair, f.allow_open};
-  body.shape.unit = massprops::ParseLengthUnit(f.unit);
-  body.shape.unit_stated = f.unit_given;
-  body.shape.mass = f.mass > 0 ? massprops::MassSpec(massprops::TotalMass{f.mass})
-                               : massprops::MassSpec(massprops::Density{f.density});
+  const massprops::LoadOptions load = f.load->Options();
+  body.shape.source = dynamics::MeshSource{path.string(), load.repair, load.allow_open};
+  body.shape.unit = load.unit;
+  body.shape.unit_stated = load.unit_stated;
+  body.shape.mass = load.mass;
   body.velocity = velocity;
   body.angular_velocity = omega;
   body.angular_velocity_frame = rbsim::ParseVectorFrame(f.omega_frame);
@@ -393,8 +380,10 @@ int main(int argc, char** argv) {
   Flags f;
   DeclareMeshFlags(app, f, DeclareSceneFlags(app, f));
   DeclareRunFlags(app, f);
+  massprops::app::LoadFlags threads(app, {"threads"});
+  threads.Flag("threads")->default_str("1");
   if (const int status = massprops::app::ParseArguments(app, argc, argv); status >= 0) return status;
-  f.unit_given = app.count("--unit") > 0;
+  if (threads.Given("threads")) f.threads = threads.Options().num_threads;
   if (f.scene_file.empty() && f.mesh.empty()) {
     std::cerr << "error: arguments: give a scene file, or --mesh FILE for the quick path (see --help)\n";
     return massprops::app::kBadArguments;

@@ -21,6 +21,7 @@
 #include "cli.h"
 #include "dynamics/poses.h"
 #include "html.h"
+#include "load_flags.h"
 #include "massprops/io/load.h"
 #include "massprops/report/atomic_file.h"
 #include "massprops/report/words.h"
@@ -119,24 +120,19 @@ namespace {
 
 // The command line of `rbsim poses`, as parsed.
 struct PosesFlags {
-  std::string part_file, unit = "m", ground_text = "0.6,0.5,0", material_text = "0.6,0.5,0", collision = "hull",
-                         format = "table", out_dir;
-  double density = 1000, mass = 0, height = 0.1, dt = 1e-3, max_time = 20;
+  std::string part_file, ground_text = "0.6,0.5,0", material_text = "0.6,0.5,0", collision = "hull", format = "table",
+                         out_dir;
+  std::unique_ptr<massprops::app::LoadFlags> load;  // --unit, --density, --mass, --repair, --threads
+  double height = 0.1, dt = 1e-3, max_time = 20;
   std::int64_t drops = 1000;
   std::uint64_t seed = 1;
-  int threads = 0;
-  bool repair = false, quiet = false, unit_given = false;
+  bool quiet = false;
 };
 
 void DeclarePosesFlags(CLI::App& app, PosesFlags& f) {
   app.add_option("part", f.part_file, "The part: a closed mesh file")->required();
-  std::vector<std::string> units;
-  for (massprops::LengthUnit u : massprops::kAllLengthUnits) units.emplace_back(massprops::UnitName(u));
-  app.add_option("--unit", f.unit, "Unit of the file's coordinates")->check(CLI::IsMember(units));
-  auto* density_opt =
-      app.add_option("--density", f.density, "Density, kg/m^3 (default 1000)")->check(massprops::app::Positive());
-  app.add_option("--mass", f.mass, "Total mass, kg")->check(massprops::app::Positive())->excludes(density_opt);
-  app.add_flag("--repair", f.repair, "Repair the mesh first (as massprops --repair)");
+  f.load = std::make_unique<massprops::app::LoadFlags>(
+      app, std::initializer_list<std::string_view>{"unit", "density", "mass", "repair", "threads"});
   app.add_option("--drops", f.drops, "Simulated drops (0: the quasi-static estimate only)")
       ->check(CLI::Range(std::int64_t{0}, std::int64_t{100000000}));
   app.add_option("--height", f.height, "Height of the part's lowest point above the plane at release, m")
@@ -149,8 +145,6 @@ void DeclarePosesFlags(CLI::App& app, PosesFlags& f) {
   app.add_option("--dt", f.dt, "Time step of the drops, s")->check(massprops::app::Positive());
   app.add_option("--max-time", f.max_time, "Simulated seconds a drop may take to come to rest")
       ->check(massprops::app::Positive());
-  app.add_option("--threads", f.threads, "Worker threads for the drops (0 = all cores; same results for any count)")
-      ->check(massprops::app::NonNegative());
   app.add_option("--format", f.format,
                  "table, json, or html (a page that shows each likely pose at rest, side by side, in a browser)")
       ->check(CLI::IsMember({"table", "json", "html"}));
@@ -160,20 +154,7 @@ void DeclarePosesFlags(CLI::App& app, PosesFlags& f) {
 
 // The part through the pipeline (the same checks as massprops), whole (full_check: the hull and
 // the pictures need the mesh).
-massprops::LoadOptions PartLoadOptions(const PosesFlags& f) {
-  massprops::LoadOptions load;
-  if (f.unit_given) {
-    load.unit = massprops::ParseLengthUnit(f.unit);
-    load.unit_stated = true;
-  }
-  if (f.mass > 0)
-    load.mass = massprops::TotalMass{f.mass};
-  else
-    load.mass = massprops::Density{f.density};
-  load.repair = f.repair;
-  load.num_threads = f.threads;
-  return load;
-}
+massprops::LoadOptions PartLoadOptions(const PosesFlags& f) { return f.load->Options(); }
 
 // A picture of each pose, named as `pictures` says (a large mesh drawn as its convex hull: one SVG
 // polygon a triangle), and poses.json in `out_dir`.
@@ -284,7 +265,6 @@ int PosesMain(int argc, char** argv) {
   PosesFlags f;
   DeclarePosesFlags(app, f);
   if (const int status = massprops::app::ParseArguments(app, argc, argv); status >= 0) return status;
-  f.unit_given = app.count("--unit") > 0;
   dynamics::Material ground, material;
   std::string why;
   if (!ParseMaterial(f.ground_text, ground, why)) {
@@ -319,7 +299,7 @@ int PosesMain(int argc, char** argv) {
   options.ground = ground;
   options.dt = f.dt;
   options.max_time = f.max_time;
-  options.threads = f.threads;
+  options.threads = PartLoadOptions(f).num_threads;
   double seconds = 0;
   try {
     report.estimate = dp::QuasiStatic(part);

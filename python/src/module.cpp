@@ -23,6 +23,7 @@
 #include "dynamics/world.h"
 #include "massprops/io/isolation.h"
 #include "massprops/io/load.h"
+#include "massprops/io/load_schema.h"
 #include "massprops/io/mesh_io.h"
 #include "massprops/report/format.h"
 #include "massprops/report/picture.h"
@@ -74,97 +75,62 @@ std::vector<PartMass> PartMasses(const py::handle& value, const std::string& key
   return map;
 }
 
-// Keyword arguments → LoadOptions. Every keyword is checked here, so a misspelt one is a
-// TypeError and a bad value a ValueError naming it.
+// A Python value as the schema reads it (bool before int: True is an int in Python).
+OptionValue ToOptionValue(const std::string& key, const py::handle& value) {
+  if (py::isinstance<py::bool_>(value)) return py::cast<bool>(value);
+  if (py::isinstance<py::int_>(value)) return py::cast<std::int64_t>(value);
+  if (py::isinstance<py::float_>(value)) return py::cast<double>(value);
+  if (py::isinstance<py::str>(value)) return py::cast<std::string>(value);
+  throw py::type_error(key + " must be a bool, a number or a str, not " +
+                       py::cast<std::string>(value.get_type().attr("__name__")));
+}
+
+// Keyword arguments → LoadOptions. The load options are the schema's (massprops/io/load_schema.h),
+// checked by it; the models (shell, wall, winding_number and its sampling) and per-part densities
+// are the module's. A misspelt keyword is a TypeError, a bad value a ValueError naming it.
 LoadOptions ToLoadOptions(const py::kwargs& kw) {
   LoadOptions o;
-  std::optional<double> density, mass, shell, wall;
+  std::optional<double> shell, wall;
   bool winding_number = false;
   MonteCarloOptions sampling;
   for (const auto& [key_handle, value] : kw) {
     const std::string key = py::cast<std::string>(key_handle);
     if (value.is_none()) continue;
-    auto number = [&](double lo) {
+    if (const LoadOptionSpec* spec = FindLoadOption(key)) {
+      if (const auto problem = SetLoadOption(o, *spec, ToOptionValue(key, value))) {
+        throw py::value_error(key + " " + *problem);
+      }
+      continue;
+    }
+    auto number = [&] {
       const double x = py::cast<double>(value);
-      if (!std::isfinite(x) || !(x > lo)) {
-        throw py::value_error(key + " must be a finite number above " + std::to_string(static_cast<int>(lo)) +
-                              ", not " + py::cast<std::string>(py::repr(value)));
+      if (!std::isfinite(x) || !(x > 0)) {
+        throw py::value_error(key + " must be a finite number above 0, not " + py::cast<std::string>(py::repr(value)));
       }
       return x;
     };
-    if (key == "unit") {
-      o.unit = ParseLengthUnit(py::cast<std::string>(value));
-      o.unit_stated = true;
-    } else if (key == "density") {
-      density = number(0);
-    } else if (key == "mass") {
-      mass = number(0);
-    } else if (key == "shell") {
-      shell = number(0);
+    if (key == "shell") {
+      shell = number();
     } else if (key == "wall") {
-      wall = number(0);
+      wall = number();
     } else if (key == "winding_number") {
       winding_number = py::cast<bool>(value);
     } else if (key == "samples") {
       sampling.samples = py::cast<std::int64_t>(value);
     } else if (key == "seed") {
       sampling.seed = py::cast<std::uint64_t>(value);
-    } else if (key == "repair") {
-      o.repair = py::cast<bool>(value);
-    } else if (key == "allow_open") {
-      o.allow_open = py::cast<bool>(value);
-    } else if (key == "full_check") {
-      o.full_check = py::cast<bool>(value);
-    } else if (key == "exact") {
-      o.exact = py::cast<bool>(value);
-    } else if (key == "hull") {
-      o.hull = py::cast<bool>(value);
-    } else if (key == "parts") {
-      o.parts = py::cast<bool>(value);
     } else if (key == "densities") {
       o.part_masses = PartMasses(value, "densities");
       o.parts = true;
-    } else if (key == "deflection") {
-      o.cad.deflection = number(0);
-    } else if (key == "relative_deflection") {
-      o.cad.relative_deflection = number(0);
-    } else if (key == "angular_deflection") {
-      o.cad.angular_deflection = number(0);
     } else if (key == "brep") {
       o.brep = py::cast<bool>(value);
-    } else if (key == "interference_pairs") {
-      o.cad.interference_pairs = py::cast<int>(value);
-      if (o.cad.interference_pairs < 0) throw py::value_error("interference_pairs must be 0 (none) or more");
-    } else if (key == "check_self_intersections") {
-      o.check_self_intersections = py::cast<bool>(value);
-    } else if (key == "threads") {
-      o.num_threads = py::cast<int>(value);
-      if (o.num_threads < 0) throw py::value_error("threads must be 0 (every core) or more");
-    } else if (key == "reader") {
-      const std::string r = py::cast<std::string>(value);
-      if (r != "auto" && r != "assimp") throw py::value_error("reader must be 'auto' or 'assimp', not '" + r + "'");
-      o.reader = r == "assimp" ? Reader::kAssimp : Reader::kAuto;
-    } else if (key == "path") {
-      const std::string p = py::cast<std::string>(value);
-      if (p == "auto")
-        o.path = IntegrationPath::kAuto;
-      else if (p == "triangles")
-        o.path = IntegrationPath::kTriangles;
-      else if (p == "polygons")
-        o.path = IntegrationPath::kPolygons;
-      else
-        throw py::value_error("path must be 'auto', 'triangles' or 'polygons', not '" + p + "'");
     } else {
       throw py::type_error("unexpected keyword argument '" + key + "'");
     }
   }
-  if (density && mass) throw py::value_error("give density or mass, not both");
   if ((shell ? 1 : 0) + (wall ? 1 : 0) + (winding_number ? 1 : 0) > 1) {
     throw py::value_error("shell, wall and winding_number are different models: give one");
   }
-  if (mass) o.mass = TotalMass{*mass};
-  if (density) o.mass = Density{*density};
-  o.mass_stated = mass || density;
   if (shell) o.model = ShellModel{*shell};
   if (wall) o.model = WallModel{*wall};
   // Without `samples`, the route's own default (a tolerance of 1e-3); with it, that many points.

@@ -121,7 +121,7 @@ grep -q "bad1.json: bodies\[0\].mesh: 'missing.stl' not found" "$tmp/err"; check
 [ ! -e "$tmp/bad" ]; check "nothing written for a bad scene" $?
 printf '{"bodies": [{"solid": {"type": "sphere", "radius": 1}, "mass": -1}]}' >"$tmp/bad2.json"
 "$bin" "$tmp/bad2.json" >/dev/null 2>"$tmp/err"
-[ $? -eq 1 ] && grep -q "bodies\[0\].mass: must be positive (got -1)" "$tmp/err"; check "negative mass" $?
+[ $? -eq 1 ] && grep -q "bodies\[0\].mass: must be > 0, got -1" "$tmp/err"; check "negative mass" $?
 printf '{"bodies": [{"solid": {"type": "sphere", "radius": 1}, "orientation": [2, 0, 0, 0]}], "duration": 0.01}' >"$tmp/q.json"
 "$bin" "$tmp/q.json" >/dev/null 2>"$tmp/err"
 [ $? -eq 0 ] && grep -q "warning: .*orientation: the quaternion has norm 2; normalized" "$tmp/err"; check "non-unit quaternion warning" $?

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "json_fields.h"
+#include "massprops/io/load_schema.h"
 #include "massprops/io/mesh_io.h"
 
 namespace scene {
@@ -27,13 +28,29 @@ using json_fields::Num;
 using json_fields::Suggest;
 using json_fields::TypeName;
 
-std::vector<std::string> UnitNames() {
-  std::vector<std::string> names;
-  for (massprops::LengthUnit u : massprops::kAllLengthUnits) names.emplace_back(massprops::UnitName(u));
-  return names;
+// The load options an entry gives under the schema's keys (massprops/io/load_schema.h), checked
+// by the schema as the command line and Python check them.
+massprops::LoadOptions ReadLoadKeys(Fields& f, std::initializer_list<const char*> keys) {
+  massprops::LoadOptions o;
+  for (const char* key : keys) {
+    const json* v = f.Get(key);
+    if (!v) continue;
+    massprops::OptionValue value;
+    if (v->is_boolean()) {
+      value = v->get<bool>();
+    } else if (v->is_number_integer()) {
+      value = v->get<std::int64_t>();
+    } else if (v->is_number()) {
+      value = v->get<double>();
+    } else if (v->is_string()) {
+      value = v->get<std::string>();
+    } else {
+      f.Fail(key, "must be a boolean, a number or a string, not " + TypeName(*v));
+    }
+    if (const auto problem = massprops::SetLoadOption(o, *massprops::FindLoadOption(key), value)) f.Fail(key, *problem);
+  }
+  return o;
 }
-
-massprops::LengthUnit ReadUnit(Fields& f) { return massprops::ParseLengthUnit(f.String("unit", "m", UnitNames())); }
 
 // A closed-form solid: {"type": NAME, sizes...}, the names and sizes of massprops::Primitive as
 // scenes spell them (massprops::SizeKeys).
@@ -70,10 +87,12 @@ ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {
                      : "needs a 'mesh' (file), a 'solid' or an 'implicit' shape");
   }
   if (f.Has("density") && f.Has("mass")) f.Fail("give 'density' or 'mass', not both");
-  const double density = f.Number("density", 1000.0, "positive");
-  const double mass = f.Number("mass", 0.0, "positive");
-  s.mass =
-      mass > 0 ? massprops::MassSpec(massprops::TotalMass{mass}) : massprops::MassSpec(massprops::Density{density});
+  s.mass = ReadLoadKeys(f, {"density", "mass"}).mass;
+  const auto read_unit = [&] {  // a closed-form solid is in metres: no unit key
+    const massprops::LoadOptions load = ReadLoadKeys(f, {"unit"});
+    s.unit = load.unit;
+    s.unit_stated = load.unit_stated;
+  };
   if (has_implicit) {
     dynamics::ImplicitSource implicit;
     implicit.text = f.String("implicit", "");
@@ -83,8 +102,7 @@ ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {
       f.Fail("implicit", e.what());
     }
     s.source = std::move(implicit);
-    s.unit_stated = f.Has("unit");
-    s.unit = ReadUnit(f);
+    read_unit();
   } else if (has_mesh) {
     const std::string file = f.String("mesh", "");
     if (file.empty()) f.Fail("mesh", "is empty");
@@ -96,10 +114,10 @@ ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {
     }
     dynamics::MeshSource mesh;
     mesh.path = p.lexically_normal().string();
-    s.unit_stated = f.Has("unit");
-    s.unit = ReadUnit(f);
-    mesh.repair = f.Bool("repair", false);
-    mesh.allow_open = f.Bool("allow_open", false);
+    read_unit();
+    const massprops::LoadOptions checks = ReadLoadKeys(f, {"repair", "allow_open"});
+    mesh.repair = checks.repair;
+    mesh.allow_open = checks.allow_open;
     s.source = std::move(mesh);
   } else {
     Fields o(*f.Get("solid"), f.Path("solid"), f.file());

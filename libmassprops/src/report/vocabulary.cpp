@@ -5,16 +5,21 @@
 
 #include <string>
 
+#include "massprops/io/load_schema.h"
+
 namespace massprops::report {
 namespace {
+
+// The schema's flag and key of the options it declares (massprops/io/load_schema.h).
+std::string_view FlagOf(const char* key) { return FindLoadOption(key)->flag; }
 
 std::string CommandLine(Option option, std::string_view value) {
   const std::string suffix = value.empty() ? "" : " " + std::string(value);
   switch (option) {
-    case Option::kRepair: return "--repair";
-    case Option::kAllowOpen: return "--allow-open";
-    case Option::kUnit: return "--unit" + suffix;
-    case Option::kFullCheck: return "--full-check";
+    case Option::kRepair: return std::string(FlagOf("repair"));
+    case Option::kAllowOpen: return std::string(FlagOf("allow_open"));
+    case Option::kUnit: return std::string(FlagOf("unit")) + suffix;
+    case Option::kFullCheck: return std::string(FlagOf("full_check"));
     case Option::kWall: return "--wall";
     case Option::kBrep: return "--brep";
     case Option::kWindingNumber: return "--winding-number";
