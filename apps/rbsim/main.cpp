@@ -1,5 +1,6 @@
 // rbsim: simulate rigid bodies made from mesh files (or closed-form solids).
 //
+//   rbsim PART.stl [PART...] [--count N] [--on BIN.obj] ...  (parts dropped until they rest: drop_cli.cpp)
 //   rbsim SCENE.json [--dt S] [--duration S] [--integrator NAME] [--rate HZ] [--out DIR]
 //   rbsim ROBOT.urdf|.sdf|.xml [--fill] [--fixed-base] ...  (a robot dropped on the ground)
 //   rbsim --mesh part.stl --omega 0,10,0.01 [--omega-frame world|body|principal] [--duration S] ...
@@ -25,6 +26,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli.h"
+#include "drop_cli.h"
 #include "load_flags.h"
 #include "massprops/robot/robot.h"
 #include "massprops/version.h"
@@ -60,7 +62,9 @@ struct Exit {
 
 // The command line, as parsed.
 struct Flags {
-  std::string scene_file, mesh, omega_text, omega_frame = "world", velocity_text, out_dir, integrator, outputs_text;
+  std::vector<std::string> inputs;  // a scene, a robot file, or parts
+  rbsim::DropFlags drop;
+  std::string mesh, omega_text, omega_frame = "world", velocity_text, out_dir, integrator, outputs_text;
   rbsim::RobotFileOptions robot;
   std::vector<std::string> packages;  // NAME=DIR, as given
   /// The mesh files' load options, and --threads (rbsim's default: one thread).
@@ -72,8 +76,9 @@ struct Flags {
 
 // The scene file or robot file, and what a robot file takes.
 CLI::Option* DeclareSceneFlags(CLI::App& app, Flags& f) {
-  auto* scene_opt = app.add_option("scene", f.scene_file,
-                                   "Scene file (JSON), or a robot file (URDF, SDFormat, MJCF) to drop on the ground");
+  auto* scene_opt = app.add_option("inputs", f.inputs,
+                                   "Mesh or CAD files (parts dropped on the ground until they rest), a scene file "
+                                   "(JSON), or a robot file (URDF, SDFormat, MJCF) set on the ground");
   app.add_flag("--fill", f.robot.fill,
                "Robot file: compute every link's inertial from its geometry first (as massprops fill)")
       ->needs(scene_opt);
@@ -95,8 +100,8 @@ void DeclareMeshFlags(CLI::App& app, Flags& f, CLI::Option* scene_opt) {
   auto* mesh_opt = app.add_option("--mesh", f.mesh, "Quick path: spin this one mesh torque-free (no scene file)")
                        ->excludes(scene_opt);
   f.load = std::make_unique<massprops::app::LoadFlags>(
-      app, std::initializer_list<std::string_view>{"unit", "density", "mass", "repair", "allow_open"}, "--mesh: ");
-  for (std::string_view key : {"unit", "density", "mass", "repair", "allow_open"}) f.load->Flag(key)->needs(mesh_opt);
+      app, std::initializer_list<std::string_view>{"unit", "density", "mass", "repair", "allow_open"},
+      "Parts and --mesh: ");
   app.add_option("--omega", f.omega_text, "--mesh: initial angular velocity wx,wy,wz in rad/s")->needs(mesh_opt);
   app.add_option("--omega-frame", f.omega_frame,
                  "--mesh: axes of --omega: world (= the file's axes at t = 0), principal (I1 <= I2 <= I3)")
@@ -200,18 +205,81 @@ void ApplyOverrides(const Flags& f, rbsim::Scene& scene, std::vector<std::string
   if (f.dt || f.duration || f.rate) rbsim::CheckTiming(scene, warnings);
 }
 
-// The scene the command line asks for: a scene file, a robot file, or --mesh. @throws Exit, or
-// SceneError and the others for a scene that cannot run.
-rbsim::Scene SceneOf(const Flags& f, std::vector<std::string>& warnings) {
-  const bool robot_file = rbsim::IsRobotFile(f.scene_file);
-  if ((f.robot.fill || f.robot.fixed_base || !f.robot.keyframe.empty() || !f.packages.empty()) && !robot_file) {
+// What the inputs are: one scene file, one robot file, or parts (mesh and CAD files). @throws Exit
+// (2) naming an input that is none of these, or a scene or robot given with others.
+rbsim::InputKind KindOf(const Flags& f) {
+  rbsim::InputKind kind = rbsim::InputKind::kMesh;
+  for (const std::string& in : f.inputs) {
+    const rbsim::InputKind k = rbsim::ClassifyInput(in);
+    if (k == rbsim::InputKind::kUnknown) {
+      const std::string problem = rbsim::MeshFileProblem(in);
+      if (!problem.empty() && f.inputs.size() == 1 && std::filesystem::path(in).extension() == ".json") {
+        return rbsim::InputKind::kScene;  // the scene reader says what is wrong with it
+      }
+      std::cerr << "error: " << massprops::app::OneLine(in) << ": "
+                << (problem.empty() ? "not a scene (.json), a robot description (URDF, SDFormat or MJCF: XML whose "
+                                      "root is <robot>, <sdf> or <mujoco>) or a mesh or CAD file (STL, OBJ, PLY, "
+                                      "OFF, 3MF, glTF, STEP, IGES, ...)"
+                                    : problem)
+                << "\n";
+      throw Exit{problem.empty() ? massprops::app::kBadArguments : 1};
+    }
+    if (k != rbsim::InputKind::kMesh && f.inputs.size() > 1) {
+      std::cerr << "error: " << massprops::app::OneLine(in)
+                << ": a scene or robot file runs alone; give it by itself, or give only parts (mesh files)\n";
+      throw Exit{massprops::app::kBadArguments};
+    }
+    if (k != rbsim::InputKind::kMesh) kind = k;
+  }
+  return kind;
+}
+
+// Flags that belong to another kind of input: an error naming them. @throws Exit (2).
+void CheckFlagsFit(const Flags& f, const CLI::App& app, rbsim::InputKind kind) {
+  const bool robot_flags = f.robot.fill || f.robot.fixed_base || !f.robot.keyframe.empty() || !f.packages.empty();
+  if (robot_flags && kind != rbsim::InputKind::kRobot) {
     std::cerr << "error: --fill, --fixed-base, --keyframe, --package: for a robot file (URDF, SDFormat, MJCF), not "
-                 "a scene (a scene's robot entry takes \"packages\")\n";
+                 "a scene or parts (a scene's robot entry takes \"packages\")\n";
     throw Exit{massprops::app::kBadArguments};
   }
+  const bool parts = kind == rbsim::InputKind::kMesh && !f.inputs.empty();
+  if (rbsim::AnyDropFlag(app) && !parts) {
+    std::cerr << "error: --count, --height, --orientation, --seed, --on, --friction, --restitution, --rest-speed, "
+                 "--save-scene: for parts dropped (rbsim PART.stl ...), not a scene, a robot or --mesh\n";
+    throw Exit{massprops::app::kBadArguments};
+  }
+  for (const char* flag : {"--unit", "--density", "--mass", "--repair", "--allow-open"}) {
+    if (app.count(flag) > 0 && !parts && f.mesh.empty()) {
+      std::cerr << "error: " << flag
+                << ": for parts (rbsim PART.stl) and --mesh; a scene gives it per body, a robot file per mesh\n";
+      throw Exit{massprops::app::kBadArguments};
+    }
+  }
+}
+
+// The scene of a drop, written out with --save-scene (whole or not at all). @throws Exit.
+rbsim::Scene DropSceneOf(const Flags& f, std::vector<std::string>& warnings) {
+  rbsim::DropOptions options;
+  if (const std::string problem = rbsim::ToDropOptions(f.drop, f.inputs, options); !problem.empty()) {
+    std::cerr << "error: " << massprops::app::OneLine(problem) << "\n";
+    throw Exit{massprops::app::kBadArguments};
+  }
+  options.load = f.load->Options();
+  options.load.num_threads = f.threads;
+  if (f.dt) options.dt = *f.dt;
+  if (f.duration) options.duration = *f.duration;
+  return rbsim::DropScene(options, warnings);
+}
+
+// The scene the command line asks for: parts, a scene file, a robot file, or --mesh. @throws
+// Exit, or SceneError and the others for a scene that cannot run.
+rbsim::Scene SceneOf(const Flags& f, const CLI::App& app, std::vector<std::string>& warnings) {
+  const rbsim::InputKind kind = KindOf(f);
+  CheckFlagsFit(f, app, kind);
   rbsim::Scene scene;
-  if (robot_file) {
-    massprops::DetectRobotFormat(f.scene_file);  // names the file when it is no robot description
+  if (kind == rbsim::InputKind::kRobot) {
+    const std::string& file = f.inputs.front();
+    massprops::DetectRobotFormat(file);  // names the file when it is no robot description
     rbsim::RobotFileOptions robot = f.robot;
     for (const std::string& p : f.packages) {
       const auto mapping = massprops::PackageMapping(p);
@@ -221,13 +289,24 @@ rbsim::Scene SceneOf(const Flags& f, std::vector<std::string>& warnings) {
       }
       robot.packages.push_back(*mapping);
     }
-    scene = rbsim::RobotScene(f.scene_file, robot);
-  } else if (!f.scene_file.empty()) {
-    scene = rbsim::LoadScene(f.scene_file, warnings);
+    scene = rbsim::RobotScene(file, robot);
+  } else if (kind == rbsim::InputKind::kScene) {
+    scene = rbsim::LoadScene(f.inputs.front(), warnings);
+  } else if (!f.inputs.empty()) {
+    scene = DropSceneOf(f, warnings);
   } else {
     scene = MeshScene(f, warnings);
   }
   ApplyOverrides(f, scene, warnings);
+  if (!f.drop.save_scene.empty()) {
+    try {
+      massprops::report::CheckOutputPath(f.drop.save_scene, f.inputs);
+      massprops::report::WriteFileAtomically(f.drop.save_scene, rbsim::DropSceneJson(scene));
+    } catch (const std::exception& e) {
+      std::cerr << "error: --save-scene " << massprops::app::OneLine(e.what()) << "\n";
+      throw Exit{1};
+    }
+  }
   return scene;
 }
 
@@ -239,7 +318,7 @@ bool Wants(const rbsim::Scene& scene, rbsim::OutputKind k) {
 // files under temporary names; only when every one succeeded are they all renamed into place.
 // Returns the files written. @throws Exit (1) when one could not be written.
 std::vector<std::string> WriteOutputs(const Flags& f, const rbsim::Simulation& sim, const rbsim::Recording& recording,
-                                      rbsim::TrajectoryWriter* writer) {
+                                      rbsim::TrajectoryWriter* writer, const rbsim::RunStats& stats) {
   std::vector<std::string> written;
   const std::string& out_dir = f.out_dir;
   const std::string staging = out_dir + "/.rbsim-staging-" + std::to_string(::getpid());
@@ -257,6 +336,9 @@ std::vector<std::string> WriteOutputs(const Flags& f, const rbsim::Simulation& s
     for (auto [kind, name] :
          {std::pair{rbsim::OutputKind::kPlotSvg, "plot.svg"}, std::pair{rbsim::OutputKind::kPlotPng, "plot.png"}}) {
       if (!out_dir.empty() && Wants(scene, kind)) rbsim::WritePlot(stage(name), sim, recording);
+    }
+    if (!out_dir.empty() && scene.until_rest) {
+      massprops::report::WriteFileAtomically(stage("summary.json"), rbsim::RestJson(sim, stats));
     }
     if (writer) written = writer->Commit();
     for (const auto& [from, to] : staged) {
@@ -354,9 +436,10 @@ int Simulate(const Flags& f, const rbsim::Scene& scene, std::vector<std::string>
       !f.out_dir.empty() && (plot || Wants(scene, rbsim::OutputKind::kGlb) || Wants(scene, rbsim::OutputKind::kHtml));
   recording.contacts = Wants(scene, rbsim::OutputKind::kHtml);
   const rbsim::RunStats stats = RunScene(f, *sim, writer.get(), record ? &recording : nullptr);
-  const std::vector<std::string> written = WriteOutputs(f, *sim, recording, writer.get());
+  const std::vector<std::string> written = WriteOutputs(f, *sim, recording, writer.get(), stats);
   for (const std::string& fell : stats.fell_through) std::cerr << "warning: " << massprops::app::OneLine(fell) << "\n";
   std::cout << rbsim::Summary(*sim, stats);
+  if (scene.until_rest) std::cout << rbsim::RestReport(*sim, stats);
   if (f.out_dir.empty()) {
     std::cout << "  (no --out DIR: no trajectory, plot or .glb written)\n";
   } else {
@@ -380,19 +463,21 @@ int main(int argc, char** argv) {
   Flags f;
   DeclareMeshFlags(app, f, DeclareSceneFlags(app, f));
   DeclareRunFlags(app, f);
+  rbsim::DeclareDropFlags(app, f.drop);
   massprops::app::LoadFlags threads(app, {"threads"});
   threads.Flag("threads")->default_str("1");
   if (const int status = massprops::app::ParseArguments(app, argc, argv); status >= 0) return status;
   if (threads.Given("threads")) f.threads = threads.Options().num_threads;
-  if (f.scene_file.empty() && f.mesh.empty()) {
-    std::cerr << "error: arguments: give a scene file, or --mesh FILE for the quick path (see --help)\n";
+  if (f.inputs.empty() && f.mesh.empty()) {
+    std::cerr << "error: arguments: give mesh files to drop, a scene file, a robot file, or --mesh FILE to spin one "
+                 "part (see --help)\n";
     return massprops::app::kBadArguments;
   }
   std::vector<std::string> warnings;
   try {
     rbsim::Scene scene;
     try {
-      scene = SceneOf(f, warnings);
+      scene = SceneOf(f, app, warnings);
     } catch (const Exit&) {
       throw;
     } catch (const std::exception& e) {

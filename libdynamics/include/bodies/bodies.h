@@ -56,6 +56,9 @@ enum class CollisionKind {
   kHull,       ///< the convex hull of its mesh (or of its solid's or shape's tessellation)
   kMesh,       ///< its closed mesh (or its solid's tessellation) as it is: a signed distance field
   kPrimitive,  ///< the primitive given, centred on the center of mass, in the mesh's axes
+  /// As itself: a box, sphere, capsule or cylinder solid as that primitive; any other shape as its
+  /// convex hull when it is convex (the hull's volume is its own), else as its mesh (kMesh).
+  kItself,
 };
 
 struct CollisionSpec {

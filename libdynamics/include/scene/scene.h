@@ -143,6 +143,13 @@ struct RobotSpec {
   bool material_given = false;  ///< the scene states the robot's material
 };
 
+/// When a run ends before its duration: every body slower than `speed` at its fastest point
+/// (|v| + |ω| r, r its farthest point from the center of mass) for `hold` seconds.
+struct RestRule {
+  double speed = 0.005;  ///< m/s
+  double hold = 0.2;     ///< s
+};
+
 enum class OutputKind { kCsv, kJsonl, kDiagnostics, kPlotSvg, kPlotPng, kGlb, kContacts, kHtml };
 
 struct Scene {
@@ -153,6 +160,8 @@ struct Scene {
   double output_rate = 60.0;  ///< Hz: trajectory rows and animation keys per simulated second
   char up = 'z';              ///< world up axis (the .glb is turned so that it is glTF's +y)
   std::vector<OutputKind> outputs;
+  /// Stop once every body is at rest (the duration is then the cap); none: run to the duration.
+  std::optional<RestRule> until_rest;
   int plot_body = 0;
   std::vector<BodySpec> bodies;
   std::vector<ForceSpec> forces;
@@ -176,8 +185,13 @@ struct Scene {
   std::vector<PairMaterial> pairs;
 };
 
-/// Whether `path` names a robot description rather than a scene: a regular file whose extension
-/// is not .json (rbsim's and load_scene's one rule; the root element then says which format).
+/// What a file given to rbsim (or load_scene) is: a scene (.json), a robot description (an XML
+/// document whose root element is <robot>, <sdf> or <mujoco>, or a .urdf, .sdf or .xacro file,
+/// whose reader then says what is wrong), a mesh or CAD file massprops reads (by extension), or
+/// none of these (also a path that is no regular file).
+enum class InputKind { kScene, kRobot, kMesh, kUnknown };
+InputKind ClassifyInput(const std::string& path);
+/// ClassifyInput(path) == kRobot.
 bool IsRobotFile(const std::string& path);
 /// What a robot file run as its own scene takes besides the file (rbsim's robot options).
 struct RobotFileOptions {

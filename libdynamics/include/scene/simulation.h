@@ -77,6 +77,9 @@ struct RunStats {
   /// Bodies with a collider that ended the run below every ground by more than their size:
   /// through the floor, never silently (one message each).
   std::vector<std::string> fell_through;
+  /// Scenes with until_rest: the time every body came to rest and stayed (the run ended `hold`
+  /// later), or none when the duration ran out first.
+  std::optional<double> rest_time;
 };
 
 /// Steps = ceil(duration / dt) (the last step lands on or just past the duration); a sample is
@@ -84,7 +87,8 @@ struct RunStats {
 std::int64_t StepCount(const Scene& scene);
 std::int64_t SampleEvery(const Scene& scene);
 
-/// Runs to the end (or until *stop becomes true), calling on_sample(world, diagnostics) at each
+/// Runs to the end (or until *stop becomes true, or the bodies are at rest when the scene says
+/// until_rest), calling on_sample(world, diagnostics) at each
 /// sample, on_step(i) after step i (1, 2, ...; before that step's sample) and on_progress(fraction)
 /// now and then. @throws std::runtime_error when a step fails or
 /// the state diverges (energy, momentum or a body's state no longer finite), naming the time and

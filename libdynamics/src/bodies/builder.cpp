@@ -125,15 +125,25 @@ std::optional<Collider> BodyBuilder::ColliderOf(const CollisionSpec& c, const Bo
   namespace pr = massprops::primitive;
   const massprops::Primitive* primitive = c.primitive ? &*c.primitive : nullptr;
   if (c.kind == CollisionKind::kNone) return std::nullopt;
-  if (c.kind == CollisionKind::kAuto) {
+  CollisionKind kind = c.kind;
+  std::optional<massprops::PolygonMesh> hull;
+  if (kind == CollisionKind::kAuto || kind == CollisionKind::kItself) {
     const bool simple = shape.solid() && CollidesAsItself(*shape.solid());
-    if (!simple) return std::nullopt;
-    primitive = shape.solid();
+    if (simple) {
+      primitive = shape.solid();
+      kind = CollisionKind::kPrimitive;
+    } else if (kind == CollisionKind::kAuto) {
+      return std::nullopt;
+    } else {  // convex: its hull is itself (the volumes agree to rounding); else its surface
+      hull = massprops::ConvexHull(massprops::ToPolygonMesh(built.display));
+      const double hull_volume = massprops::ComputeMassProperties(*hull, 1.0).volume;
+      kind = hull_volume <= built.mp.volume * (1 + 1e-9) ? CollisionKind::kHull : CollisionKind::kMesh;
+    }
   }
   Collider out;
   out.material = c.material;
   out.rotation = built.principal.axes.transpose();  // mesh axes → body axes
-  if (c.kind == CollisionKind::kMesh) {
+  if (kind == CollisionKind::kMesh) {
     // The display mesh (mesh axes, about the center of mass); equal meshes share one field.
     const massprops::TriangleMesh& m = built.display;
     const std::string key(reinterpret_cast<const char*>(m.V.data()),
@@ -148,8 +158,8 @@ std::optional<Collider> BodyBuilder::ColliderOf(const CollisionSpec& c, const Bo
     out.shape = slot;
     return out;
   }
-  if (c.kind == CollisionKind::kHull) {
-    out.shape = ConvexOf(massprops::ConvexHull(massprops::ToPolygonMesh(built.display)));
+  if (kind == CollisionKind::kHull) {
+    out.shape = ConvexOf(hull ? *hull : massprops::ConvexHull(massprops::ToPolygonMesh(built.display)));
     return out;
   }
   const massprops::Primitive& p = *primitive;

@@ -141,9 +141,11 @@ CollisionSpec ReadCollision(Fields& f) {
       c.kind = CollisionKind::kHull;
     } else if (s == "mesh") {
       c.kind = CollisionKind::kMesh;
+    } else if (s == "itself") {
+      c.kind = CollisionKind::kItself;
     } else {
-      f.Fail("collision", "'" + s + "' is not \"none\", \"hull\", \"mesh\" or a primitive {\"type\": ...}" +
-                              Suggest(s, {"none", "hull", "mesh"}));
+      f.Fail("collision", "'" + s + "' is not \"none\", \"hull\", \"mesh\", \"itself\" or a primitive {\"type\": ...}" +
+                              Suggest(s, {"none", "hull", "mesh", "itself"}));
     }
     return c;
   }
@@ -538,6 +540,24 @@ void ReadPairs(Fields& f, const std::string& file, Scene& scene) {
 
 }  // namespace
 
+// "until_rest": true, or {"speed": m/s, "hold": s}: the run ends once every body is at rest.
+void ReadUntilRest(Fields& f, Scene& scene) {
+  const json* v = f.Get("until_rest");
+  if (!v) return;
+  if (v->is_boolean()) {
+    if (v->get<bool>()) scene.until_rest = RestRule{};
+    return;
+  }
+  if (!v->is_object())
+    f.Fail("until_rest", "must be true, false or {\"speed\": m/s, \"hold\": s}, not " + TypeName(*v));
+  Fields o(*v, f.Path("until_rest"), f.file());
+  RestRule rule;
+  rule.speed = o.Number("speed", rule.speed, "positive");
+  rule.hold = o.Number("hold", rule.hold, "positive");
+  o.Done();
+  scene.until_rest = rule;
+}
+
 Scene ParseScene(const json& j, const std::string& file, const std::string& base_dir,
                  std::vector<std::string>& warnings) {
   Scene scene;
@@ -556,6 +576,7 @@ Scene ParseScene(const json& j, const std::string& file, const std::string& base
   }
   scene.output_rate = f.Number("output_rate", 60.0, "positive");
   scene.up = f.String("up", "z", {"x", "y", "z"})[0];
+  ReadUntilRest(f, scene);
   ReadOutputs(f, scene);
 
   if (const json* r = f.Get("robots")) scene.robots = ReadRobots(*r, file, base_dir, warnings);

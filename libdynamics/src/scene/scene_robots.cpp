@@ -1,14 +1,20 @@
 // The scene's "robots": a URDF, SDFormat or MJCF file placed in the world, its base, initial
 // joint positions, motors and colliders (docs/robots.md); and the scene of `rbsim ROBOT.urdf`.
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "json_fields.h"
 #include "scene/scene.h"
+
+#include "massprops/io/mesh_io.h"
 
 namespace scene {
 
@@ -109,9 +115,53 @@ std::vector<RobotSpec> ReadRobots(const json& robots, const std::string& file, c
   return out;
 }
 
-bool IsRobotFile(const std::string& path) {
-  return !path.empty() && std::filesystem::path(path).extension() != ".json" && std::filesystem::is_regular_file(path);
+namespace {
+
+// The name of an XML document's root element, read from its first 64 KiB past a byte-order mark,
+// the declaration, comments, processing instructions and a DOCTYPE; "" when it is not XML.
+std::string RootElement(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(65536, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  std::size_t i = head.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;
+  while (true) {
+    while (i < head.size() && std::isspace(static_cast<unsigned char>(head[i]))) ++i;
+    if (i >= head.size() || head[i] != '<') return "";
+    const char* close = head.compare(i, 4, "<!--") == 0 ? "-->"
+                        : head.compare(i, 2, "<?") == 0 ? "?>"
+                        : head.compare(i, 2, "<!") == 0 ? ">"
+                                                        : nullptr;
+    if (!close) break;
+    const std::size_t end = head.find(close, i + 2);
+    if (end == std::string::npos) return "";
+    i = end + std::strlen(close);
+  }
+  std::size_t end = ++i;
+  while (end < head.size() && (std::isalnum(static_cast<unsigned char>(head[end])) || head[end] == '_' ||
+                               head[end] == ':' || head[end] == '-' || head[end] == '.')) {
+    ++end;
+  }
+  return head.substr(i, end - i);
 }
+
+}  // namespace
+
+InputKind ClassifyInput(const std::string& path) {
+  std::error_code ec;
+  if (path.empty() || !std::filesystem::is_regular_file(path, ec)) return InputKind::kUnknown;
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext == ".json") return InputKind::kScene;
+  const std::string root = RootElement(path);
+  if (root == "robot" || root == "sdf" || root == "mujoco") return InputKind::kRobot;
+  // A robot file by its name whose content is not one: its reader says what is wrong.
+  if (ext == ".urdf" || ext == ".sdf" || ext == ".xacro") return InputKind::kRobot;
+  if (massprops::IsMeshFile(path)) return InputKind::kMesh;
+  return InputKind::kUnknown;
+}
+
+bool IsRobotFile(const std::string& path) { return ClassifyInput(path) == InputKind::kRobot; }
 
 Scene RobotScene(const std::string& path, const RobotFileOptions& options) {
   Scene scene;

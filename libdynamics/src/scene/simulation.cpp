@@ -486,6 +486,18 @@ std::vector<std::string> FellThrough(const Simulation& sim) {
   return out;
 }
 
+// The fastest point of any body, m/s: |v| + |ω| r, r its farthest point from the center of mass.
+double FastestPoint(const Simulation& sim) {
+  double fastest = 0;
+  for (std::size_t k = 0; k < std::min(sim.bodies.size(), sim.world().bodies().size()); ++k) {
+    const dynamics::RigidBody& rb = sim.world().bodies()[k];
+    const massprops::TriangleMesh& m = sim.bodies[k].display;
+    const double r = m.V.rows() > 0 ? m.V.rowwise().norm().maxCoeff() : 0.0;
+    fastest = std::max(fastest, rb.velocity.norm() + rb.AngularVelocity().norm() * r);
+  }
+  return fastest;
+}
+
 }  // namespace
 
 RunStats Run(Simulation& sim,
@@ -517,6 +529,8 @@ RunStats Run(Simulation& sim,
   };
   sample();
   const std::int64_t progress_every = std::max<std::int64_t>(1, n / 1000);
+  const std::optional<RestRule>& rest = sim.scene.until_rest;
+  double quiet_since = -1;  // the time the bodies last came under the rest speed, or -1
   for (std::int64_t i = 1; i <= n; ++i) {
     const dynamics::StepStatus status = sim.physics.Step(sim.scene.dt);
     const dynamics::ContactStats& cs = sim.physics.stats();
@@ -534,7 +548,20 @@ RunStats Run(Simulation& sim,
     stats.max_substeps = std::max(stats.max_substeps, status.substeps);
     stats.steps = i;
     if (on_step) on_step(i);
-    if (i % every == 0 || i == n) sample();
+    bool rested = false;
+    if (rest) {
+      const double t = sim.world().time();
+      if (FastestPoint(sim) >= rest->speed) {
+        quiet_since = -1;
+      } else if (quiet_since < 0) {
+        quiet_since = t;
+      } else if (t - quiet_since >= rest->hold - 1e-9 * sim.scene.dt) {
+        stats.rest_time = quiet_since;
+        rested = true;
+      }
+    }
+    if (i % every == 0 || i == n || rested) sample();
+    if (rested) break;
     if (i % progress_every == 0) {
       if (on_progress) on_progress(static_cast<double>(i) / static_cast<double>(n));
       if (stop && stop->load(std::memory_order_relaxed)) {
