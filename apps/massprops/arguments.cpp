@@ -19,7 +19,7 @@ void AddInputArguments(CLI::App& app, Arguments& a) {
   app.add_option("files", a.files, "Mesh files");
   app.add_option("--implicit", a.implicit,
                  "Estimate a solid given in the shape syntax, e.g. 'torus(R=1, r=0.25)' "
-                 "(Monte Carlo / QMC, with error bars; see the README)");
+                 "(Monte Carlo / QMC, with error bars; docs/cli.md ('Monte Carlo: implicit solids'))");
   app.add_flag("--winding-number", a.winding_number,
                "Files: the solid where the generalized winding number is >= 1/2, estimated by "
                "Monte Carlo / QMC with error bars (meshes with holes get a sensible answer)");

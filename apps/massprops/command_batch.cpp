@@ -22,7 +22,7 @@ namespace massprops::cli {
 int BatchMain(int argc, char** argv) {
   CLI::App app{
       "massprops batch: every mesh file of a folder or a manifest, in child processes that a crash or "
-      "hang of one file does not take down, one JSON line each in the output (see the README's dataset section)"};
+      "hang of one file does not take down, one JSON line each in the output (docs/datasets.md)"};
   app.set_version_flag("--version", std::string("massprops ") + kVersion);
   Arguments a;
   BatchOptions b;

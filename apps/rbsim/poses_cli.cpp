@@ -260,7 +260,7 @@ int PosesMain(int argc, char** argv) {
   CLI::App app{
       "rbsim poses: on which face of its convex hull a part comes to rest on a plane, and how often — the "
       "quasi-static estimate (solid angles from the center of mass and the topple graph) and N simulated drops from "
-      "uniformly random orientations, with 95 % intervals (README: 'Resting poses').",
+      "uniformly random orientations, with 95 % intervals (docs/scenes.md ('Resting poses')).",
       "rbsim poses"};
   PosesFlags f;
   DeclarePosesFlags(app, f);

@@ -50,5 +50,7 @@ void BindPoses(pybind11::module_& m);
 void BindConstraints(pybind11::module_& dyn);
 /// massprops.dynamics.load_scene (scenes.cpp), on the dynamics submodule.
 void BindScenes(pybind11::module_& dyn);
+/// massprops.dynamics.drop (drop.cpp), on the dynamics submodule.
+void BindDrop(pybind11::module_& dyn);
 
 }  // namespace massprops_python

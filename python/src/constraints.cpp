@@ -98,7 +98,7 @@ dynamics::Tendon TendonOf(const dynamics::World& w, const py::handle& joints, co
   if (!joints.is_none()) t.joints = py::cast<std::vector<std::pair<int, double>>>(joints);
   double length = 0;
   if (!path.is_none()) {
-    Vector3 last;
+    Vector3 last = Vector3::Zero();
     for (const py::handle item : path) {
       const auto pair = py::cast<py::tuple>(item);
       if (pair.size() != 2) throw py::value_error("path: each point is (body, (x, y, z)), body -1 the world");

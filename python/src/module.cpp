@@ -969,5 +969,6 @@ PYBIND11_MODULE(_core, m) {
   BindDynamics(dyn);
   massprops_python::BindConstraints(dyn);
   massprops_python::BindScenes(dyn);
+  massprops_python::BindDrop(dyn);
   massprops_python::BindPoses(m);
 }

@@ -37,6 +37,8 @@ struct DropOptions {
   double dt = 1e-3;
   double duration = 10;  ///< s: the cap; the run ends when every part is at rest
   RestRule rest;
+  /// How a part that cannot be read names the options to try (nullptr: the command line's flags).
+  const massprops::Vocabulary* words = nullptr;
 };
 
 /// The scene of a drop: the scenes' gravity (9.80665 m/s² along −z), a ground plane (under `on`'s lowest point when

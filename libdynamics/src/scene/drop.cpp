@@ -27,7 +27,7 @@ struct PartShape {
   Vector3 low = Vector3::Zero(), high = Vector3::Zero();  // file bounds, metres
 };
 
-PartShape ReadPart(const std::string& file, const massprops::LoadOptions& load) {
+PartShape ReadPart(const std::string& file, const massprops::LoadOptions& load, const massprops::Vocabulary& words) {
   const std::filesystem::path path = std::filesystem::absolute(file).lexically_normal();
   if (const std::string problem = MeshFileProblem(path); !problem.empty()) {
     throw SceneError(file + ": " + problem);
@@ -38,7 +38,7 @@ PartShape ReadPart(const std::string& file, const massprops::LoadOptions& load) 
   try {
     r = massprops::LoadSolid(path.string(), o);
   } catch (const std::exception& e) {
-    throw SceneError(massprops::WordedError(e, massprops::report::CliVocabulary()));
+    throw SceneError(massprops::WordedError(e, words));
   }
   if (!r.validity.valid) {
     throw SceneError(file + ": the inertia is not that of a real body (" + r.validity.reason + ")");
@@ -152,9 +152,10 @@ void CheckOptions(const DropOptions& o) {
 Scene DropScene(const DropOptions& o, std::vector<std::string>& warnings) {
   CheckOptions(o);
   std::vector<PartShape> parts;
-  for (const std::string& f : o.files) parts.push_back(ReadPart(f, o.load));
+  const massprops::Vocabulary& words = o.words ? *o.words : massprops::report::CliVocabulary();
+  for (const std::string& f : o.files) parts.push_back(ReadPart(f, o.load, words));
   std::optional<PartShape> on;
-  if (!o.on.empty()) on = ReadPart(o.on, o.load);
+  if (!o.on.empty()) on = ReadPart(o.on, o.load, words);
   Scene scene;
   scene.file = "<command line>";
   scene.dt = o.dt;

@@ -1,0 +1,70 @@
+"""massprops.dynamics.drop: parts dropped until they rest, the same bits as `rbsim PART...`."""
+import json
+import math
+import os
+import subprocess
+
+import pytest
+
+import massprops
+
+DATA = os.environ.get("MASSPROPS_DATA", os.path.join(os.path.dirname(__file__), "..", "..", "data"))
+RBSIM = os.environ.get("MASSPROPS_RBSIM", "rbsim")
+
+
+def cube(tmp_path, side):
+    """A cube as a hand-written ASCII STL, its origin at a corner."""
+    c = [(x, y, z) for z in (0, side) for y in (0, side) for x in (0, side)]
+    quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    lines = ["solid cube"]
+    for a, b, cc, d in quads:
+        for tri in ((a, b, cc), (a, cc, d)):
+            lines += ["  facet normal 0 0 0", "    outer loop"]
+            lines += [f"      vertex {c[i][0]} {c[i][1]} {c[i][2]}" for i in tri]
+            lines += ["    endloop", "  endfacet"]
+    lines.append("endsolid cube")
+    path = tmp_path / "cube.stl"
+    path.write_text("\r\n".join(lines) + "\r\n")
+    return str(path)
+
+
+def test_a_cube_rests_at_half_its_side(tmp_path):
+    r = massprops.dynamics.drop([cube(tmp_path, 0.2)], density=2700)
+    assert r.rest_time is not None and r.rest_time < 0.3
+    (pose,) = r.poses
+    assert pose.support == "face" and not pose.balanced
+    assert pose.com_height == pytest.approx(0.1, abs=1e-9)
+    assert pose.down_in_part[2] == pytest.approx(-1, abs=1e-9)
+    # Everything it had at release, m g h with h = 1 cm, is gone (no restitution).
+    assert r.energy_lost == pytest.approx(2700 * 0.2**3 * 9.80665 * 0.01, rel=1e-6)
+
+
+def test_the_same_bits_as_the_command(tmp_path):
+    part = os.path.join(DATA, "meshes", "t_handle.obj")
+    r = massprops.dynamics.drop([part], count=4, orientation="random", seed=3)
+    out = tmp_path / "out"
+    subprocess.run([RBSIM, part, "--count", "4", "--orientation", "random", "--seed", "3", "--out", str(out),
+                    "--outputs", "csv", "-q"], check=True, capture_output=True)
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["rest_time"] == r.rest_time
+    assert [p["com_height"] for p in summary["parts"]] == [p.com_height for p in r.poses]
+    assert [p["down_in_part"] for p in summary["parts"]] == [list(p.down_in_part) for p in r.poses]
+
+
+def test_bad_input_in_python_words(tmp_path):
+    with pytest.raises(ValueError, match=r"ellipe0\.003\.off: the signed volume is negative"):
+        massprops.dynamics.drop([os.path.join(DATA, "meshes", "ellipe0.003.off")])
+    with pytest.raises(ValueError, match="orientation must be"):
+        massprops.dynamics.drop([cube(tmp_path, 0.1)], orientation="sideways")
+    with pytest.raises(ValueError, match="threads must be between 0 and 4096"):
+        massprops.dynamics.drop([cube(tmp_path, 0.1)], threads=-1)
+    with pytest.raises(ValueError, match="kinetic"):
+        massprops.dynamics.drop([cube(tmp_path, 0.1)], friction=(0.2, 0.5))
+
+
+def test_tilted_cube_falls_flat(tmp_path):
+    r = massprops.dynamics.drop([cube(tmp_path, 0.1)], orientation=((1, 0, 0), 50), height=0.001)
+    (pose,) = r.poses
+    assert pose.support == "face"
+    assert pose.com_height == pytest.approx(0.05, abs=1e-6)
+    assert math.remainder(pose.tilt_deg, 90) == pytest.approx(0, abs=1e-4)
