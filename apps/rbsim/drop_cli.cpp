@@ -41,8 +41,10 @@ bool ParseFriction(const std::string& text, dynamics::Material& m) {
 
 std::string Num(double v, const char* format) { return massprops::FormatDouble(v, format); }
 
+// Three decimals, and no "-0.000" for what rounds to zero.
 std::string Vec(const massprops::Vector3& v) {
-  return "(" + Num(v.x() + 0.0, "%+.3f") + ", " + Num(v.y() + 0.0, "%+.3f") + ", " + Num(v.z() + 0.0, "%+.3f") + ")";
+  const auto c = [](double x) { return Num(std::abs(x) < 5e-4 ? 0.0 : x, "%+.3f"); };
+  return "(" + c(v.x()) + ", " + c(v.y()) + ", " + c(v.z()) + ")";
 }
 
 }  // namespace
