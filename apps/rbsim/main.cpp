@@ -458,7 +458,8 @@ int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "poses") return rbsim::PosesMain(argc - 1, argv + 1);
   CLI::App app{
       "rbsim: simulate rigid bodies made from mesh files, with trajectory, diagnostics, plot and an "
-      "animated .glb.\nParts dropped: docs/scenes.md ('The `rbsim` command'); scene files: docs/scenes.md ('rbsim scenes'); robot files: docs/robots.md."};
+      "animated .glb.\nParts dropped: docs/scenes.md ('The `rbsim` command'); scene files: docs/scenes.md ('rbsim "
+      "scenes'); robot files: docs/robots.md."};
   app.set_version_flag("--version", std::string("rbsim ") + massprops::kVersion);
   Flags f;
   DeclareMeshFlags(app, f, DeclareSceneFlags(app, f));

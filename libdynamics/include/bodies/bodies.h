@@ -103,8 +103,10 @@ class BodyBuilder {
 
   /// Mass properties and display mesh: a mesh file through massprops' pipeline (full check), an
   /// implicit shape by quasi-Monte Carlo to a relative standard error of 1e-4 (and a surface by
-  /// marching tetrahedra), a solid from its closed form (and a tessellation). @throws BodyError.
-  BuiltShape Load(const BodyShape& shape, std::vector<BodyWarning>& warnings) const;
+  /// marching tetrahedra), a solid from its closed form (and a tessellation). A mesh file read
+  /// before with the same unit, mass and checks is not read again (its findings were given the
+  /// first time). @throws BodyError.
+  BuiltShape Load(const BodyShape& shape, std::vector<BodyWarning>& warnings);
 
   /// The collider of a loaded shape in its principal frame (x_B = R_MBᵀ (x_M − com)), or none.
   /// Mesh colliders of equal display meshes share one signed distance field.
@@ -114,6 +116,7 @@ class BodyBuilder {
   massprops::Vocabulary words_;
   int threads_;
   std::map<std::string, shape::Mesh> meshes_;  // by the display mesh's bytes
+  std::map<std::string, BuiltShape> files_;    // mesh files read, by path and options
 };
 
 }  // namespace dynamics

@@ -183,6 +183,9 @@ struct Scene {
     dynamics::Material material;
   };
   std::vector<PairMaterial> pairs;
+  /// How the bodies' findings name the options to try (nullptr: a scene file's keys); a drop made
+  /// on the command line or in Python says its flags or keywords.
+  const massprops::Vocabulary* words = nullptr;
 };
 
 /// What a file given to rbsim (or load_scene) is: a scene (.json), a robot description (an XML

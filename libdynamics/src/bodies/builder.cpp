@@ -108,9 +108,18 @@ bool CollidesAsItself(const massprops::Primitive& p) {
 
 BodyBuilder::BodyBuilder(massprops::Vocabulary words, int threads) : words_(std::move(words)), threads_(threads) {}
 
-BuiltShape BodyBuilder::Load(const BodyShape& shape, std::vector<BodyWarning>& warnings) const {
+BuiltShape BodyBuilder::Load(const BodyShape& shape, std::vector<BodyWarning>& warnings) {
   try {
-    if (const auto* m = std::get_if<MeshSource>(&shape.source)) return LoadMesh(*m, shape, words_, threads_, warnings);
+    if (const auto* m = std::get_if<MeshSource>(&shape.source)) {
+      const double mass = std::visit([](const auto& spec) { return spec.value; }, shape.mass);
+      const std::string key = m->path + '\n' + massprops::UnitName(shape.unit) + (shape.unit_stated ? "!" : "") +
+                              (std::holds_alternative<massprops::TotalMass>(shape.mass) ? " kg " : " kg/m3 ") +
+                              massprops::FormatDouble(mass, "%.17g") + (m->repair ? " repair" : "") +
+                              (m->allow_open ? " allow_open" : "");
+      const auto it = files_.find(key);
+      if (it != files_.end()) return it->second;
+      return files_[key] = LoadMesh(*m, shape, words_, threads_, warnings);
+    }
     if (const auto* i = std::get_if<ImplicitSource>(&shape.source)) return LoadImplicit(*i, shape, threads_, warnings);
     return LoadPrimitive(std::get<massprops::Primitive>(shape.source), shape.mass);
   } catch (const BodyError&) {

@@ -376,12 +376,26 @@ void SamplesAgainst(const Posed& from, const Posed& to, double spacing, double m
 
 void CollideMeshGround(const Posed& a, const Vector3& n, double offset, double margin, std::vector<ContactPoint>& out) {
   const std::size_t first = out.size();
-  const std::vector<Vector3>& vertices =
-      std::get<shape::Mesh>(*a.shape).vertices;  // a plane meets a body at vertices first
-  for (std::size_t i = 0; i < vertices.size(); ++i) {
-    const Vector3 p = a.R * vertices[i] + a.t;
-    const double sep = n.dot(p) - offset;
-    if (sep < margin) out.push_back({p - n * (0.5 * sep), n, sep, static_cast<std::uint32_t>(i)});
+  const shape::Mesh& mesh = std::get<shape::Mesh>(*a.shape);
+  const std::vector<Vector3>& vertices = mesh.vertices;  // a plane meets a body at vertices first
+  const Vector3 local = a.R.transpose() * n;             // the plane's normal in the mesh's frame
+  const double base = n.dot(a.t) - offset;
+  const double pad = 1e-9 * (mesh.field->radius + a.t.norm() + std::abs(offset));
+  for (const MeshField::Cluster& run : mesh.field->vertex_runs) {
+    // Every vertex of the run is at least the ball's radius nearer than its centre (padded far
+    // beyond the rounding): a run wholly beyond the margin adds nothing, so it is skipped.
+    const Vector3 c = a.R * run.centre + a.t;
+    const double slack = 1e-9 * (run.radius + c.norm() + std::abs(offset)) + run.radius;
+    if (n.dot(c) - offset - slack >= margin) continue;
+    for (int k = run.first; k < run.first + run.count; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      // The separation in the mesh's frame first (3 products, not 12), padded beyond its rounding;
+      // only a vertex it may place within the margin is computed as always.
+      if (local.dot(vertices[i]) + base - pad >= margin) continue;
+      const Vector3 p = a.R * vertices[i] + a.t;
+      const double sep = n.dot(p) - offset;
+      if (sep < margin) out.push_back({p - n * (0.5 * sep), n, sep, static_cast<std::uint32_t>(i)});
+    }
   }
   ReduceContacts(out, first);
 }

@@ -53,7 +53,10 @@ struct MeshField {
     double radius = 0;
     int first = 0, count = 0;
   };
-  std::vector<Cluster> clusters;          // a whole cluster is skipped when the other shape is beyond its ball
+  std::vector<Cluster> clusters;  // a whole cluster is skipped when the other shape is beyond its ball
+  // The mesh's vertices in runs of consecutive indices, each with its ball: a plane skips a run
+  // whose ball lies beyond its margin (CollideMeshGround; the vertices it keeps, in their order).
+  std::vector<Cluster> vertex_runs;
   double radius = 0;                      // of the sphere about the mesh origin that holds it
   Eigen::AlignedBox<double, 3> mesh_box;  // of the vertices
   double thinnest = 0;                    // the thinnest wall found (m), which bounded the cell

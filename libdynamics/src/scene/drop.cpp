@@ -162,6 +162,11 @@ Scene DropScene(const DropOptions& o, std::vector<std::string>& warnings) {
   scene.duration = o.duration;
   scene.outputs = DefaultOutputs();
   scene.until_rest = o.rest;
+  scene.words = &words;
+  // Parts that have settled sleep (a pile settles from the bottom up): they cost nothing until
+  // something wakes them.
+  scene.contact.sleeping = true;
+  scene.contact_given = true;
   scene.forces.push_back(ForceSpec{});  // gravity, the scenes' default g
   scene.forces.back().vector = Vector3(0, 0, -9.80665);
   scene.forces.back().field = "forces[0]";
@@ -236,6 +241,7 @@ std::string DropSceneJson(const Scene& scene) {
   j["dt"] = scene.dt;
   j["duration"] = scene.duration;
   if (scene.until_rest) j["until_rest"] = {{"speed", scene.until_rest->speed}, {"hold", scene.until_rest->hold}};
+  j["contact"] = {{"sleeping", scene.contact.sleeping}};
   j["forces"] = nlohmann::json::array();
   for (const ForceSpec& f : scene.forces) {
     j["forces"].push_back({{"type", "gravity"}, {"g", {f.vector.x(), f.vector.y(), f.vector.z()}}});

@@ -40,7 +40,7 @@ Vector3 DefaultColor(std::size_t i) {
 
 // Loads a body's shape, its findings and faults named by the scene file and field ("where" and
 // the part of the shape: ".mesh", ".implicit", ".solid").
-BuiltShape LoadShape(const dynamics::BodyBuilder& builder, const ShapeSpec& shape, const std::string& where,
+BuiltShape LoadShape(dynamics::BodyBuilder& builder, const ShapeSpec& shape, const std::string& where,
                      std::vector<std::string>& warnings, bool solid_errors_name_field) {
   std::vector<dynamics::BodyWarning> found;
   const auto report = [&] {
@@ -421,7 +421,8 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
   sim.scene = scene;
   sim.physics = dynamics::ContactWorld(dynamics::World(scene.integrator), scene.contact);
   sim.physics.set_num_threads(threads);
-  dynamics::BodyBuilder builder(massprops::report::WordsFor(massprops::report::FrontEnd::kScene), threads);
+  dynamics::BodyBuilder builder(
+      scene.words ? *scene.words : massprops::report::WordsFor(massprops::report::FrontEnd::kScene), threads);
   // Contact is on when the scene asks for it: a ground, a static body, or a body's "collision".
   // Then box, sphere, capsule and cylinder solids collide as themselves unless they say "none";
   // scenes without any of these run as before, bodies passing through each other.
@@ -486,14 +487,22 @@ std::vector<std::string> FellThrough(const Simulation& sim) {
   return out;
 }
 
-// The fastest point of any body, m/s: |v| + |ω| r, r its farthest point from the center of mass.
-double FastestPoint(const Simulation& sim) {
-  double fastest = 0;
+// Each body's farthest point from its center of mass (m).
+std::vector<double> Reaches(const Simulation& sim) {
+  std::vector<double> out;
   for (std::size_t k = 0; k < std::min(sim.bodies.size(), sim.world().bodies().size()); ++k) {
-    const dynamics::RigidBody& rb = sim.world().bodies()[k];
     const massprops::TriangleMesh& m = sim.bodies[k].display;
-    const double r = m.V.rows() > 0 ? m.V.rowwise().norm().maxCoeff() : 0.0;
-    fastest = std::max(fastest, rb.velocity.norm() + rb.AngularVelocity().norm() * r);
+    out.push_back(m.V.rows() > 0 ? m.V.rowwise().norm().maxCoeff() : 0.0);
+  }
+  return out;
+}
+
+// The fastest point of any body, m/s: |v| + |ω| r, r its reach.
+double FastestPoint(const Simulation& sim, const std::vector<double>& reaches) {
+  double fastest = 0;
+  for (std::size_t k = 0; k < reaches.size(); ++k) {
+    const dynamics::RigidBody& rb = sim.world().bodies()[k];
+    fastest = std::max(fastest, rb.velocity.norm() + rb.AngularVelocity().norm() * reaches[k]);
   }
   return fastest;
 }
@@ -531,6 +540,7 @@ RunStats Run(Simulation& sim,
   const std::int64_t progress_every = std::max<std::int64_t>(1, n / 1000);
   const std::optional<RestRule>& rest = sim.scene.until_rest;
   double quiet_since = -1;  // the time the bodies last came under the rest speed, or -1
+  const std::vector<double> reaches = rest ? Reaches(sim) : std::vector<double>();
   for (std::int64_t i = 1; i <= n; ++i) {
     const dynamics::StepStatus status = sim.physics.Step(sim.scene.dt);
     const dynamics::ContactStats& cs = sim.physics.stats();
@@ -551,7 +561,7 @@ RunStats Run(Simulation& sim,
     bool rested = false;
     if (rest) {
       const double t = sim.world().time();
-      if (FastestPoint(sim) >= rest->speed) {
+      if (FastestPoint(sim, reaches) >= rest->speed) {
         quiet_since = -1;
       } else if (quiet_since < 0) {
         quiet_since = t;
