@@ -2,6 +2,7 @@
 
 #include "drop_cli.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -14,8 +15,8 @@
 namespace rbsim {
 namespace {
 
-constexpr const char* kDropFlags[] = {"--count",    "--height",      "--orientation", "--seed",      "--on",
-                                      "--friction", "--restitution", "--rest-speed",  "--save-scene"};
+constexpr const char* kDropFlags[] = {"--count",    "--height",      "--orientation", "--seed",       "--on",
+                                      "--friction", "--restitution", "--rest-speed",  "--save-scene", "--separate"};
 
 // "AX,AY,AZ,DEG": an axis and an angle in degrees.
 bool ParseAxisAngle(const std::string& text, scene::DropOptions& o) {
@@ -71,6 +72,9 @@ void DeclareDropFlags(CLI::App& app, DropFlags& f) {
                  "Parts: at rest when every part's fastest point is slower than this, m/s, for 0.2 s")
       ->check(massprops::app::Positive())
       ->capture_default_str();
+  app.add_flag("--separate", f.separate,
+               "Parts: with --parts, each part of an assembly (CAD solids, OBJ groups, glTF nodes) its own body, "
+               "starting where the file places it (without: the file falls as one rigid body)");
   app.add_option("--save-scene", f.save_scene,
                  "Parts: also write the drop as a scene file (JSON) to edit and run again (the same bits)");
 }
@@ -86,6 +90,7 @@ std::string ToDropOptions(const DropFlags& f, const std::vector<std::string>& fi
   o.count = f.count;
   o.height = f.height;
   o.seed = f.seed;
+  o.separate = f.separate;
   o.on = f.on;
   o.rest.speed = f.rest_speed;
   if (f.orientation == "file" || f.orientation == "upright") {
@@ -119,11 +124,15 @@ std::string RestReport(const scene::Simulation& sim, const scene::RunStats& stat
     out << "  not at rest after " << Num(sim.world().time(), "%g")
         << " s (the cap: give a longer --duration); energy lost so far " << Num(lost, "%.6g") << " J\n";
   }
-  out << "  part                 rests on  down, in the part's axes     center of mass above ground, m  tilt, deg\n";
-  for (const scene::RestingPose& p : scene::RestingPoses(sim)) {
-    char line[256];
+  const std::vector<scene::RestingPose> poses = scene::RestingPoses(sim);
+  int width = 20;  // the names' column
+  for (const scene::RestingPose& p : poses) width = std::max(width, static_cast<int>(p.name.size()));
+  out << "  " << std::string("part") + std::string(static_cast<std::size_t>(width - 3), ' ')
+      << "rests on  down, in the part's axes     center of mass above ground, m  tilt, deg\n";
+  for (const scene::RestingPose& p : poses) {
+    char line[512];
     const std::string support = p.balanced ? p.support + " (balanced: unstable)" : p.support;
-    std::snprintf(line, sizeof line, "  %-20s %-9s %-28s %-31s %.2f\n", p.name.c_str(), support.c_str(),
+    std::snprintf(line, sizeof line, "  %-*s %-9s %-28s %-31s %.2f\n", width, p.name.c_str(), support.c_str(),
                   Vec(p.down_in_part).c_str(), Num(p.com_height, "%.9g").c_str(), p.tilt * 180 / massprops::kPi);
     out << line;
   }

@@ -17,6 +17,7 @@ struct DropFlags {
   std::string orientation = "file", on, friction, save_scene;
   double restitution = 0, rest_speed = 0.005;
   std::uint64_t seed = 1;
+  bool separate = false;
 };
 
 void DeclareDropFlags(CLI::App& app, DropFlags& f);

@@ -100,7 +100,7 @@ void DeclareMeshFlags(CLI::App& app, Flags& f, CLI::Option* scene_opt) {
   auto* mesh_opt = app.add_option("--mesh", f.mesh, "Quick path: spin this one mesh torque-free (no scene file)")
                        ->excludes(scene_opt);
   f.load = std::make_unique<massprops::app::LoadFlags>(
-      app, std::initializer_list<std::string_view>{"unit", "density", "mass", "repair", "allow_open"},
+      app, std::initializer_list<std::string_view>{"unit", "density", "mass", "repair", "allow_open", "parts"},
       "Parts and --mesh: ");
   app.add_option("--omega", f.omega_text, "--mesh: initial angular velocity wx,wy,wz in rad/s")->needs(mesh_opt);
   app.add_option("--omega-frame", f.omega_frame,
@@ -164,7 +164,7 @@ rbsim::Scene MeshScene(const Flags& f, std::vector<std::string>& warnings) {
   body.name = std::filesystem::path(f.mesh).stem().string();
   body.field = "bodies[0]";
   const massprops::LoadOptions load = f.load->Options();
-  body.shape.source = dynamics::MeshSource{path.string(), load.repair, load.allow_open};
+  body.shape.source = dynamics::MeshSource{path.string(), load.repair, load.allow_open, load.parts};
   body.shape.unit = load.unit;
   body.shape.unit_stated = load.unit_stated;
   body.shape.mass = load.mass;
@@ -245,10 +245,14 @@ void CheckFlagsFit(const Flags& f, const CLI::App& app, rbsim::InputKind kind) {
   const bool parts = kind == rbsim::InputKind::kMesh && !f.inputs.empty();
   if (rbsim::AnyDropFlag(app) && !parts) {
     std::cerr << "error: --count, --height, --orientation, --seed, --on, --friction, --restitution, --rest-speed, "
-                 "--save-scene: for parts dropped (rbsim PART.stl ...), not a scene, a robot or --mesh\n";
+                 "--separate, --save-scene: for parts dropped (rbsim PART.stl ...), not a scene, a robot or --mesh\n";
     throw Exit{massprops::app::kBadArguments};
   }
-  for (const char* flag : {"--unit", "--density", "--mass", "--repair", "--allow-open"}) {
+  if (f.drop.separate && app.count("--parts") == 0) {
+    std::cerr << "error: --separate: for an assembly read by its parts: give --parts too\n";
+    throw Exit{massprops::app::kBadArguments};
+  }
+  for (const char* flag : {"--unit", "--density", "--mass", "--repair", "--allow-open", "--parts"}) {
     if (app.count(flag) > 0 && !parts && f.mesh.empty()) {
       std::cerr << "error: " << flag
                 << ": for parts (rbsim PART.stl) and --mesh; a scene gives it per body, a robot file per mesh\n";

@@ -63,12 +63,14 @@ dynamics::Material MaterialOf(const py::object& friction, double restitution) {
   return m;
 }
 
-DropResult Drop(const std::vector<std::string>& paths, int count, const std::optional<std::string>& on, double height,
-                const py::object& orientation, std::uint64_t seed, const py::object& friction, double restitution,
-                double rest_speed, double dt, double duration, int threads, const py::kwargs& options) {
+DropResult Drop(const std::vector<std::string>& paths, int count, bool separate, const std::optional<std::string>& on,
+                double height, const py::object& orientation, std::uint64_t seed, const py::object& friction,
+                double restitution, double rest_speed, double dt, double duration, int threads,
+                const py::kwargs& options) {
   scene::DropOptions o;
   o.files = paths;
   o.count = count;
+  o.separate = separate;
   o.on = on.value_or("");
   o.height = height;
   o.seed = seed;
@@ -130,14 +132,15 @@ void BindDrop(py::module_& dyn) {
       .def_readonly("energy_lost", &DropResult::energy_lost, "J")
       .def_readonly("warnings", &DropResult::warnings, "what loading the parts found, one line each")
       .def_readonly("world", &DropResult::world, "the ContactWorld as the run ended");
-  dyn.def("drop", &Drop, py::arg("paths"), py::kw_only(), py::arg("count") = 1, py::arg("on") = py::none(),
-          py::arg("height") = 0.01, py::arg("orientation") = "file", py::arg("seed") = 1,
+  dyn.def("drop", &Drop, py::arg("paths"), py::kw_only(), py::arg("count") = 1, py::arg("separate") = false,
+          py::arg("on") = py::none(), py::arg("height") = 0.01, py::arg("orientation") = "file", py::arg("seed") = 1,
           py::arg("friction") = py::none(), py::arg("restitution") = 0.0, py::arg("rest_speed") = 0.005,
           py::arg("dt") = 1e-3, py::arg("duration") = 10.0, py::arg("threads") = 1,
           "Mesh or CAD parts dropped onto the ground (or `on` a fixed part: a table, a bin) until they rest, as "
           "`rbsim PART...` drops them (the same bits): count copies each, released `height` m above, turned as "
           "`orientation` says ('file', 'random' from `seed`, or (axis, degrees)). Load options (unit, density, "
-          "mass, repair, allow_open) as massprops.load. Returns a DropResult (docs/scenes.md ('The `rbsim` "
+          "mass, repair, allow_open, parts) as massprops.load; separate=True with parts=True: each part of an "
+          "assembly its own body, where the file places it. Returns a DropResult (docs/scenes.md ('The `rbsim` "
           "command')).");
 }
 

@@ -118,3 +118,27 @@ def test_parts_carry_their_component_name_and_declared_unit():
     inch = 0.0254
     assert r.parts[0].volume == pytest.approx(6 * inch ** 3, rel=1e-12)
     assert r.volume == pytest.approx(6 * inch ** 3 + 6e-6, rel=1e-12)
+
+
+def test_an_assembly_dropped_part_by_part_rests_as_it_was_built(tmp_path):
+    """`rbsim ASSEMBLY.step --parts --separate`: each solid its own body, placed as the file places
+    it; dropped from 1 cm they come to rest where the assembly had them (base on the ground, the
+    post on the base, the pins in their holes), at the heights massprops gives their centers of mass.
+    Without --separate the assembly falls as one body of the parts' composed mass."""
+    rbsim = os.environ.get("MASSPROPS_RBSIM", "rbsim")
+    parts = command_json(ASSEMBLY, "--parts")["parts"]
+    out = tmp_path / "apart"
+    subprocess.run([rbsim, ASSEMBLY, "--parts", "--separate", "--out", str(out), "--outputs", "csv", "-q"],
+                   check=True, capture_output=True)
+    rest = json.loads((out / "summary.json").read_text())
+    assert rest["at_rest"] and len(rest["parts"]) == len(parts) == 4
+    for p, q in zip(parts, rest["parts"]):
+        assert q["name"].startswith("fixture_assembly/" + p["part"])
+        assert q["com_height"] == pytest.approx(p["center_of_mass"][2], abs=2e-5), q["name"]
+        assert q["support"] == "face" and q["down_in_part"] == pytest.approx([0, 0, -1], abs=1e-6)
+    out = tmp_path / "whole"
+    subprocess.run([rbsim, ASSEMBLY, "--parts", "--out", str(out), "--outputs", "csv", "-q"], check=True,
+                   capture_output=True)
+    (whole,) = json.loads((out / "summary.json").read_text())["parts"]
+    composed = command_json(ASSEMBLY, "--parts")
+    assert whole["com_height"] == pytest.approx(composed["center_of_mass"][2], abs=2e-5)

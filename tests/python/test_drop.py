@@ -68,3 +68,28 @@ def test_tilted_cube_falls_flat(tmp_path):
     assert pose.support == "face"
     assert pose.com_height == pytest.approx(0.05, abs=1e-6)
     assert math.remainder(pose.tilt_deg, 90) == pytest.approx(0, abs=1e-4)
+
+
+def test_random_drops_land_as_rbsim_poses_says():
+    """200 drops of the T-handle at random orientations, each on its own, land in the resting poses
+    `rbsim poses` finds (its hull faces' normals, its centers of mass' heights) with the same
+    frequencies as its own 200 drops from the same height, within their sampling error."""
+    part = os.path.join(DATA, "meshes", "t_handle.obj")
+    run = subprocess.run([RBSIM, "poses", part, "--drops", "200", "--height", "0.01", "--collision", "mesh",
+                          "--format", "json", "-q"], check=True, capture_output=True, text=True)
+    poses = json.loads(run.stdout)["poses"]
+    counts = [0] * len(poses)
+    n = 200
+    for seed in range(1, n + 1):
+        (rest,) = massprops.dynamics.drop([part], orientation="random", seed=seed).poses
+        match = [k for k, p in enumerate(poses)
+                 if sum(a * b for a, b in zip(p["normal"], rest.down_in_part)) > 1 - 1e-6
+                 and abs(p["height"] - rest.com_height) < 1e-6]
+        assert len(match) == 1, f"seed {seed}: rests on {rest.support}, down {rest.down_in_part}, " \
+                                f"at {rest.com_height} m: no pose of rbsim poses"
+        counts[match[0]] += 1
+    for p, c in zip(poses, counts):
+        ours, theirs = c / n, p["drops"]
+        pooled = (ours + theirs) / 2
+        sigma = math.sqrt(max(pooled * (1 - pooled), 1 / n) * 2 / n)
+        assert abs(ours - theirs) <= 4 * sigma, f"pose {p['normal']}: {ours} of the drops, rbsim poses {theirs}"

@@ -4,6 +4,8 @@
 
 #include "scene/drop.h"
 
+#include "massprops/io/load.h"
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -154,6 +156,36 @@ TEST(Drop, NonConvexPartsPileUpInsideABin) {
     EXPECT_GT(rb.position.z(), 0.02);  // above the bin's floor
   }
   for (const scene::RestingPose& p : scene::RestingPoses(d.sim)) EXPECT_LT(p.speed, o.rest.speed);
+}
+
+// An assembly (an OBJ's groups) falls as one body of the parts' composition, or with `separate`
+// as a body per part, each starting where the file puts it.
+TEST(Drop, AnAssemblyFallsWholeOrPartByPart) {
+  scene::DropOptions o;
+  o.files = {std::string(MASSPROPS_DATA_DIR) + "/meshes/assembly_bracket.obj"};
+  o.load.parts = true;
+  massprops::LoadOptions whole_options;
+  whole_options.parts = true;
+  const massprops::SolidResult file = massprops::LoadSolid(o.files[0], whole_options);
+  ASSERT_GE(file.parts.size(), 2U);
+  const Dropped whole = Drop(o);
+  ASSERT_EQ(whole.sim.bodies.size(), 1U);
+  EXPECT_NEAR(whole.sim.bodies[0].mp.mass, file.mp.mass, 1e-15 * file.mp.mass);
+  o.separate = true;
+  std::vector<std::string> warnings;
+  const scene::Scene apart = scene::DropScene(o, warnings);
+  ASSERT_EQ(apart.bodies.size(), file.parts.size());
+  double mass = 0;
+  const Dropped run = RunScene(apart);
+  for (std::size_t k = 0; k < file.parts.size(); ++k) {
+    mass += run.sim.bodies[k].mp.mass;
+    // Placed as in the file: the same offsets between the parts' centers of mass.
+    const Vector3 offset = *apart.bodies[k].position - *apart.bodies[0].position;
+    const Vector3 expected = file.parts[k].mp.center_of_mass - file.parts[0].mp.center_of_mass;
+    EXPECT_LT((offset - expected).norm(), 1e-12) << k;
+  }
+  EXPECT_NEAR(mass, file.mp.mass, 1e-12 * file.mp.mass);
+  EXPECT_TRUE(run.stats.rest_time.has_value());
 }
 
 TEST(Drop, BadOptionsAreNamed) {

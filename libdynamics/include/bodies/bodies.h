@@ -9,6 +9,7 @@
 //   dynamics::RigidBody body = dynamics::BodyFromMassProperties(part.mp, part.principal).body;
 
 #include <map>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -24,6 +25,10 @@
 #include "massprops/units.h"
 #include "massprops/wording.h"
 
+namespace massprops {
+struct SolidResult;  // massprops/io/load.h
+}  // namespace massprops
+
 namespace dynamics {
 
 /// A closed mesh file, checked by massprops' pipeline (whole: the display mesh needs it).
@@ -31,6 +36,12 @@ struct MeshSource {
   std::string path;
   bool repair = false;
   bool allow_open = false;
+  /// The file's parts (OBJ groups, glTF/3MF nodes, CAD solids) each computed on its own and the
+  /// whole as their composition (massprops::LoadOptions::parts: each part's own density).
+  bool parts = false;
+  /// With parts: this part alone (its index in the file's parts), where the file places it; -1:
+  /// the whole.
+  int part = -1;
 };
 
 /// A shape in massprops' shape syntax, parsed once; mass properties by quasi-Monte Carlo.
@@ -113,10 +124,12 @@ class BodyBuilder {
   std::optional<Collider> ColliderOf(const CollisionSpec& collision, const BodyShape& shape, const BuiltShape& built);
 
  private:
+  BuiltShape LoadMeshFile(const MeshSource& m, const BodyShape& shape, std::vector<BodyWarning>& warnings);
   massprops::Vocabulary words_;
   int threads_;
   std::map<std::string, shape::Mesh> meshes_;  // by the display mesh's bytes
-  std::map<std::string, BuiltShape> files_;    // mesh files read, by path and options
+  std::map<std::string, BuiltShape> files_;    // mesh files (and parts) read, by path and options
+  std::map<std::string, std::shared_ptr<const massprops::SolidResult>> assemblies_;  // files read by parts
 };
 
 }  // namespace dynamics

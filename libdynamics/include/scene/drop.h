@@ -26,7 +26,11 @@ struct DropOptions {
   std::vector<std::string> files;  ///< the parts: mesh or CAD files
   /// How every part (and `on`) is read: unit, density or mass, repair, allow_open, threads.
   massprops::LoadOptions load;
-  int count = 1;         ///< copies of each part
+  int count = 1;  ///< copies of each part
+  /// With load.parts: each part of a file (an assembly's solids, an OBJ's groups) its own body,
+  /// starting where the file places it; without: a file falls as one rigid body, the parts'
+  /// composition.
+  bool separate = false;
   double height = 0.01;  ///< m: each part's lowest point above what it falls on
   DropOrientation orientation = DropOrientation::kFile;
   Vector3 axis = Vector3::UnitZ();  ///< kAxisAngle

@@ -31,14 +31,16 @@ BuiltShape LoadPrimitive(const massprops::Primitive& p, const massprops::MassSpe
   return out;
 }
 
-BuiltShape LoadMesh(const MeshSource& m, const BodyShape& s, const massprops::Vocabulary& words, int threads,
-                    std::vector<BodyWarning>& warnings) {
+// A mesh file through massprops' pipeline, whole (the display mesh needs it). @throws BodyError.
+massprops::SolidResult ReadMesh(const MeshSource& m, const BodyShape& s, const massprops::Vocabulary& words,
+                                int threads, std::vector<BodyWarning>& warnings) {
   massprops::LoadOptions opt;
   opt.unit = s.unit;
   opt.unit_stated = s.unit_stated;
   opt.mass = s.mass;
   opt.repair = m.repair;
   opt.allow_open = m.allow_open;
+  opt.parts = m.parts || m.part >= 0;
   opt.full_check = true;  // load the mesh whole: the display mesh needs it
   opt.num_threads = threads;
   massprops::SolidResult r;
@@ -48,8 +50,13 @@ BuiltShape LoadMesh(const MeshSource& m, const BodyShape& s, const massprops::Vo
     throw BodyError("mesh", massprops::WordedError(e, words));
   }
   for (const auto& f : r.findings) warnings.push_back({"mesh", m.path + ": " + massprops::Worded(f.message, words)});
+  return r;
+}
+
+// The body of a mesh file's result (the whole, or one of its parts).
+BuiltShape FromResult(const massprops::SolidResult& r, const std::string& path) {
   if (!r.validity.valid) {
-    throw BodyError("mesh", m.path + ": the inertia is not that of a real body (" + r.validity.reason + ")");
+    throw BodyError("mesh", path + ": the inertia is not that of a real body (" + r.validity.reason + ")");
   }
   BuiltShape out;
   out.mp = r.mp;
@@ -60,8 +67,8 @@ BuiltShape LoadMesh(const MeshSource& m, const BodyShape& s, const massprops::Vo
   for (Eigen::Index i = 0; i < out.display.V.rows(); ++i) {
     out.display.V.row(i) = (scale * out.display.V.row(i).transpose() - r.mp.center_of_mass).transpose();
   }
-  out.source =
-      m.path + " (unit " + massprops::UnitName(r.unit) + ", " + std::to_string(out.display.F.rows()) + " triangles)";
+  out.source = path + (r.part.empty() ? std::string() : " part '" + r.part + "'") + " (unit " +
+               massprops::UnitName(r.unit) + ", " + std::to_string(out.display.F.rows()) + " triangles)";
   return out;
 }
 
@@ -108,18 +115,27 @@ bool CollidesAsItself(const massprops::Primitive& p) {
 
 BodyBuilder::BodyBuilder(massprops::Vocabulary words, int threads) : words_(std::move(words)), threads_(threads) {}
 
+BuiltShape BodyBuilder::LoadMeshFile(const MeshSource& m, const BodyShape& shape, std::vector<BodyWarning>& warnings) {
+  const double mass = std::visit([](const auto& spec) { return spec.value; }, shape.mass);
+  const std::string file_key = m.path + '\n' + massprops::UnitName(shape.unit) + (shape.unit_stated ? "!" : "") +
+                               (std::holds_alternative<massprops::TotalMass>(shape.mass) ? " kg " : " kg/m3 ") +
+                               massprops::FormatDouble(mass, "%.17g") + (m.repair ? " repair" : "") +
+                               (m.allow_open ? " allow_open" : "") + (m.parts || m.part >= 0 ? " parts" : "");
+  const std::string key = file_key + " part " + std::to_string(m.part);
+  if (const auto it = files_.find(key); it != files_.end()) return it->second;
+  if (m.part < 0) return files_[key] = FromResult(ReadMesh(m, shape, words_, threads_, warnings), m.path);
+  std::shared_ptr<const massprops::SolidResult>& whole = assemblies_[file_key];
+  if (!whole) whole = std::make_shared<const massprops::SolidResult>(ReadMesh(m, shape, words_, threads_, warnings));
+  if (static_cast<std::size_t>(m.part) >= whole->parts.size()) {
+    throw BodyError("mesh", m.path + ": has " + std::to_string(whole->parts.size()) + " parts; there is no part " +
+                                std::to_string(m.part) + " (parts are counted from 0)");
+  }
+  return files_[key] = FromResult(whole->parts[static_cast<std::size_t>(m.part)], m.path);
+}
+
 BuiltShape BodyBuilder::Load(const BodyShape& shape, std::vector<BodyWarning>& warnings) {
   try {
-    if (const auto* m = std::get_if<MeshSource>(&shape.source)) {
-      const double mass = std::visit([](const auto& spec) { return spec.value; }, shape.mass);
-      const std::string key = m->path + '\n' + massprops::UnitName(shape.unit) + (shape.unit_stated ? "!" : "") +
-                              (std::holds_alternative<massprops::TotalMass>(shape.mass) ? " kg " : " kg/m3 ") +
-                              massprops::FormatDouble(mass, "%.17g") + (m->repair ? " repair" : "") +
-                              (m->allow_open ? " allow_open" : "");
-      const auto it = files_.find(key);
-      if (it != files_.end()) return it->second;
-      return files_[key] = LoadMesh(*m, shape, words_, threads_, warnings);
-    }
+    if (const auto* m = std::get_if<MeshSource>(&shape.source)) return LoadMeshFile(*m, shape, warnings);
     if (const auto* i = std::get_if<ImplicitSource>(&shape.source)) return LoadImplicit(*i, shape, threads_, warnings);
     return LoadPrimitive(std::get<massprops::Primitive>(shape.source), shape.mass);
   } catch (const BodyError&) {

@@ -25,6 +25,11 @@ struct PartShape {
   double radius = 0;  // farthest corner from the center of mass
   Vector3 com = Vector3::Zero();
   Vector3 low = Vector3::Zero(), high = Vector3::Zero();  // file bounds, metres
+  struct Member {  // with LoadOptions::parts: each part's name and center of mass (metres, file axes)
+    std::string name;
+    Vector3 com;
+  };
+  std::vector<Member> members;
 };
 
 PartShape ReadPart(const std::string& file, const massprops::LoadOptions& load, const massprops::Vocabulary& words) {
@@ -46,6 +51,7 @@ PartShape ReadPart(const std::string& file, const massprops::LoadOptions& load, 
   PartShape p;
   p.path = path.string();
   p.com = r.mp.center_of_mass;
+  for (const massprops::SolidResult& part : r.parts) p.members.push_back({part.part, part.mp.center_of_mass});
   const double scale = massprops::MetresPerUnit(r.unit);
   p.V = r.loaded.mesh.V * scale;
   p.low = p.V.colwise().minCoeff().transpose();
@@ -129,9 +135,9 @@ Layout LayoutFor(int n, double cell, const std::optional<PartShape>& on, double 
   return l;
 }
 
-ShapeSpec MeshShape(const std::string& path, const massprops::LoadOptions& load) {
+ShapeSpec MeshShape(const std::string& path, const massprops::LoadOptions& load, int part = -1) {
   ShapeSpec s;
-  s.source = dynamics::MeshSource{path, load.repair, load.allow_open};
+  s.source = dynamics::MeshSource{path, load.repair, load.allow_open, load.parts, part};
   s.unit = load.unit;
   s.unit_stated = load.unit_stated;
   s.mass = load.mass;
@@ -141,6 +147,7 @@ ShapeSpec MeshShape(const std::string& path, const massprops::LoadOptions& load)
 void CheckOptions(const DropOptions& o) {
   if (o.files.empty()) throw SceneError("rbsim: no part to drop");
   if (o.count < 1) throw SceneError("--count: must be 1 or more");
+  if (o.separate && !o.load.parts) throw SceneError("--separate: for an assembly read by its parts (--parts)");
   if (!(o.height >= 0) || !std::isfinite(o.height)) throw SceneError("--height: must be a finite length >= 0");
   if (o.orientation == DropOrientation::kAxisAngle && !(o.axis.norm() > 0)) {
     throw SceneError("--orientation: the axis must not be the zero vector");
@@ -191,21 +198,26 @@ Scene DropScene(const DropOptions& o, std::vector<std::string>& warnings) {
   RandomRotations random(o.seed);
   for (int k = 0; k < n; ++k) {
     const PartShape& p = parts[static_cast<std::size_t>(k / o.count)];
-    BodySpec b;
     const std::string stem = std::filesystem::path(o.files[static_cast<std::size_t>(k / o.count)]).stem().string();
-    b.name = o.count > 1 ? stem + "#" + std::to_string(k % o.count + 1) : stem;
-    for (const BodySpec& other : scene.bodies)
-      if (other.name == b.name) b.name += "@" + std::to_string(k + 1);
-    b.field = "bodies[" + std::to_string(k) + "]";
-    b.shape = MeshShape(p.path, o.load);
-    b.orientation = StartOrientation(o, random);
-    Vector3 at = layout.Cell(k);
+    const std::string name = o.count > 1 ? stem + "#" + std::to_string(k % o.count + 1) : stem;
+    const Quaternion q = StartOrientation(o, random);
+    Vector3 at = layout.Cell(k);                        // where the file's (or assembly's) center of mass starts
     if (n == 1 && !on) at.head<2>() = p.com.head<2>();  // one part: dropped from where its file puts it
-    at.z() -= Lowest(p, b.orientation);
-    b.position = at;
-    b.collision.kind = CollisionKind::kItself;
-    b.collision.material = o.material;
-    scene.bodies.push_back(std::move(b));
+    at.z() -= Lowest(p, q);
+    const bool separate = o.separate && !p.members.empty();
+    for (std::size_t m = 0; m < (separate ? p.members.size() : 1); ++m) {
+      BodySpec b;
+      b.name = separate ? name + "/" + p.members[m].name : name;
+      for (const BodySpec& other : scene.bodies)
+        if (other.name == b.name) b.name += "@" + std::to_string(scene.bodies.size() + 1);
+      b.field = "bodies[" + std::to_string(scene.bodies.size()) + "]";
+      b.shape = MeshShape(p.path, o.load, separate ? static_cast<int>(m) : -1);
+      b.orientation = q;
+      b.position = separate ? Vector3(at + q * (p.members[m].com - p.com)) : at;  // a part where the file has it
+      b.collision.kind = CollisionKind::kItself;
+      b.collision.material = o.material;
+      scene.bodies.push_back(std::move(b));
+    }
   }
   CheckTiming(scene, warnings);
   return scene;
@@ -230,6 +242,8 @@ nlohmann::json ShapeJson(const ShapeSpec& s) {
   }
   if (mesh.repair) j["repair"] = true;
   if (mesh.allow_open) j["allow_open"] = true;
+  if (mesh.parts) j["parts"] = true;
+  if (mesh.part >= 0) j["part"] = mesh.part;
   return j;
 }
 

@@ -115,9 +115,16 @@ ShapeSpec ReadShape(Fields& f, const std::string& base_dir) {
     dynamics::MeshSource mesh;
     mesh.path = p.lexically_normal().string();
     read_unit();
-    const massprops::LoadOptions checks = ReadLoadKeys(f, {"repair", "allow_open"});
+    const massprops::LoadOptions checks = ReadLoadKeys(f, {"repair", "allow_open", "parts"});
     mesh.repair = checks.repair;
     mesh.allow_open = checks.allow_open;
+    mesh.parts = checks.parts;
+    if (const json* part = f.Get("part")) {  // one part of the file, where the file places it
+      if (!part->is_number_integer() || part->get<long long>() < 0 || part->get<long long>() > 1000000) {
+        f.Fail("part", "must be a part's index, a whole number from 0, not " + part->dump());
+      }
+      mesh.part = static_cast<int>(part->get<long long>());
+    }
     s.source = std::move(mesh);
   } else {
     Fields o(*f.Get("solid"), f.Path("solid"), f.file());
