@@ -111,6 +111,7 @@ Json RunData(const Simulation& sim, const Recording& rec) {
     const double size = std::max(bounds.sizes().maxCoeff(), 1e-3);
     j["force_scale"] = typical > 0 ? 0.05 * size / typical : 0.0;  // m per N
   }
+  if (!rec.notes.empty()) j["notes"] = rec.notes;
   j["diagnostics"] = {{"kinetic", rec.kinetic},
                       {"potential", rec.potential},
                       {"energy_drift", rec.energy_drift},

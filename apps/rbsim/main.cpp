@@ -440,6 +440,10 @@ int Simulate(const Flags& f, const rbsim::Scene& scene, std::vector<std::string>
       !f.out_dir.empty() && (plot || Wants(scene, rbsim::OutputKind::kGlb) || Wants(scene, rbsim::OutputKind::kHtml));
   recording.contacts = Wants(scene, rbsim::OutputKind::kHtml);
   const rbsim::RunStats stats = RunScene(f, *sim, writer.get(), record ? &recording : nullptr);
+  if (scene.until_rest) {  // the resting poses under the page's plots
+    std::istringstream lines(rbsim::RestReport(*sim, stats));
+    for (std::string line; std::getline(lines, line);) recording.notes.push_back(line.substr(2));
+  }
   const std::vector<std::string> written = WriteOutputs(f, *sim, recording, writer.get(), stats);
   for (const std::string& fell : stats.fell_through) std::cerr << "warning: " << massprops::app::OneLine(fell) << "\n";
   std::cout << rbsim::Summary(*sim, stats);

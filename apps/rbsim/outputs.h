@@ -37,6 +37,8 @@ struct Recording {
   /// per point, sample after sample.
   std::vector<std::vector<float>> tendon_paths;
   std::vector<std::vector<std::uint8_t>> asleep;
+  /// Lines the page shows under its plots (a drop's resting poses), set after the run.
+  std::vector<std::string> notes;
 
   void Add(const Simulation& sim, const dynamics::World& world, const dynamics::Diagnostics& d);
 };

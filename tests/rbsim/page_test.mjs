@@ -321,7 +321,21 @@ try {
   check('the ball swung below its pin', bob[2] < 0.5 && Math.abs(Math.hypot(bob[0], bob[2] - 0.6) - 0.5) < 1e-6,
     JSON.stringify(bob));
 
-  // 7. Played: time advances.
+  // 7. A part dropped (rbsim PART): its page plays, and says how the part rests, as the summary does.
+  const cube = ['v 0 0 0', 'v 0.1 0 0', 'v 0 0.1 0', 'v 0.1 0.1 0', 'v 0 0 0.1', 'v 0.1 0 0.1', 'v 0 0.1 0.1', 'v 0.1 0.1 0.1',
+    'f 1 3 4 2', 'f 5 6 8 7', 'f 1 2 6 5', 'f 3 7 8 4', 'f 1 5 7 3', 'f 2 4 8 6'].join('\n');
+  writeFileSync(join(dir, 'cube.obj'), `${cube}\n`);
+  const summary = execFileSync(rbsim, [join(dir, 'cube.obj'), '--count', '2', '--orientation', 'random', '--out',
+    join(dir, 'drop'), '--outputs', 'html', '-q'], { encoding: 'utf8' });
+  await page.goto(`file://${join(dir, 'drop', 'run.html')}?speed=1`);
+  await page.waitForFunction(() => window.rbsim && window.rbsim.frames > 10, null, { timeout: 30000 });
+  const notes = await page.locator('#notes').innerText();
+  const restLine = summary.split('\n').find((l) => l.includes('at rest at t ='));
+  check('a drop\'s page says how the parts rest, as the summary does', restLine !== undefined &&
+    notes.includes(restLine.trim()) && notes.includes('cube#2'), notes);
+  check('a drop\'s page plays', (await page.evaluate(() => window.rbsim.time())) > 0);
+
+  // 8. Played: time advances.
   await page.goto(`${url}?${camera}&speed=1`);
   await page.waitForFunction(() => window.rbsim && window.rbsim.frames > 10, null, { timeout: 30000 });
   check('the page plays', (await page.evaluate(() => window.rbsim.time())) > 0);

@@ -77,7 +77,8 @@ function style() {
     h1 { font-size: 15px; margin: 0 0 6px; }
     .entry { white-space: nowrap; margin-right: 8px; }
     .key { display: inline-block; width: 10px; height: 10px; margin-right: 4px; border: 1px solid #888; }
-    canvas.plot { width: 100%; height: 170px; display: block; margin: 6px 0 12px; }`;
+    canvas.plot { width: 100%; height: 170px; display: block; margin: 6px 0 12px; }
+    #notes pre { font: 11px ui-monospace, monospace; white-space: pre; overflow-x: auto; margin: 0; }`;
   document.head.appendChild(css);
 }
 
@@ -104,6 +105,11 @@ function layout(run) {
     </div>`;
   document.body.appendChild(root);
   root.querySelector('h1').textContent = `rbsim: ${run.title}`;
+  if (run.notes) {  // lines the run wrote for the reader (a drop's resting poses), as text
+    const pre = document.createElement('pre');
+    pre.textContent = run.notes.join('\n');
+    root.querySelector('#notes').appendChild(pre);
+  }
   return root;
 }
 
