@@ -381,6 +381,9 @@ void CollideMeshGround(const Posed& a, const Vector3& n, double offset, double m
   const Vector3 local = a.R.transpose() * n;             // the plane's normal in the mesh's frame
   const double base = n.dot(a.t) - offset;
   const double pad = 1e-9 * (mesh.field->radius + a.t.norm() + std::abs(offset));
+  thread_local std::vector<std::uint32_t> near;  // the vertices that may be within the margin
+  near.clear();
+  const std::vector<int>& order = mesh.field->vertex_order;
   for (const MeshField::Cluster& run : mesh.field->vertex_runs) {
     // Every vertex of the run is at least the ball's radius nearer than its centre (padded far
     // beyond the rounding): a run wholly beyond the margin adds nothing, so it is skipped.
@@ -388,14 +391,17 @@ void CollideMeshGround(const Posed& a, const Vector3& n, double offset, double m
     const double slack = 1e-9 * (run.radius + c.norm() + std::abs(offset)) + run.radius;
     if (n.dot(c) - offset - slack >= margin) continue;
     for (int k = run.first; k < run.first + run.count; ++k) {
-      const auto i = static_cast<std::size_t>(k);
-      // The separation in the mesh's frame first (3 products, not 12), padded beyond its rounding;
-      // only a vertex it may place within the margin is computed as always.
-      if (local.dot(vertices[i]) + base - pad >= margin) continue;
-      const Vector3 p = a.R * vertices[i] + a.t;
-      const double sep = n.dot(p) - offset;
-      if (sep < margin) out.push_back({p - n * (0.5 * sep), n, sep, static_cast<std::uint32_t>(i)});
+      const auto i = static_cast<std::uint32_t>(order[static_cast<std::size_t>(k)]);
+      // The separation in the mesh's frame first (3 products, not 12), padded beyond its rounding.
+      if (local.dot(vertices[i]) + base - pad < margin) near.push_back(i);
     }
+  }
+  // In the vertices' own order, each computed as always: the same points as a scan of them all.
+  std::sort(near.begin(), near.end());
+  for (const std::uint32_t i : near) {
+    const Vector3 p = a.R * vertices[i] + a.t;
+    const double sep = n.dot(p) - offset;
+    if (sep < margin) out.push_back({p - n * (0.5 * sep), n, sep, i});
   }
   ReduceContacts(out, first);
 }

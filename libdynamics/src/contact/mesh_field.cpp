@@ -386,25 +386,6 @@ std::size_t MeshField::MemoryBytes() const {
          samples.size() * (sizeof(Vector3) + sizeof(SampleFaces)) + normals.size() * sizeof(Vector3);
 }
 
-// Runs of 32 consecutive vertices, each with the ball about its box's centre that holds them.
-std::vector<MeshField::Cluster> VertexRuns(const std::vector<Vector3>& vertices) {
-  constexpr int kRun = 32;
-  std::vector<MeshField::Cluster> runs;
-  const int n = static_cast<int>(vertices.size());
-  for (int first = 0; first < n; first += kRun) {
-    MeshField::Cluster run;
-    run.first = first;
-    run.count = std::min(kRun, n - first);
-    Eigen::AlignedBox<double, 3> box;
-    for (int i = first; i < first + run.count; ++i) box.extend(vertices[static_cast<std::size_t>(i)]);
-    run.centre = box.center();
-    for (int i = first; i < first + run.count; ++i)
-      run.radius = std::max(run.radius, (vertices[static_cast<std::size_t>(i)] - run.centre).norm());
-    runs.push_back(run);
-  }
-  return runs;
-}
-
 std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh, int threads) {
   const auto t0 = std::chrono::steady_clock::now();
   const massprops::TriangleMesh tm = Validated(mesh);
@@ -416,7 +397,9 @@ std::shared_ptr<const MeshField> BuildMeshField(const shape::Mesh& mesh, int thr
   }
   const double longest = box.sizes().maxCoeff();
   if (!(longest > 0)) throw std::invalid_argument("a mesh collider has no extent");
-  field->vertex_runs = VertexRuns(mesh.vertices);
+  field->vertex_order.resize(mesh.vertices.size());
+  std::iota(field->vertex_order.begin(), field->vertex_order.end(), 0);
+  Cluster(mesh.vertices, field->vertex_order, 0, static_cast<int>(mesh.vertices.size()), field->vertex_runs);
   const TriangleTree tree(mesh.vertices, mesh.triangles);
   field->thinnest = ThinnestWall(tree, mesh);
   double cell = mesh.cell > 0 ? mesh.cell : std::min(longest / kMinCells, field->thinnest / 3);

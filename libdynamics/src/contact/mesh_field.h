@@ -54,8 +54,10 @@ struct MeshField {
     int first = 0, count = 0;
   };
   std::vector<Cluster> clusters;  // a whole cluster is skipped when the other shape is beyond its ball
-  // The mesh's vertices in runs of consecutive indices, each with its ball: a plane skips a run
-  // whose ball lies beyond its margin (CollideMeshGround; the vertices it keeps, in their order).
+  // The mesh's vertices in runs of nearby ones (indices vertex_order[first, first + count)), each
+  // with its ball: a plane skips a run whose ball lies beyond its margin (CollideMeshGround, which
+  // then keeps the vertices it finds in their own order).
+  std::vector<int> vertex_order;
   std::vector<Cluster> vertex_runs;
   double radius = 0;                      // of the sphere about the mesh origin that holds it
   Eigen::AlignedBox<double, 3> mesh_box;  // of the vertices

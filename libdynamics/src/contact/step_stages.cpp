@@ -291,14 +291,24 @@ PairMaterials MaterialsOf(const Model& model, int a, int b, const Material& ma, 
 }
 
 // Each body's rows against the grounds (a body welded to the world has none).
-void GroundRows(const StepInput& in, const Model& model, Scratch& s, ContactStats& stats) {
+void GroundRows(const StepInput& in, const Model& model, State& state, Scratch& s, ContactStats& stats) {
   const RowContext row_context{in.bodies, s.vel, s.before_kick, in.h, s.bounce_threshold};
   std::vector<ContactPoint>& points = s.points;
   const std::size_t grounds = model.grounds.size();
   if (s.ground_scans.size() < s.posed.size() * grounds) s.ground_scans.resize(s.posed.size() * grounds);
+  const std::vector<bool>& asleep = state.sleep.asleep;
+  state.asleep_ground_rows.resize(s.posed.size());
+  state.asleep_ground_known.resize(s.posed.size(), 0);
   for (std::size_t k = 0; k < s.posed.size(); ++k) {
     if (!model.collides[k]) continue;
     if (in.jointed != nullptr && !s.coupling.movable[k]) continue;  // welded to the world
+    const bool sleeps = k < asleep.size() && asleep[k];
+    std::vector<Row>& known = state.asleep_ground_rows[k];
+    if (sleeps && state.asleep_ground_known[k]) {  // as found in its first step asleep
+      s.rows.insert(s.rows.end(), known.begin(), known.end());
+      continue;
+    }
+    const std::size_t first_row = s.rows.size();
     for (const Ground& g : model.grounds) {
       if (g.normal.dot(s.posed[k].t) - g.offset - model.radii[k] >= s.broad[k].reach) continue;
       points.clear();
@@ -310,6 +320,8 @@ void GroundRows(const StepInput& in, const Model& model, Scratch& s, ContactStat
                  MaterialsOf(model, i, -1, model.colliders[k].material, g.material),
                  Slop(model.colliders[k].shape, model.radii[k], nullptr, -1), false, s.rows, stats);
     }
+    state.asleep_ground_known[k] = sleeps;
+    known.assign(sleeps ? s.rows.begin() + static_cast<std::ptrdiff_t>(first_row) : s.rows.end(), s.rows.end());
   }
 }
 
@@ -468,7 +480,7 @@ StepStatus Detect(const StepInput& in, const Model& model, State& state, Scratch
   PoseBodies(in, model, s);
   s.rows.clear();
   s.patches.clear();
-  GroundRows(in, model, s, stats);
+  GroundRows(in, model, state, s, stats);
   const StepStatus status = PairRows(in, model, CandidatePairs(in, model, s), state, s, stats);
   if (!status.ok) return status;
   if (in.jointed != nullptr) JointedRows(in, s);
@@ -478,6 +490,8 @@ StepStatus Detect(const StepInput& in, const Model& model, State& state, Scratch
 
 void Forget(State& state) {
   state.cache.Clear();
+  state.asleep_ground_rows.clear();
+  state.asleep_ground_known.clear();
   std::fill(state.sleep.asleep.begin(), state.sleep.asleep.end(), false);
   std::fill(state.sleep.still_for.begin(), state.sleep.still_for.end(), 0.0);
 }

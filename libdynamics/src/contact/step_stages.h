@@ -49,7 +49,12 @@ struct Model {
 
 /// What one step leaves for the next.
 struct State {
-  SleepState sleep;                 // ContactOptions::sleeping
+  SleepState sleep;  // ContactOptions::sleeping
+  // A sleeping body's ground rows, found in its first step asleep: it does not move while it
+  // sleeps, so the narrow phase would find the same ones again (only their keys are used: the
+  // rows of sleeping bodies keep their cached impulses, HoldSleeping). Empty and unset once awake.
+  std::vector<std::vector<Row>> asleep_ground_rows;
+  std::vector<char> asleep_ground_known;
   ContactCache cache;               // the last step's impulses: the warm start of the next
   ManifoldCache manifolds;          // pairs' contact points, for the steps that follow (reuse_distance)
   SampleBoundsCache sample_bounds;  // mesh pairs' field bounds, for the steps that follow (exact)

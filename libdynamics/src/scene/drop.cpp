@@ -172,7 +172,10 @@ Scene DropScene(const DropOptions& o, std::vector<std::string>& warnings) {
   scene.words = &words;
   // Parts that have settled sleep (a pile settles from the bottom up): they cost nothing until
   // something wakes them.
+  // A part sleeps once it meets the rest rule (slower than its speed for its hold).
   scene.contact.sleeping = true;
+  scene.contact.sleep_speed = o.rest.speed;
+  scene.contact.sleep_time = o.rest.hold;
   scene.contact_given = true;
   scene.forces.push_back(ForceSpec{});  // gravity, the scenes' default g
   scene.forces.back().vector = Vector3(0, 0, -9.80665);
@@ -255,7 +258,9 @@ std::string DropSceneJson(const Scene& scene) {
   j["dt"] = scene.dt;
   j["duration"] = scene.duration;
   if (scene.until_rest) j["until_rest"] = {{"speed", scene.until_rest->speed}, {"hold", scene.until_rest->hold}};
-  j["contact"] = {{"sleeping", scene.contact.sleeping}};
+  j["contact"] = {{"sleeping", scene.contact.sleeping},
+                  {"sleep_speed", scene.contact.sleep_speed},
+                  {"sleep_time", scene.contact.sleep_time}};
   j["forces"] = nlohmann::json::array();
   for (const ForceSpec& f : scene.forces) {
     j["forces"].push_back({{"type", "gravity"}, {"g", {f.vector.x(), f.vector.y(), f.vector.z()}}});
