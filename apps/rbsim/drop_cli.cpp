@@ -145,6 +145,7 @@ std::string RestJson(const scene::Simulation& sim, const scene::RunStats& stats)
   j["rest_time"] = stats.rest_time ? nlohmann::json(*stats.rest_time) : nlohmann::json(nullptr);
   j["end_time"] = sim.world().time();
   j["energy_lost"] = stats.start.total_energy - stats.end.total_energy;
+  j["max_penetration"] = stats.max_penetration;
   j["parts"] = nlohmann::json::array();
   for (const scene::RestingPose& p : scene::RestingPoses(sim)) {
     j["parts"].push_back({{"name", p.name},

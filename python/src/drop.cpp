@@ -22,6 +22,7 @@ struct DropResult {
   std::optional<double> rest_time;
   double end_time = 0;
   double energy_lost = 0;
+  double max_penetration = 0;
   std::vector<std::string> warnings;
   py::object world;
 };
@@ -96,6 +97,7 @@ DropResult Drop(const std::vector<std::string>& paths, int count, bool separate,
     result.rest_time = stats.rest_time;
     result.end_time = sim->world().time();
     result.energy_lost = stats.start.total_energy - stats.end.total_energy;
+    result.max_penetration = stats.max_penetration;
   });
   result.world = py::cast(std::move(sim->physics));
   return result;
@@ -130,6 +132,7 @@ void BindDrop(py::module_& dyn) {
       .def_readonly("rest_time", &DropResult::rest_time, "s, when every part came to rest; None: not at rest")
       .def_readonly("end_time", &DropResult::end_time, "s, when the run ended (at rest plus the hold, or the cap)")
       .def_readonly("energy_lost", &DropResult::energy_lost, "J")
+      .def_readonly("max_penetration", &DropResult::max_penetration, "m, the deepest overlap of the run")
       .def_readonly("warnings", &DropResult::warnings, "what loading the parts found, one line each")
       .def_readonly("world", &DropResult::world, "the ContactWorld as the run ended");
   dyn.def("drop", &Drop, py::arg("paths"), py::kw_only(), py::arg("count") = 1, py::arg("separate") = false,
