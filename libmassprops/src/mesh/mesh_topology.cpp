@@ -475,8 +475,12 @@ double SolidAngle(const Vector3& a, const Vector3& b, const Vector3& c) {
 
 }  // namespace
 
-ShellReport AnalyzeShells(const PolygonMesh& mesh) {
-  ShellReport report;
+namespace {
+
+// The mesh's connected shells in order of their first face, each with its faces and signed volume
+// (about the bounding box's centre).
+std::vector<Shell> GroupShells(const PolygonMesh& mesh) {
+  std::vector<Shell> shells;
   const std::int64_t nf = mesh.num_faces();
   const auto nv = static_cast<std::int32_t>(mesh.V.rows());
   std::vector<std::int32_t> parent(static_cast<std::size_t>(nv));
@@ -485,7 +489,6 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
     const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
     for (int k = 1; k < mesh.face_size(f); ++k) Join<false>(parent.data(), idx[k], idx[0]);
   }
-  // Shells in order of their first face.
   std::vector<int> shell_of_root(static_cast<std::size_t>(nv), -1);
   const Vector3 ref =
       nv > 0 ? Vector3(0.5 * (mesh.V.colwise().minCoeff() + mesh.V.colwise().maxCoeff()).transpose()) : Vector3::Zero();
@@ -494,10 +497,10 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
     const std::int32_t root = Find(parent.data(), idx[0]);
     int& s = shell_of_root[static_cast<std::size_t>(root)];
     if (s < 0) {
-      s = static_cast<int>(report.shells.size());
-      report.shells.emplace_back();
+      s = static_cast<int>(shells.size());
+      shells.emplace_back();
     }
-    Shell& shell = report.shells[static_cast<std::size_t>(s)];
+    Shell& shell = shells[static_cast<std::size_t>(s)];
     shell.faces.push_back(f);
     const Vector3 a = mesh.V.row(idx[0]).transpose() - ref;
     for (int k = 1; k + 1 < mesh.face_size(f); ++k) {
@@ -506,76 +509,71 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
       shell.signed_volume += a.dot(b.cross(c)) / 6.0;
     }
   }
-  // A point just behind face f (the centroid of its first triangle, moved against the face's
-  // normal by 1e-7 of the triangle's size): inside the face's shell, and off any other shell's
-  // surface even where two shells touch along a face (an assembly's parts resting on each
-  // other), where a point on the face itself would have winding number 0 or 1 by rounding.
-  auto behind_face = [&](std::int64_t f) {
-    const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
-    const Vector3 a = mesh.V.row(idx[0]).transpose(), b = mesh.V.row(idx[1]).transpose(),
-                  c = mesh.V.row(idx[2]).transpose();
-    const Vector3 centroid = (a + b + c) / 3.0;
-    const Vector3 n = (b - a).cross(c - a);
-    const double size = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-    const double length = n.norm();
-    if (!(length > 0) || !std::isfinite(length)) return centroid;
-    return Vector3(centroid - (1e-7 * size / length) * n);
-  };
-  // Samples of face f for the crossing test: behind its first triangle's centroid, behind the
-  // midpoints of that triangle's edges (pulled 1e-3 of the way toward the centroid, off the edges
-  // that neighbouring faces share) and behind the polygon's corner average. A crossing can hide
-  // from centroids alone: two 64-gon prisms crossed at right angles through their middles have
-  // every side triangle's centroid a third of the way up, outside the other prism, while the
-  // middle of each side face lies inside it.
-  auto behind_points = [&](std::int64_t f) {
-    const Vector3 behind = behind_face(f);
-    std::vector<Vector3> points{behind};
-    const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
-    const Vector3 a = mesh.V.row(idx[0]).transpose(), b = mesh.V.row(idx[1]).transpose(),
-                  c = mesh.V.row(idx[2]).transpose();
-    const Vector3 centroid = (a + b + c) / 3.0;
-    const Vector3 shift = behind - centroid;
-    for (const Vector3& m : {Vector3((a + b) / 2), Vector3((b + c) / 2), Vector3((c + a) / 2)}) {
-      points.push_back(m + 1e-3 * (centroid - m) + shift);
-    }
-    if (mesh.face_size(f) > 3) {
-      Vector3 average = Vector3::Zero();
-      for (int k = 0; k < mesh.face_size(f); ++k) average += mesh.V.row(idx[k]).transpose();
-      points.push_back(average / mesh.face_size(f) + shift);
-    }
-    return points;
-  };
-  // Closedness per shell, and a probe point per shell (just behind its first face).
-  const std::size_t ns = report.shells.size();
-  std::vector<Vector3> probe(ns);
-  for (std::size_t s = 0; s < ns; ++s) {
-    PolygonMesh sub;
-    sub.V = mesh.V;
-    for (std::int64_t f : report.shells[s].faces) {
-      const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
-      sub.AddFace(std::vector<std::int32_t>(idx, idx + mesh.face_size(f)));
-    }
-    report.shells[s].closed = AnalyzeTopology(sub).BoundsVolume();
-    probe[s] = behind_face(report.shells[s].faces[0]);
+  return shells;
+}
+
+// A point just behind face f (the centroid of its first triangle, moved against the face's
+// normal by 1e-7 of the triangle's size): inside the face's shell, and off any other shell's
+// surface even where two shells touch along a face (an assembly's parts resting on each
+// other), where a point on the face itself would have winding number 0 or 1 by rounding.
+Vector3 BehindFace(const PolygonMesh& mesh, std::int64_t f) {
+  const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
+  const Vector3 a = mesh.V.row(idx[0]).transpose(), b = mesh.V.row(idx[1]).transpose(),
+                c = mesh.V.row(idx[2]).transpose();
+  const Vector3 centroid = (a + b + c) / 3.0;
+  const Vector3 n = (b - a).cross(c - a);
+  const double size = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+  const double length = n.norm();
+  if (!(length > 0) || !std::isfinite(length)) return centroid;
+  return Vector3(centroid - (1e-7 * size / length) * n);
+}
+
+// Samples of face f for the crossing test: behind its first triangle's centroid, behind the
+// midpoints of that triangle's edges (pulled 1e-3 of the way toward the centroid, off the edges
+// that neighbouring faces share) and behind the polygon's corner average. A crossing can hide
+// from centroids alone: two 64-gon prisms crossed at right angles through their middles have
+// every side triangle's centroid a third of the way up, outside the other prism, while the
+// middle of each side face lies inside it.
+std::vector<Vector3> BehindPoints(const PolygonMesh& mesh, std::int64_t f) {
+  const Vector3 behind = BehindFace(mesh, f);
+  std::vector<Vector3> points{behind};
+  const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
+  const Vector3 a = mesh.V.row(idx[0]).transpose(), b = mesh.V.row(idx[1]).transpose(),
+                c = mesh.V.row(idx[2]).transpose();
+  const Vector3 centroid = (a + b + c) / 3.0;
+  const Vector3 shift = behind - centroid;
+  for (const Vector3& m : {Vector3((a + b) / 2), Vector3((b + c) / 2), Vector3((c + a) / 2)}) {
+    points.push_back(m + 1e-3 * (centroid - m) + shift);
   }
-  // Each shell's bounding box: outside it (strictly), a closed shell's winding number is 0 exactly,
-  // so most pairs of an assembly's many parts need no sum over faces at all.
-  std::vector<Eigen::AlignedBox<double, 3>> box(ns);
-  for (std::size_t s = 0; s < ns; ++s) {
-    for (std::int64_t f : report.shells[s].faces) {
-      for (std::int64_t k = mesh.offsets[f]; k < mesh.offsets[f + 1]; ++k) {
-        box[s].extend(mesh.V.row(mesh.indices[static_cast<std::size_t>(k)]).transpose());
+  if (mesh.face_size(f) > 3) {
+    Vector3 average = Vector3::Zero();
+    for (int k = 0; k < mesh.face_size(f); ++k) average += mesh.V.row(idx[k]).transpose();
+    points.push_back(average / mesh.face_size(f) + shift);
+  }
+  return points;
+}
+
+// The shells' bounding boxes: outside one (strictly), a closed shell's winding number is 0
+// exactly, so most pairs of an assembly's many parts need no sum over faces at all.
+struct ShellWinding {
+  const PolygonMesh& mesh;
+  const std::vector<Shell>& shells;
+  std::vector<Eigen::AlignedBox<double, 3>> box;
+
+  ShellWinding(const PolygonMesh& m, const std::vector<Shell>& s) : mesh(m), shells(s), box(s.size()) {
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      for (std::int64_t f : s[i].faces) {
+        for (std::int64_t k = mesh.offsets[f]; k < mesh.offsets[f + 1]; ++k) {
+          box[i].extend(mesh.V.row(mesh.indices[static_cast<std::size_t>(k)]).transpose());
+        }
       }
     }
   }
-  auto outside = [&](std::size_t t, const Vector3& x) {
-    return (x.array() < box[t].min().array()).any() || (x.array() > box[t].max().array()).any();
-  };
-  // Winding number of shell t at a point.
-  auto winding = [&](std::size_t t, const Vector3& x) {
-    if (outside(t, x)) return 0.0;
+  // The winding number of shell t at x.
+  double operator()(std::size_t t, const Vector3& x) const {
+    if ((x.array() < box[t].min().array()).any() || (x.array() > box[t].max().array()).any()) return 0.0;
     double omega = 0;
-    for (std::int64_t f : report.shells[t].faces) {
+    for (std::int64_t f : shells[t].faces) {
       const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
       const Vector3 a = mesh.V.row(idx[0]).transpose() - x;
       for (int k = 1; k + 1 < mesh.face_size(f); ++k) {
@@ -583,52 +581,47 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
       }
     }
     return omega / (4.0 * kPi);
-  };
-  // Nesting: winding number of shell t at the probe of shell s; the innermost container wins
-  // (the one with the smallest |volume|).
-  if (ns > 1) {
-    for (std::size_t s = 0; s < ns; ++s) {
-      double best = std::numeric_limits<double>::infinity();
-      for (std::size_t t = 0; t < ns; ++t) {
-        if (t == s || !report.shells[t].closed) continue;
-        const double size = std::fabs(report.shells[t].signed_volume);
-        if (std::fabs(winding(t, probe[s])) > 0.5 && size < best) {
-          best = size;
-          report.shells[s].inside_of = static_cast<int>(t);
-        }
-      }
-    }
   }
-  // Crossing shells: a shell partly inside and partly outside another (their surfaces cross) is
-  // found from the winding numbers of samples spread over it — points just behind face centroids,
-  // so that shells that merely touch (shared corners, edges or faces) are not taken for crossing. Found
-  // whatever the order of the faces. The faces sampled are spread by the golden ratio's sequence, not
-  // at a fixed stride: a stride that is a multiple of a regular mesh's row length samples one row
-  // only (16 evenly spaced faces of a 120 × 240 torus all lie on its outer equator).
+};
+
+// Crossing shells: a shell partly inside and partly outside another (their surfaces cross) is
+// found from the winding numbers of samples spread over it — points just behind face centroids,
+// so that shells that merely touch (shared corners, edges or faces) are not taken for crossing. Found
+// whatever the order of the faces. The faces sampled are spread by the golden ratio's sequence, not
+// at a fixed stride: a stride that is a multiple of a regular mesh's row length samples one row
+// only (16 evenly spaced faces of a 120 × 240 torus all lie on its outer equator).
+std::pair<int, int> FindCrossing(const PolygonMesh& mesh, const std::vector<Shell>& shells,
+                                 const ShellWinding& winding) {
   constexpr std::size_t kSamples = 32;
-  for (std::size_t s = 0; s < ns && report.crossing.first < 0; ++s) {
-    const std::vector<std::int64_t>& faces = report.shells[s].faces;
+  const std::size_t ns = shells.size();
+  for (std::size_t s = 0; s < ns; ++s) {
+    const std::vector<std::int64_t>& faces = shells[s].faces;
     const std::size_t count = std::min(kSamples, faces.size());
-    for (std::size_t t = 0; t < ns && report.crossing.first < 0; ++t) {
-      if (t == s || !report.shells[t].closed) continue;
+    for (std::size_t t = 0; t < ns; ++t) {
+      if (t == s || !shells[t].closed) continue;
       // Boxes apart: every sample is outside t, none inside.
-      if (!box[s].intersects(box[t])) continue;
+      if (!winding.box[s].intersects(winding.box[t])) continue;
       bool in = false, out = false;
       for (std::size_t k = 0; k < count && !(in && out); ++k) {
         const double spread = std::fmod(0.6180339887498949 * static_cast<double>(k), 1.0);
         const auto at =
             std::min(faces.size() - 1, static_cast<std::size_t>(spread * static_cast<double>(faces.size())));
-        for (const Vector3& x : behind_points(faces[at])) {
+        for (const Vector3& x : BehindPoints(mesh, faces[at])) {
           const double w = std::fabs(winding(t, x));
           in = in || w > 0.75;
           out = out || w < 0.25;
         }
       }
-      if (in && out) report.crossing = {static_cast<int>(t), static_cast<int>(s)};
+      if (in && out) return {static_cast<int>(t), static_cast<int>(s)};
     }
   }
-  // Valid: no shells cross, and each shell's orientation alternates with depth (outward at even
-  // depth, inward at odd).
+  return {-1, -1};
+}
+
+// Valid: no shells cross, and each shell's orientation alternates with depth (outward at even
+// depth, inward at odd). The fault, or "".
+std::string ShellProblem(const ShellReport& report) {
+  const std::size_t ns = report.shells.size();
   std::ostringstream problem;
   if (report.crossing.first >= 0) {
     problem << "shells " << report.crossing.first + 1 << " and " << report.crossing.second + 1 << " of " << ns
@@ -652,7 +645,45 @@ ShellReport AnalyzeShells(const PolygonMesh& mesh) {
                  "faces must point into the cavity; {repair} orients it so)";
     }
   }
-  report.problem = problem.str();
+  return problem.str();
+}
+
+}  // namespace
+
+ShellReport AnalyzeShells(const PolygonMesh& mesh) {
+  ShellReport report;
+  report.shells = GroupShells(mesh);
+  // Closedness per shell, and a probe point per shell (just behind its first face).
+  const std::size_t ns = report.shells.size();
+  std::vector<Vector3> probe(ns);
+  for (std::size_t s = 0; s < ns; ++s) {
+    PolygonMesh sub;
+    sub.V = mesh.V;
+    for (std::int64_t f : report.shells[s].faces) {
+      const std::int32_t* idx = mesh.indices.data() + mesh.offsets[f];
+      sub.AddFace(std::vector<std::int32_t>(idx, idx + mesh.face_size(f)));
+    }
+    report.shells[s].closed = AnalyzeTopology(sub).BoundsVolume();
+    probe[s] = BehindFace(mesh, report.shells[s].faces[0]);
+  }
+  const ShellWinding winding(mesh, report.shells);
+  // Nesting: winding number of shell t at the probe of shell s; the innermost container wins
+  // (the one with the smallest |volume|).
+  if (ns > 1) {
+    for (std::size_t s = 0; s < ns; ++s) {
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t t = 0; t < ns; ++t) {
+        if (t == s || !report.shells[t].closed) continue;
+        const double size = std::fabs(report.shells[t].signed_volume);
+        if (std::fabs(winding(t, probe[s])) > 0.5 && size < best) {
+          best = size;
+          report.shells[s].inside_of = static_cast<int>(t);
+        }
+      }
+    }
+  }
+  report.crossing = FindCrossing(mesh, report.shells, winding);
+  report.problem = ShellProblem(report);
   return report;
 }
 

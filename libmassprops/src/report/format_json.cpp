@@ -16,11 +16,75 @@ Json Mat(const Matrix3& m) {
   return Json::array({{m(0, 0), m(0, 1), m(0, 2)}, {m(1, 0), m(1, 1), m(1, 2)}, {m(2, 0), m(2, 1), m(2, 2)}});
 }
 
+// The mesh's report: format, counts, closedness and orientation, its shells.
+Json MeshJson(const SolidResult& r, const ReportUnits& u) {
+  const auto& t = r.topology;
+  auto known = [&](std::int64_t v) { return r.full_topology ? Json(v) : Json(nullptr); };
+  std::int64_t triangles = t.faces;
+  if (r.full_topology) {
+    triangles = 0;
+    for (std::int64_t f = 0; f < r.loaded.mesh.num_faces(); ++f) triangles += r.loaded.mesh.face_size(f) - 2;
+  }
+  Json mesh = {{"format", r.loaded.format},
+              {"faces", t.faces},
+              {"triangles", triangles},  // after splitting n-gons into fans
+              {"vertices", known(t.vertices)},
+              {"components", known(t.components)},
+              {"closed", t.boundary_edges == 0},
+              {"oriented", t.inconsistent_edges == 0},
+              {"boundary_edges", t.boundary_edges},
+              {"non_manifold_edges", known(t.non_manifold_edges)},
+              {"degenerate_faces", known(t.degenerate_faces)},
+              {"float32_coordinates", r.loaded.float32_coordinates}};
+  if (r.shells.shells.size() > 1) {
+    const double s3 = std::pow(MetresPerUnit(r.unit), 3) / u.Volume();
+    Json shells = Json::array();
+    for (const Shell& sh : r.shells.shells) {
+      shells.push_back({{"faces", sh.faces.size()},
+                        {"volume", sh.signed_volume * s3},
+                        {"inside_of", sh.inside_of >= 0 ? Json(sh.inside_of) : Json(nullptr)}});
+    }
+    mesh["shells"] = shells;
+  }
+  return mesh;
+}
+
+// The exact B-rep's comparison with the tessellation (the side that is not the result), and the
+// exporting system's own validation properties.
+Json BrepJson(const BrepReport& b, const ReportUnits& u) {
+  // The other side of the comparison: the mesh's numbers when the B-rep's are the result.
+  const MassProperties& other = b.is_result ? b.mesh : b.mp;
+  const Vector3 bc = other.center_of_mass / u.Length();
+  Json brep = {{"result", b.is_result ? "brep" : "mesh"},
+               {"estimated_error", b.estimated_error},
+               {"deflection", b.deflection},
+               {"mesh_checked", b.mesh_checked}};
+  if (!b.is_result || b.mesh_checked) {
+    brep[b.is_result ? "mesh" : "brep"] = {{"volume", other.volume / u.Volume()},
+                                           {"mass", other.mass / u.Mass()},
+                                           {"center_of_mass", {bc[0], bc[1], bc[2]}},
+                                           {"inertia_com", Mat(other.inertia_com / u.Inertia())}};
+    brep["volume_difference"] = b.volume_difference;
+    brep["com_difference"] = b.com_difference;
+    brep["inertia_difference"] = b.inertia_difference;
+  }
+  Json file = Json::object();
+  if (b.file_volume)
+    file["volume"] = *b.file_volume / u.Volume(), file["volume_difference"] = *b.file_volume_difference;
+  if (b.file_area && b.file_area_difference) file["area_difference"] = *b.file_area_difference;
+  if (b.file_centroid && b.file_com_difference) {
+    const Vector3 fc = *b.file_centroid / u.Length();
+    file["centroid"] = {fc[0], fc[1], fc[2]};
+    file["centroid_difference"] = *b.file_com_difference;
+  }
+  if (!file.empty()) brep["file_properties"] = file;
+  return brep;
+}
+
 Json ToJson(const SolidResult& r, const FormatOptions& opt) {
   const ReportUnits& u = opt.units;
   const Vector3 c = r.mp.center_of_mass / u.Length();
   const Vector3 m = r.principal.moments / u.Inertia();
-  const auto& t = r.topology;
   const bool shell = r.model == ModelKind::kShell;
   Json j = {{"file", r.source},
             {"part", r.part},
@@ -57,33 +121,7 @@ Json ToJson(const SolidResult& r, const FormatOptions& opt) {
   j["principal_axes"] = Mat(r.principal.axes);
   j["surface_area"] = r.mp.surface_area / u.Area();
   j["physically_valid"] = r.validity.valid;
-  auto known = [&](std::int64_t v) { return r.full_topology ? Json(v) : Json(nullptr); };
-  std::int64_t triangles = t.faces;
-  if (r.full_topology) {
-    triangles = 0;
-    for (std::int64_t f = 0; f < r.loaded.mesh.num_faces(); ++f) triangles += r.loaded.mesh.face_size(f) - 2;
-  }
-  j["mesh"] = {{"format", r.loaded.format},
-               {"faces", t.faces},
-               {"triangles", triangles},  // after splitting n-gons into fans
-               {"vertices", known(t.vertices)},
-               {"components", known(t.components)},
-               {"closed", t.boundary_edges == 0},
-               {"oriented", t.inconsistent_edges == 0},
-               {"boundary_edges", t.boundary_edges},
-               {"non_manifold_edges", known(t.non_manifold_edges)},
-               {"degenerate_faces", known(t.degenerate_faces)},
-               {"float32_coordinates", r.loaded.float32_coordinates}};
-  if (r.shells.shells.size() > 1) {
-    const double s3 = std::pow(MetresPerUnit(r.unit), 3) / u.Volume();
-    Json shells = Json::array();
-    for (const Shell& sh : r.shells.shells) {
-      shells.push_back({{"faces", sh.faces.size()},
-                        {"volume", sh.signed_volume * s3},
-                        {"inside_of", sh.inside_of >= 0 ? Json(sh.inside_of) : Json(nullptr)}});
-    }
-    j["mesh"]["shells"] = shells;
-  }
+  j["mesh"] = MeshJson(r, u);
   if (r.self_intersections >= 0) j["mesh"]["self_intersections"] = r.self_intersections;
   if (r.model == ModelKind::kImplicit) j.erase("mesh");
   if (r.estimate) {
@@ -129,36 +167,7 @@ Json ToJson(const SolidResult& r, const FormatOptions& opt) {
                  {"principal_moments", {hm[0], hm[1], hm[2]}},
                  {"principal_axes", Mat(h.principal.axes)}};
   }
-  if (r.brep) {
-    // The other side of the comparison: the mesh's numbers when the B-rep's are the result.
-    const BrepReport& b = *r.brep;
-    const MassProperties& other = b.is_result ? b.mesh : b.mp;
-    const Vector3 bc = other.center_of_mass / u.Length();
-    Json brep = {{"result", b.is_result ? "brep" : "mesh"},
-                 {"estimated_error", b.estimated_error},
-                 {"deflection", b.deflection},
-                 {"mesh_checked", b.mesh_checked}};
-    if (!b.is_result || b.mesh_checked) {
-      brep[b.is_result ? "mesh" : "brep"] = {{"volume", other.volume / u.Volume()},
-                                             {"mass", other.mass / u.Mass()},
-                                             {"center_of_mass", {bc[0], bc[1], bc[2]}},
-                                             {"inertia_com", Mat(other.inertia_com / u.Inertia())}};
-      brep["volume_difference"] = b.volume_difference;
-      brep["com_difference"] = b.com_difference;
-      brep["inertia_difference"] = b.inertia_difference;
-    }
-    Json file = Json::object();
-    if (b.file_volume)
-      file["volume"] = *b.file_volume / u.Volume(), file["volume_difference"] = *b.file_volume_difference;
-    if (b.file_area && b.file_area_difference) file["area_difference"] = *b.file_area_difference;
-    if (b.file_centroid && b.file_com_difference) {
-      const Vector3 fc = *b.file_centroid / u.Length();
-      file["centroid"] = {fc[0], fc[1], fc[2]};
-      file["centroid_difference"] = *b.file_com_difference;
-    }
-    if (!file.empty()) brep["file_properties"] = file;
-    j["brep"] = brep;
-  }
+  if (r.brep) j["brep"] = BrepJson(*r.brep, u);
   if (!r.density_source.empty()) j["density_source"] = r.density_source;
   Json warnings = Json::array();
   for (const Finding& f : r.findings) warnings.push_back(Worded(f.message, WordsOf(opt)));

@@ -77,14 +77,21 @@ std::string FormatTable(const SolidResult& r, const FormatOptions& opt) {
 
 namespace {
 
-std::string FormatOne(const SolidResult& r, const FormatOptions& opt) {
-  std::ostringstream out;
+// "[ x  y  z ]" in `unit`, to `digits`.
+std::string VecText(const Vector3& v, double unit, int digits) {
+  return "[" + Num(v[0] / unit, digits) + "  " + Num(v[1] / unit, digits) + "  " + Num(v[2] / unit, digits) + " ]";
+}
+
+// " (kg m^2):\n" or the report's inertia unit.
+std::string InertiaLabel(const ReportUnits& u) {
+  return " (" + (u.IsSi() ? std::string("kg m^2") : UnitName(u.inertia)) + "):\n";
+}
+
+// What was read and how: the file (or shape), parts, repair, shells, precision, units, model,
+// integration path and size.
+void WriteHeader(std::ostream& out, const SolidResult& r, const FormatOptions& opt, int digits) {
   const ReportUnits& u = opt.units;
-  const std::string len = UnitName(u.length), mass_unit = UnitName(u.mass), inertia_unit = UnitName(u.inertia);
-  const int digits = DigitsOf(r);
-  auto vec = [&](const Vector3& v, double unit) {
-    return "[" + Num(v[0] / unit, digits) + "  " + Num(v[1] / unit, digits) + "  " + Num(v[2] / unit, digits) + " ]";
-  };
+  const std::string len = UnitName(u.length);
   const auto& t = r.topology;
   const bool implicit = r.model == ModelKind::kImplicit;
   const bool shell = r.model == ModelKind::kShell;
@@ -145,58 +152,17 @@ std::string FormatOne(const SolidResult& r, const FormatOptions& opt) {
   }
   out << "integration     " << r.path_used << ", " << FormatDouble(r.seconds, "%.3g") << " s\n";
   out << "size            " << Num(r.size_m / u.Length()) << " " << len << " (bounding-box diagonal)\n";
-  const MassProperties* se = r.estimate ? &r.estimate->standard_error : nullptr;
-  auto pm = [&](double v, double unit) { return "  +- " + FormatDouble(v / unit, "%.2e"); };
-  if (r.estimate) {
-    out << "error bars      +- one standard error; 95 % interval = +- "
-        << FormatDouble(r.estimate->interval95_factor, "%.3g") << " standard errors"
-        << (r.estimate->method == SamplingMethod::kQuasiMonteCarlo ? " (Student t over the randomizations)" : "")
-        << "\n";
-  }
-  if (!shell) {
-    out << "volume          " << Num(r.mp.volume / u.Volume(), digits) << " " << u.VolumeName()
-        << (se ? pm(se->volume, u.Volume()) : "") << "\n";
-  }
-  if (!r.estimate) out << "surface area    " << Num(r.mp.surface_area / u.Area()) << " " << u.AreaName() << "\n";
-  out << "mass            " << Num(r.mp.mass / u.Mass(), digits) << " " << mass_unit
-      << (se ? pm(se->mass, u.Mass()) : "") << "\n";
-  out << "center of mass  " << vec(r.mp.center_of_mass, u.Length()) << " " << len << ", in the file's axes\n";
-  if (se) out << "  +-            " << vec(se->center_of_mass, u.Length()) << "\n";
-  const std::string inertia_label = " (" + (u.IsSi() ? std::string("kg m^2") : inertia_unit) + "):\n";
-  out << "inertia about the center of mass, file's axes" << inertia_label;
-  PrintMatrix(out, "                ", r.mp.inertia_com / u.Inertia(), digits);
-  if (se) {
-    out << "  +-\n";
-    PrintMatrix(out, "                ", se->inertia_com / u.Inertia());
-  }
-  if (opt.frame == Frame::kOrigin) {
-    out << "inertia about the file's origin, file's axes" << inertia_label;
-    PrintMatrix(out, "                ", r.mp.InertiaAbout(Vector3::Zero()) / u.Inertia(), digits);
-  }
-  if (opt.reference) {
-    const ReferenceFrame f = ReferenceOf(r, opt);
-    out << "inertia about " << (f.point ? vec(*f.point, u.Length()) + " " + len : std::string("the center of mass"))
-        << (f.axes.isIdentity(0) ? ", file's axes" : ", in the axes given") << inertia_label;
-    PrintMatrix(out, "                ", InertiaInFrame(r.mp, f) / u.Inertia(), digits);
-    if (!f.axes.isIdentity(0)) {
-      out << "  axes (columns, in the file's axes):\n";
-      PrintMatrix(out, "                ", f.axes);
-    }
-  }
-  out << "                convention: I = integral of rho (|r|^2 E - r r^T) dV; off-diagonal\n"
-         "                entries are the NEGATED products of inertia (Ixy = -integral rho x y dV),\n"
-         "                as URDF ixy/ixz/iyz and MJCF fullinertia expect them\n";
+}
+
+// The results beside the answer: the certified enclosures, the convex hull's, the exact B-rep's
+// (or the check mesh's) and the exporting system's own validation properties.
+void WriteComparisons(std::ostream& out, const SolidResult& r, const FormatOptions& opt, int digits) {
+  const ReportUnits& u = opt.units;
+  const std::string len = UnitName(u.length), mass_unit = UnitName(u.mass), inertia_unit = UnitName(u.inertia);
+  auto vec = [&](const Vector3& v, double unit) { return VecText(v, unit, digits); };
+  const std::string inertia_label = InertiaLabel(u);
   const Vector3& m = r.principal.moments;
   const double ui = u.Inertia();
-  out << "principal moments (ascending)  " << Num(m[0] / ui, digits) << "  " << Num(m[1] / ui, digits) << "  "
-      << Num(m[2] / ui, digits) << " " << (u.IsSi() ? std::string("kg m^2") : inertia_unit) << "\n";
-  if (r.estimate) {
-    const Vector3& ms = r.estimate->principal_moments_se;
-    out << "  +-                             " << Num(ms[0] / ui) << "  " << Num(ms[1] / ui) << "  " << Num(ms[2] / ui)
-        << "\n";
-  }
-  out << "principal axes (columns, right-handed, in the file's axes):\n";
-  PrintMatrix(out, "                ", r.principal.axes, digits);
   if (r.exact) {
     const ExactReport& e = *r.exact;
     out << "certified       volume, mass, center of mass and inertia above are the correctly rounded values of\n"
@@ -253,6 +219,69 @@ std::string FormatOne(const SolidResult& r, const FormatOptions& opt) {
       out << ", centroid " << FormatDouble(*b.file_com_difference, "%.2e") << " of the size";
     out << "\n";
   }
+}
+
+std::string FormatOne(const SolidResult& r, const FormatOptions& opt) {
+  std::ostringstream out;
+  const ReportUnits& u = opt.units;
+  const std::string len = UnitName(u.length), mass_unit = UnitName(u.mass), inertia_unit = UnitName(u.inertia);
+  const int digits = DigitsOf(r);
+  auto vec = [&](const Vector3& v, double unit) { return VecText(v, unit, digits); };
+  WriteHeader(out, r, opt, digits);
+  const bool shell = r.model == ModelKind::kShell;
+  const MassProperties* se = r.estimate ? &r.estimate->standard_error : nullptr;
+  auto pm = [&](double v, double unit) { return "  +- " + FormatDouble(v / unit, "%.2e"); };
+  if (r.estimate) {
+    out << "error bars      +- one standard error; 95 % interval = +- "
+        << FormatDouble(r.estimate->interval95_factor, "%.3g") << " standard errors"
+        << (r.estimate->method == SamplingMethod::kQuasiMonteCarlo ? " (Student t over the randomizations)" : "")
+        << "\n";
+  }
+  if (!shell) {
+    out << "volume          " << Num(r.mp.volume / u.Volume(), digits) << " " << u.VolumeName()
+        << (se ? pm(se->volume, u.Volume()) : "") << "\n";
+  }
+  if (!r.estimate) out << "surface area    " << Num(r.mp.surface_area / u.Area()) << " " << u.AreaName() << "\n";
+  out << "mass            " << Num(r.mp.mass / u.Mass(), digits) << " " << mass_unit
+      << (se ? pm(se->mass, u.Mass()) : "") << "\n";
+  out << "center of mass  " << vec(r.mp.center_of_mass, u.Length()) << " " << len << ", in the file's axes\n";
+  if (se) out << "  +-            " << vec(se->center_of_mass, u.Length()) << "\n";
+  const std::string inertia_label = InertiaLabel(u);
+  out << "inertia about the center of mass, file's axes" << inertia_label;
+  PrintMatrix(out, "                ", r.mp.inertia_com / u.Inertia(), digits);
+  if (se) {
+    out << "  +-\n";
+    PrintMatrix(out, "                ", se->inertia_com / u.Inertia());
+  }
+  if (opt.frame == Frame::kOrigin) {
+    out << "inertia about the file's origin, file's axes" << inertia_label;
+    PrintMatrix(out, "                ", r.mp.InertiaAbout(Vector3::Zero()) / u.Inertia(), digits);
+  }
+  if (opt.reference) {
+    const ReferenceFrame f = ReferenceOf(r, opt);
+    out << "inertia about " << (f.point ? vec(*f.point, u.Length()) + " " + len : std::string("the center of mass"))
+        << (f.axes.isIdentity(0) ? ", file's axes" : ", in the axes given") << inertia_label;
+    PrintMatrix(out, "                ", InertiaInFrame(r.mp, f) / u.Inertia(), digits);
+    if (!f.axes.isIdentity(0)) {
+      out << "  axes (columns, in the file's axes):\n";
+      PrintMatrix(out, "                ", f.axes);
+    }
+  }
+  out << "                convention: I = integral of rho (|r|^2 E - r r^T) dV; off-diagonal\n"
+         "                entries are the NEGATED products of inertia (Ixy = -integral rho x y dV),\n"
+         "                as URDF ixy/ixz/iyz and MJCF fullinertia expect them\n";
+  const Vector3& m = r.principal.moments;
+  const double ui = u.Inertia();
+  out << "principal moments (ascending)  " << Num(m[0] / ui, digits) << "  " << Num(m[1] / ui, digits) << "  "
+      << Num(m[2] / ui, digits) << " " << (u.IsSi() ? std::string("kg m^2") : inertia_unit) << "\n";
+  if (r.estimate) {
+    const Vector3& ms = r.estimate->principal_moments_se;
+    out << "  +-                             " << Num(ms[0] / ui) << "  " << Num(ms[1] / ui) << "  " << Num(ms[2] / ui)
+        << "\n";
+  }
+  out << "principal axes (columns, right-handed, in the file's axes):\n";
+  PrintMatrix(out, "                ", r.principal.axes, digits);
+  WriteComparisons(out, r, opt, digits);
   out << "physically valid  "
       << (r.validity.valid ? "yes (moments positive, I1 + I2 >= I3)" : "NO: " + r.validity.reason) << "\n";
   for (const Finding& f : r.findings) out << "warning         " << Worded(f.message, WordsOf(opt)) << "\n";
