@@ -188,6 +188,82 @@ bool MassPropertiesEstimate::MomentsIndistinct(int i) const {
   return principal_moments[i + 1] - principal_moments[i] < 3 * (principal_moments_se[i] + principal_moments_se[i + 1]);
 }
 
+namespace {
+
+// The sums of block b (points [b kBlock, min(n, (b + 1) kBlock))) of randomization r: scrambled
+// Sobol points for quasi-Monte Carlo, counter-based uniform ones for plain Monte Carlo.
+Sums SumBlock(const ImplicitSolid& solid, const Frame& fr, const MonteCarloOptions& opt, bool qmc, std::size_t r,
+              std::int64_t b, std::int64_t n) {
+  Sums sums;
+  const std::int64_t end = std::min(n, (b + 1) * kBlock);
+  const std::uint64_t rseed = SplitMix(opt.seed * 0x2545F4914F6CDD1Dull + r);
+  if (qmc) {
+    // Sobol points in Gray-code order: within an aligned block of 2^k indices (and so for any
+    // power-of-two count) the same set as natural order, one XOR per point.
+    const auto& v = Sobol().v;
+    std::uint32_t seeds[3], x[3];
+    const auto i0 = static_cast<std::uint32_t>(b * kBlock);
+    const std::uint32_t g0 = i0 ^ (i0 >> 1);
+    for (int d = 0; d < 3; ++d) {
+      seeds[d] = static_cast<std::uint32_t>(SplitMix(rseed * 3 + static_cast<std::uint64_t>(d)));
+      x[d] = 0;
+      for (int k = 0; k < 32; ++k) {
+        if ((g0 >> k) & 1u) x[d] ^= v[static_cast<std::size_t>(d)][static_cast<std::size_t>(k)];
+      }
+    }
+    for (std::int64_t i = b * kBlock; i < end; ++i) {
+      if (i > b * kBlock) {
+        const int k = __builtin_ctz(static_cast<std::uint32_t>(i));
+        for (int d = 0; d < 3; ++d) x[d] ^= v[static_cast<std::size_t>(d)][static_cast<std::size_t>(k)];
+      }
+      const Vector3 u((static_cast<double>(OwenScramble(x[0], seeds[0])) + 0.5) * 0x1.0p-32,
+                      (static_cast<double>(OwenScramble(x[1], seeds[1])) + 0.5) * 0x1.0p-32,
+                      (static_cast<double>(OwenScramble(x[2], seeds[2])) + 0.5) * 0x1.0p-32);
+      Accumulate(solid, fr.c, fr.h, u, false, sums);
+    }
+  } else {
+    for (std::int64_t i = b * kBlock; i < end; ++i) {
+      const auto idx = static_cast<std::uint64_t>(i);
+      Accumulate(solid, fr.c, fr.h,
+                 Vector3(Uniform(opt.seed, idx, 0), Uniform(opt.seed, idx, 1), Uniform(opt.seed, idx, 2)), true, sums);
+    }
+  }
+  return sums;
+}
+
+// Plain Monte Carlo's standard errors by the delta method: Var(g(μ̂)) ≈ J Σ Jᵀ / N with Σ the
+// covariance of the integrands.
+std::array<double, kOutputs> DeltaMethodErrors(const Sums& pooled, const std::array<double, kF>& mu, const Frame& fr,
+                                               std::int64_t samples) {
+  const double N = static_cast<double>(samples);
+  Eigen::Matrix<double, kF, kF> cov;
+  int k = 0;
+  for (int i = 0; i < kF; ++i) {
+    for (int j = i; j < kF; ++j) {
+      const double v = (pooled.c[static_cast<std::size_t>(k++)] / N -
+                        mu[static_cast<std::size_t>(i)] * mu[static_cast<std::size_t>(j)]) *
+                       N / (N - 1);
+      cov(i, j) = cov(j, i) = v;
+    }
+  }
+  Eigen::Matrix<double, kOutputs, kF> J;
+  for (int i = 0; i < kF; ++i) {
+    const double step = 1e-6 * std::max(std::abs(mu[static_cast<std::size_t>(i)]), 1e-3);
+    auto up = mu, down = mu;
+    up[static_cast<std::size_t>(i)] += step;
+    down[static_cast<std::size_t>(i)] -= step;
+    const auto a = Outputs(up, fr), b = Outputs(down, fr);
+    for (int o = 0; o < kOutputs; ++o)
+      J(o, i) = (a[static_cast<std::size_t>(o)] - b[static_cast<std::size_t>(o)]) / (2 * step);
+  }
+  const Eigen::Matrix<double, kOutputs, kOutputs> var = J * cov * J.transpose() / N;
+  std::array<double, kOutputs> se{};
+  for (int o = 0; o < kOutputs; ++o) se[static_cast<std::size_t>(o)] = std::sqrt(std::max(0.0, var(o, o)));
+  return se;
+}
+
+}  // namespace
+
 MassPropertiesEstimate EstimateMassProperties(const ImplicitSolid& solid, Scalar density,
                                               const MonteCarloOptions& opt) {
   if (!(std::isfinite(density) && density > 0))
@@ -230,42 +306,7 @@ MassPropertiesEstimate EstimateMassProperties(const ImplicitSolid& solid, Scalar
     ParallelForBlocks(nb * R, opt.num_threads, [&](std::int64_t job) {
       const auto r = static_cast<std::size_t>(job / nb);
       const std::int64_t b = first_block + job % nb;
-      Sums sums;
-      const std::int64_t end = std::min(n, (b + 1) * kBlock);
-      const std::uint64_t rseed = SplitMix(opt.seed * 0x2545F4914F6CDD1Dull + r);
-      if (qmc) {
-        // Sobol points in Gray-code order: within an aligned block of 2^k indices (and so for any
-        // power-of-two count) the same set as natural order, one XOR per point.
-        const auto& v = Sobol().v;
-        std::uint32_t seeds[3], x[3];
-        const auto i0 = static_cast<std::uint32_t>(b * kBlock);
-        const std::uint32_t g0 = i0 ^ (i0 >> 1);
-        for (int d = 0; d < 3; ++d) {
-          seeds[d] = static_cast<std::uint32_t>(SplitMix(rseed * 3 + static_cast<std::uint64_t>(d)));
-          x[d] = 0;
-          for (int k = 0; k < 32; ++k) {
-            if ((g0 >> k) & 1u) x[d] ^= v[static_cast<std::size_t>(d)][static_cast<std::size_t>(k)];
-          }
-        }
-        for (std::int64_t i = b * kBlock; i < end; ++i) {
-          if (i > b * kBlock) {
-            const int k = __builtin_ctz(static_cast<std::uint32_t>(i));
-            for (int d = 0; d < 3; ++d) x[d] ^= v[static_cast<std::size_t>(d)][static_cast<std::size_t>(k)];
-          }
-          const Vector3 u((static_cast<double>(OwenScramble(x[0], seeds[0])) + 0.5) * 0x1.0p-32,
-                          (static_cast<double>(OwenScramble(x[1], seeds[1])) + 0.5) * 0x1.0p-32,
-                          (static_cast<double>(OwenScramble(x[2], seeds[2])) + 0.5) * 0x1.0p-32);
-          Accumulate(solid, fr.c, fr.h, u, false, sums);
-        }
-      } else {
-        for (std::int64_t i = b * kBlock; i < end; ++i) {
-          const auto idx = static_cast<std::uint64_t>(i);
-          Accumulate(solid, fr.c, fr.h,
-                     Vector3(Uniform(opt.seed, idx, 0), Uniform(opt.seed, idx, 1), Uniform(opt.seed, idx, 2)), true,
-                     sums);
-        }
-      }
-      blocks[r][static_cast<std::size_t>(b)] = sums;
+      blocks[r][static_cast<std::size_t>(b)] = SumBlock(solid, fr, opt, qmc, r, b, n);
     });
     done = n;
     e.samples = n * R;
@@ -311,30 +352,7 @@ MassPropertiesEstimate EstimateMassProperties(const ImplicitSolid& solid, Scalar
       }
       e.interval95_factor = StudentT95(R - 1);
     } else {
-      // Delta method: Var(g(μ̂)) ≈ J Σ Jᵀ / N with Σ the covariance of the integrands.
-      const double N = static_cast<double>(e.samples);
-      Eigen::Matrix<double, kF, kF> cov;
-      int k = 0;
-      for (int i = 0; i < kF; ++i) {
-        for (int j = i; j < kF; ++j) {
-          const double v = (pooled.c[static_cast<std::size_t>(k++)] / N -
-                            mu[static_cast<std::size_t>(i)] * mu[static_cast<std::size_t>(j)]) *
-                           N / (N - 1);
-          cov(i, j) = cov(j, i) = v;
-        }
-      }
-      Eigen::Matrix<double, kOutputs, kF> J;
-      for (int i = 0; i < kF; ++i) {
-        const double step = 1e-6 * std::max(std::abs(mu[static_cast<std::size_t>(i)]), 1e-3);
-        auto up = mu, down = mu;
-        up[static_cast<std::size_t>(i)] += step;
-        down[static_cast<std::size_t>(i)] -= step;
-        const auto a = Outputs(up, fr), b = Outputs(down, fr);
-        for (int o = 0; o < kOutputs; ++o)
-          J(o, i) = (a[static_cast<std::size_t>(o)] - b[static_cast<std::size_t>(o)]) / (2 * step);
-      }
-      const Eigen::Matrix<double, kOutputs, kOutputs> var = J * cov * J.transpose() / N;
-      for (int o = 0; o < kOutputs; ++o) se[static_cast<std::size_t>(o)] = std::sqrt(std::max(0.0, var(o, o)));
+      se = DeltaMethodErrors(pooled, mu, fr, e.samples);
       e.interval95_factor = 1.959964;
     }
     Fill(e, se);

@@ -118,6 +118,50 @@ double ReadBinary(const char* p, PlyType t, bool swap) {
   return 0;
 }
 
+// The PLY header (the text before "end_header"): its format and elements with their properties.
+std::vector<PlyElement> ParsePlyHeader(const std::string& path, std::string_view text, std::string& format) {
+  std::vector<PlyElement> elements;
+  std::istringstream header{std::string(text)};
+  std::string line;
+  std::size_t n = 0;
+  while (std::getline(header, line)) {
+    ++n;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::istringstream ls(line);
+    std::string key;
+    ls >> key;
+    auto where = [&] { return "header line " + std::to_string(n) + ": "; };
+    if (key == "format") {
+      ls >> format;
+    } else if (key == "element") {
+      PlyElement e;
+      std::string count;
+      ls >> e.name >> count;
+      if (!ParseNumber(count, e.count)) Fail(path, where() + "bad element count '" + count + "'");
+      elements.push_back(e);
+    } else if (key == "property") {
+      if (elements.empty()) Fail(path, where() + "a property before any element");
+      PlyProperty p;
+      std::string type;
+      ls >> type;
+      if (type == "list") {
+        std::string ct, it;
+        ls >> ct >> it >> p.name;
+        p.is_list = true;
+        if (!ParsePlyType(ct, p.count_type) || !ParsePlyType(it, p.type)) {
+          Fail(path, where() + "unknown list types '" + ct + " " + it + "'");
+        }
+      } else {
+        ls >> p.name;
+        if (!ParsePlyType(type, p.type)) Fail(path, where() + "unknown property type '" + type + "'");
+      }
+      elements.back().properties.push_back(p);
+    }
+    // ply, comment, obj_info: nothing to do
+  }
+  return elements;
+}
+
 bool IsLittleEndianHost() {
   const std::uint16_t one = 1;
   unsigned char c;
@@ -136,49 +180,8 @@ LoadedMesh ParsePly(const std::string& path, std::string_view data, int /*num_th
   if (body == std::string_view::npos) Fail(path, "nothing after the PLY header");
   ++body;
 
-  // Header.
   std::string format;
-  std::vector<PlyElement> elements;
-  {
-    std::istringstream header(std::string(data.substr(0, header_end_tag)));
-    std::string line;
-    std::size_t n = 0;
-    while (std::getline(header, line)) {
-      ++n;
-      if (!line.empty() && line.back() == '\r') line.pop_back();
-      std::istringstream ls(line);
-      std::string key;
-      ls >> key;
-      auto where = [&] { return "header line " + std::to_string(n) + ": "; };
-      if (key == "format") {
-        ls >> format;
-      } else if (key == "element") {
-        PlyElement e;
-        std::string count;
-        ls >> e.name >> count;
-        if (!ParseNumber(count, e.count)) Fail(path, where() + "bad element count '" + count + "'");
-        elements.push_back(e);
-      } else if (key == "property") {
-        if (elements.empty()) Fail(path, where() + "a property before any element");
-        PlyProperty p;
-        std::string type;
-        ls >> type;
-        if (type == "list") {
-          std::string ct, it;
-          ls >> ct >> it >> p.name;
-          p.is_list = true;
-          if (!ParsePlyType(ct, p.count_type) || !ParsePlyType(it, p.type)) {
-            Fail(path, where() + "unknown list types '" + ct + " " + it + "'");
-          }
-        } else {
-          ls >> p.name;
-          if (!ParsePlyType(type, p.type)) Fail(path, where() + "unknown property type '" + type + "'");
-        }
-        elements.back().properties.push_back(p);
-      }
-      // ply, comment, obj_info: nothing to do
-    }
-  }
+  const std::vector<PlyElement> elements = ParsePlyHeader(path, data.substr(0, header_end_tag), format);
   const bool ascii = format == "ascii";
   const bool binary_le = format == "binary_little_endian";
   const bool binary_be = format == "binary_big_endian";

@@ -201,6 +201,94 @@ Grouping GroupFewVertices(std::size_t n, const CornerAt& corner_at) {
 /// strips: most at the position of one of the last few), or a vertex list (mostly distinct).
 enum class Positions { kCorners, kVertices };
 
+namespace detail {
+/// The rank of each first corner among all of them (step 4 of GroupByPosition): a bitmap of the
+/// first corners with prefix counts.
+class FirstCornerRanks {
+ public:
+  FirstCornerRanks(std::size_t n, const std::vector<std::vector<std::uint32_t>>& firsts)
+      : is_first_((n + 63) / 64, 0), rank_before_((n + 63) / 64 + 1, 0) {
+    for (const auto& first : firsts) {
+      for (std::uint32_t c : first) is_first_[c >> 6] |= std::uint64_t{1} << (c & 63);
+      count_ += first.size();
+    }
+    for (std::size_t w = 0; w < is_first_.size(); ++w) {
+      rank_before_[w + 1] = rank_before_[w] + static_cast<std::uint32_t>(__builtin_popcountll(is_first_[w]));
+    }
+  }
+  std::uint32_t operator()(std::uint32_t c) const {
+    const std::uint64_t below = is_first_[c >> 6] & ((std::uint64_t{1} << (c & 63)) - 1);
+    return rank_before_[c >> 6] + static_cast<std::uint32_t>(__builtin_popcountll(below));
+  }
+  std::size_t count() const { return count_; }
+
+ private:
+  std::vector<std::uint64_t> is_first_;
+  std::vector<std::uint32_t> rank_before_;
+  std::size_t count_ = 0;
+};
+}  // namespace detail
+
+/// Step 1 of GroupByPosition for a chunk of face corners [lo, hi): its distinct positions (keys,
+/// hashes, first corners, in order of their first corner) and each corner's entry (`local`); the
+/// first corner that is not finite in `bad` (then the rest is not filled).
+template <typename CornerAt, typename Key>
+void WeldChunkCorners(const CornerAt& corner_at, std::size_t lo, std::size_t hi, std::int32_t* local,
+                      std::vector<Key>& chunk_keys, std::vector<std::uint64_t>& chunk_hashes,
+                      std::vector<std::uint32_t>& chunk_first, std::size_t& bad) {
+  detail::PositionTable<Key> table((hi - lo) / 4);
+  // Filled here and moved in at the end: neighbouring chunks' vectors share cache lines, and
+  // two threads growing them in turn would pass those lines back and forth at every corner.
+  std::vector<std::uint32_t> first;
+  first.reserve((hi - lo) / 4);
+  // Corners read and hashed kAhead ahead of their lookup, their table slots fetched then and the
+  // keys those slots lead to half way (the lookups, in order, are those of before). A corner at
+  // the position of one of the six corners before it (files list triangles in strips: most
+  // corners were among the last few) takes that corner's entry, with no hash and no lookup.
+  constexpr std::size_t kAhead = 16;
+  constexpr std::size_t recent = 6;
+  Key ahead_key[kAhead];
+  std::uint64_t ahead_hash[kAhead];
+  std::size_t ahead_same[kAhead];  // 0, or how many corners back the same position was
+  auto read = [&](std::size_t j) {
+    const Key k = corner_at(j);
+    ahead_key[j % kAhead] = k;
+    std::size_t same = 0;
+    for (std::size_t d = 1; d <= recent && d <= j - lo && same == 0; ++d) {
+      if (ahead_key[(j - d) % kAhead] == k) same = d;
+    }
+    ahead_same[j % kAhead] = same;
+    if (same == 0) {
+      ahead_hash[j % kAhead] = Hash(k);
+      table.Prefetch(ahead_hash[j % kAhead], false);
+    }
+  };
+  for (std::size_t j = lo; j < std::min(hi, lo + kAhead); ++j) read(j);
+  for (std::size_t i = lo; i < hi; ++i) {
+    const Key k = ahead_key[i % kAhead];
+    const std::size_t same = ahead_same[i % kAhead];
+    const std::uint64_t h = same == 0 ? ahead_hash[i % kAhead] : 0;  // (hashed only when looked up)
+    if (i + kAhead < hi) read(i + kAhead);
+    if (const std::size_t m = i + kAhead / 2; m < hi && ahead_same[m % kAhead] == 0) {
+      table.Prefetch(ahead_hash[m % kAhead], true);
+    }
+    if (same != 0) {  // an earlier corner of the chunk, finite and looked up already
+      local[i] = local[i - same];
+      continue;
+    }
+    if (!k.Finite()) {
+      bad = i;
+      return;
+    }
+    bool inserted = false;
+    local[i] = static_cast<std::int32_t>(table.Find(k, h, inserted));
+    if (inserted) first.push_back(static_cast<std::uint32_t>(i));
+  }
+  chunk_first = std::move(first);
+  chunk_keys = std::move(table.keys());
+  chunk_hashes = std::move(table.hashes());
+}
+
 // `corner_at(i)` gives corner i's position: a PositionKey, or a FloatKey.
 template <typename CornerAt>
 Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threads = 0,
@@ -242,57 +330,7 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
       chunk_hashes[b] = std::move(hashes);
       return;
     }
-    detail::PositionTable<Key> table((hi - lo) / 4);
-    // Filled here and moved in at the end: neighbouring chunks' vectors share cache lines, and
-    // two threads growing them in turn would pass those lines back and forth at every corner.
-    std::vector<std::uint32_t> first;
-    first.reserve((hi - lo) / 4);
-    // Corners read and hashed kAhead ahead of their lookup, their table slots fetched then and the
-    // keys those slots lead to half way (the lookups, in order, are those of before). A corner at
-    // the position of one of the six corners before it (files list triangles in strips: most
-    // corners were among the last few) takes that corner's entry, with no hash and no lookup.
-    constexpr std::size_t kAhead = 16;
-    constexpr std::size_t recent = 6;
-    Key ahead_key[kAhead];
-    std::uint64_t ahead_hash[kAhead];
-    std::size_t ahead_same[kAhead];  // 0, or how many corners back the same position was
-    auto read = [&](std::size_t j) {
-      const Key k = corner_at(j);
-      ahead_key[j % kAhead] = k;
-      std::size_t same = 0;
-      for (std::size_t d = 1; d <= recent && d <= j - lo && same == 0; ++d) {
-        if (ahead_key[(j - d) % kAhead] == k) same = d;
-      }
-      ahead_same[j % kAhead] = same;
-      if (same == 0) {
-        ahead_hash[j % kAhead] = Hash(k);
-        table.Prefetch(ahead_hash[j % kAhead], false);
-      }
-    };
-    for (std::size_t j = lo; j < std::min(hi, lo + kAhead); ++j) read(j);
-    for (std::size_t i = lo; i < hi; ++i) {
-      const Key k = ahead_key[i % kAhead];
-      const std::size_t same = ahead_same[i % kAhead];
-      const std::uint64_t h = same == 0 ? ahead_hash[i % kAhead] : 0;  // (hashed only when looked up)
-      if (i + kAhead < hi) read(i + kAhead);
-      if (const std::size_t m = i + kAhead / 2; m < hi && ahead_same[m % kAhead] == 0) {
-        table.Prefetch(ahead_hash[m % kAhead], true);
-      }
-      if (same != 0) {  // an earlier corner of the chunk, finite and looked up already
-        local[i] = local[i - same];
-        continue;
-      }
-      if (!k.Finite()) {
-        bad[b] = i;
-        return;
-      }
-      bool inserted = false;
-      local[i] = static_cast<std::int32_t>(table.Find(k, h, inserted));
-      if (inserted) first.push_back(static_cast<std::uint32_t>(i));
-    }
-    chunk_first[b] = std::move(first);
-    chunk_keys[b] = std::move(table.keys());
-    chunk_hashes[b] = std::move(table.hashes());
+    WeldChunkCorners(corner_at, lo, hi, local.data(), chunk_keys[b], chunk_hashes[b], chunk_first[b], bad[b]);
   });
   g.first_non_finite = *std::min_element(bad.begin(), bad.end());
   if (g.first_non_finite < n) return g;
@@ -369,22 +407,8 @@ Grouping GroupByPosition(std::size_t n, const CornerAt& corner_at, int num_threa
 
   // 4. Number the vertices by their first corners: a bitmap of first corners with prefix counts
   // gives each one's rank.
-  const std::size_t words = (n + 63) / 64;
-  std::vector<std::uint64_t> is_first(words, 0);
-  std::size_t vertices = 0;
-  for (const auto& first : firsts) {
-    for (std::uint32_t c : first) is_first[c >> 6] |= std::uint64_t{1} << (c & 63);
-    vertices += first.size();
-  }
-  std::vector<std::uint32_t> rank_before(words + 1, 0);
-  for (std::size_t w = 0; w < words; ++w) {
-    rank_before[w + 1] = rank_before[w] + static_cast<std::uint32_t>(__builtin_popcountll(is_first[w]));
-  }
-  auto rank = [&](std::uint32_t c) {
-    const std::uint64_t below = is_first[c >> 6] & ((std::uint64_t{1} << (c & 63)) - 1);
-    return rank_before[c >> 6] + static_cast<std::uint32_t>(__builtin_popcountll(below));
-  };
-  g.first_corner.resize(vertices);
+  const detail::FirstCornerRanks rank(n, firsts);
+  g.first_corner.resize(rank.count());
   ParallelForBlocks(static_cast<std::int64_t>(parts), num_threads, [&](std::int64_t pb) {
     const auto p = static_cast<std::size_t>(pb);
     std::vector<std::uint32_t> global(firsts[p].size());

@@ -98,14 +98,11 @@ int SignChanges(const std::vector<Poly>& sturm, const Rat& x) {
   return changes;
 }
 
-}  // namespace
-
-ExactMassProperties ExactMassPropertiesOf(const PolygonMesh& polygons, double metres_per_unit, const MassSpec& mass,
-                                          int num_threads) {
-  const Rat unit = UnitRational(metres_per_unit);
-  const TriangleMesh mesh = Triangulate(polygons);
-  // Every coordinate is M·2^e with an integer M of at most 53 bits: scaled by 2^-e_min, an integer.
-  int e_min = INT_MAX;
+// The exact integer sums over the triangles (6 V, 24 F, 120 S in integer steps) of the mesh's
+// coordinates scaled to integers by 2^-e_min (every coordinate is M·2^e with an integer M of at
+// most 53 bits); `e_min` is set.
+Sums ExactSums(const TriangleMesh& mesh, int num_threads, int& e_min) {
+  e_min = INT_MAX;
   for (Eigen::Index i = 0; i < mesh.V.size(); ++i) {
     const double x = mesh.V.data()[i];
     if (!std::isfinite(x)) throw std::invalid_argument("a coordinate is not finite");
@@ -161,6 +158,18 @@ ExactMassProperties ExactMassPropertiesOf(const PolygonMesh& polygons, double me
   });
   Sums sum;
   for (const Sums& p : parts) sum += p;
+
+  return sum;
+}
+
+}  // namespace
+
+ExactMassProperties ExactMassPropertiesOf(const PolygonMesh& polygons, double metres_per_unit, const MassSpec& mass,
+                                          int num_threads) {
+  const Rat unit = UnitRational(metres_per_unit);
+  const TriangleMesh mesh = Triangulate(polygons);
+  int e_min = 0;
+  const Sums sum = ExactSums(mesh, num_threads, e_min);
 
   // Rationals: the length of one integer step in metres is L = 2^e_min · unit.
   Rat L = unit;

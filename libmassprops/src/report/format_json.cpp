@@ -26,16 +26,16 @@ Json MeshJson(const SolidResult& r, const ReportUnits& u) {
     for (std::int64_t f = 0; f < r.loaded.mesh.num_faces(); ++f) triangles += r.loaded.mesh.face_size(f) - 2;
   }
   Json mesh = {{"format", r.loaded.format},
-              {"faces", t.faces},
-              {"triangles", triangles},  // after splitting n-gons into fans
-              {"vertices", known(t.vertices)},
-              {"components", known(t.components)},
-              {"closed", t.boundary_edges == 0},
-              {"oriented", t.inconsistent_edges == 0},
-              {"boundary_edges", t.boundary_edges},
-              {"non_manifold_edges", known(t.non_manifold_edges)},
-              {"degenerate_faces", known(t.degenerate_faces)},
-              {"float32_coordinates", r.loaded.float32_coordinates}};
+               {"faces", t.faces},
+               {"triangles", triangles},  // after splitting n-gons into fans
+               {"vertices", known(t.vertices)},
+               {"components", known(t.components)},
+               {"closed", t.boundary_edges == 0},
+               {"oriented", t.inconsistent_edges == 0},
+               {"boundary_edges", t.boundary_edges},
+               {"non_manifold_edges", known(t.non_manifold_edges)},
+               {"degenerate_faces", known(t.degenerate_faces)},
+               {"float32_coordinates", r.loaded.float32_coordinates}};
   if (r.shells.shells.size() > 1) {
     const double s3 = std::pow(MetresPerUnit(r.unit), 3) / u.Volume();
     Json shells = Json::array();
