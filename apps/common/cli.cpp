@@ -85,6 +85,17 @@ CLI::Validator InRange(double lo, double hi) {
   return NumberCheck([lo, hi](double v) { return v >= lo && v <= hi; }, "between " + G(lo) + " and " + G(hi));
 }
 
+void PrintError(std::string_view message) { std::cerr << "error: " << OneLine(message) << "\n"; }
+
+int Dispatch(int argc, char** argv, std::initializer_list<Subcommand> subcommands, int (*otherwise)(int, char**)) {
+  if (argc > 1) {
+    for (const Subcommand& s : subcommands) {
+      if (argv[1] == s.name) return s.run(argc - 1, argv + 1);
+    }
+  }
+  return otherwise(argc, argv);
+}
+
 int ParseArguments(CLI::App& app, int argc, char** argv) {
   try {
     app.parse(argc, argv);
@@ -96,18 +107,6 @@ int ParseArguments(CLI::App& app, int argc, char** argv) {
     return kBadArguments;
   }
   return -1;
-}
-
-bool RefuseReservedWord(const std::string& program, const std::string& first_argument,
-                        std::initializer_list<const char*> reserved) {
-  for (const char* word : reserved) {
-    if (first_argument == word) {
-      std::cerr << "error: " << program << " " << word << ": this subcommand is not available in this version; "
-                << "a file of that name is given as ./" << word << "\n";
-      return true;
-    }
-  }
-  return false;
 }
 
 }  // namespace massprops::app

@@ -1,6 +1,7 @@
 #pragma once
 // What both commands do the same way with their arguments: exit status 2 for every argument
-// error, --version, and the words reserved for subcommands to come.
+// error, readable checks of numbers, one line per message. The load options' flags:
+// load_flags.h.
 
 #include <initializer_list>
 #include <string>
@@ -23,14 +24,21 @@ CLI::Validator InRange(double lo, double hi);
 /// (\\n, \\r, \\t, \\xHH), so that every message stays one line of stderr.
 std::string OneLine(std::string_view text);
 
+/// The one way a command says an error: "error: MESSAGE" on one line of stderr (OneLine).
+void PrintError(std::string_view message);
+
+/// A subcommand: its word and its main (argv[0] is the word).
+struct Subcommand {
+  std::string_view name;
+  int (*run)(int argc, char** argv);
+};
+
+/// The one dispatch of the commands: when argv[1] is a subcommand's word, that subcommand runs
+/// on the rest; otherwise `otherwise` on all of argv.
+int Dispatch(int argc, char** argv, std::initializer_list<Subcommand> subcommands, int (*otherwise)(int, char**));
+
 /// Parses argv into `app`. Returns -1 when the program should go on, or the exit status
 /// (0 after --help or --version, kBadArguments after a message on stderr).
 int ParseArguments(CLI::App& app, int argc, char** argv);
-
-/// The first positional argument, if it is one of `reserved` (subcommands to come), makes an
-/// error: "massprops batch: not available yet; a file of that name is given as ./batch".
-/// Returns true (after the message) when it did.
-bool RefuseReservedWord(const std::string& program, const std::string& first_argument,
-                        std::initializer_list<const char*> reserved);
 
 }  // namespace massprops::app

@@ -35,7 +35,7 @@ using Json = nlohmann::ordered_json;
 namespace fs = std::filesystem;
 
 int Bad(const std::string& what) {
-  std::cerr << "error: " << massprops::app::OneLine(what) << "\n";
+  massprops::app::PrintError(what);
   return app::kBadArguments;
 }
 
@@ -236,8 +236,7 @@ int RunBatch(const BatchOptions& b) {
   }
   const int fd = ::open(b.output.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
   if (fd < 0) {
-    std::cerr << "error: " << massprops::app::OneLine(b.output) << ": cannot open for appending ("
-              << std::strerror(errno) << ")\n";
+    massprops::app::PrintError(b.output + ": cannot open for appending (" + std::strerror(errno) + ")");
     return 1;
   }
   // Each file's picture: its stem, with its index where stems repeat.
@@ -247,7 +246,7 @@ int RunBatch(const BatchOptions& b) {
       fs::create_directories(b.pictures);
     } catch (const std::exception& e) {
       ::close(fd);
-      std::cerr << "error: --pictures: " << massprops::app::OneLine(e.what()) << "\n";
+      massprops::app::PrintError(std::string("--pictures: ") + e.what());
       return 1;
     }
     std::map<std::string, int> stems;
@@ -300,8 +299,7 @@ int RunBatch(const BatchOptions& b) {
   if (!b.quiet) std::cerr << summary.ToText(seconds) << "\n";
   if (b.summary_json) std::cout << summary.ToJson(seconds).dump(2) << "\n";
   if (write_failed) {
-    std::cerr << "error: " << massprops::app::OneLine(b.output)
-              << ": a record could not be written (disk full?); --resume goes on\n";
+    massprops::app::PrintError(b.output + ": a record could not be written (disk full?); --resume goes on");
     return 1;
   }
   return 0;
@@ -324,19 +322,19 @@ int RunMerge(const std::string& output, const std::vector<std::string>& shards) 
       if (!fs::is_regular_file(shard)) throw std::runtime_error(shard + ": no such file");
       records = ReadRecords(shard, complete);
     } catch (const std::exception& e) {
-      std::cerr << "error: merge: " << massprops::app::OneLine(e.what()) << "\n";
+      massprops::app::PrintError(std::string("merge: ") + e.what());
       return 1;
     }
     for (Json& rec : records) {
       if (!rec.contains("index") || !rec.contains("of")) {
-        std::cerr << "error: merge: " << massprops::app::OneLine(shard)
-                  << ": a record without index and of (not from massprops batch)\n";
+        massprops::app::PrintError(std::string("merge: ") + shard +
+                                   ": a record without index and of (not from massprops batch)");
         return 1;
       }
       const std::size_t n = rec["of"], i = rec["index"];
       if (of != 0 && n != of) {
-        std::cerr << "error: merge: " << massprops::app::OneLine(shard) << " comes from a run over " << n
-                  << " files, another shard from " << of << ": not the same input\n";
+        massprops::app::PrintError(std::string("merge: ") + shard + " comes from a run over " + std::to_string(n) +
+                                   " files, another shard from " + std::to_string(of) + ": not the same input");
         return 1;
       }
       of = n;
@@ -345,17 +343,17 @@ int RunMerge(const std::string& output, const std::vector<std::string>& shards) 
     }
   }
   if (!repeated.empty()) {
-    std::cerr << "error: merge: " << repeated.size()
-              << " files have more than one record (the first: " << massprops::app::OneLine(repeated[0])
-              << "); were shards given twice, or overlapping --shard values used?\n";
+    massprops::app::PrintError(std::string("merge: ") + std::to_string(repeated.size()) +
+                               " files have more than one record (the first: " + repeated[0] +
+                               "); were shards given twice, or overlapping --shard values used?");
     return 1;
   }
   if (by_index.size() != of) {
     std::size_t first_missing = 0;
     while (by_index.count(first_missing) > 0) ++first_missing;
-    std::cerr << "error: merge: " << of - by_index.size() << " of " << of
-              << " files have no record (the first is number " << first_missing
-              << " in sorted order): a shard is missing or unfinished (--resume finishes it)\n";
+    massprops::app::PrintError("merge: " + std::to_string(of - by_index.size()) + " of " + std::to_string(of) +
+                               " files have no record (the first is number " + std::to_string(first_missing) +
+                               " in sorted order): a shard is missing or unfinished (--resume finishes it)");
     return 1;
   }
   std::string text;
@@ -363,7 +361,7 @@ int RunMerge(const std::string& output, const std::vector<std::string>& shards) 
   try {
     report::WriteFileAtomically(output, text);
   } catch (const std::exception& e) {
-    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
+    massprops::app::PrintError(e.what());
     return 1;
   }
   return 0;

@@ -43,7 +43,7 @@ int BatchMain(int argc, char** argv) {
   AddArguments(app, a);
   if (const int status = app::ParseArguments(app, argc, argv); status >= 0) return status;
   auto bad = [](const std::string& what) {
-    std::cerr << "error: " << massprops::app::OneLine(what) << "\n";
+    massprops::app::PrintError(what);
     return app::kBadArguments;
   };
   if (const auto error = CheckArguments(a, app)) return bad(*error);

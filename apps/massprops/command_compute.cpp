@@ -208,7 +208,7 @@ int ComputeMain(int argc, char** argv) {
                  "mass, the principal axes, the equivalent-inertia ellipsoid, the bounding box; one input");
   if (const int status = app::ParseArguments(app, argc, argv); status >= 0) return status;
   auto bad = [](const std::string& what) {
-    std::cerr << "error: " << massprops::app::OneLine(what) << "\n";
+    massprops::app::PrintError(what);
     return app::kBadArguments;
   };
   if (const auto error = CheckArguments(a, app)) return bad(*error);
@@ -239,7 +239,7 @@ int ComputeMain(int argc, char** argv) {
   for (auto& [name, o] : ComputeAll(a, options, !picture.empty())) {
     if (!o.result) {
       ++failures;
-      std::cerr << "error: " << massprops::app::OneLine(o.error) << "\n";
+      massprops::app::PrintError(o.error);
       continue;
     }
     const SolidResult& r = *o.result;
@@ -259,8 +259,7 @@ int ComputeMain(int argc, char** argv) {
     try {
       DrawPicture(picture, a, results.front(), format);
     } catch (const std::exception& e) {
-      std::cerr << "error: " << massprops::app::OneLine(results.front().source)
-                << ": --picture: " << massprops::app::OneLine(e.what()) << "\n";
+      massprops::app::PrintError(results.front().source + ": --picture: " + e.what());
       return 1;
     }
   }
@@ -268,7 +267,7 @@ int ComputeMain(int argc, char** argv) {
     try {
       if (!text.empty()) report::WriteFileAtomically(a.output, text);
     } catch (const std::exception& e) {
-      std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
+      massprops::app::PrintError(e.what());
       return 1;
     }
   } else {

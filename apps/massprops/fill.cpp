@@ -83,7 +83,7 @@ int FillMain(int argc, char** argv) {
   if (const int status = app::ParseArguments(app, argc, argv); status >= 0) return status;
   load.Apply(o.load);
   auto bad = [](const std::string& what) {
-    std::cerr << "error: " << massprops::app::OneLine(what) << "\n";
+    massprops::app::PrintError(what);
     return app::kBadArguments;
   };
   o.from = from == "visual" ? GeometrySource::kVisual : GeometrySource::kCollision;
@@ -104,20 +104,20 @@ int FillMain(int argc, char** argv) {
   } catch (const std::invalid_argument& e) {
     return bad(e.what());
   } catch (const std::exception& e) {
-    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
+    massprops::app::PrintError(e.what());
     return 1;
   }
   try {
     report::WriteFileAtomically(output, r.document);
   } catch (const std::exception& e) {
-    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
+    massprops::app::PrintError(e.what());
     return 1;
   }
   if (!quiet) std::cout << (report == "json" ? FormatFillJson(input, output, r, CliVocabulary()) : Table(input, r));
   for (const LinkFill& l : r.links) {
     if (l.status == LinkStatus::kFailed) {
-      std::cerr << "error: " << massprops::app::OneLine(input) << ": link '" << l.name
-                << "': " << Worded(l.message, CliVocabulary()) << " (left as it was)\n";
+      massprops::app::PrintError(input + ": link '" + l.name + "': " + Worded(l.message, CliVocabulary()) +
+                                 " (left as it was)");
     }
   }
   return r.AllFilled() ? 0 : 1;

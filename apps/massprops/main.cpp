@@ -7,31 +7,12 @@
 //   massprops validate                       validate.cpp
 //   massprops fill ROBOT -o OUT              fill.cpp
 
-#include <string_view>
-
+#include "cli.h"
 #include "commands.h"
 
-namespace {
-
-struct Subcommand {
-  std::string_view name;
-  int (*run)(int argc, char** argv);
-};
-
-constexpr Subcommand kSubcommands[] = {
-    {"batch", massprops::cli::BatchMain},
-    {"merge", massprops::cli::MergeMain},
-    {"validate", massprops::cli::ValidateMain},
-    {"fill", massprops::cli::FillMain},
-};
-
-}  // namespace
-
 int main(int argc, char** argv) {
-  if (argc > 1) {
-    for (const Subcommand& s : kSubcommands) {
-      if (argv[1] == s.name) return s.run(argc - 1, argv + 1);
-    }
-  }
-  return massprops::cli::ComputeMain(argc, argv);
+  using namespace massprops::cli;  // NOLINT(google-build-using-namespace)
+  return massprops::app::Dispatch(
+      argc, argv, {{"batch", BatchMain}, {"merge", MergeMain}, {"validate", ValidateMain}, {"fill", FillMain}},
+      ComputeMain);
 }

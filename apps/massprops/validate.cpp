@@ -124,7 +124,7 @@ int ValidateMain(int argc, char** argv) {
     if (!output.empty()) report::CheckOutputPath(output, {});
     if (!plot.empty()) report::CheckOutputPath(plot, {});
   } catch (const std::exception& e) {
-    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
+    massprops::app::PrintError(e.what());
     return app::kBadArguments;
   }
   ValidationOptions options;
@@ -134,7 +134,7 @@ int ValidateMain(int argc, char** argv) {
   try {
     rows = ValidateClosedForms(options);
   } catch (const std::invalid_argument& e) {
-    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
+    massprops::app::PrintError(e.what());
     return app::kBadArguments;
   }
   const std::string text = format == "json" ? Json(rows) : Table(rows);
@@ -146,7 +146,7 @@ int ValidateMain(int argc, char** argv) {
       report::WriteFileAtomically(output, text);
     }
   } catch (const std::exception& e) {
-    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
+    massprops::app::PrintError(e.what());
     return 1;
   }
   return 0;

@@ -130,8 +130,7 @@ void DeclareRunFlags(CLI::App& app, Flags& f) {
 massprops::Vector3 VectorFlag(const std::string& text, const char* flag, const char* names) {
   massprops::Vector3 v = massprops::Vector3::Zero();
   if (!text.empty() && !ParseVec3(text, v)) {
-    std::cerr << "error: " << flag << ": expected three finite numbers " << names << ", got '"
-              << massprops::app::OneLine(text) << "'\n";
+    massprops::app::PrintError(std::string(flag) + ": expected three finite numbers " + names + ", got '" + text + "'");
     throw Exit{massprops::app::kBadArguments};
   }
   return v;
@@ -149,15 +148,17 @@ rbsim::Scene MeshScene(const Flags& f, std::vector<std::string>& warnings) {
   scene.dt = omega.stableNorm() > 0 ? std::min(1e-3, 0.01 / omega.stableNorm()) : 1e-3;
   if (f.dt) scene.dt = *f.dt;
   if (!f.dt && !(scene.duration / scene.dt <= 1e9)) {
-    std::cerr << "error: --omega: |omega| = " << omega.stableNorm() << " rad/s asks for steps of " << scene.dt
-              << " s (0.01 rad of turn each), " << scene.duration / scene.dt << " of them for " << scene.duration
-              << " s, more than 10^9; give a smaller --omega, or --dt and --duration\n";
+    std::ostringstream why;
+    why << "--omega: |omega| = " << omega.stableNorm() << " rad/s asks for steps of " << scene.dt
+        << " s (0.01 rad of turn each), " << scene.duration / scene.dt << " of them for " << scene.duration
+        << " s, more than 10^9; give a smaller --omega, or --dt and --duration";
+    massprops::app::PrintError(why.str());
     throw Exit{massprops::app::kBadArguments};
   }
   scene.outputs = rbsim::DefaultOutputs();
   const std::filesystem::path path = std::filesystem::absolute(f.mesh).lexically_normal();
   if (const std::string problem = rbsim::MeshFileProblem(path); !problem.empty()) {
-    std::cerr << "error: --mesh: '" << massprops::app::OneLine(f.mesh) << "' " << problem << "\n";
+    massprops::app::PrintError(std::string("--mesh: '") + f.mesh + "' " + problem);
     throw Exit{1};
   }
   rbsim::BodySpec body;
@@ -185,7 +186,7 @@ void ApplyOverrides(const Flags& f, rbsim::Scene& scene, std::vector<std::string
     try {
       scene.integrator = dynamics::ParseIntegrator(f.integrator);
     } catch (const std::invalid_argument& e) {
-      std::cerr << "error: --integrator: " << massprops::app::OneLine(e.what()) << "\n";
+      massprops::app::PrintError(std::string("--integrator: ") + e.what());
       throw Exit{massprops::app::kBadArguments};
     }
   }
@@ -197,7 +198,7 @@ void ApplyOverrides(const Flags& f, rbsim::Scene& scene, std::vector<std::string
       try {
         scene.outputs.push_back(rbsim::ParseOutputName(name));
       } catch (const std::invalid_argument& e) {
-        std::cerr << "error: --outputs: " << massprops::app::OneLine(e.what()) << "\n";
+        massprops::app::PrintError(std::string("--outputs: ") + e.what());
         throw Exit{massprops::app::kBadArguments};
       }
     }
@@ -216,17 +217,16 @@ rbsim::InputKind KindOf(const Flags& f) {
       if (!problem.empty() && f.inputs.size() == 1 && std::filesystem::path(in).extension() == ".json") {
         return rbsim::InputKind::kScene;  // the scene reader says what is wrong with it
       }
-      std::cerr << "error: " << massprops::app::OneLine(in) << ": "
-                << (problem.empty() ? "not a scene (.json), a robot description (URDF, SDFormat or MJCF: XML whose "
-                                      "root is <robot>, <sdf> or <mujoco>) or a mesh or CAD file (STL, OBJ, PLY, "
-                                      "OFF, 3MF, glTF, STEP, IGES, ...)"
-                                    : problem)
-                << "\n";
+      massprops::app::PrintError(in + ": " +
+                                 (problem.empty() ? "not a scene (.json), a robot description (URDF, SDFormat or MJCF: "
+                                                    "XML whose root is <robot>, <sdf> or <mujoco>) or a mesh or CAD "
+                                                    "file (STL, OBJ, PLY, OFF, 3MF, glTF, STEP, IGES, ...)"
+                                                  : problem));
       throw Exit{problem.empty() ? massprops::app::kBadArguments : 1};
     }
     if (k != rbsim::InputKind::kMesh && f.inputs.size() > 1) {
-      std::cerr << "error: " << massprops::app::OneLine(in)
-                << ": a scene or robot file runs alone; give it by itself, or give only parts (mesh files)\n";
+      massprops::app::PrintError(
+          in + ": a scene or robot file runs alone; give it by itself, or give only parts (mesh files)");
       throw Exit{massprops::app::kBadArguments};
     }
     if (k != rbsim::InputKind::kMesh) kind = k;
@@ -238,24 +238,27 @@ rbsim::InputKind KindOf(const Flags& f) {
 void CheckFlagsFit(const Flags& f, const CLI::App& app, rbsim::InputKind kind) {
   const bool robot_flags = f.robot.fill || f.robot.fixed_base || !f.robot.keyframe.empty() || !f.packages.empty();
   if (robot_flags && kind != rbsim::InputKind::kRobot) {
-    std::cerr << "error: --fill, --fixed-base, --keyframe, --package: for a robot file (URDF, SDFormat, MJCF), not "
-                 "a scene or parts (a scene's robot entry takes \"packages\")\n";
+    massprops::app::PrintError(
+        std::string("--fill, --fixed-base, --keyframe, --package: for a robot file (URDF, SDFormat, MJCF), not "
+                    "a scene or parts (a scene's robot entry takes \"packages\")"));
     throw Exit{massprops::app::kBadArguments};
   }
   const bool parts = kind == rbsim::InputKind::kMesh && !f.inputs.empty();
   if (rbsim::AnyDropFlag(app) && !parts) {
-    std::cerr << "error: --count, --height, --orientation, --seed, --on, --friction, --restitution, --rest-speed, "
-                 "--separate, --save-scene: for parts dropped (rbsim PART.stl ...), not a scene, a robot or --mesh\n";
+    massprops::app::PrintError(std::string(
+        "--count, --height, --orientation, --seed, --on, --friction, --restitution, --rest-speed, "
+        "--separate, --save-scene: for parts dropped (rbsim PART.stl ...), not a scene, a robot or --mesh"));
     throw Exit{massprops::app::kBadArguments};
   }
   if (f.drop.separate && app.count("--parts") == 0) {
-    std::cerr << "error: --separate: for an assembly read by its parts: give --parts too\n";
+    massprops::app::PrintError(std::string("--separate: for an assembly read by its parts: give --parts too"));
     throw Exit{massprops::app::kBadArguments};
   }
   for (const char* flag : {"--unit", "--density", "--mass", "--repair", "--allow-open", "--parts"}) {
     if (app.count(flag) > 0 && !parts && f.mesh.empty()) {
-      std::cerr << "error: " << flag
-                << ": for parts (rbsim PART.stl) and --mesh; a scene gives it per body, a robot file per mesh\n";
+      massprops::app::PrintError(std::string(flag) +
+                                 ": for parts (rbsim PART.stl) and --mesh; a scene gives it per body, a robot file per "
+                                 "mesh");
       throw Exit{massprops::app::kBadArguments};
     }
   }
@@ -265,7 +268,7 @@ void CheckFlagsFit(const Flags& f, const CLI::App& app, rbsim::InputKind kind) {
 rbsim::Scene DropSceneOf(const Flags& f, std::vector<std::string>& warnings) {
   rbsim::DropOptions options;
   if (const std::string problem = rbsim::ToDropOptions(f.drop, f.inputs, options); !problem.empty()) {
-    std::cerr << "error: " << massprops::app::OneLine(problem) << "\n";
+    massprops::app::PrintError(problem);
     throw Exit{massprops::app::kBadArguments};
   }
   options.load = f.load->Options();
@@ -288,7 +291,7 @@ rbsim::Scene SceneOf(const Flags& f, const CLI::App& app, std::vector<std::strin
     for (const std::string& p : f.packages) {
       const auto mapping = massprops::PackageMapping(p);
       if (!mapping) {
-        std::cerr << "error: --package takes NAME=DIR, got '" << massprops::app::OneLine(p) << "'\n";
+        massprops::app::PrintError(std::string("--package takes NAME=DIR, got '") + p + "'");
         throw Exit{massprops::app::kBadArguments};
       }
       robot.packages.push_back(*mapping);
@@ -307,7 +310,7 @@ rbsim::Scene SceneOf(const Flags& f, const CLI::App& app, std::vector<std::strin
       massprops::report::CheckOutputPath(f.drop.save_scene, f.inputs);
       massprops::report::WriteFileAtomically(f.drop.save_scene, rbsim::DropSceneJson(scene));
     } catch (const std::exception& e) {
-      std::cerr << "error: --save-scene " << massprops::app::OneLine(e.what()) << "\n";
+      massprops::app::PrintError(std::string("--save-scene ") + e.what());
       throw Exit{1};
     }
   }
@@ -352,7 +355,7 @@ std::vector<std::string> WriteOutputs(const Flags& f, const rbsim::Simulation& s
   } catch (const std::exception& e) {
     std::error_code ec;
     std::filesystem::remove_all(staging, ec);
-    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "; no output files were written\n";
+    massprops::app::PrintError(std::string(e.what()) + "; no output files were written");
     throw Exit{1};
   }
   if (!out_dir.empty()) {
@@ -369,8 +372,7 @@ std::unique_ptr<rbsim::TrajectoryWriter> WriterFor(const Flags& f, const rbsim::
     std::filesystem::create_directories(f.out_dir);
     return std::make_unique<rbsim::TrajectoryWriter>(f.out_dir, sim.scene.outputs, !sim.world().joints().empty());
   } catch (const std::exception& e) {
-    std::cerr << "error: --out " << massprops::app::OneLine(f.out_dir) << ": " << massprops::app::OneLine(e.what())
-              << "\n";
+    massprops::app::PrintError(std::string("--out ") + f.out_dir + ": " + e.what());
     throw Exit{1};
   }
 }
@@ -395,8 +397,7 @@ rbsim::RunStats RunScene(const Flags& f, rbsim::Simulation& sim, rbsim::Trajecto
           if (writer) writer->AddStep(sim, step);
         });
   } catch (const std::exception& e) {
-    std::cerr << "error: " << massprops::app::OneLine(sim.scene.file) << ": " << e.what()
-              << "; no output files were written\n";
+    massprops::app::PrintError(sim.scene.file + ": " + e.what() + "; no output files were written");
     throw Exit{1};
   }
   if (stats.interrupted) {
@@ -411,9 +412,9 @@ int Simulate(const Flags& f, const rbsim::Scene& scene, std::vector<std::string>
   const bool plot =
       !f.out_dir.empty() && (Wants(scene, rbsim::OutputKind::kPlotSvg) || Wants(scene, rbsim::OutputKind::kPlotPng));
   if (plot && !rbsim::HaveGnuplot()) {
-    std::cerr
-        << "error: --outputs: the plot needs gnuplot, which is not on the PATH (apt-get install gnuplot-nox), or leave "
-           "svg and png out of the outputs\n";
+    massprops::app::PrintError(std::string(
+        "--outputs: the plot needs gnuplot, which is not on the PATH (apt-get install gnuplot-nox), or leave "
+        "svg and png out of the outputs"));
     return 1;
   }
   std::optional<rbsim::Simulation> sim;
@@ -421,7 +422,7 @@ int Simulate(const Flags& f, const rbsim::Scene& scene, std::vector<std::string>
     sim.emplace(rbsim::BuildSimulation(scene, warnings, f.threads));
   } catch (const std::exception& e) {
     FlushWarnings(warnings);
-    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
+    massprops::app::PrintError(e.what());
     return 1;
   }
   FlushWarnings(warnings);
@@ -462,8 +463,10 @@ int Simulate(const Flags& f, const rbsim::Scene& scene, std::vector<std::string>
 // side: each gets its own malloc arena (apps/common/large_pages.cpp).
 extern "C" const bool massprops_app_one_arena = false;
 
-int main(int argc, char** argv) {
-  if (argc > 1 && std::string(argv[1]) == "poses") return rbsim::PosesMain(argc - 1, argv + 1);
+namespace {
+
+// rbsim on parts, a scene, a robot file or --mesh.
+int SimulateMain(int argc, char** argv) {
   CLI::App app{
       "rbsim: simulate rigid bodies made from mesh files, with trajectory, diagnostics, plot and an "
       "animated .glb.\nParts dropped: docs/scenes.md ('The `rbsim` command'); scene files: docs/scenes.md ('rbsim "
@@ -478,8 +481,9 @@ int main(int argc, char** argv) {
   if (const int status = massprops::app::ParseArguments(app, argc, argv); status >= 0) return status;
   if (threads.Given("threads")) f.threads = threads.Options().num_threads;
   if (f.inputs.empty() && f.mesh.empty()) {
-    std::cerr << "error: arguments: give mesh files to drop, a scene file, a robot file, or --mesh FILE to spin one "
-                 "part (see --help)\n";
+    massprops::app::PrintError(
+        std::string("arguments: give mesh files to drop, a scene file, a robot file, or --mesh FILE to spin one "
+                    "part (see --help)"));
     return massprops::app::kBadArguments;
   }
   std::vector<std::string> warnings;
@@ -491,7 +495,7 @@ int main(int argc, char** argv) {
       throw;
     } catch (const std::exception& e) {
       FlushWarnings(warnings);
-      std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
+      massprops::app::PrintError(e.what());
       return 1;
     }
     FlushWarnings(warnings);
@@ -499,4 +503,10 @@ int main(int argc, char** argv) {
   } catch (const Exit& e) {
     return e.status;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return massprops::app::Dispatch(argc, argv, {{"poses", rbsim::PosesMain}}, SimulateMain);
 }

@@ -268,11 +268,11 @@ int PosesMain(int argc, char** argv) {
   dynamics::Material ground, material;
   std::string why;
   if (!ParseMaterial(f.ground_text, ground, why)) {
-    std::cerr << "error: --ground: " << massprops::app::OneLine(why) << "\n";
+    massprops::app::PrintError(std::string("--ground: ") + why);
     return massprops::app::kBadArguments;
   }
   if (!ParseMaterial(f.material_text, material, why)) {
-    std::cerr << "error: --material: " << massprops::app::OneLine(why) << "\n";
+    massprops::app::PrintError(std::string("--material: ") + why);
     return massprops::app::kBadArguments;
   }
   dynamics::PosesReport report;
@@ -288,7 +288,7 @@ int PosesMain(int argc, char** argv) {
                                massprops::report::WordsFor(massprops::report::FrontEnd::kPoses), warnings, &file_mesh);
   } catch (const std::exception& e) {
     for (const auto& w : warnings) std::cerr << "warning: " << massprops::app::OneLine(w) << "\n";
-    std::cerr << "error: " << massprops::app::OneLine(e.what()) << "\n";
+    massprops::app::PrintError(e.what());
     return 1;
   }
   for (const auto& w : warnings) std::cerr << "warning: " << massprops::app::OneLine(w) << "\n";
@@ -308,7 +308,7 @@ int PosesMain(int argc, char** argv) {
     seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     report.tally = dp::Count(outcomes, report.estimate.poses.size());
   } catch (const std::exception& e) {
-    std::cerr << "error: " << massprops::app::OneLine(f.part_file) << ": " << e.what() << "\n";
+    massprops::app::PrintError(f.part_file + ": " + e.what());
     return 1;
   }
   const dp::Estimate& estimate = report.estimate;
@@ -321,8 +321,7 @@ int PosesMain(int argc, char** argv) {
     try {
       WritePoseFiles(f.out_dir, name, file_mesh, part, estimate, report.pictures, json);
     } catch (const std::exception& e) {
-      std::cerr << "error: --out " << massprops::app::OneLine(f.out_dir) << ": " << massprops::app::OneLine(e.what())
-                << "\n";
+      massprops::app::PrintError(std::string("--out ") + f.out_dir + ": " + e.what());
       return 1;
     }
   }

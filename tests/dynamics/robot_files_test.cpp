@@ -190,7 +190,9 @@ TEST(RobotFiles, LightLinksOnDampedJointsStepWithoutSubsteps) {
     for (long s = 0; s < steps; ++s) {
       const dynamics::StepStatus st = world.Step(h);
       EXPECT_TRUE(st.ok) << st.message;
-      if (count_substeps) EXPECT_EQ(st.substeps, 1) << "step " << s;  // (1: the step itself)
+      if (count_substeps) {
+        EXPECT_EQ(st.substeps, 1) << "step " << s;  // (1: the step itself)
+      }
       if (!st.ok || (count_substeps && st.substeps != 1)) break;
     }
     std::vector<double> q;

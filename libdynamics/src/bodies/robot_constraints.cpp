@@ -118,11 +118,11 @@ void AddRobotConstraints(ContactWorld& world, const massprops::RobotModel& model
     c.follower = coordinate(rc.follower);
     c.leader = coordinate(rc.leader);
     // The coordinates at the reference configuration (MuJoCo's qpos0: every joint at its ref).
-    auto reference = [&](int k) {
+    auto reference_of = [&](int k) {
       return rc.tendons ? lengths[static_cast<std::size_t>(k)] : model.joints[static_cast<std::size_t>(k)].ref;
     };
-    c.follower_reference = reference(rc.follower);
-    if (rc.leader >= 0) c.leader_reference = reference(rc.leader);
+    c.follower_reference = reference_of(rc.follower);
+    if (rc.leader >= 0) c.leader_reference = reference_of(rc.leader);
     Named(model, [&] { world.AddCoupling(c); });
   }
   for (const massprops::RobotLoop& rl : model.loops) {

@@ -66,7 +66,4 @@ struct MassPropertiesEstimate {
 MassPropertiesEstimate EstimateMassProperties(const ImplicitSolid& solid, Scalar density,
                                               const MonteCarloOptions& options = {});
 
-/// Owen-scrambled Sobol point `index` of randomization `seed` in [0, 1)^3 (exposed for tests).
-Vector3 ScrambledSobol(std::uint32_t index, std::uint64_t seed);
-
 }  // namespace massprops

@@ -164,20 +164,6 @@ void Fill(MassPropertiesEstimate& e, const std::array<double, kOutputs>& se) {
 
 }  // namespace
 
-Vector3 ScrambledSobol(std::uint32_t index, std::uint64_t seed) {
-  const auto& v = Sobol().v;
-  Vector3 u;
-  for (int d = 0; d < 3; ++d) {
-    std::uint32_t x = 0;
-    for (int k = 0; k < 32 && (index >> k); ++k) {
-      if ((index >> k) & 1u) x ^= v[static_cast<std::size_t>(d)][static_cast<std::size_t>(k)];
-    }
-    const auto s = static_cast<std::uint32_t>(SplitMix(seed * 3 + static_cast<std::uint64_t>(d)));
-    u[d] = (static_cast<double>(OwenScramble(x, s)) + 0.5) * 0x1.0p-32;
-  }
-  return u;
-}
-
 double MassPropertiesEstimate::MaxRelativeError() const {
   double r = standard_error.mass / std::abs(value.mass);
   for (int i = 0; i < 3; ++i) r = std::max(r, principal_moments_se[i] / std::abs(principal_moments[i]));

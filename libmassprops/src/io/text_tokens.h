@@ -73,10 +73,6 @@ class Tokens {
     tok = s_.substr(start, pos_ - start);
     return true;
   }
-  // Skips the rest of the current line.
-  void SkipLine() {
-    while (pos_ < s_.size() && s_[pos_] != '\n') ++pos_;
-  }
   std::size_t line() const { return line_; }
 
  private:

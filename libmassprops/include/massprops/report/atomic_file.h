@@ -21,7 +21,6 @@ class AtomicFile {
 
   std::ofstream& stream() { return out_; }
   const std::string& path() const { return path_; }
-  const std::string& temporary_path() const { return tmp_; }
   /// Flushes, closes and renames onto the final name. @throws std::runtime_error naming the path.
   void Commit();
   /// Drops the temporary file (also done by the destructor).
