@@ -481,7 +481,7 @@ def test_add_robot_without_position_is_set_down_as_scenes_do():
     world.add_gravity((0, 0, -9.81))
     world.add_robot(path)
     s = massprops.dynamics.load_scene(path)
-    assert [list(b.position) for b in world.bodies] == [list(b.position) for b in s["world"].bodies]
+    assert [list(b.position) for b in world.bodies] == [list(b.position) for b in s.world.bodies]
     lowest = min(b.position[2] for b in world.bodies)
     assert 0.01 < lowest < 0.2
 
@@ -584,15 +584,32 @@ def test_load_scene_steps_as_rbsim_does(tmp_path, scene, duration):
     assert done.returncode == 0, done.stderr
     rows = [row.split(",") for row in (tmp_path / "trajectory.csv").read_text().splitlines()[1:]]
     s = massprops.dynamics.load_scene(path)
-    world = s["world"]
-    steps = math.ceil(duration / s["dt"] - 1e-9)
-    world.step(s["dt"], steps=steps)
-    last = rows[-len(s["bodies"]):]
-    assert [r[1] for r in last] == s["bodies"]
+    world = s.world
+    steps = math.ceil(duration / s.dt - 1e-9)
+    world.step(s.dt, steps=steps)
+    last = rows[-len(s.bodies):]
+    assert [r[1] for r in last] == s.bodies
     for r, body in zip(last, world.bodies):
         assert [float(v) for v in r[2:5]] == list(body.position), r[1]
         assert [float(v) for v in r[9:12]] == list(body.velocity), r[1]
     assert float(last[0][0]) == pytest.approx(world.time, abs=1e-12)
+
+
+def test_a_loaded_scene_runs_as_rbsim_runs_it(tmp_path):
+    """Scene.run() steps through the scene's own duration: the same bits as `rbsim SCENE`'s last
+    rows; the keys of the dict load_scene returned before 0.6 still read the same values."""
+    path = os.path.join(DATA, "scenes", "box_stack.json")
+    s = massprops.dynamics.load_scene(path)
+    assert s.steps == math.ceil(s.duration / s.dt - 1e-9) and s["dt"] == s.dt and s["bodies"] == s.bodies
+    done = subprocess.run([RBSIM, path, "--outputs", "csv", "--out", str(tmp_path), "-q"], capture_output=True,
+                          text=True)
+    assert done.returncode == 0, done.stderr
+    rows = [row.split(",") for row in (tmp_path / "trajectory.csv").read_text().splitlines()[1:]]
+    world = s.run()
+    for r, body in zip(rows[-len(s.bodies):], world.bodies):
+        assert [float(v) for v in r[2:5]] == list(body.position), r[1]
+    with pytest.raises(KeyError):
+        s["nothing"]
 
 
 def test_load_scene_errors_name_the_file_and_field(tmp_path):

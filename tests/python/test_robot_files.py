@@ -41,7 +41,7 @@ def test_packages_map_package_names_to_folders(tmp_path, monkeypatch):
     # of mass), 1 cm above the ground.
     assert world.body(robot["bodies"][0]).position[2] == pytest.approx(0.01, abs=1e-12)
     scene = massprops.dynamics.load_scene(str(urdf), packages={"acme_meshes": str(root)})
-    assert scene["bodies"] == ["robot/a"]
+    assert scene.bodies == ["robot/a"]
 
 
 def test_a_massless_root_is_bolted_where_the_file_puts_it():
