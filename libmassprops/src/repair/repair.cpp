@@ -14,16 +14,20 @@
 #include <Eigen/Eigenvalues>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Polygon_mesh_processing/intersection.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/stitch_borders.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
+#include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
 
 #include "repair/from_surface_mesh.h"
@@ -244,6 +248,11 @@ void FillHoles(Mesh& mesh, double flat, RepairReport& rep) {
   }
 }
 
+// A closed mesh's shells that CGAL's orientation turned inward though they cross another shell
+// (a pin through a hub: CGAL takes it for a cavity) turned back outward, in place (UnionOfShells'
+// rule, below).
+void OrientCrossingShellsOutward(Mesh& mesh);
+
 }  // namespace
 
 RepairedMesh RepairMesh(const PolygonMesh& input, const RepairOptions& options) {
@@ -314,6 +323,7 @@ RepairedMesh RepairMesh(const PolygonMesh& input, const RepairOptions& options) 
   if (CGAL::is_closed(mesh) && !mesh.is_empty()) {
     mesh = ToCgal(FromCgal(mesh));
     PMP::orient_to_bound_a_volume(mesh);
+    OrientCrossingShellsOutward(mesh);
     rep.oriented_to_bound_volume = true;
   }
 
@@ -323,28 +333,97 @@ RepairedMesh RepairMesh(const PolygonMesh& input, const RepairOptions& options) 
   return out;
 }
 
+namespace {
+
+// Which shells bound voids: a shell that lies wholly inside an odd number of the others (its
+// surface meeting none of theirs) is a cavity; every other shell is solid, whichever way its faces
+// point — the repair's orientation takes a shell partly inside another (a pin through a hub) for a
+// cavity, and that shell is to be united, not subtracted.
+std::vector<bool> Cavities(std::vector<Mesh>& parts) {
+  const std::size_t n = parts.size();
+  std::vector<CGAL::Bbox_3> box(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    PMP::triangulate_faces(parts[i]);
+    box[i] = PMP::bbox(parts[i]);
+  }
+  auto within = [](const CGAL::Bbox_3& a, const CGAL::Bbox_3& b) {
+    return a.xmin() >= b.xmin() && a.ymin() >= b.ymin() && a.zmin() >= b.zmin() && a.xmax() <= b.xmax() &&
+           a.ymax() <= b.ymax() && a.zmax() <= b.zmax();
+  };
+  std::vector<bool> cavity(n, false);
+  for (std::size_t i = 0; i < n; ++i) {
+    int depth = 0;
+    for (std::size_t j = 0; j < n; ++j) {
+      if (j == i || !within(box[i], box[j]) || PMP::do_intersect(parts[i], parts[j])) continue;
+      const CGAL::Side_of_triangle_mesh<Mesh, Kernel> inside(parts[j]);
+      if (inside(parts[i].point(*parts[i].vertices().begin())) == CGAL::ON_BOUNDED_SIDE) ++depth;
+    }
+    cavity[i] = depth % 2 == 1;
+  }
+  return cavity;
+}
+
+void OrientCrossingShellsOutward(Mesh& mesh) {
+  std::vector<Mesh> parts;
+  PMP::split_connected_components(mesh, parts);
+  if (parts.size() < 2) return;
+  const std::vector<bool> cavity = Cavities(parts);
+  std::vector<bool> flip(parts.size());
+  bool any = false;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    flip[i] = (PMP::volume(parts[i]) > 0) == cavity[i];
+    any = any || flip[i];
+  }
+  if (!any) return;  // CGAL's orientation stands (the same mesh, face for face)
+  auto component = mesh.add_property_map<Mesh::Face_index, std::size_t>("f:component", 0).first;
+  PMP::connected_components(mesh, component);
+  std::vector<Mesh::Face_index> faces;
+  for (const Mesh::Face_index f : mesh.faces())
+    if (flip[component[f]]) faces.push_back(f);
+  PMP::reverse_face_orientations(faces, mesh);
+  mesh.remove_property_map(component);
+}
+
+// The union of closed outward meshes, pairwise in a balanced tree (each mesh joins one about its
+// own size, not the growing whole one after another). @throws std::runtime_error when CGAL cannot.
+Mesh BalancedUnion(std::vector<Mesh> meshes) {
+  while (meshes.size() > 1) {
+    std::vector<Mesh> next;
+    for (std::size_t i = 0; i + 1 < meshes.size(); i += 2) {
+      Mesh united;
+      if (!PMP::corefine_and_compute_union(meshes[i], meshes[i + 1], united)) {
+        throw std::runtime_error(
+            "CGAL could not compute the union of the overlapping shells (a shell intersects "
+            "itself, or does not bound a volume)");
+      }
+      next.push_back(std::move(united));
+    }
+    if (meshes.size() % 2 == 1) next.push_back(std::move(meshes.back()));
+    meshes = std::move(next);
+  }
+  return std::move(meshes.front());
+}
+
+}  // namespace
+
 PolygonMesh UnionOfShells(const PolygonMesh& input, std::int64_t& merged) {
   Mesh all = ToCgal(input);
   std::vector<Mesh> parts;
   PMP::split_connected_components(all, parts);
-  std::vector<Mesh> outward, inward;
-  for (Mesh& part : parts) {
+  for (const Mesh& part : parts) {
     if (!CGAL::is_closed(part)) throw std::runtime_error("the union of overlapping shells needs closed shells");
-    (PMP::volume(part) > 0 ? outward : inward).push_back(std::move(part));
   }
-  if (outward.empty()) throw std::runtime_error("no shell faces outward: nothing to unite");
-  Mesh result = outward[0];
-  for (std::size_t i = 1; i < outward.size(); ++i) {
-    Mesh united;
-    if (!PMP::corefine_and_compute_union(result, outward[i], united)) {
-      throw std::runtime_error(
-          "CGAL could not compute the union of the overlapping shells (a shell intersects "
-          "itself, or does not bound a volume)");
-    }
-    result = std::move(united);
+  const std::vector<bool> cavity = Cavities(parts);
+  std::vector<Mesh> solids, voids;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    // Solids face outward (positive volume), cavities inward.
+    if ((PMP::volume(parts[i]) > 0) == cavity[i]) PMP::reverse_face_orientations(parts[i]);
+    (cavity[i] ? voids : solids).push_back(std::move(parts[i]));
   }
-  for (const Mesh& cavity : inward) result += cavity;  // cavities facing inward stay as they are
-  merged = static_cast<std::int64_t>(outward.size()) - 1;
+  if (solids.empty()) throw std::runtime_error("no shell bounds a solid: nothing to unite");
+  merged = static_cast<std::int64_t>(solids.size()) - 1;
+  Mesh result = BalancedUnion(std::move(solids));
+  for (const Mesh& v : voids) result += v;  // cavities stay as they are, facing inward
   return FromCgal(result);
 }
 
