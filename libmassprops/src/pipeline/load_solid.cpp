@@ -716,6 +716,20 @@ void EstimateByWindingNumber(SolidResult& r, const LoadOptions& opt) {
            opt.unit_stated, opt.num_threads, opt.progress);
 }
 
+// A library's exception text on one line: CGAL writes "CGAL ERROR: ...!\nExpr: ...\nFile: ...".
+std::string LibraryMessage(std::string_view text) {
+  std::string out;
+  for (const char c : text) {
+    if (c == '\n') {
+      if (!out.empty() && out.back() != ' ') out += "; ";
+    } else if (c != '\r') {
+      out += c;
+    }
+  }
+  while (!out.empty() && (out.back() == ' ' || out.back() == ';')) out.pop_back();
+  return out;
+}
+
 // How long the union of overlapping shells may take before the winding number estimates it:
 // CGAL's corefinement of many shells whose faces are coplanar (pins of one length through a hub)
 // falls back to exact arithmetic at every such face and can take minutes.
@@ -763,8 +777,10 @@ PolygonMesh UniteWithinBudget(const PolygonMesh& mesh, std::int64_t& united) {
           w.I32s(u.indices.data(), u.indices.size());
           w.U64(u.offsets.size());
           for (const std::int64_t o : u.offsets) w.U64(static_cast<std::uint64_t>(o));
-        } catch (const std::exception& e) {
+        } catch (const std::runtime_error& e) {  // ours
           w.Str(e.what());
+        } catch (const std::exception& e) {  // CGAL's own words, said as the reason
+          w.Str("CGAL's corefinement failed: " + LibraryMessage(e.what()));
         }
         return std::move(w.bytes());
       },
@@ -794,6 +810,22 @@ PolygonMesh UniteWithinBudget(const PolygonMesh& mesh, std::int64_t& united) {
   }
 }
 
+// The repair (CGAL), its library's own failures (a precondition, "Unauthorized intersections of
+// constraints" from a hole's triangulation) turned into the one error form: the file, the stage,
+// what failed, what to try. Our own refusals pass as they are.
+RepairedMesh RepairInOurWords(const SolidResult& r, const GeometrySteps& steps) {
+  try {
+    return steps.repair(r.loaded.mesh, RepairOptions{});
+  } catch (const MeshFileError&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw LoadError(r.source + ": the repair failed in CGAL (" + LibraryMessage(e.what()) +
+                    "); {winding_number} estimates the solid with error bars without repairing it");
+  }
+}
+
 // Overlapping shells not united — CGAL could not (a shell that intersects itself), or the cost
 // estimate or the time budget said no: their union is where the winding number is at least 1/2
 // (2 inside both, 1 inside one), the route said.
@@ -818,7 +850,7 @@ SolidResult Solve(SolidResult r, const LoadOptions& given, std::chrono::steady_c
   }
   if (opt.repair) {
     Stage(opt, "repairing (CGAL)");
-    RepairedMesh repaired = RequireGeometrySteps("the repair").repair(r.loaded.mesh, RepairOptions{});
+    RepairedMesh repaired = RepairInOurWords(r, RequireGeometrySteps("the repair"));
     r.loaded.mesh = std::move(repaired.mesh);
     r.repair = repaired.report;
   }
