@@ -16,6 +16,8 @@ namespace massprops_python {
 /// Every keyword checked (a misspelt one is a TypeError, a bad value a ValueError naming it).
 massprops::LoadOptions LoadOptionsFrom(const pybind11::kwargs& kw);
 const massprops::Vocabulary& PythonWords();
+/// Classes with Python's own metaclass rather than pybind11's: what the type stubs declare.
+pybind11::metaclass PlainType();
 /// packages={'NAME': 'DIR'} (package://NAME/, model://NAME/ roots) as FillOptions::packages.
 std::vector<std::pair<std::string, std::string>> PackagesOf(const pybind11::dict& packages);
 

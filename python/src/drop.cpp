@@ -106,8 +106,7 @@ DropResult Drop(const std::vector<std::string>& paths, int count, bool separate,
 }  // namespace
 
 void BindDrop(py::module_& dyn) {
-  const py::metaclass plain(reinterpret_cast<PyObject*>(&PyType_Type));  // as the stubs declare
-  py::class_<scene::RestingPose>(dyn, "RestingPose", plain, "How a dropped part came to rest.")
+  py::class_<scene::RestingPose>(dyn, "RestingPose", PlainType(), "How a dropped part came to rest.")
       .def_readonly("name", &scene::RestingPose::name, "the body's name: the file's stem, #k for copies")
       .def_property_readonly(
           "down_in_part",
@@ -127,7 +126,7 @@ void BindDrop(py::module_& dyn) {
         return "RestingPose(" + p.name + ", " + p.support + (p.balanced ? " (balanced)" : "") +
                ", com_height=" + std::to_string(p.com_height) + ")";
       });
-  py::class_<DropResult>(dyn, "DropResult", plain, "The parts at rest (or at the duration's end), and the world.")
+  py::class_<DropResult>(dyn, "DropResult", PlainType(), "The parts at rest (or at the duration's end), and the world.")
       .def_readonly("poses", &DropResult::poses, "a RestingPose per part, in the order dropped")
       .def_readonly("rest_time", &DropResult::rest_time, "s, when every part came to rest; None: not at rest")
       .def_readonly("end_time", &DropResult::end_time, "s, when the run ended (at rest plus the hold, or the cap)")

@@ -38,9 +38,6 @@ using namespace massprops;
 
 namespace {
 
-// Classes with Python's own metaclass rather than pybind11's: what the type stubs declare.
-py::metaclass PlainType() { return py::metaclass(reinterpret_cast<PyObject*>(&PyType_Type)); }
-
 // Python's words for the options that messages advise.
 
 // {"name or glob": density, or {"density": kg/m^3} or {"mass": kg}} in the dict's order.
@@ -581,7 +578,8 @@ std::vector<std::string> JointNames(const dynamics::World& w) {
 // RigidBody and the body a set of mass properties makes (dynamics/rigid_body.h).
 void BindRigidBody(py::module_& m) {
   using dynamics::RigidBody;
-  py::class_<RigidBody>(m, "RigidBody", PlainType(), "A free rigid body: mass, principal moments, state (SI units).")
+  py::class_<RigidBody>(m, "RigidBody", massprops_python::PlainType(),
+                        "A free rigid body: mass, principal moments, state (SI units).")
       .def(py::init([](double mass, const py::handle& inertia) {
              RigidBody b;
              b.mass = mass;
@@ -645,7 +643,8 @@ void BindRigidBody(py::module_& m) {
 // World: free bodies under forces, stepped by an integrator (dynamics/world.h).
 void BindWorld(py::module_& m) {
   using dynamics::RigidBody;
-  py::class_<dynamics::World>(m, "World", PlainType(), "Free rigid bodies under forces, stepped by an integrator.")
+  py::class_<dynamics::World>(m, "World", massprops_python::PlainType(),
+                              "Free rigid bodies under forces, stepped by an integrator.")
       .def(py::init(
                [](const std::string& integrator) { return dynamics::World(dynamics::ParseIntegrator(integrator)); }),
            py::arg("integrator") = "implicit-midpoint")
@@ -707,7 +706,7 @@ void BindWorld(py::module_& m) {
 
 // Materials and colliders: the shapes contact knows (dynamics/contact.h).
 void BindColliders(py::module_& m) {
-  py::class_<dynamics::Material>(m, "Material", PlainType(),
+  py::class_<dynamics::Material>(m, "Material", massprops_python::PlainType(),
                                  "Coulomb friction (static, kinetic) and restitution of a surface.")
       .def(py::init([](double mu_s, double mu_k, double e) {
              return dynamics::Material{mu_s, mu_k, e};
@@ -725,7 +724,7 @@ void BindColliders(py::module_& m) {
     c.material = material;
     return c;
   };
-  py::class_<dynamics::Collider>(m, "Collider", PlainType(),
+  py::class_<dynamics::Collider>(m, "Collider", massprops_python::PlainType(),
                                  "A collision shape placed in a body's frame (x_B = R x_S + t), with its material. "
                                  "Make one with sphere(), box(), capsule(), cylinder(), convex() or mesh().")
       .def_property_readonly(
@@ -807,7 +806,7 @@ void BindColliders(py::module_& m) {
 // ContactWorld: grounds, statics, colliders and robots, stepped with contact (dynamics/contact.h).
 void BindContactWorld(py::module_& m) {
   using dynamics::RigidBody;
-  py::class_<dynamics::ContactWorld>(m, "ContactWorld", PlainType(),
+  py::class_<dynamics::ContactWorld>(m, "ContactWorld", massprops_python::PlainType(),
                                      "A World with ground planes, static bodies and colliders: bodies rest, slide, "
                                      "roll, bounce and stack (dynamics/contact.h).")
       .def(py::init([](const std::string& integrator, bool sleeping) {
@@ -906,6 +905,9 @@ void BindDynamics(py::module_& m) {
 }  // namespace
 
 namespace massprops_python {
+
+py::metaclass PlainType() { return py::metaclass(reinterpret_cast<PyObject*>(&PyType_Type)); }
+
 LoadOptions LoadOptionsFrom(const py::kwargs& kw) { return ToLoadOptions(kw); }
 const Vocabulary& PythonWords() { return report::WordsFor(report::FrontEnd::kPython); }
 std::vector<std::pair<std::string, std::string>> PackagesOf(const py::dict& packages) {

@@ -65,8 +65,7 @@ LoadedScene LoadScene(const std::string& path, int threads, const py::dict& pack
 }  // namespace
 
 void BindScenes(py::module_& dyn) {
-  const py::metaclass plain(reinterpret_cast<PyObject*>(&PyType_Type));  // as the stubs declare
-  py::class_<LoadedScene>(dyn, "Scene", plain,
+  py::class_<LoadedScene>(dyn, "Scene", PlainType(),
                           "A scene file or robot file built as `rbsim PATH` builds it: its world, step and length")
       .def_readonly("world", &LoadedScene::world, "the ContactWorld, at t = 0")
       .def_readonly("dt", &LoadedScene::dt, "the scene's step, s")
