@@ -64,7 +64,7 @@ Json RunData(const Simulation& sim, const Recording& rec) {
       const Json visual = ViewerStatic(body.name, body.color, body.visual);
       o["visual"] = {{"positions", visual["positions"]}, {"indices", visual["indices"]}};
     }
-    double r = body.display.V.rows() > 0 ? body.display.V.rowwise().norm().maxCoeff() : 0.0;
+    double r = Reach(body);
     if (body.visual.V.rows() > 0) r = std::max(r, body.visual.V.rowwise().norm().maxCoeff());
     for (const Eigen::Vector3f& x : rec.translations[b]) {
       bounds.extend(x.cast<double>() + Vector3::Constant(r));

@@ -62,6 +62,11 @@ Simulation BuildSimulation(const Scene& scene, std::vector<std::string>& warning
 
 BodyState StateOf(const SimBody& body, const dynamics::RigidBody& rb);
 
+/// A body's reach: its display mesh's farthest corner from its center of mass (m; 0 for none).
+double Reach(const SimBody& body);
+/// A bound on the speed of the body's fastest point, |v| + |ω| reach (m/s): the rest rule's test.
+double FastestPointSpeed(const dynamics::RigidBody& rb, double reach);
+
 struct RunStats {
   std::int64_t steps = 0;
   std::int64_t samples = 0;

@@ -170,9 +170,8 @@ Scene DropScene(const DropOptions& o, std::vector<std::string>& warnings) {
   scene.outputs = DefaultOutputs();
   scene.until_rest = o.rest;
   scene.words = &words;
-  // Parts that have settled sleep (a pile settles from the bottom up): they cost nothing until
-  // something wakes them.
-  // A part sleeps once it meets the rest rule (slower than its speed for its hold).
+  // A part sleeps once it meets the rest rule (a pile settles from the bottom up): it costs
+  // nothing until something wakes it.
   scene.contact.sleeping = true;
   scene.contact.sleep_speed = o.rest.speed;
   scene.contact.sleep_time = o.rest.hold;
@@ -304,20 +303,21 @@ std::vector<RestingPose> RestingPoses(const Simulation& sim) {
     p.com_height = st.position.z() - floor;
     p.tilt = std::acos(std::clamp(R(2, 2), -1.0, 1.0));
     const massprops::TriangleMesh& m = body.display;
-    const double r = m.V.rows() > 0 ? m.V.rowwise().norm().maxCoeff() : 0.0;
-    p.speed = st.velocity.norm() + st.omega_world.norm() * r;
+    const double r = Reach(body);
+    p.speed = FastestPointSpeed(rb, r);
     // The corners within 1e-3 of its size of its lowest point: one, on a line, or a face.
     const Eigen::VectorXd z = m.V * R.row(2).transpose();
     const double lowest = z.size() > 0 ? z.minCoeff() : 0.0, tolerance = 2e-3 * r;
     std::vector<Vector3> down;
     for (Eigen::Index v = 0; v < z.size(); ++v)
       if (z[v] <= lowest + tolerance) down.push_back(R * m.V.row(v).transpose());
-    p.support = "corner";
-    if (down.size() >= 2) {
-      Vector3 a = down[0], b = down[0];
-      for (const Vector3& d : down)
-        if ((d - a).norm() > (b - a).norm()) b = d;
-      p.support = (b - a).norm() <= tolerance ? "corner" : "edge";
+    // The lowest corner a and the one farthest from it, b: one point, a line, or a face.
+    const Vector3 a = down.empty() ? Vector3::Zero() : down.front();  // (none: a body without a mesh)
+    Vector3 b = a;
+    for (const Vector3& d : down)
+      if ((d - a).norm() > (b - a).norm()) b = d;
+    p.support = (b - a).norm() <= tolerance ? "corner" : "edge";
+    if (p.support == "edge") {
       const Vector3 u = (b - a).normalized();
       for (const Vector3& d : down)
         if (((d - a) - u * u.dot(d - a)).norm() > tolerance) p.support = "face";
@@ -325,11 +325,8 @@ std::vector<RestingPose> RestingPoses(const Simulation& sim) {
     // On the floor on an edge or corner, the center of mass right above it: balanced.
     const bool on_floor = lowest + st.position.z() - floor <= tolerance;
     if (on_floor && p.support != "face") {
-      Vector3 a = down.front(), u = Vector3::Zero();
-      for (const Vector3& d : down)
-        if ((d - a).norm() > u.norm()) u = d - a;
       Vector3 off = -a;  // from the support to the center of mass (at the origin here), across
-      if (u.norm() > 0) off -= u.normalized() * u.normalized().dot(off);
+      if ((b - a).norm() > 0) off -= (b - a).normalized() * (b - a).normalized().dot(off);
       p.balanced = std::hypot(off.x(), off.y()) <= 1e-6 * r;
     }
     out.push_back(std::move(p));

@@ -248,7 +248,7 @@ void AddGrounds(Simulation& sim) {
   Vector3 lo = Vector3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (std::size_t i = 0; i < sim.bodies.size(); ++i) {
     const dynamics::RigidBody& rb = sim.world().bodies()[i];
-    const double r = sim.bodies[i].display.V.rows() > 0 ? sim.bodies[i].display.V.rowwise().norm().maxCoeff() : 0.0;
+    const double r = Reach(sim.bodies[i]);
     lo = lo.cwiseMin(rb.position - Vector3::Constant(r));
     hi = hi.cwiseMax(rb.position + Vector3::Constant(r));
   }
@@ -452,6 +452,14 @@ BodyState StateOf(const SimBody& body, const dynamics::RigidBody& rb) {
   return s;
 }
 
+double Reach(const SimBody& body) {
+  return body.display.V.rows() > 0 ? body.display.V.rowwise().norm().maxCoeff() : 0.0;
+}
+
+double FastestPointSpeed(const dynamics::RigidBody& rb, double reach) {
+  return rb.velocity.norm() + rb.AngularVelocity().norm() * reach;
+}
+
 std::int64_t StepCount(const Scene& scene) {
   return std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(scene.duration / scene.dt - 1e-9)));
 }
@@ -474,7 +482,7 @@ std::vector<std::string> FellThrough(const Simulation& sim) {
     const SimBody& body = sim.bodies[k];
     if (!body.collides) continue;
     const Vector3 p = sim.world().bodies()[k].position;
-    const double size = body.display.V.rows() > 0 ? 2 * body.display.V.rowwise().norm().maxCoeff() : 0.0;
+    const double size = 2 * Reach(body);
     double least = std::numeric_limits<double>::infinity();  // how far below the nearest ground
     for (const GroundSpec& g : sim.scene.grounds) least = std::min(least, g.offset - g.normal.dot(p));
     if (least > size) {
@@ -487,22 +495,20 @@ std::vector<std::string> FellThrough(const Simulation& sim) {
   return out;
 }
 
-// Each body's farthest point from its center of mass (m).
+// Each body's reach, once for the run (Reach).
 std::vector<double> Reaches(const Simulation& sim) {
   std::vector<double> out;
   for (std::size_t k = 0; k < std::min(sim.bodies.size(), sim.world().bodies().size()); ++k) {
-    const massprops::TriangleMesh& m = sim.bodies[k].display;
-    out.push_back(m.V.rows() > 0 ? m.V.rowwise().norm().maxCoeff() : 0.0);
+    out.push_back(Reach(sim.bodies[k]));
   }
   return out;
 }
 
-// The fastest point of any body, m/s: |v| + |ω| r, r its reach.
+// The fastest point of any body, m/s.
 double FastestPoint(const Simulation& sim, const std::vector<double>& reaches) {
   double fastest = 0;
   for (std::size_t k = 0; k < reaches.size(); ++k) {
-    const dynamics::RigidBody& rb = sim.world().bodies()[k];
-    fastest = std::max(fastest, rb.velocity.norm() + rb.AngularVelocity().norm() * reaches[k]);
+    fastest = std::max(fastest, FastestPointSpeed(sim.world().bodies()[k], reaches[k]));
   }
   return fastest;
 }
