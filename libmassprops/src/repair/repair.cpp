@@ -249,7 +249,7 @@ void FillHoles(Mesh& mesh, double flat, RepairReport& rep) {
 }
 
 // A closed mesh's shells that CGAL's orientation turned inward though they cross another shell
-// (a pin through a hub: CGAL takes it for a cavity) turned back outward, in place (UnionOfShells'
+// (a pin through a hub: CGAL takes it for a cavity) turned back outward, in place (Cavities'
 // rule, below).
 void OrientCrossingShellsOutward(Mesh& mesh);
 
@@ -410,15 +410,10 @@ PolygonMesh UnionOfShells(const PolygonMesh& input, std::int64_t& merged) {
   Mesh all = ToCgal(input);
   std::vector<Mesh> parts;
   PMP::split_connected_components(all, parts);
-  for (const Mesh& part : parts) {
+  std::vector<Mesh> solids, voids;  // as RepairMesh oriented them: solids outward, cavities inward
+  for (Mesh& part : parts) {
     if (!CGAL::is_closed(part)) throw std::runtime_error("the union of overlapping shells needs closed shells");
-  }
-  const std::vector<bool> cavity = Cavities(parts);
-  std::vector<Mesh> solids, voids;
-  for (std::size_t i = 0; i < parts.size(); ++i) {
-    // Solids face outward (positive volume), cavities inward.
-    if ((PMP::volume(parts[i]) > 0) == cavity[i]) PMP::reverse_face_orientations(parts[i]);
-    (cavity[i] ? voids : solids).push_back(std::move(parts[i]));
+    (PMP::volume(part) > 0 ? solids : voids).push_back(std::move(part));
   }
   if (solids.empty()) throw std::runtime_error("no shell bounds a solid: nothing to unite");
   merged = static_cast<std::int64_t>(solids.size()) - 1;

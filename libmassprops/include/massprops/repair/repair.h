@@ -62,13 +62,16 @@ struct RepairedMesh {
 /// faces, degenerate faces), orient_polygon_soup (consistent orientation),
 /// polygon_soup_to_polygon_mesh, stitch_borders, triangulate_hole on each border cycle left (on its
 /// own corners, minimal area), and — when the result is closed — orient_to_bound_a_volume (every
-/// shell outward, nested cavities inward).
+/// shell outward, nested cavities inward), then every shell that crosses another turned outward
+/// (CGAL takes a pin through a hub for a cavity): a cavity lies wholly inside another shell,
+/// touching none of it.
 RepairedMesh RepairMesh(const PolygonMesh& mesh, const RepairOptions& options = {});
 
-/// The union of a mesh's closed shells (CGAL corefinement), for shells that overlap: the outward
-/// shells are united one by one, inward ones (cavities) kept as they are. `merged` is how many
-/// shells were united into the first. @throws std::runtime_error when a shell is open or CGAL
-/// cannot unite them (a shell that intersects itself).
+/// The union of a mesh's closed shells (CGAL corefinement), for shells that overlap, oriented as
+/// RepairMesh leaves them: the outward shells are united in a balanced tree of pairs, inward ones
+/// (cavities) kept as they are. `merged` is how many shells were united into the first.
+/// @throws std::runtime_error when a shell is open or CGAL cannot unite them (a shell that
+/// intersects itself).
 PolygonMesh UnionOfShells(const PolygonMesh& mesh, std::int64_t& merged);
 
 /// The convex hull of the mesh's corners (CGAL convex_hull_3, exact predicates): triangles facing
